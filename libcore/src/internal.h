@@ -1,0 +1,50 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* Internal helpers shared by libfacet's modules. Not installed. */
+#ifndef FACET_INTERNAL_H
+#define FACET_INTERNAL_H
+
+#include "facet.h"
+
+#include <stdarg.h>
+
+#if defined(__GNUC__)
+#define FACET_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define FACET_PRINTF(a, b)
+#endif
+
+/* Fills *error (if not NULL) and returns status. */
+facet_status facet_fail(facet_error *error, facet_status status, int64_t face, int64_t vertex,
+                        const char *format, ...) FACET_PRINTF(5, 6);
+
+/* Clears *error (if not NULL) to FACET_OK. */
+void facet_error_clear(facet_error *error);
+
+/* Checks array sizes and pointers of a mesh, not its contents. */
+facet_status facet_mesh_check_arrays(const facet_mesh *mesh, facet_error *error);
+
+/* Checks that every face index is in range (O(corners), no allocation). */
+facet_status facet_mesh_check_indices(const facet_mesh *mesh, facet_error *error);
+
+/* facet_mesh_validate without the coordinates when check_coordinates is 0. */
+facet_status facet_mesh_validate_topology(const facet_mesh *mesh, int check_coordinates,
+                                          facet_mesh_report *report, facet_error *error);
+
+/* Smallest-eigenvalue eigenvector of a symmetric positive semi-definite 3x3
+ * matrix given by its upper triangle a = {a00, a01, a02, a11, a12, a22}.
+ * Writes a unit vector to v and returns the eigenvalue. */
+double facet_sym3_smallest_eigenvector(const double a[6], double v[3]);
+
+/* Least-squares plane of the points xyz[idx[k]], k < n: unit normal and
+ * centroid; returns the smallest scatter eigenvalue. */
+double facet_face_plane(int32_t n, const double *xyz, const int32_t *idx, double normal[3],
+                        double centroid[3]);
+
+/* Sets the number of OpenMP threads for a parallel region: n <= 0 gives the
+ * OpenMP default. */
+int facet_thread_count(int requested);
+
+/* Monotonic wall clock in seconds. */
+double facet_now(void);
+
+#endif

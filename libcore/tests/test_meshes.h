@@ -1,0 +1,66 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* Generated test meshes: quad grids on doubly curved surfaces. */
+#ifndef FACET_TEST_MESHES_H
+#define FACET_TEST_MESHES_H
+
+#include "facet.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+typedef struct {
+    facet_mesh mesh;
+    double *xyz;
+    int32_t *face_start, *face_vertices;
+} test_mesh;
+
+/* An nu x nv quad grid over [0, nu] x [0, nv] (unit cells) with heights
+ * z = amplitude * (bumps) plus a deterministic jitter, scaled by `scale` and
+ * shifted by `offset` (georeferenced coordinates). */
+static inline test_mesh test_grid(int nu, int nv, double amplitude, double scale, double offset)
+{
+    test_mesh t;
+    const int np = (nu + 1) * (nv + 1), nf = nu * nv;
+    t.xyz = malloc(sizeof(double) * 3 * (size_t)np);
+    t.face_start = malloc(sizeof(int32_t) * (size_t)(nf + 1));
+    t.face_vertices = malloc(sizeof(int32_t) * 4 * (size_t)nf);
+    uint32_t seed = 12345u;
+    for (int j = 0; j <= nv; ++j)
+        for (int i = 0; i <= nu; ++i) {
+            const int v = j * (nu + 1) + i;
+            seed = seed * 1664525u + 1013904223u;
+            const double jitter = ((double)(seed >> 8) / 16777216.0 - 0.5) * 0.1 * amplitude;
+            const double x = i, y = j;
+            const double z = amplitude * (0.08 * (x - 0.5 * nu) * (y - 0.5 * nv) / (1.0 + 0.02 * (nu + nv)) +
+                                          1.5 * sin(0.35 * x) * cos(0.27 * y)) + jitter;
+            t.xyz[3 * v] = x * scale + offset;
+            t.xyz[3 * v + 1] = y * scale + offset;
+            t.xyz[3 * v + 2] = z * scale;
+        }
+    for (int f = 0; f <= nf; ++f)
+        t.face_start[f] = 4 * f;
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            const int f = j * nu + i, v = j * (nu + 1) + i;
+            t.face_vertices[4 * f] = v;
+            t.face_vertices[4 * f + 1] = v + 1;
+            t.face_vertices[4 * f + 2] = v + nu + 2;
+            t.face_vertices[4 * f + 3] = v + nu + 1;
+        }
+    t.mesh.n_vertices = np;
+    t.mesh.n_faces = nf;
+    t.mesh.xyz = t.xyz;
+    t.mesh.face_start = t.face_start;
+    t.mesh.face_vertices = t.face_vertices;
+    return t;
+}
+
+static inline void test_mesh_free(test_mesh *t)
+{
+    free(t->xyz);
+    free(t->face_start);
+    free(t->face_vertices);
+}
+
+#endif

@@ -1,0 +1,204 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* Solver invariants: planar input unchanged, tolerance reached, the same bits
+ * for 1 and 2 threads, scale invariance, bad options, cancel, warm restart,
+ * and no divergence on long runs. */
+#include "check.h"
+#include "facet.h"
+#include "test_meshes.h"
+
+#include <string.h>
+
+static double max_rel_planarity(const facet_mesh *m, const double *xyz)
+{
+    facet_mesh mm = *m;
+    mm.xyz = xyz;
+    double *a = malloc(sizeof(double) * (size_t)m->n_faces);
+    double *e = malloc(sizeof(double) * (size_t)m->n_faces);
+    facet_planarity(&mm, 1, a, NULL, e, NULL, NULL);
+    double worst = 0.0;
+    for (int32_t f = 0; f < m->n_faces; ++f)
+        worst = fmax(worst, a[f] / e[f]);
+    free(a);
+    free(e);
+    return worst;
+}
+
+static double max_move(const double *a, const double *b, int32_t nv)
+{
+    double worst = 0.0;
+    for (int32_t v = 0; v < nv; ++v) {
+        const double dx = a[3 * v] - b[3 * v], dy = a[3 * v + 1] - b[3 * v + 1],
+                     dz = a[3 * v + 2] - b[3 * v + 2];
+        worst = fmax(worst, sqrt(dx * dx + dy * dy + dz * dz));
+    }
+    return worst;
+}
+
+static int stop_after;
+static int cancel_at(void *user, int32_t it, int32_t max_it, double rel)
+{
+    (void)user, (void)max_it, (void)rel;
+    return it >= stop_after;
+}
+
+static void test_planar_input_unchanged(facet_method method)
+{
+    /* a cylinder strip: every quad is a planar rectangle */
+    const int nu = 12, nv = 5;
+    test_mesh t = test_grid(nu, nv, 0.0, 1.0, 0.0);
+    for (int j = 0; j <= nv; ++j)
+        for (int i = 0; i <= nu; ++i) {
+            const int v = j * (nu + 1) + i;
+            const double a = 0.2 * i;
+            t.xyz[3 * v] = 654321.0 + 8.0 * cos(a);
+            t.xyz[3 * v + 1] = 1234567.0 + 8.0 * sin(a);
+            t.xyz[3 * v + 2] = 1.3 * j;
+        }
+    facet_planarizer *s = NULL;
+    facet_error e;
+    CHECK_STATUS(facet_planarizer_create(&t.mesh, &s, &e), FACET_OK);
+    facet_planarize_options o;
+    facet_planarize_options_default(method, &o);
+    double *out = malloc(sizeof(double) * 3 * (size_t)t.mesh.n_vertices);
+    facet_planarize_result r;
+    CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &o, out, &r, &e), FACET_OK);
+    CHECK(r.stop_reason == FACET_STOP_TOLERANCE);
+    CHECK(max_move(out, t.xyz, t.mesh.n_vertices) == 0.0); /* stopped before any update */
+    /* also when forced to iterate: within 1e-12 of the edge length (1.3) */
+    o.iterations = 50;
+    CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &o, out, &r, &e), FACET_OK);
+    CHECK(r.iterations == 50 && r.stop_reason == FACET_STOP_ITERATIONS);
+    CHECK(max_move(out, t.xyz, t.mesh.n_vertices) <= 1e-12 * 1.3);
+    free(out);
+    facet_planarizer_free(&s);
+    CHECK(s == NULL);
+    test_mesh_free(&t);
+}
+
+static void test_converges(facet_method method, double tol)
+{
+    test_mesh t = test_grid(24, 18, 0.6, 1.0, 0.0);
+    CHECK(max_rel_planarity(&t.mesh, t.xyz) > 1e-2);
+    facet_planarizer *s = NULL;
+    facet_error e;
+    CHECK_STATUS(facet_planarizer_create(&t.mesh, &s, &e), FACET_OK);
+    facet_planarize_options o;
+    facet_planarize_options_default(method, &o);
+    o.tol_rel = tol;
+    const size_t n = 3 * (size_t)t.mesh.n_vertices;
+    double *out1 = malloc(sizeof(double) * n), *out2 = malloc(sizeof(double) * n);
+    facet_planarize_result r1, r2;
+    o.threads = 1;
+    CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &o, out1, &r1, &e), FACET_OK);
+    CHECK(r1.stop_reason == FACET_STOP_TOLERANCE);
+    CHECK(r1.planarity_max_rel <= tol);
+    CHECK(max_rel_planarity(&t.mesh, out1) <= tol * 1.0001);
+    /* the result stays near the design: no vertex moves more than an edge */
+    CHECK(max_move(out1, t.xyz, t.mesh.n_vertices) < 1.0);
+    o.threads = 2;
+    CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &o, out2, &r2, &e), FACET_OK);
+    CHECK(r1.iterations == r2.iterations);
+    CHECK(memcmp(out1, out2, sizeof(double) * n) == 0);
+
+    /* the same mesh in millimetres at georeferenced coordinates: same answer
+     * relative to its scale */
+    test_mesh big = test_grid(24, 18, 0.6, 1000.0, 2.5e6);
+    double *out3 = malloc(sizeof(double) * n);
+    facet_planarizer *s2 = NULL;
+    CHECK_STATUS(facet_planarizer_create(&big.mesh, &s2, &e), FACET_OK);
+    facet_planarize_result r3;
+    o.threads = 0;
+    CHECK_STATUS(facet_planarizer_solve(s2, big.xyz, &o, out3, &r3, &e), FACET_OK);
+    CHECK(abs(r3.iterations - r1.iterations) <= 1);
+    CHECK(max_rel_planarity(&big.mesh, out3) <= tol * 1.0001);
+    double worst = 0.0;
+    for (size_t k = 0; k < n; ++k)
+        worst = fmax(worst, fabs((out3[k] - (k % 3 == 2 ? 0.0 : 2.5e6)) / 1000.0 - out1[k]));
+    CHECK(worst < 1e-6);
+
+    /* warm restart after an edit: one vertex lifted by a tenth of an edge */
+    double *edited = malloc(sizeof(double) * n);
+    memcpy(edited, t.xyz, sizeof(double) * n);
+    edited[3 * 200 + 2] += 0.1;
+    facet_planarize_result cold, warm;
+    CHECK_STATUS(facet_planarizer_solve(s, edited, &o, out2, &cold, &e), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &o, out1, &r1, &e), FACET_OK);
+    facet_planarize_options ow = o;
+    ow.warm = 1;
+    ow.mu0 = method == FACET_METHOD_LOCAL_GLOBAL ? 1e-4 : 1e-2;
+    CHECK_STATUS(facet_planarizer_solve(s, edited, &ow, out2, &warm, &e), FACET_OK);
+    CHECK(warm.stop_reason == FACET_STOP_TOLERANCE);
+    CHECK(warm.iterations < cold.iterations);
+
+    /* cancel from the progress callback */
+    stop_after = 3;
+    o.progress = cancel_at;
+    CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &o, out1, &r1, &e), FACET_ERROR_CANCELLED);
+    CHECK(r1.iterations == 3 && r1.stop_reason == FACET_STOP_CANCELLED);
+    o.progress = NULL;
+
+    /* bad options and bad input; the output is untouched */
+    facet_planarize_options bad = o;
+    bad.mu_min = 0.0;
+    CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &bad, out1, &r1, &e), FACET_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(e.message, "mu_min") != NULL);
+    bad = o;
+    bad.ratio = 1.5;
+    CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &bad, out1, &r1, &e), FACET_ERROR_INVALID_ARGUMENT);
+    memcpy(edited, t.xyz, sizeof(double) * n);
+    edited[3 * 17 + 1] = NAN;
+    memcpy(out2, out1, sizeof(double) * n);
+    CHECK_STATUS(facet_planarizer_solve(s, edited, &o, out1, &r1, &e), FACET_ERROR_NONFINITE);
+    CHECK(e.vertex == 17 && strstr(e.message, "vertex 17") != NULL);
+    CHECK(memcmp(out1, out2, sizeof(double) * n) == 0);
+
+    free(edited);
+    free(out1);
+    free(out2);
+    free(out3);
+    facet_planarizer_free(&s);
+    facet_planarizer_free(&s2);
+    test_mesh_free(&t);
+    test_mesh_free(&big);
+}
+
+/* Thousands of iterations: the mu floor keeps every iterate finite and near
+ * the design (without it L/L flies off past ~150 iterations). */
+static void test_long_run(facet_method method, int iterations)
+{
+    test_mesh t = test_grid(20, 14, 0.8, 1.0, 0.0);
+    facet_planarizer *s = NULL;
+    facet_error e;
+    CHECK_STATUS(facet_planarizer_create(&t.mesh, &s, &e), FACET_OK);
+    facet_planarize_options o;
+    facet_planarize_options_default(method, &o);
+    o.iterations = iterations;
+    double *out = malloc(sizeof(double) * 3 * (size_t)t.mesh.n_vertices);
+    facet_planarize_result r;
+    CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &o, out, &r, &e), FACET_OK);
+    CHECK(r.iterations == iterations);
+    int finite = 1;
+    for (int32_t k = 0; k < 3 * t.mesh.n_vertices; ++k)
+        finite &= isfinite(out[k]) != 0;
+    CHECK(finite);
+    CHECK(max_move(out, t.xyz, t.mesh.n_vertices) < 1.0);
+    CHECK(r.planarity_max_rel < 1e-3);
+    free(out);
+    facet_planarizer_free(&s);
+    test_mesh_free(&t);
+}
+
+int main(void)
+{
+    test_planar_input_unchanged(FACET_METHOD_LOCAL_LOCAL);
+    test_planar_input_unchanged(FACET_METHOD_LOCAL_GLOBAL);
+    test_converges(FACET_METHOD_LOCAL_GLOBAL, 1e-6);
+    test_converges(FACET_METHOD_LOCAL_LOCAL, 1e-3);
+    test_long_run(FACET_METHOD_LOCAL_LOCAL, 3000);
+    test_long_run(FACET_METHOD_LOCAL_GLOBAL, 1000);
+
+    facet_planarizer *s = NULL;
+    CHECK_STATUS(facet_planarizer_create(NULL, &s, NULL), FACET_ERROR_INVALID_ARGUMENT);
+    facet_planarizer_free(NULL);
+    return check_report("test_planarize");
+}
