@@ -424,7 +424,8 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         return handle_fail(s, error, FACET_ERROR_DEGENERATE_FACE,
                            "every edge of the mesh has zero length");
     const double inv = 1.0 / scale;
-    const double *start_xyz = (options->warm && s->has_previous) ? s->previous : xyz_in;
+    const int warm = options->warm && s->has_previous;
+    const double *start_xyz = warm ? s->previous : xyz_in;
     for (int32_t v = 0; v < nv; ++v)
         for (int a = 0; a < 3; ++a) {
             s->p[3 * (size_t)v + a] = (xyz_in[3 * (size_t)v + a] - centre[a]) * inv;
@@ -457,7 +458,9 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             const double e = s->face_edge[f];
             max_rel = fmax(max_rel, e > 0.0 ? s->face_dev[f] / e : (s->face_dev[f] > 0.0 ? INFINITY : 0.0));
         }
-        if (use_tol && (tol_abs <= 0.0 || max_abs <= tol_abs) &&
+        /* A warm start begins at the previous (planar) result: it must take the
+         * edited control positions into account before it may stop. */
+        if (use_tol && (it > 0 || !warm) && (tol_abs <= 0.0 || max_abs <= tol_abs) &&
             (tol_rel <= 0.0 || max_rel <= tol_rel)) {
             reason = FACET_STOP_TOLERANCE;
             break;

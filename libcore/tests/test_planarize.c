@@ -122,13 +122,21 @@ static void test_converges(facet_method method, double tol)
     edited[3 * 200 + 2] += 0.1;
     facet_planarize_result cold, warm;
     CHECK_STATUS(facet_planarizer_solve(s, edited, &o, out2, &cold, &e), FACET_OK);
+    const double cold_z = out2[3 * 200 + 2];
     CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &o, out1, &r1, &e), FACET_OK);
     facet_planarize_options ow = o;
     ow.warm = 1;
     ow.mu0 = method == FACET_METHOD_LOCAL_GLOBAL ? 1e-4 : 1e-2;
     CHECK_STATUS(facet_planarizer_solve(s, edited, &ow, out2, &warm, &e), FACET_OK);
     CHECK(warm.stop_reason == FACET_STOP_TOLERANCE);
-    CHECK(warm.iterations < cold.iterations);
+    CHECK(warm.iterations >= 1 && warm.iterations < cold.iterations);
+    /* the edit shows in the warm result: the lifted vertex follows it */
+    /* the edit shows in the warm result as in a cold solve of the edited mesh */
+    const double before_z = out1[3 * 200 + 2], warm_z = out2[3 * 200 + 2];
+    CHECK(cold_z - before_z > 0.0);
+    CHECK(warm_z - before_z > 0.25 * (cold_z - before_z));
+    CHECK(fabs(warm_z - cold_z) < 0.05);
+    CHECK(max_rel_planarity(&t.mesh, out2) <= tol * 1.0001);
 
     /* cancel from the progress callback */
     stop_after = 3;
