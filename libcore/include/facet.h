@@ -179,7 +179,7 @@ typedef struct facet_planarize_options {
     void *progress_user;
 } facet_planarize_options;
 
-/* Defaults for a method: mu0 1, ratio 0.9; mu_min 1e-6 (L/L) or 1e-12 (L/G);
+/* Defaults for a method: mu0 1, ratio 0.95; mu_min 1e-6 (L/L) or 1e-12 (L/G);
  * tol_rel 1e-6, tol_abs off; max_iter 3000 (L/L) or 1000 (L/G). */
 void facet_planarize_options_default(facet_method method, facet_planarize_options *options);
 
