@@ -34,7 +34,7 @@ facet_status facet_mesh_check_indices(const facet_mesh *mesh, facet_error *error
         for (int32_t k = mesh->face_start[f]; k < mesh->face_start[f + 1]; ++k) {
             const int32_t v = mesh->face_vertices[k];
             if (v < 0 || v >= mesh->n_vertices)
-                return facet_fail(error, FACET_ERROR_INDEX_OUT_OF_RANGE, f, v,
+                return facet_fail(error, FACET_ERROR_INDEX_OUT_OF_RANGE, f, -1,
                                   "face %d has vertex index %d out of range (%d vertices)", (int)f,
                                   (int)v, (int)mesh->n_vertices);
         }
@@ -92,7 +92,7 @@ facet_status facet_mesh_validate_topology(const facet_mesh *mesh, int check_coor
             const int32_t v = fv[k];
             if (v < 0 || v >= nv) {
                 free(stamp);
-                return facet_fail(error, FACET_ERROR_INDEX_OUT_OF_RANGE, f, v,
+                return facet_fail(error, FACET_ERROR_INDEX_OUT_OF_RANGE, f, -1,
                                   "face %d has vertex index %d out of range (%d vertices)", (int)f,
                                   (int)v, (int)nv);
             }

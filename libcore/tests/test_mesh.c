@@ -32,7 +32,7 @@ int main(void)
     const int32_t bad_index[] = {0, 1, 2, 7};
     m = make(4, xyz, 1, start, bad_index);
     CHECK_STATUS(facet_mesh_validate(&m, &r, &e), FACET_ERROR_INDEX_OUT_OF_RANGE);
-    CHECK(e.face == 0 && e.vertex == 7);
+    CHECK(e.face == 0 && e.vertex == -1); /* 7 is not a vertex */
     CHECK(strcmp(e.message, "face 0 has vertex index 7 out of range (4 vertices)") == 0);
 
     const int32_t negative[] = {0, 1, -2, 3};

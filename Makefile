@@ -1,0 +1,71 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+# Facet's front door. Every target installs the Debian packages it is missing.
+#
+#   make          build libcore and facet._core in place (workbench/facet/)
+#   make demo     planarize the bundled facade: OBJ, JSON report, FreeCAD document, PNG
+#   make test     every test: C (ctest), Python (pytest), FreeCAD headless, FreeCAD GUI (Xvfb)
+#   make bench    solver benchmarks (ns per face per iteration, 1 and 2 threads)
+#   make install  the workbench into FreeCAD's user Mod folders and a `facet` command
+
+# FreeCAD's interpreter: Debian's, not whatever python3 is first on PATH.
+PYTHON ?= /usr/bin/python3
+BUILD ?= build
+OUT ?= out
+PREFIX ?= $(HOME)/.local
+JOBS ?= 2
+
+PKGS_BUILD = gcc make cmake pkg-config libsuitesparse-dev liblapack-dev python3-dev python3-numpy
+PKGS_PYTHON = python3-pytest python3-numpy
+PKGS_FREECAD = freecad xvfb xauth
+ENSURE = sh tools/ensure-packages.sh
+
+CORE = $(BUILD)/libcore/.built
+FC_ENV = sh tests/fc_env.sh
+
+.PHONY: all build deps deps-build deps-test test test-c test-python test-freecad test-gui \
+        demo bench install uninstall clean
+
+all: build
+
+deps-build:
+	@$(ENSURE) $(PKGS_BUILD)
+
+deps-test: deps-build
+	@$(ENSURE) $(PKGS_PYTHON) $(PKGS_FREECAD)
+
+deps: deps-test
+
+build: deps-build
+	cmake -S libcore -B $(BUILD)/libcore -DCMAKE_BUILD_TYPE=Release \
+	    -DPython3_EXECUTABLE=$(PYTHON) -DFACET_PYTHON_OUTPUT_DIR=$(CURDIR)/workbench/facet
+	cmake --build $(BUILD)/libcore -j $(JOBS)
+
+test: deps-test build
+	$(MAKE) --no-print-directory test-c test-python test-freecad test-gui
+
+test-c:
+	cd $(BUILD)/libcore && ctest --output-on-failure
+
+test-python:
+	PYTHONPATH=$(CURDIR)/workbench $(PYTHON) -m pytest -q tests/python
+
+test-freecad:
+	$(FC_ENV) headless
+
+test-gui:
+	$(FC_ENV) gui $(OUT)/gui
+
+demo: deps-test build
+	sh tools/demo.sh $(OUT)/demo
+
+bench: build
+	$(BUILD)/libcore/bench/bench_planarize --runs 5 --json $(OUT)/bench.json
+
+install: build
+	sh tools/install.sh "$(PREFIX)" "$(PYTHON)"
+
+uninstall:
+	sh tools/install.sh --uninstall "$(PREFIX)"
+
+clean:
+	rm -rf $(BUILD) $(OUT) workbench/facet/_core*.so

@@ -1,0 +1,229 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The command line: summaries, reports, exit statuses, one-line errors."""
+
+import json
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+import facet
+from facet import cli
+from facet.errors import Cancelled
+
+
+def assert_one_line_error(done, *parts):
+    """Exit status 2, one line on stderr naming every part, no traceback."""
+    assert done.returncode == 2, (done.stdout, done.stderr)
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1, done.stderr
+    assert "Traceback" not in done.stderr
+    for part in parts:
+        assert part in lines[0], (part, lines[0])
+    return lines[0]
+
+
+def test_version(facet_command):
+    done = facet_command("--version")
+    assert done.returncode == 0
+    assert done.stdout.strip() == f"facet {facet.__version__}"
+    assert facet.__version__ == "0.1.0"
+
+
+def test_planarize_prints_a_summary(facet_command, data_dir, tmp_path):
+    output = tmp_path / "tube.off"
+    done = facet_command("planarize", data_dir / "tubemesh.off", "-o", output)
+    assert done.returncode == 0, done.stderr
+    assert "200 vertices, 171 faces (171 quads)" in done.stdout
+    assert "planarity" in done.stdout and "before" in done.stdout and "after" in done.stdout
+    assert "tolerance reached" in done.stdout
+    assert f"written       {output}" in done.stdout
+    assert done.stderr == ""
+    assert facet.read_mesh(output).n_faces == 171
+
+
+def test_planarize_report_and_options(facet_command, data_dir, tmp_path):
+    report_path = tmp_path / "r.json"
+    done = facet_command(
+        "planarize", data_dir / "hypar.obj", "-o", tmp_path / "h.obj", "--method", "ll",
+        "--iterations", "3", "--threads", "1", "--report", report_path,
+    )
+    assert done.returncode == 0, done.stderr
+    report = json.loads(report_path.read_text())
+    assert report["method"] == "ll"
+    assert report["iterations"] == 3
+    assert report["stop_reason"] == "iterations"
+    assert report["faces"] == 64 and report["vertices"] == 81
+    assert "requested number of iterations done" in done.stdout
+    assert "NaN" not in report_path.read_text()
+
+
+def test_thread_count_does_not_change_the_result(facet_command, data_dir, tmp_path):
+    one, two = tmp_path / "one.obj", tmp_path / "two.obj"
+    assert facet_command("planarize", data_dir / "tubemesh.off", "-o", one,
+                         "--threads", "1").returncode == 0
+    assert facet_command("planarize", data_dir / "tubemesh.off", "-o", two,
+                         "--threads", "2").returncode == 0
+    assert one.read_bytes() == two.read_bytes()
+
+
+def test_absolute_tolerance(facet_command, data_dir, tmp_path):
+    report_path = tmp_path / "r.json"
+    done = facet_command("planarize", data_dir / "tubemesh.off", "-o", tmp_path / "t.obj",
+                         "--tol", "0", "--tol-abs", "1e-3", "--report", report_path)
+    assert done.returncode == 0, done.stderr
+    report = json.loads(report_path.read_text())
+    assert report["converged"] is True
+    assert report["planarity_max_abs"] <= 1e-3
+    assert report["planarity_max_rel"] > 1e-6  # the relative test was off
+
+
+def test_not_converged_is_said_and_strict_fails(facet_command, data_dir, tmp_path):
+    arguments = ["planarize", data_dir / "tubemesh.off", "-o", tmp_path / "t.obj",
+                 "--max-iter", "2"]
+    done = facet_command(*arguments)
+    assert done.returncode == 0
+    assert "not converged" in done.stderr
+    assert "iteration limit reached" in done.stdout
+    strict = facet_command(*arguments, "--strict")
+    assert strict.returncode == 1
+    assert "not converged" in strict.stderr
+
+
+def test_check_prints_and_reports(facet_command, data_dir, tmp_path):
+    report_path = tmp_path / "c.json"
+    done = facet_command("check", data_dir / "examples_cross_vault_6.json", "--report",
+                         report_path)
+    assert done.returncode == 0, done.stderr
+    assert "121 vertices, 120 faces (40 triangles, 80 quads)" in done.stdout
+    assert "4 faces skipped" in done.stdout
+    report = json.loads(report_path.read_text())
+    assert report["edges"] == 240
+    assert report["source_openings_skipped"] == 4
+    assert report["planarity_max_rel"] > 0
+
+
+def test_check_other_scene_item(facet_command, data_dir):
+    done = facet_command("check", data_dir / "examples_cross_vault_6.json", "--item",
+                         "FormDiagram")
+    assert done.returncode == 0, done.stderr
+    assert "scene item FormDiagram" in done.stdout
+
+
+def test_missing_input_file(facet_command, tmp_path):
+    missing = tmp_path / "absent.obj"
+    done = facet_command("check", missing)
+    assert_one_line_error(done, str(missing), "No such file")
+
+
+def test_parse_error(facet_command, write_file, tmp_path):
+    path = write_file("bad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 1 abc 0\nf 1 2 3\n")
+    done = facet_command("planarize", path, "-o", tmp_path / "out.obj")
+    line = assert_one_line_error(done, str(path), "line 4", "cannot read 'abc' as a number")
+    assert line == f"facet: error: {path}: line 4: cannot read 'abc' as a number"
+    assert not (tmp_path / "out.obj").exists()
+
+
+def test_invalid_mesh(facet_command, write_file):
+    path = write_file("x.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n4 0 2 3 2\n")
+    done = facet_command("check", path)
+    assert_one_line_error(done, str(path), "line 8", "face 1")
+
+
+def test_out_of_range_index(facet_command, write_file):
+    path = write_file("x.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")
+    done = facet_command("check", path)
+    assert_one_line_error(done, str(path), "line 6", "face 0 has vertex index 7 out of range")
+
+
+def test_unknown_output_format_fails_before_solving(facet_command, data_dir, tmp_path):
+    done = facet_command("planarize", data_dir / "tubemesh.off", "-o", tmp_path / "t.stl")
+    assert_one_line_error(done, "t.stl", "cannot write .stl files")
+    assert done.stdout == ""
+
+
+def test_unknown_input_format(facet_command, write_file):
+    path = write_file("roof.ply", "ply\n")
+    assert_one_line_error(facet_command("check", path), "roof.ply", "cannot read .ply files")
+
+
+def test_item_only_for_json(facet_command, data_dir):
+    done = facet_command("check", data_dir / "hypar.obj", "--item", "ThrustDiagram")
+    assert_one_line_error(done, "--item applies to .json files only")
+
+
+@pytest.mark.parametrize(
+    "arguments",
+    [
+        ["planarize", "in.obj"],  # no -o
+        ["planarize", "in.obj", "-o", "o.obj", "--method", "fast"],
+        ["planarize", "in.obj", "-o", "o.obj", "--tol", "-1"],
+        ["planarize", "in.obj", "-o", "o.obj", "--max-iter", "0"],
+        [],
+    ],
+)
+def test_usage_errors_exit_2(facet_command, arguments):
+    done = facet_command(*arguments)
+    assert done.returncode == 2
+    assert "usage: facet" in done.stderr
+
+
+def test_ctrl_c_exits_130(monkeypatch, capsys, data_dir, tmp_path):
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(facet, "planarize", interrupted)
+    status = cli.main(["planarize", str(data_dir / "hypar.obj"), "-o", str(tmp_path / "o.obj")])
+    assert status == 130
+    assert capsys.readouterr().err == "facet: error: interrupted\n"
+    assert not (tmp_path / "o.obj").exists()
+
+
+def noisy_grid(path, n=100):
+    """An n x n grid of quads with random heights: slow enough to interrupt."""
+    x, y = np.meshgrid(np.arange(n + 1.0), np.arange(n + 1.0))
+    z = np.random.default_rng(7).normal(0.0, 0.3, x.size)
+    corner = (np.arange(n)[:, None] * (n + 1) + np.arange(n)[None, :]).ravel()
+    faces = np.stack([corner, corner + 1, corner + n + 2, corner + n + 1], axis=1)
+    facet.write_mesh(facet.PolyMesh.from_faces(np.c_[x.ravel(), y.ravel(), z], faces), path)
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="SIGINT is POSIX")
+def test_real_ctrl_c_during_a_solve_exits_130(tmp_path, facet_env):
+    source, output = tmp_path / "grid.obj", tmp_path / "out.obj"
+    noisy_grid(source)
+    process = subprocess.Popen(
+        [sys.executable, "-m", "facet", "planarize", source, "-o", output,
+         "--iterations", "1000000", "--threads", "1"],
+        env=facet_env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
+    try:
+        time.sleep(3.0)
+        assert process.poll() is None, process.communicate()
+        process.send_signal(signal.SIGINT)
+        out, err = process.communicate(timeout=60)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
+    assert process.returncode == 130, err
+    assert err == "facet: error: interrupted\n"
+    assert not output.exists()
+
+
+def test_cancelled_solve_exits_130(monkeypatch, capsys, data_dir, tmp_path):
+    def cancelled(*args, **kwargs):
+        raise Cancelled("cancelled")
+
+    monkeypatch.setattr(facet, "planarize", cancelled)
+    status = cli.main(["planarize", str(data_dir / "hypar.obj"), "-o", str(tmp_path / "o.obj")])
+    assert status == 130
+
+
+def test_main_returns_zero_in_process(capsys, data_dir):
+    assert cli.main(["check", str(data_dir / "hypar.obj")]) == 0
+    assert "81 vertices, 64 faces (64 quads)" in capsys.readouterr().out

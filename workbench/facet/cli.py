@@ -1,0 +1,426 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The ``facet`` command line: planarize or check a facade mesh file.
+
+::
+
+    python3 -m facet planarize IN -o OUT.obj [--method ll|lg] [--tol T]
+        [--tol-abs T] [--max-iter N] [--iterations N] [--threads N]
+        [--report R.json] [--strict]
+    python3 -m facet check IN [--report R.json]
+    python3 -m facet --version
+
+Exit status: 0 done (also when the tolerance was not reached, which is said;
+``--strict`` makes that 1), 1 the solver failed, 2 bad input or bad command
+line (one line on stderr naming the file, the line or face and what is
+wrong), 130 interrupted with Ctrl+C.
+"""
+
+import argparse
+import os
+import sys
+
+EXIT_OK = 0
+EXIT_NOT_CONVERGED = 1
+EXIT_FAILED = 1
+EXIT_BAD_INPUT = 2
+EXIT_INTERRUPTED = 130
+
+#: How each stop reason of the solver is told to the designer.
+STOP_REASONS = {
+    "tolerance": "tolerance reached",
+    "max_iter": "iteration limit reached before the tolerance",
+    "iterations": "requested number of iterations done",
+    "stagnation": "planarity stopped improving",
+    "cancelled": "cancelled",
+}
+
+
+def _non_negative_float(text):
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not value >= 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"{text!r} must be a finite number >= 0")
+    return value
+
+
+def _positive_float(text):
+    value = _non_negative_float(text)
+    if value == 0:
+        raise argparse.ArgumentTypeError(f"{text!r} must be > 0")
+    return value
+
+
+def _positive_int(text):
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text!r} must be at least 1")
+    return value
+
+
+def _non_negative_int(text):
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"{text!r} must be at least 0")
+    return value
+
+
+def build_parser():
+    """The argument parser of the ``facet`` command.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+    """
+    from facet import __version__
+
+    parser = argparse.ArgumentParser(
+        prog="facet",
+        description="Planar panels for freeform facades: planarize or check a polygon mesh "
+        "(.obj, .off, compas .json).",
+    )
+    parser.add_argument("--version", action="version", version=f"facet {__version__}")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+    commands.required = True
+
+    planarize = commands.add_parser(
+        "planarize",
+        help="move the vertices so that every panel becomes planar",
+        description="Move the vertices as little as possible so that every face (panel) "
+        "becomes planar, and write the result.",
+    )
+    planarize.add_argument("input", metavar="IN", help="mesh to planarize (.obj, .off, .json)")
+    planarize.add_argument(
+        "-o", "--output", metavar="OUT", required=True, help="planarized mesh (.obj or .off)"
+    )
+    planarize.add_argument(
+        "--method",
+        choices=("ll", "lg"),
+        default="lg",
+        help="lg: local normals, global solve (default); ll: local-local, the paper's algorithm",
+    )
+    planarize.add_argument(
+        "--tol",
+        type=_non_negative_float,
+        default=1e-6,
+        metavar="T",
+        help="stop when every face's distance from its best-fit plane is at most T times its "
+        "mean edge length (default 1e-6; 0 turns it off)",
+    )
+    planarize.add_argument(
+        "--tol-abs",
+        type=_positive_float,
+        metavar="T",
+        help="stop when every face's distance from its best-fit plane is at most T model units",
+    )
+    planarize.add_argument("--max-iter", type=_positive_int, metavar="N", help="iteration limit")
+    planarize.add_argument(
+        "--iterations",
+        type=_positive_int,
+        metavar="N",
+        help="run exactly N iterations, without stopping early",
+    )
+    planarize.add_argument(
+        "--threads", type=_non_negative_int, metavar="N", help="threads to use (0: all cores)"
+    )
+    planarize.add_argument("--report", metavar="R.json", help="write a JSON report")
+    planarize.add_argument(
+        "--item", metavar="NAME", help="mesh to read from a RhinoVAULT .json session"
+    )
+    planarize.add_argument(
+        "--strict",
+        action="store_true",
+        help="exit with status 1 when the tolerance is not reached",
+    )
+    planarize.set_defaults(run=run_planarize)
+
+    check = commands.add_parser(
+        "check",
+        help="validate a mesh and measure the planarity of its panels",
+        description="Validate a mesh and measure how far each face is from planar.",
+    )
+    check.add_argument("input", metavar="IN", help="mesh to check (.obj, .off, .json)")
+    check.add_argument("--report", metavar="R.json", help="write a JSON report")
+    check.add_argument(
+        "--item", metavar="NAME", help="mesh to read from a RhinoVAULT .json session"
+    )
+    check.set_defaults(run=run_check)
+    return parser
+
+
+# ------------------------------------------------------------------ output
+
+
+def _g(value, digits=3):
+    """A number for the summary: 3 significant digits, 'n/a' for None."""
+    if value is None:
+        return "n/a"
+    return f"{value:.{digits}g}"
+
+
+def _count(number, noun):
+    """'1 quad', '2 quads', '1 vertex', '2 vertices'."""
+    if number == 1:
+        return f"{number} {noun}"
+    return f"{number} {'vertices' if noun == 'vertex' else noun + 's'}"
+
+
+def _degrees_text(face_degrees):
+    names = {"3": "triangle", "4": "quad", "5": "pentagon", "6": "hexagon"}
+    ordered = sorted(face_degrees.items(), key=lambda item: int(item[0]))
+    return ", ".join(_count(count, names.get(degree, degree + "-gon")) for degree, count in ordered)
+
+
+def _line(out, label, text):
+    print(f"  {label:<13} {text}", file=out)
+
+
+def _source_lines(out, report):
+    if report.get("source_item"):
+        _line(out, "read", f"scene item {report['source_item']}")
+    openings = report.get("source_openings_skipped")
+    if openings:
+        _line(out, "openings", f"{_count(openings, 'face')} skipped (_is_loaded is false)")
+    dropped = report.get("source_unused_vertices_dropped")
+    if dropped:
+        _line(out, "dropped", f"{_count(dropped, 'vertex')} used by no face")
+
+
+def print_planarize_summary(report, out=None):
+    """Print the human summary of a planarization report.
+
+    Parameters
+    ----------
+    report : dict
+        From :func:`facet.report.planarize_report`.
+    out : file, optional
+        Default ``sys.stdout``.
+    """
+    out = out or sys.stdout
+    print(f"facet planarize: {report['input']}", file=out)
+    _line(
+        out,
+        "mesh",
+        f"{_count(report['vertices'], 'vertex')}, {_count(report['faces'], 'face')} "
+        f"({_degrees_text(report['face_degrees'])}), mean edge {_g(report['mean_edge_length'])}",
+    )
+    _source_lines(out, report)
+    _line(
+        out,
+        "planarity",
+        f"before {_g(report['input_planarity_max_abs'])} "
+        f"({_g(report['input_planarity_max_rel'])} of the edge), "
+        f"after {_g(report['planarity_max_abs'])} ({_g(report['planarity_max_rel'])} of the edge)",
+    )
+    reason = STOP_REASONS.get(report["stop_reason"], report["stop_reason"])
+    if report["stop_reason"] != "iterations":
+        tolerances = []
+        if report.get("tol"):
+            tolerances.append(f"{_g(report['tol'])} of the edge")
+        if report.get("tol_abs"):
+            tolerances.append(f"{_g(report['tol_abs'])} model units")
+        if tolerances:
+            reason += f" (tolerance {' and '.join(tolerances)})"
+    _line(
+        out,
+        "solve",
+        f"{report['method']}, {_count(report['iterations'], 'iteration')} in "
+        f"{report['solve_seconds']:.3g} s: {reason}",
+    )
+    relative = report.get("displacement_max_rel")
+    share = "" if relative is None else f" ({relative * 100:.3g}% of the mean edge)"
+    _line(
+        out,
+        "displacement",
+        f"rms {_g(report['displacement_rms'])}, max {_g(report['displacement_max'])}{share}",
+    )
+    for warning in report.get("warnings") or ():
+        _line(out, "warning", warning)
+    _line(out, "written", report["output"])
+    if report.get("report"):
+        _line(out, "report", report["report"])
+
+
+def print_check_summary(report, out=None):
+    """Print the human summary of a check report.
+
+    Parameters
+    ----------
+    report : dict
+        From :func:`facet.report.check_report`.
+    out : file, optional
+        Default ``sys.stdout``.
+    """
+    out = out or sys.stdout
+    print(f"facet check: {report['input']}", file=out)
+    _line(
+        out,
+        "mesh",
+        f"{_count(report['vertices'], 'vertex')}, {_count(report['faces'], 'face')} "
+        f"({_degrees_text(report['face_degrees'])}), {_count(report['edges'], 'edge')} "
+        f"({report['boundary_edges']} on the boundary)",
+    )
+    _source_lines(out, report)
+    if report.get("non_manifold_edges"):
+        first = "-".join(map(str, report.get("first_non_manifold_edge") or ()))
+        count = report["non_manifold_edges"]
+        text = f"{_count(count, 'edge')} shared by more than two faces (first: {first})"
+        _line(out, "warning", text)
+    if report.get("isolated_vertices"):
+        first = report.get("first_isolated_vertex")
+        count = report["isolated_vertices"]
+        _line(out, "warning", f"{_count(count, 'vertex')} used by no face (first: {first})")
+    low, high = report["bounds"]["min"], report["bounds"]["max"]
+    size = " x ".join(_g(b - a) for a, b in zip(low, high))
+    _line(out, "size", f"{size}, mean edge {_g(report['mean_edge_length'])}")
+    _line(
+        out,
+        "planarity",
+        f"max {_g(report['planarity_max_abs'])} ({_g(report['planarity_max_rel'])} of the "
+        f"edge, face {report['worst_face']}), rms {_g(report['planarity_rms_rel'])} of the edge",
+    )
+    diagonal = report.get("planarity_diagonal_max")
+    if diagonal is not None and diagonal >= 0:
+        _line(out, "quads", f"diagonal distance max {_g(diagonal)} of the diagonal")
+    if report.get("report"):
+        _line(out, "report", report["report"])
+
+
+# ---------------------------------------------------------------- commands
+
+
+def _read(args):
+    from facet.io import read_mesh
+
+    options = {}
+    if args.item is not None:
+        if os.path.splitext(args.input)[1].lower() != ".json":
+            raise _UsageError("--item applies to .json files only")
+        options["item"] = args.item
+    return read_mesh(args.input, **options)
+
+
+def run_planarize(args):
+    """Run ``facet planarize``; return the exit status."""
+    from facet import planarity, planarize
+    from facet.errors import MeshError
+    from facet.io import WRITERS, write_mesh
+    from facet.report import planarize_report, write_json
+
+    suffix = os.path.splitext(args.output)[1].lower()
+    if suffix not in WRITERS:
+        raise MeshError(
+            f"cannot write {suffix or 'files without an extension'} files "
+            f"(Facet writes {', '.join(sorted(WRITERS))})",
+            source=args.output,
+        )
+    mesh = _read(args)
+    before = planarity(mesh, threads=args.threads)
+    result = planarize(
+        mesh,
+        method=args.method,
+        tol=args.tol,
+        tol_abs=args.tol_abs,
+        max_iter=args.max_iter,
+        iterations=args.iterations,
+        threads=args.threads,
+    )
+    write_mesh(result.mesh, args.output)
+    report = planarize_report(
+        mesh, result, input_path=args.input, output_path=args.output, input_planarity=before
+    )
+    if args.report:
+        report["report"] = args.report
+        write_json(report, args.report)
+    print_planarize_summary(report)
+    if not report["converged"]:
+        if report["stop_reason"] != "iterations":
+            print(
+                f"facet: warning: not converged: {report['output']} has planarity "
+                f"{_g(report['planarity_max_rel'])} of the edge "
+                f"({_g(report['planarity_max_abs'])} model units) after "
+                f"{report['iterations']} iterations: "
+                f"{STOP_REASONS.get(report['stop_reason'], report['stop_reason'])}",
+                file=sys.stderr,
+            )
+        if args.strict:
+            return EXIT_NOT_CONVERGED
+    return EXIT_OK
+
+
+def run_check(args):
+    """Run ``facet check``; return the exit status."""
+    from facet import planarity
+    from facet.report import check_report, write_json
+
+    mesh = _read(args)
+    validation = mesh.validate()
+    report = check_report(mesh, planarity(mesh), validation, path=args.input)
+    if args.report:
+        report["report"] = args.report
+        write_json(report, args.report)
+    print_check_summary(report)
+    return EXIT_OK
+
+
+class _UsageError(Exception):
+    """A command-line option that does not fit the input."""
+
+
+def _os_error_text(error):
+    if error.filename is not None:
+        return f"{os.fspath(error.filename)}: {error.strerror or error}"
+    return str(error)
+
+
+def _fail(message):
+    print(f"facet: error: {message}", file=sys.stderr)
+
+
+def main(argv=None):
+    """Run the ``facet`` command.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Arguments without the program name; default ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        The exit status (see the module documentation).
+    """
+    from facet.errors import Cancelled, FacetError, MeshError
+
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+        return args.run(args)
+    except KeyboardInterrupt:
+        _fail("interrupted")
+        return EXIT_INTERRUPTED
+    except Cancelled:
+        _fail("interrupted")
+        return EXIT_INTERRUPTED
+    except MeshError as error:
+        _fail(str(error))
+        return EXIT_BAD_INPUT
+    except _UsageError as error:
+        _fail(str(error))
+        return EXIT_BAD_INPUT
+    except OSError as error:
+        _fail(_os_error_text(error))
+        return EXIT_BAD_INPUT
+    except FacetError as error:
+        _fail(str(error))
+        return EXIT_FAILED
+    except ImportError as error:
+        _fail(str(error))
+        return EXIT_FAILED

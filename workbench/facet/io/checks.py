@@ -1,0 +1,154 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Checks every reader makes once a file is parsed.
+
+The readers collect vertices and faces together with the line each came
+from; :func:`build_mesh` turns them into a :class:`~facet.mesh.PolyMesh`,
+refusing non-finite coordinates and indices out of range with the line of the
+offending record, and then runs the full validation of the compiled core,
+adding the line (or the compas key) of the face it names.
+"""
+
+import numpy as np
+
+from facet.errors import MeshError
+from facet.mesh import PolyMesh
+
+__all__ = ["build_mesh"]
+
+
+def _face_of_corner(face_start, corner):
+    return int(np.searchsorted(face_start, corner, side="right") - 1)
+
+
+def build_mesh(
+    vertices,
+    face_start,
+    face_vertices,
+    *,
+    source,
+    info,
+    vertex_lines=None,
+    face_lines=None,
+    index_base=0,
+    face_names=None,
+    vertex_names=None,
+    validate=True,
+):
+    """Make a checked mesh from parsed records.
+
+    Parameters
+    ----------
+    vertices : array_like, shape (n, 3)
+    face_start, face_vertices : array_like of int
+        Faces in compressed rows (see :class:`~facet.mesh.PolyMesh`), indices
+        already 0-based.
+    source : str or os.PathLike
+        File name for messages.
+    info : dict
+        Stored in the mesh (``source`` is added).
+    vertex_lines, face_lines : sequence of int, optional
+        Line of each vertex and face in the file.
+    index_base : int
+        Added to an index when it is quoted in a message, so that it reads as
+        written in the file (1 for OBJ).
+    face_names, vertex_names : sequence, optional
+        Keys of faces and vertices in the file (compas JSON), quoted in
+        messages instead of a line number.
+    validate : bool
+        Run :meth:`PolyMesh.validate` (the compiled core). Default True.
+
+    Returns
+    -------
+    PolyMesh
+
+    Raises
+    ------
+    MeshError
+        No vertices, no faces, a non-finite coordinate, an index out of range
+        or any error :meth:`PolyMesh.validate` finds, located in the file.
+    """
+    vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
+    face_start = np.asarray(face_start, dtype=np.int64)
+    n_vertices = vertices.shape[0]
+    try:
+        face_vertices = np.asarray(face_vertices, dtype=np.int64)
+    except OverflowError:  # an index beyond 64 bits, out of range whatever the mesh
+        corner = next(c for c, index in enumerate(face_vertices) if abs(index) >= 2**63)
+        raise _out_of_range(
+            face_start, corner, face_vertices[corner] + index_base, n_vertices, source,
+            face_lines, face_names,
+        ) from None
+    if face_start.size <= 1:
+        raise MeshError("no faces", source=source)
+    if n_vertices == 0:
+        raise MeshError("no vertices", source=source)
+
+    finite = np.isfinite(vertices).all(axis=1)
+    if not finite.all():
+        vertex = int(np.argmin(finite))
+        raise MeshError(
+            f"vertex {vertex} has a non-finite coordinate" + _named(vertex_names, vertex, "vertex"),
+            source=source,
+            line=None if vertex_lines is None else vertex_lines[vertex],
+            vertex=vertex,
+        )
+
+    outside = (face_vertices < 0) | (face_vertices >= n_vertices)
+    if outside.any():
+        corner = int(np.argmax(outside))
+        raise _out_of_range(
+            face_start, corner, int(face_vertices[corner]) + index_base, n_vertices, source,
+            face_lines, face_names,
+        )
+
+    info = dict(info)
+    info["source"] = source
+    mesh = PolyMesh(vertices, face_start, face_vertices, info=info)
+    if validate:
+        try:
+            mesh.validate()
+        except MeshError as error:
+            raise _locate(
+                error, source, face_lines, vertex_lines, face_names, vertex_names
+            ) from None
+    return mesh
+
+
+def _out_of_range(face_start, corner, shown_index, n_vertices, source, face_lines, face_names):
+    """The error for an index out of range at `corner` of the face list."""
+    face = _face_of_corner(face_start, corner)
+    return MeshError(
+        f"face {face} has vertex index {shown_index} out of range ({n_vertices} vertices)"
+        + _named(face_names, face, "face"),
+        source=source,
+        line=None if face_lines is None else face_lines[face],
+        face=face,
+    )
+
+
+def _named(names, index, what):
+    if names is None or index is None or not 0 <= index < len(names):
+        return ""
+    return f" ({what} key {names[index]!r} in the file)"
+
+
+def _locate(error, source, face_lines, vertex_lines, face_names, vertex_names):
+    """Add the file, line and file keys to an error of the core."""
+    line = None
+    keys = []
+    if error.face is not None:
+        if face_lines is not None and error.face < len(face_lines):
+            line = face_lines[error.face]
+        if face_names is not None and error.face < len(face_names):
+            keys.append(f"face key {face_names[error.face]!r}")
+    if error.vertex is not None:
+        if line is None and vertex_lines is not None and error.vertex < len(vertex_lines):
+            line = vertex_lines[error.vertex]
+        if vertex_names is not None and error.vertex < len(vertex_names):
+            keys.append(f"vertex key {vertex_names[error.vertex]!r}")
+    message = error.message
+    if keys:
+        message += f" ({', '.join(keys)} in the file)"
+    located = MeshError(message, source=source, line=line, face=error.face, vertex=error.vertex)
+    located.status_name = error.status_name
+    return located

@@ -1,0 +1,164 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Reading and writing mesh files as text.
+
+Shared by the OBJ, OFF and compas readers and writers: text decoding that
+never fails on a stray byte in a comment, numbers parsed with the line they
+came from in the error, and writing that never leaves half a file behind.
+"""
+
+import os
+
+import numpy as np
+
+from facet.errors import MeshError
+
+__all__ = [
+    "read_lines",
+    "parse_float",
+    "parse_int",
+    "check_writable_mesh",
+    "write_text",
+    "format_float",
+]
+
+
+def read_lines(path):
+    """Read a text file as a list of lines.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    list of str
+        Lines without their ends; ``lines[k]`` is line ``k + 1``. Windows and
+        old Mac line ends are accepted. Bytes that are not UTF-8 become
+        U+FFFD, so a stray byte in a comment does not stop the reading.
+
+    Raises
+    ------
+    OSError
+        When the file cannot be opened.
+    """
+    with open(path, encoding="utf-8", errors="replace", newline=None) as stream:
+        text = stream.read()
+    if text.startswith("\ufeff"):
+        text = text[1:]
+    return text.split("\n")
+
+
+def _shown(token, limit=40):
+    return token if len(token) <= limit else token[:limit] + "..."
+
+
+def parse_float(token, source, line):
+    """Read one coordinate.
+
+    Parameters
+    ----------
+    token : str
+    source : str or os.PathLike
+        File name for the error message.
+    line : int
+        Line number for the error message.
+
+    Returns
+    -------
+    float
+        May be NaN or infinite; :func:`facet.io.checks.build_mesh` refuses those.
+
+    Raises
+    ------
+    MeshError
+        ``"bad.obj: line 4: cannot read 'abc' as a number"``.
+    """
+    try:
+        return float(token)
+    except ValueError:
+        raise MeshError(f"cannot read {_shown(token)!r} as a number", source=source, line=line)
+
+
+def parse_int(token, source, line, what="an integer"):
+    """Read one integer (an index or a count).
+
+    Parameters
+    ----------
+    token : str
+    source : str or os.PathLike
+    line : int
+    what : str
+        What the integer is, for the message (``"a vertex index"``).
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    MeshError
+        ``"x.off: line 9: cannot read '2.5' as a vertex index"``.
+    """
+    try:
+        return int(token)
+    except ValueError:
+        raise MeshError(f"cannot read {_shown(token)!r} as {what}", source=source, line=line)
+
+
+def check_writable_mesh(mesh, path):
+    """Refuse to write a mesh with NaN or infinite coordinates.
+
+    Raises
+    ------
+    MeshError
+        ``"out.obj: vertex 5 has a non-finite coordinate; nothing written"``.
+    """
+    finite = np.isfinite(mesh.vertices).all(axis=1)
+    if not finite.all():
+        vertex = int(np.argmin(finite))
+        raise MeshError(
+            f"vertex {vertex} has a non-finite coordinate; nothing written",
+            source=path,
+            vertex=vertex,
+        )
+
+
+def format_float(value):
+    """Shortest text that reads back to exactly the same float64 (``repr``).
+
+    Parameters
+    ----------
+    value : float
+
+    Returns
+    -------
+    str
+        At most 17 significant digits; ``1.0`` for one, ``-0.0`` kept.
+    """
+    return repr(float(value))
+
+
+def write_text(path, chunks):
+    """Write text to `path` so that a failure leaves no half-written file.
+
+    The text goes to ``path + ".part"`` first, which then replaces `path`.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    chunks : iterable of str
+        Pieces of the file, written one after the other.
+    """
+    path = os.fspath(path)
+    partial = path + ".part"
+    try:
+        with open(partial, "w", encoding="utf-8", newline="\n") as stream:
+            for chunk in chunks:
+                stream.write(chunk)
+        os.replace(partial, path)
+    except BaseException:
+        try:
+            os.remove(partial)
+        except OSError:
+            pass
+        raise

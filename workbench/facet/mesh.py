@@ -1,0 +1,379 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The polygon mesh of a facade: vertices and panels (faces) of any degree.
+
+A :class:`PolyMesh` keeps its faces in compressed rows (CSR), the form the
+compiled core reads without copying: face ``j`` has the vertices
+``face_vertices[face_start[j]:face_start[j + 1]]`` in order around the panel.
+Triangles, quads and hexagons live side by side.
+
+The arrays of a mesh are read-only. A planarized or edited mesh is a new
+``PolyMesh`` made by :meth:`PolyMesh.with_vertices`, which shares the topology
+arrays of the original.
+"""
+
+import numpy as np
+
+from facet.errors import MeshError, from_core
+
+__all__ = ["PolyMesh"]
+
+_INT32_MAX = np.iinfo(np.int32).max
+
+
+def _read_only(array):
+    array.flags.writeable = False
+    return array
+
+
+def _as_vertex_array(vertices):
+    """Copy `vertices` into a read-only C-contiguous (n, 3) float64 array."""
+    try:
+        array = np.array(vertices, dtype=np.float64, order="C", copy=True)
+    except (TypeError, ValueError) as exc:
+        raise MeshError(f"vertices cannot be read as numbers ({exc})") from None
+    if array.ndim == 1 and array.size == 0:
+        array = array.reshape(0, 3)
+    if array.ndim != 2 or array.shape[1] != 3:
+        raise MeshError(f"vertices must be an (n, 3) array, got shape {array.shape}")
+    return _read_only(array)
+
+
+def _as_index_array(values, name):
+    """Copy `values` into a read-only C-contiguous 1-D int32 array."""
+    try:
+        array = np.asarray(values)
+    except (TypeError, ValueError) as exc:
+        raise MeshError(f"{name} cannot be read as integers ({exc})") from None
+    if array.ndim != 1:
+        raise MeshError(f"{name} must be a 1-D array, got shape {array.shape}")
+    if array.size == 0:
+        return _read_only(np.zeros(0, dtype=np.int32))
+    if array.dtype.kind not in "iu":
+        raise MeshError(f"{name} must hold integers, got {array.dtype}")
+    low, high = int(array.min()), int(array.max())
+    if low < -_INT32_MAX - 1 or high > _INT32_MAX:
+        raise MeshError(f"{name} holds values beyond the 32-bit range ({low} .. {high})")
+    return _read_only(np.array(array, dtype=np.int32, order="C", copy=True))
+
+
+class PolyMesh:
+    """A polygon mesh: the panels of a facade and the points they share.
+
+    Parameters
+    ----------
+    vertices : array_like, shape (n, 3)
+        Vertex coordinates, model units. Copied to float64.
+    face_start : array_like of int, shape (F + 1,)
+        Offsets of each face in `face_vertices`; starts at 0, never decreases
+        and ends at ``len(face_vertices)``.
+    face_vertices : array_like of int, shape (C,)
+        Vertex indices of all faces one after the other, each face in order
+        around its boundary.
+    info : dict, optional
+        Facts about where the mesh came from (``source``, ``format``,
+        openings skipped, compas keys...), filled by the readers in
+        :mod:`facet.io`. Carried over by :meth:`with_vertices` and
+        :meth:`copy`.
+
+    Raises
+    ------
+    MeshError
+        When the arrays do not have the shapes above. The constructor checks
+        only structure; :meth:`validate` checks indices, repeated vertices,
+        degenerate faces and non-finite coordinates.
+
+    Examples
+    --------
+    >>> mesh = PolyMesh.from_faces([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+    ...                            [[0, 1, 2, 3]])
+    >>> mesh.n_faces, mesh.degrees.tolist()
+    (1, [4])
+    """
+
+    def __init__(self, vertices, face_start, face_vertices, *, info=None):
+        vertices = _as_vertex_array(vertices)
+        face_start = _as_index_array(face_start, "face_start")
+        face_vertices = _as_index_array(face_vertices, "face_vertices")
+        if face_start.size == 0:
+            raise MeshError("face_start must hold at least one offset (0)")
+        if face_start[0] != 0:
+            raise MeshError(f"face_start must start at 0, got {int(face_start[0])}")
+        steps = np.diff(face_start)
+        if steps.size and steps.min() < 0:
+            face = int(np.argmax(steps < 0))
+            raise MeshError(
+                f"face_start decreases at face {face} "
+                f"({int(face_start[face])} then {int(face_start[face + 1])})",
+                face=face,
+            )
+        if face_start[-1] != face_vertices.size:
+            raise MeshError(
+                f"face_start ends at {int(face_start[-1])} but face_vertices holds "
+                f"{face_vertices.size} indices"
+            )
+        self._set(vertices, face_start, face_vertices, info)
+
+    def _set(self, vertices, face_start, face_vertices, info):
+        self._vertices = vertices
+        self._face_start = face_start
+        self._face_vertices = face_vertices
+        self._info = dict(info) if info else {}
+        self._edges = None
+
+    @classmethod
+    def _trusted(cls, vertices, face_start, face_vertices, info):
+        """Make a mesh from arrays already checked and read-only."""
+        mesh = cls.__new__(cls)
+        mesh._set(vertices, face_start, face_vertices, info)
+        return mesh
+
+    @classmethod
+    def from_faces(cls, vertices, faces, *, info=None):
+        """Make a mesh from a list of faces.
+
+        Parameters
+        ----------
+        vertices : array_like, shape (n, 3)
+            Vertex coordinates.
+        faces : iterable of sequences of int
+            Vertex indices of each face, in order around it.
+        info : dict, optional
+            As for the constructor.
+
+        Returns
+        -------
+        PolyMesh
+        """
+        faces = [list(face) for face in faces]
+        degrees = np.fromiter((len(face) for face in faces), dtype=np.int64, count=len(faces))
+        face_start = np.zeros(len(faces) + 1, dtype=np.int64)
+        np.cumsum(degrees, out=face_start[1:])
+        flat = [index for face in faces for index in face]
+        face_vertices = np.array(flat) if flat else np.zeros(0, dtype=np.int32)
+        return cls(vertices, face_start, face_vertices, info=info)
+
+    # ------------------------------------------------------------------ arrays
+
+    @property
+    def vertices(self):
+        """ndarray, shape (n, 3): vertex coordinates (read-only float64)."""
+        return self._vertices
+
+    @property
+    def face_start(self):
+        """ndarray, shape (F + 1,): offsets of the faces (read-only int32)."""
+        return self._face_start
+
+    @property
+    def face_vertices(self):
+        """ndarray, shape (C,): vertex indices of all faces (read-only int32)."""
+        return self._face_vertices
+
+    @property
+    def info(self):
+        """dict: facts about where the mesh came from (see the constructor)."""
+        return self._info
+
+    @property
+    def n_vertices(self):
+        """int: number of vertices."""
+        return int(self._vertices.shape[0])
+
+    @property
+    def n_faces(self):
+        """int: number of faces (panels)."""
+        return int(self._face_start.size - 1)
+
+    @property
+    def degrees(self):
+        """ndarray of int32, shape (F,): number of vertices of each face."""
+        return np.diff(self._face_start)
+
+    def faces(self):
+        """Vertex indices of every face.
+
+        Returns
+        -------
+        list of list of int
+        """
+        flat = self._face_vertices.tolist()
+        starts = self._face_start.tolist()
+        return [flat[a:b] for a, b in zip(starts[:-1], starts[1:])]
+
+    def face(self, j):
+        """Vertex indices of face `j`.
+
+        Parameters
+        ----------
+        j : int
+            Face index; negative counts from the end.
+
+        Returns
+        -------
+        list of int
+
+        Raises
+        ------
+        IndexError
+            When there is no face `j`.
+        """
+        n = self.n_faces
+        j = int(j)
+        if j < 0:
+            j += n
+        if not 0 <= j < n:
+            raise IndexError(f"face {j} does not exist ({n} faces)")
+        return self._face_vertices[self._face_start[j] : self._face_start[j + 1]].tolist()
+
+    def edges(self):
+        """Distinct undirected edges.
+
+        Returns
+        -------
+        ndarray of int32, shape (E, 2)
+            Each edge once, as (smaller index, larger index), sorted. Read-only.
+        """
+        if self._edges is None:
+            self._edges = _read_only(_unique_edges(self._face_start, self._face_vertices))
+        return self._edges
+
+    def mean_edge_length(self):
+        """Mean length of the distinct edges, model units.
+
+        Returns
+        -------
+        float
+
+        Raises
+        ------
+        MeshError
+            When the mesh has no edge.
+        """
+        edges = self.edges()
+        if edges.shape[0] == 0:
+            raise MeshError("mesh has no edges", source=self._info.get("source"))
+        vectors = self._vertices[edges[:, 1]] - self._vertices[edges[:, 0]]
+        return float(np.sqrt(np.einsum("ij,ij->i", vectors, vectors)).mean())
+
+    def bounds(self):
+        """Axis-aligned bounding box.
+
+        Returns
+        -------
+        lower, upper : ndarray, shape (3,)
+            Smallest and largest coordinates.
+
+        Raises
+        ------
+        MeshError
+            When the mesh has no vertex.
+        """
+        if self.n_vertices == 0:
+            raise MeshError("mesh has no vertices", source=self._info.get("source"))
+        return self._vertices.min(axis=0), self._vertices.max(axis=0)
+
+    # ------------------------------------------------------------ new meshes
+
+    def copy(self):
+        """Return an independent copy (arrays copied, info copied)."""
+        return PolyMesh._trusted(
+            _read_only(self._vertices.copy()),
+            _read_only(self._face_start.copy()),
+            _read_only(self._face_vertices.copy()),
+            self._info,
+        )
+
+    def with_vertices(self, xyz):
+        """Return a mesh with the same panels and new vertex positions.
+
+        Parameters
+        ----------
+        xyz : array_like, shape (n, 3)
+            New coordinates, one row per vertex of this mesh. Copied.
+
+        Returns
+        -------
+        PolyMesh
+            Shares this mesh's (read-only) topology arrays.
+        """
+        vertices = _as_vertex_array(xyz)
+        if vertices.shape != self._vertices.shape:
+            raise MeshError(
+                f"new vertices have shape {vertices.shape}, the mesh needs "
+                f"{self._vertices.shape}"
+            )
+        mesh = PolyMesh._trusted(vertices, self._face_start, self._face_vertices, self._info)
+        mesh._edges = self._edges
+        return mesh
+
+    def same_topology(self, other):
+        """Whether `other` has the same vertex count and the same faces.
+
+        Parameters
+        ----------
+        other : PolyMesh
+
+        Returns
+        -------
+        bool
+        """
+        if self._face_vertices is other._face_vertices and self._face_start is other._face_start:
+            return self.n_vertices == other.n_vertices
+        return (
+            self.n_vertices == other.n_vertices
+            and np.array_equal(self._face_start, other._face_start)
+            and np.array_equal(self._face_vertices, other._face_vertices)
+        )
+
+    # ------------------------------------------------------------ validation
+
+    def validate(self):
+        """Check the mesh fully with the compiled core.
+
+        Returns
+        -------
+        dict
+            ``n_edges``, ``n_boundary_edges``, ``n_non_manifold_edges``,
+            ``n_isolated_vertices``, ``first_non_manifold_edge`` (pair or
+            None), ``first_isolated_vertex`` (int or None), ``max_degree``:
+            facts worth telling the designer that do not stop the work.
+
+        Raises
+        ------
+        MeshError
+            No vertex or no face, bad face offsets, a non-finite coordinate,
+            an index out of range, a vertex repeated in a face or a face with
+            fewer than 3 distinct vertices. The message names the face or
+            vertex (``"face 17 repeats vertex 4"``).
+        """
+        from facet import _core
+
+        try:
+            return _core.validate(
+                self._vertices.reshape(-1), self._face_start, self._face_vertices
+            )
+        except _core.CoreError as exc:
+            raise from_core(exc, source=self._info.get("source")) from None
+
+    def __repr__(self):
+        return f"<PolyMesh: {self.n_vertices} vertices, {self.n_faces} faces>"
+
+
+def _unique_edges(face_start, face_vertices):
+    """Distinct undirected edges of a CSR face list, as a sorted (E, 2) int32 array."""
+    if face_vertices.size == 0:
+        return np.zeros((0, 2), dtype=np.int32)
+    following = np.arange(1, face_vertices.size + 1, dtype=np.int64)
+    starts, ends = face_start[:-1], face_start[1:]
+    nonempty = ends > starts
+    following[ends[nonempty] - 1] = starts[nonempty]
+    a = face_vertices.astype(np.int64)
+    if a.min() < 0:
+        raise MeshError("face_vertices holds a negative index (call validate() first)")
+    b = a[following]
+    low, high = np.minimum(a, b), np.maximum(a, b)
+    keep = low != high
+    low, high = low[keep], high[keep]
+    base = int(high.max()) + 1 if high.size else 1
+    keys = np.unique(low * base + high)
+    return np.stack([keys // base, keys % base], axis=1).astype(np.int32)

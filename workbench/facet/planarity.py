@@ -1,0 +1,128 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""How flat each panel is.
+
+For every face the vertices are fitted with their least-squares plane; the
+largest and the RMS distance of the vertices from it are what a panel
+fabricator specifies (a glass supplier accepts so many millimetres). They are
+given in model units and divided by the face's mean edge length, so meshes of
+any size compare. For quads the figure libigl reports is given too (distance
+between the two diagonals over the mean diagonal length).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from facet import _core
+from facet.errors import from_core
+
+__all__ = ["PlanarityReport", "planarity"]
+
+
+@dataclass(frozen=True)
+class PlanarityReport:
+    """Per-face planarity of a mesh.
+
+    Attributes
+    ----------
+    max_abs, rms_abs : numpy.ndarray
+        Largest and RMS distance of each face's vertices from the face's
+        least-squares plane, in model units.
+    mean_edge : numpy.ndarray
+        Mean edge length of each face, model units.
+    max_rel, rms_rel : numpy.ndarray
+        ``max_abs`` and ``rms_abs`` divided by ``mean_edge`` (0 for a face
+        whose edges all have zero length).
+    diagonal : numpy.ndarray
+        libigl's quad planarity (distance between the diagonals over their
+        mean length) for quads, -1 for other faces.
+    """
+
+    max_abs: np.ndarray
+    rms_abs: np.ndarray
+    mean_edge: np.ndarray
+    max_rel: np.ndarray
+    rms_rel: np.ndarray
+    diagonal: np.ndarray
+
+    @property
+    def n_faces(self):
+        """Number of faces measured."""
+        return int(self.max_abs.shape[0])
+
+    @property
+    def max_abs_all(self):
+        """Largest distance from plane over all faces, model units."""
+        return float(self.max_abs.max()) if self.n_faces else 0.0
+
+    @property
+    def max_rel_all(self):
+        """Largest relative distance from plane over all faces."""
+        return float(self.max_rel.max()) if self.n_faces else 0.0
+
+    @property
+    def rms_rel_all(self):
+        """RMS over all faces of each face's relative RMS distance."""
+        return float(np.sqrt(np.mean(self.rms_rel**2))) if self.n_faces else 0.0
+
+    @property
+    def diagonal_max(self):
+        """Largest libigl quad measure, or None when the mesh has no quad."""
+        quads = self.diagonal[self.diagonal >= 0.0]
+        return float(quads.max()) if quads.size else None
+
+    def worst_faces(self, count=5):
+        """Indices of the `count` least planar faces (relative), worst first."""
+        order = np.argsort(-self.max_rel, kind="stable")
+        return [int(f) for f in order[:count]]
+
+
+def _relative(values, lengths):
+    out = np.zeros_like(values)
+    np.divide(values, lengths, out=out, where=lengths > 0.0)
+    return out
+
+
+def planarity(mesh, threads=None):
+    """Measure how flat every face of `mesh` is.
+
+    Parameters
+    ----------
+    mesh : facet.PolyMesh
+        The mesh to measure.
+    threads : int, optional
+        OpenMP threads (default: all). The figures do not depend on it.
+
+    Returns
+    -------
+    PlanarityReport
+
+    Raises
+    ------
+    facet.MeshError
+        When a face refers to a vertex the mesh does not have.
+    """
+    n = mesh.n_faces
+    max_abs, rms_abs = np.empty(n), np.empty(n)
+    mean_edge, diagonal = np.empty(n), np.empty(n)
+    try:
+        _core.planarity(
+            mesh.vertices,
+            mesh.face_start,
+            mesh.face_vertices,
+            max_abs,
+            rms_abs,
+            mean_edge,
+            diagonal,
+            threads=int(threads or 0),
+        )
+    except _core.CoreError as exc:
+        raise from_core(exc, source=mesh.info.get("source") if mesh.info else None) from exc
+    return PlanarityReport(
+        max_abs=max_abs,
+        rms_abs=rms_abs,
+        mean_edge=mean_edge,
+        max_rel=_relative(max_abs, mean_edge),
+        rms_rel=_relative(rms_abs, mean_edge),
+        diagonal=diagonal,
+    )

@@ -1,0 +1,231 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Reports of a planarization or a mesh check, as plain JSON-able dicts.
+
+The command line writes them with ``--report``; the workbench shows them in
+its task panel. Every value is a str, int, float, bool, None, list or dict:
+numpy scalars and arrays are converted, and a NaN or infinite number becomes
+None (JSON has no NaN, and a report must never carry one).
+
+Planarity figures follow :func:`facet.planarity`: ``*_abs`` is the largest
+distance of a face's vertices from its best-fit plane in model units,
+``*_rel`` the same divided by the face's mean edge length.
+"""
+
+import json
+import math
+import os
+
+import numpy as np
+
+from facet.io.files import write_text
+
+__all__ = ["planarize_report", "check_report", "json_safe", "write_json"]
+
+#: Keys of ``mesh.info`` copied into reports (lists of keys are left out).
+_INFO_KEYS = ("format", "header", "dtype", "item", "openings_skipped", "unused_vertices_dropped")
+
+
+def _version():
+    from facet import __version__
+
+    return __version__
+
+
+def _path(path):
+    return None if path is None else os.fspath(path)
+
+
+def _face_degrees(mesh):
+    """Number of faces of each degree, as {"3": n, "4": m, ...}."""
+    degrees, counts = np.unique(mesh.degrees, return_counts=True)
+    return {str(int(d)): int(c) for d, c in zip(degrees, counts)}
+
+
+def _mean_edge_length(mesh):
+    try:
+        return mesh.mean_edge_length()
+    except Exception:  # a mesh without edges: no length to report
+        return None
+
+
+def _source_facts(mesh):
+    info = getattr(mesh, "info", None) or {}
+    return {f"source_{key}": info[key] for key in _INFO_KEYS if key in info}
+
+
+def _worst_face(per_face):
+    values = np.asarray(per_face, dtype=np.float64)
+    if values.size == 0 or not np.isfinite(values).any():
+        return None
+    return int(np.nanargmax(np.where(np.isfinite(values), values, -np.inf)))
+
+
+def planarize_report(source, result, input_path=None, output_path=None, input_planarity=None):
+    """Report of one planarization.
+
+    Parameters
+    ----------
+    source : PolyMesh
+        The mesh before planarization.
+    result : PlanarizeResult
+        What :func:`facet.planarize` returned for `source`.
+    input_path, output_path : str or os.PathLike, optional
+        Files read and written, recorded as given.
+    input_planarity : PlanarityReport, optional
+        Planarity of `source` if already measured; measured here otherwise.
+
+    Returns
+    -------
+    dict
+        Keys ``faces``, ``vertices``, ``iterations``, ``solve_seconds``,
+        ``planarity_max_rel``, ``planarity_max_abs``, ``planarity_rms_rel``,
+        ``displacement_rms``, ``displacement_max``, ``method``,
+        ``stop_reason``, ``converged``, ``tol``, ``input_planarity_max_rel``,
+        ``input_planarity_max_abs``, and more (``displacement_max_rel`` is
+        ``displacement_max`` over the mean edge length of `source`;
+        ``warnings`` lists what the solver noted about the mesh). Already
+        JSON-safe.
+    """
+    if input_planarity is None:
+        from facet import planarity
+
+        input_planarity = planarity(source)
+    after = result.planarity
+    options = dict(getattr(result, "options", None) or {})
+    mean_edge = _mean_edge_length(source)
+    displacement_max = float(result.displacement_max)
+    report = {
+        "command": "planarize",
+        "facet_version": _version(),
+        "input": _path(input_path),
+        "output": _path(output_path),
+        "faces": source.n_faces,
+        "vertices": source.n_vertices,
+        "face_degrees": _face_degrees(source),
+        "mean_edge_length": mean_edge,
+        "method": result.method,
+        "tol": options.get("tol", options.get("tol_rel")),
+        "tol_abs": options.get("tol_abs"),
+        "max_iter": options.get("max_iter"),
+        "iterations_requested": options.get("iterations"),
+        "iterations": int(result.iterations),
+        "stop_reason": str(result.stop_reason),
+        "converged": bool(result.converged),
+        "solve_seconds": float(result.solve_seconds),
+        "input_planarity_max_rel": input_planarity.max_rel_all,
+        "input_planarity_max_abs": input_planarity.max_abs_all,
+        "input_planarity_rms_rel": input_planarity.rms_rel_all,
+        "planarity_max_rel": after.max_rel_all,
+        "planarity_max_abs": after.max_abs_all,
+        "planarity_rms_rel": after.rms_rel_all,
+        "planarity_diagonal_max": after.diagonal_max,
+        "worst_face": _worst_face(after.max_rel),
+        "displacement_rms": float(result.displacement_rms),
+        "displacement_max": displacement_max,
+        "displacement_max_rel": (
+            displacement_max / mean_edge if mean_edge else None
+        ),
+        "options": options,
+        "warnings": list(getattr(result, "warnings", None) or []),
+    }
+    report.update(_source_facts(source))
+    return json_safe(report)
+
+
+def check_report(mesh, planarity_report, validation_report, path=None):
+    """Report of a mesh check.
+
+    Parameters
+    ----------
+    mesh : PolyMesh
+    planarity_report : PlanarityReport
+        :func:`facet.planarity` of `mesh`.
+    validation_report : dict
+        :meth:`PolyMesh.validate` of `mesh`.
+    path : str or os.PathLike, optional
+        The file checked, recorded as given.
+
+    Returns
+    -------
+    dict
+        Mesh size and shape (``faces``, ``vertices``, ``edges``,
+        ``boundary_edges``, ``non_manifold_edges``, ``isolated_vertices``,
+        ``max_degree``, ``face_degrees``, ``mean_edge_length``, ``bounds``),
+        planarity (``planarity_max_rel``, ``planarity_max_abs``,
+        ``planarity_rms_rel``, ``planarity_diagonal_max``, ``worst_face``)
+        and what the reader noted (``source_*``). Already JSON-safe.
+    """
+    validation = dict(validation_report)
+    lower, upper = mesh.bounds()
+    report = {
+        "command": "check",
+        "facet_version": _version(),
+        "input": _path(path),
+        "faces": mesh.n_faces,
+        "vertices": mesh.n_vertices,
+        "face_degrees": _face_degrees(mesh),
+        "edges": validation.get("n_edges"),
+        "boundary_edges": validation.get("n_boundary_edges"),
+        "non_manifold_edges": validation.get("n_non_manifold_edges"),
+        "isolated_vertices": validation.get("n_isolated_vertices"),
+        "first_non_manifold_edge": validation.get("first_non_manifold_edge"),
+        "first_isolated_vertex": validation.get("first_isolated_vertex"),
+        "max_degree": validation.get("max_degree"),
+        "mean_edge_length": _mean_edge_length(mesh),
+        "bounds": {"min": lower, "max": upper},
+        "planarity_max_rel": planarity_report.max_rel_all,
+        "planarity_max_abs": planarity_report.max_abs_all,
+        "planarity_rms_rel": planarity_report.rms_rel_all,
+        "planarity_diagonal_max": planarity_report.diagonal_max,
+        "worst_face": _worst_face(planarity_report.max_rel),
+    }
+    report.update(_source_facts(mesh))
+    return json_safe(report)
+
+
+def json_safe(value):
+    """Convert `value` into plain JSON types, non-finite numbers into None.
+
+    Parameters
+    ----------
+    value : object
+        Nested dicts, lists, tuples, numpy arrays and scalars, paths, numbers.
+
+    Returns
+    -------
+    object
+        The same structure with dict keys as str, tuples and arrays as lists,
+        numpy scalars as Python numbers, paths as str and NaN/inf as None.
+        Anything else becomes its ``str``.
+    """
+    if value is None or isinstance(value, (bool, str)):
+        return value
+    if isinstance(value, np.bool_):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        value = float(value)
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {str(key): json_safe(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_safe(item) for item in value]
+    if isinstance(value, np.ndarray):
+        return json_safe(value.tolist())
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
+    return str(value)
+
+
+def write_json(report, path):
+    """Write a report as indented JSON (never NaN: those become null).
+
+    Parameters
+    ----------
+    report : dict
+    path : str or os.PathLike
+        Replaced if it exists; never left half-written.
+    """
+    text = json.dumps(json_safe(report), allow_nan=False, indent=2) + "\n"
+    write_text(path, [text])
