@@ -59,6 +59,7 @@ demo: deps-test build
 	sh tools/demo.sh $(OUT)/demo
 
 bench: build
+	mkdir -p $(OUT)
 	$(BUILD)/libcore/bench/bench_planarize --runs 5 --json $(OUT)/bench.json
 
 install: build
