@@ -1,9 +1,11 @@
 #!/bin/sh
 # SPDX-License-Identifier: LGPL-2.1-or-later
 # Installs the Facet workbench into FreeCAD's user Mod folders (0.20:
-# ~/.FreeCAD/Mod, 1.x: ~/.local/share/FreeCAD/Mod) as Mod/Facet/{Init.py,
-# InitGui.py, facet/, facetwb/, resources/, package.xml}, and a `facet`
-# command in PREFIX/bin that runs `python3 -m facet` with FreeCAD's Python.
+# ~/.FreeCAD/Mod, 1.x: ~/.local/share/FreeCAD/Mod) in the repository's own
+# layout, as the Addon Manager would: Mod/Facet/{package.xml, LICENSE,
+# workbench/, resources/} (FreeCAD reads package.xml and loads workbench/),
+# and a `facet` command in PREFIX/bin that runs `python3 -m facet` with
+# FreeCAD's Python.
 #
 #   tools/install.sh PREFIX PYTHON        install (after `make`)
 #   tools/install.sh --uninstall PREFIX   remove what install put there
@@ -29,9 +31,9 @@ for mod in $mods; do
     target="$mod/Facet"
     rm -rf "$target.new"
     mkdir -p "$target.new"
-    cp -R "$root/workbench/." "$target.new/"
+    cp -R "$root/workbench" "$target.new/workbench"
     cp -R "$root/resources" "$target.new/resources"
-    cp "$root/package.xml" "$target.new/" 2>/dev/null || true
+    cp "$root/package.xml" "$root/LICENSE" "$root/README.md" "$target.new/"
     find "$target.new" -name __pycache__ -type d -prune -exec rm -rf {} +
     rm -rf "$target"
     mv "$target.new" "$target"
@@ -42,7 +44,7 @@ mkdir -p "$prefix/bin"
 cat > "$prefix/bin/facet" <<EOS
 #!/bin/sh
 # Facet's command line (installed by make install)
-PYTHONPATH="$first_mod/Facet\${PYTHONPATH:+:\$PYTHONPATH}" exec "$python" -m facet "\$@"
+PYTHONPATH="$first_mod/Facet/workbench\${PYTHONPATH:+:\$PYTHONPATH}" exec "$python" -m facet "\$@"
 EOS
 chmod +x "$prefix/bin/facet"
 echo "facet: command installed as $prefix/bin/facet"

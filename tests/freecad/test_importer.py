@@ -1,0 +1,80 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The OBJ/OFF importer: registration, open/insert, and clear errors for bad files."""
+
+import os
+import unittest
+
+import FreeCAD as App
+
+from facetwb import importer
+from facet_test_support import DocumentTestCase, data_path
+
+BAD_FILES = {
+    "bad_index.off": "bad_index.off",
+    "bad_syntax.obj": "bad_syntax.obj",
+    "missing.obj": "missing.obj",
+    "README.md": "README.md",  # no mesh at all
+}
+
+WORKBENCH_INSTALLED = os.path.isdir(os.path.join(App.getUserAppDataDir(), "Mod", "Facet"))
+
+
+class TestImporter(DocumentTestCase):
+    @unittest.skipUnless(WORKBENCH_INSTALLED, "Init.py not run: use tests/fc_env.sh")
+    def test_registered(self):
+        for extension in ("obj", "off"):
+            modules = App.getImportType(extension)
+            modules = modules if isinstance(modules, (list, tuple)) else [modules]
+            self.assertIn("facetwb.importer", modules, extension)
+        # FreeCAD's Mesh importer stays the first one for .obj.
+        first = App.getImportType("obj")
+        first = first[0] if isinstance(first, (list, tuple)) else first
+        self.assertEqual(first, "Mesh")
+
+    def test_insert(self):
+        obj = importer.insert(data_path("hypar.obj"), self.doc.Name)
+        self.assertIsNotNone(obj)
+        self.assertIs(obj.Document, self.doc)
+        self.assertEqual(obj.FaceCount, 64)
+
+    def test_open_new_document(self):
+        before = set(App.listDocuments())
+        doc = importer.open(data_path("panels.off"))
+        try:
+            self.assertNotIn(doc.Name, before)
+            self.assertEqual(len(doc.Objects), 1)
+            self.assertEqual(doc.Objects[0].FaceCount, 7)
+        finally:
+            App.closeDocument(doc.Name)
+
+    def test_bad_files_change_nothing(self):
+        importer.SHOW_DIALOGS = False
+        for name in BAD_FILES:
+            with self.subTest(file=name):
+                path = data_path(name)
+                objects = [obj.Name for obj in self.doc.Objects]
+                documents = set(App.listDocuments())
+                self.assertIsNone(importer.insert(path, self.doc.Name))
+                self.assertIsNone(importer.open(path))
+                self.assertEqual([obj.Name for obj in self.doc.Objects], objects)
+                self.assertEqual(set(App.listDocuments()), documents)
+                self.assertFalse(self.doc.isTouched() and not objects)
+
+    def test_error_messages(self):
+        for name, expected in BAD_FILES.items():
+            with self.subTest(file=name):
+                with self.assertRaises(importer.MeshImportError) as caught:
+                    importer.read_polymesh(data_path(name))
+                message = str(caught.exception)
+                self.assertIn(expected, message)
+                self.assertNotIn("\n", message)
+                self.assertNotIn("Traceback", message)
+                self.assertTrue(message.startswith("Cannot import "), message)
+
+    def test_error_names_line_or_face(self):
+        with self.assertRaises(importer.MeshImportError) as caught:
+            importer.read_polymesh(data_path("bad_syntax.obj"))
+        self.assertIn("line 3", str(caught.exception))
+        with self.assertRaises(importer.MeshImportError) as caught:
+            importer.read_polymesh(data_path("bad_index.off"))
+        self.assertIn("face 1", str(caught.exception))

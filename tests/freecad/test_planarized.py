@@ -1,0 +1,121 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Planarized objects: solve on recompute, keep the source, survive save and reopen."""
+
+import numpy as np
+
+import facet
+import facetwb
+from facetwb import importer
+from facet_test_support import DocumentTestCase, bits, data_path, points_array
+
+TOLERANCE = 1e-6
+
+
+class TestPlanarized(DocumentTestCase):
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.source_mesh = facet.read_mesh(data_path("hypar.obj"))
+        cls.source = importer.import_mesh(data_path("hypar.obj"), cls.doc)
+        cls.result = facetwb.make_planarized(cls.source, tolerance=TOLERANCE)
+        cls.doc.recompute()
+
+    def test_solved(self):
+        result = self.result
+        self.assertTrue(result.isValid(), result.getStatusString())
+        self.assertEqual(result.Proxy.Type, "Facet::Planarized")
+        self.assertTrue(facetwb.is_planarized(result))
+        self.assertIs(result.Source, self.source)
+        self.assertEqual((result.VertexCount, result.FaceCount), (81, 64))
+        self.assertGreater(result.Iterations, 0)
+        self.assertEqual(result.StopReason, "tolerance")
+        self.assertTrue(result.Converged)
+        self.assertLessEqual(result.PlanarityMaxRel, TOLERANCE)
+        self.assertLess(result.PlanarityMaxAbs.Value, self.source.PlanarityMaxAbs.Value / 1000)
+        self.assertGreater(result.DisplacementMax.Value, 0.0)
+        self.assertEqual(len(result.FacePlanarity), 64)
+
+    def test_same_topology(self):
+        self.assertEqual(list(self.result.FaceStart), list(self.source.FaceStart))
+        self.assertEqual(list(self.result.FaceVertices), list(self.source.FaceVertices))
+
+    def test_source_unchanged(self):
+        np.testing.assert_array_equal(bits(points_array(self.source)),
+                                      bits(self.source_mesh.vertices))
+        self.assertEqual(list(self.source.FaceVertices),
+                         self.source_mesh.face_vertices.tolist())
+
+    def test_stored_planarity_matches_mesh(self):
+        report = facet.planarity(facetwb.get_mesh(self.result))
+        np.testing.assert_array_equal(bits(report.max_abs), bits(self.result.FacePlanarity))
+        self.assertEqual(report.max_abs_all, self.result.PlanarityMaxAbs.Value)
+
+    def test_summary(self):
+        text = facetwb.planarize_summary(self.result)
+        self.assertIn("64 panels", text)
+        self.assertIn("tolerance reached", text)
+
+    def test_z_save_reopen(self):  # last: it replaces the class's document
+        names = {"source": self.source.Name, "result": self.result.Name}
+        before = {key: points_array(self.doc.getObject(name)) for key, name in names.items()}
+        results = {prop: getattr(self.result, prop) for prop in (
+            "Iterations", "StopReason", "Converged", "PlanarityMaxRel", "Method", "Tolerance")}
+        planarity_max = self.result.PlanarityMaxAbs.Value
+        doc = self.save_and_reopen("planarized.FCStd")
+        source, result = doc.getObject(names["source"]), doc.getObject(names["result"])
+        self.assertEqual(result.Proxy.Type, "Facet::Planarized")
+        self.assertEqual(source.Proxy.Type, "Facet::PolyMesh")
+        self.assertIs(result.Source, source)
+        for key, obj in (("source", source), ("result", result)):
+            np.testing.assert_array_equal(bits(points_array(obj)), bits(before[key]))
+        for prop, value in results.items():
+            if isinstance(value, float):  # scalar floats are saved with 16 decimals
+                self.assertAlmostEqual(getattr(result, prop), value, places=15, msg=prop)
+            else:
+                self.assertEqual(getattr(result, prop), value, prop)
+        self.assertAlmostEqual(result.PlanarityMaxAbs.Value, planarity_max, places=15)
+        # Still planar after the round trip: measured again from the reopened coordinates,
+        # the very same bits as before saving.
+        report = facet.planarity(facetwb.get_mesh(result))
+        self.assertEqual(report.max_abs_all, planarity_max)
+        self.assertLessEqual(report.max_rel_all, TOLERANCE)
+        # Parametric: a changed parameter re-solves from the (unchanged) source.
+        result.Method = "ll"
+        result.MaxIterations = 5000
+        doc.recompute()
+        self.assertTrue(result.isValid(), result.getStatusString())
+        self.assertGreater(result.Iterations, 0)
+        np.testing.assert_array_equal(bits(points_array(source)), bits(before["source"]))
+
+
+class TestPlanarizedMixedPolygons(DocumentTestCase):
+    def test_hexagons_pentagon_triangles(self):
+        source = importer.import_mesh(data_path("panels.off"), self.doc)
+        result = facetwb.make_planarized(source, tolerance_abs=0.01, tolerance=1e-9)
+        self.doc.recompute()
+        self.assertTrue(result.isValid(), result.getStatusString())
+        self.assertLessEqual(result.PlanarityMaxAbs.Value, 0.01)
+        self.assertEqual(result.FaceCount, 7)
+
+
+class TestPlanarizedErrors(DocumentTestCase):
+    def test_empty_source_is_an_error_not_a_crash(self):
+        result = facetwb.make_planarized(importer.import_mesh(data_path("hypar.obj"), self.doc))
+        result.Source = None
+        self.doc.recompute()
+        self.assertFalse(result.isValid())
+        self.assertIn("Source is empty", result.getStatusString())
+
+    def test_bad_method(self):
+        source = importer.import_mesh(data_path("hypar.obj"), self.doc)
+        with self.assertRaises(ValueError):
+            facetwb.make_planarized(source, method="newton")
+
+    def test_planarized_of_planarized(self):
+        source = importer.import_mesh(data_path("hypar.obj"), self.doc)
+        first = facetwb.make_planarized(source, tolerance=1e-3)
+        second = facetwb.make_planarized(first, tolerance=1e-7)
+        self.doc.recompute()
+        self.assertTrue(second.isValid(), second.getStatusString())
+        self.assertLessEqual(second.PlanarityMaxRel, 1e-7)
+        self.assertIs(second.Source, first)

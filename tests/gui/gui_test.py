@@ -1,0 +1,267 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""GUI test: the designer's path through Facet in a real FreeCAD window (under Xvfb).
+
+    tests/fc_env.sh gui [OUT_DIR]
+    # = FACET_GUI_OUT=OUT_DIR xvfb-run -a -s "-screen 0 1600x1000x24" freecad tests/gui/gui_test.py
+    #   with the checkout as Mod/Facet in a throw-away FreeCAD user home
+
+Activates the Facet workbench, imports a quad mesh, selects it, runs Facet_Planarize, shows
+the result in Planarity mode and saves screenshots of the 3D view to OUT_DIR (default
+build/gui): planarity.png (result, planarity colours and legend), source.png (the source in
+Flat Lines) and source_planarity.png (the warped source in Planarity mode). Every check
+prints PASS or FAIL; FreeCAD exits with status 0 only if all passed (1 if one failed, 2 if
+the test itself broke). It does not run without a GUI: freecadcmd prints SKIP and exits 0.
+"""
+
+import os
+import sys
+import traceback
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+MESH = os.path.join(ROOT, "tests", "data", "hypar.obj")
+WIDTH, HEIGHT = 1600, 1000
+
+
+class Checks:
+    def __init__(self):
+        self.failed = []
+
+    def __call__(self, condition, what):
+        print(("PASS " if condition else "FAIL ") + what, flush=True)
+        if not condition:
+            self.failed.append(what)
+        return condition
+
+
+def image_pixels(path):
+    """(height, width, 3) uint8 RGB array of a PNG, read with Qt."""
+    import numpy as np
+    from PySide import QtGui
+
+    image = QtGui.QImage(path).convertToFormat(QtGui.QImage.Format_RGB888)
+    width, height, stride = image.width(), image.height(), image.bytesPerLine()
+    data = image.constBits()
+    buffer = bytes(data) if not hasattr(data, "asstring") else data.asstring(image.byteCount())
+    rows = np.frombuffer(buffer, dtype=np.uint8)[: height * stride].reshape(height, stride)
+    return rows[:, : width * 3].reshape(height, width, 3)
+
+
+def near(pixels, rgb, tolerance=40):
+    """Boolean mask of the pixels within ``tolerance`` (per channel) of ``rgb`` (0..1)."""
+    import numpy as np
+
+    target = np.array(rgb) * 255.0
+    return np.all(np.abs(pixels.astype(float) - target) <= tolerance, axis=-1)
+
+
+def check_screenshot(check, path, what, legend):
+    import numpy as np
+
+    from facetwb.viewproviders import colormap, legend as legend_layout
+
+    check(os.path.isfile(path) and os.path.getsize(path) > 1000, f"{what}: {path} written")
+    pixels = image_pixels(path)
+    check(pixels.shape[:2] == (HEIGHT, WIDTH), f"{what}: {WIDTH}x{HEIGHT} pixels")
+    colours = np.unique(pixels.reshape(-1, 3)[::7], axis=0).shape[0]
+    check(colours > 50, f"{what}: not a uniform image ({colours} colours)")
+    # The mesh fills the middle of the view (fit all) with colours of the map, or grey.
+    middle = pixels[HEIGHT // 4: 3 * HEIGHT // 4, WIDTH // 4: 3 * WIDTH // 4]
+    spread = middle.max(axis=-1).astype(int) - middle.min(axis=-1).astype(int)
+    colourful = int((spread > 70).sum())  # the background and grey faces are not
+    if legend:
+        check(colourful > 0.05 * middle.size / 3,
+              f"{what}: the mesh is drawn in planarity colours ({colourful} pixels)")
+        # The legend's bar: sample its centre line where each colour stop is drawn.
+        x = int((1.0 + sum(legend_layout.BAR_X) / 2.0) / 2.0 * WIDTH)
+        y0, y1 = legend_layout.BAR_Y
+        for position, rgb in colormap.STOPS:
+            y_view = y0 + (0.03 + 0.94 * position) * (y1 - y0)
+            y = int((1.0 - y_view) / 2.0 * HEIGHT)
+            sample = pixels[y - 1: y + 2, x - 1: x + 2].reshape(-1, 3).mean(axis=0) / 255.0
+            check(np.all(np.abs(sample - np.array(rgb)) < 0.12),
+                  f"{what}: legend bar at {position:.2f} is {tuple(np.round(rgb, 2))} "
+                  f"(found {tuple(np.round(sample, 2))})")
+        (px0, py0), (px1, py1) = legend_layout.PANEL
+        panel = pixels[int((1 - py1) / 2 * HEIGHT): int((1 - py0) / 2 * HEIGHT),
+                       int((1 + px0) / 2 * WIDTH): int((1 + px1) / 2 * WIDTH)]
+        text = near(panel, legend_layout.TEXT_COLOR, 60).sum()
+        check(text > 200, f"{what}: legend labels drawn ({text} light pixels on the panel)")
+    else:
+        grey = int((spread < 12).sum())
+        check(grey > 0.05 * middle.size / 3 and colourful < 0.001 * middle.size / 3,
+              f"{what}: the mesh is drawn in grey ({grey} grey, {colourful} coloured pixels)")
+
+
+def save_view(view, path):
+    import FreeCADGui as Gui
+
+    view.viewIsometric()
+    view.fitAll()
+    Gui.updateGui()
+    view.saveImage(path, WIDTH, HEIGHT, "Current")
+
+
+def run(out_dir):
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import numpy as np
+
+    check = Checks()
+    os.makedirs(out_dir, exist_ok=True)
+
+    if not check("FacetWorkbench" in Gui.listWorkbenches(), "Facet workbench is listed"):
+        return check
+    Gui.activateWorkbench("FacetWorkbench")
+    check(Gui.activeWorkbench().name() == "FacetWorkbench", "Facet workbench is active")
+    for name in ("Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize"):
+        check(name in Gui.listCommands(), f"command {name} is registered")
+
+    import facetwb
+    from facetwb import importer
+
+    importer.SHOW_DIALOGS = False
+    check_import_command(check)
+    doc = importer.open(MESH)
+    check(doc is not None and len(doc.Objects) == 1, "the mesh is imported as one object")
+    source = doc.Objects[0]
+    check(facetwb.is_polymesh(source), "it is a Facet PolyMesh")
+    check(source.ViewObject.DisplayMode == "Flat Lines", "the source shows in Flat Lines")
+    view = Gui.ActiveDocument.ActiveView
+    save_view(view, os.path.join(out_dir, "source.png"))
+    check_screenshot(check, os.path.join(out_dir, "source.png"), "source", legend=False)
+    source.ViewObject.DisplayMode = "Planarity"
+    save_view(view, os.path.join(out_dir, "source_planarity.png"))
+    check_screenshot(check, os.path.join(out_dir, "source_planarity.png"), "source planarity",
+                     legend=True)
+    source.ViewObject.DisplayMode = "Flat Lines"
+
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(source)
+    command = Gui.Command.get("Facet_Planarize") if hasattr(Gui, "Command") else None
+    if command is not None and hasattr(command, "isActive"):
+        check(command.isActive(), "Facet_Planarize is active with a PolyMesh selected")
+    Gui.runCommand("Facet_Planarize")
+    doc.recompute()
+    results = [obj for obj in doc.Objects if facetwb.is_planarized(obj)]
+    if not check(len(results) == 1, "Facet_Planarize added one Planarized object"):
+        return check
+    result = results[0]
+    check(result.isValid(), f"the Planarized object is valid ({result.getStatusString()})")
+    check(result.Source is source, "it links the source")
+    check(result.PlanarityMaxRel <= result.Tolerance,
+          f"planarity {result.PlanarityMaxRel:.3g} is below the tolerance {result.Tolerance:g}")
+    check(not source.ViewObject.Visibility, "the source is hidden")
+    check(result.ViewObject.DisplayMode == "Planarity", "the result shows planarity colours")
+    check([obj.Name for obj in Gui.Selection.getSelection()] == [result.Name],
+          "the result is selected")
+    doc.undo()
+    check(not any(facetwb.is_planarized(obj) for obj in doc.Objects),
+          "undo removes the Planarized object")
+    doc.redo()
+    result = doc.getObject(result.Name)
+    check(result is not None, "redo brings it back")
+    doc.recompute()
+
+    result.ViewObject.DisplayMode = "Planarity"
+    low, high = bounding_box(result.ViewObject.RootNode)
+    mesh = facetwb.get_mesh(result)
+    check(np.allclose(low, mesh.vertices.min(axis=0), atol=1e-4)
+          and np.allclose(high, mesh.vertices.max(axis=0), atol=1e-4),
+          f"Fit all sees the mesh, not the legend (bounding box {low} .. {high})")
+    path = os.path.join(out_dir, "planarity.png")
+    save_view(view, path)
+    check_screenshot(check, path, "planarity", legend=True)
+    for mode in ("Flat Lines", "Shaded", "Wireframe"):
+        result.ViewObject.DisplayMode = mode
+        Gui.updateGui()
+        check(result.ViewObject.DisplayMode == mode, f"display mode {mode}")
+    result.ViewObject.DisplayMode = "Planarity"
+
+    # Saved and reopened, the document shows the same planarity map.
+    path = os.path.join(out_dir, "planarity.FCStd")
+    name = result.Name
+    doc.saveAs(path)
+    App.closeDocument(doc.Name)
+    doc = App.openDocument(path)
+    Gui.updateGui()
+    result = doc.getObject(name)
+    check(result is not None and result.ViewObject.DisplayMode == "Planarity",
+          "reopened: the result is still shown in Planarity mode")
+    check(result.ViewObject.Proxy.__class__.__name__ == "ViewProviderPlanarized",
+          "reopened: its view provider is restored")
+    view = Gui.ActiveDocument.ActiveView
+    path = os.path.join(out_dir, "reopened.png")
+    save_view(view, path)
+    check_screenshot(check, path, "reopened", legend=True)
+    source = result.Source
+
+    # Facet_ToPolyMesh on a Part box: six quads, kept linked to the box.
+    box = doc.addObject("Part::Box", "Box")
+    doc.recompute()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(box)
+    before = set(doc.Objects)
+    Gui.runCommand("Facet_ToPolyMesh")
+    added = [obj for obj in doc.Objects if obj not in before]
+    check(len(added) == 1 and facetwb.is_polymesh(added[0]) and added[0].Source is box
+          and added[0].FaceCount == 6, "Facet_ToPolyMesh makes a 6-quad PolyMesh of a box")
+    check(not box.ViewObject.Visibility, "the box is hidden")
+    App.closeDocument(doc.Name)
+    return check
+
+
+def check_import_command(check):
+    """Facet_ImportMesh with the file dialog answered by the test."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    from PySide import QtGui
+
+    import facetwb
+
+    doc = App.newDocument("ImportCommand")
+    dialog = QtGui.QFileDialog.getOpenFileName
+    try:
+        for name, count in (("panels.off", 1), ("bad_index.off", 1)):
+            path = os.path.join(ROOT, "tests", "data", name)
+            QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *args, **kw: (path, ""))
+            Gui.runCommand("Facet_ImportMesh")
+            meshes = [obj for obj in doc.Objects if facetwb.is_polymesh(obj)]
+            check(len(meshes) == count, f"Facet_ImportMesh of {name}: {len(meshes)} PolyMesh")
+    finally:
+        QtGui.QFileDialog.getOpenFileName = dialog
+    check(meshes and meshes[0].FaceCount == 7, "the imported mesh has its 7 faces")
+    App.closeDocument(doc.Name)
+
+
+def bounding_box(node):
+    """(min, max) corners of what Coin's SoGetBoundingBoxAction (used by Fit all) sees."""
+    import numpy as np
+    from pivy import coin
+
+    action = coin.SoGetBoundingBoxAction(coin.SbViewportRegion(WIDTH, HEIGHT))
+    action.apply(node)
+    box = action.getBoundingBox()
+    return np.array(box.getMin().getValue()), np.array(box.getMax().getValue())
+
+
+def main():
+    import FreeCAD as App
+
+    if not App.GuiUp:
+        print("SKIP: the GUI test needs the FreeCAD GUI (run it with freecad, not freecadcmd)")
+        return 0
+    out_dir = os.environ.get("FACET_GUI_OUT") or os.path.join(ROOT, "build", "gui")
+    check = run(out_dir)
+    print(f"{len(check.failed)} check(s) failed" if check.failed else "all checks passed",
+          flush=True)
+    return 1 if check.failed else 0
+
+
+try:
+    status = main()
+except BaseException:  # noqa: BLE001 - any breakage must give a nonzero exit status
+    traceback.print_exc()
+    status = 2
+sys.stdout.flush()
+sys.stderr.flush()
+os._exit(status)

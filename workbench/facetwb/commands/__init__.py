@@ -1,0 +1,21 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Facet's GUI commands. ``register()`` adds them to FreeCAD (InitGui.py calls it)."""
+
+#: Commands in toolbar and menu order.
+COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize"]
+
+
+def register():
+    """Add Facet's commands to FreeCADGui (idempotent)."""
+    import FreeCADGui as Gui
+
+    from facetwb.commands.import_mesh import CommandImportMesh
+    from facetwb.commands.planarize import CommandPlanarize
+    from facetwb.commands.to_polymesh import CommandToPolyMesh
+
+    known = set(Gui.listCommands())
+    for name, command in (("Facet_ImportMesh", CommandImportMesh()),
+                          ("Facet_ToPolyMesh", CommandToPolyMesh()),
+                          ("Facet_Planarize", CommandPlanarize())):
+        if name not in known:
+            Gui.addCommand(name, command)

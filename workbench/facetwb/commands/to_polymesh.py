@@ -1,0 +1,49 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Facet_ToPolyMesh: a polygon mesh from selected FreeCAD Mesh or Part objects."""
+
+import FreeCAD as App
+import FreeCADGui as Gui
+
+from facetwb import paths
+from facetwb.commands.macro import object_expression, run_as_macro
+
+
+def _convertible(obj):
+    from facetwb.objects.polymesh import is_polymesh
+
+    if is_polymesh(obj):
+        return False
+    if obj.isDerivedFrom("Mesh::Feature"):
+        return True
+    shape = getattr(obj, "Shape", None)
+    try:
+        return shape is not None and not shape.isNull() and bool(shape.Faces)
+    except Exception:  # noqa: BLE001 - a broken shape is just not convertible
+        return False
+
+
+class CommandToPolyMesh:
+    """Add a PolyMesh linked to each selected Mesh or Part object."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": paths.icon_path("Facet_ToPolyMesh"),
+            "MenuText": "To polygon mesh",
+            "ToolTip": "Make a Facet polygon mesh from the selected Mesh or Part objects: a shape "
+                       "of planar polygons gives one panel per face, other shapes and meshes "
+                       "give triangles. It follows changes of its source.",
+        }
+
+    def IsActive(self):
+        return App.ActiveDocument is not None and any(
+            _convertible(obj) for obj in Gui.Selection.getSelection())
+
+    def Activated(self):
+        sources = [obj for obj in Gui.Selection.getSelection() if _convertible(obj)]
+        if not sources:
+            return
+        doc = sources[0].Document
+        lines = [f"facetwb.make_polymesh_from_object({object_expression(src)})"
+                 for src in sources]
+        lines.append(f'FreeCAD.getDocument("{doc.Name}").recompute()')
+        run_as_macro(doc, "To polygon mesh", lines)

@@ -1,0 +1,94 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Polygon meshes out of FreeCAD objects: Facet meshes, FreeCAD Meshes and Part shapes.
+
+- a Facet polygon mesh object (PolyMesh, Planarized): its stored mesh;
+- a Mesh feature: its triangles;
+- a Part shape whose faces are all planar polygons without holes (a facade modelled as
+  panels): one polygon face per Part face, from the face's outer wire; vertices that Part faces
+  share (same coordinates) become one mesh vertex;
+- any other Part shape: a triangulation of the whole shape (MeshPart), welded along edges.
+
+Coordinates are global (placements applied) and in model units (mm).
+"""
+
+import numpy as np
+
+import facet
+
+
+class SourceError(ValueError):
+    """An object that Facet cannot read a polygon mesh from."""
+
+
+def mesh_from_object(obj, tessellation_tolerance=0.0):
+    """A ``facet.PolyMesh`` read from ``obj`` (see the module docstring)."""
+    from facetwb.objects.polymesh import get_mesh, is_polymesh
+
+    if is_polymesh(obj):
+        return get_mesh(obj)
+    if obj.isDerivedFrom("Mesh::Feature"):
+        return mesh_from_mesh(obj.Mesh, obj.Label)
+    shape = getattr(obj, "Shape", None)
+    if shape is not None and not shape.isNull() and shape.Faces:
+        return mesh_from_shape(shape, tessellation_tolerance, obj.Label)
+    raise SourceError(f"{obj.Label} is neither a polygon mesh, a Mesh nor a shape with faces")
+
+
+def mesh_from_mesh(mesh, label="mesh"):
+    """A triangle ``facet.PolyMesh`` from a FreeCAD ``Mesh.Mesh``."""
+    points, facets = mesh.Topology
+    if not facets:
+        raise SourceError(f"{label} has no triangles")
+    xyz = np.array([(p.x, p.y, p.z) for p in points], dtype=np.float64).reshape(-1, 3)
+    return facet.PolyMesh.from_faces(xyz, [list(f) for f in facets])
+
+
+def is_polygonal(shape):
+    """True if every face of ``shape`` is planar, bounded by straight edges, without holes."""
+    import Part
+
+    for face in shape.Faces:
+        if not isinstance(face.Surface, Part.Plane) or len(face.Wires) != 1:
+            return False
+        if not all(isinstance(edge.Curve, (Part.Line, Part.LineSegment)) for edge in face.Edges):
+            return False
+    return True
+
+
+def mesh_from_shape(shape, tessellation_tolerance=0.0, label="shape"):
+    """A ``facet.PolyMesh`` from a Part shape: polygons if it is polygonal, else triangles."""
+    if is_polygonal(shape):
+        return _polygons_from_faces(shape, label)
+    import MeshPart
+
+    tolerance = tessellation_tolerance
+    if tolerance <= 0.0:
+        tolerance = shape.BoundBox.DiagonalLength / 1000.0 or 0.1
+    mesh = MeshPart.meshFromShape(Shape=shape, LinearDeflection=tolerance,
+                                  AngularDeflection=0.5, Relative=False)
+    return mesh_from_mesh(mesh, label)
+
+
+def _polygons_from_faces(shape, label):
+    index = {}
+    xyz = []
+    faces = []
+    for face in shape.Faces:
+        polygon = []
+        for vertex in face.OuterWire.OrderedVertexes:
+            key = (vertex.X, vertex.Y, vertex.Z)
+            if key not in index:
+                index[key] = len(xyz)
+                xyz.append(key)
+            polygon.append(index[key])
+        if len(polygon) < 3:
+            raise SourceError(f"{label}: a face has fewer than 3 corners")
+        # Wire order follows the wire, not the face: turn it to match the face's normal.
+        u0, u1, v0, v1 = face.ParameterRange
+        normal = face.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1))
+        corners = np.array([xyz[i] for i in polygon])
+        area_vector = np.cross(corners, np.roll(corners, -1, axis=0)).sum(axis=0)
+        if np.dot(area_vector, (normal.x, normal.y, normal.z)) < 0.0:
+            polygon.reverse()
+        faces.append(polygon)
+    return facet.PolyMesh.from_faces(np.array(xyz, dtype=np.float64), faces)

@@ -1,0 +1,49 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""make_planarized(): create a Planarized document object (scripting API, runs headless)."""
+
+import FreeCAD as App
+
+from facetwb.objects.planarized import METHODS, Planarized
+
+
+def make_planarized(source, method="lg", tolerance=1e-6, tolerance_abs=0.0, max_iterations=0,
+                    threads=0, name="Planarized"):
+    """Add a Planarized object that planarizes ``source`` on recompute.
+
+    Parameters
+    ----------
+    source : App.DocumentObject
+        A PolyMesh, Planarized, FreeCAD Mesh or Part object. Never modified; in the GUI it is
+        hidden (the result takes its place in the view).
+    method : {"lg", "ll"}
+        Local/global or local/local iterations (see facet.planarize).
+    tolerance : float
+        Target planarity relative to each face's mean edge length.
+    tolerance_abs : float
+        Target planarity in mm (0: only ``tolerance``).
+    max_iterations, threads : int
+        0 lets the solver choose.
+
+    Returns
+    -------
+    App.DocumentObject
+        The new object; recompute the document to solve.
+    """
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {METHODS}, not {method!r}")
+    doc = source.Document
+    obj = doc.addObject("App::FeaturePython", name)
+    Planarized(obj)
+    obj.Label = f"{source.Label} planarized"
+    obj.Source = source
+    obj.Method = method
+    obj.Tolerance = tolerance
+    obj.ToleranceAbs = tolerance_abs
+    obj.MaxIterations = max_iterations
+    obj.Threads = threads
+    if App.GuiUp:
+        from facetwb.viewproviders.view_planarized import ViewProviderPlanarized
+
+        ViewProviderPlanarized(obj.ViewObject)
+        source.ViewObject.Visibility = False
+    return obj

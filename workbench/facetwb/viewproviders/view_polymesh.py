@@ -1,0 +1,241 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""ViewProviderPolyMesh: draws a Facet polygon mesh with Coin3D.
+
+Scene graph (nodes are shared between the display modes)::
+
+    SoCoordinate3               all vertices
+    SoShapeHints                UNKNOWN_FACE_TYPE: faces may be non-convex polygons, which
+                                Coin triangulates; two-sided lighting; flat shading
+    SoIndexedFaceSet            one polygon per face
+    SoIndexedLineSet            each edge once
+
+Display modes:
+
+- "Flat Lines": faces in ShapeColor with their edges;
+- "Shaded": faces only;
+- "Wireframe": edges only;
+- "Planarity": each face coloured by its planarity (FacePlanarity: largest distance of its
+  vertices from its best-fit plane) with a legend in model units (see legend.py).
+"""
+
+import numpy as np
+from pivy import coin
+
+import facet
+from facetwb import compat, paths
+from facetwb.objects.polymesh import MESH_PROPERTIES, mesh_arrays
+from facetwb.viewproviders import colormap
+from facetwb.viewproviders.legend import PlanarityLegend
+
+DISPLAY_MODES = ["Flat Lines", "Shaded", "Wireframe", "Planarity"]
+
+#: PlanarityEdges "Auto" draws edges up to this many faces.
+AUTO_EDGES_MAX_FACES = 20000
+
+
+class ViewProviderPolyMesh:
+    """View provider of PolyMesh objects (Gui::ViewProviderPythonFeature)."""
+
+    TYPE = "Facet::ViewProviderPolyMesh"
+    ICON = "Facet_PolyMesh"
+    DEFAULT_DISPLAY_MODE = "Flat Lines"
+
+    def __init__(self, vobj):
+        self.Type = self.TYPE
+        self.init_properties(vobj)
+        vobj.Proxy = self
+
+    def init_properties(self, vobj):
+        """Add the view properties ``vobj`` lacks (idempotent; also run by attach)."""
+        add = compat.add_property
+        add(vobj, "App::PropertyColor", "ShapeColor", "Display", "Colour of the faces",
+            value=(0.80, 0.80, 0.82))
+        add(vobj, "App::PropertyColor", "LineColor", "Display", "Colour of the edges",
+            value=(0.10, 0.10, 0.12))
+        add(vobj, "App::PropertyFloat", "LineWidth", "Display", "Width of the edges, pixels",
+            value=1.0)
+        add(vobj, "App::PropertyLength", "LegendMax", "Planarity",
+            "Planarity shown in the top colour (red) in Planarity mode; larger values are "
+            "red too (0: the largest face value)")
+        add(vobj, "App::PropertyBool", "ShowLegend", "Planarity",
+            "Show the colour legend in Planarity mode", value=True)
+        if add(vobj, "App::PropertyEnumeration", "PlanarityEdges", "Planarity",
+               "Edges in Planarity mode (Auto: only while the mesh has at most "
+               f"{AUTO_EDGES_MAX_FACES} faces, so dense meshes show their colours)"):
+            vobj.PlanarityEdges = ["Auto", "Show", "Hide"]
+            vobj.PlanarityEdges = "Auto"
+
+    # --- scene graph ------------------------------------------------------------------------
+
+    def attach(self, vobj):
+        self.init_properties(vobj)
+        self.ViewObject = vobj
+        self.Object = vobj.Object
+        self.face_count = 0
+
+        self.coords = coin.SoCoordinate3()
+        self.faces = coin.SoIndexedFaceSet()
+        self.edges = coin.SoIndexedLineSet()
+        hints = coin.SoShapeHints()
+        hints.vertexOrdering = coin.SoShapeHints.COUNTERCLOCKWISE
+        hints.shapeType = coin.SoShapeHints.UNKNOWN_SHAPE_TYPE
+        hints.faceType = coin.SoShapeHints.UNKNOWN_FACE_TYPE
+        hints.creaseAngle = 0.0
+        offset = coin.SoPolygonOffset()  # faces slightly back, so their edges show
+
+        self.face_material = coin.SoMaterial()
+        self.planarity_material = coin.SoMaterial()
+        per_face = coin.SoMaterialBinding()
+        per_face.value = coin.SoMaterialBinding.PER_FACE
+        self.line_material = coin.SoMaterial()
+        self.line_style = coin.SoDrawStyle()
+        edge_group = coin.SoSeparator()
+        overall = coin.SoMaterialBinding()
+        overall.value = coin.SoMaterialBinding.OVERALL
+        unlit = coin.SoLightModel()
+        unlit.model = coin.SoLightModel.BASE_COLOR
+        for node in (overall, unlit, self.line_material, self.line_style, self.edges):
+            edge_group.addChild(node)
+        self.legend = PlanarityLegend()
+        self.planarity_edges = coin.SoSwitch()
+        self.planarity_edges.addChild(edge_group)
+
+        layouts = {
+            "Flat Lines": (self.coords, hints, offset, self.face_material, self.faces,
+                           edge_group),
+            "Shaded": (self.coords, hints, self.face_material, self.faces),
+            "Wireframe": (self.coords, edge_group),
+            "Planarity": (self.coords, hints, offset, per_face, self.planarity_material,
+                          self.faces, self.planarity_edges, self.legend.root),
+        }
+        for mode in DISPLAY_MODES:
+            group = coin.SoSeparator()
+            for node in layouts[mode]:
+                group.addChild(node)
+            vobj.addDisplayMode(group, mode)
+
+        for prop in ("ShapeColor", "LineColor", "LineWidth"):
+            self.onChanged(vobj, prop)
+        self.redraw_mesh(vobj.Object)
+
+    def getDisplayModes(self, vobj):
+        return DISPLAY_MODES
+
+    def getDefaultDisplayMode(self):
+        return self.DEFAULT_DISPLAY_MODE
+
+    def setDisplayMode(self, mode):
+        return mode
+
+    def updateData(self, obj, prop):
+        if not hasattr(self, "coords"):
+            return
+        if prop in MESH_PROPERTIES:
+            self.redraw_mesh(obj)
+        elif prop == "FacePlanarity":
+            self.recolor(obj)
+
+    def onChanged(self, vobj, prop):
+        if not hasattr(self, "coords"):
+            return
+        if prop == "ShapeColor":
+            self.face_material.diffuseColor.setValue(*vobj.ShapeColor[:3])
+        elif prop == "LineColor":
+            self.line_material.diffuseColor.setValue(*vobj.LineColor[:3])
+        elif prop == "LineWidth":
+            self.line_style.lineWidth = max(vobj.LineWidth, 0.1)
+        elif prop in ("LegendMax", "ShowLegend", "PlanarityEdges"):
+            self.recolor(vobj.Object)
+
+    def redraw_mesh(self, obj):
+        """Rebuild coordinates, faces and edges from the object's mesh properties."""
+        arrays = mesh_arrays(obj)
+        if arrays is None:  # empty, or mid-update: draw nothing until the three agree
+            _set_mfield(self.coords.point, [])
+            _set_mfield(self.faces.coordIndex, [])
+            _set_mfield(self.edges.coordIndex, [])
+            self.face_count = 0
+            self.drawn_topology = None
+            self.recolor(obj)
+            return
+        xyz, face_start, face_vertices = arrays
+        _set_mfield(self.coords.point, xyz.tolist())
+        drawn = getattr(self, "drawn_topology", None)
+        if not (drawn is not None and np.array_equal(drawn[0], face_start)
+                and np.array_equal(drawn[1], face_vertices)):
+            self.draw_topology(xyz, face_start, face_vertices)
+        self.recolor(obj)
+
+    def draw_topology(self, xyz, face_start, face_vertices):
+        """Face and edge indices; skipped when only the coordinates change (a re-solve)."""
+        degrees = np.diff(face_start)
+        n_faces = degrees.size
+        # Face indices with -1 after each face: face j's corners go to start_j + j ...
+        face_index = np.full(face_vertices.size + n_faces, -1, dtype=np.int64)
+        face_index[np.arange(face_vertices.size) + np.repeat(np.arange(n_faces), degrees)] = \
+            face_vertices
+        mesh = facet.PolyMesh(xyz, face_start.astype(np.int32), face_vertices.astype(np.int32))
+        edges = np.asarray(mesh.edges(), dtype=np.int64).reshape(-1, 2)
+        edge_index = np.hstack([edges, np.full((edges.shape[0], 1), -1, dtype=np.int64)])
+        _set_mfield(self.faces.coordIndex, face_index.tolist())
+        _set_mfield(self.edges.coordIndex, edge_index.ravel().tolist())
+        self.face_count = n_faces
+        self.drawn_topology = (face_start.copy(), face_vertices.copy())
+
+    def recolor(self, obj):
+        """Colour the faces by FacePlanarity and label the legend."""
+        vobj = self.ViewObject
+        values = np.asarray(getattr(obj, "FacePlanarity", []), dtype=np.float64)
+        if self.face_count == 0 or values.size != self.face_count:
+            count = max(self.face_count, 1)
+            _set_mfield(self.planarity_material.diffuseColor, [colormap.NO_VALUE] * count)
+            self.legend.update(0.0, title="Planarity (not computed)")
+        else:
+            actual_max = float(values.max())
+            scale_max = vobj.LegendMax.Value if vobj.LegendMax.Value > 0.0 else actual_max
+            rgb = colormap.colors(values, scale_max)
+            _set_mfield(self.planarity_material.diffuseColor, rgb.tolist())
+            self.legend.update(scale_max, actual_max=actual_max)
+        self.legend.set_visible(bool(vobj.ShowLegend))
+        edges = getattr(vobj, "PlanarityEdges", "Auto")
+        show_edges = edges == "Show" or (
+            edges == "Auto" and self.face_count <= AUTO_EDGES_MAX_FACES)
+        self.planarity_edges.whichChild = coin.SO_SWITCH_ALL if show_edges else \
+            coin.SO_SWITCH_NONE
+
+    # --- tree -----------------------------------------------------------------------------
+
+    def getIcon(self):
+        return paths.icon_path(self.ICON)
+
+    def claimChildren(self):
+        source = getattr(self.Object, "Source", None) if hasattr(self, "Object") else None
+        return [source] if source is not None else []
+
+    def onDelete(self, vobj, subelements):
+        """Show the source again when its derived object is deleted."""
+        source = getattr(vobj.Object, "Source", None)
+        if source is not None and source.ViewObject is not None:
+            source.ViewObject.Visibility = True
+        return True
+
+    # --- saving: nothing to save, everything is rebuilt by attach() -----------------------
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        self.Type = self.TYPE
+
+    def __getstate__(self):
+        return self.dumps()
+
+    def __setstate__(self, state):
+        self.loads(state)
+
+
+def _set_mfield(field, values):
+    """Replace all values of a Coin multiple-value field (setValues alone never shrinks it)."""
+    field.setNum(len(values))
+    if values:
+        field.setValues(0, len(values), values)
