@@ -162,3 +162,40 @@ def write_text(path, chunks):
         except OSError:
             pass
         raise
+
+
+def write_mesh_records(path, mesh, header, vertex_prefix, face_record):
+    """Write `header`, then one line per vertex and one per face, in large chunks.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    mesh : PolyMesh
+        Checked with :func:`check_writable_mesh` first: nothing is written when
+        a coordinate is NaN or infinite.
+    header : str
+        Text before the vertices (ends with a newline).
+    vertex_prefix : str
+        Written before each vertex's three coordinates (``"v "`` for OBJ).
+    face_record : callable
+        ``face_record(face)`` gives the line of a face (a list of indices from
+        0), without the newline.
+    """
+    check_writable_mesh(mesh, path)
+
+    def chunks():
+        yield header
+        lines = []
+        for x, y, z in mesh.vertices.tolist():
+            lines.append(f"{vertex_prefix}{format_float(x)} {format_float(y)} {format_float(z)}\n")
+            if len(lines) >= 4096:
+                yield "".join(lines)
+                lines = []
+        for face in mesh.faces():
+            lines.append(face_record(face) + "\n")
+            if len(lines) >= 4096:
+                yield "".join(lines)
+                lines = []
+        yield "".join(lines)
+
+    write_text(path, chunks())

@@ -22,14 +22,7 @@ import numpy as np
 
 from facet.errors import MeshError
 from facet.io.checks import build_mesh
-from facet.io.files import (
-    check_writable_mesh,
-    format_float,
-    parse_float,
-    parse_int,
-    read_lines,
-    write_text,
-)
+from facet.io.files import parse_float, parse_int, read_lines, write_mesh_records
 
 __all__ = ["read_obj", "write_obj"]
 
@@ -179,21 +172,10 @@ def write_obj(mesh, path):
     OSError
         When the file cannot be written.
     """
-    check_writable_mesh(mesh, path)
-
-    def chunks():
-        yield f"# Facet mesh: {mesh.n_vertices} vertices, {mesh.n_faces} faces\n"
-        lines = []
-        for x, y, z in mesh.vertices.tolist():
-            lines.append(f"v {format_float(x)} {format_float(y)} {format_float(z)}\n")
-            if len(lines) >= 4096:
-                yield "".join(lines)
-                lines = []
-        for face in mesh.faces():
-            lines.append("f " + " ".join(str(index + 1) for index in face) + "\n")
-            if len(lines) >= 4096:
-                yield "".join(lines)
-                lines = []
-        yield "".join(lines)
-
-    write_text(path, chunks())
+    write_mesh_records(
+        path,
+        mesh,
+        header=f"# Facet mesh: {mesh.n_vertices} vertices, {mesh.n_faces} faces\n",
+        vertex_prefix="v ",
+        face_record=lambda face: "f " + " ".join(str(index + 1) for index in face),
+    )

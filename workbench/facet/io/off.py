@@ -31,14 +31,7 @@ import numpy as np
 
 from facet.errors import MeshError
 from facet.io.checks import build_mesh
-from facet.io.files import (
-    check_writable_mesh,
-    format_float,
-    parse_float,
-    parse_int,
-    read_lines,
-    write_text,
-)
+from facet.io.files import parse_float, parse_int, read_lines, write_mesh_records
 
 __all__ = ["read_off", "write_off"]
 
@@ -245,21 +238,10 @@ def write_off(mesh, path):
     OSError
         When the file cannot be written.
     """
-    check_writable_mesh(mesh, path)
-
-    def chunks():
-        yield f"OFF\n{mesh.n_vertices} {mesh.n_faces} {mesh.edges().shape[0]}\n"
-        lines = []
-        for x, y, z in mesh.vertices.tolist():
-            lines.append(f"{format_float(x)} {format_float(y)} {format_float(z)}\n")
-            if len(lines) >= 4096:
-                yield "".join(lines)
-                lines = []
-        for face in mesh.faces():
-            lines.append(f"{len(face)} " + " ".join(map(str, face)) + "\n")
-            if len(lines) >= 4096:
-                yield "".join(lines)
-                lines = []
-        yield "".join(lines)
-
-    write_text(path, chunks())
+    write_mesh_records(
+        path,
+        mesh,
+        header=f"OFF\n{mesh.n_vertices} {mesh.n_faces} {mesh.edges().shape[0]}\n",
+        vertex_prefix="",
+        face_record=lambda face: f"{len(face)} " + " ".join(map(str, face)),
+    )
