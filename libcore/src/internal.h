@@ -35,10 +35,12 @@ facet_status facet_mesh_validate_topology(const facet_mesh *mesh, int check_coor
  * Writes a unit vector to v and returns the eigenvalue. */
 double facet_sym3_smallest_eigenvector(const double a[6], double v[3]);
 
-/* Least-squares plane of the points xyz[idx[k]], k < n: unit normal and
- * centroid; returns the smallest scatter eigenvalue. */
-double facet_face_plane(int32_t n, const double *xyz, const int32_t *idx, double normal[3],
-                        double centroid[3]);
+/* One face (the points xyz[idx[k]], k < n, in order around it): its
+ * least-squares plane (unit normal, and offset with normal . x + offset = 0;
+ * offset may be NULL), the largest and RMS distance of its vertices from
+ * that plane (either may be NULL); returns its mean edge length. */
+double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, double normal[3],
+                          double *offset, double *max_distance, double *rms_distance);
 
 /* Sets the number of OpenMP threads for a parallel region: n <= 0 gives the
  * OpenMP default. */

@@ -76,7 +76,11 @@ facet_status facet_mesh_validate_topology(const facet_mesh *mesh, int check_coor
                               p[1], p[2]);
     }
 
-    /* Indices, repeated vertices and degree, with a stamp per vertex. */
+    status = facet_mesh_check_indices(mesh, error);
+    if (status != FACET_OK)
+        return status;
+
+    /* Repeated vertices and degree, with a stamp per vertex. */
     int32_t *stamp = malloc(sizeof *stamp * (size_t)nv);
     if (!stamp)
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
@@ -90,12 +94,6 @@ facet_status facet_mesh_validate_topology(const facet_mesh *mesh, int check_coor
         int32_t distinct = 0, repeated = -1;
         for (int32_t k = start[f]; k < start[f + 1]; ++k) {
             const int32_t v = fv[k];
-            if (v < 0 || v >= nv) {
-                free(stamp);
-                return facet_fail(error, FACET_ERROR_INDEX_OUT_OF_RANGE, f, -1,
-                                  "face %d has vertex index %d out of range (%d vertices)", (int)f,
-                                  (int)v, (int)nv);
-            }
             if (stamp[v] == f) {
                 if (repeated < 0)
                     repeated = v;

@@ -129,11 +129,29 @@ double facet_fit_plane(int32_t n, const double *xyz, double normal[3], double *o
     return lambda;
 }
 
-/* Internal entry for the solver: plane of face vertices. */
-double facet_face_plane(int32_t n, const double *xyz, const int32_t *idx, double normal[3],
-                        double centroid[3])
+double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, double normal[3],
+                          double *offset, double *max_distance, double *rms_distance)
 {
-    return fit_plane_indexed(n, xyz, idx, normal, centroid);
+    double c[3];
+    fit_plane_indexed(n, xyz, idx, normal, c);
+    double dmax = 0.0, dsum = 0.0, esum = 0.0;
+    for (int32_t k = 0; k < n; ++k) {
+        const double *p = xyz + 3 * (size_t)idx[k];
+        const double *q = xyz + 3 * (size_t)idx[k + 1 < n ? k + 1 : 0];
+        const double d = fabs(normal[0] * (p[0] - c[0]) + normal[1] * (p[1] - c[1]) +
+                              normal[2] * (p[2] - c[2]));
+        dmax = fmax(dmax, d);
+        dsum += d * d;
+        const double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+        esum += sqrt(dot3(e, e));
+    }
+    if (offset)
+        *offset = -dot3(normal, c);
+    if (max_distance)
+        *max_distance = dmax;
+    if (rms_distance)
+        *rms_distance = sqrt(dsum / (double)n);
+    return esum / (double)n;
 }
 
 /* Distance between the diagonal lines of a quad over the mean diagonal length
@@ -198,25 +216,14 @@ facet_status facet_planarity(const facet_mesh *mesh, int threads, double *max_ab
                 diagonal[f] = -1.0;
             continue;
         }
-        double normal[3], c[3];
-        fit_plane_indexed(n, xyz, idx, normal, c);
-        double dmax = 0.0, dsum = 0.0, esum = 0.0;
-        for (int32_t k = 0; k < n; ++k) {
-            const double *p = xyz + 3 * (size_t)idx[k];
-            const double *q = xyz + 3 * (size_t)idx[k + 1 < n ? k + 1 : 0];
-            const double d = fabs(normal[0] * (p[0] - c[0]) + normal[1] * (p[1] - c[1]) +
-                                  normal[2] * (p[2] - c[2]));
-            dmax = fmax(dmax, d);
-            dsum += d * d;
-            const double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-            esum += sqrt(dot3(e, e));
-        }
+        double normal[3], dmax, drms;
+        const double edge = facet_face_measure(n, xyz, idx, normal, NULL, &dmax, &drms);
         if (max_abs)
             max_abs[f] = dmax;
         if (rms_abs)
-            rms_abs[f] = sqrt(dsum / (double)n);
+            rms_abs[f] = drms;
         if (mean_edge)
-            mean_edge[f] = esum / (double)n;
+            mean_edge[f] = edge;
         if (diagonal)
             diagonal[f] = n == 4 ? quad_diagonal_measure(xyz, idx) : -1.0;
     }

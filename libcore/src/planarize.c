@@ -177,21 +177,8 @@ static void fit_faces(facet_planarizer *s, int nthreads)
     for (int32_t f = 0; f < nf; ++f) {
         const int32_t n = start[f + 1] - start[f];
         const int32_t *idx = fv + start[f];
-        double *normal = s->normal + 3 * (size_t)f, c[3];
-        facet_face_plane(n, q, idx, normal, c);
-        const double d = -(normal[0] * c[0] + normal[1] * c[1] + normal[2] * c[2]);
-        s->offset[f] = d;
-        double dev = 0.0, edge = 0.0;
-        for (int32_t k = 0; k < n; ++k) {
-            const double *a = q + 3 * (size_t)idx[k];
-            const double *b = q + 3 * (size_t)idx[k + 1 < n ? k + 1 : 0];
-            dev = fmax(dev, fabs(normal[0] * (a[0] - c[0]) + normal[1] * (a[1] - c[1]) +
-                                 normal[2] * (a[2] - c[2])));
-            const double e0 = b[0] - a[0], e1 = b[1] - a[1], e2 = b[2] - a[2];
-            edge += sqrt(e0 * e0 + e1 * e1 + e2 * e2);
-        }
-        s->face_dev[f] = dev;
-        s->face_edge[f] = edge / (double)n;
+        s->face_edge[f] = facet_face_measure(n, q, idx, s->normal + 3 * (size_t)f,
+                                             &s->offset[f], &s->face_dev[f], NULL);
     }
 }
 
