@@ -310,17 +310,10 @@ def _read(args):
 def run_planarize(args):
     """Run ``facet planarize``; return the exit status."""
     from facet import planarity, planarize
-    from facet.errors import MeshError
-    from facet.io import WRITERS, write_mesh
+    from facet.io import write_mesh, writer_for
     from facet.report import planarize_report, write_json
 
-    suffix = os.path.splitext(args.output)[1].lower()
-    if suffix not in WRITERS:
-        raise MeshError(
-            f"cannot write {suffix or 'files without an extension'} files "
-            f"(Facet writes {', '.join(sorted(WRITERS))})",
-            source=args.output,
-        )
+    writer_for(args.output)  # refuse an unknown output format before the solve
     mesh = _read(args)
     before = planarity(mesh, threads=args.threads)
     result = planarize(

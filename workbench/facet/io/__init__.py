@@ -35,6 +35,8 @@ __all__ = [
     "write_off",
     "READERS",
     "WRITERS",
+    "reader_for",
+    "writer_for",
 ]
 
 #: Reader for each file suffix.
@@ -46,6 +48,30 @@ WRITERS = {".obj": write_obj, ".off": write_off}
 
 def _suffix(path):
     return os.path.splitext(os.fspath(path))[1].lower()
+
+
+def _chosen(table, path, verb):
+    function = table.get(_suffix(path))
+    if function is None:
+        raise MeshError(
+            f"cannot {verb} {_suffix(path) or 'files without an extension'!s} files "
+            f"(Facet {verb}s {', '.join(sorted(table))})",
+            source=path,
+        )
+    return function
+
+
+def reader_for(path):
+    """The reader for `path`'s extension; MeshError naming the file when there is none."""
+    return _chosen(READERS, path, "read")
+
+
+def writer_for(path):
+    """The writer for `path`'s extension; MeshError naming the file when there is none.
+
+    Call it before a long computation to refuse an output name early.
+    """
+    return _chosen(WRITERS, path, "write")
 
 
 def read_mesh(path, **options):
@@ -69,13 +95,7 @@ def read_mesh(path, **options):
     OSError
         When the file cannot be read.
     """
-    reader = READERS.get(_suffix(path))
-    if reader is None:
-        raise MeshError(
-            f"cannot read {_suffix(path) or 'files without an extension'!s} files "
-            f"(Facet reads {', '.join(sorted(READERS))})",
-            source=path,
-        )
+    reader = reader_for(path)
     return reader(path, **options)
 
 
@@ -96,11 +116,5 @@ def write_mesh(mesh, path):
     OSError
         When the file cannot be written.
     """
-    writer = WRITERS.get(_suffix(path))
-    if writer is None:
-        raise MeshError(
-            f"cannot write {_suffix(path) or 'files without an extension'!s} files "
-            f"(Facet writes {', '.join(sorted(WRITERS))})",
-            source=path,
-        )
+    writer = writer_for(path)
     writer(mesh, path)
