@@ -14,7 +14,7 @@ still work, and using :func:`planarize` or :func:`planarity` raises an
 ImportError saying so.
 """
 
-from facet.errors import Cancelled, FacetError, MeshError
+from facet.errors import Cancelled, FacetError, InputError, MeshError
 from facet.io import read_mesh, write_mesh
 from facet.mesh import PolyMesh
 
@@ -23,6 +23,7 @@ __version__ = "0.1.0"
 __all__ = [
     "PolyMesh",
     "FacetError",
+    "InputError",
     "MeshError",
     "Cancelled",
     "read_mesh",

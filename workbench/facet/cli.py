@@ -16,6 +16,7 @@ wrong), 130 interrupted with Ctrl+C.
 """
 
 import argparse
+import importlib
 import os
 import sys
 
@@ -24,6 +25,14 @@ EXIT_NOT_CONVERGED = 1
 EXIT_FAILED = 1
 EXIT_BAD_INPUT = 2
 EXIT_INTERRUPTED = 130
+
+#: Modules that add sub-commands of their own. Each has
+#: ``add_commands(commands)``, which adds parsers to the argparse
+#: sub-parsers object ``commands`` and sets ``run=function(args) -> exit
+#: status`` as each parser's default. Keep their module-level imports light:
+#: every ``facet`` command imports them all. Bad input is raised as
+#: :class:`facet.errors.InputError` (exit status 2).
+COMMAND_MODULES = ()
 
 #: How each stop reason of the solver is told to the designer.
 STOP_REASONS = {
@@ -152,6 +161,8 @@ def build_parser():
         "--item", metavar="NAME", help="mesh to read from a RhinoVAULT .json session"
     )
     check.set_defaults(run=run_check)
+    for name in COMMAND_MODULES:
+        importlib.import_module(name).add_commands(commands)
     return parser
 
 
@@ -390,7 +401,7 @@ def main(argv=None):
     int
         The exit status (see the module documentation).
     """
-    from facet.errors import Cancelled, FacetError, MeshError
+    from facet.errors import Cancelled, FacetError, InputError
 
     parser = build_parser()
     try:
@@ -402,7 +413,7 @@ def main(argv=None):
     except Cancelled:
         _fail("interrupted")
         return EXIT_INTERRUPTED
-    except MeshError as error:
+    except InputError as error:
         _fail(str(error))
         return EXIT_BAD_INPUT
     except _UsageError as error:

@@ -43,7 +43,17 @@ class FacetError(Exception):
     status_name = None
 
 
-class MeshError(FacetError, ValueError):
+class InputError(FacetError, ValueError):
+    """An input cannot be used: a file, a drawing, targets or a parameter.
+
+    The base of every bad-input error (the command line exits with status 2
+    for these). Its message names the input and what is wrong, in one line:
+    ``"roof.dxf: edge 12 is an arc; split arcs or pass --arc-tolerance"``.
+    Subclass it for a family of inputs (:class:`MeshError` for meshes).
+    """
+
+
+class MeshError(InputError):
     """A mesh, or the file it was read from, cannot be used.
 
     Parameters

@@ -1,0 +1,56 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* Shared by the binding files of facet._core.
+ *
+ * Each feature has its own binding file (py_planarize.c, ...) that defines
+ * one registration function, int py_add_<feature>(PyObject *module), called
+ * from core_exec in core_module.c. A binding file adds its functions with
+ * PyModule_AddFunctions and its heap types with PyType_FromModuleAndSpec; a
+ * method of such a type finds the module (and so CoreError) through
+ * PyType_GetModule(Py_TYPE(self)). */
+#ifndef FACET_PY_COMMON_H
+#define FACET_PY_COMMON_H
+
+#include <Python.h>
+
+#include "facet.h"
+
+typedef struct {
+    PyObject *core_error;
+    PyObject *cancelled;
+} module_state;
+
+module_state *py_state(PyObject *module);
+
+/* "FACET_ERROR_REPEATED_VERTEX" */
+const char *py_status_name(facet_status status);
+
+/* Sets obj.name = value and drops the reference to value (which may be NULL:
+ * then returns -1 with the error already set). */
+int py_set_attr(PyObject *obj, const char *name, PyObject *value);
+
+/* Raises CoreError (or Cancelled, or MemoryError) for a failed call; returns
+ * NULL. error may be NULL. */
+PyObject *py_raise_status(module_state *st, facet_status status, const facet_error *error);
+
+/* Gets a C-contiguous buffer of doubles ('d') or int32 ('i'). expected < 0
+ * means any length. Sets a TypeError/ValueError naming the argument and
+ * returns -1 on failure. */
+int py_get_buffer(PyObject *obj, const char *name, char code, int writable, Py_ssize_t expected,
+                  Py_buffer *view);
+
+typedef struct {
+    Py_buffer xyz, start, faces;
+    int have_xyz, have_start, have_faces;
+    facet_mesh mesh;
+} mesh_views;
+
+/* Views a mesh given as xyz (float64, 3n; may be NULL for topology only,
+ * then n_vertices is used), face_start and face_vertices (int32). */
+int py_get_mesh(PyObject *xyz, PyObject *start, PyObject *faces, Py_ssize_t n_vertices,
+                mesh_views *m);
+void py_release_mesh(mesh_views *m);
+
+/* Registration functions of the binding files. */
+int py_add_planarize(PyObject *module);
+
+#endif

@@ -1,0 +1,244 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* facet._core.Planarizer: the planarization solver handle. */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+#include "py_common.h"
+
+#include <math.h>
+#include <string.h>
+
+/* ---- Planarizer ---------------------------------------------------------- */
+
+typedef struct {
+    PyObject_HEAD
+    facet_planarizer *handle;
+    int32_t n_vertices, n_faces;
+    int busy;
+} planarizer_object;
+
+static int planarizer_init(PyObject *self_obj, PyObject *args, PyObject *kwargs)
+{
+    planarizer_object *self = (planarizer_object *)self_obj;
+    static char *keywords[] = {"face_start", "face_vertices", "n_vertices", NULL};
+    PyObject *start, *faces;
+    Py_ssize_t n_vertices;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOn:Planarizer", keywords, &start, &faces,
+                                     &n_vertices))
+        return -1;
+    if (self->handle) {
+        PyErr_SetString(PyExc_RuntimeError, "Planarizer is already initialised");
+        return -1;
+    }
+    mesh_views m;
+    if (py_get_mesh(NULL, start, faces, n_vertices, &m) < 0)
+        return -1;
+    facet_error error;
+    facet_status status = facet_planarizer_create(&m.mesh, &self->handle, &error);
+    self->n_vertices = m.mesh.n_vertices;
+    self->n_faces = m.mesh.n_faces;
+    py_release_mesh(&m);
+    if (status < 0) {
+        PyObject *module = PyType_GetModule(Py_TYPE(self_obj));
+        py_raise_status(py_state(module), status, &error);
+        return -1;
+    }
+    return 0;
+}
+
+static void planarizer_dealloc(PyObject *self_obj)
+{
+    planarizer_object *self = (planarizer_object *)self_obj;
+    PyTypeObject *type = Py_TYPE(self_obj);
+    facet_planarizer_free(&self->handle);
+    type->tp_free(self_obj);
+    Py_DECREF(type);
+}
+
+typedef struct {
+    PyObject *callback; /* may be NULL */
+    PyObject *exc_type, *exc_value, *exc_tb;
+} progress_state;
+
+/* Runs with the GIL released: takes it for the callback and for Ctrl+C. */
+static int progress_trampoline(void *user, int32_t iteration, int32_t max_iter, double planarity)
+{
+    progress_state *ps = user;
+    PyGILState_STATE gil = PyGILState_Ensure();
+    int cancel = 0;
+    if (PyErr_CheckSignals() < 0) {
+        cancel = 1;
+    } else if (ps->callback) {
+        PyObject *r = PyObject_CallFunction(ps->callback, "iid", (int)iteration, (int)max_iter,
+                                            planarity);
+        if (!r) {
+            cancel = 1;
+        } else {
+            cancel = PyObject_IsTrue(r) == 1;
+            Py_DECREF(r);
+        }
+    }
+    if (PyErr_Occurred() && !ps->exc_type)
+        PyErr_Fetch(&ps->exc_type, &ps->exc_value, &ps->exc_tb);
+    PyErr_Clear();
+    PyGILState_Release(gil);
+    return cancel;
+}
+
+static const char *stop_reason_name(facet_stop_reason reason)
+{
+    switch (reason) {
+    case FACET_STOP_TOLERANCE:
+        return "tolerance";
+    case FACET_STOP_MAX_ITER:
+        return "max_iter";
+    case FACET_STOP_ITERATIONS:
+        return "iterations";
+    case FACET_STOP_STAGNATION:
+        return "stagnation";
+    case FACET_STOP_CANCELLED:
+        return "cancelled";
+    case FACET_STOP_NONE:
+        break;
+    }
+    return "none";
+}
+
+static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *kwargs)
+{
+    planarizer_object *self = (planarizer_object *)self_obj;
+    static char *keywords[] = {"xyz_in", "xyz_out", "method", "mu0", "ratio", "mu_min",
+                               "tol_abs", "tol_rel", "max_iter", "iterations", "threads", "warm",
+                               "progress", NULL};
+    PyObject *in_obj, *out_obj, *progress = Py_None;
+    const char *method = "lg";
+    double mu0 = NAN, ratio = NAN, mu_min = NAN, tol_abs = NAN, tol_rel = NAN;
+    int max_iter = -1, iterations = 0, threads = 0, warm = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|$sdddddiiipO:solve", keywords, &in_obj,
+                                     &out_obj, &method, &mu0, &ratio, &mu_min, &tol_abs, &tol_rel,
+                                     &max_iter, &iterations, &threads, &warm, &progress))
+        return NULL;
+    module_state *st = py_state(PyType_GetModule(Py_TYPE(self_obj)));
+    if (!self->handle) {
+        PyErr_SetString(PyExc_RuntimeError, "Planarizer is not initialised");
+        return NULL;
+    }
+    if (self->busy) {
+        PyErr_SetString(PyExc_RuntimeError, "Planarizer is already solving in another thread");
+        return NULL;
+    }
+    facet_method m;
+    if (strcmp(method, "ll") == 0)
+        m = FACET_METHOD_LOCAL_LOCAL;
+    else if (strcmp(method, "lg") == 0)
+        m = FACET_METHOD_LOCAL_GLOBAL;
+    else {
+        PyErr_Format(PyExc_ValueError, "method must be 'll' or 'lg', not '%s'", method);
+        return NULL;
+    }
+    if (progress != Py_None && !PyCallable_Check(progress)) {
+        PyErr_SetString(PyExc_TypeError, "progress must be callable or None");
+        return NULL;
+    }
+    facet_planarize_options o;
+    facet_planarize_options_default(m, &o);
+    if (!isnan(mu0))
+        o.mu0 = mu0;
+    if (!isnan(ratio))
+        o.ratio = ratio;
+    if (!isnan(mu_min))
+        o.mu_min = mu_min;
+    if (!isnan(tol_abs))
+        o.tol_abs = tol_abs;
+    if (!isnan(tol_rel))
+        o.tol_rel = tol_rel;
+    if (max_iter >= 0)
+        o.max_iter = max_iter;
+    o.iterations = iterations;
+    o.threads = threads;
+    o.warm = warm;
+    progress_state ps = {progress == Py_None ? NULL : progress, NULL, NULL, NULL};
+    o.progress = progress_trampoline;
+    o.progress_user = &ps;
+
+    Py_buffer in_view, out_view;
+    const Py_ssize_t n = 3 * (Py_ssize_t)self->n_vertices;
+    if (py_get_buffer(in_obj, "xyz_in", 'd', 0, n, &in_view) < 0)
+        return NULL;
+    if (py_get_buffer(out_obj, "xyz_out", 'd', 1, n, &out_view) < 0) {
+        PyBuffer_Release(&in_view);
+        return NULL;
+    }
+    facet_planarize_result r;
+    memset(&r, 0, sizeof r);
+    facet_error error;
+    facet_status status;
+    self->busy = 1;
+    Py_BEGIN_ALLOW_THREADS
+    status = facet_planarizer_solve(self->handle, in_view.buf, &o, out_view.buf, &r, &error);
+    Py_END_ALLOW_THREADS
+    self->busy = 0;
+    PyBuffer_Release(&in_view);
+    PyBuffer_Release(&out_view);
+    if (ps.exc_type) {
+        /* The callback raised (or Ctrl+C): that exception wins. */
+        PyErr_Restore(ps.exc_type, ps.exc_value, ps.exc_tb);
+        return NULL;
+    }
+    if (status < 0)
+        return py_raise_status(st, status, &error);
+    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:O}", "iterations", (int)r.iterations,
+                         "stop_reason", stop_reason_name(r.stop_reason), "mu", r.mu,
+                         "planarity_max_abs", r.planarity_max_abs, "planarity_max_rel",
+                         r.planarity_max_rel, "seconds", r.seconds, "converged",
+                         (r.stop_reason == FACET_STOP_TOLERANCE) ? Py_True : Py_False);
+}
+
+static PyObject *planarizer_get_n_vertices(PyObject *self, void *closure)
+{
+    (void)closure;
+    return PyLong_FromLong(((planarizer_object *)self)->n_vertices);
+}
+
+static PyObject *planarizer_get_n_faces(PyObject *self, void *closure)
+{
+    (void)closure;
+    return PyLong_FromLong(((planarizer_object *)self)->n_faces);
+}
+
+static PyMethodDef planarizer_methods[] = {
+    {"solve", (PyCFunction)(void (*)(void))planarizer_solve, METH_VARARGS | METH_KEYWORDS,
+     "solve(xyz_in, xyz_out, *, method='lg', mu0, ratio, mu_min, tol_abs, tol_rel, max_iter,\n"
+     "      iterations=0, threads=0, warm=False, progress=None) -> dict\n\n"
+     "Planarize the control positions xyz_in (float64, 3*n_vertices) into xyz_out.\n"
+     "The GIL is released while solving; progress(iteration, max_iter, planarity_max_rel)\n"
+     "returning True cancels."},
+    {NULL, NULL, 0, NULL}};
+
+static PyGetSetDef planarizer_getset[] = {
+    {"n_vertices", planarizer_get_n_vertices, NULL, "number of vertices", NULL},
+    {"n_faces", planarizer_get_n_faces, NULL, "number of faces", NULL},
+    {NULL, NULL, NULL, NULL, NULL}};
+
+static PyType_Slot planarizer_slots[] = {
+    {Py_tp_doc, "Planarizer(face_start, face_vertices, n_vertices)\n\n"
+                "A planarization solver for one mesh topology; it keeps its workspace\n"
+                "between solves so a re-solve after an edit can start warm."},
+    {Py_tp_init, planarizer_init},
+    {Py_tp_dealloc, planarizer_dealloc},
+    {Py_tp_methods, planarizer_methods},
+    {Py_tp_getset, planarizer_getset},
+    {0, NULL}};
+
+static PyType_Spec planarizer_spec = {"facet._core.Planarizer", sizeof(planarizer_object), 0,
+                                      Py_TPFLAGS_DEFAULT, planarizer_slots};
+
+int py_add_planarize(PyObject *module)
+{
+    PyObject *type = PyType_FromModuleAndSpec(module, &planarizer_spec, NULL);
+    if (!type)
+        return -1;
+    int r = PyModule_AddObjectRef(module, "Planarizer", type);
+    Py_DECREF(type);
+    return r;
+}
