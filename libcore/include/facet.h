@@ -150,12 +150,34 @@ typedef enum facet_method {
 
 typedef enum facet_stop_reason {
     FACET_STOP_NONE = 0,
-    FACET_STOP_TOLERANCE = 1,   /* planarity reached tol_abs or tol_rel */
+    FACET_STOP_TOLERANCE = 1,   /* planarity (and constraints) reached tol_abs or tol_rel */
     FACET_STOP_MAX_ITER = 2,    /* max_iter iterations done, tolerance not met */
     FACET_STOP_ITERATIONS = 3,  /* fixed iteration count done (no early stop) */
     FACET_STOP_STAGNATION = 4,  /* mu at its floor and planarity no longer falls */
-    FACET_STOP_CANCELLED = 5
+    FACET_STOP_CANCELLED = 5,
+    FACET_STOP_TIME = 6         /* time_budget seconds used, tolerance not met */
 } facet_stop_reason;
+
+/* What happens at the boundary of an open mesh. */
+typedef enum facet_boundary_mode {
+    FACET_BOUNDARY_FREE = 0,    /* boundary vertices move like the others */
+    FACET_BOUNDARY_FIXED = 1,   /* boundary vertices stay where they are (hard) */
+    FACET_BOUNDARY_SLIDING = 2  /* boundary vertices stay on the control mesh's boundary
+                                   polyline but may slide along it */
+} facet_boundary_mode;
+
+/* Keep each face a rigid or similar copy of its control face (paper 6.2:
+ * per-face orthogonal Procrustes in the local step). */
+typedef enum facet_shape_mode {
+    FACET_SHAPE_NONE = 0,
+    FACET_SHAPE_ASAP = 1,       /* as similar as possible: rotation and scale */
+    FACET_SHAPE_ARAP = 2        /* as rigid as possible: rotation only */
+} facet_shape_mode;
+
+typedef enum facet_laplacian_weights {
+    FACET_LAPLACIAN_UNIFORM = 0,      /* every neighbour weighs 1 */
+    FACET_LAPLACIAN_INVERSE_EDGE = 1  /* 1 / control edge length */
+} facet_laplacian_weights;
 
 /* Progress callback: called once per iteration from the calling thread, with
  * the iteration just finished, the iteration limit and the largest relative
@@ -164,6 +186,24 @@ typedef enum facet_stop_reason {
 typedef int (*facet_progress_fn)(void *user, int32_t iteration, int32_t max_iter,
                                  double planarity_max_rel);
 
+/* The energy, in coordinates centred and scaled to a mean edge of 1:
+ *
+ *   mu * [ data + laplacian * E_lap + boundary_fairness * E_fair
+ *          + shape_weight * E_shape + surface_weight * E_surface ]
+ * + (1 - mu) * [ sum_faces w_f * sum_corners (n_f . q_i + d_f)^2
+ *          + circular * E_circle + parallelogram * E_par + E_slide ]
+ *
+ * data = sum_i data_tangent |T_i (q_i - p_i)|^2 + data_normal (nu_i . (q_i - p_i))^2
+ * with nu_i the control mesh's area-weighted vertex normal and T_i the
+ * projection onto its tangent plane: 1 and 1 is point-to-point distance to
+ * the control points, a small data_tangent lets vertices slide along the
+ * design (the paper's point-to-plane split). E_surface = sum_i (nu_s . (q_i -
+ * s_i))^2 with s_i the closest point of the reference surface
+ * (facet_planarizer_set_reference) and nu_s its normal there. The terms after
+ * (1 - mu) become hard as mu falls; those after mu are soft. Fixed vertices
+ * (facet_planarizer_set_fixed and FACET_BOUNDARY_FIXED) are hard throughout.
+ * A face of weight 0 (facet_planarizer_set_face_weights) is exempt from
+ * planarity (an opening); its planarity is not counted by the tolerance. */
 typedef struct facet_planarize_options {
     facet_method method;
     double mu0;          /* first penalty weight in (0, 1]; 1 = start at the input */
@@ -177,19 +217,50 @@ typedef struct facet_planarize_options {
     int32_t warm;        /* nonzero: start from the previous result of this handle */
     facet_progress_fn progress; /* may be NULL */
     void *progress_user;
+    /* --- data terms (soft, >= 0; data_tangent + data_normal + surface_weight > 0) */
+    double data_tangent;      /* weight of displacement in the control tangent plane (1) */
+    double data_normal;       /* weight of displacement along the control normal (1) */
+    double surface_weight;    /* closeness to the reference surface (0; needs one set) */
+    /* --- regularizers (soft, >= 0) */
+    double laplacian;         /* vertex Laplacian (paper eq. 7), fairing (0) */
+    facet_laplacian_weights laplacian_weights;
+    double normal_laplacian;  /* face-normal Laplacian in the plane fit (0) */
+    double boundary_fairness; /* second differences along boundary polylines (0) */
+    facet_shape_mode shape;   /* ASAP / ARAP (NONE) */
+    double shape_weight;      /* weight of the shape term (1 when shape is set) */
+    /* --- constraints (become hard as mu falls) */
+    facet_boundary_mode boundary; /* (FREE) */
+    double circular;          /* vertices of each face on a circle: weight (0 = off) */
+    double parallelogram;     /* quads as parallelograms: weight (0 = off) */
+    /* --- schedule, acceleration and budget */
+    double hold_tol;          /* > 0: staircase schedule: mu falls (by ratio) only once the
+                                 largest vertex move of a step is <= hold_tol times that of
+                                 the first step at this mu, or after hold_max steps, and
+                                 only while the tolerance is not met (0: fall every step) */
+    int32_t hold_max;         /* longest stay at one mu in the staircase schedule */
+    int32_t anderson;         /* Anderson acceleration history depth (0 = off, max 16) */
+    double time_budget;       /* stop after this many seconds (0 = no budget) */
 } facet_planarize_options;
 
-/* Defaults for a method: mu0 1, ratio 0.95; mu_min 1e-6 (L/L) or 1e-12 (L/G);
- * tol_rel 1e-6, tol_abs off; max_iter 3000 (L/L) or 1000 (L/G). */
+/* Defaults for a method: mu0 1; the staircase schedule (ratio 0.1, hold_tol
+ * 0.01, hold_max 40) with Anderson acceleration of depth 5; mu_min 1e-6
+ * (L/L) or 1e-12 (L/G); tol_rel 1e-6, tol_abs off; max_iter 3000 (L/L) or
+ * 1000 (L/G); data 1 and 1 (point-to-point); no regularizer, constraint or
+ * time budget. The paper's schedule is hold_tol 0, anderson 0, ratio 0.7
+ * (L/G) or 0.9 (L/L). */
 void facet_planarize_options_default(facet_method method, facet_planarize_options *options);
 
 typedef struct facet_planarize_result {
     int32_t iterations;
     facet_stop_reason stop_reason;
     double mu;                 /* penalty weight of the last iteration */
-    double planarity_max_abs;  /* model units */
+    double planarity_max_abs;  /* model units, over faces of nonzero weight */
     double planarity_max_rel;  /* relative to each face's mean edge length */
+    double constraint_max_rel; /* largest residual of circular, parallelogram and sliding
+                                  constraints relative to the mean edge (0 when none) */
     double seconds;            /* wall time of the solve */
+    int32_t anderson_accepted; /* accelerated steps kept */
+    int32_t anderson_rejected; /* accelerated steps refused by the energy safeguard */
 } facet_planarize_result;
 
 /* A planarization solver for one mesh topology. It copies the topology and
@@ -218,6 +289,17 @@ facet_status facet_planarizer_solve(facet_planarizer *planarizer, const double *
 /* The last error's message of a handle ("" when none). Valid until the next
  * call on the handle. */
 const char *facet_planarizer_message(const facet_planarizer *planarizer);
+
+/* Hard-fixes vertices at their control positions (xyz_in of each solve), in
+ * addition to FACET_BOUNDARY_FIXED. n == 0 clears the set. Errors:
+ * FACET_ERROR_INDEX_OUT_OF_RANGE naming the first bad entry. */
+facet_status facet_planarizer_set_fixed(facet_planarizer *planarizer, int32_t n,
+                                        const int32_t *vertices, facet_error *error);
+
+/* Per-face planarity weights, n_faces values >= 0 (0: the face is exempt, an
+ * opening or a door); NULL restores 1 for every face. */
+facet_status facet_planarizer_set_face_weights(facet_planarizer *planarizer,
+                                               const double *weights, facet_error *error);
 
 #ifdef __cplusplus
 }

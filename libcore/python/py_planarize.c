@@ -98,6 +98,8 @@ static const char *stop_reason_name(facet_stop_reason reason)
         return "stagnation";
     case FACET_STOP_CANCELLED:
         return "cancelled";
+    case FACET_STOP_TIME:
+        return "time";
     case FACET_STOP_NONE:
         break;
     }
@@ -109,14 +111,24 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
     planarizer_object *self = (planarizer_object *)self_obj;
     static char *keywords[] = {"xyz_in", "xyz_out", "method", "mu0", "ratio", "mu_min",
                                "tol_abs", "tol_rel", "max_iter", "iterations", "threads", "warm",
-                               "progress", NULL};
+                               "progress", "data_tangent", "data_normal", "laplacian",
+                               "laplacian_weights", "normal_laplacian", "boundary_fairness",
+                               "shape", "shape_weight", "boundary", "circular", "parallelogram",
+                               "anderson", "time_budget", "hold_tol", "hold_max", NULL};
     PyObject *in_obj, *out_obj, *progress = Py_None;
-    const char *method = "lg";
+    const char *method = "lg", *lap_weights = NULL, *shape = NULL, *boundary = NULL;
     double mu0 = NAN, ratio = NAN, mu_min = NAN, tol_abs = NAN, tol_rel = NAN;
-    int max_iter = -1, iterations = 0, threads = 0, warm = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|$sdddddiiipO:solve", keywords, &in_obj,
-                                     &out_obj, &method, &mu0, &ratio, &mu_min, &tol_abs, &tol_rel,
-                                     &max_iter, &iterations, &threads, &warm, &progress))
+    double data_tangent = NAN, data_normal = NAN, laplacian = NAN, normal_laplacian = NAN;
+    double fairness = NAN, shape_weight = NAN, circular = NAN, parallelogram = NAN;
+    double time_budget = NAN, hold_tol = NAN;
+    int hold_max = -1;
+    int max_iter = -1, iterations = 0, threads = 0, warm = 0, anderson = -1;
+    if (!PyArg_ParseTupleAndKeywords(
+            args, kwargs, "OO|$sdddddiiipOdddzddzdzddiddi:solve", keywords, &in_obj, &out_obj,
+            &method, &mu0, &ratio, &mu_min, &tol_abs, &tol_rel, &max_iter, &iterations, &threads,
+            &warm, &progress, &data_tangent, &data_normal, &laplacian, &lap_weights,
+            &normal_laplacian, &fairness, &shape, &shape_weight, &boundary, &circular,
+            &parallelogram, &anderson, &time_budget, &hold_tol, &hold_max))
         return NULL;
     module_state *st = py_state(PyType_GetModule(Py_TYPE(self_obj)));
     if (!self->handle) {
@@ -157,6 +169,57 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
     o.iterations = iterations;
     o.threads = threads;
     o.warm = warm;
+    const struct {
+        double value;
+        double *field;
+    } weights[] = {{data_tangent, &o.data_tangent}, {data_normal, &o.data_normal},
+                   {laplacian, &o.laplacian}, {normal_laplacian, &o.normal_laplacian},
+                   {fairness, &o.boundary_fairness}, {shape_weight, &o.shape_weight},
+                   {circular, &o.circular}, {parallelogram, &o.parallelogram},
+                   {time_budget, &o.time_budget}, {hold_tol, &o.hold_tol}};
+    for (size_t k = 0; k < sizeof weights / sizeof weights[0]; ++k)
+        if (!isnan(weights[k].value))
+            *weights[k].field = weights[k].value;
+    if (anderson >= 0)
+        o.anderson = anderson;
+    if (hold_max >= 0)
+        o.hold_max = hold_max;
+    if (lap_weights) {
+        if (strcmp(lap_weights, "uniform") == 0)
+            o.laplacian_weights = FACET_LAPLACIAN_UNIFORM;
+        else if (strcmp(lap_weights, "inverse_edge") == 0)
+            o.laplacian_weights = FACET_LAPLACIAN_INVERSE_EDGE;
+        else {
+            PyErr_Format(PyExc_ValueError,
+                         "laplacian_weights must be 'uniform' or 'inverse_edge', not '%s'", lap_weights);
+            return NULL;
+        }
+    }
+    if (shape) {
+        if (strcmp(shape, "none") == 0)
+            o.shape = FACET_SHAPE_NONE;
+        else if (strcmp(shape, "asap") == 0)
+            o.shape = FACET_SHAPE_ASAP;
+        else if (strcmp(shape, "arap") == 0)
+            o.shape = FACET_SHAPE_ARAP;
+        else {
+            PyErr_Format(PyExc_ValueError, "shape must be 'none', 'asap' or 'arap', not '%s'", shape);
+            return NULL;
+        }
+    }
+    if (boundary) {
+        if (strcmp(boundary, "free") == 0)
+            o.boundary = FACET_BOUNDARY_FREE;
+        else if (strcmp(boundary, "fixed") == 0)
+            o.boundary = FACET_BOUNDARY_FIXED;
+        else if (strcmp(boundary, "sliding") == 0)
+            o.boundary = FACET_BOUNDARY_SLIDING;
+        else {
+            PyErr_Format(PyExc_ValueError, "boundary must be 'free', 'fixed' or 'sliding', not '%s'",
+                         boundary);
+            return NULL;
+        }
+    }
     progress_state ps = {progress == Py_None ? NULL : progress, NULL, NULL, NULL};
     o.progress = progress_trampoline;
     o.progress_user = &ps;
@@ -187,11 +250,63 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
     }
     if (status < 0)
         return py_raise_status(st, status, &error);
-    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:O}", "iterations", (int)r.iterations,
-                         "stop_reason", stop_reason_name(r.stop_reason), "mu", r.mu,
-                         "planarity_max_abs", r.planarity_max_abs, "planarity_max_rel",
-                         r.planarity_max_rel, "seconds", r.seconds, "converged",
+    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O}", "iterations",
+                         (int)r.iterations, "stop_reason", stop_reason_name(r.stop_reason), "mu",
+                         r.mu, "planarity_max_abs", r.planarity_max_abs, "planarity_max_rel",
+                         r.planarity_max_rel, "constraint_max_rel", r.constraint_max_rel,
+                         "seconds", r.seconds, "anderson_accepted", (int)r.anderson_accepted,
+                         "anderson_rejected", (int)r.anderson_rejected, "converged",
                          (r.stop_reason == FACET_STOP_TOLERANCE) ? Py_True : Py_False);
+}
+
+/* set_fixed(vertices): int32 buffer of vertex indices, or None to clear. */
+static PyObject *planarizer_set_fixed(PyObject *self_obj, PyObject *arg)
+{
+    planarizer_object *self = (planarizer_object *)self_obj;
+    module_state *st = py_state(PyType_GetModule(Py_TYPE(self_obj)));
+    if (!self->handle || self->busy) {
+        PyErr_SetString(PyExc_RuntimeError, "Planarizer is not initialised or is solving");
+        return NULL;
+    }
+    facet_error error;
+    facet_status status;
+    if (arg == Py_None) {
+        status = facet_planarizer_set_fixed(self->handle, 0, NULL, &error);
+    } else {
+        Py_buffer view;
+        if (py_get_buffer(arg, "vertices", 'i', 0, -1, &view) < 0)
+            return NULL;
+        status = facet_planarizer_set_fixed(self->handle, (int32_t)(view.len / 4), view.buf, &error);
+        PyBuffer_Release(&view);
+    }
+    if (status < 0)
+        return py_raise_status(st, status, &error);
+    Py_RETURN_NONE;
+}
+
+/* set_face_weights(weights): float64 buffer of n_faces weights, or None for all 1. */
+static PyObject *planarizer_set_face_weights(PyObject *self_obj, PyObject *arg)
+{
+    planarizer_object *self = (planarizer_object *)self_obj;
+    module_state *st = py_state(PyType_GetModule(Py_TYPE(self_obj)));
+    if (!self->handle || self->busy) {
+        PyErr_SetString(PyExc_RuntimeError, "Planarizer is not initialised or is solving");
+        return NULL;
+    }
+    facet_error error;
+    facet_status status;
+    if (arg == Py_None) {
+        status = facet_planarizer_set_face_weights(self->handle, NULL, &error);
+    } else {
+        Py_buffer view;
+        if (py_get_buffer(arg, "weights", 'd', 0, self->n_faces, &view) < 0)
+            return NULL;
+        status = facet_planarizer_set_face_weights(self->handle, view.buf, &error);
+        PyBuffer_Release(&view);
+    }
+    if (status < 0)
+        return py_raise_status(st, status, &error);
+    Py_RETURN_NONE;
 }
 
 static PyObject *planarizer_get_n_vertices(PyObject *self, void *closure)
@@ -209,10 +324,19 @@ static PyObject *planarizer_get_n_faces(PyObject *self, void *closure)
 static PyMethodDef planarizer_methods[] = {
     {"solve", (PyCFunction)(void (*)(void))planarizer_solve, METH_VARARGS | METH_KEYWORDS,
      "solve(xyz_in, xyz_out, *, method='lg', mu0, ratio, mu_min, tol_abs, tol_rel, max_iter,\n"
-     "      iterations=0, threads=0, warm=False, progress=None) -> dict\n\n"
+     "      iterations=0, threads=0, warm=False, progress=None, data_tangent, data_normal,\n"
+     "      laplacian, laplacian_weights, normal_laplacian, boundary_fairness, shape,\n"
+     "      shape_weight, boundary, circular, parallelogram, anderson, time_budget,\n"
+     "      hold_tol, hold_max) -> dict\n\n"
      "Planarize the control positions xyz_in (float64, 3*n_vertices) into xyz_out.\n"
      "The GIL is released while solving; progress(iteration, max_iter, planarity_max_rel)\n"
      "returning True cancels."},
+    {"set_fixed", planarizer_set_fixed, METH_O,
+     "set_fixed(vertices) -> None\n\nHard-fix these vertices (int32 indices) at their control\n"
+     "positions in every later solve; None clears."},
+    {"set_face_weights", planarizer_set_face_weights, METH_O,
+     "set_face_weights(weights) -> None\n\nPer-face planarity weights (float64, n_faces, >= 0;\n"
+     "0 exempts a face); None restores 1."},
     {NULL, NULL, 0, NULL}};
 
 static PyGetSetDef planarizer_getset[] = {

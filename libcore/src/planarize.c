@@ -1,11 +1,20 @@
 /* SPDX-License-Identifier: LGPL-2.1-or-later */
 /* Planarization by the penalty method of Poranne, Ovreiu and Gotsman (2013):
  *
- *   minimize  mu * sum_i |p_i - q_i|^2 + (1 - mu) * sum_corners (n_j . q_i + d_j)^2
+ *   minimize  mu * (data and regularizers) + (1 - mu) * (planarity and constraints)
  *
- * alternating a local step for the face planes (n_j, d_j) with either a
- * local step per vertex (local/local) or one sparse SPD solve for all q and d
- * (local/global), while mu falls geometrically to a floor mu_min.
+ * alternating local steps for the per-face variables (planes, shapes,
+ * circles) and the boundary targets with either a local step per vertex
+ * (local/local) or one sparse SPD solve for all vertices and plane offsets
+ * (local/global), while mu falls geometrically to a floor mu_min. The terms
+ * are listed in facet.h (facet_planarize_options); the local steps are in
+ * planarize_local.c, the global system in planarize_global.c.
+ *
+ * Anderson acceleration (Peng et al. 2018) extrapolates the vertex iterates
+ * from the last m steps; an accelerated iterate is kept only if the energy of
+ * the current mu does not rise above that of the iterate it came from
+ * (the un-accelerated step never raises it), else the plain step is taken
+ * and the history restarts.
  *
  * Every iteration starts with the plane fit of the current iterate, which is
  * also its planarity measurement: the tolerance test costs nothing extra.
@@ -16,34 +25,14 @@
  * Determinism: each loop iteration writes only its own face or vertex, sums
  * run in a fixed order, and reductions read per-element arrays serially, so
  * the bits do not depend on the thread count. */
-#include "internal.h"
+#include "planarize_internal.h"
 
-#include <cholmod.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-struct facet_planarizer {
-    int32_t nv, nf, nc;
-    int32_t *face_start, *face_vertices;
-    int32_t *vertex_start, *vertex_faces; /* faces around each vertex, ascending */
-    double *p, *q;                        /* control and current, normalised */
-    double *normal, *offset;              /* per face */
-    double *face_dev, *face_edge;         /* per face: max distance, mean edge length */
-    double *previous;                     /* last result, model units (warm start) */
-    int has_previous;
-    /* local/global */
-    int cholmod_started;
-    cholmod_common cm;
-    cholmod_sparse *matrix;
-    cholmod_factor *factor;
-    cholmod_dense *rhs;
-    int32_t *corner_slot; /* per corner: index in matrix->x of its first coupling entry */
-    char message[512];
-};
-
-static facet_status handle_fail(facet_planarizer *s, facet_error *error, facet_status status,
-                                const char *text)
+facet_status facet_pl_fail(facet_planarizer *s, facet_error *error, facet_status status,
+                           const char *text)
 {
     snprintf(s->message, sizeof s->message, "%s", text);
     return facet_fail(error, status, -1, -1, "%s", text);
@@ -54,15 +43,26 @@ void facet_planarize_options_default(facet_method method, facet_planarize_option
     memset(o, 0, sizeof *o);
     o->method = method;
     o->mu0 = 1.0;
-    /* Measured (docs/solver-notes.md): the slower mu falls, the less the
-     * vertices slide. L/G to 1e-6 on tubemesh, RMS displacement in mean edge
-     * lengths: ratio 0.7 0.36 (54 iterations), 0.9 0.18 (178), 0.95 0.14
-     * (333), 0.98 0.125 (762). 0.95 is the default for both schemes. The
-     * floor on mu keeps every iterate bounded at any iteration count; L/G's
-     * can be tiny because its global solve does not amplify the
+    /* The staircase schedule with Anderson acceleration (docs/solver-notes.md):
+     * mu falls tenfold once a step moves no vertex by more than 1% of the
+     * largest move of the first step at that mu (or after 40 steps), so each
+     * mu's fixed point is nearly reached before the next: the result follows
+     * the penalty path, which is what keeps vertices from sliding, and
+     * Anderson acceleration makes each stay short. L/G to 1e-6, one thread,
+     * iterations and RMS (max) vertex move in mean edges, against the
+     * geometric schedule (ratio 0.95 every step, no acceleration):
+     *   tubemesh   85, 0.140 (0.43)   vs 333, 0.141 (0.39)
+     *   hypar     102, 0.280 (0.47)   vs 281, 0.324 (0.51)
+     *   quad_dome  24, 0.0104         vs 188, 0.0104
+     *   conical1   35, max 3e-4       vs 161, max 3e-4
+     * The floor on mu keeps every iterate bounded at any iteration count;
+     * L/G's can be tiny because its global solve does not amplify the
      * ill-conditioned plane intersections at vertices of nearly parallel
      * faces the way L/L's local solve does. */
-    o->ratio = 0.95;
+    o->ratio = 0.1;
+    o->hold_tol = 0.01;
+    o->hold_max = 40;
+    o->anderson = 5;
     if (method == FACET_METHOD_LOCAL_GLOBAL) {
         o->mu_min = 1e-12;
         o->max_iter = 1000;
@@ -71,9 +71,154 @@ void facet_planarize_options_default(facet_method method, facet_planarize_option
         o->max_iter = 3000;
     }
     o->tol_rel = 1e-6;
-    o->tol_abs = 0.0;
-    o->iterations = 0;
-    o->threads = 0;
+    o->data_tangent = 1.0;
+    o->data_normal = 1.0;
+    o->laplacian_weights = FACET_LAPLACIAN_UNIFORM;
+    o->shape = FACET_SHAPE_NONE;
+    o->shape_weight = 1.0;
+    o->boundary = FACET_BOUNDARY_FREE;
+}
+
+/* ---- topology --------------------------------------------------------------- */
+
+typedef struct {
+    int32_t lo, hi, from, face;
+} half_edge;
+
+static int compare_half_edge(const void *x, const void *y)
+{
+    const half_edge *a = x, *b = y;
+    if (a->lo != b->lo)
+        return a->lo < b->lo ? -1 : 1;
+    if (a->hi != b->hi)
+        return a->hi < b->hi ? -1 : 1;
+    return a->face < b->face ? -1 : (a->face > b->face ? 1 : 0);
+}
+
+static int compare_int32(const void *x, const void *y)
+{
+    const int32_t a = *(const int32_t *)x, b = *(const int32_t *)y;
+    return a < b ? -1 : (a > b ? 1 : 0);
+}
+
+/* Sorts and de-duplicates each list of a CSR structure in place. */
+static void csr_sort_unique(int32_t n, int32_t *start, int32_t *items)
+{
+    int32_t out = 0;
+    for (int32_t i = 0; i < n; ++i) {
+        const int32_t b = start[i], e = start[i + 1];
+        qsort(items + b, (size_t)(e - b), sizeof(int32_t), compare_int32);
+        start[i] = out;
+        for (int32_t k = b; k < e; ++k)
+            if (k == b || items[k] != items[k - 1])
+                items[out++] = items[k];
+    }
+    start[n] = out;
+}
+
+/* Vertex and face adjacency through edges, and the boundary loops. */
+static int build_topology(facet_planarizer *s)
+{
+    const int32_t nv = s->nv, nf = s->nf, nc = s->nc;
+    half_edge *h = malloc(sizeof *h * (size_t)nc);
+    s->vertex_adj_start = calloc((size_t)nv + 1, sizeof(int32_t));
+    s->vertex_adj = malloc(sizeof(int32_t) * 2 * (size_t)nc);
+    s->face_adj_start = calloc((size_t)nf + 1, sizeof(int32_t));
+    s->boundary_prev = malloc(sizeof(int32_t) * (size_t)nv);
+    s->boundary_next = malloc(sizeof(int32_t) * (size_t)nv);
+    s->on_boundary = calloc((size_t)nv, 1);
+    if (!h || !s->vertex_adj_start || !s->vertex_adj || !s->face_adj_start || !s->boundary_prev ||
+        !s->boundary_next || !s->on_boundary) {
+        free(h);
+        return 0;
+    }
+    for (int32_t f = 0; f < nf; ++f) {
+        const int32_t b = s->face_start[f], e = s->face_start[f + 1];
+        for (int32_t k = b; k < e; ++k) {
+            const int32_t u = s->face_vertices[k], v = s->face_vertices[k + 1 < e ? k + 1 : b];
+            h[k].lo = u < v ? u : v, h[k].hi = u < v ? v : u, h[k].from = u, h[k].face = f;
+        }
+    }
+    qsort(h, (size_t)nc, sizeof *h, compare_half_edge);
+    for (int32_t v = 0; v < nv; ++v)
+        s->boundary_prev[v] = s->boundary_next[v] = -1;
+    uint8_t *pinch = calloc((size_t)nv, 1);
+    if (!pinch) {
+        free(h);
+        return 0;
+    }
+    /* counts */
+    int64_t n_pairs = 0;
+    for (int32_t k = 0; k < nc;) {
+        int32_t e = k + 1;
+        while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
+            ++e;
+        s->vertex_adj_start[h[k].lo + 1]++;
+        s->vertex_adj_start[h[k].hi + 1]++;
+        const int32_t m = e - k;
+        if (m == 1) {
+            const int32_t from = h[k].from, to = from == h[k].lo ? h[k].hi : h[k].lo;
+            s->on_boundary[from] = s->on_boundary[to] = 1;
+            if (s->boundary_next[from] >= 0)
+                pinch[from] = 1;
+            if (s->boundary_prev[to] >= 0)
+                pinch[to] = 1;
+            s->boundary_next[from] = to;
+            s->boundary_prev[to] = from;
+        } else {
+            for (int32_t a = k; a < e; ++a)
+                for (int32_t b = a + 1; b < e; ++b)
+                    if (h[a].face != h[b].face) {
+                        s->face_adj_start[h[a].face + 1]++;
+                        s->face_adj_start[h[b].face + 1]++;
+                        n_pairs += 2;
+                    }
+        }
+        k = e;
+    }
+    for (int32_t v = 0; v < nv; ++v) {
+        s->vertex_adj_start[v + 1] += s->vertex_adj_start[v];
+        if (s->on_boundary[v] && (pinch[v] || s->boundary_prev[v] < 0 || s->boundary_next[v] < 0))
+            s->boundary_prev[v] = s->boundary_next[v] = -1;
+        s->n_boundary += s->on_boundary[v];
+    }
+    /* a neighbour of a pinch loses its link to it */
+    for (int32_t v = 0; v < nv; ++v) {
+        if (s->boundary_prev[v] >= 0 && s->boundary_prev[s->boundary_prev[v]] < 0)
+            s->boundary_prev[v] = s->boundary_next[v] = -1;
+        else if (s->boundary_next[v] >= 0 && s->boundary_next[s->boundary_next[v]] < 0)
+            s->boundary_prev[v] = s->boundary_next[v] = -1;
+    }
+    free(pinch);
+    for (int32_t f = 0; f < nf; ++f)
+        s->face_adj_start[f + 1] += s->face_adj_start[f];
+    s->face_adj = malloc(sizeof(int32_t) * (size_t)(n_pairs ? n_pairs : 1));
+    int32_t *vfill = malloc(sizeof(int32_t) * (size_t)nv);
+    int32_t *ffill = malloc(sizeof(int32_t) * (size_t)nf);
+    if (!s->face_adj || !vfill || !ffill) {
+        free(h), free(vfill), free(ffill);
+        return 0;
+    }
+    memcpy(vfill, s->vertex_adj_start, sizeof(int32_t) * (size_t)nv);
+    memcpy(ffill, s->face_adj_start, sizeof(int32_t) * (size_t)nf);
+    for (int32_t k = 0; k < nc;) {
+        int32_t e = k + 1;
+        while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
+            ++e;
+        s->vertex_adj[vfill[h[k].lo]++] = h[k].hi;
+        s->vertex_adj[vfill[h[k].hi]++] = h[k].lo;
+        for (int32_t a = k; a < e; ++a)
+            for (int32_t b = a + 1; b < e; ++b)
+                if (h[a].face != h[b].face) {
+                    s->face_adj[ffill[h[a].face]++] = h[b].face;
+                    s->face_adj[ffill[h[b].face]++] = h[a].face;
+                }
+        k = e;
+    }
+    free(h), free(vfill), free(ffill);
+    csr_sort_unique(nv, s->vertex_adj_start, s->vertex_adj);
+    csr_sort_unique(nf, s->face_adj_start, s->face_adj);
+    return 1;
 }
 
 facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **out,
@@ -96,19 +241,31 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     if (!s)
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
     s->nv = nv, s->nf = nf, s->nc = nc;
+    s->couple_key = -1;
+    const size_t v3 = 3 * (size_t)nv * sizeof(double), fd = (size_t)nf * sizeof(double);
     s->face_start = malloc(sizeof(int32_t) * (size_t)(nf + 1));
     s->face_vertices = malloc(sizeof(int32_t) * (size_t)nc);
     s->vertex_start = calloc((size_t)nv + 1, sizeof(int32_t));
     s->vertex_faces = malloc(sizeof(int32_t) * (size_t)nc);
-    s->p = malloc(sizeof(double) * 3 * (size_t)nv);
-    s->q = malloc(sizeof(double) * 3 * (size_t)nv);
-    s->previous = malloc(sizeof(double) * 3 * (size_t)nv);
-    s->normal = malloc(sizeof(double) * 3 * (size_t)nf);
-    s->offset = malloc(sizeof(double) * (size_t)nf);
-    s->face_dev = malloc(sizeof(double) * (size_t)nf);
-    s->face_edge = malloc(sizeof(double) * (size_t)nf);
-    if (!s->face_start || !s->face_vertices || !s->vertex_start || !s->vertex_faces || !s->p ||
-        !s->q || !s->previous || !s->normal || !s->offset || !s->face_dev || !s->face_edge) {
+    s->fixed = malloc((size_t)nv);
+    s->p = malloc(v3), s->q = malloc(v3), s->previous = malloc(v3);
+    s->vertex_normal = malloc(v3);
+    s->slide_target = calloc(3 * (size_t)nv, sizeof(double));
+    s->slide_tangent = calloc(3 * (size_t)nv, sizeof(double));
+    s->vertex_energy_mu = malloc((size_t)nv * sizeof(double));
+    s->vertex_energy_con = malloc((size_t)nv * sizeof(double));
+    s->vertex_residual = malloc((size_t)nv * sizeof(double));
+    s->aa_x_fallback = malloc(v3), s->q_next = malloc(v3);
+    s->normal = malloc(3 * fd), s->normal_fit = malloc(3 * fd), s->offset = malloc(fd);
+    s->face_dev = malloc(fd), s->face_edge = malloc(fd), s->face_sq = malloc(fd);
+    s->face_energy_mu = malloc(fd), s->face_energy_con = malloc(fd), s->face_residual = malloc(fd);
+    s->control_centroid = malloc(3 * fd);
+    if (!s->face_start || !s->face_vertices || !s->vertex_start || !s->vertex_faces || !s->fixed ||
+        !s->p || !s->q || !s->previous || !s->vertex_normal || !s->slide_target ||
+        !s->slide_tangent || !s->vertex_energy_mu || !s->vertex_energy_con ||
+        !s->vertex_residual || !s->aa_x_fallback || !s->q_next || !s->normal || !s->normal_fit || !s->offset ||
+        !s->face_dev || !s->face_edge || !s->face_sq || !s->face_energy_mu ||
+        !s->face_energy_con || !s->face_residual || !s->control_centroid) {
         facet_planarizer_free(&s);
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
     }
@@ -120,7 +277,8 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     for (int32_t v = 0; v < nv; ++v)
         s->vertex_start[v + 1] += s->vertex_start[v];
     int32_t *fill = malloc(sizeof(int32_t) * (size_t)nv);
-    if (!fill) {
+    if (!fill || !build_topology(s)) {
+        free(fill);
         facet_planarizer_free(&s);
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
     }
@@ -129,6 +287,11 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
         for (int32_t k = s->face_start[f]; k < s->face_start[f + 1]; ++k)
             s->vertex_faces[fill[s->face_vertices[k]]++] = f;
     free(fill);
+    s->laplace_weight = malloc(sizeof(double) * (size_t)(s->vertex_adj_start[nv] ? s->vertex_adj_start[nv] : 1));
+    if (!s->laplace_weight) {
+        facet_planarizer_free(&s);
+        return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    }
     *out = s;
     return FACET_OK;
 }
@@ -138,24 +301,21 @@ void facet_planarizer_free(facet_planarizer **handle)
     if (!handle || !*handle)
         return;
     facet_planarizer *s = *handle;
-    if (s->cholmod_started) {
-        cholmod_free_sparse(&s->matrix, &s->cm);
-        cholmod_free_factor(&s->factor, &s->cm);
-        cholmod_free_dense(&s->rhs, &s->cm);
+    facet_pl_global_free(s);
+    if (s->cholmod_started)
         cholmod_finish(&s->cm);
-    }
-    free(s->corner_slot);
-    free(s->face_start);
-    free(s->face_vertices);
-    free(s->vertex_start);
-    free(s->vertex_faces);
-    free(s->p);
-    free(s->q);
-    free(s->previous);
-    free(s->normal);
-    free(s->offset);
-    free(s->face_dev);
-    free(s->face_edge);
+    void *arrays[] = {s->face_start, s->face_vertices, s->vertex_start, s->vertex_faces,
+                      s->vertex_adj_start, s->vertex_adj, s->face_adj_start, s->face_adj,
+                      s->boundary_prev, s->boundary_next, s->on_boundary, s->user_fixed,
+                      s->face_weight, s->fixed, s->p, s->q, s->vertex_normal, s->normal,
+                      s->offset, s->face_dev, s->face_edge, s->face_sq, s->face_energy_mu,
+                      s->face_energy_con, s->vertex_energy_mu, s->vertex_energy_con,
+                      s->face_residual, s->vertex_residual, s->normal_fit,
+                      s->control_centroid, s->shape, s->circle_target, s->slide_target,
+                      s->slide_tangent, s->laplace_weight, s->previous, s->aa_df, s->aa_dg,
+                      s->aa_f, s->aa_g, s->aa_x_fallback, s->q_next};
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
+        free(arrays[k]);
     free(s);
     *handle = NULL;
 }
@@ -165,203 +325,233 @@ const char *facet_planarizer_message(const facet_planarizer *s)
     return s ? s->message : "";
 }
 
-/* ---- local steps ------------------------------------------------------- */
-
-/* Plane of every face of q, with its largest vertex distance and mean edge. */
-static void fit_faces(facet_planarizer *s, int nthreads)
+facet_status facet_planarizer_set_fixed(facet_planarizer *s, int32_t n, const int32_t *vertices,
+                                        facet_error *error)
 {
-    const int32_t nf = s->nf;
-    const int32_t *start = s->face_start, *fv = s->face_vertices;
-    const double *q = s->q;
-#pragma omp parallel for schedule(static) num_threads(nthreads)
-    for (int32_t f = 0; f < nf; ++f) {
-        const int32_t n = start[f + 1] - start[f];
-        const int32_t *idx = fv + start[f];
-        s->face_edge[f] = facet_face_measure(n, q, idx, s->normal + 3 * (size_t)f,
-                                             &s->offset[f], &s->face_dev[f], NULL);
+    facet_error_clear(error);
+    if (!s || n < 0 || (n > 0 && !vertices))
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
+                          "planarizer must not be NULL, n must be >= 0 and vertices given when n > 0");
+    for (int32_t k = 0; k < n; ++k)
+        if (vertices[k] < 0 || vertices[k] >= s->nv)
+            return facet_fail(error, FACET_ERROR_INDEX_OUT_OF_RANGE, -1, vertices[k],
+                              "fixed vertex %d (entry %d) is out of range (%d vertices)",
+                              (int)vertices[k], (int)k, (int)s->nv);
+    int32_t *copy = NULL;
+    if (n > 0) {
+        copy = malloc(sizeof(int32_t) * (size_t)n);
+        if (!copy)
+            return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+        memcpy(copy, vertices, sizeof(int32_t) * (size_t)n);
     }
+    free(s->user_fixed);
+    s->user_fixed = copy;
+    s->n_user_fixed = n;
+    return FACET_OK;
 }
 
-/* Per vertex: (mu I + (1-mu) sum n n^T) q = mu p - (1-mu) sum d n.
- * Returns 0 if some result was not finite. */
-static int local_vertex_step(facet_planarizer *s, double mu, int nthreads)
+facet_status facet_planarizer_set_face_weights(facet_planarizer *s, const double *weights,
+                                               facet_error *error)
 {
-    const int32_t nv = s->nv;
-    const double w = 1.0 - mu;
-    int finite = 1;
-#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(&& : finite)
-    for (int32_t v = 0; v < nv; ++v) {
-        double a00 = mu, a01 = 0.0, a02 = 0.0, a11 = mu, a12 = 0.0, a22 = mu;
-        const double *pv = s->p + 3 * (size_t)v;
-        double b0 = mu * pv[0], b1 = mu * pv[1], b2 = mu * pv[2];
-        for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
-            const int32_t f = s->vertex_faces[k];
-            const double *n = s->normal + 3 * (size_t)f;
-            const double d = s->offset[f];
-            a00 += w * n[0] * n[0], a01 += w * n[0] * n[1], a02 += w * n[0] * n[2];
-            a11 += w * n[1] * n[1], a12 += w * n[1] * n[2], a22 += w * n[2] * n[2];
-            b0 -= w * d * n[0], b1 -= w * d * n[1], b2 -= w * d * n[2];
-        }
-        /* 3x3 Cholesky (SPD since mu > 0). */
-        const double l00 = sqrt(a00);
-        const double l10 = a01 / l00, l20 = a02 / l00;
-        const double l11 = sqrt(a11 - l10 * l10);
-        const double l21 = (a12 - l20 * l10) / l11;
-        const double l22 = sqrt(a22 - l20 * l20 - l21 * l21);
-        const double y0 = b0 / l00;
-        const double y1 = (b1 - l10 * y0) / l11;
-        const double y2 = (b2 - l20 * y0 - l21 * y1) / l22;
-        const double x2 = y2 / l22;
-        const double x1 = (y1 - l21 * x2) / l11;
-        const double x0 = (y0 - l10 * x1 - l20 * x2) / l00;
-        double *qv = s->q + 3 * (size_t)v;
-        if (isfinite(x0) && isfinite(x1) && isfinite(x2)) {
-            qv[0] = x0, qv[1] = x1, qv[2] = x2;
-        } else {
-            finite = 0;
-        }
-    }
-    return finite;
-}
-
-/* ---- local/global ------------------------------------------------------ */
-
-/* Unknowns: q (3 nv) then d (nf). Upper triangle, CSC:
- *   column 3v+a: rows 3v..3v+a (the vertex's own 3x3 block);
- *   column 3nv+f: rows 3v+0..2 for each vertex v of f (ascending v), then
- *   the diagonal 3nv+f. */
-static facet_status global_setup(facet_planarizer *s, facet_error *error)
-{
-    if (s->factor)
+    facet_error_clear(error);
+    if (!s)
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "planarizer is NULL");
+    if (!weights) {
+        free(s->face_weight);
+        s->face_weight = NULL;
         return FACET_OK;
-    const int32_t nv = s->nv, nf = s->nf, nc = s->nc;
-    if (!s->cholmod_started) {
-        cholmod_start(&s->cm);
-        s->cm.print = 0;
-        s->cm.error_handler = NULL;
-        s->cholmod_started = 1;
     }
-    const size_t n = 3 * (size_t)nv + (size_t)nf;
-    const size_t nnz = 6 * (size_t)nv + 3 * (size_t)nc + (size_t)nf;
-    s->matrix = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &s->cm);
-    s->rhs = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
-    s->corner_slot = malloc(sizeof(int32_t) * (size_t)nc);
-    if (!s->matrix || !s->rhs || !s->corner_slot)
-        return handle_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
-    int *cp = s->matrix->p, *ri = s->matrix->i;
-    size_t at = 0;
-    for (int32_t v = 0; v < nv; ++v)
-        for (int a = 0; a < 3; ++a) {
-            cp[3 * v + a] = (int)at;
-            for (int b = 0; b <= a; ++b)
-                ri[at++] = 3 * v + b;
-        }
-    int32_t order[64];
-    for (int32_t f = 0; f < nf; ++f) {
-        cp[3 * nv + f] = (int)at;
-        const int32_t b = s->face_start[f], n_f = s->face_start[f + 1] - b;
-        int32_t *ord = n_f <= 64 ? order : malloc(sizeof(int32_t) * (size_t)n_f);
-        if (!ord)
-            return handle_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
-        for (int32_t k = 0; k < n_f; ++k) { /* insertion sort of corners by vertex */
-            int32_t m = k;
-            while (m > 0 && s->face_vertices[b + ord[m - 1]] > s->face_vertices[b + k]) {
-                ord[m] = ord[m - 1];
-                --m;
-            }
-            ord[m] = k;
-        }
-        for (int32_t k = 0; k < n_f; ++k) {
-            const int32_t v = s->face_vertices[b + ord[k]];
-            s->corner_slot[b + ord[k]] = (int32_t)at;
-            for (int a = 0; a < 3; ++a)
-                ri[at++] = 3 * v + a;
-        }
-        ri[at++] = 3 * nv + f;
-        if (ord != order)
-            free(ord);
+    for (int32_t f = 0; f < s->nf; ++f)
+        if (!(weights[f] >= 0.0) || !isfinite(weights[f]))
+            return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, f, -1,
+                              "face %d has planarity weight %g; weights must be finite and >= 0",
+                              (int)f, weights[f]);
+    if (!s->face_weight) {
+        s->face_weight = malloc(sizeof(double) * (size_t)s->nf);
+        if (!s->face_weight)
+            return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
     }
-    cp[n] = (int)at;
-    /* Structure only: analyse with unit values. */
-    double *x = s->matrix->x;
-    for (size_t k = 0; k < at; ++k)
-        x[k] = 1.0;
-    s->factor = cholmod_analyze(s->matrix, &s->cm);
-    if (!s->factor || s->cm.status < CHOLMOD_OK)
-        return handle_fail(s, error, FACET_ERROR_NUMERICAL, "sparse analysis failed");
+    memcpy(s->face_weight, weights, sizeof(double) * (size_t)s->nf);
     return FACET_OK;
 }
 
-static facet_status global_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
-{
-    const int32_t nv = s->nv, nf = s->nf;
-    const double w = 1.0 - mu;
-    double *x = s->matrix->x;
-    const int *cp = s->matrix->p;
-    double *b = s->rhs->x;
-    /* vertex blocks */
-#pragma omp parallel for schedule(static) num_threads(nthreads)
-    for (int32_t v = 0; v < nv; ++v) {
-        double a00 = mu, a01 = 0.0, a02 = 0.0, a11 = mu, a12 = 0.0, a22 = mu;
-        for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
-            const double *n = s->normal + 3 * (size_t)s->vertex_faces[k];
-            a00 += w * n[0] * n[0], a01 += w * n[0] * n[1], a02 += w * n[0] * n[2];
-            a11 += w * n[1] * n[1], a12 += w * n[1] * n[2], a22 += w * n[2] * n[2];
-        }
-        x[cp[3 * v]] = a00;
-        x[cp[3 * v + 1]] = a01, x[cp[3 * v + 1] + 1] = a11;
-        x[cp[3 * v + 2]] = a02, x[cp[3 * v + 2] + 1] = a12, x[cp[3 * v + 2] + 2] = a22;
-        const double *pv = s->p + 3 * (size_t)v;
-        b[3 * v] = mu * pv[0], b[3 * v + 1] = mu * pv[1], b[3 * v + 2] = mu * pv[2];
-    }
-#pragma omp parallel for schedule(static) num_threads(nthreads)
-    for (int32_t f = 0; f < nf; ++f) {
-        const double *n = s->normal + 3 * (size_t)f;
-        const int32_t b0 = s->face_start[f], b1 = s->face_start[f + 1];
-        for (int32_t k = b0; k < b1; ++k) {
-            const int32_t at = s->corner_slot[k];
-            x[at] = w * n[0], x[at + 1] = w * n[1], x[at + 2] = w * n[2];
-        }
-        x[cp[3 * nv + f + 1] - 1] = w * (double)(b1 - b0);
-        b[3 * nv + f] = 0.0;
-    }
-    if (!cholmod_factorize(s->matrix, s->factor, &s->cm) || s->cm.status != CHOLMOD_OK)
-        return handle_fail(s, error, FACET_ERROR_NUMERICAL,
-                           "the sparse factorization failed (matrix not positive definite)");
-    cholmod_dense *sol = cholmod_solve(CHOLMOD_A, s->factor, s->rhs, &s->cm);
-    if (!sol)
-        return handle_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse solve failed");
-    const double *y = sol->x;
-    int finite = 1;
-    for (size_t k = 0; k < 3 * (size_t)nv; ++k)
-        if (!isfinite(y[k]))
-            finite = 0;
-    if (finite)
-        memcpy(s->q, y, sizeof(double) * 3 * (size_t)nv);
-    cholmod_free_dense(&sol, &s->cm);
-    if (!finite)
-        return handle_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse solve gave a non-finite result");
-    return FACET_OK;
-}
-
-/* ---- the solve --------------------------------------------------------- */
+/* ---- options ------------------------------------------------------------ */
 
 static facet_status check_options(const facet_planarize_options *o, char *text, size_t size)
 {
+#define BAD(...) return snprintf(text, size, __VA_ARGS__), FACET_ERROR_INVALID_ARGUMENT
     if (o->method != FACET_METHOD_LOCAL_LOCAL && o->method != FACET_METHOD_LOCAL_GLOBAL)
-        return snprintf(text, size, "unknown method %d", (int)o->method), FACET_ERROR_INVALID_ARGUMENT;
+        BAD("unknown method %d", (int)o->method);
     if (!(o->mu0 > 0.0 && o->mu0 <= 1.0))
-        return snprintf(text, size, "mu0 must be in (0, 1], not %g", o->mu0), FACET_ERROR_INVALID_ARGUMENT;
+        BAD("mu0 must be in (0, 1], not %g", o->mu0);
     if (!(o->ratio > 0.0 && o->ratio <= 1.0))
-        return snprintf(text, size, "ratio must be in (0, 1], not %g", o->ratio), FACET_ERROR_INVALID_ARGUMENT;
+        BAD("ratio must be in (0, 1], not %g", o->ratio);
     if (!(o->mu_min > 0.0 && o->mu_min <= 1.0))
-        return snprintf(text, size, "mu_min must be in (0, 1], not %g", o->mu_min), FACET_ERROR_INVALID_ARGUMENT;
+        BAD("mu_min must be in (0, 1], not %g", o->mu_min);
     if (!(o->tol_abs >= 0.0) || !(o->tol_rel >= 0.0) || !isfinite(o->tol_abs) || !isfinite(o->tol_rel))
-        return snprintf(text, size, "tolerances must be finite and >= 0"), FACET_ERROR_INVALID_ARGUMENT;
+        BAD("tolerances must be finite and >= 0");
     if (o->max_iter < 0 || o->iterations < 0)
-        return snprintf(text, size, "iteration counts must be >= 0"), FACET_ERROR_INVALID_ARGUMENT;
+        BAD("iteration counts must be >= 0");
+    const struct {
+        const char *name;
+        double value;
+    } weights[] = {{"data_tangent", o->data_tangent}, {"data_normal", o->data_normal},
+                   {"surface_weight", o->surface_weight}, {"laplacian", o->laplacian},
+                   {"normal_laplacian", o->normal_laplacian},
+                   {"boundary_fairness", o->boundary_fairness}, {"shape_weight", o->shape_weight},
+                   {"circular", o->circular}, {"parallelogram", o->parallelogram},
+                   {"time_budget", o->time_budget}};
+    for (size_t k = 0; k < sizeof weights / sizeof weights[0]; ++k)
+        if (!(weights[k].value >= 0.0) || !isfinite(weights[k].value))
+            BAD("%s must be finite and >= 0, not %g", weights[k].name, weights[k].value);
+    if (!(o->data_tangent > 0.0))
+        BAD("data_tangent must be > 0: a vertex with no pull along the surface could drift "
+            "without bound");
+    if (o->laplacian_weights != FACET_LAPLACIAN_UNIFORM &&
+        o->laplacian_weights != FACET_LAPLACIAN_INVERSE_EDGE)
+        BAD("unknown laplacian_weights %d", (int)o->laplacian_weights);
+    if (o->shape != FACET_SHAPE_NONE && o->shape != FACET_SHAPE_ASAP && o->shape != FACET_SHAPE_ARAP)
+        BAD("unknown shape mode %d", (int)o->shape);
+    if (o->boundary != FACET_BOUNDARY_FREE && o->boundary != FACET_BOUNDARY_FIXED &&
+        o->boundary != FACET_BOUNDARY_SLIDING)
+        BAD("unknown boundary mode %d", (int)o->boundary);
+    if (!(o->hold_tol >= 0.0) || !isfinite(o->hold_tol))
+        BAD("hold_tol must be finite and >= 0, not %g", o->hold_tol);
+    if (o->hold_max < 1)
+        BAD("hold_max must be >= 1, not %d", (int)o->hold_max);
+    if (o->anderson < 0 || o->anderson > FACET_ANDERSON_MAX)
+        BAD("anderson must be in 0..%d, not %d", FACET_ANDERSON_MAX, (int)o->anderson);
+    if (o->surface_weight > 0.0)
+        BAD("surface_weight needs a reference surface, and none is set");
+#undef BAD
     return FACET_OK;
 }
+
+/* Allocates what the options need beyond the base workspace. */
+static int ensure_workspace(facet_planarizer *s)
+{
+    const facet_planarize_options *o = &s->o;
+    if (o->shape != FACET_SHAPE_NONE && !s->shape &&
+        !(s->shape = malloc(sizeof(double) * 9 * (size_t)s->nf)))
+        return 0;
+    if (o->circular > 0.0 && !s->circle_target &&
+        !(s->circle_target = malloc(sizeof(double) * 3 * (size_t)s->nc)))
+        return 0;
+    if (o->anderson > 0 && !s->aa_df) {
+        const size_t v3 = 3 * (size_t)s->nv;
+        s->aa_df = malloc(sizeof(double) * v3 * FACET_ANDERSON_MAX);
+        s->aa_dg = malloc(sizeof(double) * v3 * FACET_ANDERSON_MAX);
+        s->aa_f = malloc(sizeof(double) * v3);
+        s->aa_g = malloc(sizeof(double) * v3);
+        if (!s->aa_df || !s->aa_dg || !s->aa_f || !s->aa_g)
+            return 0;
+    }
+    return 1;
+}
+
+/* ---- Anderson acceleration ------------------------------------------------ */
+
+typedef struct {
+    int m, count, head;       /* depth, columns held, next slot */
+    int have_previous;        /* aa_f / aa_g hold the previous step */
+    double gram[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX]; /* dF^T dF by slot */
+} anderson_state;
+
+static double dot(const double *a, const double *b, size_t n)
+{
+    double sum = 0.0;
+    for (size_t k = 0; k < n; ++k)
+        sum += a[k] * b[k];
+    return sum;
+}
+
+/* Given the step x -> g (x in `x`, g in s->q), records the differences and
+ * writes the accelerated iterate into s->q. Returns 1 if it accelerated. */
+static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x)
+{
+    const size_t n = 3 * (size_t)s->nv;
+    double *g = s->q;
+    if (a->have_previous) {
+        const int slot = a->head;
+        double *df = s->aa_df + (size_t)slot * n, *dg = s->aa_dg + (size_t)slot * n;
+        for (size_t k = 0; k < n; ++k) {
+            const double f = g[k] - x[k];
+            df[k] = f - s->aa_f[k];
+            dg[k] = g[k] - s->aa_g[k];
+        }
+        a->head = (a->head + 1) % a->m;
+        if (a->count < a->m)
+            a->count++;
+        for (int j = 0; j < a->count; ++j) {
+            const double value = dot(df, s->aa_df + (size_t)j * n, n);
+            a->gram[slot][j] = a->gram[j][slot] = value;
+        }
+    }
+    double largest = 0.0;
+    for (size_t k = 0; k < n; ++k) {
+        s->aa_f[k] = g[k] - x[k];
+        s->aa_g[k] = g[k];
+        largest = fmax(largest, fabs(s->aa_f[k]));
+    }
+    a->have_previous = 1;
+    /* at a fixed point to rounding there is nothing to extrapolate, and
+     * differences of rounding errors would only add noise */
+    if (a->count == 0 || largest <= 1e-13)
+        return 0;
+    /* theta = argmin |f - dF theta|: normal equations, Cholesky with a small
+     * Tikhonov term; a failed factorisation means no acceleration this time */
+    const int m = a->count;
+    double l[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX], rhs[FACET_ANDERSON_MAX], theta[FACET_ANDERSON_MAX];
+    double trace = 0.0;
+    for (int j = 0; j < m; ++j)
+        trace += a->gram[j][j];
+    if (!(trace > 0.0) || !isfinite(trace))
+        return 0;
+    for (int j = 0; j < m; ++j)
+        rhs[j] = dot(s->aa_df + (size_t)j * n, s->aa_f, n);
+    for (int i = 0; i < m; ++i)
+        for (int j = 0; j <= i; ++j) {
+            double sum = a->gram[i][j] + (i == j ? 1e-10 * trace : 0.0);
+            for (int k = 0; k < j; ++k)
+                sum -= l[i][k] * l[j][k];
+            if (i == j) {
+                if (!(sum > 0.0))
+                    return 0;
+                l[i][i] = sqrt(sum);
+            } else {
+                l[i][j] = sum / l[j][j];
+            }
+        }
+    for (int i = 0; i < m; ++i) {
+        double sum = rhs[i];
+        for (int k = 0; k < i; ++k)
+            sum -= l[i][k] * theta[k];
+        theta[i] = sum / l[i][i];
+    }
+    for (int i = m - 1; i >= 0; --i) {
+        double sum = theta[i];
+        for (int k = i + 1; k < m; ++k)
+            sum -= l[k][i] * theta[k];
+        theta[i] = sum / l[i][i];
+    }
+    for (int j = 0; j < m; ++j)
+        if (!isfinite(theta[j]))
+            return 0;
+    memcpy(s->aa_x_fallback, g, sizeof(double) * n);
+    for (int j = 0; j < m; ++j) {
+        const double *dg = s->aa_dg + (size_t)j * n;
+        for (size_t k = 0; k < n; ++k)
+            g[k] -= theta[j] * dg[k];
+    }
+    for (size_t k = 0; k < n; ++k)
+        if (!isfinite(g[k])) {
+            memcpy(g, s->aa_x_fallback, sizeof(double) * n);
+            return 0;
+        }
+    return 1;
+}
+
+/* ---- the solve --------------------------------------------------------- */
 
 facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                                     const facet_planarize_options *options, double *xyz_out,
@@ -376,7 +566,10 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     char text[256];
     facet_status status = check_options(options, text, sizeof text);
     if (status != FACET_OK)
-        return handle_fail(s, error, status, text);
+        return facet_pl_fail(s, error, status, text);
+    s->o = *options;
+    if (!ensure_workspace(s))
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     const int32_t nv = s->nv, nf = s->nf;
     for (int32_t v = 0; v < nv; ++v) {
         const double *p = xyz_in + 3 * (size_t)v;
@@ -408,8 +601,8 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     }
     double scale = edge_sum / (double)s->nc;
     if (!(scale > 0.0) || !isfinite(scale))
-        return handle_fail(s, error, FACET_ERROR_DEGENERATE_FACE,
-                           "every edge of the mesh has zero length");
+        return facet_pl_fail(s, error, FACET_ERROR_DEGENERATE_FACE,
+                             "every edge of the mesh has zero length");
     const double inv = 1.0 / scale;
     const int warm = options->warm && s->has_previous;
     const double *start_xyz = warm ? s->previous : xyz_in;
@@ -418,74 +611,152 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             s->p[3 * (size_t)v + a] = (xyz_in[3 * (size_t)v + a] - centre[a]) * inv;
             s->q[3 * (size_t)v + a] = (start_xyz[3 * (size_t)v + a] - centre[a]) * inv;
         }
+    facet_pl_prepare_solve(s);
+    for (int32_t v = 0; v < nv; ++v) /* a fixed vertex starts (and stays) at its control point */
+        if (s->fixed[v])
+            memcpy(s->q + 3 * (size_t)v, s->p + 3 * (size_t)v, 3 * sizeof(double));
 
     if (options->method == FACET_METHOD_LOCAL_GLOBAL) {
-        status = global_setup(s, error);
+        status = facet_pl_global_setup(s, error);
         if (status != FACET_OK)
             return status;
     }
 
-    const int fixed = options->iterations > 0;
-    const int32_t limit = fixed ? options->iterations : options->max_iter;
+    const int fixed_count = options->iterations > 0;
+    const int32_t limit = fixed_count ? options->iterations : options->max_iter;
     const double tol_abs = options->tol_abs * inv; /* normalised units */
     const double tol_rel = options->tol_rel;
-    const int use_tol = !fixed && (tol_abs > 0.0 || tol_rel > 0.0);
+    const int use_tol = !fixed_count && (tol_abs > 0.0 || tol_rel > 0.0);
     double mu = options->mu0;
     int32_t it = 0;
     facet_stop_reason reason = FACET_STOP_NONE;
-    double max_abs = 0.0, max_rel = 0.0;
+    double max_abs = 0.0, max_rel = 0.0, constraint = 0.0;
     enum { WINDOW = 25 };
     double history[WINDOW];
+    anderson_state aa;
+    memset(&aa, 0, sizeof aa);
+    aa.m = options->anderson;
+    int accelerated = 0;
+    int32_t accepted = 0, rejected = 0;
+    double energy_mu = 0.0, energy_con = 0.0, last_mu = 0.0, last_con = 0.0;
+    const int staircase = options->hold_tol > 0.0;
+    int32_t level_steps = 0;
+    double level_first_move = 0.0; /* squared */
+    double *x_before = NULL;
+    if ((aa.m > 0 || staircase) && !(x_before = malloc(sizeof(double) * 3 * (size_t)nv)))
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     status = FACET_OK;
     for (;;) {
-        fit_faces(s, nthreads);
-        max_abs = 0.0, max_rel = 0.0;
+        facet_pl_local_step(s, nthreads);
+        if (aa.m > 0) {
+            facet_pl_energy(s, &energy_mu, &energy_con);
+            if (accelerated) {
+                /* safeguard: the accelerated iterate must not have a higher
+                 * energy than the iterate its step started from */
+                const double e_new = mu * energy_mu + (1.0 - mu) * energy_con;
+                const double e_old = mu * last_mu + (1.0 - mu) * last_con;
+                if (e_new <= e_old && isfinite(e_new)) {
+                    ++accepted;
+                } else {
+                    ++rejected;
+                    memcpy(s->q, s->aa_x_fallback, sizeof(double) * 3 * (size_t)nv);
+                    aa.count = aa.head = 0;
+                    aa.have_previous = 0;
+                    facet_pl_local_step(s, nthreads);
+                    facet_pl_energy(s, &energy_mu, &energy_con);
+                }
+            }
+            last_mu = energy_mu, last_con = energy_con;
+        }
+        max_abs = 0.0, max_rel = 0.0, constraint = 0.0;
         for (int32_t f = 0; f < nf; ++f) {
+            if (s->face_weight && !(s->face_weight[f] > 0.0))
+                continue;
             max_abs = fmax(max_abs, s->face_dev[f]);
             const double e = s->face_edge[f];
             max_rel = fmax(max_rel, e > 0.0 ? s->face_dev[f] / e : (s->face_dev[f] > 0.0 ? INFINITY : 0.0));
         }
+        for (int32_t f = 0; f < nf; ++f)
+            constraint = fmax(constraint, s->face_residual[f]);
+        for (int32_t v = 0; v < nv; ++v)
+            constraint = fmax(constraint, s->vertex_residual[v]);
         /* A warm start begins at the previous (planar) result: it must take the
          * edited control positions into account before it may stop. */
         if (use_tol && (it > 0 || !warm) && (tol_abs <= 0.0 || max_abs <= tol_abs) &&
-            (tol_rel <= 0.0 || max_rel <= tol_rel)) {
+            (tol_rel <= 0.0 || max_rel <= tol_rel) &&
+            constraint <= (tol_rel > 0.0 ? tol_rel : tol_abs)) {
             reason = FACET_STOP_TOLERANCE;
             break;
         }
         if (it >= limit) {
-            reason = fixed ? FACET_STOP_ITERATIONS : FACET_STOP_MAX_ITER;
+            reason = fixed_count ? FACET_STOP_ITERATIONS : FACET_STOP_MAX_ITER;
+            break;
+        }
+        if (!fixed_count && options->time_budget > 0.0 && facet_now() - t0 >= options->time_budget) {
+            reason = FACET_STOP_TIME;
             break;
         }
         /* Stagnation: mu at its floor and no 2% gain over the last WINDOW iterations. */
-        if (!fixed && it >= WINDOW && mu <= options->mu_min &&
-            max_rel > 0.98 * history[it % WINDOW]) {
+        const double measure = fmax(max_rel, constraint);
+        if (!fixed_count && it >= WINDOW && mu <= options->mu_min &&
+            measure > 0.98 * history[it % WINDOW]) {
             reason = FACET_STOP_STAGNATION;
             break;
         }
-        history[it % WINDOW] = max_rel;
+        history[it % WINDOW] = measure;
+        if (x_before)
+            memcpy(x_before, s->q, sizeof(double) * 3 * (size_t)nv);
         if (mu >= 1.0) {
             /* at mu = 1 the solution is the control mesh itself */
             memcpy(s->q, s->p, sizeof(double) * 3 * (size_t)nv);
         } else if (options->method == FACET_METHOD_LOCAL_LOCAL) {
-            if (!local_vertex_step(s, mu, nthreads)) {
-                status = handle_fail(s, error, FACET_ERROR_NUMERICAL,
-                                     "a vertex update was not finite");
+            if (!facet_pl_vertex_step(s, mu, nthreads)) {
+                status = facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
+                                       "a vertex update was not finite");
                 break;
             }
         } else {
-            status = global_step(s, mu, nthreads, error);
+            status = facet_pl_global_step(s, mu, nthreads, error);
             if (status != FACET_OK)
                 break;
         }
+        double move = 0.0; /* largest vertex move of the plain step, squared */
+        if (staircase)
+            for (int32_t v = 0; v < nv; ++v) {
+                const double *a = x_before + 3 * (size_t)v, *b = s->q + 3 * (size_t)v;
+                const double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                  (a[2] - b[2]) * (a[2] - b[2]);
+                move = fmax(move, d2);
+            }
+        accelerated = aa.m > 0 && mu < 1.0 ? anderson_step(s, &aa, x_before) : 0;
         ++it;
-        mu = fmax(mu * options->ratio, options->mu_min);
+        ++level_steps;
+        /* The staircase lowers mu only while the planarity is above the
+         * tolerance: a stronger penalty than the tolerance needs would only
+         * worsen the conditioning (a vertex may slide along its planes at a
+         * cost of mu) and let rounding errors move it. */
+        const int above = tol_rel > 0.0 ? measure > tol_rel : (tol_abs > 0.0 ? max_abs > tol_abs : 1);
+        if (level_steps == 1)
+            level_first_move = move;
+        if (!staircase || mu >= 1.0 ||
+            (above && (move <= options->hold_tol * options->hold_tol * level_first_move ||
+                       level_steps >= options->hold_max))) {
+            const double next = fmax(mu * options->ratio, options->mu_min);
+            if (staircase && next != mu) { /* a new fixed-point map: restart the history */
+                aa.count = aa.head = 0;
+                aa.have_previous = 0;
+            }
+            mu = next;
+            level_steps = 0;
+        }
         if (options->progress &&
             options->progress(options->progress_user, it, limit, max_rel) != 0) {
             reason = FACET_STOP_CANCELLED;
-            status = handle_fail(s, error, FACET_ERROR_CANCELLED, "cancelled");
+            status = facet_pl_fail(s, error, FACET_ERROR_CANCELLED, "cancelled");
             break;
         }
     }
+    free(x_before);
     if (status < 0 && status != FACET_ERROR_CANCELLED)
         return status;
 
@@ -508,14 +779,17 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         result->mu = mu;
         result->planarity_max_abs = max_abs * scale;
         result->planarity_max_rel = max_rel;
+        result->constraint_max_rel = constraint;
         result->seconds = facet_now() - t0;
+        result->anderson_accepted = accepted;
+        result->anderson_rejected = rejected;
     }
     if (status == FACET_ERROR_CANCELLED)
         return status;
-    if (reason == FACET_STOP_MAX_ITER || reason == FACET_STOP_STAGNATION) {
+    if (reason == FACET_STOP_MAX_ITER || reason == FACET_STOP_STAGNATION || reason == FACET_STOP_TIME) {
         snprintf(s->message, sizeof s->message,
-                 "planarity %.3g (relative) after %d iterations: tolerance not reached", max_rel,
-                 (int)it);
+                 "planarity %.3g (relative) after %d iterations: tolerance not reached%s", max_rel,
+                 (int)it, reason == FACET_STOP_TIME ? " within the time budget" : "");
         return facet_fail(error, FACET_WARNING_NOT_CONVERGED, -1, -1, "%s", s->message);
     }
     return FACET_OK;

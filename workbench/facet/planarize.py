@@ -26,7 +26,7 @@ METHODS = {"lg": "local/global", "ll": "local/local"}
 
 #: First penalty weight of a warm re-solve: small, so the previous (planar)
 #: result is not pulled back to the edited control mesh first.
-_WARM_MU0 = {"lg": 1e-4, "ll": 1e-2}
+_WARM_MU0 = {"lg": 1e-5, "ll": 1e-5}
 
 
 @dataclass

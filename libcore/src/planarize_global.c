@@ -1,0 +1,426 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* The local/global step: with the planes (and shapes, circles, boundary
+ * targets) fixed, one sparse SPD solve gives every vertex and every plane
+ * offset at once.
+ *
+ * Unknowns: q (3 nv, vertex-major) then the offsets d (nf). The matrix is
+ *   vertex 3x3 blocks        data, sliding, circle and the K diagonal;
+ *   vertex-vertex couplings  K (x) I3, K the scalar matrix of the coupled
+ *                            terms (Laplacian, boundary fairness, shape,
+ *                            parallelogram), fixed per pattern;
+ *   vertex-offset couplings  planarity, w_f n_f per corner;
+ *   offset diagonal          w_f * corners of f.
+ * Stored as CHOLMOD's upper triangle in CSC. Column 3v+a holds, in row
+ * order: 3u+a for each coupled u < v, then 3v .. 3v+a. Column 3nv+f holds
+ * 3v..3v+2 for each vertex of f (ascending), then its diagonal. The pattern
+ * depends on the topology and on which coupled terms are on, so CHOLMOD's
+ * symbolic analysis runs once per (topology, coupled terms); each iteration
+ * refactorises numerically.
+ *
+ * Fixed vertices stay unknowns with identity rows: their couplings move to
+ * the right-hand side, so the pattern does not change when they do. */
+#include "planarize_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void facet_pl_global_free(facet_planarizer *s)
+{
+    if (s->cholmod_started) {
+        cholmod_free_sparse(&s->matrix, &s->cm);
+        cholmod_free_factor(&s->factor, &s->cm);
+        cholmod_free_dense(&s->rhs, &s->cm);
+        cholmod_free_dense(&s->current, &s->cm);
+    }
+    free(s->corner_slot);
+    free(s->couple_start);
+    free(s->couple_vertex);
+    free(s->couple_mu);
+    free(s->couple_con);
+    free(s->couple_diag_mu);
+    free(s->couple_diag_con);
+    s->corner_slot = NULL;
+    s->couple_start = s->couple_vertex = NULL;
+    s->couple_mu = s->couple_con = s->couple_diag_mu = s->couple_diag_con = NULL;
+    s->couple_key = -1;
+}
+
+/* ---- the coupling matrix K ------------------------------------------------ */
+
+typedef struct {
+    int32_t hi, lo; /* hi >= lo */
+    double mu, con;
+} triplet;
+
+typedef struct {
+    triplet *t;
+    size_t n, cap;
+} triplets;
+
+static int push(triplets *list, int32_t i, int32_t j, double mu, double con)
+{
+    if (list->n == list->cap) {
+        const size_t cap = list->cap ? 2 * list->cap : 1024;
+        triplet *t = realloc(list->t, cap * sizeof *t);
+        if (!t)
+            return 0;
+        list->t = t, list->cap = cap;
+    }
+    triplet *e = &list->t[list->n++];
+    e->hi = i > j ? i : j, e->lo = i > j ? j : i, e->mu = mu, e->con = con;
+    return 1;
+}
+
+/* Adds weight * r r^T for the sparse row r (vertices idx, coefficients c). */
+static int push_outer(triplets *list, int32_t n, const int32_t *idx, const double *c, double mu,
+                      double con)
+{
+    for (int32_t a = 0; a < n; ++a)
+        for (int32_t b = a; b < n; ++b) {
+            const double cc = c[a] * c[b] * (a == b ? 1.0 : (idx[a] == idx[b] ? 2.0 : 1.0));
+            if (!push(list, idx[a], idx[b], mu * cc, con * cc))
+                return 0;
+        }
+    return 1;
+}
+
+static int compare_triplet(const void *x, const void *y)
+{
+    const triplet *a = x, *b = y;
+    if (a->hi != b->hi)
+        return a->hi < b->hi ? -1 : 1;
+    return a->lo < b->lo ? -1 : (a->lo > b->lo ? 1 : 0);
+}
+
+/* Builds K for the options' coupled terms, with their weights. The pattern
+ * depends only on which terms are on; the values on their weights and on the
+ * control mesh (Laplacian weights), so it is rebuilt every solve. */
+static facet_status build_coupling(facet_planarizer *s, facet_error *error)
+{
+    const facet_planarize_options *o = &s->o;
+    const int32_t nv = s->nv, nf = s->nf;
+    triplets list = {NULL, 0, 0};
+    int ok = 1;
+    int32_t idx_buf[64];
+    double c_buf[64];
+    if (o->laplacian > 0.0) {
+        for (int32_t v = 0; v < nv && ok; ++v) {
+            if (s->on_boundary[v])
+                continue;
+            const int32_t b = s->vertex_adj_start[v], n = s->vertex_adj_start[v + 1] - b;
+            int32_t *idx = n + 1 <= 64 ? idx_buf : malloc(sizeof(int32_t) * (size_t)(n + 1));
+            double *c = n + 1 <= 64 ? c_buf : malloc(sizeof(double) * (size_t)(n + 1));
+            if (!idx || !c) {
+                ok = 0;
+            } else {
+                idx[0] = v, c[0] = 1.0;
+                for (int32_t k = 0; k < n; ++k)
+                    idx[k + 1] = s->vertex_adj[b + k], c[k + 1] = -s->laplace_weight[b + k];
+                ok = push_outer(&list, n + 1, idx, c, o->laplacian, 0.0);
+            }
+            if (idx != idx_buf)
+                free(idx);
+            if (c != c_buf)
+                free(c);
+        }
+    }
+    if (o->boundary_fairness > 0.0)
+        for (int32_t v = 0; v < nv && ok; ++v)
+            if (s->boundary_prev[v] >= 0) {
+                const int32_t idx[3] = {s->boundary_prev[v], v, s->boundary_next[v]};
+                const double c[3] = {1.0, -2.0, 1.0};
+                ok = push_outer(&list, 3, idx, c, o->boundary_fairness, 0.0);
+            }
+    if (o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0)
+        for (int32_t f = 0; f < nf && ok; ++f) { /* projector I - 11^T/n on the face */
+            const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
+            for (int32_t i = 0; i < n && ok; ++i)
+                for (int32_t j = i; j < n && ok; ++j) {
+                    const double value = (i == j ? 1.0 : 0.0) - 1.0 / (double)n;
+                    ok = push(&list, s->face_vertices[b + i], s->face_vertices[b + j],
+                              o->shape_weight * value, 0.0);
+                }
+        }
+    if (o->parallelogram > 0.0)
+        for (int32_t f = 0; f < nf && ok; ++f)
+            if (s->face_start[f + 1] - s->face_start[f] == 4) {
+                const double c[4] = {1.0, -1.0, 1.0, -1.0};
+                ok = push_outer(&list, 4, s->face_vertices + s->face_start[f], c, 0.0, o->parallelogram);
+            }
+    if (!ok) {
+        free(list.t);
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the couplings");
+    }
+    qsort(list.t, list.n, sizeof *list.t, compare_triplet);
+    /* merge duplicates; split into diagonal and strictly lower (u < v) */
+    free(s->couple_start);
+    free(s->couple_vertex);
+    free(s->couple_mu);
+    free(s->couple_con);
+    free(s->couple_diag_mu);
+    free(s->couple_diag_con);
+    s->couple_start = calloc((size_t)nv + 1, sizeof(int32_t));
+    s->couple_vertex = malloc(sizeof(int32_t) * (list.n ? list.n : 1));
+    s->couple_mu = malloc(sizeof(double) * (list.n ? list.n : 1));
+    s->couple_con = malloc(sizeof(double) * (list.n ? list.n : 1));
+    s->couple_diag_mu = calloc((size_t)nv, sizeof(double));
+    s->couple_diag_con = calloc((size_t)nv, sizeof(double));
+    if (!s->couple_start || !s->couple_vertex || !s->couple_mu || !s->couple_con ||
+        !s->couple_diag_mu || !s->couple_diag_con) {
+        free(list.t);
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the couplings");
+    }
+    size_t m = 0;
+    for (size_t k = 0; k < list.n;) {
+        triplet e = list.t[k++];
+        while (k < list.n && list.t[k].hi == e.hi && list.t[k].lo == e.lo) {
+            e.mu += list.t[k].mu, e.con += list.t[k].con;
+            ++k;
+        }
+        if (e.hi == e.lo) {
+            s->couple_diag_mu[e.hi] += e.mu, s->couple_diag_con[e.hi] += e.con;
+        } else {
+            s->couple_vertex[m] = e.lo, s->couple_mu[m] = e.mu, s->couple_con[m] = e.con;
+            s->couple_start[e.hi + 1]++;
+            ++m;
+        }
+    }
+    for (int32_t v = 0; v < nv; ++v)
+        s->couple_start[v + 1] += s->couple_start[v];
+    free(list.t);
+    return FACET_OK;
+}
+
+/* ---- pattern and analysis ------------------------------------------------- */
+
+facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
+{
+    const int32_t key = facet_pl_couple_key(&s->o);
+    const int32_t nv = s->nv, nf = s->nf, nc = s->nc;
+    if (!s->cholmod_started) {
+        cholmod_start(&s->cm);
+        s->cm.print = 0;
+        s->cm.error_handler = NULL;
+        s->cholmod_started = 1;
+    }
+    if (s->factor && key == s->couple_key)
+        return build_coupling(s, error); /* same pattern: new values only */
+    facet_pl_global_free(s);
+    facet_status status = build_coupling(s, error);
+    if (status != FACET_OK)
+        return status;
+    const size_t n_couple = (size_t)s->couple_start[nv];
+    const size_t n = 3 * (size_t)nv + (size_t)nf;
+    const size_t nnz = 6 * (size_t)nv + 3 * n_couple + 3 * (size_t)nc + (size_t)nf;
+    if (nnz > (size_t)INT32_MAX)
+        return facet_pl_fail(s, error, FACET_ERROR_TOO_LARGE, "mesh too large for the sparse system");
+    s->matrix = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &s->cm);
+    s->rhs = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->current = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->corner_slot = malloc(sizeof(int32_t) * (size_t)nc);
+    if (!s->matrix || !s->rhs || !s->current || !s->corner_slot)
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+    int *cp = s->matrix->p, *ri = s->matrix->i;
+    size_t at = 0;
+    for (int32_t v = 0; v < nv; ++v)
+        for (int a = 0; a < 3; ++a) {
+            cp[3 * v + a] = (int)at;
+            for (int32_t k = s->couple_start[v]; k < s->couple_start[v + 1]; ++k)
+                ri[at++] = 3 * s->couple_vertex[k] + a;
+            for (int b = 0; b <= a; ++b)
+                ri[at++] = 3 * v + b;
+        }
+    int32_t order[64];
+    for (int32_t f = 0; f < nf; ++f) {
+        cp[3 * nv + f] = (int)at;
+        const int32_t b = s->face_start[f], n_f = s->face_start[f + 1] - b;
+        int32_t *ord = n_f <= 64 ? order : malloc(sizeof(int32_t) * (size_t)n_f);
+        if (!ord)
+            return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
+        for (int32_t k = 0; k < n_f; ++k) { /* insertion sort of corners by vertex */
+            int32_t m = k;
+            while (m > 0 && s->face_vertices[b + ord[m - 1]] > s->face_vertices[b + k]) {
+                ord[m] = ord[m - 1];
+                --m;
+            }
+            ord[m] = k;
+        }
+        for (int32_t k = 0; k < n_f; ++k) {
+            const int32_t v = s->face_vertices[b + ord[k]];
+            s->corner_slot[b + ord[k]] = (int32_t)at;
+            for (int a = 0; a < 3; ++a)
+                ri[at++] = 3 * v + a;
+        }
+        ri[at++] = 3 * nv + f;
+        if (ord != order)
+            free(ord);
+    }
+    cp[n] = (int)at;
+    double *x = s->matrix->x;
+    for (size_t k = 0; k < at; ++k)
+        x[k] = 1.0;
+    s->factor = cholmod_analyze(s->matrix, &s->cm);
+    if (!s->factor || s->cm.status < CHOLMOD_OK)
+        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "sparse analysis failed");
+    s->couple_key = key;
+    return FACET_OK;
+}
+
+/* ---- one global step ---------------------------------------------------- */
+
+static double face_weight(const facet_planarizer *s, int32_t f)
+{
+    return s->face_weight ? s->face_weight[f] : 1.0;
+}
+
+facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
+{
+    const int32_t nv = s->nv, nf = s->nf;
+    const facet_planarize_options *o = &s->o;
+    const double w = 1.0 - mu;
+    double *x = s->matrix->x;
+    const int *cp = s->matrix->p;
+    const int *ri = s->matrix->i;
+    double *b = s->rhs->x;
+    const int shape = o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0;
+    const int sliding = o->boundary == FACET_BOUNDARY_SLIDING;
+    const double *p = s->p;
+    /* vertex columns: couplings, then the 3x3 block; right-hand side */
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (int32_t v = 0; v < nv; ++v) {
+        const double *pv = p + 3 * (size_t)v, *nu = s->vertex_normal + 3 * (size_t)v;
+        const double dt = mu * o->data_tangent, dn = mu * o->data_normal;
+        const double kd = mu * s->couple_diag_mu[v] + w * s->couple_diag_con[v];
+        double a00 = dt + kd, a11 = dt + kd, a22 = dt + kd, a01 = 0.0, a02 = 0.0, a12 = 0.0;
+        const double e = dn - dt;
+        a00 += e * nu[0] * nu[0], a01 += e * nu[0] * nu[1], a02 += e * nu[0] * nu[2];
+        a11 += e * nu[1] * nu[1], a12 += e * nu[1] * nu[2], a22 += e * nu[2] * nu[2];
+        double b0 = a00 * pv[0] + a01 * pv[1] + a02 * pv[2];
+        double b1 = a01 * pv[0] + a11 * pv[1] + a12 * pv[2];
+        double b2 = a02 * pv[0] + a12 * pv[1] + a22 * pv[2];
+        /* the K diagonal belongs to the matrix, not to the data target */
+        b0 -= kd * pv[0], b1 -= kd * pv[1], b2 -= kd * pv[2];
+        for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
+            const int32_t f = s->vertex_faces[k];
+            const double *n = s->normal + 3 * (size_t)f;
+            const double pw = w * face_weight(s, f);
+            a00 += pw * n[0] * n[0], a01 += pw * n[0] * n[1], a02 += pw * n[0] * n[2];
+            a11 += pw * n[1] * n[1], a12 += pw * n[1] * n[2], a22 += pw * n[2] * n[2];
+            const int32_t fb = s->face_start[f];
+            int32_t corner = 0;
+            while (s->face_vertices[fb + corner] != v)
+                ++corner;
+            if (shape) { /* right-hand side of lambda |P q - s R x|^2: s R x */
+                const double *sr = s->shape + 9 * (size_t)f, *cpf = s->control_centroid + 3 * (size_t)f;
+                const double dx[3] = {pv[0] - cpf[0], pv[1] - cpf[1], pv[2] - cpf[2]};
+                const double lw = mu * o->shape_weight;
+                b0 += lw * (sr[0] * dx[0] + sr[1] * dx[1] + sr[2] * dx[2]);
+                b1 += lw * (sr[3] * dx[0] + sr[4] * dx[1] + sr[5] * dx[2]);
+                b2 += lw * (sr[6] * dx[0] + sr[7] * dx[1] + sr[8] * dx[2]);
+            }
+            if (o->circular > 0.0) {
+                const double *t = s->circle_target + 3 * (size_t)(fb + corner);
+                const double cw = w * o->circular;
+                b0 += cw * t[0], b1 += cw * t[1], b2 += cw * t[2];
+                a00 += cw, a11 += cw, a22 += cw;
+            }
+        }
+        if (sliding && s->boundary_prev[v] >= 0) {
+            const double *t = s->slide_tangent + 3 * (size_t)v, *g = s->slide_target + 3 * (size_t)v;
+            const double m00 = w * (1.0 - t[0] * t[0]), m01 = -w * t[0] * t[1], m02 = -w * t[0] * t[2];
+            const double m11 = w * (1.0 - t[1] * t[1]), m12 = -w * t[1] * t[2], m22 = w * (1.0 - t[2] * t[2]);
+            a00 += m00, a01 += m01, a02 += m02, a11 += m11, a12 += m12, a22 += m22;
+            b0 += m00 * g[0] + m01 * g[1] + m02 * g[2];
+            b1 += m01 * g[0] + m11 * g[1] + m12 * g[2];
+            b2 += m02 * g[0] + m12 * g[1] + m22 * g[2];
+        }
+        const int32_t nk = s->couple_start[v + 1] - s->couple_start[v];
+        for (int a = 0; a < 3; ++a) {
+            double *col = x + cp[3 * v + a];
+            for (int32_t k = 0; k < nk; ++k) {
+                const int32_t e2 = s->couple_start[v] + k;
+                col[k] = mu * s->couple_mu[e2] + w * s->couple_con[e2];
+            }
+        }
+        x[cp[3 * v] + nk] = a00;
+        x[cp[3 * v + 1] + nk] = a01, x[cp[3 * v + 1] + nk + 1] = a11;
+        x[cp[3 * v + 2] + nk] = a02, x[cp[3 * v + 2] + nk + 1] = a12, x[cp[3 * v + 2] + nk + 2] = a22;
+        b[3 * v] = b0, b[3 * v + 1] = b1, b[3 * v + 2] = b2;
+    }
+    /* offset columns */
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (int32_t f = 0; f < nf; ++f) {
+        const double *n = s->normal + 3 * (size_t)f;
+        const double pw = w * face_weight(s, f);
+        const int32_t b0 = s->face_start[f], b1 = s->face_start[f + 1];
+        for (int32_t k = b0; k < b1; ++k) {
+            const int32_t at = s->corner_slot[k];
+            x[at] = pw * n[0], x[at + 1] = pw * n[1], x[at + 2] = pw * n[2];
+        }
+        /* an exempt face's offset is decoupled: identity row */
+        x[cp[3 * nv + f + 1] - 1] = pw > 0.0 ? pw * (double)(b1 - b0) : 1.0;
+        b[3 * nv + f] = 0.0;
+    }
+    /* fixed vertices: identity rows, couplings moved to the right-hand side
+     * (serial: a column's entries update other rows) */
+    int any_fixed = 0;
+    for (int32_t v = 0; v < nv && !any_fixed; ++v)
+        any_fixed = s->fixed[v];
+    if (any_fixed) {
+        const int32_t n = 3 * nv + nf;
+        for (int32_t c = 0; c < n; ++c) {
+            const int fc = c < 3 * nv && s->fixed[c / 3];
+            for (int k = cp[c]; k < cp[c + 1]; ++k) {
+                const int r = ri[k];
+                const int fr = r < 3 * nv && s->fixed[r / 3];
+                if (r == c) {
+                    if (fc)
+                        x[k] = 1.0;
+                } else if (fr && fc) {
+                    x[k] = 0.0;
+                } else if (fr) {
+                    b[c] -= x[k] * p[r];
+                    x[k] = 0.0;
+                } else if (fc) {
+                    b[r] -= x[k] * p[c];
+                    x[k] = 0.0;
+                }
+            }
+        }
+        for (int32_t v = 0; v < nv; ++v)
+            if (s->fixed[v])
+                for (int a = 0; a < 3; ++a)
+                    b[3 * v + a] = p[3 * (size_t)v + a];
+    }
+    if (!cholmod_factorize(s->matrix, s->factor, &s->cm) || s->cm.status != CHOLMOD_OK)
+        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
+                             "the sparse factorization failed (matrix not positive definite)");
+    /* Solve for the increment from the current iterate: A dx = b - A x. At
+     * small mu the matrix's condition grows like 1/mu (a vertex may slide
+     * along its planes almost freely), and the rounding error of a solve is
+     * relative to what it solves for: the increment, which vanishes as the
+     * iteration converges, rather than the positions. */
+    double *cur = s->current->x;
+    memcpy(cur, s->q, sizeof(double) * 3 * (size_t)nv);
+    memcpy(cur + 3 * (size_t)nv, s->offset, sizeof(double) * (size_t)nf);
+    double minus_one[2] = {-1.0, 0.0}, one[2] = {1.0, 0.0};
+    if (!cholmod_sdmult(s->matrix, 0, minus_one, one, s->current, s->rhs, &s->cm))
+        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse residual failed");
+    cholmod_dense *sol = cholmod_solve(CHOLMOD_A, s->factor, s->rhs, &s->cm);
+    if (!sol)
+        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse solve failed");
+    const double *y = sol->x;
+    int finite = 1;
+    for (size_t k = 0; k < 3 * (size_t)nv; ++k)
+        if (!isfinite(y[k]))
+            finite = 0;
+    if (finite)
+        for (size_t k = 0; k < 3 * (size_t)nv; ++k)
+            s->q[k] += y[k];
+    cholmod_free_dense(&sol, &s->cm);
+    if (!finite)
+        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
+                             "the sparse solve gave a non-finite result");
+    return FACET_OK;
+}

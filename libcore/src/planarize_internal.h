@@ -1,0 +1,107 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* The planarizer's state, shared by its three parts:
+ *   planarize.c         the handle, the options, the solve loop, Anderson acceleration;
+ *   planarize_local.c   the local steps (planes, shapes, circles, boundary, energies)
+ *                       and the local/local vertex step;
+ *   planarize_global.c  the local/global system: pattern, assembly, CHOLMOD.
+ * All coordinates here are normalised: centred on the control mesh's bounding
+ * box and divided by its mean edge length. */
+#ifndef FACET_PLANARIZE_INTERNAL_H
+#define FACET_PLANARIZE_INTERNAL_H
+
+#include "internal.h"
+
+#include <cholmod.h>
+#include <stdint.h>
+
+enum { FACET_ANDERSON_MAX = 16 };
+
+/* Which coupled (vertex-vertex) terms are in the global matrix. */
+enum {
+    COUPLE_LAPLACIAN = 1,
+    COUPLE_FAIRNESS = 2,
+    COUPLE_SHAPE = 4,
+    COUPLE_PARALLELOGRAM = 8
+};
+
+struct facet_planarizer {
+    int32_t nv, nf, nc;
+    int32_t *face_start, *face_vertices;
+    int32_t *vertex_start, *vertex_faces; /* faces around each vertex, ascending */
+    int32_t *vertex_adj_start, *vertex_adj; /* edge neighbours of each vertex, ascending */
+    int32_t *face_adj_start, *face_adj;   /* faces sharing an edge with each face, ascending */
+    int32_t *boundary_prev, *boundary_next; /* along the boundary loop; -1 if none */
+    uint8_t *on_boundary;                 /* has a boundary edge */
+    int32_t n_boundary;
+
+    /* settings kept between solves */
+    int32_t *user_fixed;
+    int32_t n_user_fixed;
+    double *face_weight;                  /* NULL: all 1 */
+
+    /* the solve in progress */
+    facet_planarize_options o;
+    uint8_t *fixed;                       /* per vertex, hard */
+    double *p, *q;                        /* control and current */
+    double *vertex_normal;                /* control normals, unit */
+    double *normal, *offset;              /* per face plane of the step */
+    double *face_dev, *face_edge;         /* per face: max distance, mean edge length */
+    double *face_sq;                      /* per face: sum of squared distances */
+    double *face_energy_mu, *face_energy_con; /* per-face parts of the energy */
+    double *vertex_energy_mu, *vertex_energy_con;
+    double *face_residual;                /* per face: constraint residual (circle, parallelogram) */
+    double *vertex_residual;              /* per vertex: sliding residual */
+    double *normal_fit;                   /* per face: best-fit normal (normal-Laplacian input) */
+    double *control_centroid;             /* per face, of p (shape term) */
+    double *shape;                        /* per face: s R, 9 values (shape term) */
+    double *circle_target;                /* per corner, 3 values (circular term) */
+    double *slide_target, *slide_tangent; /* per vertex (sliding boundary) */
+    double *laplace_weight;               /* per vertex_adj entry: normalised weight */
+    double *q_next;                       /* local/local: the new iterate (Jacobi) */
+    double *previous;                     /* last result, model units (warm start) */
+    int has_previous;
+
+    /* local/global */
+    int cholmod_started;
+    cholmod_common cm;
+    cholmod_sparse *matrix;
+    cholmod_factor *factor;
+    cholmod_dense *rhs;
+    cholmod_dense *current; /* [q; d] of the iterate: the step solves for the increment */
+    int32_t *corner_slot;   /* per corner: index in matrix->x of its first coupling entry */
+    int32_t couple_key;     /* COUPLE_* flags the matrix pattern was built for; -1 none */
+    /* the scalar coupling matrix K (vertex x vertex, symmetric): per vertex v,
+     * entries u < v at couple_start[v] .. couple_start[v+1]-1 */
+    int32_t *couple_start, *couple_vertex;
+    double *couple_mu, *couple_con;       /* off-diagonal values */
+    double *couple_diag_mu, *couple_diag_con;
+
+    /* Anderson acceleration */
+    double *aa_df, *aa_dg;                /* m columns of 3 nv */
+    double *aa_f, *aa_g;                  /* last f = g - x and g */
+    double *aa_x_fallback;                /* un-accelerated iterate */
+
+    char message[512];
+};
+
+/* planarize_local.c */
+void facet_pl_prepare_solve(facet_planarizer *s);
+void facet_pl_local_step(facet_planarizer *s, int nthreads);
+void facet_pl_energy(const facet_planarizer *s, double *energy_mu, double *energy_con);
+int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads);
+void facet_pl_procrustes(const double c[9], int similar, double sr[9]);
+int facet_pl_circle_targets(int32_t n, const double *xyz, const int32_t *idx,
+                            const double normal[3], double *targets);
+int32_t facet_pl_couple_key(const facet_planarize_options *o);
+
+/* planarize_global.c */
+facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error);
+facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads,
+                                  facet_error *error);
+void facet_pl_global_free(facet_planarizer *s);
+
+/* planarize.c */
+facet_status facet_pl_fail(facet_planarizer *s, facet_error *error, facet_status status,
+                           const char *text);
+
+#endif

@@ -1,0 +1,661 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* The planarizer's local steps: with the vertices q fixed, every per-face and
+ * per-vertex auxiliary variable has a closed form (paper sections 4 and 6.2):
+ *
+ *   plane of a face       smallest eigenvector of its scatter matrix
+ *                         (with the face-normal Laplacian: of the scatter
+ *                         minus lambda m m^T, m the mean neighbour normal);
+ *   shape (ASAP/ARAP)     orthogonal Procrustes between control and current face;
+ *   circle                algebraic (Kasa) circle fit in the face's plane;
+ *   sliding boundary      closest point on the control boundary polyline.
+ *
+ * Each loop writes only its own face or vertex and every sum runs in a fixed
+ * order, so results do not depend on the thread count. */
+#include "planarize_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+int32_t facet_pl_couple_key(const facet_planarize_options *o)
+{
+    int32_t key = 0;
+    if (o->laplacian > 0.0)
+        key |= COUPLE_LAPLACIAN;
+    if (o->boundary_fairness > 0.0)
+        key |= COUPLE_FAIRNESS;
+    if (o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0)
+        key |= COUPLE_SHAPE;
+    if (o->parallelogram > 0.0)
+        key |= COUPLE_PARALLELOGRAM;
+    return key;
+}
+
+/* ---- small dense helpers ------------------------------------------------ */
+
+static void cross3(const double a[3], const double b[3], double c[3])
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static double normalize3(double a[3])
+{
+    const double n = sqrt(dot3(a, a));
+    if (n > 0.0) {
+        a[0] /= n, a[1] /= n, a[2] /= n;
+    }
+    return n;
+}
+
+/* Eigen-decomposition of a symmetric 3x3 matrix (row-major a[9]) by cyclic
+ * Jacobi rotations: eigenvalues w[3] descending, eigenvectors as the columns
+ * of v[9]. A fixed sweep limit keeps it deterministic and bounded. */
+static void sym3_eigen(const double a_in[9], double w[3], double v[9])
+{
+    double a[9];
+    memcpy(a, a_in, sizeof a);
+    for (int k = 0; k < 9; ++k)
+        v[k] = (k % 4 == 0) ? 1.0 : 0.0;
+    for (int sweep = 0; sweep < 32; ++sweep) {
+        const double off = a[1] * a[1] + a[2] * a[2] + a[5] * a[5];
+        const double diag = a[0] * a[0] + a[4] * a[4] + a[8] * a[8];
+        if (off <= 1e-30 * diag || off == 0.0)
+            break;
+        for (int p = 0; p < 2; ++p)
+            for (int r = p + 1; r < 3; ++r) {
+                const double apr = a[3 * p + r];
+                if (apr == 0.0)
+                    continue;
+                const double theta = (a[3 * r + r] - a[3 * p + p]) / (2.0 * apr);
+                const double t = (theta >= 0.0 ? 1.0 : -1.0) /
+                                 (fabs(theta) + sqrt(theta * theta + 1.0));
+                const double c = 1.0 / sqrt(t * t + 1.0), sn = t * c;
+                for (int k = 0; k < 3; ++k) { /* columns p, r */
+                    const double akp = a[3 * k + p], akr = a[3 * k + r];
+                    a[3 * k + p] = c * akp - sn * akr;
+                    a[3 * k + r] = sn * akp + c * akr;
+                }
+                for (int k = 0; k < 3; ++k) { /* rows p, r */
+                    const double apk = a[3 * p + k], ark = a[3 * r + k];
+                    a[3 * p + k] = c * apk - sn * ark;
+                    a[3 * r + k] = sn * apk + c * ark;
+                }
+                for (int k = 0; k < 3; ++k) {
+                    const double vkp = v[3 * k + p], vkr = v[3 * k + r];
+                    v[3 * k + p] = c * vkp - sn * vkr;
+                    v[3 * k + r] = sn * vkp + c * vkr;
+                }
+            }
+    }
+    w[0] = a[0], w[1] = a[4], w[2] = a[8];
+    /* sort descending, moving eigenvector columns along */
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2 - i; ++j)
+            if (w[j] < w[j + 1]) {
+                const double tw = w[j];
+                w[j] = w[j + 1], w[j + 1] = tw;
+                for (int k = 0; k < 3; ++k) {
+                    const double tv = v[3 * k + j];
+                    v[3 * k + j] = v[3 * k + j + 1], v[3 * k + j + 1] = tv;
+                }
+            }
+}
+
+/* The rotation R (similar: times the scale s) maximising trace(R^T C) for
+ * C = sum y x^T, i.e. minimising sum |s R x - y|^2 (orthogonal Procrustes),
+ * through the SVD C = U S V^T taken from the eigenvectors of C^T C. U and V
+ * are completed to proper rotations, so R is never a reflection; for a flat
+ * face (rank-2 C) that completion is the unique answer. sr is row-major. */
+void facet_pl_procrustes(const double c[9], int similar, double sr[9])
+{
+    double ctc[9];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            ctc[3 * i + j] = c[i] * c[j] + c[3 + i] * c[3 + j] + c[6 + i] * c[6 + j];
+    double w[3], vv[9];
+    sym3_eigen(ctc, w, vv);
+    double v0[3] = {vv[0], vv[3], vv[6]}, v1[3] = {vv[1], vv[4], vv[7]}, v2[3];
+    double u0[3], u1[3], u2[3];
+    for (int i = 0; i < 3; ++i) {
+        u0[i] = c[3 * i] * v0[0] + c[3 * i + 1] * v0[1] + c[3 * i + 2] * v0[2];
+        u1[i] = c[3 * i] * v1[0] + c[3 * i + 1] * v1[1] + c[3 * i + 2] * v1[2];
+    }
+    const double s0 = normalize3(u0);
+    if (!(s0 > 0.0)) { /* no information: identity */
+        for (int k = 0; k < 9; ++k)
+            sr[k] = (k % 4 == 0) ? 1.0 : 0.0;
+        return;
+    }
+    const double proj = dot3(u1, u0);
+    for (int i = 0; i < 3; ++i)
+        u1[i] -= proj * u0[i];
+    if (!(normalize3(u1) > 1e-12 * s0)) { /* rank 1: any u1 orthogonal to u0 */
+        const double axis[3] = {fabs(u0[0]) < 0.9 ? 1.0 : 0.0, fabs(u0[0]) < 0.9 ? 0.0 : 1.0, 0.0};
+        cross3(u0, axis, u1);
+        normalize3(u1);
+    }
+    cross3(u0, u1, u2);
+    cross3(v0, v1, v2);
+    double r[9];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            r[3 * i + j] = u0[i] * v0[j] + u1[i] * v1[j] + u2[i] * v2[j];
+    double scale = 1.0;
+    if (similar) {
+        /* s = trace(R^T C) / sum |x|^2 and sum |x|^2 = trace of the x scatter,
+         * which the caller folds in: here s is returned relative, see below. */
+        double tr = 0.0;
+        for (int k = 0; k < 9; ++k)
+            tr += r[k] * c[k];
+        scale = tr; /* divided by sum |x|^2 by the caller */
+    }
+    for (int k = 0; k < 9; ++k)
+        sr[k] = scale * r[k];
+}
+
+/* Circle through the n points xyz[idx[k]] in the plane with unit normal
+ * `normal` (an algebraic least-squares fit, exact for concyclic points and for
+ * triangles): targets[3k] is point k moved radially onto the circle and into
+ * the plane. Returns 0 (targets = the points projected into the plane) when
+ * the points are collinear. */
+int facet_pl_circle_targets(int32_t n, const double *xyz, const int32_t *idx,
+                            const double normal[3], double *targets)
+{
+    double c[3] = {0.0, 0.0, 0.0};
+    for (int32_t k = 0; k < n; ++k)
+        for (int a = 0; a < 3; ++a)
+            c[a] += xyz[3 * (size_t)idx[k] + a];
+    for (int a = 0; a < 3; ++a)
+        c[a] /= (double)n;
+    /* in-plane frame */
+    double e1[3], e2[3];
+    const double *x0 = xyz + 3 * (size_t)idx[0];
+    for (int a = 0; a < 3; ++a)
+        e1[a] = x0[a] - c[a];
+    const double along = dot3(e1, normal);
+    for (int a = 0; a < 3; ++a)
+        e1[a] -= along * normal[a];
+    if (!(normalize3(e1) > 0.0)) {
+        const double axis[3] = {fabs(normal[0]) < 0.9 ? 1.0 : 0.0, fabs(normal[0]) < 0.9 ? 0.0 : 1.0, 0.0};
+        cross3(normal, axis, e1);
+        normalize3(e1);
+    }
+    cross3(normal, e1, e2);
+    /* Kasa fit: minimise sum (x^2 + y^2 + D x + E y + F)^2, centred data */
+    double m[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, rhs[3] = {0.0, 0.0, 0.0};
+    for (int32_t k = 0; k < n; ++k) {
+        const double *x = xyz + 3 * (size_t)idx[k];
+        const double d[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
+        const double u = dot3(d, e1), v = dot3(d, e2), r2 = u * u + v * v;
+        m[0] += u * u, m[1] += u * v, m[2] += u, m[3] += v * v, m[4] += v, m[5] += 1.0;
+        rhs[0] -= r2 * u, rhs[1] -= r2 * v, rhs[2] -= r2;
+    }
+    /* 3x3 symmetric solve by Cramer's rule */
+    const double a00 = m[0], a01 = m[1], a02 = m[2], a11 = m[3], a12 = m[4], a22 = m[5];
+    const double c00 = a11 * a22 - a12 * a12, c01 = a02 * a12 - a01 * a22, c02 = a01 * a12 - a02 * a11;
+    const double det = a00 * c00 + a01 * c01 + a02 * c02;
+    const double scale = a00 + a11; /* sum of squared radii, a length^2 */
+    int ok = det > 1e-12 * scale * scale * a22 && isfinite(det);
+    double cu = 0.0, cv = 0.0, radius = 0.0;
+    if (ok) {
+        const double c11 = a00 * a22 - a02 * a02, c12 = a01 * a02 - a00 * a12,
+                     c22 = a00 * a11 - a01 * a01;
+        const double D = (c00 * rhs[0] + c01 * rhs[1] + c02 * rhs[2]) / det;
+        const double E = (c01 * rhs[0] + c11 * rhs[1] + c12 * rhs[2]) / det;
+        const double F = (c02 * rhs[0] + c12 * rhs[1] + c22 * rhs[2]) / det;
+        cu = -0.5 * D, cv = -0.5 * E;
+        const double r2 = cu * cu + cv * cv - F;
+        ok = r2 > 0.0 && isfinite(r2);
+        radius = ok ? sqrt(r2) : 0.0;
+    }
+    for (int32_t k = 0; k < n; ++k) {
+        const double *x = xyz + 3 * (size_t)idx[k];
+        const double d[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
+        double u = dot3(d, e1), v = dot3(d, e2);
+        if (ok) {
+            const double du = u - cu, dv = v - cv, len = sqrt(du * du + dv * dv);
+            if (len > 0.0)
+                u = cu + radius * du / len, v = cv + radius * dv / len;
+        }
+        for (int a = 0; a < 3; ++a)
+            targets[3 * k + a] = c[a] + u * e1[a] + v * e2[a];
+    }
+    return ok;
+}
+
+/* Closest point to x on segment a-b: writes it and the unit direction. */
+static double closest_on_segment(const double x[3], const double a[3], const double b[3],
+                                 double point[3], double tangent[3])
+{
+    double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double len2 = dot3(ab, ab);
+    double t = len2 > 0.0 ? ((x[0] - a[0]) * ab[0] + (x[1] - a[1]) * ab[1] + (x[2] - a[2]) * ab[2]) / len2
+                          : 0.0;
+    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+    for (int k = 0; k < 3; ++k) {
+        point[k] = a[k] + t * ab[k];
+        tangent[k] = ab[k];
+    }
+    normalize3(tangent);
+    const double d[3] = {x[0] - point[0], x[1] - point[1], x[2] - point[2]};
+    return dot3(d, d);
+}
+
+/* ---- per solve ------------------------------------------------------------ */
+
+/* What depends on the control positions p and the options only: fixed
+ * vertices, control normals, control face centroids, Laplacian weights. */
+void facet_pl_prepare_solve(facet_planarizer *s)
+{
+    const int32_t nv = s->nv, nf = s->nf;
+    const facet_planarize_options *o = &s->o;
+    memset(s->fixed, 0, (size_t)nv);
+    for (int32_t k = 0; k < s->n_user_fixed; ++k)
+        s->fixed[s->user_fixed[k]] = 1;
+    for (int32_t v = 0; v < nv; ++v) {
+        if (o->boundary == FACET_BOUNDARY_FIXED && s->on_boundary[v])
+            s->fixed[v] = 1;
+        /* a pinch vertex (two boundary loops meet) cannot slide along one curve */
+        if (o->boundary == FACET_BOUNDARY_SLIDING && s->on_boundary[v] && s->boundary_prev[v] < 0)
+            s->fixed[v] = 1;
+    }
+    /* vertex normals: sum of the faces' vector areas (Newell), normalised */
+    memset(s->vertex_normal, 0, sizeof(double) * 3 * (size_t)nv);
+    for (int32_t f = 0; f < nf; ++f) {
+        const int32_t b = s->face_start[f], e = s->face_start[f + 1];
+        double area[3] = {0.0, 0.0, 0.0}, centroid[3] = {0.0, 0.0, 0.0};
+        for (int32_t k = b; k < e; ++k) {
+            const double *x = s->p + 3 * (size_t)s->face_vertices[k];
+            const double *y = s->p + 3 * (size_t)s->face_vertices[k + 1 < e ? k + 1 : b];
+            area[0] += (x[1] - y[1]) * (x[2] + y[2]);
+            area[1] += (x[2] - y[2]) * (x[0] + y[0]);
+            area[2] += (x[0] - y[0]) * (x[1] + y[1]);
+            for (int a = 0; a < 3; ++a)
+                centroid[a] += x[a];
+        }
+        for (int a = 0; a < 3; ++a)
+            s->control_centroid[3 * (size_t)f + a] = centroid[a] / (double)(e - b);
+        for (int32_t k = b; k < e; ++k)
+            for (int a = 0; a < 3; ++a)
+                s->vertex_normal[3 * (size_t)s->face_vertices[k] + a] += area[a];
+    }
+    for (int32_t v = 0; v < nv; ++v) {
+        double *n = s->vertex_normal + 3 * (size_t)v;
+        if (!(normalize3(n) > 0.0))
+            n[0] = 0.0, n[1] = 0.0, n[2] = 1.0;
+    }
+    /* Laplacian weights, normalised to sum 1 around each vertex */
+    for (int32_t v = 0; v < nv; ++v) {
+        const int32_t b = s->vertex_adj_start[v], e = s->vertex_adj_start[v + 1];
+        double sum = 0.0;
+        for (int32_t k = b; k < e; ++k) {
+            double w = 1.0;
+            if (o->laplacian_weights == FACET_LAPLACIAN_INVERSE_EDGE) {
+                const double *x = s->p + 3 * (size_t)v, *y = s->p + 3 * (size_t)s->vertex_adj[k];
+                const double d[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
+                const double len = sqrt(dot3(d, d));
+                w = len > 1e-9 ? 1.0 / len : 1e9;
+            }
+            s->laplace_weight[k] = w;
+            sum += w;
+        }
+        for (int32_t k = b; k < e; ++k)
+            s->laplace_weight[k] /= sum;
+    }
+}
+
+static double face_weight(const facet_planarizer *s, int32_t f)
+{
+    return s->face_weight ? s->face_weight[f] : 1.0;
+}
+
+/* The planes: best fit (the planarity measurement), then the regularised
+ * normals when the face-normal Laplacian is on. */
+static void fit_planes(facet_planarizer *s, int nthreads)
+{
+    const int32_t nf = s->nf;
+    const int32_t *start = s->face_start, *fv = s->face_vertices;
+    const double *q = s->q;
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (int32_t f = 0; f < nf; ++f) {
+        const int32_t n = start[f + 1] - start[f];
+        double rms;
+        s->face_edge[f] = facet_face_measure(n, q, fv + start[f], s->normal + 3 * (size_t)f,
+                                             &s->offset[f], &s->face_dev[f], &rms);
+        s->face_sq[f] = rms * rms * (double)n;
+    }
+    const double lambda = s->o.normal_laplacian;
+    if (!(lambda > 0.0))
+        return;
+    memcpy(s->normal_fit, s->normal, sizeof(double) * 3 * (size_t)nf);
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (int32_t f = 0; f < nf; ++f) {
+        const double *nf0 = s->normal_fit + 3 * (size_t)f;
+        double m[3] = {0.0, 0.0, 0.0};
+        const int32_t b = s->face_adj_start[f], e = s->face_adj_start[f + 1];
+        if (e == b)
+            continue;
+        for (int32_t k = b; k < e; ++k) {
+            const double *ng = s->normal_fit + 3 * (size_t)s->face_adj[k];
+            const double sign = dot3(ng, nf0) < 0.0 ? -1.0 : 1.0;
+            for (int a = 0; a < 3; ++a)
+                m[a] += sign * ng[a];
+        }
+        for (int a = 0; a < 3; ++a)
+            m[a] /= (double)(e - b);
+        /* scatter of the face about its centroid */
+        const int32_t n = start[f + 1] - start[f];
+        const int32_t *idx = fv + start[f];
+        double c[3] = {0.0, 0.0, 0.0};
+        for (int32_t k = 0; k < n; ++k)
+            for (int a = 0; a < 3; ++a)
+                c[a] += q[3 * (size_t)idx[k] + a];
+        for (int a = 0; a < 3; ++a)
+            c[a] /= (double)n;
+        double sc[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+        for (int32_t k = 0; k < n; ++k) {
+            const double *x = q + 3 * (size_t)idx[k];
+            const double d[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
+            sc[0] += d[0] * d[0], sc[1] += d[0] * d[1], sc[2] += d[0] * d[2];
+            sc[3] += d[1] * d[1], sc[4] += d[1] * d[2], sc[5] += d[2] * d[2];
+        }
+        /* minimise n^T S n - lambda * corners * (m . n)^2 over unit n */
+        const double w = lambda * (double)n;
+        sc[0] -= w * m[0] * m[0], sc[1] -= w * m[0] * m[1], sc[2] -= w * m[0] * m[2];
+        sc[3] -= w * m[1] * m[1], sc[4] -= w * m[1] * m[2], sc[5] -= w * m[2] * m[2];
+        double nn[3];
+        facet_sym3_smallest_eigenvector(sc, nn);
+        if (dot3(nn, nf0) < 0.0)
+            nn[0] = -nn[0], nn[1] = -nn[1], nn[2] = -nn[2];
+        double *out = s->normal + 3 * (size_t)f;
+        if (isfinite(nn[0]) && isfinite(nn[1]) && isfinite(nn[2]) && normalize3(nn) > 0.0) {
+            out[0] = nn[0], out[1] = nn[1], out[2] = nn[2];
+            s->offset[f] = -dot3(nn, c);
+        }
+    }
+}
+
+void facet_pl_local_step(facet_planarizer *s, int nthreads)
+{
+    const int32_t nv = s->nv, nf = s->nf;
+    const facet_planarize_options *o = &s->o;
+    const double *p = s->p, *q = s->q;
+    fit_planes(s, nthreads);
+    const int shape = o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0;
+    const int circular = o->circular > 0.0, parallel = o->parallelogram > 0.0;
+
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (int32_t f = 0; f < nf; ++f) {
+        const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
+        const int32_t *idx = s->face_vertices + b;
+        double e_mu = 0.0, e_con = face_weight(s, f) * s->face_sq[f], residual = 0.0;
+        if (shape) {
+            const double *cp = s->control_centroid + 3 * (size_t)f;
+            double cq[3] = {0.0, 0.0, 0.0};
+            for (int32_t k = 0; k < n; ++k)
+                for (int a = 0; a < 3; ++a)
+                    cq[a] += q[3 * (size_t)idx[k] + a];
+            for (int a = 0; a < 3; ++a)
+                cq[a] /= (double)n;
+            double c[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, xx = 0.0;
+            for (int32_t k = 0; k < n; ++k) {
+                const double *x = p + 3 * (size_t)idx[k], *y = q + 3 * (size_t)idx[k];
+                const double dx[3] = {x[0] - cp[0], x[1] - cp[1], x[2] - cp[2]};
+                const double dy[3] = {y[0] - cq[0], y[1] - cq[1], y[2] - cq[2]};
+                for (int i = 0; i < 3; ++i)
+                    for (int j = 0; j < 3; ++j)
+                        c[3 * i + j] += dy[i] * dx[j];
+                xx += dot3(dx, dx);
+            }
+            double *sr = s->shape + 9 * (size_t)f;
+            facet_pl_procrustes(c, o->shape == FACET_SHAPE_ASAP, sr);
+            if (o->shape == FACET_SHAPE_ASAP) {
+                const double inv = xx > 0.0 ? 1.0 / xx : 0.0;
+                for (int k = 0; k < 9; ++k)
+                    sr[k] *= inv;
+            }
+            double e = 0.0;
+            for (int32_t k = 0; k < n; ++k) {
+                const double *x = p + 3 * (size_t)idx[k], *y = q + 3 * (size_t)idx[k];
+                const double dx[3] = {x[0] - cp[0], x[1] - cp[1], x[2] - cp[2]};
+                for (int i = 0; i < 3; ++i) {
+                    const double t = sr[3 * i] * dx[0] + sr[3 * i + 1] * dx[1] + sr[3 * i + 2] * dx[2];
+                    const double r = y[i] - cq[i] - t;
+                    e += r * r;
+                }
+            }
+            e_mu += o->shape_weight * e;
+        }
+        if (circular) {
+            double *t = s->circle_target + 3 * (size_t)b;
+            facet_pl_circle_targets(n, q, idx, s->normal + 3 * (size_t)f, t);
+            double e = 0.0, worst = 0.0;
+            for (int32_t k = 0; k < n; ++k) {
+                const double *y = q + 3 * (size_t)idx[k];
+                const double d[3] = {y[0] - t[3 * k], y[1] - t[3 * k + 1], y[2] - t[3 * k + 2]};
+                const double d2 = dot3(d, d);
+                e += d2;
+                worst = fmax(worst, d2);
+            }
+            e_con += o->circular * e;
+            residual = fmax(residual, sqrt(worst) / fmax(s->face_edge[f], 1e-300));
+        }
+        if (parallel && n == 4) {
+            const double *y0 = q + 3 * (size_t)idx[0], *y1 = q + 3 * (size_t)idx[1];
+            const double *y2 = q + 3 * (size_t)idx[2], *y3 = q + 3 * (size_t)idx[3];
+            const double r[3] = {y0[0] - y1[0] + y2[0] - y3[0], y0[1] - y1[1] + y2[1] - y3[1],
+                                 y0[2] - y1[2] + y2[2] - y3[2]};
+            const double r2 = dot3(r, r);
+            e_con += o->parallelogram * r2;
+            residual = fmax(residual, sqrt(r2) / fmax(s->face_edge[f], 1e-300));
+        }
+        s->face_energy_mu[f] = e_mu;
+        s->face_energy_con[f] = e_con;
+        s->face_residual[f] = residual;
+    }
+
+    const int sliding = o->boundary == FACET_BOUNDARY_SLIDING;
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (int32_t v = 0; v < nv; ++v) {
+        const double *x = q + 3 * (size_t)v, *pv = p + 3 * (size_t)v, *nu = s->vertex_normal + 3 * (size_t)v;
+        double e_mu = 0.0, e_con = 0.0, residual = 0.0;
+        if (!s->fixed[v]) {
+            const double d[3] = {x[0] - pv[0], x[1] - pv[1], x[2] - pv[2]};
+            const double dn = dot3(d, nu), dd = dot3(d, d);
+            e_mu += o->data_tangent * (dd - dn * dn) + o->data_normal * dn * dn;
+        }
+        if (o->laplacian > 0.0 && !s->on_boundary[v]) {
+            double r[3] = {x[0], x[1], x[2]};
+            for (int32_t k = s->vertex_adj_start[v]; k < s->vertex_adj_start[v + 1]; ++k) {
+                const double *y = q + 3 * (size_t)s->vertex_adj[k];
+                for (int a = 0; a < 3; ++a)
+                    r[a] -= s->laplace_weight[k] * y[a];
+            }
+            e_mu += o->laplacian * dot3(r, r);
+        }
+        if (o->boundary_fairness > 0.0 && s->boundary_prev[v] >= 0) {
+            const double *a = q + 3 * (size_t)s->boundary_prev[v], *c = q + 3 * (size_t)s->boundary_next[v];
+            const double r[3] = {a[0] - 2.0 * x[0] + c[0], a[1] - 2.0 * x[1] + c[1], a[2] - 2.0 * x[2] + c[2]};
+            e_mu += o->boundary_fairness * dot3(r, r);
+        }
+        if (sliding && s->boundary_prev[v] >= 0 && !s->fixed[v]) {
+            /* closest point on the control boundary within two segments either side */
+            int32_t chain[5];
+            chain[2] = v;
+            chain[1] = s->boundary_prev[v], chain[0] = s->boundary_prev[chain[1]];
+            chain[3] = s->boundary_next[v], chain[4] = s->boundary_next[chain[3]];
+            double best = INFINITY, point[3], tangent[3];
+            for (int k = 0; k < 4; ++k) {
+                if (chain[k] < 0 || chain[k + 1] < 0)
+                    continue;
+                double pt[3], tg[3];
+                const double d2 = closest_on_segment(x, p + 3 * (size_t)chain[k],
+                                                     p + 3 * (size_t)chain[k + 1], pt, tg);
+                if (d2 < best) {
+                    best = d2;
+                    memcpy(point, pt, sizeof point);
+                    memcpy(tangent, tg, sizeof tangent);
+                }
+            }
+            memcpy(s->slide_target + 3 * (size_t)v, point, sizeof point);
+            memcpy(s->slide_tangent + 3 * (size_t)v, tangent, sizeof tangent);
+            e_con += best;
+            residual = sqrt(best);
+        }
+        s->vertex_energy_mu[v] = e_mu;
+        s->vertex_energy_con[v] = e_con;
+        s->vertex_residual[v] = residual;
+    }
+}
+
+/* Sums of the per-element energies, in a fixed order. */
+void facet_pl_energy(const facet_planarizer *s, double *energy_mu, double *energy_con)
+{
+    double mu = 0.0, con = 0.0;
+    for (int32_t f = 0; f < s->nf; ++f)
+        mu += s->face_energy_mu[f], con += s->face_energy_con[f];
+    for (int32_t v = 0; v < s->nv; ++v)
+        mu += s->vertex_energy_mu[v], con += s->vertex_energy_con[v];
+    *energy_mu = mu;
+    *energy_con = con;
+}
+
+/* ---- the local/local vertex step ---------------------------------------- */
+
+/* Adds w * (t t^T) to the 3x3 symmetric a[6] (00 01 02 11 12 22). */
+static void add_outer(double a[6], double w, const double t[3])
+{
+    a[0] += w * t[0] * t[0], a[1] += w * t[0] * t[1], a[2] += w * t[0] * t[2];
+    a[3] += w * t[1] * t[1], a[4] += w * t[1] * t[2], a[5] += w * t[2] * t[2];
+}
+
+static void add_matvec(double b[3], const double a[6], const double x[3])
+{
+    b[0] += a[0] * x[0] + a[1] * x[1] + a[2] * x[2];
+    b[1] += a[1] * x[0] + a[3] * x[1] + a[4] * x[2];
+    b[2] += a[2] * x[0] + a[4] * x[1] + a[5] * x[2];
+}
+
+/* Per vertex, with everything else fixed: minimise the vertex's own terms
+ * (the paper's local forms, eq. 8), a 3x3 SPD system. Vertices are updated
+ * Jacobi-style from the previous iterate, so the result does not depend on
+ * the order or the thread count. Returns 0 if some result was not finite. */
+int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
+{
+    const int32_t nv = s->nv;
+    const facet_planarize_options *o = &s->o;
+    const double w = 1.0 - mu;
+    const int shape = o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0;
+    const int sliding = o->boundary == FACET_BOUNDARY_SLIDING;
+    const double *q_old = s->q;
+    double *q_new = s->q_next;
+    int finite = 1;
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(&& : finite)
+    for (int32_t v = 0; v < nv; ++v) {
+        const double *pv = s->p + 3 * (size_t)v, *nu = s->vertex_normal + 3 * (size_t)v;
+        double *out = q_new + 3 * (size_t)v;
+        if (s->fixed[v]) {
+            out[0] = pv[0], out[1] = pv[1], out[2] = pv[2];
+            continue;
+        }
+        /* data: mu (a_t I + (a_n - a_t) nu nu^T) (q - p) */
+        double a[6] = {mu * o->data_tangent, 0.0, 0.0, mu * o->data_tangent, 0.0, mu * o->data_tangent};
+        add_outer(a, mu * (o->data_normal - o->data_tangent), nu);
+        double b[3] = {0.0, 0.0, 0.0};
+        add_matvec(b, a, pv);
+        for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
+            const int32_t f = s->vertex_faces[k];
+            const double *n = s->normal + 3 * (size_t)f;
+            const double pw = w * face_weight(s, f), d = s->offset[f];
+            add_outer(a, pw, n);
+            b[0] -= pw * d * n[0], b[1] -= pw * d * n[1], b[2] -= pw * d * n[2];
+            const int32_t fb = s->face_start[f], fn = s->face_start[f + 1] - fb;
+            int32_t corner = 0;
+            while (s->face_vertices[fb + corner] != v)
+                ++corner;
+            if (shape) { /* target: current centroid + s R (p - control centroid) */
+                const double *sr = s->shape + 9 * (size_t)f, *cp = s->control_centroid + 3 * (size_t)f;
+                double cq[3] = {0.0, 0.0, 0.0};
+                for (int32_t m = 0; m < fn; ++m)
+                    for (int c = 0; c < 3; ++c)
+                        cq[c] += q_old[3 * (size_t)s->face_vertices[fb + m] + c];
+                const double dx[3] = {pv[0] - cp[0], pv[1] - cp[1], pv[2] - cp[2]};
+                const double lw = mu * o->shape_weight;
+                for (int c = 0; c < 3; ++c) {
+                    const double t = cq[c] / (double)fn + sr[3 * c] * dx[0] + sr[3 * c + 1] * dx[1] +
+                                     sr[3 * c + 2] * dx[2];
+                    b[c] += lw * t;
+                }
+                a[0] += lw, a[3] += lw, a[5] += lw;
+            }
+            if (o->circular > 0.0) {
+                const double *t = s->circle_target + 3 * (size_t)(fb + corner);
+                const double cw = w * o->circular;
+                b[0] += cw * t[0], b[1] += cw * t[1], b[2] += cw * t[2];
+                a[0] += cw, a[3] += cw, a[5] += cw;
+            }
+            if (o->parallelogram > 0.0 && fn == 4) { /* v = prev + next - opposite */
+                const double *yp = q_old + 3 * (size_t)s->face_vertices[fb + (corner + 3) % 4];
+                const double *yn = q_old + 3 * (size_t)s->face_vertices[fb + (corner + 1) % 4];
+                const double *yo = q_old + 3 * (size_t)s->face_vertices[fb + (corner + 2) % 4];
+                const double cw = w * o->parallelogram;
+                for (int c = 0; c < 3; ++c)
+                    b[c] += cw * (yp[c] + yn[c] - yo[c]);
+                a[0] += cw, a[3] += cw, a[5] += cw;
+            }
+        }
+        if (o->laplacian > 0.0 && !s->on_boundary[v]) {
+            double avg[3] = {0.0, 0.0, 0.0};
+            for (int32_t k = s->vertex_adj_start[v]; k < s->vertex_adj_start[v + 1]; ++k)
+                for (int c = 0; c < 3; ++c)
+                    avg[c] += s->laplace_weight[k] * q_old[3 * (size_t)s->vertex_adj[k] + c];
+            const double lw = mu * o->laplacian;
+            for (int c = 0; c < 3; ++c)
+                b[c] += lw * avg[c];
+            a[0] += lw, a[3] += lw, a[5] += lw;
+        }
+        if (o->boundary_fairness > 0.0 && s->boundary_prev[v] >= 0) {
+            const double *ya = q_old + 3 * (size_t)s->boundary_prev[v];
+            const double *yc = q_old + 3 * (size_t)s->boundary_next[v];
+            const double lw = 4.0 * mu * o->boundary_fairness;
+            for (int c = 0; c < 3; ++c)
+                b[c] += lw * 0.5 * (ya[c] + yc[c]);
+            a[0] += lw, a[3] += lw, a[5] += lw;
+        }
+        if (sliding && s->boundary_prev[v] >= 0) { /* (I - t t^T)(q - target) */
+            const double *t = s->slide_tangent + 3 * (size_t)v, *target = s->slide_target + 3 * (size_t)v;
+            double m[6] = {w, 0.0, 0.0, w, 0.0, w};
+            add_outer(m, -w, t);
+            for (int c = 0; c < 6; ++c)
+                a[c] += m[c];
+            add_matvec(b, m, target);
+        }
+        /* 3x3 Cholesky */
+        const double l00 = sqrt(a[0]);
+        const double l10 = a[1] / l00, l20 = a[2] / l00;
+        const double l11 = sqrt(a[3] - l10 * l10);
+        const double l21 = (a[4] - l20 * l10) / l11;
+        const double l22 = sqrt(a[5] - l20 * l20 - l21 * l21);
+        const double y0 = b[0] / l00;
+        const double y1 = (b[1] - l10 * y0) / l11;
+        const double y2 = (b[2] - l20 * y0 - l21 * y1) / l22;
+        const double x2 = y2 / l22;
+        const double x1 = (y1 - l21 * x2) / l11;
+        const double x0 = (y0 - l10 * x1 - l20 * x2) / l00;
+        if (isfinite(x0) && isfinite(x1) && isfinite(x2)) {
+            out[0] = x0, out[1] = x1, out[2] = x2;
+        } else {
+            out[0] = q_old[3 * (size_t)v], out[1] = q_old[3 * (size_t)v + 1], out[2] = q_old[3 * (size_t)v + 2];
+            finite = 0;
+        }
+    }
+    if (finite)
+        memcpy(s->q, q_new, sizeof(double) * 3 * (size_t)nv);
+    return finite;
+}
