@@ -647,7 +647,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     status = FACET_OK;
     for (;;) {
-        facet_pl_local_step(s, nthreads);
+        facet_pl_local_step(s, mu, nthreads);
         if (aa.m > 0) {
             facet_pl_energy(s, &energy_mu, &energy_con);
             if (accelerated) {
@@ -662,7 +662,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                     memcpy(s->q, s->aa_x_fallback, sizeof(double) * 3 * (size_t)nv);
                     aa.count = aa.head = 0;
                     aa.have_previous = 0;
-                    facet_pl_local_step(s, nthreads);
+                    facet_pl_local_step(s, mu, nthreads);
                     facet_pl_energy(s, &energy_mu, &energy_con);
                 }
             }

@@ -86,7 +86,7 @@ struct facet_planarizer {
 
 /* planarize_local.c */
 void facet_pl_prepare_solve(facet_planarizer *s);
-void facet_pl_local_step(facet_planarizer *s, int nthreads);
+void facet_pl_local_step(facet_planarizer *s, double mu, int nthreads);
 void facet_pl_energy(const facet_planarizer *s, double *energy_mu, double *energy_con);
 int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads);
 void facet_pl_procrustes(const double c[9], int similar, double sr[9]);

@@ -261,9 +261,23 @@ void facet_pl_prepare_solve(facet_planarizer *s)
     for (int32_t v = 0; v < nv; ++v) {
         if (o->boundary == FACET_BOUNDARY_FIXED && s->on_boundary[v])
             s->fixed[v] = 1;
-        /* a pinch vertex (two boundary loops meet) cannot slide along one curve */
-        if (o->boundary == FACET_BOUNDARY_SLIDING && s->on_boundary[v] && s->boundary_prev[v] < 0)
-            s->fixed[v] = 1;
+        /* a pinch vertex (two boundary loops meet) cannot slide along one
+         * curve, and a corner (the boundary turns by more than 45 degrees)
+         * stays a corner */
+        if (o->boundary == FACET_BOUNDARY_SLIDING && s->on_boundary[v]) {
+            if (s->boundary_prev[v] < 0) {
+                s->fixed[v] = 1;
+            } else {
+                const double *a = s->p + 3 * (size_t)s->boundary_prev[v], *x = s->p + 3 * (size_t)v;
+                const double *b = s->p + 3 * (size_t)s->boundary_next[v];
+                double in[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
+                double out[3] = {b[0] - x[0], b[1] - x[1], b[2] - x[2]};
+                normalize3(in);
+                normalize3(out);
+                if (dot3(in, out) < 0.70710678118654752)
+                    s->fixed[v] = 1;
+            }
+        }
     }
     /* vertex normals: sum of the faces' vector areas (Newell), normalised */
     memset(s->vertex_normal, 0, sizeof(double) * 3 * (size_t)nv);
@@ -317,7 +331,7 @@ static double face_weight(const facet_planarizer *s, int32_t f)
 
 /* The planes: best fit (the planarity measurement), then the regularised
  * normals when the face-normal Laplacian is on. */
-static void fit_planes(facet_planarizer *s, int nthreads)
+static void fit_planes(facet_planarizer *s, double mu, int nthreads)
 {
     const int32_t nf = s->nf;
     const int32_t *start = s->face_start, *fv = s->face_vertices;
@@ -330,7 +344,9 @@ static void fit_planes(facet_planarizer *s, int nthreads)
                                              &s->offset[f], &s->face_dev[f], &rms);
         s->face_sq[f] = rms * rms * (double)n;
     }
-    const double lambda = s->o.normal_laplacian;
+    /* a regularizer: weighed by mu against the planarity's 1 - mu, so it
+     * fades as the penalty hardens */
+    const double lambda = mu < 1.0 ? s->o.normal_laplacian * mu / (1.0 - mu) : 0.0;
     if (!(lambda > 0.0))
         return;
     memcpy(s->normal_fit, s->normal, sizeof(double) * 3 * (size_t)nf);
@@ -381,12 +397,12 @@ static void fit_planes(facet_planarizer *s, int nthreads)
     }
 }
 
-void facet_pl_local_step(facet_planarizer *s, int nthreads)
+void facet_pl_local_step(facet_planarizer *s, double mu, int nthreads)
 {
     const int32_t nv = s->nv, nf = s->nf;
     const facet_planarize_options *o = &s->o;
     const double *p = s->p, *q = s->q;
-    fit_planes(s, nthreads);
+    fit_planes(s, mu, nthreads);
     const int shape = o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0;
     const int circular = o->circular > 0.0, parallel = o->parallelogram > 0.0;
 
