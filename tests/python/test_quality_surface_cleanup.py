@@ -1,0 +1,167 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Surface closest points, the quality report and cleanup, from Python and the command line."""
+
+import json
+import os
+
+import numpy as np
+import pytest
+
+import facet
+from facet import cli
+from facet.errors import InputError
+
+DATA = os.path.join(os.path.dirname(os.path.dirname(__file__)), "data")
+
+
+def _grid(nu, nv, squeeze=None):
+    xs = np.arange(nu + 1, dtype=float)
+    if squeeze is not None:
+        xs[squeeze] = xs[squeeze - 1] + 0.01
+    vertices = [(x, y, 0.1 * np.sin(x) * np.cos(y)) for y in range(nv + 1) for x in xs]
+    faces = []
+    for j in range(nv):
+        for i in range(nu):
+            v = j * (nu + 1) + i
+            faces.append([v, v + 1, v + nu + 2, v + nu + 1])
+    return facet.PolyMesh.from_faces(vertices, faces)
+
+
+def _brute_distance(points, vertices, triangles):
+    """Distance by dense sampling of each triangle (an upper bound, close for fine sampling)."""
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    s = np.linspace(0, 1, 41)
+    u, v = np.meshgrid(s, s)
+    keep = u + v <= 1
+    u, v = u[keep], v[keep]
+    samples = (a[:, None] + u[None, :, None] * (b - a)[:, None] + v[None, :, None] * (c - a)[:, None])
+    samples = samples.reshape(-1, 3)
+    return np.array([np.min(np.linalg.norm(samples - p, axis=1)) for p in points])
+
+
+def test_surface_against_sampling():
+    rng = np.random.default_rng(3)
+    vertices = rng.random((30, 3)) * 10 + 1e6  # georeferenced
+    triangles = rng.integers(0, 30, size=(20, 3)).astype(np.int32)
+    surface = facet.Surface(vertices, triangles)
+    points = rng.random((50, 3)) * 12 - 1 + 1e6
+    closest, distance, triangle, normal = surface.closest(points)
+    brute = _brute_distance(points, vertices, triangles)
+    assert np.all(distance <= brute + 1e-9)
+    assert np.all(distance >= brute - 0.3)  # sampling step bound
+    assert np.allclose(np.linalg.norm(closest - points, axis=1), distance, atol=1e-8)
+    assert np.all(np.isfinite(normal))
+    assert surface.triangle_faces is None
+
+
+def test_surface_of_mesh_holds_its_vertices():
+    mesh = facet.read_mesh(os.path.join(DATA, "hypar.obj"))
+    surface = facet.Surface(mesh)
+    _, distance, triangle, normal = surface.closest(mesh.vertices, threads=1)
+    assert distance.max() < 1e-12
+    assert surface.n_triangles == 2 * mesh.n_faces
+    assert set(surface.triangle_faces[triangle]) <= set(range(mesh.n_faces))
+    assert np.allclose(np.linalg.norm(normal, axis=1), 1.0)
+
+
+def test_surface_bad_input():
+    with pytest.raises(InputError, match="triangle 0"):
+        facet.Surface(np.zeros((3, 3)), [[0, 1, 5]])
+    surface = facet.Surface(np.eye(3), [[0, 1, 2]])
+    with pytest.raises(InputError, match="query point 1"):
+        surface.closest([[0, 0, 0], [np.nan, 0, 0]])
+    with pytest.raises(InputError, match="triangles are needed"):
+        facet.Surface(np.eye(3))
+
+
+def test_quality_of_planarize():
+    mesh = facet.read_mesh(os.path.join(DATA, "hypar.obj"))
+    result = facet.planarize(mesh)
+    report = facet.quality(result, input=mesh)
+    figures = report.as_dict()
+    assert figures["planarity_max_rel"] <= 1e-6
+    assert figures["displacement_max"] == pytest.approx(result.displacement_max)
+    assert 0 < figures["distance_rms"] <= figures["distance_max"] <= figures["displacement_max"]
+    assert 0 < figures["min_angle_deg"] < figures["input_min_angle_deg"] <= 90
+    assert figures["ratio_change_max"] > 0
+    assert figures["degenerate_faces"] == 0
+    json.dumps(figures, allow_nan=False)
+    # the unchanged input measured against itself
+    same = facet.quality(mesh, input=mesh).as_dict()
+    assert same["displacement_max"] == 0 and same["distance_max"] < 1e-12
+    assert same["ratio_change_max"] == 0
+
+
+def test_quality_degenerate_and_errors():
+    mesh = facet.PolyMesh.from_faces(
+        [(0, 0, 0), (1, 0, 0), (0, 1, 0), (2, 0, 0), (3, 0, 0), (2.5, 0.01, 0)],
+        [[0, 1, 2], [3, 4, 5]],
+    )
+    report = facet.quality(mesh)
+    assert report.degenerate.tolist() == [1]
+    assert report.min_angle[0] == pytest.approx(45.0)
+    assert report.as_dict()["displacement_max"] is None
+    other = _grid(2, 2)
+    with pytest.raises(InputError, match="another topology"):
+        facet.quality(mesh, input=other)
+    with pytest.raises(InputError, match="min_angle"):
+        facet.quality(mesh, min_angle=200)
+
+
+def test_cleanup_squeezed_column():
+    mesh = _grid(6, 4, squeeze=3)
+    result = facet.cleanup(mesh, 0.1, relative=False)
+    assert len(result.collapsed_edges) == 5
+    assert result.removed_faces.tolist() == [2, 8, 14, 20]
+    assert result.mesh.n_faces == 20 and result.mesh.n_vertices == 30
+    assert result.skipped == 0
+    assert result.face_map.tolist() == [f for f in range(24) if f % 6 != 2]
+    report = result.mesh.validate()
+    assert report["n_non_manifold_edges"] == 0
+    assert result.vertex_map[2] == result.vertex_map[3]
+    # the source is untouched
+    assert mesh.n_faces == 24
+    planar = facet.planarize(result.mesh)
+    assert planar.converged
+
+
+def test_cleanup_bad_input():
+    mesh = _grid(2, 2)
+    for bad in (0, -1, float("nan"), "x"):
+        with pytest.raises(InputError, match="min_edge"):
+            facet.cleanup(mesh, bad)
+    with pytest.raises(InputError, match="every face would collapse"):
+        facet.cleanup(mesh, 5.0)
+
+
+def test_cli_cleanup(tmp_path, capsys):
+    source = tmp_path / "squeezed.obj"
+    facet.write_mesh(_grid(6, 4, squeeze=3), source)
+    out, report_path = tmp_path / "out.obj", tmp_path / "r.json"
+    status = cli.main(["cleanup", str(source), "-o", str(out), "--min-edge", "0.1",
+                       "--report", str(report_path)])
+    assert status == 0
+    text = capsys.readouterr().out
+    assert "5 edges shorter than 0.1 collapsed" in text
+    report = json.loads(report_path.read_text())
+    assert report["cleanup"]["collapsed_edges"] == 5
+    assert report["cleanup"]["faces"] == 20
+    assert report["quality"]["planarity_max_rel"] <= 1e-6
+    assert report["quality"]["distance_max"] is not None
+    assert facet.read_mesh(out).n_faces == 20
+    status = cli.main(["cleanup", str(source), "-o", str(out), "--min-edge", "50"])
+    assert status == 2
+    assert "min_edge" in capsys.readouterr().err
+
+
+def test_cli_reports_have_quality(tmp_path, capsys):
+    out, report_path = tmp_path / "p.obj", tmp_path / "p.json"
+    assert cli.main(["planarize", os.path.join(DATA, "hypar.obj"), "-o", str(out),
+                     "--report", str(report_path)]) == 0
+    text = capsys.readouterr().out
+    assert "smallest angle" in text and "distance from the input surface" in text
+    quality = json.loads(report_path.read_text())["quality"]
+    assert quality["distance_max"] > 0 and quality["min_angle_deg"] > 5
+    assert cli.main(["check", os.path.join(DATA, "hypar.obj"), "--report",
+                     str(report_path)]) == 0
+    assert json.loads(report_path.read_text())["quality"]["degenerate_faces"] == 0
