@@ -116,9 +116,11 @@ class PlanarityLegend:
     def set_visible(self, visible):
         self.root.whichChild = coin.SO_SWITCH_ALL if visible else coin.SO_SWITCH_NONE
 
-    def update(self, vmax, actual_max=None, title="Planarity", kind="length", reverse=False):
+    def update(self, vmax, actual_max=None, title="Planarity", kind="length", reverse=False,
+               extreme_name="max"):
         """Label the bar for the scale 0 .. ``vmax`` (mm, degrees or a ratio: ``kind``);
-        ``actual_max`` is the largest value; ``reverse`` puts 0 at the top (red) end."""
+        ``actual_max`` is the worst value, written under the bar as "``extreme_name`` value";
+        ``reverse`` puts 0 at the top (red) end."""
         self.labels.removeAllChildren()
         self.labels.addChild(_material(TEXT_COLOR))
         labels = tick_labels(vmax, kind=kind)
@@ -130,7 +132,7 @@ class PlanarityLegend:
             self.labels.addChild(_text(TEXT_X, y - 0.012, label))
         self.labels.addChild(_text(BAR_X[1], BAR_Y[1] + 0.07, title))
         if actual_max is not None:
-            text = "max " + tick_labels(actual_max, 2, kind=kind)[-1]
+            text = f"{extreme_name} " + tick_labels(actual_max, 2, kind=kind)[-1]
             self.labels.addChild(_text(BAR_X[1], BAR_Y[0] - 0.09, text))
 
     @staticmethod

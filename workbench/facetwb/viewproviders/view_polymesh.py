@@ -193,7 +193,8 @@ class ViewProviderPolyMesh:
         """Colour the faces by ``colour_values`` and label the legend."""
         vobj = self.ViewObject
         try:
-            values, title, kind, reverse = self.colour_values(obj)
+            values, title, kind, reverse = (self.colour_values(obj) if self.face_count else
+                                            (None, "Planarity", "length", False))
         except Exception as exc:  # a bad source must not break drawing; say why
             import FreeCAD as App
 
@@ -209,8 +210,11 @@ class ViewProviderPolyMesh:
             scale_max = legend_max if legend_max > 0.0 else actual_max
             rgb = colormap.colors(values, scale_max, reverse=reverse)
             _set_mfield(self.planarity_material.diffuseColor, rgb.tolist())
-            self.legend.update(scale_max, actual_max=actual_max, title=title, kind=kind,
-                               reverse=reverse)
+            if reverse:  # small is bad: say the smallest
+                self.legend.update(scale_max, actual_max=float(values.min()), title=title,
+                                   kind=kind, reverse=True, extreme_name="min")
+            else:
+                self.legend.update(scale_max, actual_max=actual_max, title=title, kind=kind)
         self.legend.set_visible(bool(vobj.ShowLegend))
         edges = getattr(vobj, "PlanarityEdges", "Auto")
         show_edges = edges == "Show" or (
