@@ -57,7 +57,7 @@ extern "C" {
     X(FACET_ERROR_CANCELLED, -10, "cancelled")                                        \
     X(FACET_ERROR_TOO_LARGE, -11, "mesh too large")                                   \
     X(FACET_ERROR_NOTHING_LEFT, -40, "cleanup collapsed every face")                  \
-    X(FACET_WARNING_COLLAPSE_SKIPPED, 30, "some short edges were kept to stay manifold")
+    X(FACET_WARNING_COLLAPSE_SKIPPED, 30, "short edges kept: collapsing them would break the mesh")
 
 typedef enum facet_status {
 #define FACET_STATUS_ENUM(name, value, text) name = value,
@@ -302,7 +302,7 @@ typedef struct facet_cleanup_result {
     int32_t n_collapsed;     /* edges collapsed (pairs in collapsed_edges) */
     int32_t n_removed_faces; /* input faces that fell below 3 vertices */
     int32_t n_skipped;       /* short edges kept because collapsing them would make
-                              * a non-manifold edge or vertex, or fold a face */
+                              * a non-manifold edge or vertex, or turn a face over */
     double threshold;        /* the absolute length used */
 } facet_cleanup_result;
 

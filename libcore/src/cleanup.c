@@ -9,7 +9,9 @@
  * checked (where the input was manifold around a and b): no edge at a in
  * more than two faces or twice in one direction, no vertex twice in a face,
  * no two faces on the same vertices, and a is inside (no boundary edges) or
- * on one stretch of boundary (two boundary edges). */
+ * on one stretch of boundary (two boundary edges). Nor may a collapse turn a
+ * face over: every rewritten face's vector area (Newell) must keep a
+ * positive dot product with the input face's. */
 #include "internal.h"
 
 #include <math.h>
@@ -72,7 +74,25 @@ typedef struct {
     int32_t cap_around, cap_scratch;
     uint64_t *pairs;         /* directed edges at a: (a<<32|w) or (w<<32|a) */
     int32_t cap_pairs;
+    double *normal0;         /* input faces' vector areas, 3 per face */
 } state;
+
+/* Vector area of the face v[0..n) with vertex `moved` at p (others at xyz). */
+static void vector_area(const double *xyz, const int32_t *v, int32_t n, int32_t moved,
+                        const double p[3], double out[3])
+{
+    out[0] = out[1] = out[2] = 0.0;
+    const double *o = v[0] == moved ? p : xyz + 3 * (size_t)v[0];
+    for (int32_t k = 1; k + 1 < n; ++k) {
+        const double *b = v[k] == moved ? p : xyz + 3 * (size_t)v[k];
+        const double *c = v[k + 1] == moved ? p : xyz + 3 * (size_t)v[k + 1];
+        const double e[3] = {b[0] - o[0], b[1] - o[1], b[2] - o[2]};
+        const double f[3] = {c[0] - o[0], c[1] - o[1], c[2] - o[2]};
+        out[0] += e[1] * f[2] - e[2] * f[1];
+        out[1] += e[2] * f[0] - e[0] * f[2];
+        out[2] += e[0] * f[1] - e[1] * f[0];
+    }
+}
 
 static int grow(void **buf, int32_t *cap, int32_t need, size_t item)
 {
@@ -275,14 +295,29 @@ static int try_collapse(state *s, int32_t a, int32_t b, int32_t *removed, int32_
     } else if (r == 1) {
         return 0; /* never write a face with a repeated vertex */
     }
-    /* apply: position, faces, union-find */
+    /* the merged position: onto the boundary when one end is on it */
     double *pa = s->xyz + 3 * (size_t)a, *pb = s->xyz + 3 * (size_t)b;
+    double p[3] = {pa[0], pa[1], pa[2]};
     if (bb > 0 && ba == 0) {
-        pa[0] = pb[0], pa[1] = pb[1], pa[2] = pb[2];
+        p[0] = pb[0], p[1] = pb[1], p[2] = pb[2];
     } else if (!(ba > 0 && bb == 0)) {
         for (int k = 0; k < 3; ++k)
-            pa[k] = 0.5 * (pa[k] + pb[k]);
+            p[k] = 0.5 * (pa[k] + pb[k]);
     }
+    /* no face may turn over against the input */
+    for (int32_t i = 0; i < s->n_around; ++i) {
+        const int32_t n = s->scratch_start[i + 1] - s->scratch_start[i];
+        if (n < 3)
+            continue;
+        const double *n0 = s->normal0 + 3 * (size_t)s->around[i];
+        double n1[3];
+        vector_area(s->xyz, s->scratch + s->scratch_start[i], n, a, p, n1);
+        const double d = n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2];
+        if ((n0[0] != 0.0 || n0[1] != 0.0 || n0[2] != 0.0) && !(d > 0.0))
+            return 0;
+    }
+    /* apply: position, faces, union-find */
+    pa[0] = p[0], pa[1] = p[1], pa[2] = p[2];
     for (int32_t i = 0; i < s->n_around; ++i) {
         const int32_t f = s->around[i];
         const int32_t n = s->scratch_start[i + 1] - s->scratch_start[i];
@@ -379,6 +414,7 @@ facet_status facet_cleanup(const facet_mesh *mesh, const facet_cleanup_options *
     s.vf_start = calloc((size_t)nv + 1, sizeof *s.vf_start);
     s.vf = malloc(sizeof *s.vf * (nc ? nc : 1));
     s.stamp = malloc(sizeof *s.stamp * (size_t)nf);
+    s.normal0 = malloc(sizeof *s.normal0 * 3 * (size_t)nf);
     int32_t *removed = malloc(sizeof *removed * (size_t)nf);
     int32_t *collapsed = malloc(sizeof *collapsed * 2 * (size_t)nv);
     int32_t *new_index = malloc(sizeof *new_index * (size_t)nv);
@@ -386,7 +422,7 @@ facet_status facet_cleanup(const facet_mesh *mesh, const facet_cleanup_options *
     edge_item *edges = NULL;
     status = FACET_OK;
     if (!s.xyz || !s.verts || !s.len || !s.parent || !s.next_member || !s.tail || !s.vf_start ||
-        !s.vf || !s.stamp || !removed || !collapsed || !new_index || !used) {
+        !s.vf || !s.stamp || !s.normal0 || !removed || !collapsed || !new_index || !used) {
         status = facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
         goto done;
     }
@@ -395,6 +431,9 @@ facet_status facet_cleanup(const facet_mesh *mesh, const facet_cleanup_options *
     for (int32_t f = 0; f < nf; ++f) {
         s.len[f] = start[f + 1] - start[f];
         s.stamp[f] = 0;
+        const double none[3] = {0.0, 0.0, 0.0};
+        vector_area(mesh->xyz, mesh->face_vertices + start[f], s.len[f], -1, none,
+                    s.normal0 + 3 * (size_t)f);
     }
     for (int32_t v = 0; v < nv; ++v)
         s.parent[v] = v, s.next_member[v] = -1, s.tail[v] = v;
@@ -534,7 +573,7 @@ facet_status facet_cleanup(const facet_mesh *mesh, const facet_cleanup_options *
     if (n_short > 0)
         status = facet_fail(error, FACET_WARNING_COLLAPSE_SKIPPED, -1, -1,
                             "%d edges shorter than %g were kept: collapsing them would make the "
-                            "mesh non-manifold or fold a face",
+                            "mesh non-manifold or turn a face over",
                             (int)n_short, threshold);
 done:
     free(s.xyz);
@@ -546,6 +585,7 @@ done:
     free(s.vf_start);
     free(s.vf);
     free(s.stamp);
+    free(s.normal0);
     free(s.around);
     free(s.scratch);
     free(s.scratch_start);

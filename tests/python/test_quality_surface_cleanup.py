@@ -165,3 +165,44 @@ def test_cli_reports_have_quality(tmp_path, capsys):
     assert cli.main(["check", os.path.join(DATA, "hypar.obj"), "--report",
                      str(report_path)]) == 0
     assert json.loads(report_path.read_text())["quality"]["degenerate_faces"] == 0
+
+
+def _vector_areas(mesh):
+    areas = []
+    for face in mesh.faces():
+        p = mesh.vertices[face]
+        areas.append(np.cross(p - p[0], np.roll(p, -1, axis=0) - p[0]).sum(axis=0))
+    return np.array(areas)
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_cleanup_keeps_jittered_meshes_valid_and_unturned(seed):
+    """Heavily jittered mixed quad/triangle grids: every collapse keeps the mesh valid,
+    manifold, without isolated vertices, and no face turns over against its input face."""
+    rng = np.random.default_rng(seed)
+    n = 10
+    xy = np.array([(i, j) for j in range(n + 1) for i in range(n + 1)], float)
+    xy += rng.uniform(-0.45, 0.45, xy.shape)
+    vertices = np.c_[xy, rng.uniform(-0.3, 0.3, len(xy))]
+    faces = []
+    for j in range(n):
+        for i in range(n):
+            v = j * (n + 1) + i
+            if rng.random() < 0.5:
+                faces.append([v, v + 1, v + n + 2, v + n + 1])
+            else:
+                faces += [[v, v + 1, v + n + 2], [v, v + n + 2, v + n + 1]]
+    mesh = facet.PolyMesh.from_faces(vertices, faces)
+    before = _vector_areas(mesh)
+    for threshold in (0.6, 0.9):
+        result = facet.cleanup(mesh, threshold)
+        assert len(result.collapsed_edges) > 0
+        report = result.mesh.validate()
+        assert report["n_non_manifold_edges"] == 0
+        assert report["n_isolated_vertices"] == 0
+        after = _vector_areas(result.mesh)
+        assert np.all(np.einsum("ij,ij->i", before[result.face_map], after) > 0)
+        # every input vertex maps to a vertex of the new mesh, merged ones together
+        assert result.vertex_map.min() >= 0
+        for a, b in result.collapsed_edges:
+            assert result.vertex_map[a] == result.vertex_map[b]

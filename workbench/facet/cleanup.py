@@ -7,8 +7,9 @@ or relative to the mesh's mean edge length), shortest first, each to its
 midpoint (or onto the boundary when one end lies on it). Faces lose the
 merged corners (a quad becomes a triangle); faces left with fewer than three
 vertices disappear. A collapse that would make the mesh non-manifold (an edge
-in three faces, two fans of faces meeting at one vertex, a face folded onto
-another) is skipped and counted. The result is a new mesh with a new
+in three faces, two fans of faces meeting at one vertex, two faces on the
+same vertices) or turn a face over (its normal no longer on the side of the
+input face's) is skipped and counted. The result is a new mesh with a new
 topology; planarize it again (``python3 -m facet cleanup`` does).
 """
 
