@@ -202,47 +202,54 @@ static void select_median(const builder *b, int axis, int32_t lo, int32_t hi, in
     }
 }
 
+/* Builds node `self` over order[lo..hi): the split axis from the centroids'
+ * bounds, the node's box from its children's (or its triangles' for a
+ * leaf). Recursion depth is log2(n / LEAF_SIZE) + 1. */
 static void build(builder *b, int32_t self, int32_t lo, int32_t hi)
 {
-    /* iterative over the right child to bound recursion depth by log n */
-    for (;;) {
-        node *nd = &b->nodes[self];
-        double clo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, chi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
+    node *nd = &b->nodes[self];
+    if (hi - lo <= LEAF_SIZE) {
         for (int k = 0; k < 3; ++k)
             nd->lo[k] = DBL_MAX, nd->hi[k] = -DBL_MAX;
         for (int32_t i = lo; i < hi; ++i) {
-            const int32_t t = b->order[i];
-            const double *c = b->corners + 9 * (size_t)t;
+            const double *c = b->corners + 9 * (size_t)b->order[i];
             for (int v = 0; v < 3; ++v)
                 for (int k = 0; k < 3; ++k) {
                     nd->lo[k] = fmin(nd->lo[k], c[3 * v + k]);
                     nd->hi[k] = fmax(nd->hi[k], c[3 * v + k]);
                 }
-            for (int k = 0; k < 3; ++k) {
-                clo[k] = fmin(clo[k], b->centroid[3 * (size_t)t + k]);
-                chi[k] = fmax(chi[k], b->centroid[3 * (size_t)t + k]);
-            }
         }
-        if (hi - lo <= LEAF_SIZE) {
-            nd->left = -1;
-            nd->right = lo;
-            nd->count = hi - lo;
-            return;
-        }
-        int axis = 0;
-        for (int k = 1; k < 3; ++k)
-            if (chi[k] - clo[k] > chi[axis] - clo[axis])
-                axis = k;
-        const int32_t mid = lo + (hi - lo) / 2;
-        select_median(b, axis, lo, hi, mid);
-        const int32_t left = b->n_nodes++, right = b->n_nodes++;
-        nd->left = left;
-        nd->right = right;
-        nd->count = 0;
-        build(b, left, lo, mid);
-        self = right;
-        lo = mid;
+        nd->left = -1;
+        nd->right = lo;
+        nd->count = hi - lo;
+        return;
     }
+    double clo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, chi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
+    for (int32_t i = lo; i < hi; ++i) {
+        const double *c = b->centroid + 3 * (size_t)b->order[i];
+        for (int k = 0; k < 3; ++k) {
+            clo[k] = fmin(clo[k], c[k]);
+            chi[k] = fmax(chi[k], c[k]);
+        }
+    }
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+        if (chi[k] - clo[k] > chi[axis] - clo[axis])
+            axis = k;
+    const int32_t mid = lo + (hi - lo) / 2;
+    select_median(b, axis, lo, hi, mid);
+    const int32_t left = b->n_nodes++, right = b->n_nodes++;
+    build(b, left, lo, mid);
+    build(b, right, mid, hi);
+    nd = &b->nodes[self];
+    const node *l = &b->nodes[left], *r = &b->nodes[right];
+    for (int k = 0; k < 3; ++k) {
+        nd->lo[k] = fmin(l->lo[k], r->lo[k]);
+        nd->hi[k] = fmax(l->hi[k], r->hi[k]);
+    }
+    nd->left = left;
+    nd->right = right;
+    nd->count = 0;
 }
 
 void facet_surface_free(facet_surface **surface)

@@ -206,3 +206,18 @@ def test_cleanup_keeps_jittered_meshes_valid_and_unturned(seed):
         assert result.vertex_map.min() >= 0
         for a, b in result.collapsed_edges:
             assert result.vertex_map[a] == result.vertex_map[b]
+
+
+def test_quality_per_face():
+    mesh = facet.read_mesh(os.path.join(DATA, "hypar.obj"))
+    result = facet.planarize(mesh)
+    report = facet.quality(result, input=mesh)
+    displacement = report.per_face("displacement")
+    assert displacement.shape == (mesh.n_faces,)
+    for f, face in enumerate(mesh.faces()):
+        assert displacement[f] == max(result.displacement[v] for v in face)
+    assert report.per_face("distance").max() == pytest.approx(report.distance.max())
+    assert report.per_face("min_angle") is report.min_angle
+    assert facet.quality(mesh).per_face("distance") is None
+    with pytest.raises(InputError, match="not one of"):
+        report.per_face("colour")

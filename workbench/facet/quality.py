@@ -77,6 +77,8 @@ class QualityReport:
         The angle (degrees) under which a face counts as degenerate.
     input_min_angle : numpy.ndarray or None
         The input's smallest angles, degrees.
+    mesh : PolyMesh or None
+        The mesh measured (for :meth:`per_face`).
     """
 
     planarity: PlanarityReport
@@ -88,11 +90,35 @@ class QualityReport:
     degenerate: np.ndarray
     min_angle_threshold: float
     input_min_angle: object = None
+    mesh: object = None
+
+    #: Names :meth:`per_face` knows.
+    PER_FACE = ("planarity", "planarity_rel", "displacement", "distance", "min_angle",
+                "ratio_change")
 
     def per_face(self, name):
-        """A per-face array by colour-map name: ``planarity`` (model units),
-        ``planarity_rel``, ``min_angle`` (degrees), ``ratio_change``; None when
-        not measured."""
+        """One value per face, for colour maps.
+
+        Parameters
+        ----------
+        name : str
+            ``planarity`` (model units), ``planarity_rel``, ``displacement`` and
+            ``distance`` (per face the largest of its vertices', model units),
+            ``min_angle`` (degrees) or ``ratio_change``.
+
+        Returns
+        -------
+        numpy.ndarray or None
+            None when the figure was not measured (no input or reference).
+        """
+        if name not in self.PER_FACE:
+            raise InputError(f"per_face: {name!r} is not one of {', '.join(self.PER_FACE)}")
+        if name in ("displacement", "distance"):
+            values = getattr(self, name)
+            if values is None or self.mesh is None:
+                return None
+            corners = np.asarray(values, dtype=np.float64)[self.mesh.face_vertices]
+            return np.maximum.reduceat(corners, self.mesh.face_start[:-1])
         return {
             "planarity": self.planarity.max_abs,
             "planarity_rel": self.planarity.max_rel,
@@ -228,4 +254,5 @@ def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_
         degenerate=degenerate.astype(np.int64),
         min_angle_threshold=float(min_angle),
         input_min_angle=input_angle,
+        mesh=mesh,
     )

@@ -18,20 +18,14 @@ import numpy as np
 from facetwb import compat
 from facetwb.viewproviders.view_polymesh import ViewProviderPolyMesh
 
-#: ColorBy choices: (legend title, kind, reversed).
+#: ColorBy choices: (facet.QualityReport.per_face name, legend title, kind, reversed).
 COLOR_BY = {
-    "Planarity": ("Planarity", "length", False),
-    "Displacement": ("Displacement", "length", False),
-    "Distance to input": ("Distance to input", "length", False),
-    "Smallest angle": ("Smallest angle", "angle", True),
-    "Edge ratio change": ("Edge ratio change", "ratio", False),
+    "Planarity": ("planarity", "Planarity", "length", False),
+    "Displacement": ("displacement", "Displacement", "length", False),
+    "Distance to input": ("distance", "Distance to input", "length", False),
+    "Smallest angle": ("min_angle", "Smallest angle", "angle", True),
+    "Edge ratio change": ("ratio_change", "Edge ratio change", "ratio", False),
 }
-
-
-def face_max(per_vertex, mesh):
-    """Per face, the largest of its vertices' values."""
-    values = np.asarray(per_vertex, dtype=np.float64)[mesh.face_vertices]
-    return np.maximum.reduceat(values, mesh.face_start[:-1])
 
 
 class ViewProviderPlanarized(ViewProviderPolyMesh):
@@ -59,7 +53,7 @@ class ViewProviderPlanarized(ViewProviderPolyMesh):
         choice = getattr(self.ViewObject, "ColorBy", "Planarity")
         if choice not in COLOR_BY or choice == "Planarity":
             return super().colour_values(obj)
-        title, kind, reverse = COLOR_BY[choice]
+        name, title, kind, reverse = COLOR_BY[choice]
         import facet
         from facetwb import conversion
         from facetwb.objects.polymesh import get_mesh
@@ -71,13 +65,7 @@ class ViewProviderPlanarized(ViewProviderPolyMesh):
         before = conversion.mesh_from_object(source)
         if not mesh.same_topology(before):
             return None, title, kind, reverse
-        report = facet.quality(mesh, input=before)
-        if choice == "Displacement":
-            values = face_max(report.displacement, mesh)
-        elif choice == "Distance to input":
-            values = face_max(report.distance, mesh)
-        elif choice == "Smallest angle":
-            values = report.min_angle
-        else:
-            values = report.ratio_change
+        values = facet.quality(mesh, input=before).per_face(name)
+        if values is None:
+            return None, title, kind, reverse
         return np.asarray(values, dtype=np.float64), title, kind, reverse
