@@ -68,7 +68,7 @@ def test_surface_bad_input():
     with pytest.raises(InputError, match="triangle 0"):
         facet.Surface(np.zeros((3, 3)), [[0, 1, 5]])
     surface = facet.Surface(np.eye(3), [[0, 1, 2]])
-    with pytest.raises(InputError, match="query point 1"):
+    with pytest.raises(InputError, match="point 1 has a non-finite"):
         surface.closest([[0, 0, 0], [np.nan, 0, 0]])
     with pytest.raises(InputError, match="triangles are needed"):
         facet.Surface(np.eye(3))
@@ -221,3 +221,38 @@ def test_quality_per_face():
     assert facet.quality(mesh).per_face("distance") is None
     with pytest.raises(InputError, match="not one of"):
         report.per_face("colour")
+
+
+def test_closest_progress_and_cancel():
+    surface = facet.Surface(np.eye(3), [[0, 1, 2]])
+    points = np.zeros((70000, 3))
+    calls = []
+    _, distance, _, _ = surface.closest(points, progress=lambda done, total: calls.append(
+        (done, total)))
+    assert calls == [(65536, 70000), (70000, 70000)]
+    assert np.allclose(distance, 1 / np.sqrt(3))
+    with pytest.raises(facet.Cancelled, match="65536 of 70000"):
+        surface.closest(points, progress=lambda done, total: True)
+    mesh = facet.read_mesh(os.path.join(DATA, "hypar.obj"))
+    with pytest.raises(facet.Cancelled):
+        facet.quality(mesh, input=mesh, progress=lambda done, total: True)
+
+
+def test_cleanup_triangles():
+    """A triangulated grid with one short diagonal: its two triangles go, the rest stay."""
+    n = 4
+    vertices = [(i, j, 0.0) for j in range(n + 1) for i in range(n + 1)]
+    faces = []
+    for j in range(n):
+        for i in range(n):
+            v = j * (n + 1) + i
+            faces += [[v, v + 1, v + n + 2], [v, v + n + 2, v + n + 1]]
+    vertices = np.array(vertices)
+    vertices[12] = vertices[6] + (0.02, 0.02, 0.0)  # (2,2) pulled onto (1,1): short diagonal 6-12
+    mesh = facet.PolyMesh.from_faces(vertices, faces)
+    result = facet.cleanup(mesh, 0.05, relative=False)
+    assert result.collapsed_edges.tolist() == [[6, 12]]
+    assert result.removed_faces.tolist() == [10, 11]  # cell (1,1)'s two triangles
+    assert result.mesh.n_faces == 30 and result.mesh.n_vertices == 24
+    assert set(np.diff(result.mesh.face_start)) == {3}
+    assert result.mesh.validate()["n_non_manifold_edges"] == 0

@@ -181,7 +181,8 @@ def _shape(mesh, xyz_input, threads):
     return np.degrees(angle), area, change
 
 
-def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_MIN_ANGLE):
+def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_MIN_ANGLE,
+            progress=None):
     """Measure the quality of `result` (a mesh, or what :func:`facet.planarize` returned).
 
     Parameters
@@ -197,6 +198,9 @@ def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_
         OpenMP threads; the figures do not depend on it.
     min_angle : float
         Faces with a smaller interior angle (degrees) are degenerate.
+    progress : callable, optional
+        ``progress(done, total)`` while distances are measured (the long
+        part); a true return value cancels (:class:`facet.Cancelled`).
 
     Returns
     -------
@@ -239,7 +243,7 @@ def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_
         if not isinstance(surface, Surface):
             raise InputError(f"reference must be a Surface or a PolyMesh, not "
                              f"{type(reference).__name__}")
-        _, distance, _, _ = surface.closest(mesh.vertices, threads=threads)
+        _, distance, _, _ = surface.closest(mesh.vertices, threads=threads, progress=progress)
     degrees = np.diff(mesh.face_start)
     # squared mean edge from the planarity report: zero area relative to the face's size
     size2 = report.mean_edge**2 * np.maximum(degrees, 3)

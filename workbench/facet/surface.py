@@ -14,10 +14,13 @@ georeferenced models keep their precision.
 import numpy as np
 
 from facet import _core
-from facet.errors import InputError, from_core
+from facet.errors import Cancelled, InputError, from_core
 from facet.mesh import PolyMesh
 
 __all__ = ["Surface"]
+
+#: Queries per call into the core between progress reports (and Ctrl+C checks).
+_CHUNK = 1 << 16
 
 
 class Surface:
@@ -82,7 +85,7 @@ class Surface:
         """The mesh face of each triangle (int32 array), or None for a triangle surface."""
         return None if self._faces is None else self._faces.copy()
 
-    def closest(self, points, threads=None):
+    def closest(self, points, threads=None, progress=None):
         """Closest points on the surface.
 
         Parameters
@@ -91,6 +94,9 @@ class Surface:
             Query points, model units; NaN or infinite ones are refused.
         threads : int, optional
             OpenMP threads (default: all). Results do not depend on it.
+        progress : callable, optional
+            ``progress(done, total)`` after each block of 65536 points; a true
+            return value cancels (:class:`facet.Cancelled`).
 
         Returns
         -------
@@ -112,8 +118,17 @@ class Surface:
         distance = np.empty(n)
         triangle = np.empty(n, dtype=np.int32)
         normal = np.empty((n, 3))
-        try:
-            self._core.closest(query, closest, distance, triangle, normal, threads=int(threads or 0))
-        except _core.CoreError as exc:
-            raise InputError(f"points: {exc}") from None
+        if not np.isfinite(query).all():
+            bad = int(np.flatnonzero(~np.isfinite(query).all(axis=1))[0])
+            raise InputError(f"points: point {bad} has a non-finite coordinate {query[bad].tolist()}")
+        for start in range(0, n, _CHUNK):
+            stop = min(n, start + _CHUNK)
+            try:
+                self._core.closest(query[start:stop], closest[start:stop], distance[start:stop],
+                                   triangle[start:stop], normal[start:stop],
+                                   threads=int(threads or 0))
+            except _core.CoreError as exc:
+                raise InputError(f"points: {exc}") from None
+            if progress is not None and progress(stop, n):
+                raise Cancelled(f"closest points cancelled after {stop} of {n} points")
         return closest, distance, triangle, normal
