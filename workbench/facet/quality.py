@@ -216,8 +216,12 @@ def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_
     if not isinstance(mesh, PolyMesh):
         raise InputError(f"quality: result must be a PolyMesh or a PlanarizeResult, not "
                          f"{type(result).__name__}")
-    if not (0.0 <= float(min_angle) < 180.0):
-        raise InputError(f"min_angle must be in [0, 180) degrees, not {min_angle!r}")
+    try:
+        angle_ok = 0.0 <= float(min_angle) < 180.0
+    except (TypeError, ValueError):
+        angle_ok = False
+    if not angle_ok:
+        raise InputError(f"min_angle must be a number in [0, 180) degrees, not {min_angle!r}")
     if input is not None and not mesh.same_topology(input):
         raise InputError(
             f"input has another topology ({input.n_vertices} vertices, {input.n_faces} faces) "
