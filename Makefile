@@ -61,6 +61,7 @@ demo: deps-test build
 bench: build
 	mkdir -p $(OUT)
 	$(BUILD)/libcore/bench/bench_planarize --runs 5 --json $(OUT)/bench.json
+	$(BUILD)/libcore/bench/bench_surface --runs 5 --json $(OUT)/bench_surface.json
 
 install: build
 	sh tools/install.sh "$(PREFIX)" "$(PYTHON)"

@@ -55,7 +55,9 @@ extern "C" {
     X(FACET_ERROR_OUT_OF_MEMORY, -8, "out of memory")                                 \
     X(FACET_ERROR_NUMERICAL, -9, "numerical failure")                                 \
     X(FACET_ERROR_CANCELLED, -10, "cancelled")                                        \
-    X(FACET_ERROR_TOO_LARGE, -11, "mesh too large")
+    X(FACET_ERROR_TOO_LARGE, -11, "mesh too large")                                   \
+    X(FACET_ERROR_NOTHING_LEFT, -40, "cleanup collapsed every face")                  \
+    X(FACET_WARNING_COLLAPSE_SKIPPED, 30, "short edges kept: collapsing them would break the mesh")
 
 typedef enum facet_status {
 #define FACET_STATUS_ENUM(name, value, text) name = value,
@@ -300,6 +302,111 @@ facet_status facet_planarizer_set_fixed(facet_planarizer *planarizer, int32_t n,
  * opening or a door); NULL restores 1 for every face. */
 facet_status facet_planarizer_set_face_weights(facet_planarizer *planarizer,
                                                const double *weights, facet_error *error);
+/* ------------------------------------------------------------------------ */
+/* Closest points on a triangle surface                                      */
+/* ------------------------------------------------------------------------ */
+
+/* A triangle surface prepared for closest-point queries: a bounding volume
+ * hierarchy (binary AABB tree, median split of triangle centroids along the
+ * widest axis, up to 4 triangles per leaf). Coordinates are centred on the
+ * bounding box and scaled by its largest side inside, so georeferenced input
+ * keeps its precision; results are given in the caller's coordinates. */
+typedef struct facet_surface facet_surface;
+
+/* Triangles of n_vertices points xyz[3*n_vertices]; tri[3*n_triangles]. Copies
+ * what it needs. Errors: FACET_ERROR_EMPTY_MESH, FACET_ERROR_NONFINITE (a
+ * vertex used by a triangle), FACET_ERROR_INDEX_OUT_OF_RANGE. Zero-area
+ * triangles are allowed (their closest point is found on their edges; their
+ * normal is 0 0 0). */
+facet_status facet_surface_create(int32_t n_vertices, const double *xyz, int32_t n_triangles,
+                                  const int32_t *tri, facet_surface **out, facet_error *error);
+
+/* The surface of a polygon mesh: triangles kept, quads split along the
+ * shorter diagonal, larger faces as a fan from their vertex centroid (the
+ * same for any starting vertex; exact for faces star-shaped from the
+ * centroid, which covers convex and near-convex panels). Triangle t of the
+ * surface belongs to face facet_surface_face(surface, t). */
+facet_status facet_surface_create_from_mesh(const facet_mesh *mesh, facet_surface **out,
+                                            facet_error *error);
+
+void facet_surface_free(facet_surface **surface);
+
+/* Number of triangles; the face of the mesh triangle t came from (-1 when
+ * the surface was made from triangles). */
+int32_t facet_surface_triangle_count(const facet_surface *surface);
+int32_t facet_surface_face(const facet_surface *surface, int32_t triangle);
+
+/* For n query points query[3n]: closest point on the surface (closest[3n]),
+ * its distance (distance[n]), the triangle (triangle[n]) and that
+ * triangle's unit normal (normal[3n], 0 0 0 for a zero-area triangle); any
+ * output may be NULL. Among equally close triangles one with area wins.
+ * A non-finite query point is FACET_ERROR_NONFINITE (vertex = its index),
+ * outputs untouched. OpenMP over queries; results do not depend on
+ * threads. */
+facet_status facet_surface_closest(const facet_surface *surface, int64_t n, const double *query,
+                                   int32_t threads, double *closest, double *distance,
+                                   int32_t *triangle, double *normal, facet_error *error);
+
+/* ------------------------------------------------------------------------ */
+/* Face shape (quality report)                                               */
+/* ------------------------------------------------------------------------ */
+
+/* Per-face shape of a mesh, each output n_faces doubles (any may be NULL):
+ *  min_angle   smallest interior angle in radians, in [0, 2 pi): measured at
+ *              each corner between the two edges, turning about the face's
+ *              Newell normal, so a reflex corner of a concave panel counts
+ *              as more than pi; 0 at a corner with a zero-length edge;
+ *  area        length of the face's vector area (Newell), model units^2;
+ *  ratio_change  with xyz_input (the same topology before an operation; may
+ *              be NULL, then 0): with r_e = l_e / mean_l the length of edge
+ *              e over the face's mean edge length,
+ *              max over the face's edges of |r_e(xyz) / r_e(xyz_input) - 1|,
+ *              edges of zero input length left out.
+ * The mesh must be valid; this call checks sizes and indices. */
+facet_status facet_face_shape(const facet_mesh *mesh, const double *xyz_input, int32_t threads,
+                              double *min_angle, double *area, double *ratio_change,
+                              facet_error *error);
+
+/* ------------------------------------------------------------------------ */
+/* Cleanup: collapse short edges                                             */
+/* ------------------------------------------------------------------------ */
+
+typedef struct facet_cleanup_options {
+    double min_edge;   /* collapse edges shorter than this (> 0) */
+    int32_t relative;  /* nonzero: min_edge is a fraction of the mean edge length */
+} facet_cleanup_options;
+
+typedef struct facet_cleanup_result {
+    int32_t n_vertices;      /* of the new mesh */
+    int32_t n_faces;
+    int32_t n_corners;       /* face_start_out[n_faces] */
+    int32_t n_collapsed;     /* edges collapsed (pairs in collapsed_edges) */
+    int32_t n_removed_faces; /* input faces that fell below 3 vertices */
+    int32_t n_skipped;       /* short edges kept because collapsing them would make
+                              * a non-manifold edge or vertex, or turn a face over */
+    double threshold;        /* the absolute length used */
+} facet_cleanup_result;
+
+/* Collapses edges shorter than the threshold, shortest first, each to its
+ * midpoint (to the boundary vertex when one end is on the boundary and the
+ * other not). Faces lose the merged corners and drop to lower degree; faces
+ * left with fewer than 3 vertices are removed. A collapse is skipped when it
+ * would put an edge in more than two faces, pinch a vertex (more than one
+ * fan of faces around it) or repeat a vertex in a face, where the input was
+ * manifold. Passes repeat until no edge is short or none can go.
+ * Outputs, caller-allocated at input size: xyz_out[3*n_vertices],
+ * face_start_out[n_faces+1], face_vertices_out[corners], vertex_map[n_vertices]
+ * (input vertex -> output vertex; isolated vertices are kept),
+ * collapsed_edges[2*n_vertices] (input vertex
+ * pairs, in collapse order), removed_faces[n_faces] (input face indices).
+ * Any of vertex_map, collapsed_edges, removed_faces may be NULL.
+ * Returns FACET_WARNING_COLLAPSE_SKIPPED when short edges remain,
+ * FACET_ERROR_NOTHING_LEFT when every face would go (outputs untouched). */
+facet_status facet_cleanup(const facet_mesh *mesh, const facet_cleanup_options *options,
+                           double *xyz_out, int32_t *face_start_out, int32_t *face_vertices_out,
+                           int32_t *vertex_map, int32_t *collapsed_edges,
+                           int32_t *removed_faces, facet_cleanup_result *result,
+                           facet_error *error);
 
 #ifdef __cplusplus
 }

@@ -52,5 +52,8 @@ void py_release_mesh(mesh_views *m);
 
 /* Registration functions of the binding files. */
 int py_add_planarize(PyObject *module);
+int py_add_surface(PyObject *module);
+int py_add_quality(PyObject *module);
+int py_add_cleanup(PyObject *module);
 
 #endif

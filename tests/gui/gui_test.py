@@ -193,6 +193,7 @@ def run(out_dir):
     path = os.path.join(out_dir, "reopened.png")
     save_view(view, path)
     check_screenshot(check, path, "reopened", legend=True)
+    check_color_by(check, view, result, out_dir)
     source = result.Source
 
     # Facet_ToPolyMesh on a Part box: six quads, kept linked to the box.
@@ -208,6 +209,58 @@ def run(out_dir):
     check(not box.ViewObject.Visibility, "the box is hidden")
     App.closeDocument(doc.Name)
     return check
+
+
+def legend_strings(vobj):
+    """The strings of the legend's labels (title, ticks, max) of a Facet view provider."""
+    from pivy import coin
+
+    search = coin.SoSearchAction()
+    search.setType(coin.SoText2.getClassTypeId())
+    search.setInterest(coin.SoSearchAction.ALL)
+    search.apply(vobj.Proxy.legend.labels)
+    paths = search.getPaths()
+    return [paths[i].getTail().string.getValues()[0] for i in range(paths.getLength())]
+
+
+def check_color_by(check, view, result, out_dir):
+    """The Planarized view provider's ColorBy: smallest angle in degrees, red for small."""
+    import FreeCADGui as Gui
+    import numpy as np
+
+    import facet
+    import facetwb
+    from facetwb.viewproviders import colormap
+
+    vobj = result.ViewObject
+    check("Smallest angle" in vobj.getEnumerationsOfProperty("ColorBy"),
+          "ColorBy offers Smallest angle")
+    planarity_colours = np.array(vobj.Proxy.planarity_material.diffuseColor.getValues())
+    vobj.ColorBy = "Smallest angle"
+    Gui.updateGui()
+    angle_colours = np.array(vobj.Proxy.planarity_material.diffuseColor.getValues())
+    check(angle_colours.shape == planarity_colours.shape
+          and not np.allclose(angle_colours, planarity_colours),
+          "ColorBy Smallest angle recolours the faces")
+    labels = legend_strings(vobj)
+    check(any(label.startswith("Smallest angle") for label in labels)
+          and any(label.endswith(" deg") for label in labels),
+          f"the legend is titled Smallest angle and labelled in degrees ({labels})")
+    angles = facet.quality(facetwb.get_mesh(result)).min_angle
+    expected = colormap.colors(angles, angles.max(), reverse=True)
+    check(np.allclose(angle_colours, expected, atol=1e-6),
+          "faces coloured by smallest angle, small angles red (reversed map)")
+    path = os.path.join(out_dir, "smallest_angle.png")
+    save_view(view, path)
+    check_screenshot(check, path, "smallest angle", legend=True)
+    vobj.ColorBy = "Distance to input"
+    Gui.updateGui()
+    labels = legend_strings(vobj)
+    check(any(label.startswith("Distance to input") for label in labels)
+          and not any("not computed" in label for label in labels),
+          f"ColorBy Distance to input is computed from the source ({labels})")
+    vobj.ColorBy = "Planarity"
+    Gui.updateGui()
 
 
 def check_import_command(check):

@@ -33,16 +33,26 @@ __all__ = [
     "PlanarizeResult",
     "planarity",
     "PlanarityReport",
+    "Surface",
+    "quality",
+    "QualityReport",
+    "cleanup",
+    "CleanupResult",
     "__version__",
 ]
 
-_SOLVER_NAMES = ("planarize", "Planarizer", "PlanarizeResult", "planarity", "PlanarityReport")
-_SOLVER_MODULES = ("facet.planarity", "facet.planarize", "facet._core")
+_SOLVER_NAMES = ("planarize", "Planarizer", "PlanarizeResult", "planarity", "PlanarityReport",
+                 "Surface", "quality", "QualityReport", "cleanup", "CleanupResult")
+_SOLVER_MODULES = ("facet.planarity", "facet.planarize", "facet._core", "facet.surface",
+                   "facet.quality", "facet.cleanup")
 _solver_import_error = None
 
 try:
     from facet.planarity import PlanarityReport, planarity
     from facet.planarize import Planarizer, PlanarizeResult, planarize
+    from facet.surface import Surface
+    from facet.quality import QualityReport, quality
+    from facet.cleanup import CleanupResult, cleanup
 except ImportError as exc:  # the compiled core is not built (yet)
     core_missing = exc.name == "facet" and "_core" in str(exc)
     if exc.name not in _SOLVER_MODULES and not core_missing:

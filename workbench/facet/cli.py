@@ -32,7 +32,7 @@ EXIT_INTERRUPTED = 130
 #: status`` as each parser's default. Keep their module-level imports light:
 #: every ``facet`` command imports them all. Bad input is raised as
 #: :class:`facet.errors.InputError` (exit status 2).
-COMMAND_MODULES = ()
+COMMAND_MODULES = ("facet.cli_cleanup",)
 
 #: How each stop reason of the solver is told to the designer.
 STOP_REASONS = {
@@ -204,6 +204,34 @@ def _source_lines(out, report):
         _line(out, "dropped", f"{_count(dropped, 'vertex')} used by no face")
 
 
+def _quality_lines(out, quality):
+    """Summary lines of a report's ``quality`` section (see facet.quality)."""
+    if not quality:
+        return
+    if quality.get("distance_max") is not None:
+        _line(
+            out,
+            "surface",
+            f"distance from the input surface rms {_g(quality['distance_rms'])}, "
+            f"max {_g(quality['distance_max'])}",
+        )
+    shape = f"smallest angle {_g(quality.get('min_angle_deg'))} deg"
+    if quality.get("input_min_angle_deg") is not None:
+        shape += f" (input {_g(quality['input_min_angle_deg'])})"
+    if quality.get("ratio_change_max") is not None:
+        shape += f", edge ratio change max {_g(quality['ratio_change_max'])}"
+    _line(out, "shape", shape)
+    count = quality.get("degenerate_faces") or 0
+    if count:
+        first = ", ".join(map(str, quality.get("degenerate_face_indices") or ()))
+        _line(
+            out,
+            "degenerate",
+            f"{_count(count, 'face')} with no area or an angle under "
+            f"{_g(quality.get('degenerate_min_angle_deg'))} deg (first: {first})",
+        )
+
+
 def print_planarize_summary(report, out=None):
     """Print the human summary of a planarization report.
 
@@ -252,6 +280,7 @@ def print_planarize_summary(report, out=None):
         "displacement",
         f"rms {_g(report['displacement_rms'])}, max {_g(report['displacement_max'])}{share}",
     )
+    _quality_lines(out, report.get("quality"))
     for warning in report.get("warnings") or ():
         _line(out, "warning", warning)
     _line(out, "written", report["output"])
@@ -300,6 +329,7 @@ def print_check_summary(report, out=None):
     diagonal = report.get("planarity_diagonal_max")
     if diagonal is not None and diagonal >= 0:
         _line(out, "quads", f"diagonal distance max {_g(diagonal)} of the diagonal")
+    _quality_lines(out, report.get("quality"))
     if report.get("report"):
         _line(out, "report", report["report"])
 

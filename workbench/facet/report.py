@@ -19,7 +19,7 @@ import numpy as np
 
 from facet.io.files import write_text
 
-__all__ = ["planarize_report", "check_report", "json_safe", "write_json"]
+__all__ = ["planarize_report", "check_report", "quality_figures", "json_safe", "write_json"]
 
 #: Keys of ``mesh.info`` copied into reports (lists of keys are left out).
 _INFO_KEYS = ("format", "header", "dtype", "item", "openings_skipped", "unused_vertices_dropped")
@@ -60,6 +60,14 @@ def _worst_face(per_face):
     return int(np.nanargmax(np.where(np.isfinite(values), values, -np.inf)))
 
 
+def quality_figures(mesh, input=None, reference=None, threads=None):
+    """The ``quality`` section of a report: :meth:`facet.QualityReport.as_dict`
+    of `mesh` (a mesh or a PlanarizeResult) against `input`."""
+    from facet.quality import quality
+
+    return quality(mesh, input=input, reference=reference, threads=threads).as_dict()
+
+
 def planarize_report(source, result, input_path=None, output_path=None, input_planarity=None):
     """Report of one planarization.
 
@@ -83,8 +91,11 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         ``stop_reason``, ``converged``, ``tol``, ``input_planarity_max_rel``,
         ``input_planarity_max_abs``, and more (``displacement_max_rel`` is
         ``displacement_max`` over the mean edge length of `source`;
-        ``warnings`` lists what the solver noted about the mesh). Already
-        JSON-safe.
+        ``warnings`` lists what the solver noted about the mesh; ``quality``
+        is :meth:`facet.QualityReport.as_dict` of the result against
+        `source`: planarity, displacement, distance from the source's
+        surface, smallest angles, edge ratio change, degenerate faces).
+        Already JSON-safe.
     """
     if input_planarity is None:
         from facet import planarity
@@ -127,6 +138,7 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         ),
         "options": options,
         "warnings": list(getattr(result, "warnings", None) or []),
+        "quality": quality_figures(result, input=source),
     }
     report.update(_source_facts(source))
     return json_safe(report)
@@ -152,8 +164,10 @@ def check_report(mesh, planarity_report, validation_report, path=None):
         ``boundary_edges``, ``non_manifold_edges``, ``isolated_vertices``,
         ``max_degree``, ``face_degrees``, ``mean_edge_length``, ``bounds``),
         planarity (``planarity_max_rel``, ``planarity_max_abs``,
-        ``planarity_rms_rel``, ``planarity_diagonal_max``, ``worst_face``)
-        and what the reader noted (``source_*``). Already JSON-safe.
+        ``planarity_rms_rel``, ``planarity_diagonal_max``, ``worst_face``),
+        ``quality`` (face shape: smallest angle, degenerate faces; see
+        :func:`facet.quality`) and what the reader noted (``source_*``).
+        Already JSON-safe.
     """
     validation = dict(validation_report)
     lower, upper = mesh.bounds()
@@ -178,6 +192,7 @@ def check_report(mesh, planarity_report, validation_report, path=None):
         "planarity_rms_rel": planarity_report.rms_rel_all,
         "planarity_diagonal_max": planarity_report.diagonal_max,
         "worst_face": _worst_face(planarity_report.max_rel),
+        "quality": quality_figures(mesh),
     }
     report.update(_source_facts(mesh))
     return json_safe(report)

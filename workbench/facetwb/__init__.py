@@ -28,6 +28,9 @@ _API = {
     "is_polymesh": "facetwb.objects.polymesh",
     "is_planarized": "facetwb.objects.planarized",
     "planarize_summary": "facetwb.objects.planarized",
+    "make_cleanup": "facetwb.make.make_cleanup",
+    "is_cleanup": "facetwb.objects.cleanup",
+    "cleanup_summary": "facetwb.objects.cleanup",
 }
 
 __all__ = sorted(_API)

@@ -2,13 +2,14 @@
 """Facet's GUI commands. ``register()`` adds them to FreeCAD (InitGui.py calls it)."""
 
 #: Commands in toolbar and menu order.
-COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize"]
+COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize", "Facet_Cleanup"]
 
 
 def register():
     """Add Facet's commands to FreeCADGui (idempotent)."""
     import FreeCADGui as Gui
 
+    from facetwb.commands.cleanup import CommandCleanup
     from facetwb.commands.import_mesh import CommandImportMesh
     from facetwb.commands.planarize import CommandPlanarize
     from facetwb.commands.to_polymesh import CommandToPolyMesh
@@ -16,6 +17,7 @@ def register():
     known = set(Gui.listCommands())
     for name, command in (("Facet_ImportMesh", CommandImportMesh()),
                           ("Facet_ToPolyMesh", CommandToPolyMesh()),
-                          ("Facet_Planarize", CommandPlanarize())):
+                          ("Facet_Planarize", CommandPlanarize()),
+                          ("Facet_Cleanup", CommandCleanup())):
         if name not in known:
             Gui.addCommand(name, command)

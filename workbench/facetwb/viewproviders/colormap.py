@@ -20,11 +20,16 @@ STOPS = (
 NO_VALUE = (0.6, 0.6, 0.6)
 
 
-def colors(values, vmax):
-    """RGB rows (n, 3) for ``values`` on the scale 0 .. ``vmax`` (values beyond clip)."""
+def colors(values, vmax, reverse=False):
+    """RGB rows (n, 3) for ``values`` on the scale 0 .. ``vmax`` (values beyond clip).
+
+    ``reverse``: small values get the top colour (red), for measures where small is bad
+    (smallest angle)."""
     values = np.asarray(values, dtype=np.float64)
     scale = vmax if vmax > 0.0 else 1.0
-    t = np.clip(values / scale, 0.0, 1.0)
+    t = np.clip(np.nan_to_num(values, nan=0.0) / scale, 0.0, 1.0)
+    if reverse:
+        t = 1.0 - t
     positions = np.array([stop[0] for stop in STOPS])
     rgb = np.array([stop[1] for stop in STOPS])
     return np.stack([np.interp(t, positions, rgb[:, k]) for k in range(3)], axis=1)

@@ -30,12 +30,19 @@ PANEL_COLOR = (0.13, 0.14, 0.17)
 FONT_SIZE = 15
 
 
-def tick_labels(vmax, count=TICKS):
-    """Labels for ``count`` evenly spaced ticks from 0 to ``vmax`` mm, in one unit.
+def tick_labels(vmax, count=TICKS, kind="length"):
+    """Labels for ``count`` evenly spaced ticks from 0 to ``vmax``, in one unit.
 
-    The unit is the one FreeCAD's unit schema picks for ``vmax``; decimals give three
-    significant digits at the top, the same for all ticks so they line up.
+    kind "length": ``vmax`` in mm, shown in the unit FreeCAD's unit schema picks for it;
+    "angle": degrees; "ratio": plain numbers. Decimals give three significant digits at the
+    top, the same for all ticks so they line up.
     """
+    if kind in ("angle", "ratio"):
+        unit = " deg" if kind == "angle" else ""
+        if not vmax > 0.0:
+            return [f"0{unit}"]
+        decimals = max(0, 2 - int(math.floor(math.log10(vmax))))
+        return [f"{vmax * i / (count - 1):.{decimals}f}{unit}" for i in range(count)]
     if not vmax > 0.0:
         return ["0 mm"]
     _, factor, unit = App.Units.Quantity(vmax, App.Units.Length).getUserPreferred()
@@ -109,18 +116,23 @@ class PlanarityLegend:
     def set_visible(self, visible):
         self.root.whichChild = coin.SO_SWITCH_ALL if visible else coin.SO_SWITCH_NONE
 
-    def update(self, vmax, actual_max=None, title="Planarity"):
-        """Label the bar for the scale 0 .. ``vmax`` mm; ``actual_max`` is the largest value."""
+    def update(self, vmax, actual_max=None, title="Planarity", kind="length", reverse=False,
+               extreme_name="max"):
+        """Label the bar for the scale 0 .. ``vmax`` (mm, degrees or a ratio: ``kind``);
+        ``actual_max`` is the worst value, written under the bar as "``extreme_name`` value";
+        ``reverse`` puts 0 at the top (red) end."""
         self.labels.removeAllChildren()
         self.labels.addChild(_material(TEXT_COLOR))
-        labels = tick_labels(vmax)
+        labels = tick_labels(vmax, kind=kind)
+        if reverse:
+            labels = labels[::-1]
         for i, label in enumerate(labels):
             fraction = i / (len(labels) - 1) if len(labels) > 1 else 0.0
             y = BAR_Y[0] + fraction * (BAR_Y[1] - BAR_Y[0])
             self.labels.addChild(_text(TEXT_X, y - 0.012, label))
         self.labels.addChild(_text(BAR_X[1], BAR_Y[1] + 0.07, title))
         if actual_max is not None:
-            text = "max " + tick_labels(actual_max, 2)[-1]
+            text = f"{extreme_name} " + tick_labels(actual_max, 2, kind=kind)[-1]
             self.labels.addChild(_text(BAR_X[1], BAR_Y[0] - 0.09, text))
 
     @staticmethod

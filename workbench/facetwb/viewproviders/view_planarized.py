@@ -1,7 +1,31 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""ViewProviderPlanarized: a planarized mesh, shown in its planarity colours by default."""
+"""ViewProviderPlanarized: a planarized mesh, shown in its planarity colours by default.
 
+Its ``ColorBy`` property picks what the colour map shows (facet.quality against the
+object's Source, the mesh before planarization):
+
+- Planarity: largest distance of a face's vertices from its best-fit plane (mm);
+- Displacement: per face, the largest distance one of its vertices moved (mm);
+- Distance to input: per face, the largest distance of one of its vertices from the
+  source's surface (mm);
+- Smallest angle: a face's smallest interior angle (degrees; red = small);
+- Edge ratio change: a face's largest change of edge length over mean edge length
+  (a ratio; 0 = same proportions as the source).
+"""
+
+import numpy as np
+
+from facetwb import compat
 from facetwb.viewproviders.view_polymesh import ViewProviderPolyMesh
+
+#: ColorBy choices: (facet.QualityReport.per_face name, legend title, kind, reversed).
+COLOR_BY = {
+    "Planarity": ("planarity", "Planarity", "length", False),
+    "Displacement": ("displacement", "Displacement", "length", False),
+    "Distance to input": ("distance", "Distance to input", "length", False),
+    "Smallest angle": ("min_angle", "Smallest angle", "angle", True),
+    "Edge ratio change": ("ratio_change", "Edge ratio change", "ratio", False),
+}
 
 
 class ViewProviderPlanarized(ViewProviderPolyMesh):
@@ -10,3 +34,38 @@ class ViewProviderPlanarized(ViewProviderPolyMesh):
     TYPE = "Facet::ViewProviderPlanarized"
     ICON = "Facet_Planarized"
     DEFAULT_DISPLAY_MODE = "Planarity"
+
+    def init_properties(self, vobj):
+        super().init_properties(vobj)
+        if compat.add_property(vobj, "App::PropertyEnumeration", "ColorBy", "Planarity",
+                               "What the colours of Planarity mode show: planarity, vertex "
+                               "displacement or distance from the source's surface (mm), "
+                               "smallest angle (degrees) or change of edge ratios"):
+            vobj.ColorBy = list(COLOR_BY)
+            vobj.ColorBy = "Planarity"
+
+    def onChanged(self, vobj, prop):
+        super().onChanged(vobj, prop)
+        if prop == "ColorBy" and hasattr(self, "coords"):
+            self.recolor(vobj.Object)
+
+    def colour_values(self, obj):
+        choice = getattr(self.ViewObject, "ColorBy", "Planarity")
+        if choice not in COLOR_BY or choice == "Planarity":
+            return super().colour_values(obj)
+        name, title, kind, reverse = COLOR_BY[choice]
+        import facet
+        from facetwb import conversion
+        from facetwb.objects.polymesh import get_mesh
+
+        mesh = get_mesh(obj)
+        source = getattr(obj, "Source", None)
+        if mesh is None or source is None:
+            return None, title, kind, reverse
+        before = conversion.mesh_from_object(source)
+        if not mesh.same_topology(before):
+            return None, title, kind, reverse
+        values = facet.quality(mesh, input=before).per_face(name)
+        if values is None:
+            return None, title, kind, reverse
+        return np.asarray(values, dtype=np.float64), title, kind, reverse

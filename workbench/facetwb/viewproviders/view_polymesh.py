@@ -182,20 +182,39 @@ class ViewProviderPolyMesh:
         self.face_count = n_faces
         self.drawn_topology = (face_start.copy(), face_vertices.copy())
 
-    def recolor(self, obj):
-        """Colour the faces by FacePlanarity and label the legend."""
-        vobj = self.ViewObject
+    def colour_values(self, obj):
+        """What the colour map shows: (per-face values or None, legend title, kind,
+        reversed). kind is "length" (mm), "angle" (degrees) or "ratio"; reversed puts the
+        top colour (red) at the small end. PolyMesh: FacePlanarity in mm."""
         values = np.asarray(getattr(obj, "FacePlanarity", []), dtype=np.float64)
-        if self.face_count == 0 or values.size != self.face_count:
+        return values, "Planarity", "length", False
+
+    def recolor(self, obj):
+        """Colour the faces by ``colour_values`` and label the legend."""
+        vobj = self.ViewObject
+        try:
+            values, title, kind, reverse = (self.colour_values(obj) if self.face_count else
+                                            (None, "Planarity", "length", False))
+        except Exception as exc:  # a bad source must not break drawing; say why
+            import FreeCAD as App
+
+            App.Console.PrintWarning(f"{obj.Label}: colour map not computed: {exc}\n")
+            values, title, kind, reverse = None, "Planarity", "length", False
+        if values is None or self.face_count == 0 or values.size != self.face_count:
             count = max(self.face_count, 1)
             _set_mfield(self.planarity_material.diffuseColor, [colormap.NO_VALUE] * count)
-            self.legend.update(0.0, title="Planarity (not computed)")
+            self.legend.update(0.0, title=f"{title} (not computed)", kind=kind)
         else:
-            actual_max = float(values.max())
-            scale_max = vobj.LegendMax.Value if vobj.LegendMax.Value > 0.0 else actual_max
-            rgb = colormap.colors(values, scale_max)
+            actual_max = float(values.max()) if values.size else 0.0
+            legend_max = vobj.LegendMax.Value if kind == "length" else 0.0
+            scale_max = legend_max if legend_max > 0.0 else actual_max
+            rgb = colormap.colors(values, scale_max, reverse=reverse)
             _set_mfield(self.planarity_material.diffuseColor, rgb.tolist())
-            self.legend.update(scale_max, actual_max=actual_max)
+            if reverse:  # small is bad: say the smallest
+                self.legend.update(scale_max, actual_max=float(values.min()), title=title,
+                                   kind=kind, reverse=True, extreme_name="min")
+            else:
+                self.legend.update(scale_max, actual_max=actual_max, title=title, kind=kind)
         self.legend.set_visible(bool(vobj.ShowLegend))
         edges = getattr(vobj, "PlanarityEdges", "Auto")
         show_edges = edges == "Show" or (

@@ -1,0 +1,79 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Cleanup objects: collapse short edges on recompute into a new topology, keep the source."""
+
+import numpy as np
+
+import facet
+import facetwb
+from facet_test_support import DocumentTestCase, bits, points_array
+
+
+def squeezed_grid(nu=6, nv=4, column=3):
+    """A quad grid whose column ``column`` sits 0.01 from its left neighbour."""
+    xs = np.arange(nu + 1, dtype=float)
+    xs[column] = xs[column - 1] + 0.01
+    vertices = [(x, y, 0.1 * np.sin(x) * np.cos(y)) for y in range(nv + 1) for x in xs]
+    faces = [[j * (nu + 1) + i, j * (nu + 1) + i + 1, (j + 1) * (nu + 1) + i + 1,
+              (j + 1) * (nu + 1) + i] for j in range(nv) for i in range(nu)]
+    return facet.PolyMesh.from_faces(vertices, faces)
+
+
+class TestCleanup(DocumentTestCase):
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.source_mesh = squeezed_grid()
+        cls.source = facetwb.make_polymesh(cls.source_mesh, label="squeezed", doc=cls.doc)
+        cls.result = facetwb.make_cleanup(cls.source, min_edge=0.1, relative=True)
+        cls.doc.recompute()
+
+    def test_collapsed(self):
+        result = self.result
+        self.assertTrue(result.isValid(), result.getStatusString())
+        self.assertTrue(facetwb.is_cleanup(result))
+        self.assertEqual(result.Proxy.Type, "Facet::Cleanup")
+        self.assertIs(result.Source, self.source)
+        self.assertEqual(result.CollapsedEdges, 5)
+        self.assertEqual(result.RemovedFaces, 4)
+        self.assertEqual(result.SkippedEdges, 0)
+        self.assertEqual((result.FaceCount, result.VertexCount), (20, 30))
+        self.assertTrue(result.Converged)
+        self.assertLessEqual(result.PlanarityMaxRel, 1e-6)
+        self.assertIn("5 short edges collapsed", facetwb.cleanup_summary(result))
+
+    def test_new_topology_is_valid(self):
+        mesh = facetwb.get_mesh(self.result)
+        report = mesh.validate()
+        self.assertEqual(report["n_non_manifold_edges"], 0)
+        self.assertEqual(report["n_isolated_vertices"], 0)
+        self.assertEqual(mesh.n_faces, 20)
+
+    def test_source_unchanged(self):
+        np.testing.assert_array_equal(bits(points_array(self.source)),
+                                      bits(self.source_mesh.vertices))
+        self.assertEqual(self.source.FaceCount, 24)
+
+    def test_parametric(self):
+        self.result.MinEdge = 0.001  # nothing that short: the source's topology again
+        self.doc.recompute()
+        self.assertEqual(self.result.CollapsedEdges, 0)
+        self.assertEqual(self.result.FaceCount, 24)
+        self.result.MinEdge = 0.1
+        self.doc.recompute()
+        self.assertEqual(self.result.FaceCount, 20)
+
+    def test_too_long_fails_with_a_message(self):
+        bad = facetwb.make_cleanup(self.source, min_edge=50.0, name="TooLong")
+        self.doc.recompute()
+        self.assertFalse(bad.isValid())
+        self.assertIn("every face would collapse", facetwb.cleanup_summary(bad))
+        self.doc.removeObject(bad.Name)
+        self.doc.recompute()
+
+    def test_z_save_reopen(self):
+        name = self.result.Name
+        doc = self.save_and_reopen("cleanup.FCStd")
+        result = doc.getObject(name)
+        self.assertEqual(result.Proxy.Type, "Facet::Cleanup")
+        self.assertEqual(result.FaceCount, 20)
+        self.assertEqual(result.CollapsedEdges, 5)

@@ -1,0 +1,47 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Facet_Cleanup: collapse the short edges of the selected polygon meshes, then planarize."""
+
+import FreeCAD as App
+import FreeCADGui as Gui
+
+from facetwb import paths
+from facetwb.commands.macro import object_expression, run_as_macro
+
+
+def _selected_meshes():
+    from facetwb.objects.polymesh import is_polymesh
+
+    return [obj for obj in Gui.Selection.getSelection() if is_polymesh(obj)]
+
+
+class CommandCleanup:
+    """Add a Cleanup object for each selected PolyMesh (or Planarized) and run it."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": paths.icon_path("Facet_Cleanup"),
+            "MenuText": "Collapse short edges",
+            "ToolTip": "Collapse the edges of the selected polygon mesh shorter than a tenth of "
+                       "its mean edge (change MinEdge in the new object), then planarize again. "
+                       "The result is a new mesh with fewer panels; the source is kept.",
+        }
+
+    def IsActive(self):
+        return App.ActiveDocument is not None and bool(_selected_meshes())
+
+    def Activated(self):
+        from facetwb.objects.cleanup import cleanup_summary, is_cleanup
+
+        sources = _selected_meshes()
+        if not sources:
+            return
+        doc = sources[0].Document
+        before = set(doc.Objects)
+        lines = [f"facetwb.make_cleanup({object_expression(src)})" for src in sources]
+        lines.append(f'FreeCAD.getDocument("{doc.Name}").recompute()')
+        if not run_as_macro(doc, "Collapse short edges", lines):
+            return
+        for obj in doc.Objects:
+            if obj not in before and is_cleanup(obj):
+                printer = App.Console.PrintMessage if obj.isValid() else App.Console.PrintError
+                printer(cleanup_summary(obj) + "\n")

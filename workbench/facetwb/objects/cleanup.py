@@ -1,0 +1,83 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Cleanup: a parametric polygon mesh with the short edges of its source collapsed.
+
+It links its ``Source`` (a PolyMesh or Planarized object, a FreeCAD Mesh or Part object);
+recompute runs ``facet.cleanup`` on the source's mesh (edges shorter than ``MinEdge``
+collapse; faces lose corners or disappear) and then, with ``Planarize`` on,
+``facet.planarize`` on the new mesh. The result has a new topology; the source is never
+modified.
+"""
+
+import facet
+from facetwb import compat
+from facetwb import conversion
+from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
+
+TYPE_CLEANUP = "Facet::Cleanup"
+
+
+class Cleanup(PolyMesh):
+    """Proxy of a cleaned-up polygon mesh (App::FeaturePython)."""
+
+    TYPE = TYPE_CLEANUP
+
+    def init_source_properties(self, obj):
+        add = compat.add_property
+        read_only = compat.EDITOR_READ_ONLY
+        output = compat.PROP_OUTPUT
+        add(obj, "App::PropertyLink", "Source", "Base",
+            "The mesh to clean up (PolyMesh, Planarized, Mesh or Part object); it is never "
+            "modified")
+        add(obj, "App::PropertyFloat", "MinEdge", "Cleanup",
+            "Edges shorter than this collapse: a fraction of the source's mean edge length when "
+            "Relative is on, else a length in mm", value=0.1)
+        add(obj, "App::PropertyBool", "Relative", "Cleanup",
+            "MinEdge is a fraction of the mean edge length", value=True)
+        add(obj, "App::PropertyBool", "Planarize", "Cleanup",
+            "Planarize the new mesh after the collapse", value=True)
+        add(obj, "App::PropertyFloat", "Tolerance", "Cleanup",
+            "Planarity to reach, relative to each face's mean edge length", value=1e-6)
+        for name, doc in (("CollapsedEdges", "Edges collapsed"),
+                          ("RemovedFaces", "Source faces that fell below 3 vertices"),
+                          ("SkippedEdges", "Short edges kept because collapsing them would "
+                                           "make the mesh non-manifold")):
+            add(obj, "App::PropertyInteger", name, "Result", doc, attr=output,
+                editor_mode=read_only)
+        add(obj, "App::PropertyLength", "Threshold", "Result",
+            "The edge length used", attr=output, editor_mode=read_only)
+        add(obj, "App::PropertyBool", "Converged", "Result",
+            "True if the planarization reached the tolerance", attr=output,
+            editor_mode=read_only)
+
+    def execute(self, obj):
+        if obj.Source is None:
+            raise ValueError(f"{obj.Label}: Source is empty, nothing to clean up")
+        mesh = conversion.mesh_from_object(obj.Source)
+        cleaned = facet.cleanup(mesh, obj.MinEdge, relative=obj.Relative)
+        result_mesh, converged = cleaned.mesh, False
+        if obj.Planarize:
+            result = facet.planarize(cleaned.mesh, tol=obj.Tolerance)
+            result_mesh, converged = result.mesh, bool(result.converged)
+        set_mesh(obj, result_mesh)
+        set_planarity(obj, facet.planarity(result_mesh))
+        obj.CollapsedEdges = int(len(cleaned.collapsed_edges))
+        obj.RemovedFaces = int(len(cleaned.removed_faces))
+        obj.SkippedEdges = int(cleaned.skipped)
+        obj.Threshold = float(cleaned.threshold)
+        obj.Converged = converged
+
+
+def is_cleanup(obj):
+    """True if ``obj`` is a Facet Cleanup object."""
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE_CLEANUP
+
+
+def cleanup_summary(obj):
+    """One line for the report view about a recomputed Cleanup object."""
+    if not obj.isValid():
+        return f"{obj.Label}: cleanup failed: {obj.getStatusString()}"
+    text = (f"{obj.Label}: {obj.CollapsedEdges} short edges collapsed, {obj.RemovedFaces} faces "
+            f"removed: {obj.FaceCount} panels, {obj.VertexCount} vertices")
+    if obj.SkippedEdges:
+        text += f"; {obj.SkippedEdges} short edges kept (would break the mesh)"
+    return text
