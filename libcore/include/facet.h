@@ -302,6 +302,14 @@ facet_status facet_planarizer_set_fixed(facet_planarizer *planarizer, int32_t n,
  * opening or a door); NULL restores 1 for every face. */
 facet_status facet_planarizer_set_face_weights(facet_planarizer *planarizer,
                                                const double *weights, facet_error *error);
+
+typedef struct facet_surface facet_surface; /* below: closest points on a triangle surface */
+
+/* The reference surface of the surface_weight term (vertices may slide along
+ * it but not leave it): borrowed, it must outlive the solves that use it, in
+ * the model coordinates of the solves' xyz_in. NULL clears it. */
+facet_status facet_planarizer_set_reference(facet_planarizer *planarizer,
+                                            const facet_surface *surface, facet_error *error);
 /* ------------------------------------------------------------------------ */
 /* Closest points on a triangle surface                                      */
 /* ------------------------------------------------------------------------ */

@@ -50,6 +50,10 @@ int py_get_mesh(PyObject *xyz, PyObject *start, PyObject *faces, Py_ssize_t n_ve
                 mesh_views *m);
 void py_release_mesh(mesh_views *m);
 
+/* The C handle of a facet._core.Surface (py_surface.c); NULL with TypeError
+ * set when obj is not one. */
+const facet_surface *py_surface_handle(PyObject *module, PyObject *obj);
+
 /* Registration functions of the binding files. */
 int py_add_planarize(PyObject *module);
 int py_add_surface(PyObject *module);

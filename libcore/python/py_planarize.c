@@ -15,6 +15,7 @@ typedef struct {
     facet_planarizer *handle;
     int32_t n_vertices, n_faces;
     int busy;
+    PyObject *reference; /* the Surface in use, kept alive while the handle borrows it */
 } planarizer_object;
 
 static int planarizer_init(PyObject *self_obj, PyObject *args, PyObject *kwargs)
@@ -51,6 +52,7 @@ static void planarizer_dealloc(PyObject *self_obj)
     planarizer_object *self = (planarizer_object *)self_obj;
     PyTypeObject *type = Py_TYPE(self_obj);
     facet_planarizer_free(&self->handle);
+    Py_CLEAR(self->reference);
     type->tp_free(self_obj);
     Py_DECREF(type);
 }
@@ -114,21 +116,21 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
                                "progress", "data_tangent", "data_normal", "laplacian",
                                "laplacian_weights", "normal_laplacian", "boundary_fairness",
                                "shape", "shape_weight", "boundary", "circular", "parallelogram",
-                               "anderson", "time_budget", "hold_tol", "hold_max", NULL};
+                               "anderson", "time_budget", "hold_tol", "hold_max", "surface_weight", NULL};
     PyObject *in_obj, *out_obj, *progress = Py_None;
     const char *method = "lg", *lap_weights = NULL, *shape = NULL, *boundary = NULL;
     double mu0 = NAN, ratio = NAN, mu_min = NAN, tol_abs = NAN, tol_rel = NAN;
     double data_tangent = NAN, data_normal = NAN, laplacian = NAN, normal_laplacian = NAN;
     double fairness = NAN, shape_weight = NAN, circular = NAN, parallelogram = NAN;
-    double time_budget = NAN, hold_tol = NAN;
+    double time_budget = NAN, hold_tol = NAN, surface_weight = NAN;
     int hold_max = -1;
     int max_iter = -1, iterations = 0, threads = 0, warm = 0, anderson = -1;
     if (!PyArg_ParseTupleAndKeywords(
-            args, kwargs, "OO|$sdddddiiipOdddzddzdzddiddi:solve", keywords, &in_obj, &out_obj,
+            args, kwargs, "OO|$sdddddiiipOdddzddzdzddiddid:solve", keywords, &in_obj, &out_obj,
             &method, &mu0, &ratio, &mu_min, &tol_abs, &tol_rel, &max_iter, &iterations, &threads,
             &warm, &progress, &data_tangent, &data_normal, &laplacian, &lap_weights,
             &normal_laplacian, &fairness, &shape, &shape_weight, &boundary, &circular,
-            &parallelogram, &anderson, &time_budget, &hold_tol, &hold_max))
+            &parallelogram, &anderson, &time_budget, &hold_tol, &hold_max, &surface_weight))
         return NULL;
     module_state *st = py_state(PyType_GetModule(Py_TYPE(self_obj)));
     if (!self->handle) {
@@ -176,7 +178,8 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
                    {laplacian, &o.laplacian}, {normal_laplacian, &o.normal_laplacian},
                    {fairness, &o.boundary_fairness}, {shape_weight, &o.shape_weight},
                    {circular, &o.circular}, {parallelogram, &o.parallelogram},
-                   {time_budget, &o.time_budget}, {hold_tol, &o.hold_tol}};
+                   {time_budget, &o.time_budget}, {hold_tol, &o.hold_tol},
+                   {surface_weight, &o.surface_weight}};
     for (size_t k = 0; k < sizeof weights / sizeof weights[0]; ++k)
         if (!isnan(weights[k].value))
             *weights[k].field = weights[k].value;
@@ -284,6 +287,28 @@ static PyObject *planarizer_set_fixed(PyObject *self_obj, PyObject *arg)
     Py_RETURN_NONE;
 }
 
+/* set_reference(surface): a facet._core.Surface, or None. */
+static PyObject *planarizer_set_reference(PyObject *self_obj, PyObject *arg)
+{
+    planarizer_object *self = (planarizer_object *)self_obj;
+    PyObject *module = PyType_GetModule(Py_TYPE(self_obj));
+    module_state *st = py_state(module);
+    if (!self->handle || self->busy) {
+        PyErr_SetString(PyExc_RuntimeError, "Planarizer is not initialised or is solving");
+        return NULL;
+    }
+    const facet_surface *surface = NULL;
+    if (arg != Py_None && !(surface = py_surface_handle(module, arg)))
+        return NULL;
+    facet_error error;
+    const facet_status status = facet_planarizer_set_reference(self->handle, surface, &error);
+    if (status < 0)
+        return py_raise_status(st, status, &error);
+    Py_XINCREF(arg == Py_None ? NULL : arg);
+    Py_XSETREF(self->reference, arg == Py_None ? NULL : arg);
+    Py_RETURN_NONE;
+}
+
 /* set_face_weights(weights): float64 buffer of n_faces weights, or None for all 1. */
 static PyObject *planarizer_set_face_weights(PyObject *self_obj, PyObject *arg)
 {
@@ -327,13 +352,16 @@ static PyMethodDef planarizer_methods[] = {
      "      iterations=0, threads=0, warm=False, progress=None, data_tangent, data_normal,\n"
      "      laplacian, laplacian_weights, normal_laplacian, boundary_fairness, shape,\n"
      "      shape_weight, boundary, circular, parallelogram, anderson, time_budget,\n"
-     "      hold_tol, hold_max) -> dict\n\n"
+     "      hold_tol, hold_max, surface_weight) -> dict\n\n"
      "Planarize the control positions xyz_in (float64, 3*n_vertices) into xyz_out.\n"
      "The GIL is released while solving; progress(iteration, max_iter, planarity_max_rel)\n"
      "returning True cancels."},
     {"set_fixed", planarizer_set_fixed, METH_O,
      "set_fixed(vertices) -> None\n\nHard-fix these vertices (int32 indices) at their control\n"
      "positions in every later solve; None clears."},
+    {"set_reference", planarizer_set_reference, METH_O,
+     "set_reference(surface) -> None\n\nThe reference surface (facet._core.Surface, model units) of\n"
+     "the surface_weight term; None clears."},
     {"set_face_weights", planarizer_set_face_weights, METH_O,
      "set_face_weights(weights) -> None\n\nPer-face planarity weights (float64, n_faces, >= 0;\n"
      "0 exempts a face); None restores 1."},

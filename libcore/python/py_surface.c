@@ -184,6 +184,22 @@ static PyType_Slot surface_slots[] = {
 static PyType_Spec surface_spec = {"facet._core.Surface", sizeof(surface_object), 0,
                                    Py_TPFLAGS_DEFAULT, surface_slots};
 
+const facet_surface *py_surface_handle(PyObject *module, PyObject *obj)
+{
+    PyObject *type = PyObject_GetAttrString(module, "Surface");
+    if (!type)
+        return NULL;
+    const int is = PyObject_IsInstance(obj, type);
+    Py_DECREF(type);
+    if (is < 0)
+        return NULL;
+    if (!is || !((surface_object *)obj)->handle) {
+        PyErr_SetString(PyExc_TypeError, "reference must be a facet._core.Surface or None");
+        return NULL;
+    }
+    return ((surface_object *)obj)->handle;
+}
+
 int py_add_surface(PyObject *module)
 {
     PyObject *type = PyType_FromModuleAndSpec(module, &surface_spec, NULL);

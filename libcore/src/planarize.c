@@ -313,7 +313,8 @@ void facet_planarizer_free(facet_planarizer **handle)
                       s->face_residual, s->vertex_residual, s->normal_fit,
                       s->control_centroid, s->shape, s->circle_target, s->slide_target,
                       s->slide_tangent, s->laplace_weight, s->previous, s->aa_df, s->aa_dg,
-                      s->aa_f, s->aa_g, s->aa_x_fallback, s->q_next};
+                      s->aa_f, s->aa_g, s->aa_x_fallback, s->q_next, s->surface_point,
+                      s->surface_normal, s->surface_query};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
         free(arrays[k]);
     free(s);
@@ -350,6 +351,16 @@ facet_status facet_planarizer_set_fixed(facet_planarizer *s, int32_t n, const in
     return FACET_OK;
 }
 
+facet_status facet_planarizer_set_reference(facet_planarizer *s, const facet_surface *surface,
+                                            facet_error *error)
+{
+    facet_error_clear(error);
+    if (!s)
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "planarizer is NULL");
+    s->reference = surface;
+    return FACET_OK;
+}
+
 facet_status facet_planarizer_set_face_weights(facet_planarizer *s, const double *weights,
                                                facet_error *error)
 {
@@ -377,7 +388,8 @@ facet_status facet_planarizer_set_face_weights(facet_planarizer *s, const double
 
 /* ---- options ------------------------------------------------------------ */
 
-static facet_status check_options(const facet_planarize_options *o, char *text, size_t size)
+static facet_status check_options(const facet_planarize_options *o, int has_reference, char *text,
+                                  size_t size)
 {
 #define BAD(...) return snprintf(text, size, __VA_ARGS__), FACET_ERROR_INVALID_ARGUMENT
     if (o->method != FACET_METHOD_LOCAL_LOCAL && o->method != FACET_METHOD_LOCAL_GLOBAL)
@@ -421,8 +433,9 @@ static facet_status check_options(const facet_planarize_options *o, char *text, 
         BAD("hold_max must be >= 1, not %d", (int)o->hold_max);
     if (o->anderson < 0 || o->anderson > FACET_ANDERSON_MAX)
         BAD("anderson must be in 0..%d, not %d", FACET_ANDERSON_MAX, (int)o->anderson);
-    if (o->surface_weight > 0.0)
-        BAD("surface_weight needs a reference surface, and none is set");
+    if (o->surface_weight > 0.0 && !has_reference)
+        BAD("surface_weight needs a reference surface (facet_planarizer_set_reference), and "
+            "none is set");
 #undef BAD
     return FACET_OK;
 }
@@ -434,6 +447,13 @@ static int ensure_workspace(facet_planarizer *s)
     if (o->shape != FACET_SHAPE_NONE && !s->shape &&
         !(s->shape = malloc(sizeof(double) * 9 * (size_t)s->nf)))
         return 0;
+    if (o->surface_weight > 0.0 && !s->surface_point) {
+        s->surface_point = malloc(sizeof(double) * 3 * (size_t)s->nv);
+        s->surface_normal = malloc(sizeof(double) * 3 * (size_t)s->nv);
+        s->surface_query = malloc(sizeof(double) * 3 * (size_t)s->nv);
+        if (!s->surface_point || !s->surface_normal || !s->surface_query)
+            return 0;
+    }
     if (o->circular > 0.0 && !s->circle_target &&
         !(s->circle_target = malloc(sizeof(double) * 3 * (size_t)s->nc)))
         return 0;
@@ -564,7 +584,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     s->message[0] = '\0';
     const double t0 = facet_now();
     char text[256];
-    facet_status status = check_options(options, text, sizeof text);
+    facet_status status = check_options(options, s->reference != NULL, text, sizeof text);
     if (status != FACET_OK)
         return facet_pl_fail(s, error, status, text);
     s->o = *options;
@@ -604,6 +624,8 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         return facet_pl_fail(s, error, FACET_ERROR_DEGENERATE_FACE,
                              "every edge of the mesh has zero length");
     const double inv = 1.0 / scale;
+    s->scale = scale;
+    memcpy(s->centre, centre, sizeof centre);
     const int warm = options->warm && s->has_previous;
     const double *start_xyz = warm ? s->previous : xyz_in;
     for (int32_t v = 0; v < nv; ++v)
@@ -647,7 +669,11 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     status = FACET_OK;
     for (;;) {
-        facet_pl_local_step(s, mu, nthreads);
+        status = facet_pl_local_step(s, mu, nthreads, error);
+        if (status < 0) {
+            snprintf(s->message, sizeof s->message, "%s", error ? error->message : "local step failed");
+            break;
+        }
         if (aa.m > 0) {
             facet_pl_energy(s, &energy_mu, &energy_con);
             if (accelerated) {
@@ -662,7 +688,9 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                     memcpy(s->q, s->aa_x_fallback, sizeof(double) * 3 * (size_t)nv);
                     aa.count = aa.head = 0;
                     aa.have_previous = 0;
-                    facet_pl_local_step(s, mu, nthreads);
+                    status = facet_pl_local_step(s, mu, nthreads, error);
+                    if (status < 0)
+                        break;
                     facet_pl_energy(s, &energy_mu, &energy_con);
                 }
             }

@@ -301,6 +301,13 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
         double b2 = a02 * pv[0] + a12 * pv[1] + a22 * pv[2];
         /* the K diagonal belongs to the matrix, not to the data target */
         b0 -= kd * pv[0], b1 -= kd * pv[1], b2 -= kd * pv[2];
+        if (o->surface_weight > 0.0 && s->reference) { /* mu w (n . (q - s))^2 */
+            const double *sn = s->surface_normal + 3 * (size_t)v, *sp = s->surface_point + 3 * (size_t)v;
+            const double sw = mu * o->surface_weight, ns = sn[0] * sp[0] + sn[1] * sp[1] + sn[2] * sp[2];
+            a00 += sw * sn[0] * sn[0], a01 += sw * sn[0] * sn[1], a02 += sw * sn[0] * sn[2];
+            a11 += sw * sn[1] * sn[1], a12 += sw * sn[1] * sn[2], a22 += sw * sn[2] * sn[2];
+            b0 += sw * ns * sn[0], b1 += sw * ns * sn[1], b2 += sw * ns * sn[2];
+        }
         for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
             const int32_t f = s->vertex_faces[k];
             const double *n = s->normal + 3 * (size_t)f;

@@ -38,6 +38,7 @@ struct facet_planarizer {
     int32_t *user_fixed;
     int32_t n_user_fixed;
     double *face_weight;                  /* NULL: all 1 */
+    const facet_surface *reference;       /* borrowed; NULL: none */
 
     /* the solve in progress */
     facet_planarize_options o;
@@ -57,6 +58,9 @@ struct facet_planarizer {
     double *circle_target;                /* per corner, 3 values (circular term) */
     double *slide_target, *slide_tangent; /* per vertex (sliding boundary) */
     double *laplace_weight;               /* per vertex_adj entry: normalised weight */
+    double *surface_point, *surface_normal; /* per vertex: closest reference point, its normal */
+    double *surface_query;                /* per vertex: q in model units (the query) */
+    double scale, centre[3];              /* model = normalised * scale + centre */
     double *q_next;                       /* local/local: the new iterate (Jacobi) */
     double *previous;                     /* last result, model units (warm start) */
     int has_previous;
@@ -86,7 +90,7 @@ struct facet_planarizer {
 
 /* planarize_local.c */
 void facet_pl_prepare_solve(facet_planarizer *s);
-void facet_pl_local_step(facet_planarizer *s, double mu, int nthreads);
+facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, facet_error *error);
 void facet_pl_energy(const facet_planarizer *s, double *energy_mu, double *energy_con);
 int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads);
 void facet_pl_procrustes(const double c[9], int similar, double sr[9]);

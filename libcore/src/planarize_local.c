@@ -397,12 +397,25 @@ static void fit_planes(facet_planarizer *s, double mu, int nthreads)
     }
 }
 
-void facet_pl_local_step(facet_planarizer *s, double mu, int nthreads)
+facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
 {
     const int32_t nv = s->nv, nf = s->nf;
     const facet_planarize_options *o = &s->o;
     const double *p = s->p, *q = s->q;
     fit_planes(s, mu, nthreads);
+    const int surface = o->surface_weight > 0.0 && s->reference;
+    if (surface) { /* closest points of the reference surface, in model units */
+        for (size_t k = 0; k < 3 * (size_t)nv; ++k)
+            s->surface_query[k] = q[k] * s->scale + s->centre[k % 3];
+        const facet_status status = facet_surface_closest(s->reference, nv, s->surface_query, nthreads,
+                                                          s->surface_point, NULL, NULL,
+                                                          s->surface_normal, error);
+        if (status < 0)
+            return status;
+        const double inv = 1.0 / s->scale;
+        for (size_t k = 0; k < 3 * (size_t)nv; ++k)
+            s->surface_point[k] = (s->surface_point[k] - s->centre[k % 3]) * inv;
+    }
     const int shape = o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0;
     const int circular = o->circular > 0.0, parallel = o->parallelogram > 0.0;
 
@@ -485,6 +498,11 @@ void facet_pl_local_step(facet_planarizer *s, double mu, int nthreads)
             const double d[3] = {x[0] - pv[0], x[1] - pv[1], x[2] - pv[2]};
             const double dn = dot3(d, nu), dd = dot3(d, d);
             e_mu += o->data_tangent * (dd - dn * dn) + o->data_normal * dn * dn;
+            if (surface) {
+                const double *sp = s->surface_point + 3 * (size_t)v, *sn = s->surface_normal + 3 * (size_t)v;
+                const double ds = (x[0] - sp[0]) * sn[0] + (x[1] - sp[1]) * sn[1] + (x[2] - sp[2]) * sn[2];
+                e_mu += o->surface_weight * ds * ds;
+            }
         }
         if (o->laplacian > 0.0 && !s->on_boundary[v]) {
             double r[3] = {x[0], x[1], x[2]};
@@ -528,6 +546,7 @@ void facet_pl_local_step(facet_planarizer *s, double mu, int nthreads)
         s->vertex_energy_con[v] = e_con;
         s->vertex_residual[v] = residual;
     }
+    return FACET_OK;
 }
 
 /* Sums of the per-element energies, in a fixed order. */
@@ -585,6 +604,14 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
         add_outer(a, mu * (o->data_normal - o->data_tangent), nu);
         double b[3] = {0.0, 0.0, 0.0};
         add_matvec(b, a, pv);
+        if (o->surface_weight > 0.0 && s->reference) { /* mu w (n . (q - s))^2 */
+            const double *sn = s->surface_normal + 3 * (size_t)v, *sp = s->surface_point + 3 * (size_t)v;
+            double m[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+            add_outer(m, mu * o->surface_weight, sn);
+            for (int c = 0; c < 6; ++c)
+                a[c] += m[c];
+            add_matvec(b, m, sp);
+        }
         for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
             const int32_t f = s->vertex_faces[k];
             const double *n = s->normal + 3 * (size_t)f;
