@@ -143,6 +143,52 @@ def build_parser():
     planarize.add_argument(
         "--item", metavar="NAME", help="mesh to read from a RhinoVAULT .json session"
     )
+    terms = planarize.add_argument_group("what to stay close to, and constraints")
+    terms.add_argument(
+        "--data",
+        choices=("point", "plane", "surface"),
+        default="point",
+        help="point: each vertex near its control point (default); plane: near its control "
+        "tangent plane; surface: on the design surface, free to slide along it",
+    )
+    terms.add_argument(
+        "--reference",
+        metavar="MESH",
+        help="design surface for --data surface (default: the input mesh's own surface)",
+    )
+    terms.add_argument(
+        "--boundary",
+        choices=("free", "fixed", "sliding"),
+        default="free",
+        help="boundary vertices move freely (default), stay put, or slide along the boundary "
+        "(corners stay)",
+    )
+    terms.add_argument(
+        "--fixed",
+        metavar="I,J,...",
+        help="vertex indices (0-based) that must not move",
+    )
+    terms.add_argument(
+        "--shape",
+        choices=("none", "asap", "arap"),
+        default="none",
+        help="keep each panel a similar (asap) or congruent (arap) copy of its control face",
+    )
+    terms.add_argument("--shape-weight", type=_positive_float, metavar="W", help="default 1")
+    terms.add_argument("--laplacian", type=_non_negative_float, metavar="W",
+                       help="vertex Laplacian fairing weight (default 0)")
+    terms.add_argument("--normal-laplacian", type=_non_negative_float, metavar="W",
+                       help="face-normal smoothing weight (default 0)")
+    terms.add_argument("--boundary-fairness", type=_non_negative_float, metavar="W",
+                       help="boundary polyline fairing weight (default 0)")
+    terms.add_argument("--circular", type=_non_negative_float, metavar="W",
+                       help="make every face's vertices concyclic (weight; default off)")
+    terms.add_argument("--parallelogram", type=_non_negative_float, metavar="W",
+                       help="make every quad a parallelogram (weight; default off)")
+    terms.add_argument("--anderson", type=_non_negative_int, metavar="M",
+                       help="Anderson acceleration depth (default 5; 0 off)")
+    terms.add_argument("--time-budget", type=_positive_float, metavar="S",
+                       help="stop after S seconds (the result so far is written)")
     planarize.add_argument(
         "--strict",
         action="store_true",
@@ -348,6 +394,34 @@ def _read(args):
     return read_mesh(args.input, **options)
 
 
+def _term_options(args, mesh):
+    """The solver terms asked for on the command line, checked against `mesh`."""
+    from facet.io import read_mesh
+
+    options = {"data": args.data, "boundary": args.boundary, "shape": args.shape}
+    for name in ("shape_weight", "laplacian", "normal_laplacian", "boundary_fairness",
+                 "circular", "parallelogram", "anderson", "time_budget"):
+        value = getattr(args, name)
+        if value is not None:
+            options[name] = value
+    if args.reference:
+        if args.data != "surface":
+            raise _UsageError("--reference needs --data surface")
+        options["reference"] = read_mesh(args.reference)
+    if args.fixed:
+        try:
+            fixed = [int(text) for text in args.fixed.split(",") if text.strip()]
+        except ValueError:
+            raise _UsageError(f"--fixed takes vertex indices separated by commas, not "
+                              f"{args.fixed!r}") from None
+        bad = [i for i in fixed if not 0 <= i < mesh.n_vertices]
+        if bad:
+            raise _UsageError(f"--fixed: vertex {bad[0]} is out of range ({mesh.n_vertices} "
+                              f"vertices in {args.input})")
+        options["fixed"] = fixed
+    return options
+
+
 def run_planarize(args):
     """Run ``facet planarize``; return the exit status."""
     from facet import planarity, planarize
@@ -356,6 +430,7 @@ def run_planarize(args):
 
     writer_for(args.output)  # refuse an unknown output format before the solve
     mesh = _read(args)
+    options = _term_options(args, mesh)
     before = planarity(mesh, threads=args.threads)
     result = planarize(
         mesh,
@@ -365,6 +440,7 @@ def run_planarize(args):
         max_iter=args.max_iter,
         iterations=args.iterations,
         threads=args.threads,
+        **options,
     )
     write_mesh(result.mesh, args.output)
     report = planarize_report(

@@ -1,0 +1,164 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The planarizer's data terms, regularizers and constraints through facet.planarize()."""
+
+import json
+
+import numpy as np
+import pytest
+
+import facet
+from facet.cli import main
+from facet.planarize import DATA_TERMS, TERMS
+
+
+@pytest.fixture
+def tube(data_dir):
+    return facet.read_mesh(data_dir / "tubemesh.off")
+
+
+@pytest.fixture
+def hypar(data_dir):
+    return facet.read_mesh(data_dir / "hypar.obj")
+
+
+def surface_distance(result, control):
+    _, distance, _, _ = facet.Surface(control).closest(result.mesh.vertices)
+    return float(np.sqrt(np.mean(distance**2))) / control.mean_edge_length()
+
+
+def test_default_converges_with_anderson(tube):
+    result = facet.planarize(tube)
+    assert result.converged and result.planarity.max_rel_all <= 1e-6
+    kept, refused = result.anderson
+    assert kept > 0
+    # the paper's geometric schedule without acceleration needs more iterations
+    paper = facet.planarize(tube, ratio=0.95, hold_tol=0.0, anderson=0)
+    assert paper.converged
+    assert result.iterations * 2 < paper.iterations
+
+
+@pytest.mark.parametrize("data", ["plane", "surface"])
+def test_sliding_data_terms_stay_closer_to_the_design(hypar, data):
+    point = facet.planarize(hypar)
+    slid = facet.planarize(hypar, data=data)
+    assert slid.converged
+    assert surface_distance(slid, hypar) < 0.5 * surface_distance(point, hypar)
+    assert slid.options["shape"] == "asap"
+    # the preset's shape term keeps every panel from degenerating
+    assert slid.quality.as_dict()["min_angle_deg"] > 5.0
+
+
+def test_reference_surface_other_than_the_control_mesh(hypar):
+    lifted = hypar.with_vertices(hypar.vertices + [0.0, 0.0, 0.5 * hypar.mean_edge_length()])
+    result = facet.planarize(hypar, data="surface", reference=lifted, shape="none")
+    assert result.converged
+    # pulled towards the lifted design surface: the mean height rises
+    assert result.mesh.vertices[:, 2].mean() > hypar.vertices[:, 2].mean() + 0.1 * hypar.mean_edge_length()
+
+
+def test_fixed_vertices_keep_their_bits(tube):
+    pins = [0, 17, 150]
+    result = facet.planarize(tube, fixed=pins)
+    assert result.converged
+    assert np.array_equal(result.mesh.vertices[pins], tube.vertices[pins])
+    with pytest.raises(facet.MeshError, match="out of range"):
+        facet.planarize(tube, fixed=[tube.n_vertices])
+
+
+def test_boundary_modes(hypar):
+    fixed = facet.planarize(hypar, boundary="fixed")
+    edges = hypar.edges()
+    counts = {}
+    for face in hypar.faces():
+        for a, b in zip(face, face[1:] + face[:1]):
+            key = (min(a, b), max(a, b))
+            counts[key] = counts.get(key, 0) + 1
+    boundary = sorted({v for key, n in counts.items() if n == 1 for v in key})
+    assert len(edges) > len(boundary) > 0
+    assert np.array_equal(fixed.mesh.vertices[boundary], hypar.vertices[boundary])
+    sliding = facet.planarize(hypar, boundary="sliding")
+    assert sliding.converged and sliding.constraint_max_rel <= 1e-6
+
+
+def test_exempt_face_is_not_planarized(tube):
+    weights = np.ones(tube.n_faces)
+    weights[10] = 0.0
+    result = facet.planarize(tube, face_weights=weights)
+    assert result.converged
+    rel = result.planarity.max_rel
+    assert np.delete(rel, 10).max() <= 1e-6
+    assert rel[10] > 1e-5
+    with pytest.raises(facet.FacetError, match="face 3"):
+        bad = weights.copy()
+        bad[3] = -1
+        facet.planarize(tube, face_weights=bad)
+
+
+@pytest.mark.parametrize(
+    "options",
+    [
+        {"laplacian": 0.5},
+        {"laplacian": 0.5, "laplacian_weights": "inverse_edge"},
+        {"normal_laplacian": 0.3},
+        {"boundary_fairness": 1.0},
+        {"shape": "arap"},
+        {"circular": 1.0},
+        {"parallelogram": 1.0, "max_iter": 3000},
+    ],
+)
+def test_every_term_reaches_the_tolerance(hypar, options):
+    result = facet.planarize(hypar, **options)
+    assert result.converged, options
+    assert result.planarity.max_rel_all <= 1e-6
+    assert result.constraint_max_rel <= 1e-6
+    assert np.isfinite(result.mesh.vertices).all()
+
+
+def test_bad_options_are_named(tube):
+    with pytest.raises(TypeError, match="wobble"):
+        facet.planarize(tube, wobble=1)
+    with pytest.raises(facet.FacetError, match="shape"):
+        facet.planarize(tube, shape="round")
+    with pytest.raises(facet.FacetError, match="data"):
+        facet.planarize(tube, data="nearby")
+    with pytest.raises(facet.FacetError, match="laplacian"):
+        facet.planarize(tube, laplacian=-1)
+    assert set(DATA_TERMS) == {"point", "plane", "surface"}
+    assert "anderson" in TERMS
+
+
+def test_time_budget_returns_the_best_so_far(tube):
+    result = facet.planarize(tube, time_budget=1e-9)
+    assert result.stop_reason == "time" and not result.converged
+    assert np.isfinite(result.mesh.vertices).all()
+
+
+def test_command_line_terms(tmp_path, data_dir):
+    out = tmp_path / "out.obj"
+    report = tmp_path / "r.json"
+    code = main([
+        "planarize", str(data_dir / "hypar.obj"), "-o", str(out), "--data", "surface",
+        "--boundary", "sliding", "--fixed", "0,1", "--report", str(report),
+    ])
+    assert code == 0
+    data = json.loads(report.read_text())
+    assert data["converged"]
+    assert data["options"]["boundary"] == "sliding"
+    assert data["quality"]["distance_rms"] >= 0.0
+    result = facet.read_mesh(out)
+    source = facet.read_mesh(data_dir / "hypar.obj")
+    assert np.array_equal(result.vertices[:2], source.vertices[:2])
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["--fixed", "1,x"], "--fixed"),
+        (["--fixed", "100000"], "out of range"),
+        (["--reference", "nowhere.obj"], "--reference needs --data surface"),
+    ],
+)
+def test_command_line_term_errors(tmp_path, data_dir, capsys, argv, message):
+    code = main(["planarize", str(data_dir / "hypar.obj"), "-o", str(tmp_path / "o.obj")] + argv)
+    assert code == 2
+    assert message in capsys.readouterr().err
