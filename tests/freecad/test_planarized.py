@@ -119,3 +119,50 @@ class TestPlanarizedErrors(DocumentTestCase):
         self.assertTrue(second.isValid(), second.getStatusString())
         self.assertLessEqual(second.PlanarityMaxRel, 1e-7)
         self.assertIs(second.Source, first)
+
+
+class TestPlanarizedTerms(DocumentTestCase):
+    """The Terms properties reach the solver and show in the result."""
+
+    def test_terms_change_the_result(self):
+        source = importer.import_mesh(data_path("hypar.obj"), self.doc)
+        plain = facetwb.make_planarized(source)
+        slid = facetwb.make_planarized(source)
+        slid.Data = "surface"
+        slid.Boundary = "fixed"
+        slid.FixedVertices = [40]
+        self.doc.recompute()
+        for obj in (plain, slid):
+            self.assertTrue(obj.isValid(), obj.getStatusString())
+            self.assertTrue(obj.Converged)
+        before = points_array(source)
+        after = points_array(slid)
+        np.testing.assert_array_equal(bits(after[40]), bits(before[40]))
+        np.testing.assert_array_equal(bits(after[0]), bits(before[0]))  # a corner: boundary
+        surface = facet.Surface(facetwb.get_mesh(source))
+        d_plain = surface.closest(points_array(plain))[1]
+        d_slid = surface.closest(after)[1]
+        self.assertLess(np.sqrt(np.mean(d_slid**2)), 0.5 * np.sqrt(np.mean(d_plain**2)))
+
+    def test_exempt_face_and_bad_weights(self):
+        source = importer.import_mesh(data_path("hypar.obj"), self.doc)
+        result = facetwb.make_planarized(source)
+        weights = [1.0] * 64
+        weights[5] = 0.0
+        result.FaceWeights = weights
+        self.doc.recompute()
+        self.assertTrue(result.isValid(), result.getStatusString())
+        rel = np.asarray(result.FacePlanarity)
+        self.assertGreater(rel[5], rel[np.arange(64) != 5].max())
+        result.FaceWeights = [1.0] * 3
+        self.doc.recompute()
+        self.assertFalse(result.isValid())
+        self.assertIn("FaceWeights has 3 values for 64 faces", result.getStatusString())
+
+    def test_out_of_range_fixed_vertex(self):
+        source = importer.import_mesh(data_path("hypar.obj"), self.doc)
+        result = facetwb.make_planarized(source)
+        result.FixedVertices = [81]
+        self.doc.recompute()
+        self.assertFalse(result.isValid())
+        self.assertIn("FixedVertices has vertex 81", result.getStatusString())

@@ -27,7 +27,22 @@ STOP_REASONS = {
     "iterations": "fixed number of iterations done",
     "stagnation": "no further progress",
     "cancelled": "cancelled",
+    "time": "time budget used, tolerance NOT reached",
 }
+
+#: Enumerations of the solver's terms (first value is the default).
+DATA_TERMS = ["point", "plane", "surface"]
+BOUNDARY_MODES = ["free", "fixed", "sliding"]
+SHAPE_MODES = ["none", "asap", "arap"]
+
+#: Float properties passed to facet.planarize when non-zero: property, option, tooltip.
+TERM_WEIGHTS = [
+    ("Laplacian", "laplacian", "Vertex Laplacian fairing weight (0: off)"),
+    ("NormalLaplacian", "normal_laplacian", "Face-normal smoothing weight (0: off)"),
+    ("BoundaryFairness", "boundary_fairness", "Boundary polyline fairing weight (0: off)"),
+    ("Circular", "circular", "Make every panel's corners lie on a circle (weight; 0: off)"),
+    ("Parallelogram", "parallelogram", "Make every quad a parallelogram (weight; 0: off)"),
+]
 
 
 class Planarized(PolyMesh):
@@ -62,6 +77,47 @@ class Planarized(PolyMesh):
         compat.add_property(
             obj, "App::PropertyInteger", "Threads", "Planarize",
             "Threads for the solver (0: all cores)")
+        if compat.add_property(
+                obj, "App::PropertyEnumeration", "Data", "Terms",
+                "What the result stays close to: point (each vertex near its control point), "
+                "plane (near its tangent plane) or surface (on the design surface, free to "
+                "slide along it); plane and surface add a mild shape term"):
+            obj.Data = DATA_TERMS
+            obj.Data = "point"
+        compat.add_property(
+            obj, "App::PropertyLink", "Reference", "Terms",
+            "Design surface for Data = surface (a PolyMesh, Mesh or Part object); empty: "
+            "the source mesh's own surface")
+        if compat.add_property(
+                obj, "App::PropertyEnumeration", "Boundary", "Terms",
+                "Boundary vertices: free, fixed in place, or sliding along the boundary "
+                "(corners stay)"):
+            obj.Boundary = BOUNDARY_MODES
+            obj.Boundary = "free"
+        compat.add_property(
+            obj, "App::PropertyIntegerList", "FixedVertices", "Terms",
+            "Vertex indices that must not move")
+        compat.add_property(
+            obj, "App::PropertyFloatList", "FaceWeights", "Terms",
+            "Per-panel planarity weights, one per face (0: exempt, e.g. an opening); "
+            "empty: all 1")
+        if compat.add_property(
+                obj, "App::PropertyEnumeration", "Shape", "Terms",
+                "Keep each panel a similar (asap) or congruent (arap) copy of its control "
+                "face; Default follows Data"):
+            obj.Shape = ["default"] + SHAPE_MODES
+            obj.Shape = "default"
+        compat.add_property(
+            obj, "App::PropertyFloat", "ShapeWeight", "Terms",
+            "Weight of the shape term (0: the default)")
+        for name, _option, tip in TERM_WEIGHTS:
+            compat.add_property(obj, "App::PropertyFloat", name, "Terms", tip)
+        compat.add_property(
+            obj, "App::PropertyInteger", "Anderson", "Planarize",
+            "Anderson acceleration depth (0: off)", value=5)
+        compat.add_property(
+            obj, "App::PropertyFloat", "TimeBudget", "Planarize",
+            "Stop after this many seconds (0: no limit)")
         compat.add_property(obj, "App::PropertyInteger", "Iterations", "Result",
                             "Iterations the last solve ran", attr=output, editor_mode=read_only)
         compat.add_property(obj, "App::PropertyString", "StopReason", "Result",
@@ -88,6 +144,7 @@ class Planarized(PolyMesh):
             tol_abs=obj.ToleranceAbs.Value or None,
             max_iter=obj.MaxIterations or None,
             threads=obj.Threads or None,
+            **term_options(obj, mesh),
         )
         set_mesh(obj, result.mesh)
         set_planarity(obj, result.planarity)
@@ -96,6 +153,42 @@ class Planarized(PolyMesh):
         obj.Converged = bool(result.converged)
         obj.DisplacementMax = float(result.displacement_max)
         obj.DisplacementRms = float(result.displacement_rms)
+
+
+def term_options(obj, mesh):
+    """The facet.planarize options of a Planarized object's Terms properties.
+
+    Raises ValueError naming the object and the property when one does not fit the mesh.
+    """
+    options = {"data": obj.Data, "boundary": obj.Boundary, "anderson": int(obj.Anderson)}
+    if obj.Shape != "default":
+        options["shape"] = obj.Shape
+    if obj.ShapeWeight > 0:
+        options["shape_weight"] = float(obj.ShapeWeight)
+    for name, option, _tip in TERM_WEIGHTS:
+        value = float(getattr(obj, name))
+        if value < 0:
+            raise ValueError(f"{obj.Label}: {name} is {value}; it must be 0 or more")
+        if value > 0:
+            options[option] = value
+    if obj.TimeBudget > 0:
+        options["time_budget"] = float(obj.TimeBudget)
+    fixed = list(obj.FixedVertices)
+    bad = [v for v in fixed if not 0 <= v < mesh.n_vertices]
+    if bad:
+        raise ValueError(f"{obj.Label}: FixedVertices has vertex {bad[0]}, out of range "
+                         f"({mesh.n_vertices} vertices)")
+    if fixed:
+        options["fixed"] = fixed
+    weights = list(obj.FaceWeights)
+    if weights:
+        if len(weights) != mesh.n_faces:
+            raise ValueError(f"{obj.Label}: FaceWeights has {len(weights)} values for "
+                             f"{mesh.n_faces} faces")
+        options["face_weights"] = weights
+    if obj.Data == "surface" and obj.Reference is not None:
+        options["reference"] = conversion.mesh_from_object(obj.Reference)
+    return options
 
 
 def is_planarized(obj):
