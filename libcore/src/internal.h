@@ -46,6 +46,17 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
  * OpenMP default. */
 int facet_thread_count(int requested);
 
+/* max and min without fmax's call and NaN rules (callers pass no NaN). */
+static inline double facet_max(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+static inline double facet_min(double a, double b)
+{
+    return a < b ? a : b;
+}
+
 /* Monotonic wall clock in seconds. */
 double facet_now(void);
 

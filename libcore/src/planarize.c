@@ -511,7 +511,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     for (size_t k = 0; k < n; ++k) {
         s->aa_f[k] = g[k] - x[k];
         s->aa_g[k] = g[k];
-        largest = fmax(largest, fabs(s->aa_f[k]));
+        largest = facet_max(largest, fabs(s->aa_f[k]));
     }
     a->have_previous = 1;
     /* at a fixed point to rounding there is nothing to extrapolate, and
@@ -605,8 +605,8 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     double lo[3] = {xyz_in[0], xyz_in[1], xyz_in[2]}, hi[3] = {lo[0], lo[1], lo[2]};
     for (int32_t v = 1; v < nv; ++v)
         for (int a = 0; a < 3; ++a) {
-            lo[a] = fmin(lo[a], xyz_in[3 * (size_t)v + a]);
-            hi[a] = fmax(hi[a], xyz_in[3 * (size_t)v + a]);
+            lo[a] = facet_min(lo[a], xyz_in[3 * (size_t)v + a]);
+            hi[a] = facet_max(hi[a], xyz_in[3 * (size_t)v + a]);
         }
     const double centre[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
     double edge_sum = 0.0;
@@ -700,14 +700,14 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         for (int32_t f = 0; f < nf; ++f) {
             if (s->face_weight && !(s->face_weight[f] > 0.0))
                 continue;
-            max_abs = fmax(max_abs, s->face_dev[f]);
+            max_abs = facet_max(max_abs, s->face_dev[f]);
             const double e = s->face_edge[f];
-            max_rel = fmax(max_rel, e > 0.0 ? s->face_dev[f] / e : (s->face_dev[f] > 0.0 ? INFINITY : 0.0));
+            max_rel = facet_max(max_rel, e > 0.0 ? s->face_dev[f] / e : (s->face_dev[f] > 0.0 ? INFINITY : 0.0));
         }
         for (int32_t f = 0; f < nf; ++f)
-            constraint = fmax(constraint, s->face_residual[f]);
+            constraint = facet_max(constraint, s->face_residual[f]);
         for (int32_t v = 0; v < nv; ++v)
-            constraint = fmax(constraint, s->vertex_residual[v]);
+            constraint = facet_max(constraint, s->vertex_residual[v]);
         /* A warm start begins at the previous (planar) result: it must take the
          * edited control positions into account before it may stop. */
         if (use_tol && (it > 0 || !warm) && (tol_abs <= 0.0 || max_abs <= tol_abs) &&
@@ -725,7 +725,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             break;
         }
         /* Stagnation: mu at its floor and no 2% gain over the last WINDOW iterations. */
-        const double measure = fmax(max_rel, constraint);
+        const double measure = facet_max(max_rel, constraint);
         if (!fixed_count && it >= WINDOW && mu <= options->mu_min &&
             measure > 0.98 * history[it % WINDOW]) {
             reason = FACET_STOP_STAGNATION;
@@ -754,7 +754,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                 const double *a = x_before + 3 * (size_t)v, *b = s->q + 3 * (size_t)v;
                 const double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
                                   (a[2] - b[2]) * (a[2] - b[2]);
-                move = fmax(move, d2);
+                move = facet_max(move, d2);
             }
         accelerated = aa.m > 0 && mu < 1.0 ? anderson_step(s, &aa, x_before) : 0;
         ++it;
@@ -769,7 +769,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         if (!staircase || mu >= 1.0 ||
             (above && (move <= options->hold_tol * options->hold_tol * level_first_move ||
                        level_steps >= options->hold_max))) {
-            const double next = fmax(mu * options->ratio, options->mu_min);
+            const double next = facet_max(mu * options->ratio, options->mu_min);
             if (staircase && next != mu) { /* a new fixed-point map: restart the history */
                 aa.count = aa.head = 0;
                 aa.have_previous = 0;

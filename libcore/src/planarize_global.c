@@ -314,6 +314,8 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
             const double pw = w * face_weight(s, f);
             a00 += pw * n[0] * n[0], a01 += pw * n[0] * n[1], a02 += pw * n[0] * n[2];
             a11 += pw * n[1] * n[1], a12 += pw * n[1] * n[2], a22 += pw * n[2] * n[2];
+            if (!shape && !(o->circular > 0.0))
+                continue;
             const int32_t fb = s->face_start[f];
             int32_t corner = 0;
             while (s->face_vertices[fb + corner] != v)

@@ -418,7 +418,11 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
     }
     const int shape = o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0;
     const int circular = o->circular > 0.0, parallel = o->parallelogram > 0.0;
-
+    const int energies = o->anderson > 0; /* only the safeguard reads them */
+    const int sliding = o->boundary == FACET_BOUNDARY_SLIDING;
+    if (!energies && !shape && !circular && !parallel) {
+        memset(s->face_residual, 0, sizeof(double) * (size_t)nf);
+    } else {
 #pragma omp parallel for schedule(static) num_threads(nthreads)
     for (int32_t f = 0; f < nf; ++f) {
         const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
@@ -470,10 +474,10 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
                 const double d[3] = {y[0] - t[3 * k], y[1] - t[3 * k + 1], y[2] - t[3 * k + 2]};
                 const double d2 = dot3(d, d);
                 e += d2;
-                worst = fmax(worst, d2);
+                worst = facet_max(worst, d2);
             }
             e_con += o->circular * e;
-            residual = fmax(residual, sqrt(worst) / fmax(s->face_edge[f], 1e-300));
+            residual = facet_max(residual, sqrt(worst) / facet_max(s->face_edge[f], 1e-300));
         }
         if (parallel && n == 4) {
             const double *y0 = q + 3 * (size_t)idx[0], *y1 = q + 3 * (size_t)idx[1];
@@ -482,14 +486,18 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
                                  y0[2] - y1[2] + y2[2] - y3[2]};
             const double r2 = dot3(r, r);
             e_con += o->parallelogram * r2;
-            residual = fmax(residual, sqrt(r2) / fmax(s->face_edge[f], 1e-300));
+            residual = facet_max(residual, sqrt(r2) / facet_max(s->face_edge[f], 1e-300));
         }
         s->face_energy_mu[f] = e_mu;
         s->face_energy_con[f] = e_con;
         s->face_residual[f] = residual;
     }
+    }
 
-    const int sliding = o->boundary == FACET_BOUNDARY_SLIDING;
+    if (!energies && !sliding) {
+        memset(s->vertex_residual, 0, sizeof(double) * (size_t)nv);
+        return FACET_OK;
+    }
 #pragma omp parallel for schedule(static) num_threads(nthreads)
     for (int32_t v = 0; v < nv; ++v) {
         const double *x = q + 3 * (size_t)v, *pv = p + 3 * (size_t)v, *nu = s->vertex_normal + 3 * (size_t)v;
@@ -590,6 +598,7 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
     const int sliding = o->boundary == FACET_BOUNDARY_SLIDING;
     const double *q_old = s->q;
     double *q_new = s->q_next;
+    const int extra = shape || o->circular > 0.0 || o->parallelogram > 0.0; /* per-face terms */
     int finite = 1;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(&& : finite)
     for (int32_t v = 0; v < nv; ++v) {
@@ -618,6 +627,8 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
             const double pw = w * face_weight(s, f), d = s->offset[f];
             add_outer(a, pw, n);
             b[0] -= pw * d * n[0], b[1] -= pw * d * n[1], b[2] -= pw * d * n[2];
+            if (!extra)
+                continue;
             const int32_t fb = s->face_start[f], fn = s->face_start[f + 1] - fb;
             int32_t corner = 0;
             while (s->face_vertices[fb + corner] != v)
