@@ -1,0 +1,382 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Optimal liftings of plan drawings (paper section 6.1).
+
+A *lifting* of a plan gives every plan vertex a height so that every face
+is exactly planar; the plan's x and y never move. The liftings form a linear
+space that always holds the three affine (trivial) liftings 1, x, y.
+:func:`lift` returns the lifting closest to target heights in the weighted
+least-squares sense; :class:`LiftingSpace` gives the space's dimension and
+bases of it.
+
+The numerics are in the compiled core (``facet._core.Lifter``): one
+rank-revealing sparse QR (SuiteSparseQR) of the planarity constraints, kept
+by :class:`Lifter` so that later solves and fundamental liftings are two
+applications of the stored Q.
+
+>>> result = lift(plan_mesh, targets)              # doctest: +SKIP
+>>> result.planarity_max_rel <= 1e-9               # doctest: +SKIP
+True
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from facet import _core
+from facet.errors import FacetError, InputError, from_core
+from facet.mesh import PolyMesh
+
+__all__ = ["BASES", "LiftResult", "Lifter", "LiftingSpace", "lift", "lifting_space",
+           "TargetError"]
+
+#: Basis kinds by name.
+BASES = {
+    "fundamental": "fundamental liftings: the lifting closest to a unit height at one vertex",
+    "eigen": "eigen-liftings: smoothest first (eigenvectors of P L P)",
+    "orthonormal": "an orthonormal basis from the QR factorization (fast)",
+}
+
+
+class TargetError(InputError):
+    """Target heights or weights cannot be used (wrong count, NaN, weight <= 0)."""
+
+
+def _plan_mesh(plan):
+    mesh = getattr(plan, "mesh", plan)
+    if not isinstance(mesh, PolyMesh):
+        raise InputError(f"a plan must be a PolyMesh or a PlanGraph, not {type(plan).__name__}")
+    return mesh
+
+
+def _vector(values, n, name):
+    try:
+        array = np.ascontiguousarray(values, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        raise TargetError(f"{name} must be {n} numbers") from None
+    if array.shape != (n,):
+        raise TargetError(f"{name} has {array.size} values but the plan has {n} vertices")
+    bad = np.flatnonzero(~np.isfinite(array))
+    if bad.size:
+        raise TargetError(f"{name} of vertex {int(bad[0])} is not a finite number")
+    return array
+
+
+def _core_error(exc, source):
+    name = getattr(exc, "status_name", None)
+    if name in ("FACET_ERROR_BAD_WEIGHT", "FACET_ERROR_BAD_TARGET"):
+        error = TargetError(str(exc))
+        error.status_name = name
+        return error
+    if name == "FACET_ERROR_PLAN_DEGENERATE_FACE":
+        from facet.plan import PlanError
+
+        error = PlanError(f"{source}: {exc}" if source else str(exc))
+        error.status_name = name
+        return error
+    return from_core(exc, source=source)
+
+
+@dataclass
+class LiftResult:
+    """The optimal lifting of a plan towards target heights.
+
+    Attributes
+    ----------
+    mesh : facet.PolyMesh
+        The plan's faces with the lifted vertices (x, y from the plan, z the
+        heights): every face planar.
+    heights, targets, weights : numpy.ndarray
+        Per vertex.
+    dimension : int
+        Dimension of the lifting space.
+    trivial_dimension : int
+        3: the affine liftings.
+    liftable_only_trivially : bool
+        The plan admits only the affine liftings; the result is then the
+        weighted best-fitting plane of the targets.
+    planarity_max_abs, planarity_max_rel : float
+        Largest distance of a corner from its face's plane, in model units
+        and relative to the face's mean edge length (<= 1e-9 unless a warning
+        says otherwise).
+    target_rms, target_max : float
+        RMS and largest ``|height - target|``; target_max_vertex is where.
+    solve_seconds, factor_seconds : float
+        Wall time of the solve and of the factorization.
+    warnings : list of str
+    """
+
+    mesh: PolyMesh
+    heights: np.ndarray
+    targets: np.ndarray
+    weights: np.ndarray
+    dimension: int
+    trivial_dimension: int
+    planarity_max_abs: float
+    planarity_max_rel: float
+    target_rms: float
+    target_max: float
+    target_max_vertex: int
+    solve_seconds: float
+    factor_seconds: float
+    warnings: list = field(default_factory=list)
+
+    @property
+    def liftable_only_trivially(self):
+        return self.dimension <= self.trivial_dimension
+
+    @property
+    def deviation(self):
+        """``heights - targets`` per vertex."""
+        return self.heights - self.targets
+
+    def far_targets(self, count=10):
+        """The vertices whose targets the lifting misses most.
+
+        Returns
+        -------
+        list of (vertex, height - target), largest miss first.
+        """
+        dev = self.deviation
+        order = np.argsort(-np.abs(dev), kind="stable")[:count]
+        return [(int(v), float(dev[v])) for v in order]
+
+    def report(self):
+        """The JSON-ready summary (keys of the command line's report)."""
+        return {
+            "vertices": int(self.mesh.n_vertices),
+            "faces": int(self.mesh.n_faces),
+            "dimension": int(self.dimension),
+            "trivial_dimension": int(self.trivial_dimension),
+            "liftable_only_trivially": bool(self.liftable_only_trivially),
+            "planarity_max_abs": float(self.planarity_max_abs),
+            "planarity_max_rel": float(self.planarity_max_rel),
+            "target_rms": float(self.target_rms),
+            "target_max": float(self.target_max),
+            "target_max_vertex": int(self.target_max_vertex),
+            "solve_seconds": float(self.solve_seconds),
+            "factor_seconds": float(self.factor_seconds),
+            "far_targets": [[v, d] for v, d in self.far_targets(10)],
+            "warnings": list(self.warnings),
+        }
+
+
+class Lifter:
+    """The lifting solver of one plan with fixed weights.
+
+    It factorizes once (sparse QR); :meth:`solve` and :meth:`fundamental`
+    reuse the factorization.
+
+    Parameters
+    ----------
+    plan : facet.PolyMesh or facet.plan.PlanGraph
+        The plan: x and y of its vertices (z is ignored) and its faces.
+    weights : array_like, optional
+        Per-vertex weights, finite and > 0 (default all 1).
+    rank_tol : float, optional
+        Rank tolerance on the unit-norm constraint rows (default SPQR's,
+        20 (m + n) eps). Constraints independent by more than this are
+        enforced exactly.
+
+    Raises
+    ------
+    facet.MeshError
+        The plan's faces are not valid.
+    facet.plan.PlanError
+        A face's corners are collinear in plan.
+    TargetError
+        A weight is not finite and > 0.
+    """
+
+    def __init__(self, plan, weights=None, *, rank_tol=None):
+        mesh = _plan_mesh(plan)
+        self._source = mesh.info.get("source") if mesh.info else None
+        self._plan = mesh
+        n = mesh.n_vertices
+        self._weights = np.ones(n) if weights is None else _vector(weights, n, "weight")
+        bad = np.flatnonzero(~(self._weights > 0))
+        if bad.size:
+            raise TargetError(
+                f"weight of vertex {int(bad[0])} is {self._weights[bad[0]]!r}: weights must be > 0"
+            )
+        xyz = np.ascontiguousarray(mesh.vertices, dtype=np.float64).reshape(-1)
+        try:
+            self._core = _core.Lifter(
+                xyz,
+                mesh.face_start,
+                mesh.face_vertices,
+                None if weights is None else self._weights,
+                0.0 if rank_tol is None else float(rank_tol),
+            )
+        except _core.CoreError as exc:
+            raise _core_error(exc, self._source) from None
+
+    @property
+    def plan(self):
+        """The plan mesh."""
+        return self._plan
+
+    @property
+    def dimension(self):
+        """Dimension of the lifting space (>= 3)."""
+        return self._core.dimension
+
+    @property
+    def factor_seconds(self):
+        return self._core.factor_seconds
+
+    def solve(self, targets):
+        """The optimal lifting of per-vertex target heights.
+
+        Returns
+        -------
+        LiftResult
+        """
+        n = self._plan.n_vertices
+        t = _vector(targets, n, "target height")
+        z = np.empty(n)
+        try:
+            info = self._core.solve(t, z)
+        except _core.CoreError as exc:
+            raise _core_error(exc, self._source) from None
+        warnings = []
+        if info["status"] != "FACET_OK":
+            warnings.append(info["message"])
+        if not np.all(np.isfinite(z)):  # the core refuses this; never let a NaN out
+            raise FacetError("the lifting is not finite")
+        xyz = np.array(self._plan.vertices, dtype=np.float64)
+        xyz[:, 2] = z
+        mesh = self._plan.with_vertices(xyz)
+        return LiftResult(
+            mesh=mesh,
+            heights=z,
+            targets=t,
+            weights=self._weights.copy(),
+            dimension=info["dimension"],
+            trivial_dimension=info["trivial_dimension"],
+            planarity_max_abs=info["planarity_max_abs"],
+            planarity_max_rel=info["planarity_max_rel"],
+            target_rms=info["target_rms"],
+            target_max=info["target_max"],
+            target_max_vertex=info["target_max_vertex"],
+            solve_seconds=info["seconds"],
+            factor_seconds=self._core.factor_seconds,
+            warnings=warnings,
+        )
+
+    def fundamental(self, vertex, out=None):
+        """The fundamental lifting of a vertex: the lifting closest to height
+        1 there and 0 elsewhere (weighted). Returns heights (n,)."""
+        n = self._plan.n_vertices
+        z = np.empty(n) if out is None else out
+        try:
+            self._core.fundamental(int(vertex), z)
+        except _core.CoreError as exc:
+            raise _core_error(exc, self._source) from None
+        return z
+
+    def basis(self, kind="eigen", count=None):
+        """The first `count` functions of a basis of the lifting space.
+
+        Parameters
+        ----------
+        kind : {"eigen", "orthonormal", "fundamental"}
+            Eigen-liftings (smoothest first; dense, refused beyond dimension
+            2000), any orthonormal basis, or the fundamental liftings of
+            vertices 0 .. count-1 (these span the space but are not
+            independent).
+        count : int, optional
+            Default: the dimension (eigen, orthonormal) or every vertex
+            (fundamental).
+
+        Returns
+        -------
+        (basis, energies) : numpy.ndarray (count, n), numpy.ndarray (count,)
+            For eigen and orthonormal, functions 0..2 are the trivial
+            liftings 1, x, y (orthonormal in the weighted inner product); the
+            rest are orthogonal to them. energies are the Dirichlet energies
+            z' L z on the plan's edges.
+        """
+        n = self._plan.n_vertices
+        if kind not in BASES:
+            raise InputError(f"unknown basis {kind!r}: use one of {', '.join(BASES)}")
+        if kind == "fundamental":
+            count = n if count is None else int(count)
+            if not 0 <= count <= n:
+                raise InputError(f"count {count} is not between 0 and {n} vertices")
+            basis = np.empty((count, n))
+            for v in range(count):
+                self.fundamental(v, basis[v])
+            edges = self._plan.edges()
+            energies = np.array([np.sum((b[edges[:, 0]] - b[edges[:, 1]]) ** 2) for b in basis])
+            return basis, energies
+        d = self.dimension
+        count = d if count is None else int(count)
+        if not 0 <= count <= d:
+            raise InputError(f"count {count} is not between 0 and the dimension {d}")
+        basis = np.empty((count, n))
+        energies = np.empty(count)
+        try:
+            self._core.basis(kind, count, basis, energies)
+        except _core.CoreError as exc:
+            raise _core_error(exc, self._source) from None
+        return basis, energies
+
+
+@dataclass
+class LiftingSpace:
+    """The lifting space of a plan: its dimension and a basis.
+
+    Attributes
+    ----------
+    dimension, trivial_dimension : int
+    kind : str
+        The basis kind.
+    basis : numpy.ndarray (count, n)
+        Heights per vertex of each basis function.
+    energies : numpy.ndarray (count,)
+        Dirichlet energy of each.
+    """
+
+    dimension: int
+    trivial_dimension: int
+    kind: str
+    basis: np.ndarray
+    energies: np.ndarray
+
+
+def lift(plan, targets, weights=None, *, rank_tol=None):
+    """The lifting of a plan closest to target heights.
+
+    Minimizes ``sum_v w_v (z_v - t_v)^2`` over heights z that make every
+    face exactly planar (x and y fixed). When the plan admits only the
+    affine liftings, the answer is the weighted best-fitting plane and
+    ``result.liftable_only_trivially`` is True.
+
+    Parameters
+    ----------
+    plan : facet.PolyMesh or facet.plan.PlanGraph
+    targets : array_like (n,)
+        Target height per plan vertex (see :mod:`facet.plan` for targets from
+        meshes, pinned heights and point files).
+    weights : array_like (n,), optional
+        Finite and > 0; default all 1.
+    rank_tol : float, optional
+        See :class:`Lifter`.
+
+    Returns
+    -------
+    LiftResult
+    """
+    return Lifter(plan, weights, rank_tol=rank_tol).solve(targets)
+
+
+def lifting_space(plan, kind="eigen", count=None, weights=None, *, rank_tol=None):
+    """The lifting space of a plan and `count` functions of a basis.
+
+    Returns
+    -------
+    LiftingSpace
+    """
+    lifter = Lifter(plan, weights, rank_tol=rank_tol)
+    basis, energies = lifter.basis(kind, count)
+    return LiftingSpace(lifter.dimension, 3, kind, basis, energies)
