@@ -321,14 +321,14 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
     s->cm.print = 0;
     s->cm.error_handler = NULL;
     s->cm.SPQR_nthreads = 1;
-    if (m > 0) {
+    {
         int64_t nnz = 0;
         for (int32_t f = 0; f < nf; ++f) {
             int64_t k = s->face_start[f + 1] - s->face_start[f];
             nnz += (k - 3) * k;
         }
-        cholmod_sparse *a = cholmod_l_allocate_sparse((size_t)nv, (size_t)m, (size_t)nnz, 1, 1,
-                                                      0, CHOLMOD_REAL, &s->cm);
+        cholmod_sparse *a = cholmod_l_allocate_sparse((size_t)nv, (size_t)m, (size_t)(nnz + 1),
+                                                      1, 1, 0, CHOLMOD_REAL, &s->cm);
         if (!a) {
             free(scratch);
             free(order);
@@ -342,8 +342,6 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
         ap[0] = 0;
         for (int32_t f = 0; f < nf; ++f) {
             const int32_t b = s->face_start[f], k = s->face_start[f + 1] - b;
-            if (k == 3)
-                continue;
             const int32_t *idx = s->face_vertices + b;
             double mx = 0.0, my = 0.0;
             for (int32_t i = 0; i < k; ++i) {
@@ -401,9 +399,10 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
             }
         }
         double tol = options && options->rank_tol > 0 ? options->rank_tol : SPQR_DEFAULT_TOL;
-        s->qr = SuiteSparseQR_C_factorize(SPQR_ORDERING_DEFAULT, tol, a, &s->cm);
+        if (m > 0)
+            s->qr = SuiteSparseQR_C_factorize(SPQR_ORDERING_DEFAULT, tol, a, &s->cm);
         cholmod_l_free_sparse(&a, &s->cm);
-        if (!s->qr) {
+        if (m > 0 && !s->qr) {
             facet_status st = s->cm.status == CHOLMOD_OUT_OF_MEMORY ? FACET_ERROR_OUT_OF_MEMORY
                                                                      : FACET_ERROR_NUMERICAL;
             free(scratch);
@@ -413,7 +412,8 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
                               "sparse QR of the %lld planarity constraints failed (status %d)",
                               (long long)m, st);
         }
-        s->rank = (int32_t)s->cm.SPQR_istat[4];
+        if (m > 0)
+            s->rank = (int32_t)s->cm.SPQR_istat[4];
     }
     free(scratch);
     free(order);
