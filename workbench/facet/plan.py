@@ -81,7 +81,7 @@ class PlanGraph:
     openings : int
         Faces dropped as openings.
     snapped : int
-        Endpoints merged into another.
+        Endpoints moved by snapping (to the mean of their cluster).
     """
 
     mesh: PolyMesh
@@ -144,7 +144,7 @@ def _dxf_segments(path, arc_tolerance):
             s, e = entity.dxf.start, entity.dxf.end
             segments.append(((float(s.x), float(s.y)), (float(e.x), float(e.y))))
         elif kind == "LWPOLYLINE":
-            has_bulge = any(abs(b) > 0 for b in entity.get_points("b"))
+            has_bulge = any(abs(b[0]) > 0 for b in entity.get_points("b"))
             if has_bulge:
                 if arc_tolerance is None:
                     raise PlanError(
@@ -287,13 +287,14 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
     snapped = 0
     if snap > 0:
         roots = _snap_points(points, snap)
-        snapped = int(np.count_nonzero(roots != np.arange(len(points))))
         # Each cluster goes to its mean position.
         sums = np.zeros_like(points)
         counts = np.zeros(len(points))
         np.add.at(sums, roots, points)
         np.add.at(counts, roots, 1)
-        points = sums[roots] / counts[roots][:, None]
+        moved = sums[roots] / counts[roots][:, None]
+        snapped = int(np.count_nonzero(np.any(moved != points, axis=1)))
+        points = moved
     array = points.reshape(-1, 2, 2)
     keep = np.any(array[:, 0] != array[:, 1], axis=1)
     lines = [LineString(s) for s in array[keep]]
@@ -381,16 +382,17 @@ def plan_from_mesh(mesh, *, source=None, check_overlap=True):
         total = sum(p.area for p in polygons)
         union = unary_union(polygons).area
         if total > union * (1 + 1e-9):
-            # Name one overlapping pair.
-            from shapely.strtree import STRtree
-
-            tree = STRtree(polygons)
-            ids = {id(p): i for i, p in enumerate(polygons)}
+            # Name one overlapping pair (bounding boxes first).
+            boxes = np.array([p.bounds for p in polygons])
             for i, p in enumerate(polygons):
-                for q in tree.query(p):
-                    j = ids[id(q)]
-                    if j > i and p.intersection(q).area > 1e-9 * min(p.area, q.area):
-                        raise PlanError(f"{where}faces {i} and {j} overlap in plan")
+                near = np.flatnonzero(
+                    (boxes[:, 0] < boxes[i, 2]) & (boxes[:, 2] > boxes[i, 0])
+                    & (boxes[:, 1] < boxes[i, 3]) & (boxes[:, 3] > boxes[i, 1])
+                )
+                for j in near[near > i]:
+                    q = polygons[j]
+                    if p.intersection(q).area > 1e-9 * min(p.area, q.area):
+                        raise PlanError(f"{where}faces {i} and {int(j)} overlap in plan")
             raise PlanError(f"{where}faces overlap in plan")
     return PlanGraph(plan, source=source)
 
