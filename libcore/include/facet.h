@@ -245,20 +245,25 @@ const char *facet_planarizer_message(const facet_planarizer *planarizer);
  * own centred and scaled corners, so plan units and placement do not
  * matter). Redundant and nearly redundant rows are normal in real plans: the
  * rank is decided by SPQR's column-norm test with tolerance rank_tol (on
- * unit-norm rows; <= 0 means SPQR's default, 20 (m+n) eps). Constraints
- * independent by more than rank_tol are enforced exactly, so a drawing that
- * is liftable only up to rounding lifts only trivially. */
+ * unit-norm rows scaled by 1/sqrt of the weights normalised to mean 1;
+ * <= 0 means 1e-10). A constraint dependent on the others to within
+ * rank_tol is treated as dependent (the lifting then violates it by about
+ * that much, inside the 1e-9 planarity promise); the others are enforced
+ * exactly, so a drawing that is liftable only up to coarser rounding lifts
+ * only trivially. */
 
 typedef struct facet_lifter facet_lifter;
 
 typedef struct facet_lift_options {
-    double rank_tol; /* <= 0: SPQR's default */
+    double rank_tol; /* <= 0: 1e-10 */
 } facet_lift_options;
 
 typedef struct facet_lift_result {
     int32_t dimension;          /* of the lifting space */
     int32_t trivial_dimension;  /* 3 */
-    double planarity_max_abs;   /* largest distance of a corner from its face's plane */
+    double planarity_max_abs;   /* largest vertical distance of a corner from its face's
+                                   least-squares plane (>= the true distance; 0 for
+                                   triangles) */
     double planarity_max_rel;   /* the same relative to each face's mean 3D edge length */
     double target_rms;          /* RMS of z - t over all vertices */
     double target_max;          /* largest |z - t| */

@@ -47,16 +47,25 @@ extern void dsyevr_(const char *jobz, const char *range, const char *uplo, const
 /* A face whose corners span less than this (relative) in plan is refused. */
 #define PLAN_DEGENERATE_REL 1e-8
 #define PLANARITY_TOL_REL 1e-9
+/* Size of a refinement step of the corrected semi-normal equations,
+ * relative to the vector projected, below which they count as converged. */
+#define CSNE_TOL 1e-14
+/* Default rank tolerance on the (unit-norm, weight-scaled) constraint
+ * columns: a constraint dependent on the others to within this is treated as
+ * dependent. Violating it by that much keeps every face planar to about
+ * 1e-10 of the plan's size, inside the 1e-9 promise; enforcing it instead
+ * would make the lifting space hinge on rounding of the drawing. */
+#define RANK_TOL_DEFAULT 1e-10
 
 struct facet_lifter {
-    int32_t nv, nf, nc, m, rank, dim;
+    int32_t nv, nf, nc, m, rank, dim, max_degree;
     int32_t *face_start, *face_vertices;
     double *plan_xy;     /* model units, 2*nv */
     double *sqw;         /* sqrt of the weights normalised to mean 1 */
     double *trivial;     /* 3*nv: W-orthonormal basis of span(1, x, y) */
     int32_t ne;
     int32_t *edges;      /* 2*ne, unique undirected edges */
-    double *work, *xyz;  /* nv, 3*nv */
+    double *work, *work2, *save, *xyz; /* nv, nv, nv, 3*nv */
     int cm_started;
     cholmod_common cm;
     SuiteSparseQR_C_factorization *qr; /* NULL when m == 0 (Q = I) */
@@ -102,6 +111,8 @@ void facet_lifter_free(facet_lifter **handle)
     free(s->trivial);
     free(s->edges);
     free(s->work);
+    free(s->save);
+    free(s->work2);
     free(s->xyz);
     free(s);
     *handle = NULL;
@@ -230,12 +241,15 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
     s->trivial = malloc(sizeof(double) * 3 * (size_t)nv);
     s->edges = malloc(sizeof(int32_t) * 2 * (size_t)nc);
     s->work = malloc(sizeof(double) * (size_t)nv);
+    s->save = malloc(sizeof(double) * (size_t)nv);
+    s->work2 = malloc(sizeof(double) * (size_t)nv);
     s->xyz = malloc(sizeof(double) * 3 * (size_t)nv);
     int32_t kmax = report.max_degree;
+    s->max_degree = kmax;
     double *scratch = malloc(sizeof(double) * (size_t)kmax * 5);
     int64_t *order = malloc(sizeof(int64_t) * (size_t)kmax);
     if (!s->face_start || !s->face_vertices || !s->plan_xy || !s->sqw || !s->trivial ||
-        !s->edges || !s->work || !s->xyz || !scratch || !order) {
+        !s->edges || !s->work || !s->work2 || !s->save || !s->xyz || !scratch || !order) {
         free(scratch);
         free(order);
         facet_lifter_free(&s);
@@ -405,7 +419,7 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
                 ap[++col] = pos;
             }
         }
-        double tol = options && options->rank_tol > 0 ? options->rank_tol : SPQR_DEFAULT_TOL;
+        double tol = options && options->rank_tol > 0 ? options->rank_tol : RANK_TOL_DEFAULT;
         if (m > 0)
             s->qr = SuiteSparseQR_C_factorize(SPQR_ORDERING_DEFAULT, tol, a, &s->cm);
         s->a = a;
@@ -469,18 +483,20 @@ static int remove_range(facet_lifter *s, double *u)
         scale = fmax(scale, fabs(u[v]));
     if (scale == 0.0)
         return 1;
+    memcpy(s->save, u, sizeof(double) * (size_t)nv); /* kept for the fallback */
     double *b = s->rhs_m->x;
-    for (int step = 0; step < 4; ++step) {
-        double largest = 0.0;
+    int converged = 0;
+    /* Refinement converges (to the exact projection: the residual A'u is
+     * formed afresh each step) when eps cond(R)^2 < 1; the size of each
+     * correction tells. A small A'u alone would not: with a tiny singular
+     * value, u may keep a large part in range(A) that A' barely sees. */
+    for (int step = 0; step < 6 && !converged; ++step) {
         for (int32_t j = 0; j < m; ++j) {
             double dot = 0.0;
             for (int64_t k = ap[j]; k < ap[j + 1]; ++k)
                 dot += ax[k] * u[ai[k]];
             b[j] = dot;
-            largest = fmax(largest, fabs(dot));
         }
-        if (step > 0 && largest <= 1e-15 * scale)
-            break;
         cholmod_dense *y = SuiteSparseQR_C_solve(SPQR_RTX_EQUALS_ETB, s->qr, s->rhs_m, &s->cm);
         if (!y)
             return 0;
@@ -489,12 +505,87 @@ static int remove_range(facet_lifter *s, double *u)
         if (!x)
             return 0;
         const double *xx = x->x;
+        double *delta = s->work2;
+        memset(delta, 0, sizeof(double) * (size_t)nv);
         for (int32_t j = 0; j < m; ++j)
             for (int64_t k = ap[j]; k < ap[j + 1]; ++k)
-                u[ai[k]] -= ax[k] * xx[j];
+                delta[ai[k]] += ax[k] * xx[j];
         cholmod_l_free_dense(&x, &s->cm);
+        double largest = 0.0;
+        for (int32_t v = 0; v < nv; ++v) {
+            u[v] -= delta[v];
+            largest = fmax(largest, fabs(delta[v]));
+        }
+        if (!(largest < 1e300))
+            break;
+        if (step > 0 && largest <= CSNE_TOL * scale)
+            converged = 1;
     }
-    return 1;
+    if (converged)
+        return 1;
+    /* R is too ill-conditioned for the semi-normal equations (constraints
+     * independent, but only just): project with the orthogonal Q, whose
+     * accuracy does not depend on the conditioning. */
+    memcpy(u, s->save, sizeof(double) * (size_t)nv);
+    if (!apply_q(s, 1, 1, u))
+        return 0;
+    memset(u, 0, sizeof(double) * (size_t)s->rank);
+    return apply_q(s, 0, 1, u);
+}
+
+/* Largest vertical distance of face f's corners (heights z) from the
+ * least-squares plane z = a x + b y + c over them: the norm of z's part
+ * outside span(1, x, y), computed with the same well-conditioned per-face
+ * Householder QR as the constraints (a sliver face does not spoil it the way
+ * a 3D plane fit does). An upper bound on the true distance from that plane;
+ * 0 for triangles. scratch holds 5 * max_degree doubles. */
+static double face_vertical_residual(const facet_lifter *s, int32_t f, const double *z,
+                                     double *scratch)
+{
+    const int32_t b = s->face_start[f], k = s->face_start[f + 1] - b;
+    if (k <= 3)
+        return 0.0;
+    const int32_t *idx = s->face_vertices + b;
+    double mx = 0.0, my = 0.0, mz = 0.0;
+    for (int32_t i = 0; i < k; ++i) {
+        mx += s->plan_xy[2 * idx[i]];
+        my += s->plan_xy[2 * idx[i] + 1];
+        mz += z[idx[i]];
+    }
+    mx /= k, my /= k, mz /= k;
+    double r2 = 0.0;
+    for (int32_t i = 0; i < k; ++i) {
+        double dx = s->plan_xy[2 * idx[i]] - mx, dy = s->plan_xy[2 * idx[i] + 1] - my;
+        r2 += dx * dx + dy * dy;
+    }
+    double r = sqrt(r2 / k);
+    double *h = scratch, *x = scratch + 3 * (size_t)k;
+    for (int32_t i = 0; i < k; ++i) {
+        h[i] = 1.0;
+        h[k + i] = r > 0 ? (s->plan_xy[2 * idx[i]] - mx) / r : 0.0;
+        h[2 * k + i] = r > 0 ? (s->plan_xy[2 * idx[i] + 1] - my) / r : 0.0;
+        x[i] = z[idx[i]] - mz;
+    }
+    double beta[3], diag[3];
+    householder3(k, h, beta, diag);
+    /* x <- Q' x: reflectors in forward order. */
+    for (int j = 0; j < 3; ++j) {
+        if (beta[j] == 0.0)
+            continue;
+        const double *col = h + (size_t)j * k;
+        double dot = 0.0;
+        for (int32_t i = j; i < k; ++i)
+            dot += col[i] * x[i];
+        dot *= beta[j];
+        for (int32_t i = j; i < k; ++i)
+            x[i] -= dot * col[i];
+    }
+    x[0] = x[1] = x[2] = 0.0;
+    householder3_apply(k, h, beta, x);
+    double largest = 0.0;
+    for (int32_t i = 0; i < k; ++i)
+        largest = fmax(largest, fabs(x[i]));
+    return largest;
 }
 
 /* heights = the optimal lifting of t (may alias). Returns 0 on failure of Q. */
@@ -579,11 +670,22 @@ facet_status facet_lifter_solve(facet_lifter *s, const double *targets, double *
     }
     r.target_rms = nv ? sqrt(sum2 / nv) : 0.0;
     int32_t worst = -1;
+    double *scratch = malloc(sizeof(double) * 5 * (size_t)(s->max_degree > 0 ? s->max_degree : 1));
+    if (!scratch) {
+        free(z);
+        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    }
     for (int32_t f = 0; f < s->nf; ++f) {
         const int32_t b = s->face_start[f], k = s->face_start[f + 1] - b;
-        double normal[3], dev = 0.0;
-        double edge = facet_face_measure(k, s->xyz, s->face_vertices + b, normal, NULL, &dev,
-                                         NULL);
+        double dev = face_vertical_residual(s, f, z, scratch);
+        double edge = 0.0;
+        for (int32_t i = 0; i < k; ++i) {
+            const double *p = s->xyz + 3 * (size_t)s->face_vertices[b + i];
+            const double *q = s->xyz + 3 * (size_t)s->face_vertices[b + (i + 1) % k];
+            edge += sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                         (p[2] - q[2]) * (p[2] - q[2]));
+        }
+        edge /= k;
         double rel = edge > 0 ? dev / edge : 0.0;
         if (dev > r.planarity_max_abs)
             r.planarity_max_abs = dev;
@@ -592,6 +694,7 @@ facet_status facet_lifter_solve(facet_lifter *s, const double *targets, double *
             worst = f;
         }
     }
+    free(scratch);
     memcpy(heights, z, sizeof(double) * (size_t)nv);
     free(z);
     r.seconds = facet_now() - t0;

@@ -146,6 +146,107 @@ static void test_nested_triangles(void)
     plan_free(&p);
 }
 
+/* Nearly liftable: the inner triangle turned by a hair. Turned by 1e-13
+ * the constraint is dependent within the rank tolerance (dimension 4, faces
+ * planar to rounding); by 1e-6 or 1e-9 it is independent, only the plane
+ * remains, and the ill-conditioned projection must still be exact (1e-9 is
+ * beyond the semi-normal equations: the orthogonal Q takes over). */
+static void test_nearly_liftable(void)
+{
+    const double angles[] = {1e-13, 1e-9, 1e-6};
+    const int32_t dims[] = {4, 3, 3};
+    for (int k = 0; k < 3; ++k) {
+        plan_t p = nested_triangles(angles[k]);
+        facet_mesh m = plan_mesh(&p);
+        facet_lifter *l = NULL;
+        facet_error e;
+        CHECK_STATUS(facet_lifter_create(&m, NULL, NULL, &l, &e), FACET_OK);
+        CHECK(facet_lifter_dimension(l) == dims[k]);
+        double t[6] = {0, 0, 0, 1, 1, 1}, z[6];
+        facet_lift_result r;
+        facet_status st = facet_lifter_solve(l, t, z, &r, &e);
+        CHECK(st == (dims[k] == 3 ? FACET_WARNING_TRIVIAL_LIFTING : FACET_OK));
+        CHECK(r.planarity_max_rel < 1e-9);
+        if (dims[k] == 3)
+            for (int v = 0; v < 6; ++v)
+                CHECK_NEAR(z[v], 0.5, 1e-9);
+        else
+            CHECK(r.target_max < 1e-9);
+        facet_lifter_free(&l);
+        plan_free(&p);
+    }
+}
+
+/* Two plans side by side as one (disconnected) plan. */
+static plan_t combine(const plan_t *a, const plan_t *b, double shift)
+{
+    plan_t p;
+    p.nv = a->nv + b->nv, p.nf = a->nf + b->nf;
+    p.xyz = malloc(sizeof(double) * 3 * (size_t)p.nv);
+    p.start = malloc(sizeof(int32_t) * (size_t)(p.nf + 1));
+    p.faces = malloc(sizeof(int32_t) * (size_t)(a->start[a->nf] + b->start[b->nf]));
+    memcpy(p.xyz, a->xyz, sizeof(double) * 3 * (size_t)a->nv);
+    for (int v = 0; v < b->nv; ++v) {
+        p.xyz[3 * (a->nv + v)] = b->xyz[3 * v] + shift;
+        p.xyz[3 * (a->nv + v) + 1] = b->xyz[3 * v + 1];
+        p.xyz[3 * (a->nv + v) + 2] = b->xyz[3 * v + 2];
+    }
+    memcpy(p.start, a->start, sizeof(int32_t) * (size_t)(a->nf + 1));
+    memcpy(p.faces, a->faces, sizeof(int32_t) * (size_t)a->start[a->nf]);
+    for (int f = 1; f <= b->nf; ++f)
+        p.start[a->nf + f] = a->start[a->nf] + b->start[f];
+    for (int c = 0; c < b->start[b->nf]; ++c)
+        p.faces[a->start[a->nf] + c] = b->faces[c] + a->nv;
+    return p;
+}
+
+/* A lifting space larger than the affine one in which one constraint is
+ * independent only by sigma (the inner triangle turned by about that). The
+ * optimum itself then moves by about 1e-16 / sigma under rounding of the
+ * plan, so that is the accuracy asked for. At 1e-9 the semi-normal
+ * equations cannot resolve it and the projection falls back on Q. Planarity
+ * must be exact in both cases. */
+static void ill_conditioned_projection(double angle, double accuracy)
+{
+    plan_t a = nested_triangles(angle), b = grid(4, 4, 0, 0.0, 0.0);
+    plan_t p = combine(&a, &b, 10.0);
+    facet_mesh m = plan_mesh(&p);
+    facet_lifter *l = NULL;
+    facet_error e;
+    CHECK_STATUS(facet_lifter_create(&m, NULL, NULL, &l, &e), FACET_OK);
+    /* Each part lifts on its own: 3 (affine triangles part) + 4 + 4 - 1. */
+    CHECK(facet_lifter_dimension(l) == 3 + 7);
+    double *t = calloc((size_t)p.nv, sizeof(double)), *z = malloc(sizeof(double) * p.nv);
+    for (int v = 3; v < 6; ++v)
+        t[v] = 1.0;
+    for (int v = 6; v < p.nv; ++v)
+        t[v] = sin(1.3 * v);
+    facet_lift_result r;
+    CHECK_STATUS(facet_lifter_solve(l, t, z, &r, &e), FACET_OK);
+    CHECK(r.planarity_max_rel < 1e-9);
+    for (int v = 0; v < 6; ++v) /* the triangles' part: its own best plane */
+        CHECK_NEAR(z[v], 0.5, accuracy);
+    /* The grid part: any height on a straight grid's lines f(x) + g(y) is
+     * reachable, and the residual is orthogonal to every lifting. */
+    double *basis = malloc(sizeof(double) * (size_t)p.nv * 10);
+    CHECK_STATUS(facet_lifter_basis(l, FACET_BASIS_ORTHONORMAL, 10, basis, NULL, &e), FACET_OK);
+    for (int k = 0; k < 10; ++k) {
+        double dot = 0;
+        for (int v = 0; v < p.nv; ++v)
+            dot += (t[v] - z[v]) * basis[(size_t)k * p.nv + v];
+        CHECK(fabs(dot) < accuracy);
+    }
+    facet_lifter_free(&l);
+    free(t), free(z), free(basis);
+    plan_free(&a), plan_free(&b), plan_free(&p);
+}
+
+static void test_ill_conditioned_projection(void)
+{
+    ill_conditioned_projection(1e-6, 1e-9);
+    ill_conditioned_projection(1e-9, 1e-6);
+}
+
 /* Straight quad grid: liftings are f(x) + g(y), dimension nx + ny - 1 =
  * n_vertices - n_faces; a wobbled interior keeps the quads' constraints
  * independent, so the dimension stays (the liftings are no longer sums). */
@@ -271,6 +372,8 @@ int main(void)
     test_triangulated();
     test_nested_triangles();
     test_quad_grid();
+    test_nearly_liftable();
+    test_ill_conditioned_projection();
     test_optimal();
     test_errors();
     return check_report("test_lift");

@@ -32,7 +32,7 @@ def _plan_options(parser):
     parser.add_argument("--opening", action="append", default=[], metavar="X,Y",
                         help="a point inside a face that is an opening (no panel); repeatable")
     parser.add_argument("--rank-tol", type=float, metavar="T",
-                        help="rank tolerance of the planarity constraints (default SPQR's)")
+                        help="constraints dependent on the others to within T are treated as dependent (default 1e-10)")
     parser.add_argument("--report", metavar="R.json", help="write a JSON report")
 
 

@@ -173,9 +173,10 @@ class Lifter:
     weights : array_like, optional
         Per-vertex weights, finite and > 0 (default all 1).
     rank_tol : float, optional
-        Rank tolerance on the unit-norm constraint rows (default SPQR's,
-        20 (m + n) eps). Constraints independent by more than this are
-        enforced exactly.
+        Rank tolerance on the unit-norm constraint rows (default 1e-10): a
+        face constraint dependent on the others to within this is treated
+        as dependent (and so violated by about that much, well inside the
+        1e-9 planarity promise); the others are enforced exactly.
 
     Raises
     ------
