@@ -28,6 +28,11 @@ _API = {
     "is_polymesh": "facetwb.objects.polymesh",
     "is_planarized": "facetwb.objects.planarized",
     "planarize_summary": "facetwb.objects.planarized",
+    "make_plan_graph": "facetwb.make.make_lifting",
+    "make_lifting": "facetwb.make.make_lifting",
+    "is_plan_graph": "facetwb.objects.plangraph",
+    "is_lifting": "facetwb.objects.lifting",
+    "lifting_summary": "facetwb.objects.lifting",
 }
 
 __all__ = sorted(_API)

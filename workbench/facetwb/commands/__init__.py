@@ -2,7 +2,8 @@
 """Facet's GUI commands. ``register()`` adds them to FreeCAD (InitGui.py calls it)."""
 
 #: Commands in toolbar and menu order.
-COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize"]
+COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize", "Facet_PlanGraph",
+            "Facet_Lift"]
 
 
 def register():
@@ -12,10 +13,13 @@ def register():
     from facetwb.commands.import_mesh import CommandImportMesh
     from facetwb.commands.planarize import CommandPlanarize
     from facetwb.commands.to_polymesh import CommandToPolyMesh
+    from facetwb.commands.lift import CommandLift, CommandPlanGraph
 
     known = set(Gui.listCommands())
     for name, command in (("Facet_ImportMesh", CommandImportMesh()),
                           ("Facet_ToPolyMesh", CommandToPolyMesh()),
-                          ("Facet_Planarize", CommandPlanarize())):
+                          ("Facet_Planarize", CommandPlanarize()),
+                          ("Facet_PlanGraph", CommandPlanGraph()),
+                          ("Facet_Lift", CommandLift())):
         if name not in known:
             Gui.addCommand(name, command)
