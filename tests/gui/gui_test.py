@@ -8,7 +8,8 @@
 Activates the Facet workbench, imports a quad mesh, selects it, runs Facet_Planarize, shows
 the result in Planarity mode and saves screenshots of the 3D view to OUT_DIR (default
 build/gui): planarity.png (result, planarity colours and legend), source.png (the source in
-Flat Lines) and source_planarity.png (the warped source in Planarity mode). Every check
+Flat Lines), source_planarity.png (the warped source in Planarity mode) and lifting.png (a
+sketched roof plan lifted by Facet_PlanGraph and Facet_Lift towards a dome). Every check
 prints PASS or FAIL; FreeCAD exits with status 0 only if all passed (1 if one failed, 2 if
 the test itself broke). It does not run without a GUI: freecadcmd prints SKIP and exits 0.
 """
@@ -207,7 +208,67 @@ def run(out_dir):
           and added[0].FaceCount == 6, "Facet_ToPolyMesh makes a 6-quad PolyMesh of a box")
     check(not box.ViewObject.Visibility, "the box is hidden")
     App.closeDocument(doc.Name)
+    check_lifting(check, out_dir)
     return check
+
+
+def check_lifting(check, out_dir):
+    """Facet_PlanGraph on a sketched hipped-roof plan, Facet_Lift towards a dome; lifting.png."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import Part
+
+    import facetwb
+
+    for name in ("Facet_PlanGraph", "Facet_Lift"):
+        check(name in Gui.listCommands(), f"command {name} is registered")
+    doc = App.newDocument("Lifting")
+    sketch = doc.addObject("Sketcher::SketchObject", "RoofPlan")
+    corners = [(0, 0), (8000, 0), (8000, 5000), (0, 5000)]
+    ridge = [(2500, 2500), (5500, 2500)]
+    lines = [(corners[i], corners[(i + 1) % 4]) for i in range(4)] + [(ridge[0], ridge[1])]
+    lines += [(corners[0], ridge[0]), (corners[3], ridge[0]), (corners[1], ridge[1]),
+              (corners[2], ridge[1])]
+    for a, b in lines:
+        sketch.addGeometry(Part.LineSegment(App.Vector(*a, 0), App.Vector(*b, 0)), False)
+    dome = doc.addObject("Part::Sphere", "Dome")
+    dome.Radius = 6000
+    dome.Placement.Base = App.Vector(4000, 2500, -3000)
+    doc.recompute()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(sketch)
+    before = set(doc.Objects)
+    Gui.runCommand("Facet_PlanGraph")
+    plans = [obj for obj in doc.Objects if obj not in before and facetwb.is_plan_graph(obj)]
+    check(len(plans) == 1 and plans[0].isValid() and plans[0].FaceCount == 4,
+          "Facet_PlanGraph makes a 4-face plan of the sketch")
+    if not plans:
+        return
+    plan = plans[0]
+    check(not sketch.ViewObject.Visibility, "the sketch is hidden")
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(plan)
+    Gui.Selection.addSelection(dome)
+    before = set(doc.Objects)
+    Gui.runCommand("Facet_Lift")
+    liftings = [obj for obj in doc.Objects if obj not in before and facetwb.is_lifting(obj)]
+    check(len(liftings) == 1, "Facet_Lift makes a Lifting")
+    if not liftings:
+        return
+    lifting = liftings[0]
+    check(lifting.isValid() and lifting.Dimension == 4 and lifting.PlanarityMaxRel <= 1e-9,
+          f"the lifting is planar (dimension {lifting.Dimension}, planarity "
+          f"{lifting.PlanarityMaxRel:.2g})")
+    check(lifting.ViewObject.Proxy.__class__.__name__ == "ViewProviderLifting",
+          "the lifting has its view provider")
+    check(not dome.ViewObject.Visibility and not plan.ViewObject.Visibility,
+          "the dome and the plan are hidden")
+    heights = [p.z for p in lifting.Points]
+    check(max(heights) - min(heights) > 100, "the roof is not flat")
+    path = os.path.join(out_dir, "lifting.png")
+    save_view(Gui.ActiveDocument.ActiveView, path)
+    check_screenshot(check, path, "lifting", legend=False)
+    App.closeDocument(doc.Name)
 
 
 def check_import_command(check):
