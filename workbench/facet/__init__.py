@@ -17,6 +17,7 @@ ImportError saying so.
 from facet.errors import Cancelled, FacetError, InputError, MeshError
 from facet.io import read_mesh, write_mesh
 from facet.mesh import PolyMesh
+from facet.plan import PlanError, PlanGraph, read_plan
 
 __version__ = "0.1.0"
 
@@ -33,16 +34,26 @@ __all__ = [
     "PlanarizeResult",
     "planarity",
     "PlanarityReport",
+    "PlanError",
+    "PlanGraph",
+    "read_plan",
+    "lift",
+    "Lifter",
+    "LiftResult",
+    "LiftingSpace",
+    "lifting_space",
     "__version__",
 ]
 
-_SOLVER_NAMES = ("planarize", "Planarizer", "PlanarizeResult", "planarity", "PlanarityReport")
-_SOLVER_MODULES = ("facet.planarity", "facet.planarize", "facet._core")
+_SOLVER_NAMES = ("planarize", "Planarizer", "PlanarizeResult", "planarity", "PlanarityReport",
+                 "lift", "Lifter", "LiftResult", "LiftingSpace", "lifting_space")
+_SOLVER_MODULES = ("facet.planarity", "facet.planarize", "facet.lift", "facet._core")
 _solver_import_error = None
 
 try:
     from facet.planarity import PlanarityReport, planarity
     from facet.planarize import Planarizer, PlanarizeResult, planarize
+    from facet.lift import Lifter, LiftingSpace, LiftResult, lift, lifting_space
 except ImportError as exc:  # the compiled core is not built (yet)
     core_missing = exc.name == "facet" and "_core" in str(exc)
     if exc.name not in _SOLVER_MODULES and not core_missing:
