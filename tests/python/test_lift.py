@@ -206,3 +206,29 @@ def test_plan_from_segments_lifts():
     assert result.mesh.n_faces == 4
     assert result.planarity_max_rel < 1e-9
     assert np.array_equal(result.mesh.vertices[:, :2], plan.mesh.vertices[:, :2])
+
+
+def test_lift_nearly_moves_a_rounded_drawing():
+    from facet.lift import lift_nearly
+
+    # The frustum's inner triangle turned by 1e-5: liftable only up to rounding.
+    mesh = nested_triangles(1e-5)
+    t = np.array([0.0, 0.0, 0.0, 1.0, 1.0, 1.0])
+    plain = lift(mesh, t)
+    assert plain.liftable_only_trivially and plain.target_max > 0.4
+    nearly = lift_nearly(mesh, t, tolerance=1e-3)
+    assert nearly.method in ("exact", "planarized")
+    assert nearly.within_tolerance and 0 < nearly.max_move < 1e-4
+    assert nearly.result.target_max < 1e-6
+    assert nearly.result.planarity_max_rel <= 1e-9
+    assert nearly.moved_vertices and nearly.moved_vertices[0][0] in range(6)
+    moved = nearly.result.mesh.vertices[:, :2] - mesh.vertices[:, :2]
+    assert np.allclose(moved, nearly.moves)
+    report = nearly.report()
+    assert report["within_tolerance"] and report["max_move"] == nearly.max_move
+    # A tolerance smaller than the moves needed is said, not hidden.
+    strict = lift_nearly(mesh, t, tolerance=1e-9)
+    assert not strict.within_tolerance
+    # A liftable plan is left alone.
+    exact = lift_nearly(nested_triangles(0.0), t, tolerance=1e-3)
+    assert exact.method == "unmoved" and exact.max_move == 0.0

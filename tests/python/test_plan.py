@@ -190,3 +190,30 @@ def test_lifting_space_command(facet_command, tmp_path):
     done = facet_command("lifting-space", plan, "--basis", "fundamental", "--count", "2",
                          "-o", folder)
     assert done.returncode == 0 and (folder / "fundamental_0001.obj").exists()
+
+
+def test_lift_command_moves_a_rounded_drawing(facet_command, tmp_path):
+    outer, inner = nested_points()
+    c = outer.mean(axis=0)
+    turn = 1e-5
+    rot = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
+    inner = c + (inner - c) @ rot.T
+    plan = tmp_path / "plan.csv"
+    segments = [(outer[i], outer[(i + 1) % 3]) for i in range(3)]
+    segments += [(inner[i], inner[(i + 1) % 3]) for i in range(3)] + list(zip(outer, inner))
+    plan.write_text("".join(f"{a[0]!r},{a[1]!r},{b[0]!r},{b[1]!r}\n" for a, b in segments))
+    points = tmp_path / "heights.csv"
+    points.write_text("".join(f"{x!r},{y!r},0\n" for x, y in outer)
+                      + "".join(f"{x!r},{y!r},1\n" for x, y in inner))
+    out, report = tmp_path / "roof.obj", tmp_path / "r.json"
+    done = facet_command("lift", plan, "-o", out, "--targets", points, "--report", report)
+    assert done.returncode == 0 and "only the trivial" in done.stdout
+    done = facet_command("lift", plan, "-o", out, "--targets", points, "--report", report,
+                         "--move-tolerance", "0.001")
+    assert done.returncode == 0, done.stderr
+    assert "plan moved" in done.stdout
+    data = json.loads(report.read_text())
+    assert data["within_tolerance"] and data["target_max"] < 1e-6 and data["moved_vertices"]
+    done = facet_command("lift", plan, "-o", out, "--targets", points,
+                         "--move-tolerance", "1e-12")
+    assert done.returncode == 1 and "MORE THAN" in done.stdout

@@ -5,7 +5,7 @@
 
     python3 -m facet lift PLAN -o OUT.obj (--targets T | --pin V=H ...)
         [--weights W] [--report R.json] [--snap D] [--arc-tolerance D]
-        [--opening X,Y ...] [--rank-tol T]
+        [--opening X,Y ...] [--rank-tol T] [--move-tolerance D]
     python3 -m facet lifting-space PLAN [--basis fundamental|eigen|orthonormal]
         [--count K] -o DIR [--report R.json] [...plan options]
 
@@ -13,7 +13,9 @@ PLAN is a drawing (.dxf, .csv of segments) or a plan mesh (.obj, .off,
 .json). T is a mesh (per-vertex targets when it has the plan's vertices in
 order, else vertical projection, topmost hit) or a CSV of x,y,z points
 (nearest plan vertex within the snap distance; vertices with no point are
-free). W is a text file with one weight per plan vertex.
+free). W is a text file with one weight per plan vertex. With --move-tolerance D the
+plan's vertices may move by up to D (facet.lift.lift_nearly); the exit status is 1 when
+more was needed (the result is written all the same).
 """
 
 import os
@@ -113,10 +115,17 @@ def run_lift(args):
         targets, weights = pinned_targets(plan, _pins(args.pin))
     if args.weights is not None:
         weights = weights * _read_weights(args.weights, plan.n_vertices)
-    result = lift(plan, targets, weights, rank_tol=args.rank_tol)
+    nearly = None
+    if args.move_tolerance is not None:
+        from facet.lift import lift_nearly
+
+        nearly = lift_nearly(plan, targets, weights, tolerance=args.move_tolerance)
+        result = nearly.result
+    else:
+        result = lift(plan, targets, weights, rank_tol=args.rank_tol)
     write_mesh(result.mesh, args.output)
     report = {"source": os.fspath(args.plan), "output": os.fspath(args.output)}
-    report.update(result.report())
+    report.update(nearly.report() if nearly is not None else result.report())
     report["plan"] = plan.summary()
     report["dangling"] = [[list(a), list(b)] for a, b in plan.dangling]
     if args.report:
@@ -127,6 +136,14 @@ def run_lift(args):
           + (f", {len(plan.dangling)} dangling edges dropped" if plan.dangling else "")
           + (f", {plan.openings} openings" if plan.openings else ""))
     print(f"  liftings      dimension {result.dimension} (3 trivial)")
+    if nearly is not None:
+        if nearly.method == "unmoved":
+            print("  plan          kept as drawn: moving its vertices did not bring the "
+                  "lifting closer")
+        else:
+            print(f"  plan moved    {len(nearly.moved_vertices)} vertices, at most "
+                  f"{nearly.max_move:.3g} ({'within' if nearly.within_tolerance else 'MORE THAN'}"
+                  f" the tolerance {args.move_tolerance:g}); every move is in the report")
     if result.liftable_only_trivially:
         print("  note          the plan admits only the trivial (affine) liftings: "
               "the result is the best-fitting plane")
@@ -138,6 +155,10 @@ def run_lift(args):
     for text in result.warnings:
         if "trivial" not in text:
             print(f"  warning       {text}")
+    if nearly is not None and not nearly.within_tolerance:
+        from facet.cli import EXIT_FAILED
+
+        return EXIT_FAILED
     return EXIT_OK
 
 
@@ -217,6 +238,9 @@ def add_commands(commands):
     lift.add_argument("--pin", action="append", default=[], metavar="V=H",
                       help="pin vertex V at height H (the rest free); repeatable")
     lift.add_argument("--weights", metavar="W", help="file with one weight per plan vertex")
+    lift.add_argument("--move-tolerance", type=float, metavar="D",
+                      help="nearly liftable drawings: move plan vertices by at most D so that "
+                      "a lifting close to the targets exists (best effort; moves reported)")
     lift.set_defaults(run=run_lift)
 
     space = commands.add_parser(

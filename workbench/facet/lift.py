@@ -27,7 +27,7 @@ from facet.errors import FacetError, InputError, from_core
 from facet.mesh import PolyMesh
 
 __all__ = ["BASES", "LiftResult", "Lifter", "LiftingSpace", "lift", "lifting_space",
-           "TargetError"]
+           "TargetError", "NearlyLiftResult", "lift_nearly"]
 
 #: Basis kinds by name.
 BASES = {
@@ -381,3 +381,129 @@ def lifting_space(plan, kind="eigen", count=None, weights=None, *, rank_tol=None
     lifter = Lifter(plan, weights, rank_tol=rank_tol)
     basis, energies = lifter.basis(kind, count)
     return LiftingSpace(lifter.dimension, 3, kind, basis, energies)
+
+
+@dataclass
+class NearlyLiftResult:
+    """A lifting of a plan whose vertices were moved a little (:func:`lift_nearly`).
+
+    Attributes
+    ----------
+    result : LiftResult
+        The lifting of the moved plan (its ``mesh`` has the moved x, y).
+    moves : numpy.ndarray (n, 2)
+        How far each plan vertex moved in x and y.
+    max_move : float
+        The largest move (model units).
+    within_tolerance : bool
+        Whether every move is at most the tolerance asked for.
+    method : str
+        ``"exact"``: the lifting is the least-squares optimum over the moved plan's
+        lifting space; ``"planarized"``: the moved plan's lifting space did not resolve
+        (its near-dependence is below the rank tolerance), and the heights are those of
+        the planarization, faces planar to ``result.planarity_max_rel``; ``"unmoved"``:
+        moving did not bring the lifting closer, the plan is kept as drawn.
+    moved_vertices : list of (vertex, dx, dy)
+        Every vertex that moved by more than 1e-12 of the plan's size, largest first.
+    """
+
+    result: LiftResult
+    moves: np.ndarray
+    max_move: float
+    within_tolerance: bool
+    method: str
+    moved_vertices: list = field(default_factory=list)
+
+    def report(self):
+        data = self.result.report()
+        data.update({
+            "moved_plan": True,
+            "move_method": self.method,
+            "max_move": float(self.max_move),
+            "within_tolerance": bool(self.within_tolerance),
+            "moved_vertices": [[v, dx, dy] for v, dx, dy in self.moved_vertices],
+        })
+        return data
+
+
+#: Scale of the heights while the plan and heights are planarized together in
+#: lift_nearly: a height change then costs 1/100 of a plan move of the same size, so the
+#: planarizer bends heights rather than the drawing.
+_HEIGHT_SCALE = 0.1
+
+
+def lift_nearly(plan, targets, weights=None, *, tolerance, progress=None):
+    """Lift a plan that is liftable only up to rounding: move its vertices a little first.
+
+    A plan drawn and rounded to a few digits usually admits only the planes, far from the
+    intended shape. This planarizes the 3D mesh (x, y, 0.1 t) to 1e-12 (``facet.planarize``,
+    local/global), which moves the plan x, y little and the heights freely (planarity is
+    invariant under scaling z), keeps the moved x, y when no vertex moved more than
+    `tolerance`, and then lifts the moved plan exactly towards the targets. When the moved
+    plan's extra liftings are still below the rank tolerance, the planarized heights
+    themselves are returned (planar to about 1e-11). Best effort: the moves are not
+    guaranteed minimal, and weights act on the final lifting only.
+
+    Parameters
+    ----------
+    plan, targets, weights
+        As :func:`lift`.
+    tolerance : float
+        Largest move of a plan vertex, model units.
+    progress : callable, optional
+        As for ``facet.planarize``; returning True cancels.
+
+    Returns
+    -------
+    NearlyLiftResult
+        ``within_tolerance`` False means the moves needed exceed `tolerance`: the moved
+        plan and its lifting are returned all the same, for inspection.
+    """
+    from facet.planarize import planarize
+
+    mesh = _plan_mesh(plan)
+    n = mesh.n_vertices
+    t = _vector(targets, n, "target height")
+    if not (tolerance >= 0 and np.isfinite(tolerance)):
+        raise InputError(f"move tolerance must be a finite number >= 0, not {tolerance!r}")
+    base = lift(mesh, t, weights)
+    xy = np.asarray(mesh.vertices, dtype=np.float64)[:, :2]
+    size = float(np.ptp(xy, axis=0).max()) or 1.0
+    centre = t.mean()
+    xyz = np.column_stack([xy, _HEIGHT_SCALE * (t - centre)])
+    flat = planarize(mesh.with_vertices(xyz), tol=1e-12, max_iter=5000, progress=progress)
+    moved_xy = flat.mesh.vertices[:, :2]
+    moves = moved_xy - xy
+    distance = np.hypot(moves[:, 0], moves[:, 1])
+    moved_plan = mesh.with_vertices(np.column_stack([moved_xy, np.zeros(n)]))
+    exact = lift(moved_plan, t, weights)
+    method = "exact"
+    result = exact
+    planar_heights = flat.mesh.vertices[:, 2] / _HEIGHT_SCALE + centre
+    planar_miss = float(np.max(np.abs(planar_heights - t)))
+    if exact.target_max > planar_miss and flat.planarity.max_rel_all <= 1e-10:
+        method = "planarized"
+        lifted = moved_plan.with_vertices(np.column_stack([moved_xy, planar_heights]))
+        from facet.planarity import planarity
+
+        report = planarity(lifted)
+        dev = planar_heights - t
+        result = LiftResult(
+            mesh=lifted, heights=planar_heights, targets=t, weights=exact.weights,
+            dimension=exact.dimension, trivial_dimension=3,
+            planarity_max_abs=float(report.max_abs_all),
+            planarity_max_rel=float(report.max_rel_all),
+            target_rms=float(np.sqrt(np.mean(dev**2))), target_max=planar_miss,
+            target_max_vertex=int(np.argmax(np.abs(dev))),
+            solve_seconds=float(flat.solve_seconds), factor_seconds=exact.factor_seconds,
+            warnings=[])
+    if result.target_max >= base.target_max:
+        # Moving did not help: keep the drawing as it is.
+        moves = np.zeros_like(moves)
+        distance = np.zeros(n)
+        result, method = base, "unmoved"
+    order = np.argsort(-distance, kind="stable")
+    moved = [(int(v), float(moves[v, 0]), float(moves[v, 1])) for v in order
+             if distance[v] > 1e-12 * size]
+    max_move = float(distance.max()) if n else 0.0
+    return NearlyLiftResult(result, moves, max_move, max_move <= tolerance, method, moved)
