@@ -275,8 +275,10 @@ typedef struct facet_lift_result {
  * are not errors), refuses faces whose corners are collinear in plan
  * (FACET_ERROR_PLAN_DEGENERATE_FACE) and weights that are not finite and > 0
  * (FACET_ERROR_BAD_WEIGHT; weights may be NULL: all 1), copies what it needs
- * and factorizes. options may be NULL. Deterministic (SPQR runs
- * single-threaded here). */
+ * and factorizes. options may be NULL. Deterministic: when the BLAS is
+ * OpenBLAS, the lifter's calls run it single-threaded (its process-wide
+ * setting, restored afterwards), since its threaded kernels round
+ * differently for different thread counts. */
 facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
                                  const facet_lift_options *options, facet_lifter **out,
                                  facet_error *error);

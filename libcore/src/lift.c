@@ -42,6 +42,30 @@ extern void dsyevr_(const char *jobz, const char *range, const char *uplo, const
                     const int *ldz, int *isuppz, double *work, const int *lwork, int *iwork,
                     const int *liwork, int *info);
 
+/* OpenBLAS's process-wide thread control, when the BLAS linked in is OpenBLAS (weak: NULL
+ * otherwise). SPQR's dense fronts and Householder applications go through BLAS, whose
+ * multi-threaded kernels round differently for different thread counts; the lifter runs
+ * them single-threaded and restores the setting, so its results are the same bits for any
+ * OMP_NUM_THREADS or OPENBLAS_NUM_THREADS (tests/python/test_lift_determinism.py). */
+extern void openblas_set_num_threads(int n) __attribute__((weak));
+extern int openblas_get_num_threads(void) __attribute__((weak));
+
+static int blas_serial_begin(void)
+{
+    if (!openblas_set_num_threads || !openblas_get_num_threads)
+        return 0;
+    int previous = openblas_get_num_threads();
+    if (previous > 1)
+        openblas_set_num_threads(1);
+    return previous;
+}
+
+static void blas_serial_end(int previous)
+{
+    if (previous > 1 && openblas_set_num_threads)
+        openblas_set_num_threads(previous);
+}
+
 #define EIGEN_MAX_DIMENSION 2000
 #define EIGEN_MAX_ENTRIES 20000000.0
 /* A face whose corners span less than this (relative) in plan is refused. */
@@ -421,7 +445,11 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
         }
         double tol = options && options->rank_tol > 0 ? options->rank_tol : RANK_TOL_DEFAULT;
         if (m > 0)
+        {
+            int blas = blas_serial_begin();
             s->qr = SuiteSparseQR_C_factorize(SPQR_ORDERING_DEFAULT, tol, a, &s->cm);
+            blas_serial_end(blas);
+        }
         s->a = a;
         if (m > 0 && !s->qr) {
             facet_status st = s->cm.status == CHOLMOD_OUT_OF_MEMORY ? FACET_ERROR_OUT_OF_MEMORY
@@ -606,10 +634,15 @@ static int project(facet_lifter *s, const double *t, double *heights)
                         a[2] * s->trivial[2 * nv + v];
         r[v] = s->sqw[v] * (t[v] - affine);
     }
-    if (s->dim == 3 && s->qr)
+    if (s->dim == 3 && s->qr) {
         memset(r, 0, sizeof(double) * (size_t)nv);
-    else if (s->qr && !remove_range(s, r))
-        return 0;
+    } else if (s->qr) {
+        int blas = blas_serial_begin();
+        int ok = remove_range(s, r);
+        blas_serial_end(blas);
+        if (!ok)
+            return 0;
+    }
     for (int32_t v = 0; v < nv; ++v) {
         double affine = a[0] * s->trivial[v] + a[1] * s->trivial[nv + v] +
                         a[2] * s->trivial[2 * nv + v];
@@ -752,8 +785,20 @@ static void fix_sign(int32_t n, double *z)
             z[v] = -z[v];
 }
 
+static facet_status basis_serial(facet_lifter *s, facet_basis_kind kind, int32_t count,
+                                 double *basis, double *values, facet_error *error);
+
 facet_status facet_lifter_basis(facet_lifter *s, facet_basis_kind kind, int32_t count,
                                 double *basis, double *values, facet_error *error)
+{
+    int blas = blas_serial_begin();
+    facet_status status = basis_serial(s, kind, count, basis, values, error);
+    blas_serial_end(blas);
+    return status;
+}
+
+static facet_status basis_serial(facet_lifter *s, facet_basis_kind kind, int32_t count,
+                                 double *basis, double *values, facet_error *error)
 {
     facet_error_clear(error);
     if (!s || (!basis && count > 0))
