@@ -81,6 +81,24 @@ class TestPlanGraphAndLifting(DocumentTestCase):
         np.testing.assert_array_equal(xyz[:, :2], points_array(self.plan)[:, :2])
         self.assertIn("dimension 4", facetwb.lifting_summary(lifting))
 
+    def test_mix_keeps_faces_planar(self):
+        lifting = self.lifting
+        before = points_array(lifting)
+        lifting.Mix = [500.0]
+        self.doc.recompute()
+        try:
+            self.assertTrue(lifting.isValid(), lifting.getStatusString())
+            after = points_array(lifting)
+            change = after[:, 2] - before[:, 2]
+            self.assertAlmostEqual(float(np.max(np.abs(change))), 500.0, places=6)
+            self.assertLessEqual(lifting.PlanarityMaxRel, 1e-9)
+            self.assertAlmostEqual(lifting.TargetMax.Value, 500.0, places=6)
+            np.testing.assert_array_equal(after[:, :2], before[:, :2])
+        finally:
+            lifting.Mix = []
+            self.doc.recompute()
+        np.testing.assert_allclose(points_array(lifting), before, rtol=0, atol=1e-9)
+
     def test_downstream_planarize_takes_it(self):
         result = facetwb.make_planarized(self.lifting, tolerance=1e-6)
         self.doc.recompute()

@@ -268,6 +268,38 @@ def check_lifting(check, out_dir):
     path = os.path.join(out_dir, "lifting.png")
     save_view(Gui.ActiveDocument.ActiveView, path)
     check_screenshot(check, path, "lifting", legend=False)
+
+    # Facet_LiftMix: a slider reshapes the roof live; faces stay planar; Cancel restores.
+    check("Facet_LiftMix" in Gui.listCommands(), "command Facet_LiftMix is registered")
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(lifting)
+    before = [p.z for p in lifting.Points]
+    Gui.runCommand("Facet_LiftMix")
+    Gui.updateGui()
+    from facetwb.taskpanels import lift_mix
+
+    panel = lift_mix.active
+    check(bool(Gui.Control.activeDialog()) and panel is not None,
+          "the Shape lifting panel is open")
+    if panel is not None:
+        check(len(panel.sliders) == 1, f"one slider for dimension 4 ({len(panel.sliders)})")
+        panel.sliders[0].setValue(60)
+        Gui.updateGui()
+        after = [p.z for p in lifting.Points]
+        moved = max(abs(a - b) for a, b in zip(after, before))
+        check(moved > 100 and lifting.PlanarityMaxRel <= 1e-9,
+              f"the slider reshapes the roof ({moved:.0f} mm), faces stay planar")
+        Gui.Selection.clearSelection()  # selected objects are drawn in the highlight colour
+        path = os.path.join(out_dir, "lifting_mix.png")
+        save_view(Gui.ActiveDocument.ActiveView, path)
+        check_screenshot(check, path, "lifting mix", legend=False)
+        panel.reject()
+        Gui.updateGui()
+        restored = [p.z for p in lifting.Points]
+        check(max(abs(a - b) for a, b in zip(restored, before)) < 1e-6 and not lifting.Mix,
+              "Cancel restores the roof")
+    if Gui.Control.activeDialog():
+        Gui.Control.closeDialog()
     App.closeDocument(doc.Name)
 
 

@@ -3,7 +3,7 @@
 
 #: Commands in toolbar and menu order.
 COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize", "Facet_PlanGraph",
-            "Facet_Lift"]
+            "Facet_Lift", "Facet_LiftMix"]
 
 
 def register():
@@ -13,13 +13,14 @@ def register():
     from facetwb.commands.import_mesh import CommandImportMesh
     from facetwb.commands.planarize import CommandPlanarize
     from facetwb.commands.to_polymesh import CommandToPolyMesh
-    from facetwb.commands.lift import CommandLift, CommandPlanGraph
+    from facetwb.commands.lift import CommandLift, CommandLiftMix, CommandPlanGraph
 
     known = set(Gui.listCommands())
     for name, command in (("Facet_ImportMesh", CommandImportMesh()),
                           ("Facet_ToPolyMesh", CommandToPolyMesh()),
                           ("Facet_Planarize", CommandPlanarize()),
                           ("Facet_PlanGraph", CommandPlanGraph()),
-                          ("Facet_Lift", CommandLift())):
+                          ("Facet_Lift", CommandLift()),
+                          ("Facet_LiftMix", CommandLiftMix())):
         if name not in known:
             Gui.addCommand(name, command)

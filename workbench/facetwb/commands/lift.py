@@ -99,3 +99,32 @@ class CommandLift:
             if obj not in before and is_lifting(obj):
                 printer = App.Console.PrintMessage if obj.isValid() else App.Console.PrintError
                 printer(lifting_summary(obj) + "\n")
+
+
+class CommandLiftMix:
+    """Open the task panel that mixes non-planar liftings into the selected Lifting."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": paths.icon_path("Facet_LiftMix"),
+            "MenuText": "Shape lifting",
+            "ToolTip": "Sliders for the selected Lifting: add the smoothest other planar-faced "
+                       "shapes over the same plan; the result follows live and every face "
+                       "stays exactly planar.",
+        }
+
+    def _selected(self):
+        from facetwb.objects.lifting import is_lifting
+
+        selection = Gui.Selection.getSelection()
+        return selection[0] if len(selection) == 1 and is_lifting(selection[0]) else None
+
+    def IsActive(self):
+        return self._selected() is not None and Gui.Control.activeDialog() is False
+
+    def Activated(self):
+        from facetwb.taskpanels.lift_mix import LiftMixPanel
+
+        obj = self._selected()
+        if obj is not None:
+            Gui.Control.showDialog(LiftMixPanel(obj))

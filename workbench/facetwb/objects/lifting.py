@@ -40,6 +40,10 @@ class Lifting(PolyMesh):
                             "vertex (within Snap), z its height; the other vertices are free")
         compat.add_property(obj, "App::PropertyFloatList", "Weights", "Lift",
                             "Weight of each plan vertex (empty: all 1)")
+        compat.add_property(obj, "App::PropertyFloatList", "Mix", "Lift",
+                            "Heights (mm, at the peak) of the smoothest non-planar liftings "
+                            "(eigen-liftings 1, 2, ...) added to the optimal lifting; faces "
+                            "stay exactly planar")
         compat.add_property(obj, "App::PropertyLength", "Snap", "Lift",
                             "Largest plan distance from a pinned or CSV point to its vertex "
                             "(0: 1e-6 of the plan's size)")
@@ -81,9 +85,33 @@ class Lifting(PolyMesh):
             return targets, weights
         raise ValueError(f"{obj.Label}: no targets: set Targets, TargetFile or PinnedPoints")
 
-    def execute(self, obj):
-        from facet.lift import lift
+    def _lifter(self, plan, weights):
+        """A facet Lifter for this plan and weights, kept between recomputes (not saved), so
+        moving a Mix slider re-solves without a new factorization."""
+        from facet.lift import Lifter
 
+        key = (np.asarray(plan.vertices[:, :2]).tobytes(), plan.face_start.tobytes(),
+               plan.face_vertices.tobytes(), np.asarray(weights).tobytes())
+        cache = getattr(self, "_cache", None)
+        if cache is None or cache[0] != key:
+            cache = (key, Lifter(plan, weights), {})
+            self._cache = cache
+        return cache[1], cache[2]
+
+    def mix_basis(self, plan, weights, count):
+        """The first ``count`` non-trivial eigen-liftings, each scaled to peak 1 (cached)."""
+        lifter, store = self._lifter(plan, weights)
+        count = min(int(count), lifter.dimension - 3)
+        if count <= 0:
+            return np.zeros((0, plan.n_vertices))
+        if store.get("count", 0) < count:
+            basis, _ = lifter.basis("eigen", 3 + count)
+            peaks = np.max(np.abs(basis[3:]), axis=1)
+            store["basis"] = basis[3:] / np.where(peaks > 0, peaks, 1.0)[:, None]
+            store["count"] = count
+        return store["basis"][:count]
+
+    def execute(self, obj):
         if obj.Plan is None:
             raise ValueError(f"{obj.Label}: Plan is empty, nothing to lift")
         plan = get_mesh(obj.Plan)
@@ -93,7 +121,18 @@ class Lifting(PolyMesh):
                 raise ValueError(f"{obj.Label}: {len(obj.Weights)} weights but the plan has "
                                  f"{plan.n_vertices} vertices")
             weights = weights * np.asarray(obj.Weights, dtype=np.float64)
-        result = lift(plan, targets, weights)
+        lifter, _ = self._lifter(plan, weights)
+        result = lifter.solve(targets)
+        mix = np.asarray(obj.Mix, dtype=np.float64)
+        if mix.size and np.any(mix != 0):
+            basis = self.mix_basis(plan, weights, mix.size)
+            extra = mix[: basis.shape[0]] @ basis
+            result = lifter.solve(result.heights + extra)  # a lifting: returned as it is
+            result.targets = targets
+            dev = result.heights - targets
+            result.target_rms = float(np.sqrt(np.mean(dev**2)))
+            result.target_max_vertex = int(np.argmax(np.abs(dev)))
+            result.target_max = float(abs(dev[result.target_max_vertex]))
         set_mesh(obj, result.mesh)
         set_planarity(obj, facet.planarity(result.mesh))
         obj.Dimension = int(result.dimension)
