@@ -190,7 +190,7 @@ def test_bad_inputs():
     with pytest.raises(PlanError, match="face 0 has collinear corners"):
         lift(mesh.with_vertices(xyz), np.zeros(6))
     with pytest.raises(InputError):
-        Lifter(mesh).basis("sparse")
+        Lifter(mesh).basis("smooth")
     assert issubclass(PlanError, InputError) and issubclass(TargetError, InputError)
     with pytest.raises(MeshError):
         Lifter(PolyMesh(np.zeros((3, 3)), [0, 3], [0, 1, 5]))
@@ -232,3 +232,23 @@ def test_lift_nearly_moves_a_rounded_drawing():
     # A liftable plan is left alone.
     exact = lift_nearly(nested_triangles(0.0), t, tolerance=1e-3)
     assert exact.method == "unmoved" and exact.max_move == 0.0
+
+
+def test_sparse_liftings_are_local_independent_liftings():
+    mesh = straight_grid([0, 1, 2.5, 3, 4.5, 6, 7], [0, 1, 2, 3.5, 4, 5])
+    lifter = Lifter(mesh)
+    d = lifter.dimension
+    assert d == 7 + 6 - 1
+    basis, energies = lifter.basis("sparse")
+    assert basis.shape == (d, mesh.n_vertices)
+    assert np.linalg.matrix_rank(basis, tol=1e-8) == d
+    for b in basis:
+        assert np.max(np.abs(lifter.solve(b).heights - b)) < 1e-9  # each one is a lifting
+    supports = [np.count_nonzero(np.abs(b) > 1e-12) for b in basis[3:]]
+    # On a straight grid the sparsest liftings are bumps along one grid line: f(x) or g(y).
+    assert max(supports) <= 7
+    assert np.allclose(np.max(np.abs(basis[3:]), axis=1), 1.0)
+    # A Voronoi plan (dimension 4: its lifting is convex, global): filled from the space.
+    vor = voronoi_plan(1)
+    basis, _ = Lifter(vor).basis("sparse")
+    assert basis.shape[0] == Lifter(vor).dimension

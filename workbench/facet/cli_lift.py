@@ -166,14 +166,11 @@ def run_lifting_space(args):
     import numpy as np
 
     from facet.cli import EXIT_OK
-    from facet.errors import FacetError, InputError
+    from facet.errors import InputError
     from facet.io import write_mesh
     from facet.lift import Lifter
     from facet.report import write_json
 
-    if args.basis == "sparse":
-        raise FacetError("sparse liftings are not available yet: use --basis eigen, "
-                         "fundamental or orthonormal")
     if args.count is not None and args.count < 1:
         raise InputError(f"--count {args.count}: must be at least 1")
     plan = _read_plan(args)

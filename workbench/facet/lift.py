@@ -33,8 +33,14 @@ __all__ = ["BASES", "LiftResult", "Lifter", "LiftingSpace", "lift", "lifting_spa
 BASES = {
     "fundamental": "fundamental liftings: the lifting closest to a unit height at one vertex",
     "eigen": "eigen-liftings: smoothest first (eigenvectors of P L P)",
+    "sparse": "sparse liftings: each supported on a few rings of faces around a vertex",
     "orthonormal": "an orthonormal basis from the QR factorization (fast)",
 }
+
+#: Sparse liftings: the largest neighbourhood tried around a vertex, in rings of faces.
+SPARSE_MAX_RINGS = 3
+#: Sparse liftings are collected densely for the independence test: refused beyond this.
+SPARSE_MAX_ENTRIES = 2e7
 
 
 class TargetError(InputError):
@@ -275,15 +281,21 @@ class Lifter:
             raise _core_error(exc, self._source) from None
         return z
 
+    def _sparse_basis(self, count):
+        return _sparse_liftings(self, count)
+
     def basis(self, kind="eigen", count=None):
         """The first `count` functions of a basis of the lifting space.
 
         Parameters
         ----------
-        kind : {"eigen", "orthonormal", "fundamental"}
+        kind : {"eigen", "sparse", "orthonormal", "fundamental"}
             Eigen-liftings (smoothest first; dense, refused beyond dimension
-            2000), any orthonormal basis, or the fundamental liftings of
-            vertices 0 .. count-1 (these span the space but are not
+            2000), sparse liftings (each non-trivial one supported on at most
+            three rings of faces around a vertex where the plan allows, scaled
+            to peak 1; independent, not orthogonal; collected densely, refused
+            beyond 2e7 entries), any orthonormal basis, or the fundamental
+            liftings of vertices 0 .. count-1 (these span the space but are not
             independent).
         count : int, optional
             Default: the dimension (eigen, orthonormal) or every vertex
@@ -300,6 +312,15 @@ class Lifter:
         n = self._plan.n_vertices
         if kind not in BASES:
             raise InputError(f"unknown basis {kind!r}: use one of {', '.join(BASES)}")
+        if kind == "sparse":
+            d = self.dimension
+            count = d if count is None else int(count)
+            if not 0 <= count <= d:
+                raise InputError(f"count {count} is not between 0 and the dimension {d}")
+            basis = self._sparse_basis(count)
+            edges = self._plan.edges()
+            energies = np.array([np.sum((b[edges[:, 0]] - b[edges[:, 1]]) ** 2) for b in basis])
+            return basis, energies
         if kind == "fundamental":
             count = n if count is None else int(count)
             if not 0 <= count <= n:
@@ -321,6 +342,130 @@ class Lifter:
         except _core.CoreError as exc:
             raise _core_error(exc, self._source) from None
         return basis, energies
+
+
+def _face_complements(mesh):
+    """Per face: (vertices, rows) with rows an orthonormal basis ((k-3) x k) of the
+    complement of span(1, x, y) over its corners (the planarity constraints)."""
+    xy = np.asarray(mesh.vertices, dtype=np.float64)[:, :2]
+    out = []
+    for face in mesh.faces():
+        k = len(face)
+        if k <= 3:
+            out.append((np.asarray(face), np.zeros((0, k))))
+            continue
+        p = xy[face] - xy[face].mean(axis=0)
+        scale = np.sqrt(np.mean(np.sum(p * p, axis=1))) or 1.0
+        a = np.column_stack([np.ones(k), p / scale])
+        q, _ = np.linalg.qr(a, mode="complete")
+        out.append((np.asarray(face), q[:, 3:].T))
+    return out
+
+
+def _echelon(rows):
+    """A reduced row echelon form of a basis (Gauss-Jordan with partial pivoting): the
+    same span, with many zeros in each row (sparser liftings than SVD vectors)."""
+    a = np.array(rows, dtype=np.float64)
+    m, k = a.shape
+    r = 0
+    for c in range(k):
+        if r == m:
+            break
+        p = r + int(np.argmax(np.abs(a[r:, c])))
+        if abs(a[p, c]) <= 1e-9:
+            continue
+        a[[r, p]] = a[[p, r]]
+        a[r] /= a[r, c]
+        others = np.arange(m) != r
+        a[others] -= np.outer(a[others, c], a[r])
+        r += 1
+    a[np.abs(a) < 1e-12] = 0.0
+    return a[:r]
+
+
+def _sparse_liftings(lifter, count):
+    """Sparse liftings (see Lifter.basis): the trivial three, then liftings supported on
+    rings of faces around each vertex in turn, kept when independent of those found so far,
+    until `count`; any still missing (liftings with no local support) come from the
+    orthonormal basis. Each non-trivial one is scaled to peak 1."""
+    mesh = lifter.plan
+    n = mesh.n_vertices
+    d = lifter.dimension
+    if n * d > SPARSE_MAX_ENTRIES:
+        raise FacetError(f"sparse liftings are collected densely: dimension {d} with {n} "
+                         f"vertices is over the limit ({SPARSE_MAX_ENTRIES:.0f} entries)")
+    trivial, _ = lifter.basis("orthonormal", min(3, count))
+    if count <= 3:
+        return trivial[:count]
+    faces = _face_complements(mesh)
+    vertex_faces = [[] for _ in range(n)]
+    for f, (vs, _) in enumerate(faces):
+        for v in vs:
+            vertex_faces[v].append(f)
+    weights = lifter._weights
+    sw = np.sqrt(weights / weights.mean())
+    # Orthonormal (in the weighted inner product) span of what is collected, for the test.
+    span = [t * sw for t in trivial[:3]]
+    found = []
+    wanted = count - 3
+    for v in range(n):
+        if len(found) >= wanted:
+            break
+        support = {v}
+        for _ in range(SPARSE_MAX_RINGS):
+            ring_faces = {f for u in support for f in vertex_faces[u]}
+            support = support | {int(u) for f in ring_faces for u in faces[f][0]}
+            columns = sorted(support)
+            where = {u: j for j, u in enumerate(columns)}
+            touched = sorted({f for u in columns for f in vertex_faces[u]})
+            rows = []
+            for f in touched:
+                vs, comp = faces[f]
+                if comp.shape[0] == 0:
+                    continue
+                block = np.zeros((comp.shape[0], len(columns)))
+                for i, u in enumerate(vs):
+                    if int(u) in where:
+                        block[:, where[int(u)]] = comp[:, i]
+                rows.append(block)
+            matrix = np.vstack(rows) if rows else np.zeros((0, len(columns)))
+            if matrix.shape[0]:
+                _, sv, vt = np.linalg.svd(matrix)
+                rank = int(np.sum(sv > 1e-10 * max(sv[0], 1.0)))
+                null = vt[rank:]
+            else:
+                null = np.eye(len(columns))
+            null = _echelon(null)
+            added = False
+            for vec in null:
+                z = np.zeros(n)
+                z[columns] = vec
+                r = z * sw
+                for q in span:
+                    r = r - (q @ r) * q
+                for q in span:
+                    r = r - (q @ r) * q
+                if np.linalg.norm(r) > 1e-6 * np.linalg.norm(z * sw):
+                    span.append(r / np.linalg.norm(r))
+                    found.append(z / np.max(np.abs(z)))
+                    added = True
+                    if len(found) >= wanted:
+                        break
+            if added:
+                break
+    if len(found) < wanted:
+        ortho, _ = lifter.basis("orthonormal", d)
+        for b in ortho[3:]:
+            if len(found) >= wanted:
+                break
+            r = b * sw
+            for q in span:
+                r = r - (q @ r) * q
+            if np.linalg.norm(r) > 1e-6:
+                span.append(r / np.linalg.norm(r))
+                found.append(b / np.max(np.abs(b)))
+    signs = [1.0 if z[np.argmax(np.abs(z))] > 0 else -1.0 for z in found]
+    return np.vstack([trivial[:3]] + [s * z for s, z in zip(signs, found)])
 
 
 @dataclass
