@@ -99,6 +99,27 @@ class TestPlanGraphAndLifting(DocumentTestCase):
             self.doc.recompute()
         np.testing.assert_allclose(points_array(lifting), before, rtol=0, atol=1e-9)
 
+    def test_drag_a_vertex(self):
+        lifting = self.lifting
+        before = points_array(lifting)
+        x, y = inner_triangle()[1]
+        vertex = int(np.argmin(np.hypot(before[:, 0] - x, before[:, 1] - y)))
+        lifting.Drags = [App.Vector(x, y, 300.0)]
+        self.doc.recompute()
+        try:
+            self.assertTrue(lifting.isValid(), lifting.getStatusString())
+            after = points_array(lifting)
+            self.assertAlmostEqual(after[vertex, 2] - before[vertex, 2], 300.0, places=6)
+            self.assertLessEqual(lifting.PlanarityMaxRel, 1e-9)
+            lifting.Drags = [App.Vector(x + 50, y, 300.0)]
+            self.doc.recompute()
+            self.assertFalse(lifting.isValid())
+            self.assertIn("no plan vertex within", lifting.getStatusString())
+        finally:
+            lifting.Drags = []
+            self.doc.recompute()
+        np.testing.assert_allclose(points_array(lifting), before, rtol=0, atol=1e-9)
+
     def test_downstream_planarize_takes_it(self):
         result = facetwb.make_planarized(self.lifting, tolerance=1e-6)
         self.doc.recompute()

@@ -293,11 +293,19 @@ def check_lifting(check, out_dir):
         path = os.path.join(out_dir, "lifting_mix.png")
         save_view(Gui.ActiveDocument.ActiveView, path)
         check_screenshot(check, path, "lifting mix", legend=False)
+        mixed = [p.z for p in lifting.Points]
+        panel.vertex.setValue(4)
+        panel.drag.setValue(20)
+        Gui.updateGui()
+        dragged = [p.z for p in lifting.Points]
+        raised = dragged[4] - mixed[4]
+        check(abs(raised - 0.2 * panel.range) < 1e-6 and lifting.PlanarityMaxRel <= 1e-9,
+              f"dragging vertex 4 raises it by {raised:.0f} mm, faces stay planar")
         panel.reject()
         Gui.updateGui()
         restored = [p.z for p in lifting.Points]
-        check(max(abs(a - b) for a, b in zip(restored, before)) < 1e-6 and not lifting.Mix,
-              "Cancel restores the roof")
+        check(max(abs(a - b) for a, b in zip(restored, before)) < 1e-6 and not lifting.Mix
+              and not lifting.Drags, "Cancel restores the roof")
     if Gui.Control.activeDialog():
         Gui.Control.closeDialog()
     App.closeDocument(doc.Name)

@@ -44,6 +44,10 @@ class Lifting(PolyMesh):
                             "Heights (mm, at the peak) of the smoothest non-planar liftings "
                             "(eigen-liftings 1, 2, ...) added to the optimal lifting; faces "
                             "stay exactly planar")
+        compat.add_property(obj, "App::PropertyVectorList", "Drags", "Lift",
+                            "Vertex drags applied after Mix, in order: x, y find the plan "
+                            "vertex (within Snap), z is how far it is raised, mm; the rest of "
+                            "the roof follows by the vertex's fundamental lifting")
         compat.add_property(obj, "App::PropertyLength", "Snap", "Lift",
                             "Largest plan distance from a pinned or CSV point to its vertex "
                             "(0: 1e-6 of the plan's size)")
@@ -111,6 +115,32 @@ class Lifting(PolyMesh):
             store["count"] = count
         return store["basis"][:count]
 
+    def _dragged(self, obj, plan, weights, lifter, result, targets):
+        """Apply the Drags: each raises one vertex by its fundamental lifting, scaled to the
+        asked height at that vertex (every fundamental lifting is a lifting: faces stay
+        planar)."""
+        xy = plan.vertices[:, :2]
+        tolerance = obj.Snap.Value or 1e-6 * (float(np.ptp(xy, axis=0).max()) or 1.0)
+        heights = result.heights.copy()
+        for drag in obj.Drags:
+            distance = np.hypot(xy[:, 0] - drag.x, xy[:, 1] - drag.y)
+            v = int(np.argmin(distance))
+            if distance[v] > tolerance:
+                raise ValueError(f"{obj.Label}: no plan vertex within {tolerance:g} mm of the "
+                                 f"drag at ({drag.x:.6g}, {drag.y:.6g})")
+            fundamental = lifter.fundamental(v)
+            if not fundamental[v] > 1e-9:
+                raise ValueError(f"{obj.Label}: vertex {v} cannot be raised on its own: "
+                                 "every lifting of this plan keeps it where the planes put it")
+            heights = heights + drag.z * fundamental / fundamental[v]
+        dragged = lifter.solve(heights)  # a lifting: returned as it is, planarity measured
+        dragged.targets = targets
+        dev = dragged.heights - targets
+        dragged.target_rms = float(np.sqrt(np.mean(dev**2)))
+        dragged.target_max_vertex = int(np.argmax(np.abs(dev)))
+        dragged.target_max = float(abs(dev[dragged.target_max_vertex]))
+        return dragged
+
     def execute(self, obj):
         if obj.Plan is None:
             raise ValueError(f"{obj.Label}: Plan is empty, nothing to lift")
@@ -133,6 +163,8 @@ class Lifting(PolyMesh):
             result.target_rms = float(np.sqrt(np.mean(dev**2)))
             result.target_max_vertex = int(np.argmax(np.abs(dev)))
             result.target_max = float(abs(dev[result.target_max_vertex]))
+        if obj.Drags:
+            result = self._dragged(obj, plan, weights, lifter, result, targets)
         set_mesh(obj, result.mesh)
         set_planarity(obj, facet.planarity(result.mesh))
         obj.Dimension = int(result.dimension)

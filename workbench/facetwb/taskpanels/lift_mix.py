@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Task panel of a Lifting: sliders that add the smoothest non-planar liftings (eigen-liftings)
-to the optimal one, with the result following live. Every mix keeps every face exactly planar:
+to the optimal one, and a vertex whose height can be dragged (its fundamental lifting: the
+rest of the roof follows), with the result following live. Every mix keeps every face exactly planar:
 the liftings form a linear space. Wiring only: the basis comes from ``facet.lift``.
 
-The sliders write the Lifting's ``Mix`` property (heights at the peak, mm) and recompute;
+The sliders write the Lifting's ``Mix`` and ``Drags`` properties and recompute;
 OK keeps the mix (one undo step), Cancel restores the previous one.
 """
 
@@ -64,6 +65,26 @@ class LiftMixPanel:
             self.sliders.append(slider)
             self.labels.append(label)
             slider.valueChanged.connect(self.changed)
+        # Dragging one vertex: its fundamental lifting (the rest of the roof follows).
+        self.original_drags = list(obj.Drags)
+        self.points = [(p.x, p.y) for p in obj.Plan.Points]
+        drag_row = QtGui.QHBoxLayout()
+        drag_row.addWidget(QtGui.QLabel("Raise vertex"))
+        self.vertex = QtGui.QSpinBox()
+        self.vertex.setRange(0, max(0, len(self.points) - 1))
+        drag_row.addWidget(self.vertex)
+        self.drag = QtGui.QSlider(QtCore.Qt.Horizontal)
+        self.drag.setRange(-STEPS, STEPS)
+        drag_row.addWidget(self.drag, 1)
+        self.drag_label = QtGui.QLabel()
+        drag_row.addWidget(self.drag_label)
+        layout.addLayout(drag_row)
+        self.drags = {}
+        for d in self.original_drags:
+            self.drags[(d.x, d.y)] = d.z
+        self.vertex.valueChanged.connect(self.vertex_changed)
+        self.drag.valueChanged.connect(self.drag_changed)
+        self.vertex_changed()
         self._show_values()
         self.obj.Document.openTransaction("Shape lifting")
         global active
@@ -75,6 +96,26 @@ class LiftMixPanel:
     def _show_values(self):
         for label, value in zip(self.labels, self.mix()):
             label.setText(App.Units.Quantity(value, App.Units.Length).UserString)
+
+    def vertex_changed(self, _value=None):
+        key = self.points[self.vertex.value()] if self.points else None
+        self.drag.blockSignals(True)
+        self.drag.setValue(int(round(self.drags.get(key, 0.0) / self.range * STEPS)))
+        self.drag.blockSignals(False)
+        self._show_drag()
+
+    def _show_drag(self):
+        value = self.drag.value() / STEPS * self.range
+        self.drag_label.setText(App.Units.Quantity(value, App.Units.Length).UserString)
+
+    def drag_changed(self, _value=None):
+        if not self.points:
+            return
+        self._show_drag()
+        self.drags[self.points[self.vertex.value()]] = self.drag.value() / STEPS * self.range
+        self.obj.Drags = [App.Vector(x, y, dz) for (x, y), dz in self.drags.items() if dz]
+        self.obj.Document.recompute()
+        Gui.updateGui()
 
     def changed(self, _value=None):
         self._show_values()
@@ -95,6 +136,7 @@ class LiftMixPanel:
     def reject(self):
         self.obj.Document.abortTransaction()
         self.obj.Mix = self.original
+        self.obj.Drags = self.original_drags
         self.obj.Document.recompute()
         self._close()
         return True
