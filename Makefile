@@ -15,7 +15,7 @@ PREFIX ?= $(HOME)/.local
 JOBS ?= 2
 
 PKGS_BUILD = gcc make cmake pkg-config libsuitesparse-dev liblapack-dev python3-dev python3-numpy
-PKGS_PYTHON = python3-pytest python3-numpy
+PKGS_PYTHON = python3-pytest python3-numpy python3-scipy python3-shapely python3-ezdxf
 PKGS_FREECAD = freecad xvfb xauth
 ENSURE = sh tools/ensure-packages.sh
 
@@ -62,6 +62,7 @@ bench: build
 	mkdir -p $(OUT)
 	$(BUILD)/libcore/bench/bench_planarize --runs 5 --json $(OUT)/bench.json
 	$(BUILD)/libcore/bench/bench_surface --runs 5 --json $(OUT)/bench_surface.json
+	$(BUILD)/libcore/bench/bench_lift --runs 5 --json $(OUT)/bench_lift.json
 
 install: build
 	sh tools/install.sh "$(PREFIX)" "$(PYTHON)"

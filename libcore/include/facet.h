@@ -57,7 +57,12 @@ extern "C" {
     X(FACET_ERROR_CANCELLED, -10, "cancelled")                                        \
     X(FACET_ERROR_TOO_LARGE, -11, "mesh too large")                                   \
     X(FACET_ERROR_NOTHING_LEFT, -40, "cleanup collapsed every face")                  \
-    X(FACET_WARNING_COLLAPSE_SKIPPED, 30, "short edges kept: collapsing them would break the mesh")
+    X(FACET_WARNING_COLLAPSE_SKIPPED, 30, "short edges kept: collapsing them would break the mesh") \
+    X(FACET_ERROR_PLAN_DEGENERATE_FACE, -20, "face has collinear corners in plan")    \
+    X(FACET_ERROR_BAD_WEIGHT, -21, "weight not finite and > 0")                       \
+    X(FACET_ERROR_BAD_TARGET, -22, "target height not finite")                        \
+    X(FACET_WARNING_TRIVIAL_LIFTING, 10, "plan admits only the trivial liftings")     \
+    X(FACET_WARNING_PLANARITY, 11, "lifted faces not planar to 1e-9")
 
 typedef enum facet_status {
 #define FACET_STATUS_ENUM(name, value, text) name = value,
@@ -414,7 +419,108 @@ facet_status facet_cleanup(const facet_mesh *mesh, const facet_cleanup_options *
                            double *xyz_out, int32_t *face_start_out, int32_t *face_vertices_out,
                            int32_t *vertex_map, int32_t *collapsed_edges,
                            int32_t *removed_faces, facet_cleanup_result *result,
-                           facet_error *error);
+                           facet_error *error); \
+/* ------------------------------------------------------------------------ */
+/* Lifting plan drawings                                                      */
+/* ------------------------------------------------------------------------ */
+
+/* A lifting of a plan (a facet_mesh whose x, y are the plan and whose z is
+ * ignored) gives every vertex a height z so that every face is planar: the
+ * corners of face f satisfy z = a_f x + b_f y + c_f. The liftings form a
+ * linear space (the lifting space) that contains the three affine (trivial)
+ * liftings 1, x, y. A lifter computes, from one rank-revealing sparse QR
+ * (SuiteSparseQR) of the planarity constraints, the lifting closest to any
+ * targets in the weighted least-squares sense
+ *
+ *     minimize sum_v w_v (z_v - t_v)^2  subject to every face planar,
+ *
+ * the dimension of the lifting space and bases of it.
+ *
+ * Constraints: a face with k corners gives k-3 rows, an orthonormal basis of
+ * the complement of span(1, x, y) over its corners (computed on the face's
+ * own centred and scaled corners, so plan units and placement do not
+ * matter). Redundant and nearly redundant rows are normal in real plans: the
+ * rank is decided by SPQR's column-norm test with tolerance rank_tol (on
+ * unit-norm rows scaled by 1/sqrt of the weights normalised to mean 1;
+ * <= 0 means 1e-10). A constraint dependent on the others to within
+ * rank_tol is treated as dependent (the lifting then violates it by about
+ * that much, inside the 1e-9 planarity promise); the others are enforced
+ * exactly, so a drawing that is liftable only up to coarser rounding lifts
+ * only trivially. */
+
+typedef struct facet_lifter facet_lifter;
+
+typedef struct facet_lift_options {
+    double rank_tol; /* <= 0: 1e-10 */
+} facet_lift_options;
+
+typedef struct facet_lift_result {
+    int32_t dimension;          /* of the lifting space */
+    int32_t trivial_dimension;  /* 3 */
+    double planarity_max_abs;   /* largest vertical distance of a corner from its face's
+                                   least-squares plane (>= the true distance; 0 for
+                                   triangles) */
+    double planarity_max_rel;   /* the same relative to each face's mean 3D edge length */
+    double target_rms;          /* RMS of z - t over all vertices */
+    double target_max;          /* largest |z - t| */
+    int32_t target_max_vertex;  /* where */
+    double seconds;             /* wall time of the solve */
+} facet_lift_result;
+
+/* Validates the plan (as facet_mesh_validate, checking x and y; warnings
+ * are not errors), refuses faces whose corners are collinear in plan
+ * (FACET_ERROR_PLAN_DEGENERATE_FACE) and weights that are not finite and > 0
+ * (FACET_ERROR_BAD_WEIGHT; weights may be NULL: all 1), copies what it needs
+ * and factorizes. options may be NULL. Deterministic: when the BLAS is
+ * OpenBLAS, the lifter's calls run it single-threaded (its process-wide
+ * setting, restored afterwards), since its threaded kernels round
+ * differently for different thread counts. */
+facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
+                                 const facet_lift_options *options, facet_lifter **out,
+                                 facet_error *error);
+
+void facet_lifter_free(facet_lifter **lifter);
+
+/* Dimension of the lifting space (>= 3), and the factorization's time. */
+int32_t facet_lifter_dimension(const facet_lifter *lifter);
+double facet_lifter_factor_seconds(const facet_lifter *lifter);
+
+/* The optimal lifting of targets[n_vertices] into heights[n_vertices] (may
+ * be the same array). result may be NULL. Returns FACET_WARNING_TRIVIAL_LIFTING
+ * when the plan admits only the affine liftings (heights are then the
+ * weighted best-fitting plane), FACET_WARNING_PLANARITY when a face is planar
+ * only to more than 1e-9 relative (then said in the message). A non-finite
+ * target gives FACET_ERROR_BAD_TARGET naming the vertex. */
+facet_status facet_lifter_solve(facet_lifter *lifter, const double *targets, double *heights,
+                                facet_lift_result *result, facet_error *error);
+
+/* The fundamental lifting of a vertex: the lifting closest (weighted) to the
+ * unit target at that vertex and 0 elsewhere, into heights[n_vertices]. Costs
+ * two applications of the stored Q, no new factorization. */
+facet_status facet_lifter_fundamental(facet_lifter *lifter, int32_t vertex, double *heights,
+                                      facet_error *error);
+
+typedef enum facet_basis_kind {
+    FACET_BASIS_ORTHONORMAL = 0, /* any W-orthonormal basis (fast: no eigen-solve) */
+    FACET_BASIS_EIGEN = 1        /* eigen-liftings, smoothest first */
+} facet_basis_kind;
+
+/* The first count functions of a basis of the lifting space, basis k in
+ * basis[k*n_vertices ...]; values[count] (may be NULL) gets each function's
+ * Dirichlet energy z' L z (L the combinatorial Laplacian of the plan's
+ * edges). Functions 0..2 are always the trivial liftings 1, x, y made
+ * orthonormal in the weighted inner product sum_v w_v a_v b_v; the rest are
+ * orthogonal to them and to each other in that inner product. For
+ * FACET_BASIS_EIGEN the rest minimise z' L z / z' W z in turn (the
+ * eigenvectors of P L P for uniform weights), smoothest first. The eigen
+ * basis is dense: it is refused (FACET_ERROR_TOO_LARGE) when the dimension
+ * exceeds 2000 or n_vertices * dimension exceeds 2e7. Signs are fixed so the
+ * largest-magnitude entry of each function is positive. */
+facet_status facet_lifter_basis(facet_lifter *lifter, facet_basis_kind kind, int32_t count,
+                                double *basis, double *values, facet_error *error);
+
+/* The last error's message of a handle ("" when none). */
+const char *facet_lifter_message(const facet_lifter *lifter);
 
 #ifdef __cplusplus
 }

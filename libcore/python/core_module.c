@@ -131,7 +131,8 @@ static int core_exec(PyObject *module)
     /* One line per binding file (py_common.h). */
     if (py_add_planarize(module) < 0)
         return -1;
-    if (py_add_surface(module) < 0 || py_add_quality(module) < 0 || py_add_cleanup(module) < 0)
+    if (py_add_surface(module) < 0 || py_add_quality(module) < 0 || py_add_cleanup(module) < 0 ||
+        py_add_lift(module) < 0)
         return -1;
     return 0;
 }

@@ -59,5 +59,6 @@ int py_add_planarize(PyObject *module);
 int py_add_surface(PyObject *module);
 int py_add_quality(PyObject *module);
 int py_add_cleanup(PyObject *module);
+int py_add_lift(PyObject *module);
 
 #endif

@@ -8,7 +8,8 @@
 Activates the Facet workbench, imports a quad mesh, selects it, runs Facet_Planarize, shows
 the result in Planarity mode and saves screenshots of the 3D view to OUT_DIR (default
 build/gui): planarity.png (result, planarity colours and legend), source.png (the source in
-Flat Lines) and source_planarity.png (the warped source in Planarity mode). Every check
+Flat Lines), source_planarity.png (the warped source in Planarity mode) and lifting.png (a
+sketched roof plan lifted by Facet_PlanGraph and Facet_Lift towards a dome). Every check
 prints PASS or FAIL; FreeCAD exits with status 0 only if all passed (1 if one failed, 2 if
 the test itself broke). It does not run without a GUI: freecadcmd prints SKIP and exits 0.
 """
@@ -208,6 +209,7 @@ def run(out_dir):
           and added[0].FaceCount == 6, "Facet_ToPolyMesh makes a 6-quad PolyMesh of a box")
     check(not box.ViewObject.Visibility, "the box is hidden")
     App.closeDocument(doc.Name)
+    check_lifting(check, out_dir)
     return check
 
 
@@ -261,6 +263,103 @@ def check_color_by(check, view, result, out_dir):
           f"ColorBy Distance to input is computed from the source ({labels})")
     vobj.ColorBy = "Planarity"
     Gui.updateGui()
+def check_lifting(check, out_dir):
+    """Facet_PlanGraph on a sketched hipped-roof plan, Facet_Lift towards a dome; lifting.png."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import Part
+
+    import facetwb
+
+    for name in ("Facet_PlanGraph", "Facet_Lift"):
+        check(name in Gui.listCommands(), f"command {name} is registered")
+    doc = App.newDocument("Lifting")
+    sketch = doc.addObject("Sketcher::SketchObject", "RoofPlan")
+    corners = [(0, 0), (8000, 0), (8000, 5000), (0, 5000)]
+    ridge = [(2500, 2500), (5500, 2500)]
+    lines = [(corners[i], corners[(i + 1) % 4]) for i in range(4)] + [(ridge[0], ridge[1])]
+    lines += [(corners[0], ridge[0]), (corners[3], ridge[0]), (corners[1], ridge[1]),
+              (corners[2], ridge[1])]
+    for a, b in lines:
+        sketch.addGeometry(Part.LineSegment(App.Vector(*a, 0), App.Vector(*b, 0)), False)
+    dome = doc.addObject("Part::Sphere", "Dome")
+    dome.Radius = 6000
+    dome.Placement.Base = App.Vector(4000, 2500, -3000)
+    doc.recompute()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(sketch)
+    before = set(doc.Objects)
+    Gui.runCommand("Facet_PlanGraph")
+    plans = [obj for obj in doc.Objects if obj not in before and facetwb.is_plan_graph(obj)]
+    check(len(plans) == 1 and plans[0].isValid() and plans[0].FaceCount == 4,
+          "Facet_PlanGraph makes a 4-face plan of the sketch")
+    if not plans:
+        return
+    plan = plans[0]
+    check(not sketch.ViewObject.Visibility, "the sketch is hidden")
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(plan)
+    Gui.Selection.addSelection(dome)
+    before = set(doc.Objects)
+    Gui.runCommand("Facet_Lift")
+    liftings = [obj for obj in doc.Objects if obj not in before and facetwb.is_lifting(obj)]
+    check(len(liftings) == 1, "Facet_Lift makes a Lifting")
+    if not liftings:
+        return
+    lifting = liftings[0]
+    check(lifting.isValid() and lifting.Dimension == 4 and lifting.PlanarityMaxRel <= 1e-9,
+          f"the lifting is planar (dimension {lifting.Dimension}, planarity "
+          f"{lifting.PlanarityMaxRel:.2g})")
+    check(lifting.ViewObject.Proxy.__class__.__name__ == "ViewProviderLifting",
+          "the lifting has its view provider")
+    check(not dome.ViewObject.Visibility and not plan.ViewObject.Visibility,
+          "the dome and the plan are hidden")
+    heights = [p.z for p in lifting.Points]
+    check(max(heights) - min(heights) > 100, "the roof is not flat")
+    path = os.path.join(out_dir, "lifting.png")
+    save_view(Gui.ActiveDocument.ActiveView, path)
+    check_screenshot(check, path, "lifting", legend=False)
+
+    # Facet_LiftMix: a slider reshapes the roof live; faces stay planar; Cancel restores.
+    check("Facet_LiftMix" in Gui.listCommands(), "command Facet_LiftMix is registered")
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(lifting)
+    before = [p.z for p in lifting.Points]
+    Gui.runCommand("Facet_LiftMix")
+    Gui.updateGui()
+    from facetwb.taskpanels import lift_mix
+
+    panel = lift_mix.active
+    check(bool(Gui.Control.activeDialog()) and panel is not None,
+          "the Shape lifting panel is open")
+    if panel is not None:
+        check(len(panel.sliders) == 1, f"one slider for dimension 4 ({len(panel.sliders)})")
+        panel.sliders[0].setValue(60)
+        Gui.updateGui()
+        after = [p.z for p in lifting.Points]
+        moved = max(abs(a - b) for a, b in zip(after, before))
+        check(moved > 100 and lifting.PlanarityMaxRel <= 1e-9,
+              f"the slider reshapes the roof ({moved:.0f} mm), faces stay planar")
+        Gui.Selection.clearSelection()  # selected objects are drawn in the highlight colour
+        path = os.path.join(out_dir, "lifting_mix.png")
+        save_view(Gui.ActiveDocument.ActiveView, path)
+        check_screenshot(check, path, "lifting mix", legend=False)
+        mixed = [p.z for p in lifting.Points]
+        panel.vertex.setValue(4)
+        panel.drag.setValue(20)
+        Gui.updateGui()
+        dragged = [p.z for p in lifting.Points]
+        raised = dragged[4] - mixed[4]
+        check(abs(raised - 0.2 * panel.range) < 1e-6 and lifting.PlanarityMaxRel <= 1e-9,
+              f"dragging vertex 4 raises it by {raised:.0f} mm, faces stay planar")
+        panel.reject()
+        Gui.updateGui()
+        restored = [p.z for p in lifting.Points]
+        check(max(abs(a - b) for a, b in zip(restored, before)) < 1e-6 and not lifting.Mix
+              and not lifting.Drags, "Cancel restores the roof")
+    if Gui.Control.activeDialog():
+        Gui.Control.closeDialog()
+    App.closeDocument(doc.Name)
 
 
 def check_import_command(check):

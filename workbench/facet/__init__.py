@@ -17,6 +17,7 @@ ImportError saying so.
 from facet.errors import Cancelled, FacetError, InputError, MeshError
 from facet.io import read_mesh, write_mesh
 from facet.mesh import PolyMesh
+from facet.plan import PlanError, PlanGraph, read_plan
 
 __version__ = "0.1.0"
 
@@ -38,13 +39,22 @@ __all__ = [
     "QualityReport",
     "cleanup",
     "CleanupResult",
+    "PlanError",
+    "PlanGraph",
+    "read_plan",
+    "lift",
+    "Lifter",
+    "LiftResult",
+    "LiftingSpace",
+    "lifting_space",
     "__version__",
 ]
 
 _SOLVER_NAMES = ("planarize", "Planarizer", "PlanarizeResult", "planarity", "PlanarityReport",
-                 "Surface", "quality", "QualityReport", "cleanup", "CleanupResult")
+                 "Surface", "quality", "QualityReport", "cleanup", "CleanupResult",
+                 "lift", "Lifter", "LiftResult", "LiftingSpace", "lifting_space")
 _SOLVER_MODULES = ("facet.planarity", "facet.planarize", "facet._core", "facet.surface",
-                   "facet.quality", "facet.cleanup")
+                   "facet.quality", "facet.cleanup", "facet.lift")
 _solver_import_error = None
 
 try:
@@ -53,6 +63,7 @@ try:
     from facet.surface import Surface
     from facet.quality import QualityReport, quality
     from facet.cleanup import CleanupResult, cleanup
+    from facet.lift import Lifter, LiftingSpace, LiftResult, lift, lifting_space
 except ImportError as exc:  # the compiled core is not built (yet)
     core_missing = exc.name == "facet" and "_core" in str(exc)
     if exc.name not in _SOLVER_MODULES and not core_missing:

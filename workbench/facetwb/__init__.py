@@ -31,6 +31,11 @@ _API = {
     "make_cleanup": "facetwb.make.make_cleanup",
     "is_cleanup": "facetwb.objects.cleanup",
     "cleanup_summary": "facetwb.objects.cleanup",
+    "make_plan_graph": "facetwb.make.make_lifting",
+    "make_lifting": "facetwb.make.make_lifting",
+    "is_plan_graph": "facetwb.objects.plangraph",
+    "is_lifting": "facetwb.objects.lifting",
+    "lifting_summary": "facetwb.objects.lifting",
 }
 
 __all__ = sorted(_API)

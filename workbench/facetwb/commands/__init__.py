@@ -2,7 +2,8 @@
 """Facet's GUI commands. ``register()`` adds them to FreeCAD (InitGui.py calls it)."""
 
 #: Commands in toolbar and menu order.
-COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize", "Facet_Cleanup"]
+COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize", "Facet_Cleanup",
+            "Facet_PlanGraph", "Facet_Lift", "Facet_LiftMix"]
 
 
 def register():
@@ -13,11 +14,15 @@ def register():
     from facetwb.commands.import_mesh import CommandImportMesh
     from facetwb.commands.planarize import CommandPlanarize
     from facetwb.commands.to_polymesh import CommandToPolyMesh
+    from facetwb.commands.lift import CommandLift, CommandLiftMix, CommandPlanGraph
 
     known = set(Gui.listCommands())
     for name, command in (("Facet_ImportMesh", CommandImportMesh()),
                           ("Facet_ToPolyMesh", CommandToPolyMesh()),
                           ("Facet_Planarize", CommandPlanarize()),
-                          ("Facet_Cleanup", CommandCleanup())):
+                          ("Facet_Cleanup", CommandCleanup()),
+                          ("Facet_PlanGraph", CommandPlanGraph()),
+                          ("Facet_Lift", CommandLift()),
+                          ("Facet_LiftMix", CommandLiftMix())):
         if name not in known:
             Gui.addCommand(name, command)

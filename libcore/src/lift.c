@@ -1,0 +1,962 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* Optimal liftings of plan drawings (paper section 6.1).
+ *
+ * Unknowns: one height z_v per plan vertex. Face f with k corners is planar
+ * when its heights lie in span(1, x, y) over its corners, i.e. when they are
+ * orthogonal to the k-3 dimensional complement of that span. Those
+ * complements, one orthonormal set per face (Householder QR of the k x 3
+ * matrix [1 x y] on the face's own centred and scaled corners), are the rows
+ * of the constraint matrix C (m x n, m = sum (k_f - 3)); the lifting space is
+ * null(C).
+ *
+ * With W = diag(w) the weights, the optimal lifting of targets t is the
+ * W-orthogonal projection of t onto null(C). Put A = W^-1/2 C' (n x m) and
+ * factorize A P = Q R with SuiteSparseQR's rank-revealing sparse QR, rank r.
+ * Q = [Q1 Q2] with Q1 (n x r) spanning range(A) = W^-1/2 range(C'), so Q2
+ * (n x (n-r)) is an orthonormal basis of W^1/2 null(C) and
+ *
+ *     z = W^-1/2 Q2 Q2' W^1/2 t.
+ *
+ * The factorization stays in the handle. A solve applies the projector
+ * with R alone (corrected semi-normal equations, see remove_range), which
+ * is far cheaper than applying the Householder Q: at 10k vertices a
+ * fundamental lifting takes under a millisecond. The bases use Q itself
+ * (they need Q2 explicitly). The affine part of t (its W-projection onto span(1, x,
+ * y), which is always a lifting) is taken out first and added back exactly,
+ * so the projection works on the small remainder (georeferenced heights in
+ * the hundreds of metres lose nothing), and z = a + W^-1/2 Q2 (Q2' s) lies
+ * in the lifting space to rounding of the remainder alone.
+ *
+ * dim null(C) = n - r >= 3. */
+#include "internal.h"
+
+#include <SuiteSparseQR_C.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* LAPACK (Fortran interface). */
+extern void dsyevr_(const char *jobz, const char *range, const char *uplo, const int *n, double *a,
+                    const int *lda, const double *vl, const double *vu, const int *il,
+                    const int *iu, const double *abstol, int *m, double *w, double *z,
+                    const int *ldz, int *isuppz, double *work, const int *lwork, int *iwork,
+                    const int *liwork, int *info);
+
+/* OpenBLAS's process-wide thread control, when the BLAS linked in is OpenBLAS (weak: NULL
+ * otherwise). SPQR's dense fronts and Householder applications go through BLAS, whose
+ * multi-threaded kernels round differently for different thread counts; the lifter runs
+ * them single-threaded and restores the setting, so its results are the same bits for any
+ * OMP_NUM_THREADS or OPENBLAS_NUM_THREADS (tests/python/test_lift_determinism.py). */
+extern void openblas_set_num_threads(int n) __attribute__((weak));
+extern int openblas_get_num_threads(void) __attribute__((weak));
+
+static int blas_serial_begin(void)
+{
+    if (!openblas_set_num_threads || !openblas_get_num_threads)
+        return 0;
+    int previous = openblas_get_num_threads();
+    if (previous > 1)
+        openblas_set_num_threads(1);
+    return previous;
+}
+
+static void blas_serial_end(int previous)
+{
+    if (previous > 1 && openblas_set_num_threads)
+        openblas_set_num_threads(previous);
+}
+
+#define EIGEN_MAX_DIMENSION 2000
+#define EIGEN_MAX_ENTRIES 20000000.0
+/* A face whose corners span less than this (relative) in plan is refused. */
+#define PLAN_DEGENERATE_REL 1e-8
+#define PLANARITY_TOL_REL 1e-9
+/* Size of a refinement step of the corrected semi-normal equations,
+ * relative to the vector projected, below which they count as converged. */
+#define CSNE_TOL 1e-14
+/* Default rank tolerance on the (unit-norm, weight-scaled) constraint
+ * columns: a constraint dependent on the others to within this is treated as
+ * dependent. Violating it by that much keeps every face planar to about
+ * 1e-10 of the plan's size, inside the 1e-9 promise; enforcing it instead
+ * would make the lifting space hinge on rounding of the drawing. */
+#define RANK_TOL_DEFAULT 1e-10
+
+struct facet_lifter {
+    int32_t nv, nf, nc, m, rank, dim, max_degree;
+    int32_t *face_start, *face_vertices;
+    double *plan_xy;     /* model units, 2*nv */
+    double *sqw;         /* sqrt of the weights normalised to mean 1 */
+    double *trivial;     /* 3*nv: W-orthonormal basis of span(1, x, y) */
+    int32_t ne;
+    int32_t *edges;      /* 2*ne, unique undirected edges */
+    double *work, *work2, *save, *xyz; /* nv, nv, nv, 3*nv */
+    int cm_started;
+    cholmod_common cm;
+    SuiteSparseQR_C_factorization *qr; /* NULL when m == 0 (Q = I) */
+    cholmod_sparse *a;                 /* A = W^-1/2 C', n x m */
+    cholmod_dense *rhs_m;              /* m x 1 workspace */
+    double factor_seconds;
+    char message[512];
+};
+
+static facet_status lifter_fail(facet_lifter *s, facet_error *error, facet_status status,
+                                int64_t face, int64_t vertex, const char *format, ...)
+    FACET_PRINTF(6, 7);
+
+static facet_status lifter_fail(facet_lifter *s, facet_error *error, facet_status status,
+                                int64_t face, int64_t vertex, const char *format, ...)
+{
+    char text[512];
+    va_list ap;
+    va_start(ap, format);
+    vsnprintf(text, sizeof text, format, ap);
+    va_end(ap);
+    if (s)
+        snprintf(s->message, sizeof s->message, "%s", text);
+    return facet_fail(error, status, face, vertex, "%s", text);
+}
+
+void facet_lifter_free(facet_lifter **handle)
+{
+    if (!handle || !*handle)
+        return;
+    facet_lifter *s = *handle;
+    if (s->cm_started) {
+        if (s->qr)
+            SuiteSparseQR_C_free(&s->qr, &s->cm);
+        cholmod_l_free_sparse(&s->a, &s->cm);
+        cholmod_l_free_dense(&s->rhs_m, &s->cm);
+        cholmod_l_finish(&s->cm);
+    }
+    free(s->face_start);
+    free(s->face_vertices);
+    free(s->plan_xy);
+    free(s->sqw);
+    free(s->trivial);
+    free(s->edges);
+    free(s->work);
+    free(s->save);
+    free(s->work2);
+    free(s->xyz);
+    free(s);
+    *handle = NULL;
+}
+
+/* Householder QR of the k x 3 column-major matrix a (overwritten by the
+ * reflectors: column j holds v_j from row j on); beta[3], diag[3] = R_jj. */
+static void householder3(int32_t k, double *a, double beta[3], double diag[3])
+{
+    for (int j = 0; j < 3; ++j) {
+        double *col = a + (size_t)j * k;
+        double norm = 0.0;
+        for (int32_t i = j; i < k; ++i)
+            norm += col[i] * col[i];
+        norm = sqrt(norm);
+        if (norm == 0.0) {
+            beta[j] = 0.0;
+            diag[j] = 0.0;
+            continue;
+        }
+        double alpha = col[j] >= 0.0 ? -norm : norm;
+        col[j] -= alpha;
+        double vv = 0.0;
+        for (int32_t i = j; i < k; ++i)
+            vv += col[i] * col[i];
+        beta[j] = 2.0 / vv;
+        diag[j] = alpha;
+        for (int c = j + 1; c < 3; ++c) {
+            double *other = a + (size_t)c * k;
+            double dot = 0.0;
+            for (int32_t i = j; i < k; ++i)
+                dot += col[i] * other[i];
+            dot *= beta[j];
+            for (int32_t i = j; i < k; ++i)
+                other[i] -= dot * col[i];
+        }
+    }
+}
+
+/* x <- H_0 H_1 H_2 x (Q times x) for the reflectors of householder3. */
+static void householder3_apply(int32_t k, const double *a, const double beta[3], double *x)
+{
+    for (int j = 2; j >= 0; --j) {
+        if (beta[j] == 0.0)
+            continue;
+        const double *col = a + (size_t)j * k;
+        double dot = 0.0;
+        for (int32_t i = j; i < k; ++i)
+            dot += col[i] * x[i];
+        dot *= beta[j];
+        for (int32_t i = j; i < k; ++i)
+            x[i] -= dot * col[i];
+    }
+}
+
+static int compare_edge(const void *pa, const void *pb)
+{
+    const int32_t *a = pa, *b = pb;
+    if (a[0] != b[0])
+        return a[0] < b[0] ? -1 : 1;
+    if (a[1] != b[1])
+        return a[1] < b[1] ? -1 : 1;
+    return 0;
+}
+
+/* Y = Q' X (transpose != 0) or Q X for an n x k column-major X; Q = I when
+ * there is no factorization. Returns 0 on failure. */
+static int apply_q(facet_lifter *s, int transpose, int32_t k, double *x)
+{
+    if (!s->qr)
+        return 1;
+    cholmod_dense *in = cholmod_l_allocate_dense((size_t)s->nv, (size_t)k, (size_t)s->nv,
+                                                 CHOLMOD_REAL, &s->cm);
+    if (!in)
+        return 0;
+    memcpy(in->x, x, sizeof(double) * (size_t)s->nv * (size_t)k);
+    cholmod_dense *out = SuiteSparseQR_C_qmult(transpose ? SPQR_QTX : SPQR_QX, s->qr, in, &s->cm);
+    cholmod_l_free_dense(&in, &s->cm);
+    if (!out)
+        return 0;
+    const double *ox = out->x;
+    for (int32_t c = 0; c < k; ++c)
+        memcpy(x + (size_t)c * s->nv, ox + (size_t)c * out->d, sizeof(double) * (size_t)s->nv);
+    cholmod_l_free_dense(&out, &s->cm);
+    return 1;
+}
+
+facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
+                                 const facet_lift_options *options, facet_lifter **out,
+                                 facet_error *error)
+{
+    facet_error_clear(error);
+    if (!out)
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "out is NULL");
+    *out = NULL;
+    facet_mesh_report report;
+    facet_status status = facet_mesh_validate_topology(plan, 0, &report, error);
+    if (status < 0)
+        return status;
+    facet_error_clear(error);
+    const int32_t nv = plan->n_vertices, nf = plan->n_faces, nc = plan->face_start[nf];
+    if (!plan->xyz)
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "plan xyz is NULL");
+    for (int32_t v = 0; v < nv; ++v)
+        if (!isfinite(plan->xyz[3 * v]) || !isfinite(plan->xyz[3 * v + 1]))
+            return facet_fail(error, FACET_ERROR_NONFINITE, -1, v,
+                              "plan vertex %d has a NaN or infinite x or y", (int)v);
+    if (weights)
+        for (int32_t v = 0; v < nv; ++v)
+            if (!(weights[v] > 0.0) || !isfinite(weights[v]))
+                return facet_fail(error, FACET_ERROR_BAD_WEIGHT, -1, v,
+                                  "weight of vertex %d is %g: weights must be finite and > 0",
+                                  (int)v, weights[v]);
+    if ((int64_t)nc > INT32_MAX / 4)
+        return facet_fail(error, FACET_ERROR_TOO_LARGE, -1, -1, "plan too large: %d corners",
+                          (int)nc);
+    double t0 = facet_now();
+    facet_lifter *s = calloc(1, sizeof *s);
+    if (!s)
+        return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    s->nv = nv, s->nf = nf, s->nc = nc;
+    s->face_start = malloc(sizeof(int32_t) * (size_t)(nf + 1));
+    s->face_vertices = malloc(sizeof(int32_t) * (size_t)nc);
+    s->plan_xy = malloc(sizeof(double) * 2 * (size_t)nv);
+    s->sqw = malloc(sizeof(double) * (size_t)nv);
+    s->trivial = malloc(sizeof(double) * 3 * (size_t)nv);
+    s->edges = malloc(sizeof(int32_t) * 2 * (size_t)nc);
+    s->work = malloc(sizeof(double) * (size_t)nv);
+    s->save = malloc(sizeof(double) * (size_t)nv);
+    s->work2 = malloc(sizeof(double) * (size_t)nv);
+    s->xyz = malloc(sizeof(double) * 3 * (size_t)nv);
+    int32_t kmax = report.max_degree;
+    s->max_degree = kmax;
+    double *scratch = malloc(sizeof(double) * (size_t)kmax * 5);
+    int64_t *order = malloc(sizeof(int64_t) * (size_t)kmax);
+    if (!s->face_start || !s->face_vertices || !s->plan_xy || !s->sqw || !s->trivial ||
+        !s->edges || !s->work || !s->work2 || !s->save || !s->xyz || !scratch || !order) {
+        free(scratch);
+        free(order);
+        facet_lifter_free(&s);
+        return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    }
+    memcpy(s->face_start, plan->face_start, sizeof(int32_t) * (size_t)(nf + 1));
+    memcpy(s->face_vertices, plan->face_vertices, sizeof(int32_t) * (size_t)nc);
+    for (int32_t v = 0; v < nv; ++v) {
+        s->plan_xy[2 * v] = plan->xyz[3 * v];
+        s->plan_xy[2 * v + 1] = plan->xyz[3 * v + 1];
+    }
+    /* Weights normalised to mean 1. */
+    double wsum = 0.0;
+    for (int32_t v = 0; v < nv; ++v)
+        wsum += weights ? weights[v] : 1.0;
+    for (int32_t v = 0; v < nv; ++v)
+        s->sqw[v] = sqrt((weights ? weights[v] : 1.0) * nv / wsum);
+
+    /* Unique edges, for the Laplacian. */
+    int32_t ne = 0;
+    for (int32_t f = 0; f < nf; ++f) {
+        int32_t b = s->face_start[f], e = s->face_start[f + 1];
+        for (int32_t k = b; k < e; ++k) {
+            int32_t u = s->face_vertices[k], w = s->face_vertices[k + 1 < e ? k + 1 : b];
+            s->edges[2 * ne] = u < w ? u : w;
+            s->edges[2 * ne + 1] = u < w ? w : u;
+            ++ne;
+        }
+    }
+    qsort(s->edges, (size_t)ne, 2 * sizeof(int32_t), compare_edge);
+    int32_t unique = 0;
+    for (int32_t i = 0; i < ne; ++i)
+        if (unique == 0 || compare_edge(s->edges + 2 * i, s->edges + 2 * (unique - 1)) != 0) {
+            s->edges[2 * unique] = s->edges[2 * i];
+            s->edges[2 * unique + 1] = s->edges[2 * i + 1];
+            ++unique;
+        }
+    s->ne = unique;
+
+    /* The trivial liftings 1, x, y on centred and scaled coordinates, made
+     * W-orthonormal by modified Gram-Schmidt, twice. */
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (int32_t v = 0; v < nv; ++v)
+        for (int c = 0; c < 2; ++c) {
+            lo[c] = fmin(lo[c], s->plan_xy[2 * v + c]);
+            hi[c] = fmax(hi[c], s->plan_xy[2 * v + c]);
+        }
+    double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]);
+    double scale = fmax(hi[0] - lo[0], hi[1] - lo[1]);
+    if (!(scale > 0.0))
+        scale = 1.0;
+    for (int32_t v = 0; v < nv; ++v) {
+        s->trivial[v] = s->sqw[v] * s->sqw[v] > 0 ? 1.0 : 0.0;
+        s->trivial[nv + v] = (s->plan_xy[2 * v] - cx) / scale;
+        s->trivial[2 * nv + v] = (s->plan_xy[2 * v + 1] - cy) / scale;
+    }
+    for (int pass = 0; pass < 2; ++pass)
+        for (int j = 0; j < 3; ++j) {
+            double *g = s->trivial + (size_t)j * nv;
+            for (int i = 0; i < j; ++i) {
+                const double *h = s->trivial + (size_t)i * nv;
+                double dot = 0.0;
+                for (int32_t v = 0; v < nv; ++v)
+                    dot += s->sqw[v] * s->sqw[v] * g[v] * h[v];
+                for (int32_t v = 0; v < nv; ++v)
+                    g[v] -= dot * h[v];
+            }
+            double norm = 0.0;
+            for (int32_t v = 0; v < nv; ++v)
+                norm += s->sqw[v] * s->sqw[v] * g[v] * g[v];
+            norm = sqrt(norm);
+            if (!(norm > 1e-12 * sqrt((double)nv))) {
+                free(scratch);
+                free(order);
+                facet_lifter_free(&s);
+                return facet_fail(error, FACET_ERROR_PLAN_DEGENERATE_FACE, -1, -1,
+                                  "the plan's vertices are collinear: it has no area");
+            }
+            for (int32_t v = 0; v < nv; ++v)
+                g[v] /= norm;
+        }
+
+    /* Constraint rows, one column of A = W^-1/2 C' each. */
+    int64_t m = 0;
+    for (int32_t f = 0; f < nf; ++f)
+        m += s->face_start[f + 1] - s->face_start[f] - 3;
+    s->m = (int32_t)m;
+    cholmod_l_start(&s->cm);
+    s->cm_started = 1;
+    s->cm.print = 0;
+    s->cm.error_handler = NULL;
+    s->cm.SPQR_nthreads = 1;
+    {
+        int64_t nnz = 0;
+        for (int32_t f = 0; f < nf; ++f) {
+            int64_t k = s->face_start[f + 1] - s->face_start[f];
+            nnz += (k - 3) * k;
+        }
+        cholmod_sparse *a = cholmod_l_allocate_sparse((size_t)nv, (size_t)m, (size_t)(nnz + 1),
+                                                      1, 1, 0, CHOLMOD_REAL, &s->cm);
+        if (!a) {
+            free(scratch);
+            free(order);
+            facet_lifter_free(&s);
+            return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1,
+                              "out of memory for %lld constraints", (long long)m);
+        }
+        int64_t *ap = a->p, *ai = a->i;
+        double *ax = a->x;
+        int64_t col = 0, pos = 0;
+        ap[0] = 0;
+        for (int32_t f = 0; f < nf; ++f) {
+            const int32_t b = s->face_start[f], k = s->face_start[f + 1] - b;
+            const int32_t *idx = s->face_vertices + b;
+            double mx = 0.0, my = 0.0;
+            for (int32_t i = 0; i < k; ++i) {
+                mx += s->plan_xy[2 * idx[i]];
+                my += s->plan_xy[2 * idx[i] + 1];
+            }
+            mx /= k, my /= k;
+            double r2 = 0.0;
+            for (int32_t i = 0; i < k; ++i) {
+                double dx = s->plan_xy[2 * idx[i]] - mx, dy = s->plan_xy[2 * idx[i] + 1] - my;
+                r2 += dx * dx + dy * dy;
+            }
+            double r = sqrt(r2 / k);
+            double *h = scratch, *x = scratch + 3 * (size_t)k;
+            for (int32_t i = 0; i < k; ++i) {
+                h[i] = 1.0;
+                h[k + i] = r > 0 ? (s->plan_xy[2 * idx[i]] - mx) / r : 0.0;
+                h[2 * k + i] = r > 0 ? (s->plan_xy[2 * idx[i] + 1] - my) / r : 0.0;
+            }
+            double beta[3], diag[3];
+            householder3(k, h, beta, diag);
+            double sk = sqrt((double)k);
+            if (!(fabs(diag[1]) > PLAN_DEGENERATE_REL * sk) ||
+                !(fabs(diag[2]) > PLAN_DEGENERATE_REL * sk)) {
+                cholmod_l_free_sparse(&a, &s->cm);
+                free(scratch);
+                free(order);
+                facet_lifter_free(&s);
+                return facet_fail(error, FACET_ERROR_PLAN_DEGENERATE_FACE, f, -1,
+                                  "face %d has collinear corners in plan (it would be a "
+                                  "vertical wall)",
+                                  (int)f);
+            }
+            /* Corners in ascending vertex order for the CSC column. */
+            for (int32_t i = 0; i < k; ++i) {
+                int32_t j = i;
+                while (j > 0 && idx[order[j - 1]] > idx[i]) {
+                    order[j] = order[j - 1];
+                    --j;
+                }
+                order[j] = i;
+            }
+            for (int32_t c = 3; c < k; ++c) {
+                memset(x, 0, sizeof(double) * (size_t)k);
+                x[c] = 1.0;
+                householder3_apply(k, h, beta, x);
+                for (int32_t i = 0; i < k; ++i) {
+                    int32_t corner = (int32_t)order[i];
+                    int32_t v = idx[corner];
+                    ai[pos] = v;
+                    ax[pos] = x[corner] / s->sqw[v];
+                    ++pos;
+                }
+                ap[++col] = pos;
+            }
+        }
+        double tol = options && options->rank_tol > 0 ? options->rank_tol : RANK_TOL_DEFAULT;
+        if (m > 0)
+        {
+            int blas = blas_serial_begin();
+            s->qr = SuiteSparseQR_C_factorize(SPQR_ORDERING_DEFAULT, tol, a, &s->cm);
+            blas_serial_end(blas);
+        }
+        s->a = a;
+        if (m > 0 && !s->qr) {
+            facet_status st = s->cm.status == CHOLMOD_OUT_OF_MEMORY ? FACET_ERROR_OUT_OF_MEMORY
+                                                                     : FACET_ERROR_NUMERICAL;
+            free(scratch);
+            free(order);
+            facet_lifter_free(&s);
+            return facet_fail(error, st, -1, -1,
+                              "sparse QR of the %lld planarity constraints failed (status %d)",
+                              (long long)m, st);
+        }
+        if (m > 0) {
+            s->rank = (int32_t)s->cm.SPQR_istat[4];
+            s->rhs_m = cholmod_l_allocate_dense((size_t)m, 1, (size_t)m, CHOLMOD_REAL, &s->cm);
+            if (!s->rhs_m) {
+                free(scratch);
+                free(order);
+                facet_lifter_free(&s);
+                return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+            }
+        }
+    }
+    free(scratch);
+    free(order);
+    s->dim = nv - s->rank;
+    s->factor_seconds = facet_now() - t0;
+    *out = s;
+    return FACET_OK;
+}
+
+int32_t facet_lifter_dimension(const facet_lifter *lifter)
+{
+    return lifter ? lifter->dim : 0;
+}
+
+double facet_lifter_factor_seconds(const facet_lifter *lifter)
+{
+    return lifter ? lifter->factor_seconds : 0.0;
+}
+
+const char *facet_lifter_message(const facet_lifter *lifter)
+{
+    return lifter ? lifter->message : "";
+}
+
+/* u <- u - P u, P the orthogonal projector onto range(A_live), the columns
+ * of A that SPQR kept (the others lie within its tolerance of their span).
+ * With A_live E = Q1 R11, P = A_live R11^-1 R11^-T A_live', applied with
+ * the stored R alone (two sparse triangular solves: the corrected
+ * semi-normal equations, refined until A'u is at rounding level) instead of
+ * the Householder Q, which is several times larger and slower to apply. */
+static int remove_range(facet_lifter *s, double *u)
+{
+    const int64_t *ap = s->a->p, *ai = s->a->i;
+    const double *ax = s->a->x;
+    const int32_t m = s->m, nv = s->nv;
+    double scale = 0.0;
+    for (int32_t v = 0; v < nv; ++v)
+        scale = fmax(scale, fabs(u[v]));
+    if (scale == 0.0)
+        return 1;
+    memcpy(s->save, u, sizeof(double) * (size_t)nv); /* kept for the fallback */
+    double *b = s->rhs_m->x;
+    int converged = 0;
+    /* Refinement converges (to the exact projection: the residual A'u is
+     * formed afresh each step) when eps cond(R)^2 < 1; the size of each
+     * correction tells. A small A'u alone would not: with a tiny singular
+     * value, u may keep a large part in range(A) that A' barely sees. */
+    for (int step = 0; step < 6 && !converged; ++step) {
+        for (int32_t j = 0; j < m; ++j) {
+            double dot = 0.0;
+            for (int64_t k = ap[j]; k < ap[j + 1]; ++k)
+                dot += ax[k] * u[ai[k]];
+            b[j] = dot;
+        }
+        cholmod_dense *y = SuiteSparseQR_C_solve(SPQR_RTX_EQUALS_ETB, s->qr, s->rhs_m, &s->cm);
+        if (!y)
+            return 0;
+        cholmod_dense *x = SuiteSparseQR_C_solve(SPQR_RETX_EQUALS_B, s->qr, y, &s->cm);
+        cholmod_l_free_dense(&y, &s->cm);
+        if (!x)
+            return 0;
+        const double *xx = x->x;
+        double *delta = s->work2;
+        memset(delta, 0, sizeof(double) * (size_t)nv);
+        for (int32_t j = 0; j < m; ++j)
+            for (int64_t k = ap[j]; k < ap[j + 1]; ++k)
+                delta[ai[k]] += ax[k] * xx[j];
+        cholmod_l_free_dense(&x, &s->cm);
+        double largest = 0.0;
+        for (int32_t v = 0; v < nv; ++v) {
+            u[v] -= delta[v];
+            largest = fmax(largest, fabs(delta[v]));
+        }
+        if (!(largest < 1e300))
+            break;
+        if (step > 0 && largest <= CSNE_TOL * scale)
+            converged = 1;
+    }
+    if (converged)
+        return 1;
+    /* R is too ill-conditioned for the semi-normal equations (constraints
+     * independent, but only just): project with the orthogonal Q, whose
+     * accuracy does not depend on the conditioning. */
+    memcpy(u, s->save, sizeof(double) * (size_t)nv);
+    if (!apply_q(s, 1, 1, u))
+        return 0;
+    memset(u, 0, sizeof(double) * (size_t)s->rank);
+    return apply_q(s, 0, 1, u);
+}
+
+/* Largest vertical distance of face f's corners (heights z) from the
+ * least-squares plane z = a x + b y + c over them: the norm of z's part
+ * outside span(1, x, y), computed with the same well-conditioned per-face
+ * Householder QR as the constraints (a sliver face does not spoil it the way
+ * a 3D plane fit does). An upper bound on the true distance from that plane;
+ * 0 for triangles. scratch holds 5 * max_degree doubles. */
+static double face_vertical_residual(const facet_lifter *s, int32_t f, const double *z,
+                                     double *scratch)
+{
+    const int32_t b = s->face_start[f], k = s->face_start[f + 1] - b;
+    if (k <= 3)
+        return 0.0;
+    const int32_t *idx = s->face_vertices + b;
+    double mx = 0.0, my = 0.0, mz = 0.0;
+    for (int32_t i = 0; i < k; ++i) {
+        mx += s->plan_xy[2 * idx[i]];
+        my += s->plan_xy[2 * idx[i] + 1];
+        mz += z[idx[i]];
+    }
+    mx /= k, my /= k, mz /= k;
+    double r2 = 0.0;
+    for (int32_t i = 0; i < k; ++i) {
+        double dx = s->plan_xy[2 * idx[i]] - mx, dy = s->plan_xy[2 * idx[i] + 1] - my;
+        r2 += dx * dx + dy * dy;
+    }
+    double r = sqrt(r2 / k);
+    double *h = scratch, *x = scratch + 3 * (size_t)k;
+    for (int32_t i = 0; i < k; ++i) {
+        h[i] = 1.0;
+        h[k + i] = r > 0 ? (s->plan_xy[2 * idx[i]] - mx) / r : 0.0;
+        h[2 * k + i] = r > 0 ? (s->plan_xy[2 * idx[i] + 1] - my) / r : 0.0;
+        x[i] = z[idx[i]] - mz;
+    }
+    double beta[3], diag[3];
+    householder3(k, h, beta, diag);
+    /* x <- Q' x: reflectors in forward order. */
+    for (int j = 0; j < 3; ++j) {
+        if (beta[j] == 0.0)
+            continue;
+        const double *col = h + (size_t)j * k;
+        double dot = 0.0;
+        for (int32_t i = j; i < k; ++i)
+            dot += col[i] * x[i];
+        dot *= beta[j];
+        for (int32_t i = j; i < k; ++i)
+            x[i] -= dot * col[i];
+    }
+    x[0] = x[1] = x[2] = 0.0;
+    householder3_apply(k, h, beta, x);
+    double largest = 0.0;
+    for (int32_t i = 0; i < k; ++i)
+        largest = fmax(largest, fabs(x[i]));
+    return largest;
+}
+
+/* heights = the optimal lifting of t (may alias). Returns 0 on failure of Q. */
+static int project(facet_lifter *s, const double *t, double *heights)
+{
+    const int32_t nv = s->nv;
+    double a[3] = {0.0, 0.0, 0.0};
+    for (int j = 0; j < 3; ++j) {
+        const double *g = s->trivial + (size_t)j * nv;
+        double dot = 0.0;
+        for (int32_t v = 0; v < nv; ++v)
+            dot += s->sqw[v] * s->sqw[v] * g[v] * t[v];
+        a[j] = dot;
+    }
+    double *r = s->work;
+    for (int32_t v = 0; v < nv; ++v) {
+        double affine = a[0] * s->trivial[v] + a[1] * s->trivial[nv + v] +
+                        a[2] * s->trivial[2 * nv + v];
+        r[v] = s->sqw[v] * (t[v] - affine);
+    }
+    if (s->dim == 3 && s->qr) {
+        memset(r, 0, sizeof(double) * (size_t)nv);
+    } else if (s->qr) {
+        int blas = blas_serial_begin();
+        int ok = remove_range(s, r);
+        blas_serial_end(blas);
+        if (!ok)
+            return 0;
+    }
+    for (int32_t v = 0; v < nv; ++v) {
+        double affine = a[0] * s->trivial[v] + a[1] * s->trivial[nv + v] +
+                        a[2] * s->trivial[2 * nv + v];
+        heights[v] = affine + r[v] / s->sqw[v];
+    }
+    return 1;
+}
+
+facet_status facet_lifter_solve(facet_lifter *s, const double *targets, double *heights,
+                                facet_lift_result *result, facet_error *error)
+{
+    facet_error_clear(error);
+    if (!s || !targets || !heights)
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
+                          "lifter, targets or heights is NULL");
+    s->message[0] = '\0';
+    const int32_t nv = s->nv;
+    for (int32_t v = 0; v < nv; ++v)
+        if (!isfinite(targets[v]))
+            return lifter_fail(s, error, FACET_ERROR_BAD_TARGET, -1, v,
+                               "target height of vertex %d is not finite", (int)v);
+    double t0 = facet_now();
+    /* targets may alias heights: keep a copy in xyz's z slots. */
+    for (int32_t v = 0; v < nv; ++v)
+        s->xyz[3 * v + 2] = targets[v];
+    double *z = calloc(nv > 0 ? (size_t)nv : 1, sizeof(double));
+    if (!z)
+        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    for (int32_t v = 0; v < nv; ++v)
+        z[v] = s->xyz[3 * v + 2];
+    if (!project(s, z, z)) {
+        free(z);
+        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1,
+                           "applying the stored Q failed (out of memory)");
+    }
+    for (int32_t v = 0; v < nv; ++v)
+        if (!isfinite(z[v])) {
+            free(z);
+            return lifter_fail(s, error, FACET_ERROR_NUMERICAL, -1, v,
+                               "the lifting is not finite at vertex %d", (int)v);
+        }
+    facet_lift_result r;
+    memset(&r, 0, sizeof r);
+    r.dimension = s->dim;
+    r.trivial_dimension = 3;
+    double sum2 = 0.0;
+    r.target_max_vertex = -1;
+    for (int32_t v = 0; v < nv; ++v) {
+        double d = fabs(z[v] - s->xyz[3 * v + 2]);
+        sum2 += d * d;
+        if (d > r.target_max || r.target_max_vertex < 0) {
+            r.target_max = d;
+            r.target_max_vertex = v;
+        }
+        s->xyz[3 * v] = s->plan_xy[2 * v];
+        s->xyz[3 * v + 1] = s->plan_xy[2 * v + 1];
+        s->xyz[3 * v + 2] = z[v];
+    }
+    r.target_rms = nv ? sqrt(sum2 / nv) : 0.0;
+    int32_t worst = -1;
+    double *scratch = malloc(sizeof(double) * 5 * (size_t)(s->max_degree > 0 ? s->max_degree : 1));
+    if (!scratch) {
+        free(z);
+        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    }
+    for (int32_t f = 0; f < s->nf; ++f) {
+        const int32_t b = s->face_start[f], k = s->face_start[f + 1] - b;
+        double dev = face_vertical_residual(s, f, z, scratch);
+        double edge = 0.0;
+        for (int32_t i = 0; i < k; ++i) {
+            const double *p = s->xyz + 3 * (size_t)s->face_vertices[b + i];
+            const double *q = s->xyz + 3 * (size_t)s->face_vertices[b + (i + 1) % k];
+            edge += sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                         (p[2] - q[2]) * (p[2] - q[2]));
+        }
+        edge /= k;
+        double rel = edge > 0 ? dev / edge : 0.0;
+        if (dev > r.planarity_max_abs)
+            r.planarity_max_abs = dev;
+        if (rel > r.planarity_max_rel) {
+            r.planarity_max_rel = rel;
+            worst = f;
+        }
+    }
+    free(scratch);
+    memcpy(heights, z, sizeof(double) * (size_t)nv);
+    free(z);
+    r.seconds = facet_now() - t0;
+    if (result)
+        *result = r;
+    if (r.planarity_max_rel > PLANARITY_TOL_REL)
+        return lifter_fail(s, error, FACET_WARNING_PLANARITY, worst, -1,
+                           "face %d is planar only to %.3g of its mean edge length (> 1e-9)",
+                           (int)worst, r.planarity_max_rel);
+    if (s->dim <= 3)
+        return lifter_fail(s, error, FACET_WARNING_TRIVIAL_LIFTING, -1, -1,
+                           "the plan admits only the trivial (affine) liftings: the result "
+                           "is the best-fitting plane");
+    return FACET_OK;
+}
+
+facet_status facet_lifter_fundamental(facet_lifter *s, int32_t vertex, double *heights,
+                                      facet_error *error)
+{
+    facet_error_clear(error);
+    if (!s || !heights)
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
+                          "lifter or heights is NULL");
+    if (vertex < 0 || vertex >= s->nv)
+        return lifter_fail(s, error, FACET_ERROR_INDEX_OUT_OF_RANGE, -1, vertex,
+                           "vertex %d is out of range (the plan has %d vertices)", (int)vertex,
+                           (int)s->nv);
+    memset(heights, 0, sizeof(double) * (size_t)s->nv);
+    heights[vertex] = 1.0;
+    if (!project(s, heights, heights))
+        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1,
+                           "applying the stored Q failed (out of memory)");
+    return FACET_OK;
+}
+
+/* Laplacian energy z' L z of one function. */
+static double dirichlet(const facet_lifter *s, const double *z)
+{
+    double e = 0.0;
+    for (int32_t i = 0; i < s->ne; ++i) {
+        double d = z[s->edges[2 * i]] - z[s->edges[2 * i + 1]];
+        e += d * d;
+    }
+    return e;
+}
+
+static void fix_sign(int32_t n, double *z)
+{
+    int32_t best = 0;
+    for (int32_t v = 1; v < n; ++v)
+        if (fabs(z[v]) > fabs(z[best]) * (1.0 + 1e-12))
+            best = v;
+    if (z[best] < 0)
+        for (int32_t v = 0; v < n; ++v)
+            z[v] = -z[v];
+}
+
+static facet_status basis_serial(facet_lifter *s, facet_basis_kind kind, int32_t count,
+                                 double *basis, double *values, facet_error *error);
+
+facet_status facet_lifter_basis(facet_lifter *s, facet_basis_kind kind, int32_t count,
+                                double *basis, double *values, facet_error *error)
+{
+    int blas = blas_serial_begin();
+    facet_status status = basis_serial(s, kind, count, basis, values, error);
+    blas_serial_end(blas);
+    return status;
+}
+
+static facet_status basis_serial(facet_lifter *s, facet_basis_kind kind, int32_t count,
+                                 double *basis, double *values, facet_error *error)
+{
+    facet_error_clear(error);
+    if (!s || (!basis && count > 0))
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "lifter or basis is NULL");
+    if (kind != FACET_BASIS_ORTHONORMAL && kind != FACET_BASIS_EIGEN)
+        return lifter_fail(s, error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
+                           "unknown basis kind %d", (int)kind);
+    const int32_t nv = s->nv, d = s->dim;
+    if (count < 0 || count > d)
+        return lifter_fail(s, error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
+                           "count %d is not between 0 and the dimension %d", (int)count, (int)d);
+    if (kind == FACET_BASIS_EIGEN &&
+        (d > EIGEN_MAX_DIMENSION || (double)nv * d > EIGEN_MAX_ENTRIES))
+        return lifter_fail(s, error, FACET_ERROR_TOO_LARGE, -1, -1,
+                           "eigen-liftings are dense: dimension %d with %d vertices is over the "
+                           "limit (dimension %d, vertices x dimension %.0f)",
+                           (int)d, (int)nv, EIGEN_MAX_DIMENSION, EIGEN_MAX_ENTRIES);
+    const int32_t ntriv = count < 3 ? count : 3;
+    for (int32_t j = 0; j < ntriv; ++j) {
+        memcpy(basis + (size_t)j * nv, s->trivial + (size_t)j * nv, sizeof(double) * (size_t)nv);
+        if (values)
+            values[j] = dirichlet(s, basis + (size_t)j * nv);
+    }
+    if (count <= 3)
+        return FACET_OK;
+    /* How many non-trivial functions to build. */
+    const int32_t nt = d - 3;
+    const int32_t nbuild = kind == FACET_BASIS_EIGEN ? nt : count - 3;
+    /* Coordinates of the trivial liftings in Q2: c_j = (Q' W^1/2 g_j)[rank:]. */
+    double *c = malloc(sizeof(double) * 3 * (size_t)nv);
+    double *z = malloc(sizeof(double) * (size_t)nv * (size_t)nbuild);
+    double *hv = malloc(sizeof(double) * (size_t)d);
+    if (!c || !z || !hv) {
+        free(c), free(z), free(hv);
+        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    }
+    for (int j = 0; j < 3; ++j)
+        for (int32_t v = 0; v < nv; ++v)
+            c[(size_t)j * nv + v] = s->sqw[v] * s->trivial[(size_t)j * nv + v];
+    if (!apply_q(s, 1, 3, c)) {
+        free(c), free(z), free(hv);
+        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "applying Q failed");
+    }
+    /* Householder QR of the d x 3 matrix of those coordinates (in place, in
+     * the tail of each column); its last d-3 Q columns span the rest. */
+    double *h = malloc(sizeof(double) * 3 * (size_t)d);
+    if (!h) {
+        free(c), free(z), free(hv);
+        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    }
+    for (int j = 0; j < 3; ++j)
+        memcpy(h + (size_t)j * d, c + (size_t)j * nv + s->rank, sizeof(double) * (size_t)d);
+    free(c);
+    double beta[3], diag[3];
+    householder3(d, h, beta, diag);
+    for (int32_t j = 0; j < nbuild; ++j) {
+        double *col = z + (size_t)j * nv;
+        memset(col, 0, sizeof(double) * (size_t)nv);
+        memset(hv, 0, sizeof(double) * (size_t)d);
+        hv[3 + j] = 1.0;
+        householder3_apply(d, h, beta, hv);
+        memcpy(col + s->rank, hv, sizeof(double) * (size_t)d);
+    }
+    free(h);
+    free(hv);
+    if (!apply_q(s, 0, nbuild, z)) {
+        free(z);
+        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "applying Q failed");
+    }
+    for (int32_t j = 0; j < nbuild; ++j)
+        for (int32_t v = 0; v < nv; ++v)
+            z[(size_t)j * nv + v] /= s->sqw[v];
+    if (kind == FACET_BASIS_ORTHONORMAL) {
+        for (int32_t j = 0; j < nbuild; ++j) {
+            double *out = basis + (size_t)(3 + j) * nv;
+            memcpy(out, z + (size_t)j * nv, sizeof(double) * (size_t)nv);
+            fix_sign(nv, out);
+            if (values)
+                values[3 + j] = dirichlet(s, out);
+        }
+        free(z);
+        return FACET_OK;
+    }
+    /* Eigen: M = Z' L Z (nt x nt), lowest count-3 eigenpairs. */
+    double *lz = malloc(sizeof(double) * (size_t)nv * (size_t)nt);
+    double *mm = malloc(sizeof(double) * (size_t)nt * (size_t)nt);
+    if (!lz || !mm) {
+        free(z), free(lz), free(mm);
+        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    }
+    memset(lz, 0, sizeof(double) * (size_t)nv * (size_t)nt);
+#pragma omp parallel for schedule(static)
+    for (int32_t j = 0; j < nt; ++j) {
+        const double *zj = z + (size_t)j * nv;
+        double *lj = lz + (size_t)j * nv;
+        for (int32_t i = 0; i < s->ne; ++i) {
+            int32_t a = s->edges[2 * i], b = s->edges[2 * i + 1];
+            double diff = zj[a] - zj[b];
+            lj[a] += diff;
+            lj[b] -= diff;
+        }
+    }
+#pragma omp parallel for schedule(dynamic, 4)
+    for (int32_t j = 0; j < nt; ++j)
+        for (int32_t i = 0; i <= j; ++i) {
+            const double *zi = z + (size_t)i * nv, *lj = lz + (size_t)j * nv;
+            double dot = 0.0;
+            for (int32_t v = 0; v < nv; ++v)
+                dot += zi[v] * lj[v];
+            mm[(size_t)j * nt + i] = dot;
+            mm[(size_t)i * nt + j] = dot;
+        }
+    free(lz);
+    const int ne_want = count - 3, n_int = nt, il = 1, iu = ne_want;
+    double vl = 0, vu = 0, abstol = 0;
+    int found = 0, info = 0, lwork = -1, liwork = -1, iwork_query = 0;
+    double work_query = 0;
+    double *evals = malloc(sizeof(double) * (size_t)nt);
+    double *evecs = malloc(sizeof(double) * (size_t)nt * (size_t)(ne_want > 0 ? ne_want : 1));
+    int *isuppz = malloc(sizeof(int) * 2 * (size_t)(nt > 0 ? nt : 1));
+    if (!evals || !evecs || !isuppz) {
+        free(z), free(mm), free(evals), free(evecs), free(isuppz);
+        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    }
+    dsyevr_("V", "I", "U", &n_int, mm, &n_int, &vl, &vu, &il, &iu, &abstol, &found, evals, evecs,
+            &n_int, isuppz, &work_query, &lwork, &iwork_query, &liwork, &info);
+    lwork = (int)work_query;
+    liwork = iwork_query;
+    double *work = malloc(sizeof(double) * (size_t)(lwork > 1 ? lwork : 1));
+    int *iwork = malloc(sizeof(int) * (size_t)(liwork > 1 ? liwork : 1));
+    if (!work || !iwork) {
+        free(z), free(mm), free(evals), free(evecs), free(isuppz), free(work), free(iwork);
+        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    }
+    if (info == 0)
+        dsyevr_("V", "I", "U", &n_int, mm, &n_int, &vl, &vu, &il, &iu, &abstol, &found, evals,
+                evecs, &n_int, isuppz, work, &lwork, iwork, &liwork, &info);
+    free(work), free(iwork), free(isuppz), free(mm);
+    if (info != 0 || found != ne_want) {
+        free(z), free(evals), free(evecs);
+        return lifter_fail(s, error, FACET_ERROR_NUMERICAL, -1, -1,
+                           "the eigen-solver (LAPACK dsyevr) failed with info %d", info);
+    }
+#pragma omp parallel for schedule(static)
+    for (int32_t e = 0; e < ne_want; ++e) {
+        double *out = basis + (size_t)(3 + e) * nv;
+        const double *vec = evecs + (size_t)e * nt;
+        for (int32_t v = 0; v < nv; ++v) {
+            double sum = 0.0;
+            for (int32_t j = 0; j < nt; ++j)
+                sum += z[(size_t)j * nv + v] * vec[j];
+            out[v] = sum;
+        }
+        fix_sign(nv, out);
+    }
+    if (values)
+        for (int32_t e = 0; e < ne_want; ++e)
+            values[3 + e] = evals[e];
+    free(z), free(evals), free(evecs);
+    return FACET_OK;
+}

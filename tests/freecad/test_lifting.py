@@ -1,0 +1,239 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""PlanGraph and Lifting objects: parametric on their drawing and targets, planar results
+that the rest of the workbench takes as sources, saved and reopened."""
+
+import os
+
+import FreeCAD as App
+import numpy as np
+import Part
+import Sketcher
+
+import facet
+import facetwb
+from facet_test_support import DocumentTestCase, bits, points_array
+
+OUTER = [(0.0, 0.0), (4000.0, 0.0), (1000.0, 3000.0)]
+
+
+def inner_triangle(angle=0.0):
+    """The outer triangle scaled by 0.4 about its centroid, then turned by angle."""
+    c = np.mean(OUTER, axis=0)
+    rot = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+    return [tuple(c + rot @ (0.4 * (np.array(p) - c))) for p in OUTER]
+
+
+def nested_segments(angle=0.0):
+    inner = inner_triangle(angle)
+    segs = []
+    for ring in (OUTER, inner):
+        segs += [(ring[i], ring[(i + 1) % 3]) for i in range(3)]
+    segs += list(zip(OUTER, inner))
+    return segs
+
+
+def add_sketch(doc, segments, name="Sketch"):
+    sketch = doc.addObject("Sketcher::SketchObject", name)
+    for a, b in segments:
+        sketch.addGeometry(Part.LineSegment(App.Vector(*a, 0), App.Vector(*b, 0)), False)
+    return sketch
+
+
+def add_plane(doc, z0, slope_x, slope_y, name="Surface"):
+    """A big tilted planar face z = z0 + slope_x x + slope_y y as a Part feature."""
+    corners = [(-1e4, -1e4), (1e4, -1e4), (1e4, 1e4), (-1e4, 1e4)]
+    points = [App.Vector(x, y, z0 + slope_x * x + slope_y * y) for x, y in corners]
+    face = Part.Face(Part.makePolygon(points + points[:1]))
+    feature = doc.addObject("Part::Feature", name)
+    feature.Shape = face
+    return feature
+
+
+class TestPlanGraphAndLifting(DocumentTestCase):
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.sketch = add_sketch(cls.doc, nested_segments() + [((4000, 0), (5000, -1000))])
+        cls.plan = facetwb.make_plan_graph([cls.sketch])
+        cls.surface = add_plane(cls.doc, 3000.0, 0.1, -0.2)
+        cls.lifting = facetwb.make_lifting(cls.plan, targets=cls.surface)
+        cls.doc.recompute()
+
+    def test_plan_graph(self):
+        plan = self.plan
+        self.assertTrue(plan.isValid(), plan.getStatusString())
+        self.assertTrue(facetwb.is_plan_graph(plan))
+        self.assertEqual((plan.VertexCount, plan.FaceCount), (6, 4))
+        self.assertEqual(plan.DanglingEdges, 1)
+        self.assertTrue(all(p.z == 0.0 for p in plan.Points))
+
+    def test_lifting_reaches_a_planar_target_exactly(self):
+        lifting = self.lifting
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        self.assertTrue(facetwb.is_lifting(lifting))
+        self.assertEqual(lifting.Dimension, 4)
+        self.assertFalse(lifting.OnlyTrivial)
+        xyz = points_array(lifting)
+        expected = 3000.0 + 0.1 * xyz[:, 0] - 0.2 * xyz[:, 1]
+        np.testing.assert_allclose(xyz[:, 2], expected, rtol=0, atol=1e-9)
+        self.assertLess(lifting.TargetMax.Value, 1e-9)
+        self.assertLessEqual(lifting.PlanarityMaxRel, 1e-9)
+        np.testing.assert_array_equal(xyz[:, :2], points_array(self.plan)[:, :2])
+        self.assertIn("dimension 4", facetwb.lifting_summary(lifting))
+
+    def test_mix_keeps_faces_planar(self):
+        lifting = self.lifting
+        before = points_array(lifting)
+        lifting.Mix = [500.0]
+        self.doc.recompute()
+        try:
+            self.assertTrue(lifting.isValid(), lifting.getStatusString())
+            after = points_array(lifting)
+            change = after[:, 2] - before[:, 2]
+            self.assertAlmostEqual(float(np.max(np.abs(change))), 500.0, places=6)
+            self.assertLessEqual(lifting.PlanarityMaxRel, 1e-9)
+            self.assertAlmostEqual(lifting.TargetMax.Value, 500.0, places=6)
+            np.testing.assert_array_equal(after[:, :2], before[:, :2])
+        finally:
+            lifting.Mix = []
+            self.doc.recompute()
+        np.testing.assert_allclose(points_array(lifting), before, rtol=0, atol=1e-9)
+
+    def test_drag_a_vertex(self):
+        lifting = self.lifting
+        before = points_array(lifting)
+        x, y = inner_triangle()[1]
+        vertex = int(np.argmin(np.hypot(before[:, 0] - x, before[:, 1] - y)))
+        lifting.Drags = [App.Vector(x, y, 300.0)]
+        self.doc.recompute()
+        try:
+            self.assertTrue(lifting.isValid(), lifting.getStatusString())
+            after = points_array(lifting)
+            self.assertAlmostEqual(after[vertex, 2] - before[vertex, 2], 300.0, places=6)
+            self.assertLessEqual(lifting.PlanarityMaxRel, 1e-9)
+            lifting.Drags = [App.Vector(x + 50, y, 300.0)]
+            self.doc.recompute()
+            self.assertFalse(lifting.isValid())
+            self.assertIn("no plan vertex within", lifting.getStatusString())
+        finally:
+            lifting.Drags = []
+            self.doc.recompute()
+        np.testing.assert_allclose(points_array(lifting), before, rtol=0, atol=1e-9)
+
+    def test_downstream_planarize_takes_it(self):
+        result = facetwb.make_planarized(self.lifting, tolerance=1e-6)
+        self.doc.recompute()
+        self.assertTrue(result.isValid(), result.getStatusString())
+        self.assertEqual(result.FaceCount, 4)
+        self.assertLess(result.DisplacementMax.Value, 1e-6)
+
+    def test_parametric_on_the_drawing(self):
+        doc = self.doc
+        sketch = add_sketch(doc, nested_segments(0.3), "Turned")
+        plan = facetwb.make_plan_graph([sketch])
+        pins = [(x, y, 0.0) for x, y in OUTER] + [(x, y, 1000.0) for x, y in inner_triangle()]
+        lifting = facetwb.make_lifting(plan, pins=pins)
+        doc.recompute()
+        # Turned inner triangle: only planes; the inner pins are off the plan's vertices.
+        self.assertFalse(lifting.isValid())
+        self.assertIn("3 of the 6 pinned points", lifting.getStatusString())
+        lifting.PinnedPoints = [App.Vector(x, y, 0.0) for x, y in OUTER] + [
+            App.Vector(x, y, 1000.0) for x, y in inner_triangle(0.3)]
+        doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        self.assertTrue(lifting.OnlyTrivial)
+        self.assertEqual(lifting.Dimension, 3)
+        lifting.PinnedPoints = [App.Vector(x, y, 0.0) for x, y in OUTER] + [
+            App.Vector(x, y, 1000.0) for x, y in inner_triangle(0.0)]
+        # Edit the drawing: turn the inner triangle back; the chain follows.
+        for k, (a, b) in enumerate(nested_segments(0.0)):
+            sketch.movePoint(k, 1, App.Vector(*a, 0))
+            sketch.movePoint(k, 2, App.Vector(*b, 0))
+        doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        self.assertEqual(lifting.Dimension, 4)
+        self.assertLess(lifting.TargetMax.Value, 1e-6)
+
+    def test_source_untouched(self):
+        geometry = [(g.StartPoint, g.EndPoint) for g in self.sketch.Geometry]
+        self.doc.recompute()
+        self.assertEqual(len(geometry), 10)
+        self.assertEqual(geometry, [(g.StartPoint, g.EndPoint) for g in self.sketch.Geometry])
+
+    def test_z_save_reopen(self):  # last: it replaces the class's document
+        names = {key: obj.Name for key, obj in (("plan", self.plan), ("lifting", self.lifting))}
+        before = points_array(self.lifting)
+        doc = self.save_and_reopen("lifting.FCStd")
+        plan, lifting = doc.getObject(names["plan"]), doc.getObject(names["lifting"])
+        self.assertEqual(lifting.Proxy.Type, "Facet::Lifting")
+        self.assertEqual(plan.Proxy.Type, "Facet::PlanGraph")
+        self.assertIs(lifting.Plan, plan)
+        np.testing.assert_array_equal(bits(points_array(lifting)), bits(before))
+        self.assertEqual(lifting.Dimension, 4)
+        lifting.touch()
+        doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        np.testing.assert_allclose(points_array(lifting), before, rtol=0, atol=1e-9)
+
+
+class TestPlanGraphSources(DocumentTestCase):
+    def test_part_wire_and_file(self):
+        wire = self.doc.addObject("Part::Feature", "Wire")
+        square = [App.Vector(x, y, 500) for x, y in ((0, 0), (2, 0), (2, 2), (0, 2), (0, 0))]
+        cross = [Part.LineSegment(App.Vector(1, 0, 500), App.Vector(1, 2, 500)).toShape(),
+                 Part.LineSegment(App.Vector(0, 1, 500), App.Vector(2, 1, 500)).toShape()]
+        wire.Shape = Part.Compound([Part.makePolygon(square)] + cross)
+        plan = facetwb.make_plan_graph([wire])
+        self.doc.recompute()
+        self.assertTrue(plan.isValid(), plan.getStatusString())
+        self.assertEqual((plan.VertexCount, plan.FaceCount), (9, 4))
+        path = os.path.join(self.tmp.name, "plan.csv")
+        with open(path, "w", encoding="utf-8") as handle:
+            for (a, b) in nested_segments():
+                handle.write(f"{a[0]!r},{a[1]!r},{b[0]!r},{b[1]!r}\n")
+        from_file = facetwb.make_plan_graph(file=path, doc=self.doc)
+        self.doc.recompute()
+        self.assertTrue(from_file.isValid(), from_file.getStatusString())
+        self.assertEqual(from_file.FaceCount, 4)
+
+    def test_arcs_refused_then_split(self):
+        shape = self.doc.addObject("Part::Feature", "Arcs")
+        arc = Part.ArcOfCircle(Part.Circle(App.Vector(0, 0, 0), App.Vector(0, 0, 1), 1000.0),
+                               0.0, np.pi)
+        chord = Part.LineSegment(App.Vector(-1000, 0, 0), App.Vector(1000, 0, 0))
+        shape.Shape = Part.Compound([arc.toShape(), chord.toShape()])
+        plan = facetwb.make_plan_graph([shape])
+        self.doc.recompute()
+        self.assertFalse(plan.isValid())
+        self.assertIn("ArcTolerance", plan.getStatusString())
+        plan.ArcTolerance = 1.0
+        self.doc.recompute()
+        self.assertTrue(plan.isValid(), plan.getStatusString())
+        self.assertEqual(plan.FaceCount, 1)
+        self.assertGreater(plan.VertexCount, 20)
+
+    def test_no_targets_is_an_error(self):
+        sketch = add_sketch(self.doc, nested_segments(), "S")
+        plan = facetwb.make_plan_graph([sketch])
+        lifting = facetwb.make_lifting(plan)
+        self.doc.recompute()
+        self.assertFalse(lifting.isValid())
+        self.assertIn("no targets", lifting.getStatusString())
+
+
+class TestLiftingTargetsFromMesh(DocumentTestCase):
+    def test_same_vertices(self):
+        sketch = add_sketch(self.doc, nested_segments(), "S")
+        plan = facetwb.make_plan_graph([sketch])
+        self.doc.recompute()
+        mesh = facetwb.get_mesh(plan)
+        xyz = mesh.vertices.copy()
+        xyz[:, 2] = np.where(np.arange(6) < 3, 0.0, 800.0)  # order as in the plan
+        inner = [tuple(p) for p in np.round(inner_triangle(), 6)]
+        xyz[:, 2] = [800.0 if tuple(np.round(p, 6)) in inner else 0.0 for p in xyz[:, :2]]
+        target = facetwb.make_polymesh(facet.PolyMesh(xyz, mesh.face_start, mesh.face_vertices),
+                                       doc=self.doc)
+        lifting = facetwb.make_lifting(plan, targets=target)
+        self.doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        np.testing.assert_allclose(points_array(lifting)[:, 2], xyz[:, 2], atol=1e-9)

@@ -1,0 +1,254 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Optimal liftings: checked against an independent dense computation."""
+
+import numpy as np
+import pytest
+
+from facet.errors import InputError, MeshError
+from facet.mesh import PolyMesh
+
+_core = pytest.importorskip("facet._core")
+
+from facet.lift import Lifter, TargetError, lift, lifting_space  # noqa: E402
+from facet.plan import PlanError, plan_from_segments  # noqa: E402
+
+
+def dense_lifting_basis(mesh):
+    """Null space of B (corners x (heights, a, b, c per face)) by SVD, its
+    height part: an independent reference for the lifting space."""
+    n, nf = mesh.n_vertices, mesh.n_faces
+    xy = mesh.vertices[:, :2]
+    xy = (xy - xy.mean(axis=0)) / np.ptp(xy, axis=0).max()
+    rows = []
+    for f, face in enumerate(mesh.faces()):
+        for v in face:
+            row = np.zeros(n + 3 * nf)
+            row[v] = 1.0
+            row[n + 3 * f : n + 3 * f + 3] = [-xy[v, 0], -xy[v, 1], -1.0]
+            rows.append(row)
+    b = np.array(rows)
+    _, s, vt = np.linalg.svd(b)
+    rank = int(np.sum(s > 1e-9 * s[0]))
+    null = vt[rank:].T
+    return null[:n]
+
+
+def voronoi_plan(seed, count=12):
+    """Bounded Voronoi cells of random points: faces of many degrees."""
+    from scipy.spatial import Voronoi
+
+    rng = np.random.default_rng(seed)
+    points = rng.uniform(0, 1, size=(count, 2))
+    ring = np.array([[np.cos(a), np.sin(a)] for a in np.linspace(0, 2 * np.pi, 9)[:-1]])
+    vor = Voronoi(np.vstack([points, 0.5 + 3 * ring]))
+    faces = []
+    for i in range(count):
+        region = vor.regions[vor.point_region[i]]
+        if -1 in region or len(region) < 3:
+            continue
+        faces.append(region)
+    used = sorted({v for f in faces for v in f})
+    remap = {v: k for k, v in enumerate(used)}
+    xyz = np.zeros((len(used), 3))
+    xyz[:, :2] = vor.vertices[used]
+    return PolyMesh.from_faces(xyz, [[remap[v] for v in f] for f in faces])
+
+
+def nested_triangles(angle):
+    outer = np.array([[0.0, 0.0], [4.0, 0.0], [1.0, 3.0]])
+    c = outer.mean(axis=0)
+    rot = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+    inner = c + (0.4 * (outer - c)) @ rot.T
+    xyz = np.zeros((6, 3))
+    xyz[:3, :2], xyz[3:, :2] = outer, inner
+    faces = [[3, 4, 5], [0, 1, 4, 3], [1, 2, 5, 4], [2, 0, 3, 5]]
+    return PolyMesh.from_faces(xyz, faces)
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_dimension_and_optimum_agree_with_dense_svd(seed):
+    mesh = voronoi_plan(seed)
+    reference = dense_lifting_basis(mesh)
+    rng = np.random.default_rng(100 + seed)
+    weights = rng.uniform(0.2, 3.0, mesh.n_vertices)
+    targets = rng.normal(size=mesh.n_vertices)
+    lifter = Lifter(mesh, weights)
+    assert lifter.dimension == reference.shape[1]
+    result = lifter.solve(targets)
+    w = np.diag(weights)
+    n = reference
+    expected = n @ np.linalg.solve(n.T @ w @ n, n.T @ w @ targets)
+    assert np.max(np.abs(result.heights - expected)) < 1e-9
+    assert result.planarity_max_rel < 1e-9
+    assert result.target_rms == pytest.approx(np.sqrt(np.mean((expected - targets) ** 2)))
+
+
+def test_known_dimensions():
+    assert Lifter(nested_triangles(0.0)).dimension == 4
+    assert Lifter(nested_triangles(0.25)).dimension == 3
+    # A triangulated plan admits every height assignment.
+    rng = np.random.default_rng(3)
+    from scipy.spatial import Delaunay
+
+    points = rng.uniform(size=(40, 2))
+    tri = Delaunay(points)
+    xyz = np.zeros((40, 3))
+    xyz[:, :2] = points
+    mesh = PolyMesh.from_faces(xyz, tri.simplices.tolist())
+    t = rng.normal(size=40)
+    result = lift(mesh, t)
+    assert result.dimension == 40
+    assert np.max(np.abs(result.heights - t)) < 1e-12
+
+
+def test_only_trivial_gives_best_plane_and_says_so():
+    mesh = nested_triangles(0.25)
+    rng = np.random.default_rng(5)
+    t = rng.normal(size=6)
+    w = rng.uniform(0.5, 2, 6)
+    result = lift(mesh, t, w)
+    assert result.liftable_only_trivially
+    assert any("trivial" in text for text in result.warnings)
+    a = np.column_stack([np.ones(6), mesh.vertices[:, :2]])
+    coef = np.linalg.lstsq(a * np.sqrt(w)[:, None], t * np.sqrt(w), rcond=None)[0]
+    assert np.max(np.abs(result.heights - a @ coef)) < 1e-12
+    assert result.report()["liftable_only_trivially"] is True
+
+
+def straight_grid(xs, ys):
+    xyz = np.array([[x, y, 0.0] for y in ys for x in xs])
+    nx = len(xs)
+    faces = [[j * nx + i, j * nx + i + 1, (j + 1) * nx + i + 1, (j + 1) * nx + i]
+             for j in range(len(ys) - 1) for i in range(nx - 1)]
+    return PolyMesh.from_faces(xyz, faces)
+
+
+def test_georeferenced_coordinates_and_heights():
+    # Coordinates exact in binary at both placements (a Voronoi plan would
+    # be rounded by the shift, and rounding breaks its non-trivial lifting).
+    mesh = straight_grid([0, 1.5, 2.25, 4, 5], [0, 0.5, 2, 2.75])
+    rng = np.random.default_rng(7)
+    t = rng.normal(size=mesh.n_vertices)
+    local = lift(mesh, t)
+    xyz = mesh.vertices.copy()
+    xyz[:, 0] += 2_500_000.0
+    xyz[:, 1] += 1_200_000.0
+    far = lift(mesh.with_vertices(xyz), t + 450.0)
+    assert far.dimension == local.dimension == 5 + 4 - 1
+    assert np.max(np.abs((far.heights - 450.0) - local.heights)) < 1e-8
+    assert far.planarity_max_rel < 1e-9
+
+
+def test_bases():
+    mesh = voronoi_plan(4, count=20)
+    lifter = Lifter(mesh)
+    d = lifter.dimension
+    basis, energies = lifter.basis("eigen")
+    assert basis.shape == (d, mesh.n_vertices)
+    # Orthonormal, every one a lifting, energies ascending after the trivial three.
+    assert np.allclose(basis @ basis.T, np.eye(d), atol=1e-9)
+    for b in basis:
+        assert np.max(np.abs(lifter.solve(b).heights - b)) < 1e-10
+    assert np.all(np.diff(energies[3:]) >= -1e-10)
+    # Eigen-liftings against a dense P L P.
+    reference = dense_lifting_basis(mesh)
+    q, _ = np.linalg.qr(reference)
+    edges = mesh.edges()
+    lap = np.zeros((mesh.n_vertices,) * 2)
+    for a, b in edges:
+        lap[a, a] += 1
+        lap[b, b] += 1
+        lap[a, b] -= 1
+        lap[b, a] -= 1
+    affine = np.column_stack([np.ones(mesh.n_vertices), mesh.vertices[:, :2]])
+    qa, _ = np.linalg.qr(affine)
+    rest = q - qa @ (qa.T @ q)
+    u, s, _ = np.linalg.svd(rest, full_matrices=False)
+    h = u[:, : d - 3]
+    values = np.linalg.eigvalsh(h.T @ lap @ h)
+    assert np.allclose(energies[3:], values, atol=1e-9)
+    # Fundamental: the solve for a unit target.
+    unit = np.zeros(mesh.n_vertices)
+    unit[2] = 1.0
+    assert np.allclose(lifter.fundamental(2), lifter.solve(unit).heights, atol=1e-14)
+    fundamental, _ = lifter.basis("fundamental", 4)
+    assert fundamental.shape == (4, mesh.n_vertices)
+    space = lifting_space(mesh, "orthonormal")
+    assert space.dimension == d and space.basis.shape == (d, mesh.n_vertices)
+
+
+def test_bad_inputs():
+    mesh = nested_triangles(0.0)
+    with pytest.raises(TargetError, match="5 values but the plan has 6"):
+        lift(mesh, np.zeros(5))
+    with pytest.raises(TargetError, match="vertex 2"):
+        lift(mesh, [0, 0, np.nan, 0, 0, 0])
+    with pytest.raises(TargetError, match="vertex 1"):
+        lift(mesh, np.zeros(6), [1, -1, 1, 1, 1, 1])
+    xyz = mesh.vertices.copy()
+    xyz[3:, :2] = [[1, 1], [2, 2], [3, 3]]  # collinear inner triangle
+    with pytest.raises(PlanError, match="face 0 has collinear corners"):
+        lift(mesh.with_vertices(xyz), np.zeros(6))
+    with pytest.raises(InputError):
+        Lifter(mesh).basis("smooth")
+    assert issubclass(PlanError, InputError) and issubclass(TargetError, InputError)
+    with pytest.raises(MeshError):
+        Lifter(PolyMesh(np.zeros((3, 3)), [0, 3], [0, 1, 5]))
+
+
+def test_plan_from_segments_lifts():
+    segments = [((0, 0), (2, 0)), ((2, 0), (2, 2)), ((2, 2), (0, 2)), ((0, 2), (0, 0)),
+                ((1, 0), (1, 2)), ((0, 1), (2, 1))]
+    plan = plan_from_segments(segments)
+    t = np.random.default_rng(0).normal(size=plan.n_vertices)
+    result = lift(plan, t)
+    assert result.dimension == 5  # a 3 x 3 straight grid: 3 + 3 - 1
+    assert result.mesh.n_faces == 4
+    assert result.planarity_max_rel < 1e-9
+    assert np.array_equal(result.mesh.vertices[:, :2], plan.mesh.vertices[:, :2])
+
+
+def test_lift_nearly_moves_a_rounded_drawing():
+    from facet.lift import lift_nearly
+
+    # The frustum's inner triangle turned by 1e-5: liftable only up to rounding.
+    mesh = nested_triangles(1e-5)
+    t = np.array([0.0, 0.0, 0.0, 1.0, 1.0, 1.0])
+    plain = lift(mesh, t)
+    assert plain.liftable_only_trivially and plain.target_max > 0.4
+    nearly = lift_nearly(mesh, t, tolerance=1e-3)
+    assert nearly.method in ("exact", "planarized")
+    assert nearly.within_tolerance and 0 < nearly.max_move < 1e-4
+    assert nearly.result.target_max < 1e-6
+    assert nearly.result.planarity_max_rel <= 1e-9
+    assert nearly.moved_vertices and nearly.moved_vertices[0][0] in range(6)
+    moved = nearly.result.mesh.vertices[:, :2] - mesh.vertices[:, :2]
+    assert np.allclose(moved, nearly.moves)
+    report = nearly.report()
+    assert report["within_tolerance"] and report["max_move"] == nearly.max_move
+    # A tolerance smaller than the moves needed is said, not hidden.
+    strict = lift_nearly(mesh, t, tolerance=1e-9)
+    assert not strict.within_tolerance
+    # A liftable plan is left alone.
+    exact = lift_nearly(nested_triangles(0.0), t, tolerance=1e-3)
+    assert exact.method == "unmoved" and exact.max_move == 0.0
+
+
+def test_sparse_liftings_are_local_independent_liftings():
+    mesh = straight_grid([0, 1, 2.5, 3, 4.5, 6, 7], [0, 1, 2, 3.5, 4, 5])
+    lifter = Lifter(mesh)
+    d = lifter.dimension
+    assert d == 7 + 6 - 1
+    basis, energies = lifter.basis("sparse")
+    assert basis.shape == (d, mesh.n_vertices)
+    assert np.linalg.matrix_rank(basis, tol=1e-8) == d
+    for b in basis:
+        assert np.max(np.abs(lifter.solve(b).heights - b)) < 1e-9  # each one is a lifting
+    supports = [np.count_nonzero(np.abs(b) > 1e-12) for b in basis[3:]]
+    # On a straight grid the sparsest liftings are bumps along one grid line: f(x) or g(y).
+    assert max(supports) <= 7
+    assert np.allclose(np.max(np.abs(basis[3:]), axis=1), 1.0)
+    # A Voronoi plan (dimension 4: its lifting is convex, global): filled from the space.
+    vor = voronoi_plan(1)
+    basis, _ = Lifter(vor).basis("sparse")
+    assert basis.shape[0] == Lifter(vor).dimension

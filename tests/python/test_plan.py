@@ -1,0 +1,219 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Plan graphs from drawings, targets, and the lift / lifting-space commands."""
+
+import json
+
+import numpy as np
+import pytest
+
+from facet.errors import InputError
+from facet.mesh import PolyMesh
+from facet.plan import (
+    FREE_WEIGHT,
+    PlanError,
+    pinned_targets,
+    plan_from_mesh,
+    plan_from_segments,
+    read_plan,
+    targets_from_mesh,
+    targets_from_points,
+)
+
+ezdxf = pytest.importorskip("ezdxf")
+
+SQUARE = [((0, 0), (2, 0)), ((2, 0), (2, 2)), ((2, 2), (0, 2)), ((0, 2), (0, 0))]
+
+
+def nested_points():
+    outer = np.array([[0.0, 0.0], [4.0, 0.0], [1.0, 3.0]])
+    c = outer.mean(axis=0)
+    return outer, c + 0.4 * (outer - c)
+
+
+def write_nested_dxf(path, *, dangling=True, arc=False):
+    document = ezdxf.new()
+    space = document.modelspace()
+    outer, inner = nested_points()
+    space.add_lwpolyline([tuple(p) for p in outer], close=True)
+    # The inner triangle as an old-style POLYLINE, the joins as LINEs.
+    space.add_polyline2d([tuple(p) for p in inner], close=True)
+    for a, b in zip(outer, inner):
+        space.add_line(tuple(a), tuple(b))
+    if dangling:
+        space.add_line((4, 0), (5, -1))
+    if arc:
+        space.add_arc((2, -1), 1.0, 0, 180)
+    document.saveas(path)
+    return path
+
+
+def test_crossings_split_duplicates_merged_dangling_listed():
+    segments = SQUARE + [((1, -0.5), (1, 2.5)), ((0, 1), (2, 1)), ((0, 0), (2, 0)),
+                         ((2, 2), (3, 3))]
+    plan = plan_from_segments(segments)
+    assert plan.n_faces == 4 and plan.n_vertices == 9
+    assert all(len(f) == 4 for f in plan.mesh.faces())
+    assert ((2.0, 2.0), (3.0, 3.0)) in plan.dangling
+    assert len(plan.dangling) == 3  # the two overhangs of the vertical line, the diagonal
+    # Counter-clockwise faces.
+    for face in plan.mesh.faces():
+        p = plan.mesh.vertices[face, :2]
+        area = 0.5 * np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1])
+        assert area > 0
+
+
+def test_snapping_closes_a_gap():
+    gap = [((0, 0), (2, 0)), ((2, 0), (2, 2)), ((2, 2), (0, 2)), ((0, 2), (0, 1e-4))]
+    with pytest.raises(PlanError, match="no bounded face"):
+        plan_from_segments(gap, snap=1e-6)
+    plan = plan_from_segments(gap, snap=1e-3)
+    assert plan.n_faces == 1 and plan.snapped == 2
+
+
+def test_openings_and_holes():
+    inner = [((0.5, 0.5), (1.5, 0.5)), ((1.5, 0.5), (1.5, 1.5)), ((1.5, 1.5), (0.5, 1.5)),
+             ((0.5, 1.5), (0.5, 0.5))]
+    with pytest.raises(PlanError, match="hole"):
+        plan_from_segments(SQUARE + inner)
+    joins = [((0, 0), (0.5, 0.5)), ((2, 0), (1.5, 0.5)), ((2, 2), (1.5, 1.5)), ((0, 2), (0.5, 1.5))]
+    plan = plan_from_segments(SQUARE + inner + joins, openings=[(1, 1)])
+    assert plan.n_faces == 4 and plan.openings == 1
+    assert plan_from_segments(SQUARE + inner + joins).n_faces == 5
+
+
+def test_not_a_plan():
+    with pytest.raises(PlanError, match="no bounded face"):
+        plan_from_segments([((0, 0), (1, 0)), ((1, 0), (1, 1))])
+    with pytest.raises(PlanError, match="segment 1"):
+        plan_from_segments([((0, 0), (1, 0)), ((1, 0), (np.nan, 1))])
+    xyz = np.array([[0, 0, 0], [2, 0, 0], [2, 2, 0], [0, 2, 0], [1, 1, 0]], float)
+    overlapping = PolyMesh.from_faces(xyz, [[0, 1, 2, 3], [0, 1, 4]])
+    with pytest.raises(PlanError, match="faces 0 and 1 overlap"):
+        plan_from_mesh(overlapping)
+    bow_tie = PolyMesh.from_faces(xyz, [[0, 1, 3, 2]])
+    with pytest.raises(PlanError, match="face 0 crosses itself"):
+        plan_from_mesh(bow_tie)
+
+
+def test_dxf(tmp_path):
+    path = write_nested_dxf(tmp_path / "nested.dxf")
+    plan = read_plan(path)
+    assert plan.n_vertices == 6 and plan.n_faces == 4 and len(plan.dangling) == 1
+    arc = write_nested_dxf(tmp_path / "arc.dxf", arc=True)
+    with pytest.raises(PlanError, match="ARC .* is curved: give an arc tolerance"):
+        read_plan(arc)
+    plan = read_plan(arc, arc_tolerance=0.01)
+    assert plan.n_faces == 4  # the arc bounds no face: dropped, listed
+    assert len(plan.dangling) > 10
+    (tmp_path / "empty.dxf").write_bytes(b"")
+    with pytest.raises(PlanError, match="empty.dxf"):
+        read_plan(tmp_path / "empty.dxf")
+    with pytest.raises(PlanError, match="reads .dxf"):
+        read_plan(tmp_path / "plan.svg")
+
+
+def test_targets():
+    outer, inner = nested_points()
+    plan = plan_from_segments(
+        [(tuple(outer[i]), tuple(outer[(i + 1) % 3])) for i in range(3)]
+        + [(tuple(inner[i]), tuple(inner[(i + 1) % 3])) for i in range(3)]
+        + [(tuple(a), tuple(b)) for a, b in zip(outer, inner)]
+    )
+    xy = plan.mesh.vertices[:, :2]
+    # A big tilted plane as a surface, two triangles: the ray cast finds it.
+    surface = PolyMesh.from_faces(
+        np.array([[-10, -10, 1.0], [10, -10, 3.0], [10, 10, 5.0], [-10, 10, 3.0]]),
+        [[0, 1, 2], [0, 2, 3]],
+    )
+    z, w = targets_from_mesh(plan, surface)
+    assert np.allclose(z, 3.0 + 0.1 * xy[:, 0] + 0.1 * xy[:, 1], atol=1e-12)
+    assert np.all(w == 1)
+    # Topmost hit: a second, higher sheet wins.
+    higher = PolyMesh.from_faces(
+        np.vstack([surface.vertices, surface.vertices + [0, 0, 10]]),
+        [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]],
+    )
+    assert np.allclose(targets_from_mesh(plan, higher)[0], z + 10)
+    small = PolyMesh.from_faces(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0.0]]), [[0, 1, 2]])
+    with pytest.raises(InputError, match="does not cover plan vertex"):
+        targets_from_mesh(plan, small)
+    # Same vertices: per-vertex.
+    lifted = plan.mesh.with_vertices(np.column_stack([xy, np.arange(6.0)]))
+    assert np.array_equal(targets_from_mesh(plan, lifted)[0], np.arange(6.0))
+    # Pins and points: the rest free.
+    t, w = pinned_targets(plan, {0: 1.0, 1: 2.0, 2: 0.5})
+    assert np.count_nonzero(w == 1) == 3 and np.count_nonzero(w == FREE_WEIGHT) == 3
+    with pytest.raises(InputError, match="pinned vertex 9"):
+        pinned_targets(plan, {9: 1.0})
+    points = np.column_stack([xy[:2] + 1e-9, [7.0, 8.0]])
+    t, w = targets_from_points(plan, points, tolerance=1e-6)
+    assert t[0] == 7.0 and t[1] == 8.0 and np.count_nonzero(w == 1) == 2
+
+
+def test_lift_command(facet_command, tmp_path):
+    plan = write_nested_dxf(tmp_path / "nested.dxf")
+    outer, inner = nested_points()
+    points = tmp_path / "heights.csv"
+    points.write_text("x,y,z\n" + "".join(f"{x!r},{y!r},0\n" for x, y in outer)
+                      + "".join(f"{x!r},{y!r},1\n" for x, y in inner))
+    out, report = tmp_path / "roof.obj", tmp_path / "r.json"
+    done = facet_command("lift", plan, "-o", out, "--targets", points, "--report", report)
+    assert done.returncode == 0, done.stderr
+    data = json.loads(report.read_text())
+    for key in ("vertices", "faces", "dimension", "trivial_dimension", "planarity_max_rel",
+                "target_rms", "target_max", "solve_seconds"):
+        assert key in data
+    assert data["dimension"] == 4 and data["target_max"] < 1e-12
+    from facet.io import read_mesh
+
+    roof = read_mesh(out)
+    assert roof.n_faces == 4 and sorted(roof.vertices[:, 2].round(9)) == [0, 0, 0, 1, 1, 1]
+    weights = tmp_path / "w.txt"
+    weights.write_text("1\n1\n1\n")
+    done = facet_command("lift", plan, "-o", out, "--targets", points, "--weights", weights)
+    assert done.returncode == 2 and "3 weights but the plan has 6" in done.stderr
+    done = facet_command("lift", plan, "-o", out)
+    assert done.returncode == 2 and "--targets" in done.stderr
+    done = facet_command("lift", tmp_path / "missing.dxf", "-o", out, "--pin", "0=1")
+    assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1
+
+
+def test_lifting_space_command(facet_command, tmp_path):
+    plan = write_nested_dxf(tmp_path / "nested.dxf")
+    folder, report = tmp_path / "space", tmp_path / "s.json"
+    done = facet_command("lifting-space", plan, "--basis", "eigen", "-o", folder,
+                         "--report", report)
+    assert done.returncode == 0, done.stderr
+    data = json.loads(report.read_text())
+    assert data["dimension"] == 4 and data["count"] == 4
+    assert (folder / "eigen_0003.obj").exists() and (folder / "eigen.csv").exists()
+    done = facet_command("lifting-space", plan, "--basis", "fundamental", "--count", "2",
+                         "-o", folder)
+    assert done.returncode == 0 and (folder / "fundamental_0001.obj").exists()
+
+
+def test_lift_command_moves_a_rounded_drawing(facet_command, tmp_path):
+    outer, inner = nested_points()
+    c = outer.mean(axis=0)
+    turn = 1e-5
+    rot = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
+    inner = c + (inner - c) @ rot.T
+    plan = tmp_path / "plan.csv"
+    segments = [(outer[i], outer[(i + 1) % 3]) for i in range(3)]
+    segments += [(inner[i], inner[(i + 1) % 3]) for i in range(3)] + list(zip(outer, inner))
+    plan.write_text("".join(f"{a[0]!r},{a[1]!r},{b[0]!r},{b[1]!r}\n" for a, b in segments))
+    points = tmp_path / "heights.csv"
+    points.write_text("".join(f"{x!r},{y!r},0\n" for x, y in outer)
+                      + "".join(f"{x!r},{y!r},1\n" for x, y in inner))
+    out, report = tmp_path / "roof.obj", tmp_path / "r.json"
+    done = facet_command("lift", plan, "-o", out, "--targets", points, "--report", report)
+    assert done.returncode == 0 and "only the trivial" in done.stdout
+    done = facet_command("lift", plan, "-o", out, "--targets", points, "--report", report,
+                         "--move-tolerance", "0.001")
+    assert done.returncode == 0, done.stderr
+    assert "plan moved" in done.stdout
+    data = json.loads(report.read_text())
+    assert data["within_tolerance"] and data["target_max"] < 1e-6 and data["moved_vertices"]
+    done = facet_command("lift", plan, "-o", out, "--targets", points,
+                         "--move-tolerance", "1e-12")
+    assert done.returncode == 1 and "MORE THAN" in done.stdout

@@ -1,0 +1,255 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The ``lift`` and ``lifting-space`` sub-commands of ``python3 -m facet``.
+
+::
+
+    python3 -m facet lift PLAN -o OUT.obj (--targets T | --pin V=H ...)
+        [--weights W] [--report R.json] [--snap D] [--arc-tolerance D]
+        [--opening X,Y ...] [--rank-tol T] [--move-tolerance D]
+    python3 -m facet lifting-space PLAN [--basis fundamental|eigen|orthonormal]
+        [--count K] -o DIR [--report R.json] [...plan options]
+
+PLAN is a drawing (.dxf, .csv of segments) or a plan mesh (.obj, .off,
+.json). T is a mesh (per-vertex targets when it has the plan's vertices in
+order, else vertical projection, topmost hit) or a CSV of x,y,z points
+(nearest plan vertex within the snap distance; vertices with no point are
+free). W is a text file with one weight per plan vertex. With --move-tolerance D the
+plan's vertices may move by up to D (facet.lift.lift_nearly); the exit status is 1 when
+more was needed (the result is written all the same).
+"""
+
+import os
+
+__all__ = ["add_commands"]
+
+
+def _plan_options(parser):
+    parser.add_argument("plan", metavar="PLAN", help="plan drawing (.dxf, .csv) or mesh "
+                        "(.obj, .off, .json)")
+    parser.add_argument("--snap", type=float, metavar="D",
+                        help="merge drawing endpoints closer than D (default 1e-6 of its size)")
+    parser.add_argument("--arc-tolerance", type=float, metavar="D",
+                        help="split arcs and curves into segments with sagitta <= D "
+                        "(default: refuse them)")
+    parser.add_argument("--opening", action="append", default=[], metavar="X,Y",
+                        help="a point inside a face that is an opening (no panel); repeatable")
+    parser.add_argument("--rank-tol", type=float, metavar="T",
+                        help="constraints dependent on the others to within T are treated as dependent (default 1e-10)")
+    parser.add_argument("--report", metavar="R.json", help="write a JSON report")
+
+
+def _point(text):
+    from facet.errors import InputError
+
+    try:
+        x, y = (float(v) for v in text.split(","))
+    except ValueError:
+        raise InputError(f"--opening {text!r}: expected X,Y") from None
+    return x, y
+
+
+def _read_plan(args):
+    from facet.plan import read_plan
+
+    return read_plan(args.plan, snap=args.snap, arc_tolerance=args.arc_tolerance,
+                     openings=[_point(p) for p in args.opening])
+
+
+def _read_weights(path, n):
+    import numpy as np
+
+    from facet.errors import InputError
+
+    values = []
+    try:
+        with open(path, encoding="utf-8") as handle:
+            for number, line in enumerate(handle, 1):
+                text = line.split("#")[0].strip().rstrip(",")
+                if not text:
+                    continue
+                try:
+                    values.append(float(text))
+                except ValueError:
+                    raise InputError(f"{path}: line {number}: {text[:40]!r} is not a number")
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read the file ({exc.strerror})") from None
+    if len(values) != n:
+        raise InputError(f"{path}: {len(values)} weights but the plan has {n} vertices")
+    values = np.array(values)
+    bad = np.flatnonzero(~(np.isfinite(values) & (values > 0)))
+    if bad.size:
+        raise InputError(f"{path}: weight of vertex {int(bad[0])} must be finite and > 0")
+    return values
+
+
+def _pins(texts):
+    from facet.errors import InputError
+
+    pins = {}
+    for text in texts:
+        try:
+            vertex, height = text.split("=")
+            pins[int(vertex)] = float(height)
+        except ValueError:
+            raise InputError(f"--pin {text!r}: expected VERTEX=HEIGHT") from None
+    return pins
+
+
+def run_lift(args):
+    import numpy as np
+
+    from facet.cli import EXIT_OK
+    from facet.errors import InputError
+    from facet.io import write_mesh, writer_for
+    from facet.lift import lift
+    from facet.plan import pinned_targets, read_targets
+    from facet.report import write_json
+
+    writer_for(args.output)  # bad output suffix: fail before the work
+    if (args.targets is None) == (not args.pin):
+        raise InputError("give either --targets FILE or --pin VERTEX=HEIGHT (not both)")
+    plan = _read_plan(args)
+    if args.targets is not None:
+        targets, weights = read_targets(plan, args.targets, tolerance=args.snap)
+    else:
+        targets, weights = pinned_targets(plan, _pins(args.pin))
+    if args.weights is not None:
+        weights = weights * _read_weights(args.weights, plan.n_vertices)
+    nearly = None
+    if args.move_tolerance is not None:
+        from facet.lift import lift_nearly
+
+        nearly = lift_nearly(plan, targets, weights, tolerance=args.move_tolerance)
+        result = nearly.result
+    else:
+        result = lift(plan, targets, weights, rank_tol=args.rank_tol)
+    write_mesh(result.mesh, args.output)
+    report = {"source": os.fspath(args.plan), "output": os.fspath(args.output)}
+    report.update(nearly.report() if nearly is not None else result.report())
+    report["plan"] = plan.summary()
+    report["dangling"] = [[list(a), list(b)] for a, b in plan.dangling]
+    if args.report:
+        write_json(report, args.report)
+    size = float(np.ptp(plan.mesh.vertices[:, :2], axis=0).max())
+    print(f"facet lift: {args.plan} -> {args.output}")
+    print(f"  plan          {plan.n_vertices} vertices, {plan.n_faces} faces"
+          + (f", {len(plan.dangling)} dangling edges dropped" if plan.dangling else "")
+          + (f", {plan.openings} openings" if plan.openings else ""))
+    print(f"  liftings      dimension {result.dimension} (3 trivial)")
+    if nearly is not None:
+        if nearly.method == "unmoved":
+            print("  plan          kept as drawn: moving its vertices did not bring the "
+                  "lifting closer")
+        else:
+            print(f"  plan moved    {len(nearly.moved_vertices)} vertices, at most "
+                  f"{nearly.max_move:.3g} ({'within' if nearly.within_tolerance else 'MORE THAN'}"
+                  f" the tolerance {args.move_tolerance:g}); every move is in the report")
+    if result.liftable_only_trivially:
+        print("  note          the plan admits only the trivial (affine) liftings: "
+              "the result is the best-fitting plane")
+    print(f"  planarity     {result.planarity_max_rel:.3g} of the mean edge length (max)")
+    print(f"  targets       RMS miss {result.target_rms:.3g}, max {result.target_max:.3g} "
+          f"at vertex {result.target_max_vertex} ({result.target_max / size:.3g} of the plan "
+          "size)")
+    print(f"  time          {result.factor_seconds + result.solve_seconds:.3g} s")
+    for text in result.warnings:
+        if "trivial" not in text:
+            print(f"  warning       {text}")
+    if nearly is not None and not nearly.within_tolerance:
+        from facet.cli import EXIT_FAILED
+
+        return EXIT_FAILED
+    return EXIT_OK
+
+
+def run_lifting_space(args):
+    import numpy as np
+
+    from facet.cli import EXIT_OK
+    from facet.errors import InputError
+    from facet.io import write_mesh
+    from facet.lift import Lifter
+    from facet.report import write_json
+
+    if args.count is not None and args.count < 1:
+        raise InputError(f"--count {args.count}: must be at least 1")
+    plan = _read_plan(args)
+    lifter = Lifter(plan, rank_tol=args.rank_tol)
+    limit = plan.n_vertices if args.basis == "fundamental" else lifter.dimension
+    count = limit if args.count is None else min(args.count, limit)
+    basis, energies = lifter.basis(args.basis, count)
+    os.makedirs(args.output, exist_ok=True)
+    xyz = np.array(plan.mesh.vertices, dtype=np.float64)
+    size = float(np.ptp(xyz[:, :2], axis=0).max())
+    files = []
+    for k, heights in enumerate(basis):
+        peak = float(np.max(np.abs(heights)))
+        xyz[:, 2] = heights * (0.2 * size / peak) if peak > 0 else 0.0
+        name = f"{args.basis}_{k:04d}.obj"
+        write_mesh(plan.mesh.with_vertices(xyz), os.path.join(args.output, name))
+        files.append(name)
+    table = os.path.join(args.output, f"{args.basis}.csv")
+    from facet.io.files import format_float, write_text
+
+    lines = ["vertex,x,y," + ",".join(f"b{k}" for k in range(count)) + "\n"]
+    for v in range(plan.n_vertices):
+        values = [format_float(float(c)) for c in plan.mesh.vertices[v, :2]]
+        values += [format_float(float(b)) for b in basis[:, v]]
+        lines.append(f"{v}," + ",".join(values) + "\n")
+    write_text(table, lines)
+    report = {
+        "source": os.fspath(args.plan),
+        "vertices": int(plan.n_vertices),
+        "faces": int(plan.n_faces),
+        "dimension": int(lifter.dimension),
+        "trivial_dimension": 3,
+        "basis": args.basis,
+        "count": int(count),
+        "energies": [float(e) for e in energies],
+        "factor_seconds": float(lifter.factor_seconds),
+        "output": os.fspath(args.output),
+        "files": files + [os.path.basename(table)],
+        "obj_height_scale": "each OBJ scaled to a peak height of 0.2 x the plan size; "
+        "the CSV has the unscaled values",
+        "plan": plan.summary(),
+    }
+    if args.report:
+        write_json(report, args.report)
+    print(f"facet lifting-space: {args.plan}: dimension {lifter.dimension} (3 trivial); "
+          f"{count} {args.basis} liftings written to {args.output}")
+    return EXIT_OK
+
+
+def add_commands(commands):
+    lift = commands.add_parser(
+        "lift",
+        help="give a plan drawing heights so that every face is planar, close to targets",
+        description="Lift a plan drawing: heights for every vertex such that every face is "
+        "exactly planar, as close as possible (weighted least squares) to the targets.",
+    )
+    _plan_options(lift)
+    lift.add_argument("-o", "--output", metavar="OUT", required=True,
+                      help="lifted mesh (.obj or .off)")
+    lift.add_argument("--targets", metavar="T", help="target surface (.obj, .off, .json: "
+                      "vertical projection or per-vertex) or x,y,z points (.csv)")
+    lift.add_argument("--pin", action="append", default=[], metavar="V=H",
+                      help="pin vertex V at height H (the rest free); repeatable")
+    lift.add_argument("--weights", metavar="W", help="file with one weight per plan vertex")
+    lift.add_argument("--move-tolerance", type=float, metavar="D",
+                      help="nearly liftable drawings: move plan vertices by at most D so that "
+                      "a lifting close to the targets exists (best effort; moves reported)")
+    lift.set_defaults(run=run_lift)
+
+    space = commands.add_parser(
+        "lifting-space",
+        help="the dimension and a basis of every planar lifting of a plan",
+        description="Compute the lifting space of a plan (every assignment of heights making "
+        "all faces planar): its dimension and basis functions, written as OBJ meshes and a CSV.",
+    )
+    _plan_options(space)
+    space.add_argument("-o", "--output", metavar="DIR", required=True, help="output folder")
+    space.add_argument("--basis", choices=("fundamental", "eigen", "orthonormal", "sparse"),
+                       default="eigen", help="basis kind (default eigen: smoothest first)")
+    space.add_argument("--count", type=int, metavar="K", help="how many basis functions "
+                       "(default all)")
+    space.set_defaults(run=run_lifting_space)

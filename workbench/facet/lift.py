@@ -1,0 +1,654 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Optimal liftings of plan drawings (paper section 6.1).
+
+A *lifting* of a plan gives every plan vertex a height so that every face
+is exactly planar; the plan's x and y never move. The liftings form a linear
+space that always holds the three affine (trivial) liftings 1, x, y.
+:func:`lift` returns the lifting closest to target heights in the weighted
+least-squares sense; :class:`LiftingSpace` gives the space's dimension and
+bases of it.
+
+The numerics are in the compiled core (``facet._core.Lifter``): one
+rank-revealing sparse QR (SuiteSparseQR) of the planarity constraints, kept
+by :class:`Lifter` so that later solves and fundamental liftings are two
+applications of the stored Q.
+
+>>> result = lift(plan_mesh, targets)              # doctest: +SKIP
+>>> result.planarity_max_rel <= 1e-9               # doctest: +SKIP
+True
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from facet import _core
+from facet.errors import FacetError, InputError, from_core
+from facet.mesh import PolyMesh
+
+__all__ = ["BASES", "LiftResult", "Lifter", "LiftingSpace", "lift", "lifting_space",
+           "TargetError", "NearlyLiftResult", "lift_nearly"]
+
+#: Basis kinds by name.
+BASES = {
+    "fundamental": "fundamental liftings: the lifting closest to a unit height at one vertex",
+    "eigen": "eigen-liftings: smoothest first (eigenvectors of P L P)",
+    "sparse": "sparse liftings: each supported on a few rings of faces around a vertex",
+    "orthonormal": "an orthonormal basis from the QR factorization (fast)",
+}
+
+#: Sparse liftings: the largest neighbourhood tried around a vertex, in rings of faces.
+SPARSE_MAX_RINGS = 3
+#: Sparse liftings are collected densely for the independence test: refused beyond this.
+SPARSE_MAX_ENTRIES = 2e7
+
+
+class TargetError(InputError):
+    """Target heights or weights cannot be used (wrong count, NaN, weight <= 0)."""
+
+
+def _plan_mesh(plan):
+    mesh = getattr(plan, "mesh", plan)
+    if not isinstance(mesh, PolyMesh):
+        raise InputError(f"a plan must be a PolyMesh or a PlanGraph, not {type(plan).__name__}")
+    return mesh
+
+
+def _vector(values, n, name):
+    try:
+        array = np.ascontiguousarray(values, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        raise TargetError(f"{name} must be {n} numbers") from None
+    if array.shape != (n,):
+        raise TargetError(f"{name} has {array.size} values but the plan has {n} vertices")
+    bad = np.flatnonzero(~np.isfinite(array))
+    if bad.size:
+        raise TargetError(f"{name} of vertex {int(bad[0])} is not a finite number")
+    return array
+
+
+def _core_error(exc, source):
+    name = getattr(exc, "status_name", None)
+    if name in ("FACET_ERROR_BAD_WEIGHT", "FACET_ERROR_BAD_TARGET"):
+        error = TargetError(str(exc))
+        error.status_name = name
+        return error
+    if name == "FACET_ERROR_PLAN_DEGENERATE_FACE":
+        from facet.plan import PlanError
+
+        error = PlanError(f"{source}: {exc}" if source else str(exc))
+        error.status_name = name
+        return error
+    return from_core(exc, source=source)
+
+
+@dataclass
+class LiftResult:
+    """The optimal lifting of a plan towards target heights.
+
+    Attributes
+    ----------
+    mesh : facet.PolyMesh
+        The plan's faces with the lifted vertices (x, y from the plan, z the
+        heights): every face planar.
+    heights, targets, weights : numpy.ndarray
+        Per vertex.
+    dimension : int
+        Dimension of the lifting space.
+    trivial_dimension : int
+        3: the affine liftings.
+    liftable_only_trivially : bool
+        The plan admits only the affine liftings; the result is then the
+        weighted best-fitting plane of the targets.
+    planarity_max_abs, planarity_max_rel : float
+        Largest distance of a corner from its face's plane, in model units
+        and relative to the face's mean edge length (<= 1e-9 unless a warning
+        says otherwise).
+    target_rms, target_max : float
+        RMS and largest ``|height - target|``; target_max_vertex is where.
+    solve_seconds, factor_seconds : float
+        Wall time of the solve and of the factorization.
+    warnings : list of str
+    """
+
+    mesh: PolyMesh
+    heights: np.ndarray
+    targets: np.ndarray
+    weights: np.ndarray
+    dimension: int
+    trivial_dimension: int
+    planarity_max_abs: float
+    planarity_max_rel: float
+    target_rms: float
+    target_max: float
+    target_max_vertex: int
+    solve_seconds: float
+    factor_seconds: float
+    warnings: list = field(default_factory=list)
+
+    @property
+    def liftable_only_trivially(self):
+        return self.dimension <= self.trivial_dimension
+
+    @property
+    def deviation(self):
+        """``heights - targets`` per vertex."""
+        return self.heights - self.targets
+
+    def far_targets(self, count=10):
+        """The vertices whose targets the lifting misses most.
+
+        Returns
+        -------
+        list of (vertex, height - target), largest miss first.
+        """
+        dev = self.deviation
+        order = np.argsort(-np.abs(dev), kind="stable")[:count]
+        return [(int(v), float(dev[v])) for v in order]
+
+    def report(self):
+        """The JSON-ready summary (keys of the command line's report)."""
+        return {
+            "vertices": int(self.mesh.n_vertices),
+            "faces": int(self.mesh.n_faces),
+            "dimension": int(self.dimension),
+            "trivial_dimension": int(self.trivial_dimension),
+            "liftable_only_trivially": bool(self.liftable_only_trivially),
+            "planarity_max_abs": float(self.planarity_max_abs),
+            "planarity_max_rel": float(self.planarity_max_rel),
+            "target_rms": float(self.target_rms),
+            "target_max": float(self.target_max),
+            "target_max_vertex": int(self.target_max_vertex),
+            "solve_seconds": float(self.solve_seconds),
+            "factor_seconds": float(self.factor_seconds),
+            "far_targets": [[v, d] for v, d in self.far_targets(10)],
+            "warnings": list(self.warnings),
+        }
+
+
+class Lifter:
+    """The lifting solver of one plan with fixed weights.
+
+    It factorizes once (sparse QR); :meth:`solve` and :meth:`fundamental`
+    reuse the factorization.
+
+    Parameters
+    ----------
+    plan : facet.PolyMesh or facet.plan.PlanGraph
+        The plan: x and y of its vertices (z is ignored) and its faces.
+    weights : array_like, optional
+        Per-vertex weights, finite and > 0 (default all 1).
+    rank_tol : float, optional
+        Rank tolerance on the unit-norm constraint rows (default 1e-10): a
+        face constraint dependent on the others to within this is treated
+        as dependent (and so violated by about that much, well inside the
+        1e-9 planarity promise); the others are enforced exactly.
+
+    Raises
+    ------
+    facet.MeshError
+        The plan's faces are not valid.
+    facet.plan.PlanError
+        A face's corners are collinear in plan.
+    TargetError
+        A weight is not finite and > 0.
+    """
+
+    def __init__(self, plan, weights=None, *, rank_tol=None):
+        mesh = _plan_mesh(plan)
+        self._source = mesh.info.get("source") if mesh.info else None
+        self._plan = mesh
+        n = mesh.n_vertices
+        self._weights = np.ones(n) if weights is None else _vector(weights, n, "weight")
+        bad = np.flatnonzero(~(self._weights > 0))
+        if bad.size:
+            raise TargetError(
+                f"weight of vertex {int(bad[0])} is {self._weights[bad[0]]!r}: weights must be > 0"
+            )
+        xyz = np.ascontiguousarray(mesh.vertices, dtype=np.float64).reshape(-1)
+        try:
+            self._core = _core.Lifter(
+                xyz,
+                mesh.face_start,
+                mesh.face_vertices,
+                None if weights is None else self._weights,
+                0.0 if rank_tol is None else float(rank_tol),
+            )
+        except _core.CoreError as exc:
+            raise _core_error(exc, self._source) from None
+
+    @property
+    def plan(self):
+        """The plan mesh."""
+        return self._plan
+
+    @property
+    def dimension(self):
+        """Dimension of the lifting space (>= 3)."""
+        return self._core.dimension
+
+    @property
+    def factor_seconds(self):
+        return self._core.factor_seconds
+
+    def solve(self, targets):
+        """The optimal lifting of per-vertex target heights.
+
+        Returns
+        -------
+        LiftResult
+        """
+        n = self._plan.n_vertices
+        t = _vector(targets, n, "target height")
+        z = np.empty(n)
+        try:
+            info = self._core.solve(t, z)
+        except _core.CoreError as exc:
+            raise _core_error(exc, self._source) from None
+        warnings = []
+        if info["status"] != "FACET_OK":
+            warnings.append(info["message"])
+        if not np.all(np.isfinite(z)):  # the core refuses this; never let a NaN out
+            raise FacetError("the lifting is not finite")
+        xyz = np.array(self._plan.vertices, dtype=np.float64)
+        xyz[:, 2] = z
+        mesh = self._plan.with_vertices(xyz)
+        return LiftResult(
+            mesh=mesh,
+            heights=z,
+            targets=t,
+            weights=self._weights.copy(),
+            dimension=info["dimension"],
+            trivial_dimension=info["trivial_dimension"],
+            planarity_max_abs=info["planarity_max_abs"],
+            planarity_max_rel=info["planarity_max_rel"],
+            target_rms=info["target_rms"],
+            target_max=info["target_max"],
+            target_max_vertex=info["target_max_vertex"],
+            solve_seconds=info["seconds"],
+            factor_seconds=self._core.factor_seconds,
+            warnings=warnings,
+        )
+
+    def fundamental(self, vertex, out=None):
+        """The fundamental lifting of a vertex: the lifting closest to height
+        1 there and 0 elsewhere (weighted). Returns heights (n,)."""
+        n = self._plan.n_vertices
+        z = np.empty(n) if out is None else out
+        try:
+            self._core.fundamental(int(vertex), z)
+        except _core.CoreError as exc:
+            raise _core_error(exc, self._source) from None
+        return z
+
+    def _sparse_basis(self, count):
+        return _sparse_liftings(self, count)
+
+    def basis(self, kind="eigen", count=None):
+        """The first `count` functions of a basis of the lifting space.
+
+        Parameters
+        ----------
+        kind : {"eigen", "sparse", "orthonormal", "fundamental"}
+            Eigen-liftings (smoothest first; dense, refused beyond dimension
+            2000), sparse liftings (each non-trivial one supported on at most
+            three rings of faces around a vertex where the plan allows, scaled
+            to peak 1; independent, not orthogonal; collected densely, refused
+            beyond 2e7 entries), any orthonormal basis, or the fundamental
+            liftings of vertices 0 .. count-1 (these span the space but are not
+            independent).
+        count : int, optional
+            Default: the dimension (eigen, orthonormal) or every vertex
+            (fundamental).
+
+        Returns
+        -------
+        (basis, energies) : numpy.ndarray (count, n), numpy.ndarray (count,)
+            For eigen and orthonormal, functions 0..2 are the trivial
+            liftings 1, x, y (orthonormal in the weighted inner product); the
+            rest are orthogonal to them. energies are the Dirichlet energies
+            z' L z on the plan's edges.
+        """
+        n = self._plan.n_vertices
+        if kind not in BASES:
+            raise InputError(f"unknown basis {kind!r}: use one of {', '.join(BASES)}")
+        if kind == "sparse":
+            d = self.dimension
+            count = d if count is None else int(count)
+            if not 0 <= count <= d:
+                raise InputError(f"count {count} is not between 0 and the dimension {d}")
+            basis = self._sparse_basis(count)
+            edges = self._plan.edges()
+            energies = np.array([np.sum((b[edges[:, 0]] - b[edges[:, 1]]) ** 2) for b in basis])
+            return basis, energies
+        if kind == "fundamental":
+            count = n if count is None else int(count)
+            if not 0 <= count <= n:
+                raise InputError(f"count {count} is not between 0 and {n} vertices")
+            basis = np.empty((count, n))
+            for v in range(count):
+                self.fundamental(v, basis[v])
+            edges = self._plan.edges()
+            energies = np.array([np.sum((b[edges[:, 0]] - b[edges[:, 1]]) ** 2) for b in basis])
+            return basis, energies
+        d = self.dimension
+        count = d if count is None else int(count)
+        if not 0 <= count <= d:
+            raise InputError(f"count {count} is not between 0 and the dimension {d}")
+        basis = np.empty((count, n))
+        energies = np.empty(count)
+        try:
+            self._core.basis(kind, count, basis, energies)
+        except _core.CoreError as exc:
+            raise _core_error(exc, self._source) from None
+        return basis, energies
+
+
+def _face_complements(mesh):
+    """Per face: (vertices, rows) with rows an orthonormal basis ((k-3) x k) of the
+    complement of span(1, x, y) over its corners (the planarity constraints)."""
+    xy = np.asarray(mesh.vertices, dtype=np.float64)[:, :2]
+    out = []
+    for face in mesh.faces():
+        k = len(face)
+        if k <= 3:
+            out.append((np.asarray(face), np.zeros((0, k))))
+            continue
+        p = xy[face] - xy[face].mean(axis=0)
+        scale = np.sqrt(np.mean(np.sum(p * p, axis=1))) or 1.0
+        a = np.column_stack([np.ones(k), p / scale])
+        q, _ = np.linalg.qr(a, mode="complete")
+        out.append((np.asarray(face), q[:, 3:].T))
+    return out
+
+
+def _echelon(rows):
+    """A reduced row echelon form of a basis (Gauss-Jordan with partial pivoting): the
+    same span, with many zeros in each row (sparser liftings than SVD vectors)."""
+    a = np.array(rows, dtype=np.float64)
+    m, k = a.shape
+    r = 0
+    for c in range(k):
+        if r == m:
+            break
+        p = r + int(np.argmax(np.abs(a[r:, c])))
+        if abs(a[p, c]) <= 1e-9:
+            continue
+        a[[r, p]] = a[[p, r]]
+        a[r] /= a[r, c]
+        others = np.arange(m) != r
+        a[others] -= np.outer(a[others, c], a[r])
+        r += 1
+    a[np.abs(a) < 1e-12] = 0.0
+    return a[:r]
+
+
+def _sparse_liftings(lifter, count):
+    """Sparse liftings (see Lifter.basis): the trivial three, then liftings supported on
+    rings of faces around each vertex in turn, kept when independent of those found so far,
+    until `count`; any still missing (liftings with no local support) come from the
+    orthonormal basis. Each non-trivial one is scaled to peak 1."""
+    mesh = lifter.plan
+    n = mesh.n_vertices
+    d = lifter.dimension
+    if n * d > SPARSE_MAX_ENTRIES:
+        raise FacetError(f"sparse liftings are collected densely: dimension {d} with {n} "
+                         f"vertices is over the limit ({SPARSE_MAX_ENTRIES:.0f} entries)")
+    trivial, _ = lifter.basis("orthonormal", min(3, count))
+    if count <= 3:
+        return trivial[:count]
+    faces = _face_complements(mesh)
+    vertex_faces = [[] for _ in range(n)]
+    for f, (vs, _) in enumerate(faces):
+        for v in vs:
+            vertex_faces[v].append(f)
+    weights = lifter._weights
+    sw = np.sqrt(weights / weights.mean())
+    # Orthonormal (in the weighted inner product) span of what is collected, for the test.
+    span = [t * sw for t in trivial[:3]]
+    found = []
+    wanted = count - 3
+    for v in range(n):
+        if len(found) >= wanted:
+            break
+        support = {v}
+        for _ in range(SPARSE_MAX_RINGS):
+            ring_faces = {f for u in support for f in vertex_faces[u]}
+            support = support | {int(u) for f in ring_faces for u in faces[f][0]}
+            columns = sorted(support)
+            where = {u: j for j, u in enumerate(columns)}
+            touched = sorted({f for u in columns for f in vertex_faces[u]})
+            rows = []
+            for f in touched:
+                vs, comp = faces[f]
+                if comp.shape[0] == 0:
+                    continue
+                block = np.zeros((comp.shape[0], len(columns)))
+                for i, u in enumerate(vs):
+                    if int(u) in where:
+                        block[:, where[int(u)]] = comp[:, i]
+                rows.append(block)
+            matrix = np.vstack(rows) if rows else np.zeros((0, len(columns)))
+            if matrix.shape[0]:
+                _, sv, vt = np.linalg.svd(matrix)
+                rank = int(np.sum(sv > 1e-10 * max(sv[0], 1.0)))
+                null = vt[rank:]
+            else:
+                null = np.eye(len(columns))
+            null = _echelon(null)
+            added = False
+            for vec in null:
+                z = np.zeros(n)
+                z[columns] = vec
+                r = z * sw
+                for q in span:
+                    r = r - (q @ r) * q
+                for q in span:
+                    r = r - (q @ r) * q
+                if np.linalg.norm(r) > 1e-6 * np.linalg.norm(z * sw):
+                    span.append(r / np.linalg.norm(r))
+                    found.append(z / np.max(np.abs(z)))
+                    added = True
+                    if len(found) >= wanted:
+                        break
+            if added:
+                break
+    if len(found) < wanted:
+        ortho, _ = lifter.basis("orthonormal", d)
+        for b in ortho[3:]:
+            if len(found) >= wanted:
+                break
+            r = b * sw
+            for q in span:
+                r = r - (q @ r) * q
+            if np.linalg.norm(r) > 1e-6:
+                span.append(r / np.linalg.norm(r))
+                found.append(b / np.max(np.abs(b)))
+    signs = [1.0 if z[np.argmax(np.abs(z))] > 0 else -1.0 for z in found]
+    return np.vstack([trivial[:3]] + [s * z for s, z in zip(signs, found)])
+
+
+@dataclass
+class LiftingSpace:
+    """The lifting space of a plan: its dimension and a basis.
+
+    Attributes
+    ----------
+    dimension, trivial_dimension : int
+    kind : str
+        The basis kind.
+    basis : numpy.ndarray (count, n)
+        Heights per vertex of each basis function.
+    energies : numpy.ndarray (count,)
+        Dirichlet energy of each.
+    """
+
+    dimension: int
+    trivial_dimension: int
+    kind: str
+    basis: np.ndarray
+    energies: np.ndarray
+
+
+def lift(plan, targets, weights=None, *, rank_tol=None):
+    """The lifting of a plan closest to target heights.
+
+    Minimizes ``sum_v w_v (z_v - t_v)^2`` over heights z that make every
+    face exactly planar (x and y fixed). When the plan admits only the
+    affine liftings, the answer is the weighted best-fitting plane and
+    ``result.liftable_only_trivially`` is True.
+
+    Parameters
+    ----------
+    plan : facet.PolyMesh or facet.plan.PlanGraph
+    targets : array_like (n,)
+        Target height per plan vertex (see :mod:`facet.plan` for targets from
+        meshes, pinned heights and point files).
+    weights : array_like (n,), optional
+        Finite and > 0; default all 1.
+    rank_tol : float, optional
+        See :class:`Lifter`.
+
+    Returns
+    -------
+    LiftResult
+    """
+    return Lifter(plan, weights, rank_tol=rank_tol).solve(targets)
+
+
+def lifting_space(plan, kind="eigen", count=None, weights=None, *, rank_tol=None):
+    """The lifting space of a plan and `count` functions of a basis.
+
+    Returns
+    -------
+    LiftingSpace
+    """
+    lifter = Lifter(plan, weights, rank_tol=rank_tol)
+    basis, energies = lifter.basis(kind, count)
+    return LiftingSpace(lifter.dimension, 3, kind, basis, energies)
+
+
+@dataclass
+class NearlyLiftResult:
+    """A lifting of a plan whose vertices were moved a little (:func:`lift_nearly`).
+
+    Attributes
+    ----------
+    result : LiftResult
+        The lifting of the moved plan (its ``mesh`` has the moved x, y).
+    moves : numpy.ndarray (n, 2)
+        How far each plan vertex moved in x and y.
+    max_move : float
+        The largest move (model units).
+    within_tolerance : bool
+        Whether every move is at most the tolerance asked for.
+    method : str
+        ``"exact"``: the lifting is the least-squares optimum over the moved plan's
+        lifting space; ``"planarized"``: the moved plan's lifting space did not resolve
+        (its near-dependence is below the rank tolerance), and the heights are those of
+        the planarization, faces planar to ``result.planarity_max_rel``; ``"unmoved"``:
+        moving did not bring the lifting closer, the plan is kept as drawn.
+    moved_vertices : list of (vertex, dx, dy)
+        Every vertex that moved by more than 1e-12 of the plan's size, largest first.
+    """
+
+    result: LiftResult
+    moves: np.ndarray
+    max_move: float
+    within_tolerance: bool
+    method: str
+    moved_vertices: list = field(default_factory=list)
+
+    def report(self):
+        data = self.result.report()
+        data.update({
+            "moved_plan": True,
+            "move_method": self.method,
+            "max_move": float(self.max_move),
+            "within_tolerance": bool(self.within_tolerance),
+            "moved_vertices": [[v, dx, dy] for v, dx, dy in self.moved_vertices],
+        })
+        return data
+
+
+#: Scale of the heights while the plan and heights are planarized together in
+#: lift_nearly: a height change then costs 1/100 of a plan move of the same size, so the
+#: planarizer bends heights rather than the drawing.
+_HEIGHT_SCALE = 0.1
+
+
+def lift_nearly(plan, targets, weights=None, *, tolerance, progress=None):
+    """Lift a plan that is liftable only up to rounding: move its vertices a little first.
+
+    A plan drawn and rounded to a few digits usually admits only the planes, far from the
+    intended shape. This planarizes the 3D mesh (x, y, 0.1 t) to 1e-12 (``facet.planarize``,
+    local/global), which moves the plan x, y little and the heights freely (planarity is
+    invariant under scaling z), keeps the moved x, y when no vertex moved more than
+    `tolerance`, and then lifts the moved plan exactly towards the targets. When the moved
+    plan's extra liftings are still below the rank tolerance, the planarized heights
+    themselves are returned (planar to about 1e-11). Best effort: the moves are not
+    guaranteed minimal, and weights act on the final lifting only.
+
+    Parameters
+    ----------
+    plan, targets, weights
+        As :func:`lift`.
+    tolerance : float
+        Largest move of a plan vertex, model units.
+    progress : callable, optional
+        As for ``facet.planarize``; returning True cancels.
+
+    Returns
+    -------
+    NearlyLiftResult
+        ``within_tolerance`` False means the moves needed exceed `tolerance`: the moved
+        plan and its lifting are returned all the same, for inspection.
+    """
+    from facet.planarize import planarize
+
+    mesh = _plan_mesh(plan)
+    n = mesh.n_vertices
+    t = _vector(targets, n, "target height")
+    if not (tolerance >= 0 and np.isfinite(tolerance)):
+        raise InputError(f"move tolerance must be a finite number >= 0, not {tolerance!r}")
+    base = lift(mesh, t, weights)
+    xy = np.asarray(mesh.vertices, dtype=np.float64)[:, :2]
+    size = float(np.ptp(xy, axis=0).max()) or 1.0
+    centre = t.mean()
+    xyz = np.column_stack([xy, _HEIGHT_SCALE * (t - centre)])
+    flat = planarize(mesh.with_vertices(xyz), tol=1e-12, max_iter=5000, progress=progress)
+    moved_xy = flat.mesh.vertices[:, :2]
+    moves = moved_xy - xy
+    distance = np.hypot(moves[:, 0], moves[:, 1])
+    moved_plan = mesh.with_vertices(np.column_stack([moved_xy, np.zeros(n)]))
+    exact = lift(moved_plan, t, weights)
+    method = "exact"
+    result = exact
+    planar_heights = flat.mesh.vertices[:, 2] / _HEIGHT_SCALE + centre
+    planar_miss = float(np.max(np.abs(planar_heights - t)))
+    if exact.target_max > planar_miss and flat.planarity.max_rel_all <= 1e-10:
+        method = "planarized"
+        lifted = moved_plan.with_vertices(np.column_stack([moved_xy, planar_heights]))
+        from facet.planarity import planarity
+
+        report = planarity(lifted)
+        dev = planar_heights - t
+        result = LiftResult(
+            mesh=lifted, heights=planar_heights, targets=t, weights=exact.weights,
+            dimension=exact.dimension, trivial_dimension=3,
+            planarity_max_abs=float(report.max_abs_all),
+            planarity_max_rel=float(report.max_rel_all),
+            target_rms=float(np.sqrt(np.mean(dev**2))), target_max=planar_miss,
+            target_max_vertex=int(np.argmax(np.abs(dev))),
+            solve_seconds=float(flat.solve_seconds), factor_seconds=exact.factor_seconds,
+            warnings=[])
+    if result.target_max >= base.target_max:
+        # Moving did not help: keep the drawing as it is.
+        moves = np.zeros_like(moves)
+        distance = np.zeros(n)
+        result, method = base, "unmoved"
+    order = np.argsort(-distance, kind="stable")
+    moved = [(int(v), float(moves[v, 0]), float(moves[v, 1])) for v in order
+             if distance[v] > 1e-12 * size]
+    max_move = float(distance.max()) if n else 0.0
+    return NearlyLiftResult(result, moves, max_move, max_move <= tolerance, method, moved)

@@ -1,0 +1,602 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Plan graphs from what architects draw, and target heights for them.
+
+A *plan graph* is a planar straight-line graph with faces: the panels of a
+roof or canopy seen from above. :func:`read_plan` makes one from
+
+========================  ==================================================
+``.dxf``                  LINE, LWPOLYLINE, POLYLINE (through ezdxf); ARC,
+                          CIRCLE, ELLIPSE, SPLINE and polyline bulges are
+                          refused unless ``arc_tolerance`` is given, then
+                          split into segments whose sagitta is at most it
+``.csv``                  segments, one ``x1,y1,x2,y2`` per line
+``.obj .off .json``       a mesh lying in a plane (compas form diagrams
+                          too): its faces are the plan's faces, projected
+                          vertically
+========================  ==================================================
+
+A line drawing (DXF, CSV, or :func:`plan_from_segments`) becomes a graph as
+follows: endpoints closer than ``snap`` are merged (default 1e-6 of the
+drawing's size), crossings and touching segments are split into vertices
+and overlapping segments merged (shapely's noding), the bounded faces are
+found by shapely's ``polygonize`` (GEOS), and dangling edges (and bridges
+with the same face on both sides) are dropped and listed in
+``PlanGraph.dangling``. Faces containing one of the ``openings`` points
+become openings: no panel. A face with a hole that no edge joins to its
+outline cannot be one panel: that is an error naming where it is.
+
+Targets (:func:`targets_from_mesh`, :func:`targets_from_points`,
+:func:`pinned_targets`) return ``(targets, weights)`` arrays per plan vertex.
+"""
+
+import csv
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from facet.errors import InputError
+from facet.mesh import PolyMesh
+
+__all__ = [
+    "PlanError",
+    "PlanGraph",
+    "read_plan",
+    "plan_from_segments",
+    "plan_from_mesh",
+    "read_segments",
+    "targets_from_mesh",
+    "targets_from_points",
+    "pinned_targets",
+    "read_targets",
+    "FREE_WEIGHT",
+]
+
+#: Weight of a vertex with no target of its own (pinned heights, point
+#: files): it is pulled, this weakly, towards the best-fitting plane of the
+#: given targets, which makes the optimum unique without bending it.
+FREE_WEIGHT = 1e-6
+
+
+class PlanError(InputError):
+    """A drawing is not a plan: no bounded face, overlapping faces, a face
+    with a loose hole, an arc without a tolerance, an unreadable entity."""
+
+
+@dataclass
+class PlanGraph:
+    """A plan: vertices in the xy plane (z = 0) and faces.
+
+    Attributes
+    ----------
+    mesh : facet.PolyMesh
+        Vertices (x, y, 0) and the faces, each counter-clockwise seen from
+        above.
+    source : str or None
+        File it came from.
+    snap : float
+        Snapping distance used (model units).
+    dangling : list of ((x1, y1), (x2, y2))
+        Edges dropped because they bound no face.
+    openings : int
+        Faces dropped as openings.
+    snapped : int
+        Endpoints moved by snapping (to the mean of their cluster).
+    """
+
+    mesh: PolyMesh
+    source: object = None
+    snap: float = 0.0
+    dangling: list = field(default_factory=list)
+    openings: int = 0
+    snapped: int = 0
+
+    @property
+    def n_vertices(self):
+        return self.mesh.n_vertices
+
+    @property
+    def n_faces(self):
+        return self.mesh.n_faces
+
+    def summary(self):
+        return {
+            "vertices": int(self.mesh.n_vertices),
+            "faces": int(self.mesh.n_faces),
+            "dangling_edges": len(self.dangling),
+            "openings": int(self.openings),
+            "snapped_endpoints": int(self.snapped),
+            "snap": float(self.snap),
+        }
+
+
+def _where(source):
+    return f"{os.fspath(source)}: " if source is not None else ""
+
+
+# ------------------------------------------------------------------ segments
+
+
+def _flatten(path_obj, tolerance):
+    points = [(float(p.x), float(p.y)) for p in path_obj.flattening(tolerance)]
+    return list(zip(points[:-1], points[1:]))
+
+
+def _dxf_segments(path, arc_tolerance):
+    try:
+        import ezdxf
+        from ezdxf import path as ezpath
+    except ImportError as exc:  # pragma: no cover - ezdxf is a listed dependency
+        raise PlanError(f"{path}: reading DXF needs ezdxf ({exc})") from None
+    try:
+        document = ezdxf.readfile(os.fspath(path))
+    except IOError as exc:
+        raise PlanError(f"{path}: cannot read the file ({exc})") from None
+    except ezdxf.DXFStructureError as exc:
+        raise PlanError(f"{path}: not a valid DXF file ({exc})") from None
+    segments = []
+    curved = ("ARC", "CIRCLE", "ELLIPSE", "SPLINE")
+    skipped = {}
+    for entity in document.modelspace():
+        kind = entity.dxftype()
+        handle = entity.dxf.get("handle", "?")
+        if kind == "LINE":
+            s, e = entity.dxf.start, entity.dxf.end
+            segments.append(((float(s.x), float(s.y)), (float(e.x), float(e.y))))
+        elif kind == "LWPOLYLINE":
+            has_bulge = any(abs(b[0]) > 0 for b in entity.get_points("b"))
+            if has_bulge:
+                if arc_tolerance is None:
+                    raise PlanError(
+                        f"{path}: LWPOLYLINE {handle} has arc segments (bulges): "
+                        "give an arc tolerance to split arcs into straight segments"
+                    )
+                segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance))
+                continue
+            points = [(float(x), float(y)) for x, y in entity.get_points("xy")]
+            if entity.closed and len(points) > 1:
+                points.append(points[0])
+            segments.extend(zip(points[:-1], points[1:]))
+        elif kind == "POLYLINE":
+            if entity.is_polygon_mesh or entity.is_poly_face_mesh:
+                raise PlanError(f"{path}: POLYLINE {handle} is a mesh, not a line drawing")
+            if any(abs(v.dxf.get("bulge", 0.0)) > 0 for v in entity.vertices):
+                if arc_tolerance is None:
+                    raise PlanError(
+                        f"{path}: POLYLINE {handle} has arc segments (bulges): "
+                        "give an arc tolerance to split arcs into straight segments"
+                    )
+                segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance))
+                continue
+            points = [(float(v.dxf.location.x), float(v.dxf.location.y)) for v in entity.vertices]
+            if entity.is_closed and len(points) > 1:
+                points.append(points[0])
+            segments.extend(zip(points[:-1], points[1:]))
+        elif kind in curved:
+            if arc_tolerance is None:
+                raise PlanError(
+                    f"{path}: {kind} {handle} is curved: give an arc tolerance to split it "
+                    "into straight segments"
+                )
+            segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance))
+        else:
+            skipped[kind] = skipped.get(kind, 0) + 1
+    if not segments:
+        found = ", ".join(f"{n} {k}" for k, n in sorted(skipped.items())) or "nothing"
+        raise PlanError(f"{path}: no LINE, LWPOLYLINE or POLYLINE in the model space ({found})")
+    return segments
+
+
+def _csv_segments(path):
+    segments = []
+    try:
+        with open(path, newline="", encoding="utf-8") as handle:
+            for number, row in enumerate(csv.reader(handle), 1):
+                cells = [c.strip() for c in row if c.strip()]
+                if not cells or cells[0].startswith("#"):
+                    continue
+                try:
+                    values = [float(c) for c in cells]
+                except ValueError:
+                    if number == 1:  # a header line
+                        continue
+                    raise PlanError(f"{path}: line {number}: not four numbers x1,y1,x2,y2")
+                if len(values) != 4 or not all(np.isfinite(values)):
+                    raise PlanError(f"{path}: line {number}: need four finite numbers x1,y1,x2,y2")
+                segments.append(((values[0], values[1]), (values[2], values[3])))
+    except OSError as exc:
+        raise PlanError(f"{path}: cannot read the file ({exc.strerror})") from None
+    if not segments:
+        raise PlanError(f"{path}: no segments")
+    return segments
+
+
+def read_segments(path, *, arc_tolerance=None):
+    """The straight segments of a DXF or CSV drawing, ``[((x1, y1), (x2, y2)), ...]``."""
+    suffix = os.path.splitext(os.fspath(path))[1].lower()
+    if suffix == ".dxf":
+        return _dxf_segments(path, arc_tolerance)
+    if suffix == ".csv":
+        return _csv_segments(path)
+    raise PlanError(f"{path}: not a line drawing (.dxf or .csv)")
+
+
+# ------------------------------------------------------------------ plan graphs
+
+
+def _snap_points(points, tolerance):
+    """Cluster points closer than tolerance; returns representative per point."""
+    from scipy.spatial import cKDTree
+
+    tree = cKDTree(points)
+    parent = np.arange(len(points))
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for i, j in sorted(tree.query_pairs(tolerance)):
+        a, b = find(i), find(j)
+        if a != b:
+            parent[max(a, b)] = min(a, b)
+    roots = np.array([find(i) for i in range(len(points))])
+    return roots
+
+
+def plan_from_segments(segments, *, snap=None, openings=(), source=None):
+    """A plan graph from straight segments.
+
+    Parameters
+    ----------
+    segments : iterable of ((x1, y1), (x2, y2))
+    snap : float, optional
+        Endpoints closer than this are merged (default 1e-6 of the
+        drawing's bounding-box diagonal).
+    openings : iterable of (x, y)
+        Points inside faces that are openings (no panel).
+    source : str, optional
+        Named in messages.
+
+    Raises
+    ------
+    PlanError
+        No bounded face, a face with a hole not joined to its outline, or
+        non-finite coordinates.
+    """
+    from shapely.geometry import LineString, MultiLineString, Point
+    from shapely.geometry.polygon import orient
+    from shapely.ops import polygonize_full, unary_union
+
+    where = _where(source)
+    array = np.asarray(list(segments), dtype=np.float64).reshape(-1, 2, 2)
+    if array.shape[0] == 0:
+        raise PlanError(f"{where}the drawing has no segments")
+    if not np.all(np.isfinite(array)):
+        bad = int(np.flatnonzero(~np.all(np.isfinite(array), axis=(1, 2)))[0])
+        raise PlanError(f"{where}segment {bad} has a NaN or infinite coordinate")
+    points = array.reshape(-1, 2)
+    lower, upper = points.min(axis=0), points.max(axis=0)
+    size = float(np.hypot(*(upper - lower)))
+    if not size > 0:
+        raise PlanError(f"{where}the drawing has no extent (all points coincide)")
+    snap = 1e-6 * size if snap is None else float(snap)
+    if not snap >= 0:
+        raise PlanError(f"{where}snap distance must be >= 0, not {snap}")
+    snapped = 0
+    if snap > 0:
+        roots = _snap_points(points, snap)
+        # Each cluster goes to its mean position.
+        sums = np.zeros_like(points)
+        counts = np.zeros(len(points))
+        np.add.at(sums, roots, points)
+        np.add.at(counts, roots, 1)
+        moved = sums[roots] / counts[roots][:, None]
+        snapped = int(np.count_nonzero(np.any(moved != points, axis=1)))
+        points = moved
+    array = points.reshape(-1, 2, 2)
+    keep = np.any(array[:, 0] != array[:, 1], axis=1)
+    lines = [LineString(s) for s in array[keep]]
+    if not lines:
+        raise PlanError(f"{where}every segment is shorter than the snap distance {snap:g}")
+    noded = unary_union(MultiLineString(lines))
+    polygons, dangles, cuts, invalids = polygonize_full(noded)
+    dangling = []
+    for geometry in list(getattr(dangles, "geoms", [])) + list(getattr(cuts, "geoms", [])):
+        coords = list(geometry.coords)
+        dangling.extend((tuple(a), tuple(b)) for a, b in zip(coords[:-1], coords[1:]))
+    if len(getattr(invalids, "geoms", [])):
+        g = invalids.geoms[0]
+        x, y = g.coords[0]
+        raise PlanError(f"{where}the edges near ({x:.6g}, {y:.6g}) form a self-crossing ring")
+    faces = list(getattr(polygons, "geoms", []))
+    opening_points = [Point(float(x), float(y)) for x, y in openings]
+    kept = []
+    n_openings = 0
+    for polygon in faces:
+        if any(polygon.contains(p) for p in opening_points):
+            n_openings += 1
+            continue
+        kept.append(polygon)
+    for polygon in kept:
+        if len(polygon.interiors):
+            x, y = polygon.interiors[0].coords[0]
+            raise PlanError(
+                f"{where}the face around ({polygon.representative_point().x:.6g}, "
+                f"{polygon.representative_point().y:.6g}) has a hole at ({x:.6g}, {y:.6g}) "
+                "joined to its outline by no edge: draw an edge from the hole to the outline, "
+                "or mark the face as an opening"
+            )
+    if not kept:
+        raise PlanError(
+            f"{where}the drawing has no bounded face"
+            + (f" ({len(dangling)} dangling edges)" if dangling else "")
+            + (f" besides {n_openings} openings" if n_openings else "")
+        )
+    # Vertices: the exact noded coordinates; faces counter-clockwise.
+    index = {}
+    vertices = []
+    face_lists = []
+    for polygon in sorted(kept, key=lambda p: (p.representative_point().x,
+                                                p.representative_point().y)):
+        ring = list(orient(polygon, 1.0).exterior.coords)[:-1]
+        face = []
+        for xy in ring:
+            key = (float(xy[0]), float(xy[1]))
+            if key not in index:
+                index[key] = len(vertices)
+                vertices.append(key)
+            face.append(index[key])
+        face_lists.append(face)
+    xyz = np.zeros((len(vertices), 3))
+    xyz[:, :2] = vertices
+    info = {"source": os.fspath(source)} if source is not None else {}
+    mesh = PolyMesh.from_faces(xyz, face_lists, info=info)
+    return PlanGraph(mesh, source=source, snap=snap, dangling=dangling, openings=n_openings,
+                     snapped=snapped)
+
+
+def plan_from_mesh(mesh, *, source=None, check_overlap=True):
+    """A plan from a mesh: its faces projected vertically (z is dropped).
+
+    Raises
+    ------
+    PlanError
+        When a projected face crosses itself or faces overlap in plan.
+    """
+    from shapely.geometry import Polygon
+    from shapely.ops import unary_union
+
+    where = _where(source)
+    xyz = np.array(mesh.vertices, dtype=np.float64)
+    xyz[:, 2] = 0.0
+    plan = mesh.with_vertices(xyz)
+    if check_overlap:
+        polygons = []
+        for f, face in enumerate(plan.faces()):
+            polygon = Polygon(xyz[face, :2])
+            if not polygon.is_valid or polygon.area <= 0:
+                raise PlanError(f"{where}face {f} crosses itself or has no area in plan")
+            polygons.append(polygon)
+        total = sum(p.area for p in polygons)
+        union = unary_union(polygons).area
+        if total > union * (1 + 1e-9):
+            # Name one overlapping pair (bounding boxes first).
+            boxes = np.array([p.bounds for p in polygons])
+            for i, p in enumerate(polygons):
+                near = np.flatnonzero(
+                    (boxes[:, 0] < boxes[i, 2]) & (boxes[:, 2] > boxes[i, 0])
+                    & (boxes[:, 1] < boxes[i, 3]) & (boxes[:, 3] > boxes[i, 1])
+                )
+                for j in near[near > i]:
+                    q = polygons[j]
+                    if p.intersection(q).area > 1e-9 * min(p.area, q.area):
+                        raise PlanError(f"{where}faces {i} and {int(j)} overlap in plan")
+            raise PlanError(f"{where}faces overlap in plan")
+    return PlanGraph(plan, source=source)
+
+
+def read_plan(path, *, snap=None, arc_tolerance=None, openings=()):
+    """A plan graph from a drawing file (see the module docstring)."""
+    suffix = os.path.splitext(os.fspath(path))[1].lower()
+    if suffix in (".dxf", ".csv"):
+        segments = read_segments(path, arc_tolerance=arc_tolerance)
+        return plan_from_segments(segments, snap=snap, openings=openings, source=path)
+    if suffix in (".obj", ".off", ".json"):
+        from facet.io import read_mesh
+
+        return plan_from_mesh(read_mesh(path), source=path)
+    raise PlanError(f"{path}: cannot read {suffix or 'files without an extension'} plans "
+                    "(Facet reads .dxf, .csv, .obj, .off, .json)")
+
+
+# ------------------------------------------------------------------ targets
+
+
+def _plan_xy(plan):
+    mesh = getattr(plan, "mesh", plan)
+    return np.asarray(mesh.vertices, dtype=np.float64)[:, :2], mesh
+
+
+def _with_free(plan_xy, targets, given):
+    """Fill free vertices with the weighted plane through the given ones."""
+    weights = np.where(given, 1.0, FREE_WEIGHT)
+    if not np.any(given):
+        raise InputError("no vertex has a target height")
+    a = np.column_stack([np.ones(int(given.sum())), plan_xy[given]])
+    if np.linalg.matrix_rank(a) == 3:
+        coef, *_ = np.linalg.lstsq(a, targets[given], rcond=None)
+        fill = coef[0] + plan_xy @ coef[1:]
+    else:
+        fill = np.full(len(plan_xy), float(np.mean(targets[given])))
+    return np.where(given, targets, fill), weights
+
+
+def pinned_targets(plan, pins):
+    """Targets from heights pinned at chosen vertices, the rest free.
+
+    Parameters
+    ----------
+    plan : PlanGraph or PolyMesh
+    pins : dict {vertex: height}
+
+    Returns
+    -------
+    targets, weights : numpy.ndarray
+        Pinned vertices have weight 1; free ones :data:`FREE_WEIGHT`, with the
+        best-fitting plane of the pins as their target.
+    """
+    xy, mesh = _plan_xy(plan)
+    n = len(xy)
+    targets = np.zeros(n)
+    given = np.zeros(n, dtype=bool)
+    for vertex, height in dict(pins).items():
+        v = int(vertex)
+        if not 0 <= v < n:
+            raise InputError(f"pinned vertex {v} is out of range ({n} vertices)")
+        h = float(height)
+        if not np.isfinite(h):
+            raise InputError(f"pinned height of vertex {v} is not finite")
+        targets[v] = h
+        given[v] = True
+    return _with_free(xy, targets, given)
+
+
+def targets_from_points(plan, points, *, tolerance):
+    """Targets from x, y, z points: each plan vertex takes the z of the
+    nearest point within `tolerance` (in plan); vertices with none are free
+    (see :func:`pinned_targets`). No interpolation."""
+    from scipy.spatial import cKDTree
+
+    xy, _ = _plan_xy(plan)
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    if points.shape[0] == 0:
+        raise InputError("no target points")
+    if not np.all(np.isfinite(points)):
+        raise InputError("a target point has a NaN or infinite coordinate")
+    distance, nearest = cKDTree(points[:, :2]).query(xy)
+    given = distance <= tolerance
+    if not np.any(given):
+        raise InputError(f"no target point lies within {tolerance:g} of a plan vertex")
+    targets = np.where(given, points[np.minimum(nearest, len(points) - 1), 2], 0.0)
+    return _with_free(xy, targets, given)
+
+
+def _ray_cast_down(xy, vertices, triangles):
+    """Topmost z of the triangles above each xy point (NaN where none)."""
+    tri = vertices[triangles]  # (m, 3, 3)
+    lo = tri[:, :, :2].min(axis=1)
+    hi = tri[:, :, :2].max(axis=1)
+    extent = np.maximum(hi.max(axis=0) - lo.min(axis=0), 1e-300)
+    cells = max(1, int(np.sqrt(len(triangles))))
+    origin = lo.min(axis=0)
+    step = extent / cells
+    buckets = {}
+    clo = np.floor((lo - origin) / step).astype(int)
+    chi = np.minimum(np.floor((hi - origin) / step).astype(int), cells - 1)
+    for t in range(len(triangles)):
+        for i in range(clo[t, 0], chi[t, 0] + 1):
+            for j in range(clo[t, 1], chi[t, 1] + 1):
+                buckets.setdefault((i, j), []).append(t)
+    result = np.full(len(xy), np.nan)
+    pc = np.floor((xy - origin) / step).astype(int)
+    eps = 1e-9
+    for p in range(len(xy)):
+        cand = buckets.get((min(max(pc[p, 0], 0), cells - 1), min(max(pc[p, 1], 0), cells - 1)))
+        if not cand:
+            continue
+        t = tri[cand]
+        a, b, c = t[:, 0], t[:, 1], t[:, 2]
+        v0 = b[:, :2] - a[:, :2]
+        v1 = c[:, :2] - a[:, :2]
+        v2 = xy[p] - a[:, :2]
+        den = v0[:, 0] * v1[:, 1] - v1[:, 0] * v0[:, 1]
+        ok = np.abs(den) > 0
+        den = np.where(ok, den, 1.0)
+        u = (v2[:, 0] * v1[:, 1] - v1[:, 0] * v2[:, 1]) / den
+        w = (v0[:, 0] * v2[:, 1] - v2[:, 0] * v0[:, 1]) / den
+        inside = ok & (u >= -eps) & (w >= -eps) & (u + w <= 1 + eps)
+        if np.any(inside):
+            z = a[:, 2] + u * (b[:, 2] - a[:, 2]) + w * (c[:, 2] - a[:, 2])
+            result[p] = float(np.max(z[inside]))
+    return result
+
+
+def targets_from_mesh(plan, mesh, *, source=None):
+    """Targets from a mesh.
+
+    When the mesh has the plan's vertices in the same order (same count and
+    x, y within 1e-9 of the plan's size) its z are the targets (the paper's
+    Fig. 4 case). Otherwise each plan vertex takes the height of the mesh
+    straight above or below it, the topmost hit (vertical ray cast against
+    the mesh's fan-triangulated faces); a vertex the mesh does not cover is
+    an error naming it.
+
+    Returns
+    -------
+    targets, weights : numpy.ndarray (weights all 1)
+    """
+    where = _where(source)
+    xy, plan_mesh = _plan_xy(plan)
+    vertices = np.asarray(mesh.vertices, dtype=np.float64)
+    size = float(np.ptp(xy, axis=0).max()) or 1.0
+    if len(vertices) == len(xy) and np.max(np.abs(vertices[:, :2] - xy)) <= 1e-9 * size:
+        return vertices[:, 2].copy(), np.ones(len(xy))
+    triangles = []
+    for face in mesh.faces():
+        for k in range(1, len(face) - 1):
+            triangles.append((face[0], face[k], face[k + 1]))
+    z = _ray_cast_down(xy, vertices, np.asarray(triangles, dtype=np.int64))
+    missing = np.flatnonzero(np.isnan(z))
+    if missing.size:
+        v = int(missing[0])
+        raise InputError(
+            f"{where}the target surface does not cover plan vertex {v} at "
+            f"({xy[v, 0]:.6g}, {xy[v, 1]:.6g}) ({missing.size} vertices uncovered)"
+        )
+    return z, np.ones(len(xy))
+
+
+def read_targets(plan, path, *, tolerance=None):
+    """Targets from a file: a mesh (.obj, .off, .json; see
+    :func:`targets_from_mesh`) or a CSV of x,y,z points (see
+    :func:`targets_from_points`; tolerance default 1e-6 of the plan's size).
+
+    Returns
+    -------
+    targets, weights : numpy.ndarray
+    """
+    suffix = os.path.splitext(os.fspath(path))[1].lower()
+    xy, _ = _plan_xy(plan)
+    if suffix == ".csv":
+        rows = []
+        try:
+            with open(path, newline="", encoding="utf-8") as handle:
+                for number, row in enumerate(csv.reader(handle), 1):
+                    cells = [c.strip() for c in row if c.strip()]
+                    if not cells or cells[0].startswith("#"):
+                        continue
+                    try:
+                        values = [float(c) for c in cells]
+                    except ValueError:
+                        if number == 1:
+                            continue
+                        raise InputError(f"{path}: line {number}: not three numbers x,y,z")
+                    if len(values) != 3 or not all(np.isfinite(values)):
+                        raise InputError(f"{path}: line {number}: need three finite numbers x,y,z")
+                    rows.append(values)
+        except OSError as exc:
+            raise InputError(f"{path}: cannot read the file ({exc.strerror})") from None
+        if tolerance is None:
+            tolerance = 1e-6 * (float(np.ptp(xy, axis=0).max()) or 1.0)
+        try:
+            return targets_from_points(plan, rows, tolerance=tolerance)
+        except InputError as exc:
+            raise InputError(f"{path}: {exc}") from None
+    if suffix in (".obj", ".off", ".json"):
+        from facet.io import read_mesh
+
+        return targets_from_mesh(plan, read_mesh(path), source=path)
+    raise InputError(f"{path}: cannot read targets from {suffix or 'files without an extension'} "
+                     "files (Facet reads .obj, .off, .json meshes and .csv points)")

@@ -1,0 +1,130 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Facet_PlanGraph (a plan graph from a drawing) and Facet_Lift (lift a plan to planar faces
+close to a target surface)."""
+
+import FreeCAD as App
+import FreeCADGui as Gui
+
+from facetwb import paths
+from facetwb.commands.macro import object_expression, run_as_macro
+
+PLAN_FILE_FILTER = "Plan drawings (*.dxf *.csv *.obj *.off *.json)"
+
+
+def _has_edges(obj):
+    from facetwb.objects.polymesh import is_polymesh
+
+    if is_polymesh(obj):
+        return False
+    shape = getattr(obj, "Shape", None)
+    try:
+        return shape is not None and not shape.isNull() and bool(shape.Edges)
+    except Exception:  # noqa: BLE001 - a broken shape is just not a drawing
+        return False
+
+
+class CommandPlanGraph:
+    """A PlanGraph from the selected Sketches, Draft wires or Part edges, or from a file."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": paths.icon_path("Facet_PlanGraph"),
+            "MenuText": "Plan graph",
+            "ToolTip": "Make a plan graph (faces seen from above) from the selected Sketches, "
+                       "Draft wires or Part edges, or, with nothing selected, from a drawing "
+                       "file (.dxf, .csv, plan mesh). Crossings are split, dangling edges "
+                       "dropped. It follows changes of the drawing.",
+        }
+
+    def IsActive(self):
+        return App.ActiveDocument is not None
+
+    def Activated(self):
+        sources = [obj for obj in Gui.Selection.getSelection() if _has_edges(obj)]
+        doc = App.ActiveDocument
+        if sources:
+            items = ", ".join(object_expression(obj) for obj in sources)
+            lines = [f"facetwb.make_plan_graph([{items}])"]
+        else:
+            from facetwb.compat import qt_gui
+
+            path, _ = qt_gui().QFileDialog.getOpenFileName(
+                Gui.getMainWindow(), "Facet: plan drawing", "", PLAN_FILE_FILTER)
+            if not path:
+                return
+            lines = [f"facetwb.make_plan_graph(file={path!r}, "
+                     f"doc=FreeCAD.getDocument({doc.Name!r}))"]
+        lines.append(f'FreeCAD.getDocument("{doc.Name}").recompute()')
+        run_as_macro(doc, "Plan graph", lines)
+
+
+class CommandLift:
+    """A Lifting of the selected plan towards the selected target surface."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": paths.icon_path("Facet_Lift"),
+            "MenuText": "Lift plan",
+            "ToolTip": "Select a plan (PlanGraph or Facet mesh), then a target surface (mesh or "
+                       "shape): every plan vertex gets a height so that every face is exactly "
+                       "planar, as close as possible to the surface straight above it.",
+        }
+
+    def _selection(self):
+        from facetwb.objects.polymesh import is_polymesh
+
+        selection = Gui.Selection.getSelection()
+        if len(selection) != 2 or not is_polymesh(selection[0]):
+            return None
+        return selection[0], selection[1]
+
+    def IsActive(self):
+        return App.ActiveDocument is not None and self._selection() is not None
+
+    def Activated(self):
+        from facetwb.objects.lifting import is_lifting, lifting_summary
+
+        chosen = self._selection()
+        if chosen is None:
+            return
+        plan, target = chosen
+        doc = plan.Document
+        before = set(doc.Objects)
+        lines = [f"facetwb.make_lifting({object_expression(plan)}, "
+                 f"targets={object_expression(target)})",
+                 f'FreeCAD.getDocument("{doc.Name}").recompute()']
+        if not run_as_macro(doc, "Lift plan", lines):
+            return
+        for obj in doc.Objects:
+            if obj not in before and is_lifting(obj):
+                printer = App.Console.PrintMessage if obj.isValid() else App.Console.PrintError
+                printer(lifting_summary(obj) + "\n")
+
+
+class CommandLiftMix:
+    """Open the task panel that mixes non-planar liftings into the selected Lifting."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": paths.icon_path("Facet_LiftMix"),
+            "MenuText": "Shape lifting",
+            "ToolTip": "Sliders for the selected Lifting: add the smoothest other planar-faced "
+                       "shapes over the same plan; the result follows live and every face "
+                       "stays exactly planar.",
+        }
+
+    def _selected(self):
+        from facetwb.objects.lifting import is_lifting
+
+        selection = Gui.Selection.getSelection()
+        return selection[0] if len(selection) == 1 and is_lifting(selection[0]) else None
+
+    def IsActive(self):
+        return self._selected() is not None and Gui.Control.activeDialog() is False
+
+    def Activated(self):
+        from facetwb.taskpanels.lift_mix import LiftMixPanel
+
+        obj = self._selected()
+        if obj is not None:
+            Gui.Control.showDialog(LiftMixPanel(obj))

@@ -1,0 +1,78 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""PlanGraph: a plan drawing as a planar graph with faces (the panels seen from above).
+
+Parametric on its drawing: ``Sources`` (Sketches, Draft wires and lines, Part edges) or, when
+that is empty, ``File`` (.dxf, .csv of segments, or a plan mesh .obj .off .json). Recompute
+reads the drawing again and builds the graph with ``facet.plan``: endpoints snapped, crossings
+split, duplicate edges merged, dangling edges dropped (counted in ``DanglingEdges``), faces
+found by polygonize, faces containing an ``Openings`` point left out. The graph is stored as
+a flat polygon mesh (z = 0), like a PolyMesh, so a Lifting (or anything taking a Facet
+mesh) can use it.
+"""
+
+import facet
+from facetwb import compat
+from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
+
+TYPE_PLANGRAPH = "Facet::PlanGraph"
+
+
+class PlanGraph(PolyMesh):
+    """Proxy of a plan graph (App::FeaturePython)."""
+
+    TYPE = TYPE_PLANGRAPH
+
+    def init_source_properties(self, obj):
+        compat.add_property(
+            obj, "App::PropertyLinkList", "Sources", "Plan",
+            "The drawing: Sketches, Draft wires and lines, Part objects with straight edges in "
+            "a horizontal plane (never modified)")
+        compat.add_property(
+            obj, "App::PropertyFile", "File", "Plan",
+            "A drawing file used when Sources is empty: .dxf (LINE, LWPOLYLINE, POLYLINE), "
+            ".csv (x1,y1,x2,y2 per line) or a plan mesh (.obj, .off, .json)")
+        compat.add_property(
+            obj, "App::PropertyLength", "Snap", "Plan",
+            "Endpoints closer than this are merged (0: 1e-6 of the drawing's size)")
+        compat.add_property(
+            obj, "App::PropertyLength", "ArcTolerance", "Plan",
+            "Curves are split into straight segments this close to them (0: curves are "
+            "refused)")
+        compat.add_property(
+            obj, "App::PropertyVectorList", "Openings", "Plan",
+            "Points inside faces that are openings (no panel); only x and y count")
+        read_only = compat.EDITOR_READ_ONLY
+        output = compat.PROP_OUTPUT
+        compat.add_property(obj, "App::PropertyInteger", "DanglingEdges", "Result",
+                            "Edges dropped because they bound no face", attr=output,
+                            editor_mode=read_only)
+        compat.add_property(obj, "App::PropertyInteger", "OpeningCount", "Result",
+                            "Faces left out as openings", attr=output, editor_mode=read_only)
+        compat.add_property(obj, "App::PropertyInteger", "SnappedEndpoints", "Result",
+                            "Endpoints moved by snapping", attr=output, editor_mode=read_only)
+
+    def execute(self, obj):
+        from facet.plan import plan_from_segments, read_plan
+
+        openings = [(p.x, p.y) for p in obj.Openings]
+        snap = obj.Snap.Value or None
+        arc = obj.ArcTolerance.Value or None
+        if obj.Sources:
+            from facetwb.plan_source import segments_from_objects
+
+            segments = segments_from_objects(obj.Sources, arc or 0.0)
+            plan = plan_from_segments(segments, snap=snap, openings=openings, source=obj.Label)
+        elif obj.File:
+            plan = read_plan(obj.File, snap=snap, arc_tolerance=arc, openings=openings)
+        else:
+            raise ValueError(f"{obj.Label}: no drawing: set Sources or File")
+        set_mesh(obj, plan.mesh)
+        set_planarity(obj, facet.planarity(plan.mesh))
+        obj.DanglingEdges = len(plan.dangling)
+        obj.OpeningCount = int(plan.openings)
+        obj.SnappedEndpoints = int(plan.snapped)
+
+
+def is_plan_graph(obj):
+    """True if ``obj`` is a Facet PlanGraph."""
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE_PLANGRAPH

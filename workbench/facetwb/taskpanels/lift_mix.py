@@ -1,0 +1,148 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Task panel of a Lifting: sliders that add the smoothest non-planar liftings (eigen-liftings)
+to the optimal one, and a vertex whose height can be dragged (its fundamental lifting: the
+rest of the roof follows), with the result following live. Every mix keeps every face exactly planar:
+the liftings form a linear space. Wiring only: the basis comes from ``facet.lift``.
+
+The sliders write the Lifting's ``Mix`` and ``Drags`` properties and recompute;
+OK keeps the mix (one undo step), Cancel restores the previous one.
+"""
+
+import FreeCAD as App
+import FreeCADGui as Gui
+
+#: Sliders shown (fewer when the plan has fewer non-planar liftings).
+MAX_SLIDERS = 8
+#: Slider positions each side of 0.
+STEPS = 100
+
+#: The open panel, if any (for scripts and the GUI test).
+active = None
+
+
+class LiftMixPanel:
+    """Gui.Control task panel for one Lifting object."""
+
+    def __init__(self, obj):
+        from facetwb.compat import qt_gui
+        from facetwb.objects.polymesh import get_mesh
+
+        from PySide import QtCore  # FreeCAD's PySide shim, 0.20 and 1.x
+
+        QtGui = qt_gui()
+        self.obj = obj
+        self.original = list(obj.Mix)
+        plan = get_mesh(obj.Plan)
+        xy = plan.vertices[:, :2]
+        extent = float((xy.max(axis=0) - xy.min(axis=0)).max()) or 1.0
+        #: Full slider travel: a quarter of the plan's size, in mm.
+        self.range = 0.25 * extent
+        self.count = max(0, min(MAX_SLIDERS, int(obj.Dimension) - 3))
+        self.form = QtGui.QWidget()
+        self.form.setWindowTitle(f"Shape {obj.Label}")
+        layout = QtGui.QVBoxLayout(self.form)
+        if self.count == 0:
+            layout.addWidget(QtGui.QLabel(
+                "This plan admits only planes: there is nothing to mix.\n"
+                "Change the drawing (or lift it with moved vertices) to get more shapes."))
+        else:
+            layout.addWidget(QtGui.QLabel(
+                f"The plan admits {int(obj.Dimension) - 3} non-planar liftings. Each slider "
+                "adds one (smoothest first);\nevery face stays exactly planar."))
+        self.sliders = []
+        self.labels = []
+        values = list(self.original) + [0.0] * self.count
+        for k in range(self.count):
+            row = QtGui.QHBoxLayout()
+            row.addWidget(QtGui.QLabel(f"Lifting {k + 1}"))
+            slider = QtGui.QSlider(QtCore.Qt.Horizontal)
+            slider.setRange(-STEPS, STEPS)
+            slider.setValue(int(round(values[k] / self.range * STEPS)))
+            label = QtGui.QLabel()
+            row.addWidget(slider, 1)
+            row.addWidget(label)
+            layout.addLayout(row)
+            self.sliders.append(slider)
+            self.labels.append(label)
+            slider.valueChanged.connect(self.changed)
+        # Dragging one vertex: its fundamental lifting (the rest of the roof follows).
+        self.original_drags = list(obj.Drags)
+        self.points = [(p.x, p.y) for p in obj.Plan.Points]
+        drag_row = QtGui.QHBoxLayout()
+        drag_row.addWidget(QtGui.QLabel("Raise vertex"))
+        self.vertex = QtGui.QSpinBox()
+        self.vertex.setRange(0, max(0, len(self.points) - 1))
+        drag_row.addWidget(self.vertex)
+        self.drag = QtGui.QSlider(QtCore.Qt.Horizontal)
+        self.drag.setRange(-STEPS, STEPS)
+        drag_row.addWidget(self.drag, 1)
+        self.drag_label = QtGui.QLabel()
+        drag_row.addWidget(self.drag_label)
+        layout.addLayout(drag_row)
+        self.drags = {}
+        for d in self.original_drags:
+            self.drags[(d.x, d.y)] = d.z
+        self.vertex.valueChanged.connect(self.vertex_changed)
+        self.drag.valueChanged.connect(self.drag_changed)
+        self.vertex_changed()
+        self._show_values()
+        self.obj.Document.openTransaction("Shape lifting")
+        global active
+        active = self
+
+    def mix(self):
+        return [s.value() / STEPS * self.range for s in self.sliders]
+
+    def _show_values(self):
+        for label, value in zip(self.labels, self.mix()):
+            label.setText(App.Units.Quantity(value, App.Units.Length).UserString)
+
+    def vertex_changed(self, _value=None):
+        key = self.points[self.vertex.value()] if self.points else None
+        self.drag.blockSignals(True)
+        self.drag.setValue(int(round(self.drags.get(key, 0.0) / self.range * STEPS)))
+        self.drag.blockSignals(False)
+        self._show_drag()
+
+    def _show_drag(self):
+        value = self.drag.value() / STEPS * self.range
+        self.drag_label.setText(App.Units.Quantity(value, App.Units.Length).UserString)
+
+    def drag_changed(self, _value=None):
+        if not self.points:
+            return
+        self._show_drag()
+        self.drags[self.points[self.vertex.value()]] = self.drag.value() / STEPS * self.range
+        self.obj.Drags = [App.Vector(x, y, dz) for (x, y), dz in self.drags.items() if dz]
+        self.obj.Document.recompute()
+        Gui.updateGui()
+
+    def changed(self, _value=None):
+        self._show_values()
+        self.obj.Mix = self.mix()
+        self.obj.Document.recompute()
+        Gui.updateGui()
+
+    def _close(self):
+        global active
+        active = None
+        Gui.Control.closeDialog()
+
+    def accept(self):
+        self.obj.Document.commitTransaction()
+        self._close()
+        return True
+
+    def reject(self):
+        self.obj.Document.abortTransaction()
+        self.obj.Mix = self.original
+        self.obj.Drags = self.original_drags
+        self.obj.Document.recompute()
+        self._close()
+        return True
+
+    def getStandardButtons(self):
+        from facetwb.compat import qt_gui
+
+        buttons = qt_gui().QDialogButtonBox
+        return int(buttons.Ok | buttons.Cancel)
