@@ -131,6 +131,8 @@ static int core_exec(PyObject *module)
     /* One line per binding file (py_common.h). */
     if (py_add_planarize(module) < 0)
         return -1;
+    if (py_add_panel(module) < 0)
+        return -1;
     return 0;
 }
 

@@ -52,5 +52,6 @@ void py_release_mesh(mesh_views *m);
 
 /* Registration functions of the binding files. */
 int py_add_planarize(PyObject *module);
+int py_add_panel(PyObject *module);
 
 #endif
