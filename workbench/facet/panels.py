@@ -140,14 +140,17 @@ class Panel:
 
         top, bottom = self.flat_top, self.flat_bottom
         if np.allclose(top, bottom, rtol=0.0, atol=1e-9 * max(1.0, np.abs(bottom).max())):
-            return Polygon(bottom)
+            return Polygon(bottom.tolist())
         k = len(bottom)
-        parts = [Polygon(bottom), Polygon(top)]
+        b, t = bottom.tolist(), top.tolist()
+        parts = [Polygon(b), Polygon(t)]
         for i in range(k):
             j = (i + 1) % k
-            quad = Polygon([bottom[i], bottom[j], top[j], top[i]])
-            if quad.area > 0:
-                parts.append(quad.buffer(0))
+            # the side face seen from above: a trapezoid (its top and bottom
+            # edges are parallel), simple whenever it has an area
+            quad = Polygon([b[i], b[j], t[j], t[i]])
+            if quad.area > 1e-12 * parts[0].area:
+                parts.append(quad)
         return unary_union(parts)
 
     @property
