@@ -33,16 +33,21 @@ __all__ = [
     "PlanarizeResult",
     "planarity",
     "PlanarityReport",
+    "panels",
+    "PanelSet",
+    "PanelError",
     "__version__",
 ]
 
-_SOLVER_NAMES = ("planarize", "Planarizer", "PlanarizeResult", "planarity", "PlanarityReport")
-_SOLVER_MODULES = ("facet.planarity", "facet.planarize", "facet._core")
+_SOLVER_NAMES = ("planarize", "Planarizer", "PlanarizeResult", "planarity", "PlanarityReport",
+                 "panels", "PanelSet", "PanelError")
+_SOLVER_MODULES = ("facet.planarity", "facet.planarize", "facet.panels", "facet._core")
 _solver_import_error = None
 
 try:
     from facet.planarity import PlanarityReport, planarity
     from facet.planarize import Planarizer, PlanarizeResult, planarize
+    from facet.panels import PanelError, PanelSet, panels
 except ImportError as exc:  # the compiled core is not built (yet)
     core_missing = exc.name == "facet" and "_core" in str(exc)
     if exc.name not in _SOLVER_MODULES and not core_missing:

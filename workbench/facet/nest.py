@@ -34,7 +34,7 @@ ROTATIONS = {
 }
 
 _UNITS = float(2 ** 20)
-_BATCH = 150
+_BATCH = 400
 
 
 class NestError(InputError):
@@ -176,14 +176,19 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
 
     # largest first: what first-fit packs best
     order = sorted(polys, key=lambda k: -polys[k].area)
+    # First-fit tries every part on every open sheet: batches of a few
+    # sheets' worth of parts keep that from growing with the part count.
+    mean_area = sum(p.area for p in polys.values()) / max(1, len(polys))
+    per_sheet = max(1.0, (width - 2 * margin) * (height - 2 * margin) / max(mean_area, 1e-300))
+    batch_size = int(min(_BATCH, max(30, 4 * per_sheet)))
     total = len(order)
     sheets, placements, unplaced = [], {}, []
     pending = []
     done = 0
     box_w, box_h = inner_w + dist, inner_h + dist
     while order or pending:
-        batch = pending + order[:_BATCH]
-        order = order[_BATCH:]
+        batch = pending + order[:batch_size]
+        order = order[batch_size:]
         items = [make_item(pid) for pid in batch]
         pynest2d.nest(items, pynest2d.Box(box_w, box_h), dist, config)
         bins = {}
