@@ -18,6 +18,7 @@ sheet go back into the next batch.
 """
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -261,7 +262,9 @@ def verify(result, parts, tolerance=None):
         by_sheet.setdefault(pl.sheet, []).append((pid, placed))
     for sheet, items in by_sheet.items():
         geoms = [g for _, g in items]
-        tree = STRtree(geoms)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # shapely 1.8 announces 2.0's STRtree
+            tree = STRtree(geoms)
         index = {id(g): k for k, g in enumerate(geoms)}
         for k, (pid, g) in enumerate(items):
             for other in tree.query(g.buffer(max(result.spacing - tol, 0.0))):
