@@ -28,6 +28,10 @@ _API = {
     "is_polymesh": "facetwb.objects.polymesh",
     "is_planarized": "facetwb.objects.planarized",
     "planarize_summary": "facetwb.objects.planarized",
+    "make_panelset": "facetwb.objects.panelset",
+    "make_cutsheets": "facetwb.objects.panelset",
+    "is_panelset": "facetwb.objects.panelset",
+    "is_cutsheets": "facetwb.objects.panelset",
 }
 
 __all__ = sorted(_API)

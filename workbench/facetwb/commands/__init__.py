@@ -2,7 +2,8 @@
 """Facet's GUI commands. ``register()`` adds them to FreeCAD (InitGui.py calls it)."""
 
 #: Commands in toolbar and menu order.
-COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize"]
+COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize", "Facet_PanelSet",
+            "Facet_CutSheets"]
 
 
 def register():
@@ -13,9 +14,13 @@ def register():
     from facetwb.commands.planarize import CommandPlanarize
     from facetwb.commands.to_polymesh import CommandToPolyMesh
 
+    from facetwb.commands.panels import CommandCutSheets, CommandPanelSet
+
     known = set(Gui.listCommands())
     for name, command in (("Facet_ImportMesh", CommandImportMesh()),
                           ("Facet_ToPolyMesh", CommandToPolyMesh()),
-                          ("Facet_Planarize", CommandPlanarize())):
+                          ("Facet_Planarize", CommandPlanarize()),
+                          ("Facet_PanelSet", CommandPanelSet()),
+                          ("Facet_CutSheets", CommandCutSheets())):
         if name not in known:
             Gui.addCommand(name, command)
