@@ -36,6 +36,8 @@ ROTATIONS = {
 
 _UNITS = float(2 ** 20)
 _BATCH = 400
+_BATCH_MIN = 8
+_BATCH_SHEETS = 2.0
 
 
 class NestError(InputError):
@@ -181,7 +183,7 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
     # sheets' worth of parts keep that from growing with the part count.
     mean_area = sum(p.area for p in polys.values()) / max(1, len(polys))
     per_sheet = max(1.0, (width - 2 * margin) * (height - 2 * margin) / max(mean_area, 1e-300))
-    batch_size = int(min(_BATCH, max(30, 4 * per_sheet)))
+    batch_size = int(min(_BATCH, max(_BATCH_MIN, _BATCH_SHEETS * per_sheet)))
     total = len(order)
     sheets, placements, unplaced = [], {}, []
     pending = []
