@@ -38,6 +38,12 @@ static double dist3(const double *a, const double *b)
                 (a[2] - b[2]) * (a[2] - b[2]));
 }
 
+static int cancel_now(void *user, int64_t done, int64_t total)
+{
+    (void)user, (void)done, (void)total;
+    return 1;
+}
+
 int main(void)
 {
     const double R = 5000.0, da = 0.2, h = 800.0, t = 40.0;
@@ -164,5 +170,69 @@ int main(void)
     CHECK_STATUS(facet_panels(&m, &o, &out, &r, &e), FACET_OK);
     xyz[3 * 6 + 0] -= 5.0;
     (void)nv;
+
+    /* A Moebius strip cannot be oriented: the error names a face. */
+    {
+        enum { NS = 8 };
+        double mx[3 * 2 * NS];
+        int32_t ms[NS + 1], mf[4 * NS];
+        for (int i = 0; i < NS; ++i) {
+            const double a = 2 * PI * i / NS, tw = a / 2;
+            for (int k = 0; k < 2; ++k) {
+                const double rad = 10.0 + (k ? -1.0 : 1.0) * cos(tw);
+                mx[3 * (2 * i + k) + 0] = rad * cos(a);
+                mx[3 * (2 * i + k) + 1] = rad * sin(a);
+                mx[3 * (2 * i + k) + 2] = (k ? -1.0 : 1.0) * sin(tw);
+            }
+        }
+        for (int i = 0; i < NS; ++i) {
+            ms[i] = 4 * i;
+            const int j = (i + 1) % NS;
+            mf[4 * i + 0] = 2 * i, mf[4 * i + 1] = 2 * i + 1;
+            if (j == 0) /* the twist: top meets bottom */
+                mf[4 * i + 2] = 0, mf[4 * i + 3] = 1;
+            else
+                mf[4 * i + 2] = 2 * j + 1, mf[4 * i + 3] = 2 * j;
+        }
+        ms[NS] = 4 * NS;
+        facet_mesh mm = {2 * NS, NS, mx, ms, mf};
+        facet_panel_options mo;
+        facet_panel_options_default(&mo);
+        facet_panel_output none;
+        memset(&none, 0, sizeof none);
+        CHECK_STATUS(facet_panels(&mm, &mo, &none, NULL, &e), FACET_ERROR_NOT_ORIENTABLE);
+        CHECK(strstr(e.message, "cannot be oriented") != NULL);
+        CHECK(e.face >= 0 && e.face < NS);
+    }
+
+    /* Cancel from the progress callback (called every 1024 faces). */
+    {
+        enum { G = 40 };
+        static double gx[3 * (G + 1) * (G + 1)];
+        static int32_t gs[G * G + 1], gf[4 * G * G];
+        for (int j = 0; j <= G; ++j)
+            for (int i = 0; i <= G; ++i) {
+                double *q = gx + 3 * (j * (G + 1) + i);
+                q[0] = i, q[1] = j, q[2] = 0.0;
+            }
+        for (int f = 0; f < G * G; ++f) {
+            const int i = f % G, j = f / G, a = j * (G + 1) + i;
+            gs[f] = 4 * f;
+            gf[4 * f] = a, gf[4 * f + 1] = a + 1, gf[4 * f + 2] = a + G + 2, gf[4 * f + 3] = a + G + 1;
+        }
+        gs[G * G] = 4 * G * G;
+        facet_mesh gm = {(G + 1) * (G + 1), G * G, gx, gs, gf};
+        facet_panel_options go;
+        facet_panel_options_default(&go);
+        go.thickness = 0.1;
+        go.progress = cancel_now;
+        facet_panel_output none;
+        memset(&none, 0, sizeof none);
+        CHECK_STATUS(facet_panels(&gm, &go, &none, NULL, &e), FACET_ERROR_CANCELLED);
+        go.progress = NULL;
+        facet_panel_result gr;
+        CHECK_STATUS(facet_panels(&gm, &go, &none, &gr, &e), FACET_OK);
+        CHECK(gr.max_node_deviation < 1e-12); /* a flat grid: every node is torsion-free */
+    }
     return check_report("test_panel");
 }
