@@ -79,58 +79,75 @@ def _ccw(p):
 
 
 def _inside(poly, pts):
-    """Even-odd test of points (m, 2) against a closed outline (k, 2)."""
-    x, y = pts[:, 0:1], pts[:, 1:2]
-    a, b = poly, np.roll(poly, -1, axis=0)
-    ya, yb = a[:, 1][None, :], b[:, 1][None, :]
+    """Even-odd test of points (P, m, 2) against closed outlines (P, k, 2)."""
+    x, y = pts[:, :, None, 0], pts[:, :, None, 1]
+    a, b = poly[:, None, :, :], np.roll(poly, -1, axis=1)[:, None, :, :]
+    ya, yb = a[..., 1], b[..., 1]
     crosses = (ya > y) != (yb > y)
     with np.errstate(divide="ignore", invalid="ignore"):
-        xc = a[:, 0][None, :] + (y - ya) * (b[:, 0] - a[:, 0])[None, :] / (yb - ya)
-    return np.count_nonzero(crosses & (x < xc), axis=1) % 2 == 1
+        xc = a[..., 0] + (y - ya) * (b[..., 0] - a[..., 0]) / (yb - ya)
+    return np.count_nonzero(crosses & (x < xc), axis=2) % 2 == 1
 
 
 def _edge_distance(poly, pts):
-    """Distance of points (m, 2) from the outline (k, 2)."""
-    a = poly[None, :, :]
-    d = (np.roll(poly, -1, axis=0) - poly)[None, :, :]
-    p = pts[:, None, :]
-    dd = np.maximum(np.sum(d * d, axis=2), 1e-300)
-    t = np.clip(np.sum((p - a) * d, axis=2) / dd, 0.0, 1.0)
-    q = a + t[:, :, None] * d
-    return np.sqrt(np.min(np.sum((p - q) ** 2, axis=2), axis=1))
+    """Distance of points (P, m, 2) from the outlines (P, k, 2): (P, m)."""
+    a = poly[:, None, :, :]
+    d = (np.roll(poly, -1, axis=1) - poly)[:, None, :, :]
+    p = pts[:, :, None, :]
+    dd = np.maximum(np.sum(d * d, axis=3), 1e-300)
+    t = np.clip(np.sum((p - a) * d, axis=3) / dd, 0.0, 1.0)
+    q = a + t[..., None] * d
+    return np.sqrt(np.min(np.sum((p - q) ** 2, axis=3), axis=2))
 
 
-def label_point(outline, rounds=4, n=16):
-    """The point inside an outline farthest from its edges (the pole of
+def label_points(outlines, rounds=4, n=16):
+    """The point inside each outline farthest from its edges (the pole of
     inaccessibility, as shapely's polylabel finds it), by a grid search
-    refined around the best point; vectorised, for thousands of parts.
+    refined around the best point; vectorised over outlines of the same
+    vertex count, for thousands of parts.
+
+    Parameters
+    ----------
+    outlines : list of (k, 2) arrays
 
     Returns
     -------
-    ((x, y), depth)
+    list of ((x, y), depth)
     """
-    poly = np.asarray(outline, dtype=float)
-    lo, hi = poly.min(axis=0), poly.max(axis=0)
-    centre, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
-    best, depth = None, -1.0
-    for _ in range(rounds):
-        u = np.linspace(-1.0, 1.0, n)
-        gx, gy = np.meshgrid(centre[0] + u * half[0], centre[1] + u * half[1])
-        pts = np.column_stack([gx.ravel(), gy.ravel()])
-        inside = _inside(poly, pts)
-        if inside.any():
-            pts = pts[inside]
-            dist = _edge_distance(poly, pts)
-            k = int(np.argmax(dist))
-            if dist[k] > depth:
-                best, depth = pts[k], float(dist[k])
-        if best is None:
-            break
-        centre, half = best, half * (2.5 / (n - 1))
-    if best is None:  # degenerate: fall back to the vertex mean
-        best = poly.mean(axis=0)
-        depth = 0.0
-    return (float(best[0]), float(best[1])), depth
+    out = [None] * len(outlines)
+    groups = {}
+    for i, o in enumerate(outlines):
+        groups.setdefault(len(o), []).append(i)
+    u = np.linspace(-1.0, 1.0, n)
+    gx, gy = np.meshgrid(u, u)
+    grid = np.column_stack([gx.ravel(), gy.ravel()])  # (m, 2)
+    for k, members in groups.items():
+        for c0 in range(0, len(members), 512):
+            idx = members[c0:c0 + 512]
+            poly = np.array([np.asarray(outlines[i], dtype=float) for i in idx])  # (P, k, 2)
+            lo, hi = poly.min(axis=1), poly.max(axis=1)
+            centre, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+            best = poly.mean(axis=1)
+            depth = np.full(len(idx), -1.0)
+            for _ in range(rounds):
+                pts = centre[:, None, :] + grid[None, :, :] * half[:, None, :]
+                inside = _inside(poly, pts)
+                dist = np.where(inside, _edge_distance(poly, pts), -1.0)
+                j = np.argmax(dist, axis=1)
+                found = dist[np.arange(len(idx)), j]
+                better = found > depth
+                best[better] = pts[np.arange(len(idx)), j][better]
+                depth[better] = found[better]
+                centre = best.copy()
+                half = half * (2.5 / (n - 1))
+            for m, i in enumerate(idx):
+                out[i] = ((float(best[m, 0]), float(best[m, 1])), float(max(depth[m], 0.0)))
+    return out
+
+
+def label_point(outline, rounds=4, n=16):
+    """:func:`label_points` for one outline: ((x, y), depth)."""
+    return label_points([outline], rounds, n)[0]
 
 
 def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
@@ -166,21 +183,23 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
             raise PanelError(f"grain must be a non-zero 3D direction, not {grain!r}")
         g = g / np.linalg.norm(g)
     drawings = []
+    angles = []
     for p in panel_set.panels:
         angle = 0.0
         if g is not None:
-            R = p.frame[:, :3]
-            gl = R @ g
+            gl = p.frame[:, :3] @ g
             if math.hypot(gl[0], gl[1]) < 1e-6:
                 raise PanelError(f"panel {p.id}: the grain direction is perpendicular to it")
             angle = math.atan2(gl[1], gl[0])
+        angles.append(angle)
+    labels = label_points([_rot(p.flat_bottom, a) for p, a in zip(panel_set.panels, angles)])
+    for p, angle, ((lx, ly), depth) in zip(panel_set.panels, angles, labels):
         cut = _rot(p.flat_bottom, angle)
         top = _rot(p.flat_top, angle)
         fp = p.footprint()
         if fp.geom_type != "Polygon":
             fp = fp.convex_hull
         foot = _ccw(_rot(np.asarray(fp.exterior.coords)[:-1], angle))
-        (lx, ly), depth = label_point(cut)
         area = 0.5 * abs(np.dot(cut[:, 0], np.roll(cut[:, 1], -1)) -
                          np.dot(cut[:, 1], np.roll(cut[:, 0], -1)))
         h = label_height if label_height is not None else 0.1 * math.sqrt(area)
