@@ -395,3 +395,15 @@ def test_cli_panels_bad_input_exit_2(facet_command, tmp_path, args, text):
     assert done.returncode == 2, (done.stdout, done.stderr)
     assert text in done.stderr
     assert "Traceback" not in done.stderr
+
+
+def test_step_says_clearly_when_freecad_is_missing(monkeypatch):
+    import facet.step as step
+
+    monkeypatch.setitem(sys.modules, "FreeCAD", None)
+    monkeypatch.setattr(step, "_CANDIDATES", ())
+    monkeypatch.delenv("FREECAD_LIB", raising=False)
+    with pytest.raises(step.FreeCADMissing, match="STEP export needs FreeCAD") as info:
+        step.import_freecad()
+    assert "\n" not in str(info.value)
+    assert not isinstance(info.value, facet.InputError)  # exit 1 on the command line, not 2
