@@ -129,6 +129,8 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None):
             for sgn in (1, -1):
                 msp.add_line(b.tolist(), (b - size * u + sgn * 0.5 * size * n).tolist(),
                              dxfattribs={"layer": "GRAIN"})
+    if not docs:  # nothing placed: still a valid (empty) drawing, so no stale file remains
+        docs[0] = new_doc()
     written = []
     for key in sorted(docs):
         doc = docs[key]
