@@ -339,7 +339,10 @@ typedef struct facet_panel_result {
  * neighbours, or a gap/bevel that consumes an edge of the outline; names the
  * face and corner), FACET_ERROR_CANCELLED. Returns
  * FACET_WARNING_PANEL_NON_MANIFOLD when edges with more than two faces were
- * treated as boundary. result may be NULL. */
+ * treated as boundary. result may be NULL. Unlike the general contract, a
+ * failing call may have written part of the outputs (except on
+ * FACET_ERROR_INVALID_ARGUMENT): discard them. Serial and O(corners log
+ * corners); deterministic. */
 facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *options,
                           facet_panel_output *out, facet_panel_result *result,
                           facet_error *error);
