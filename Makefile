@@ -15,7 +15,8 @@ PREFIX ?= $(HOME)/.local
 JOBS ?= 2
 
 PKGS_BUILD = gcc make cmake pkg-config libsuitesparse-dev liblapack-dev python3-dev python3-numpy
-PKGS_PYTHON = python3-pytest python3-numpy python3-scipy python3-shapely python3-ezdxf
+PKGS_PYTHON = python3-pytest python3-numpy python3-scipy python3-shapely python3-ezdxf \
+              python3-matplotlib python3-pynest2d
 PKGS_FREECAD = freecad xvfb xauth
 ENSURE = sh tools/ensure-packages.sh
 
@@ -23,7 +24,7 @@ CORE = $(BUILD)/libcore/.built
 FC_ENV = sh tests/fc_env.sh
 
 .PHONY: all build deps deps-build deps-test test test-c test-python test-freecad test-gui \
-        demo bench install uninstall clean
+        demo bench bench-panels install uninstall clean
 
 all: build
 
@@ -63,6 +64,9 @@ bench: build
 	$(BUILD)/libcore/bench/bench_planarize --runs 5 --json $(OUT)/bench.json
 	$(BUILD)/libcore/bench/bench_surface --runs 5 --json $(OUT)/bench_surface.json
 	$(BUILD)/libcore/bench/bench_lift --runs 5 --json $(OUT)/bench_lift.json
+
+bench-panels: build
+	$(PYTHON) tools/bench_panels.py --panels 10000 --out $(OUT)/bench_panels
 
 install: build
 	sh tools/install.sh "$(PREFIX)" "$(PYTHON)"

@@ -62,7 +62,11 @@ extern "C" {
     X(FACET_ERROR_BAD_WEIGHT, -21, "weight not finite and > 0")                       \
     X(FACET_ERROR_BAD_TARGET, -22, "target height not finite")                        \
     X(FACET_WARNING_TRIVIAL_LIFTING, 10, "plan admits only the trivial liftings")     \
-    X(FACET_WARNING_PLANARITY, 11, "lifted faces not planar to 1e-9")
+    X(FACET_WARNING_PLANARITY, 11, "lifted faces not planar to 1e-9") \
+    X(FACET_ERROR_NOT_PLANAR, -30, "faces not planar within the tolerance")           \
+    X(FACET_ERROR_NOT_ORIENTABLE, -31, "faces cannot be oriented consistently")       \
+    X(FACET_ERROR_PANEL_GEOMETRY, -32, "panel outline degenerate or consumed")        \
+    X(FACET_WARNING_PANEL_NON_MANIFOLD, 20, "non-manifold edges treated as boundary")
 
 typedef enum facet_status {
 #define FACET_STATUS_ENUM(name, value, text) name = value,
@@ -521,6 +525,129 @@ facet_status facet_lifter_basis(facet_lifter *lifter, facet_basis_kind kind, int
 
 /* The last error's message of a handle ("" when none). */
 const char *facet_lifter_message(const facet_lifter *lifter);
+/* ------------------------------------------------------------------------ */
+/* Panels                                                                    */
+/* ------------------------------------------------------------------------ */
+
+/* Panel geometry for a planar polygon mesh: each face becomes a solid slab
+ * of the given thickness whose top and bottom outlines are the intersections
+ * of its two offset planes with its edge planes, so every side face is
+ * planar and the solid is a true polyhedron.
+ *
+ * Orientation: faces are oriented consistently by propagation across
+ * manifold edges (two faces per edge); each connected part keeps the winding
+ * of its lowest-numbered face, all reversed when flip is set. A face's
+ * oriented normal n follows its consistent winding (counter-clockwise seen
+ * from +n). "Top" is the +n side.
+ *
+ * Offset side: OUTER puts the panel on the +n side of the mesh surface (the
+ * bottom face lies on the mesh), INNER on the -n side (the top face lies on
+ * it), CENTER half on each side.
+ *
+ * Edge planes: SQUARE is perpendicular to the panel and contains the edge;
+ * BISECTOR (mitred) is the plane through the edge that halves the angle
+ * between the two panels' planes, so neighbours meet without overlap.
+ * Boundary and non-manifold edges are always square. A joint gap g moves
+ * every edge plane by g/2 along its inward normal: between two mitred
+ * neighbours the joint is a slot of constant width g; with square edges each
+ * edge line moves g/2 into its panel, measured in the panel's plane.
+ *
+ * Angles (radians), per face corner k, for the edge from corner k to k+1:
+ *  dihedral  angle between the two panels on their bottom (-n) side: pi
+ *            when flat, below pi where the top side is convex (a ridge);
+ *            0 on boundary edges (neighbor -1);
+ *  bevel     angle of the side face from square to the panel: 0 for square
+ *            edges, positive when the top face is the larger (the side
+ *            leans outwards going up); half the fold for mitred edges.
+ *
+ * Node deviation: at each vertex the bisector planes of its edges (square on
+ * the boundary) all pass through it; they share a line (a torsion-free node,
+ * which can be built with a straight node axis) when their normals are
+ * coplanar. The deviation is the largest angle between an edge plane's
+ * normal and the plane best fitting those normals (radians; 0 for vertices
+ * with fewer than 3 edges).
+ *
+ * Unfold frame: per face a rigid transform, 12 doubles R (row-major 3x3) and
+ * t, with flat = R x + t: corner 0 of the face (projected onto its plane)
+ * goes to the origin, the edge from corner 0 to corner 1 along +x, the
+ * oriented normal to +z. A face whose winding was reversed (reversed[f] = 1)
+ * then runs clockwise in the xy plane.
+ *
+ * Coordinates are centred and scaled inside. */
+
+typedef enum facet_panel_offset {
+    FACET_PANEL_OFFSET_OUTER = 0,
+    FACET_PANEL_OFFSET_INNER = 1,
+    FACET_PANEL_OFFSET_CENTER = 2
+} facet_panel_offset;
+
+typedef enum facet_panel_edge {
+    FACET_PANEL_EDGE_SQUARE = 0,
+    FACET_PANEL_EDGE_BISECTOR = 1
+} facet_panel_edge;
+
+/* Progress: faces done of total; return nonzero to cancel
+ * (FACET_ERROR_CANCELLED, outputs unspecified). Called from the calling thread. */
+typedef int (*facet_count_progress_fn)(void *user, int64_t done, int64_t total);
+
+typedef struct facet_panel_options {
+    double thickness;          /* > 0, model units */
+    facet_panel_offset offset;
+    double gap;                /* >= 0, joint width, model units */
+    facet_panel_edge edge;
+    int32_t flip;              /* nonzero: reverse every face's orientation */
+    double planarity_tol_abs;  /* a face is planar when its vertices are within */
+    double planarity_tol_rel;  /* max(tol_abs, tol_rel * mean edge) of its plane */
+    facet_count_progress_fn progress; /* may be NULL */
+    void *progress_user;
+} facet_panel_options;
+
+/* thickness 1, outer, gap 0, square, no flip, tol_abs 0, tol_rel 1e-6. */
+void facet_panel_options_default(facet_panel_options *options);
+
+/* Caller-allocated outputs; any pointer may be NULL. nc = face_start[n_faces]
+ * (the number of corners). */
+typedef struct facet_panel_output {
+    double *plane;          /* 4*n_faces: oriented unit normal, d (n.x + d = 0) */
+    double *top;            /* 3*nc: top outline corner of each face corner */
+    double *bottom;         /* 3*nc: bottom outline corner */
+    double *frame;          /* 12*n_faces: unfold frame R, t */
+    int32_t *reversed;      /* n_faces: 1 when the face's winding was reversed */
+    int32_t *neighbor;      /* nc: face across edge k (corner k to k+1), or -1 */
+    double *dihedral;       /* nc, radians */
+    double *bevel;          /* nc, radians */
+    double *node_deviation; /* n_vertices, radians */
+    double *planarity;      /* n_faces: largest vertex distance from its plane */
+    int32_t *nonplanar;     /* n_faces: indices of the faces above tolerance */
+} facet_panel_output;
+
+typedef struct facet_panel_result {
+    int64_t n_nonplanar;          /* faces above the planarity tolerance */
+    int64_t n_non_manifold_edges; /* edges with more than two faces */
+    int64_t n_reversed;           /* faces whose winding was reversed */
+    int32_t n_components;         /* edge-connected parts */
+    int64_t worst_node;           /* vertex of max_node_deviation, or -1 */
+    double max_node_deviation;    /* radians */
+    double max_planarity;         /* model units */
+    double seconds;
+} facet_panel_result;
+
+/* Computes the panels. The mesh must be valid (facet_mesh_validate); sizes
+ * and indices are checked here. Errors: FACET_ERROR_INVALID_ARGUMENT (bad
+ * option), FACET_ERROR_NOT_PLANAR (the message names the count and the first
+ * faces; planarity, nonplanar and *result are filled),
+ * FACET_ERROR_NOT_ORIENTABLE (names the face where orientation conflicts),
+ * FACET_ERROR_PANEL_GEOMETRY (consecutive collinear edges, folded-back
+ * neighbours, or a gap/bevel that consumes an edge of the outline; names the
+ * face and corner), FACET_ERROR_CANCELLED. Returns
+ * FACET_WARNING_PANEL_NON_MANIFOLD when edges with more than two faces were
+ * treated as boundary. result may be NULL. Unlike the general contract, a
+ * failing call may have written part of the outputs (except on
+ * FACET_ERROR_INVALID_ARGUMENT): discard them. Serial and O(corners log
+ * corners); deterministic. */
+facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *options,
+                          facet_panel_output *out, facet_panel_result *result,
+                          facet_error *error);
 
 #ifdef __cplusplus
 }

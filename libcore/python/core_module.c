@@ -132,7 +132,7 @@ static int core_exec(PyObject *module)
     if (py_add_planarize(module) < 0)
         return -1;
     if (py_add_surface(module) < 0 || py_add_quality(module) < 0 || py_add_cleanup(module) < 0 ||
-        py_add_lift(module) < 0)
+        py_add_lift(module) < 0 || py_add_panel(module) < 0)
         return -1;
     return 0;
 }

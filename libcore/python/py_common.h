@@ -60,5 +60,6 @@ int py_add_surface(PyObject *module);
 int py_add_quality(PyObject *module);
 int py_add_cleanup(PyObject *module);
 int py_add_lift(PyObject *module);
+int py_add_panel(PyObject *module);
 
 #endif

@@ -210,6 +210,7 @@ def run(out_dir):
     check(not box.ViewObject.Visibility, "the box is hidden")
     App.closeDocument(doc.Name)
     check_lifting(check, out_dir)
+    check_panels(check, out_dir)
     return check
 
 
@@ -359,6 +360,71 @@ def check_lifting(check, out_dir):
               and not lifting.Drags, "Cancel restores the roof")
     if Gui.Control.activeDialog():
         Gui.Control.closeDialog()
+
+
+def check_panels(check, out_dir):
+    """Facet_PanelSet and Facet_CutSheets on a planar quad mesh, with screenshots."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import numpy as np
+
+    import facetwb
+
+    sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
+    from panel_meshes import translational
+
+    for name in ("Facet_PanelSet", "Facet_CutSheets"):
+        check(name in Gui.listCommands(), f"command {name} is registered")
+    doc = App.newDocument("Panels")
+    source = facetwb.make_polymesh(translational(), label="translational")
+    doc.recompute()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(source)
+    Gui.runCommand("Facet_PanelSet")
+    doc.recompute()
+    sets = [obj for obj in doc.Objects if facetwb.is_panelset(obj)]
+    if not check(len(sets) == 1, "Facet_PanelSet added one PanelSet"):
+        return
+    ps = sets[0]
+    check(ps.isValid(), f"the PanelSet is valid ({ps.getStatusString()})")
+    check(len(ps.Shape.Solids) == 20 and all(s.isValid() for s in ps.Shape.Solids),
+          "it holds 20 valid solids")
+    check(ps.ViewObject.Proxy.getIcon().endswith("Facet_PanelSet.svg"), "it has its icon")
+    source.ViewObject.Visibility = False
+    Gui.Selection.clearSelection()
+    ps.ViewObject.DisplayMode = "Flat Lines"
+    view = Gui.ActiveDocument.ActiveView
+    path = os.path.join(out_dir, "panels.png")
+    save_view(view, path)
+    pixels = image_pixels(path)
+    colours = np.unique(pixels.reshape(-1, 3)[::7], axis=0).shape[0]
+    check(colours > 50, f"panels: not a uniform image ({colours} colours)")
+    middle = pixels[HEIGHT // 4: 3 * HEIGHT // 4, WIDTH // 4: 3 * WIDTH // 4].astype(int)
+    # the panels are grey to light blue-grey; FreeCAD's background gradient is a clearly
+    # blue-violet (blue channel 25+ above red) in the middle of the view
+    greyish = int((np.abs(middle[..., 2] - middle[..., 0]) < 20).sum())
+    check(greyish > 0.15 * middle.size / 3, f"panels: the solids are drawn ({greyish} pixels)")
+
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(ps)
+    Gui.runCommand("Facet_CutSheets")
+    doc.recompute()
+    sheets = [obj for obj in doc.Objects if facetwb.is_cutsheets(obj)]
+    if not check(len(sheets) == 1, "Facet_CutSheets added one CutSheets object"):
+        return
+    cut = sheets[0]
+    check(cut.isValid(), f"the CutSheets object is valid ({cut.getStatusString()})")
+    check(cut.SheetCount > 0 and not cut.Unplaced, f"{cut.SheetCount} sheets, none unplaced")
+    ps.ViewObject.Visibility = False
+    Gui.Selection.clearSelection()  # selected outlines are drawn in the highlight colour
+    view.viewTop()
+    view.fitAll()
+    Gui.updateGui()
+    path = os.path.join(out_dir, "cutsheets.png")
+    view.saveImage(path, WIDTH, HEIGHT, "Current")
+    pixels = image_pixels(path).astype(int)
+    red = int(((pixels[..., 0] > 150) & (pixels[..., 1] < 90) & (pixels[..., 2] < 90)).sum())
+    check(red > 500, f"cutsheets: the red cut outlines are drawn ({red} pixels)")
     App.closeDocument(doc.Name)
 
 

@@ -47,14 +47,18 @@ __all__ = [
     "LiftResult",
     "LiftingSpace",
     "lifting_space",
+    "panels",
+    "PanelSet",
+    "PanelError",
     "__version__",
 ]
 
 _SOLVER_NAMES = ("planarize", "Planarizer", "PlanarizeResult", "planarity", "PlanarityReport",
                  "Surface", "quality", "QualityReport", "cleanup", "CleanupResult",
-                 "lift", "Lifter", "LiftResult", "LiftingSpace", "lifting_space")
+                 "lift", "Lifter", "LiftResult", "LiftingSpace", "lifting_space",
+                 "panels", "PanelSet", "PanelError")
 _SOLVER_MODULES = ("facet.planarity", "facet.planarize", "facet._core", "facet.surface",
-                   "facet.quality", "facet.cleanup", "facet.lift")
+                   "facet.quality", "facet.cleanup", "facet.lift", "facet.panels")
 _solver_import_error = None
 
 try:
@@ -64,6 +68,7 @@ try:
     from facet.quality import QualityReport, quality
     from facet.cleanup import CleanupResult, cleanup
     from facet.lift import Lifter, LiftingSpace, LiftResult, lift, lifting_space
+    from facet.panels import PanelError, PanelSet, panels
 except ImportError as exc:  # the compiled core is not built (yet)
     core_missing = exc.name == "facet" and "_core" in str(exc)
     if exc.name not in _SOLVER_MODULES and not core_missing:

@@ -32,7 +32,7 @@ EXIT_INTERRUPTED = 130
 #: status`` as each parser's default. Keep their module-level imports light:
 #: every ``facet`` command imports them all. Bad input is raised as
 #: :class:`facet.errors.InputError` (exit status 2).
-COMMAND_MODULES = ("facet.cli_cleanup", "facet.cli_lift")
+COMMAND_MODULES = ("facet.cli_cleanup", "facet.cli_lift", "facet.cli_panels")
 
 #: How each stop reason of the solver is told to the designer.
 STOP_REASONS = {

@@ -36,6 +36,10 @@ _API = {
     "is_plan_graph": "facetwb.objects.plangraph",
     "is_lifting": "facetwb.objects.lifting",
     "lifting_summary": "facetwb.objects.lifting",
+    "make_panelset": "facetwb.objects.panelset",
+    "make_cutsheets": "facetwb.objects.panelset",
+    "is_panelset": "facetwb.objects.panelset",
+    "is_cutsheets": "facetwb.objects.panelset",
 }
 
 __all__ = sorted(_API)

@@ -3,7 +3,8 @@
 
 #: Commands in toolbar and menu order.
 COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize", "Facet_Cleanup",
-            "Facet_PlanGraph", "Facet_Lift", "Facet_LiftMix"]
+            "Facet_PlanGraph", "Facet_Lift", "Facet_LiftMix", "Facet_PanelSet",
+            "Facet_CutSheets"]
 
 
 def register():
@@ -12,9 +13,10 @@ def register():
 
     from facetwb.commands.cleanup import CommandCleanup
     from facetwb.commands.import_mesh import CommandImportMesh
+    from facetwb.commands.lift import CommandLift, CommandLiftMix, CommandPlanGraph
+    from facetwb.commands.panels import CommandCutSheets, CommandPanelSet
     from facetwb.commands.planarize import CommandPlanarize
     from facetwb.commands.to_polymesh import CommandToPolyMesh
-    from facetwb.commands.lift import CommandLift, CommandLiftMix, CommandPlanGraph
 
     known = set(Gui.listCommands())
     for name, command in (("Facet_ImportMesh", CommandImportMesh()),
@@ -23,6 +25,8 @@ def register():
                           ("Facet_Cleanup", CommandCleanup()),
                           ("Facet_PlanGraph", CommandPlanGraph()),
                           ("Facet_Lift", CommandLift()),
-                          ("Facet_LiftMix", CommandLiftMix())):
+                          ("Facet_LiftMix", CommandLiftMix()),
+                          ("Facet_PanelSet", CommandPanelSet()),
+                          ("Facet_CutSheets", CommandCutSheets())):
         if name not in known:
             Gui.addCommand(name, command)

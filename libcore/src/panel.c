@@ -1,0 +1,605 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* Panel geometry: consistent orientation, offset and edge planes, top and
+ * bottom outlines, per-edge angles, node (torsion) deviation, unfold frames.
+ * See the Panels section of facet.h for the contract. */
+#include "internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+static void cross3(const double a[3], const double b[3], double c[3])
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static double norm3(const double a[3])
+{
+    return sqrt(dot3(a, a));
+}
+
+void facet_panel_options_default(facet_panel_options *options)
+{
+    memset(options, 0, sizeof *options);
+    options->thickness = 1.0;
+    options->offset = FACET_PANEL_OFFSET_OUTER;
+    options->gap = 0.0;
+    options->edge = FACET_PANEL_EDGE_SQUARE;
+    options->flip = 0;
+    options->planarity_tol_abs = 0.0;
+    options->planarity_tol_rel = 1e-6;
+}
+
+/* A half-edge keyed by its undirected edge, for grouping. */
+typedef struct {
+    uint64_t key;
+    int64_t corner; /* global corner index */
+} half_edge;
+
+static int half_edge_cmp(const void *pa, const void *pb)
+{
+    const half_edge *a = pa, *b = pb;
+    if (a->key != b->key)
+        return a->key < b->key ? -1 : 1;
+    return (a->corner > b->corner) - (a->corner < b->corner);
+}
+
+/* Workspace of one call. */
+typedef struct {
+    const facet_mesh *mesh;
+    int64_t nc;
+    int32_t *corner_face; /* nc */
+    int32_t *nbr;         /* nc: neighbour face across edge k, -1 */
+    int32_t *nbr_corner;  /* nc: the neighbour's corner of the same edge, -1 */
+    int8_t *sign;         /* n_faces: +1 keep winding, -1 reverse */
+    double *xyz;          /* normalized coordinates, 3*n_vertices */
+    double *plane;        /* 4*n_faces, normalized, oriented */
+    double *eplane;       /* 4*nc: inward edge plane p.x = d (p unit) */
+    double *fold;         /* nc: signed fold angle at the edge (>0 convex on top) */
+} work;
+
+static void work_free(work *w)
+{
+    free(w->corner_face);
+    free(w->nbr);
+    free(w->nbr_corner);
+    free(w->sign);
+    free(w->xyz);
+    free(w->plane);
+    free(w->eplane);
+    free(w->fold);
+}
+
+/* The next corner of a corner within its face, in input order. */
+static int64_t next_corner(const facet_mesh *m, int32_t f, int64_t c)
+{
+    return c + 1 < m->face_start[f + 1] ? c + 1 : m->face_start[f];
+}
+
+static int64_t prev_corner(const facet_mesh *m, int32_t f, int64_t c)
+{
+    return c > m->face_start[f] ? c - 1 : m->face_start[f + 1] - 1;
+}
+
+/* Groups half-edges into edges: neighbours across manifold edges. */
+static facet_status build_adjacency(work *w, int64_t *n_non_manifold, facet_error *error)
+{
+    const facet_mesh *m = w->mesh;
+    half_edge *he = malloc((size_t)(w->nc ? w->nc : 1) * sizeof *he);
+    if (!he)
+        return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory (edge table)");
+    for (int32_t f = 0; f < m->n_faces; ++f)
+        for (int64_t c = m->face_start[f]; c < m->face_start[f + 1]; ++c) {
+            uint64_t a = (uint64_t)(uint32_t)m->face_vertices[c];
+            uint64_t b = (uint64_t)(uint32_t)m->face_vertices[next_corner(m, f, c)];
+            he[c].key = a < b ? (a << 32) | b : (b << 32) | a;
+            he[c].corner = c;
+            w->corner_face[c] = f;
+            w->nbr[c] = -1;
+            w->nbr_corner[c] = -1;
+        }
+    qsort(he, (size_t)w->nc, sizeof *he, half_edge_cmp);
+    *n_non_manifold = 0;
+    for (int64_t i = 0; i < w->nc;) {
+        int64_t j = i + 1;
+        while (j < w->nc && he[j].key == he[i].key)
+            ++j;
+        if (j - i == 2) {
+            int64_t c0 = he[i].corner, c1 = he[i + 1].corner;
+            if (w->corner_face[c0] != w->corner_face[c1]) {
+                w->nbr[c0] = w->corner_face[c1];
+                w->nbr_corner[c0] = (int32_t)c1;
+                w->nbr[c1] = w->corner_face[c0];
+                w->nbr_corner[c1] = (int32_t)c0;
+            }
+        } else if (j - i > 2) {
+            ++*n_non_manifold;
+        }
+        i = j;
+    }
+    free(he);
+    return FACET_OK;
+}
+
+/* Propagates a consistent winding across manifold edges (breadth first). */
+static facet_status orient(work *w, int flip, int32_t *n_components, facet_error *error)
+{
+    const facet_mesh *m = w->mesh;
+    int32_t *queue = malloc((size_t)m->n_faces * sizeof *queue);
+    if (!queue)
+        return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory (queue)");
+    memset(w->sign, 0, (size_t)m->n_faces);
+    *n_components = 0;
+    for (int32_t seed = 0; seed < m->n_faces; ++seed) {
+        if (w->sign[seed])
+            continue;
+        ++*n_components;
+        w->sign[seed] = flip ? -1 : 1;
+        int32_t head = 0, tail = 0;
+        queue[tail++] = seed;
+        while (head < tail) {
+            const int32_t f = queue[head++];
+            for (int64_t c = m->face_start[f]; c < m->face_start[f + 1]; ++c) {
+                const int32_t h = w->nbr[c];
+                if (h < 0)
+                    continue;
+                /* Same input direction on both sides means the windings
+                 * disagree: the neighbour needs the opposite sign. */
+                const int64_t ch = w->nbr_corner[c];
+                const int same = m->face_vertices[c] == m->face_vertices[ch];
+                const int8_t want = (int8_t)(same ? -w->sign[f] : w->sign[f]);
+                if (!w->sign[h]) {
+                    w->sign[h] = want;
+                    queue[tail++] = h;
+                } else if (w->sign[h] != want) {
+                    free(queue);
+                    return facet_fail(error, FACET_ERROR_NOT_ORIENTABLE, h,
+                                      m->face_vertices[c],
+                                      "faces %d and %d cannot be oriented consistently (the "
+                                      "surface is non-orientable, e.g. a Moebius strip)",
+                                      (int)f, (int)h);
+                }
+            }
+        }
+    }
+    free(queue);
+    return FACET_OK;
+}
+
+/* Solves the 3x3 system rows a, b, c . x = (da, db, dc). Returns the
+ * determinant of the unit-normal rows (0 when singular). */
+static double solve3(const double a[3], double da, const double b[3], double db,
+                     const double c[3], double dc, double x[3])
+{
+    double bc[3], ca[3], ab[3];
+    cross3(b, c, bc);
+    cross3(c, a, ca);
+    cross3(a, b, ab);
+    const double det = dot3(a, bc);
+    if (fabs(det) < 1e-12)
+        return 0.0;
+    for (int i = 0; i < 3; ++i)
+        x[i] = (da * bc[i] + db * ca[i] + dc * ab[i]) / det;
+    return det;
+}
+
+facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *options,
+                          facet_panel_output *out, facet_panel_result *result,
+                          facet_error *error)
+{
+    const double t_start = facet_now();
+    facet_error_clear(error);
+    facet_status status = facet_mesh_check_arrays(mesh, error);
+    if (status < 0)
+        return status;
+    status = facet_mesh_check_indices(mesh, error);
+    if (status < 0)
+        return status;
+    if (!options || !out)
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
+                          "options and out must not be NULL");
+    const facet_panel_options *o = options;
+    if (!(o->thickness > 0.0) || !isfinite(o->thickness))
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
+                          "thickness must be a finite number > 0, not %.17g", o->thickness);
+    if (!(o->gap >= 0.0) || !isfinite(o->gap))
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
+                          "gap must be a finite number >= 0, not %.17g", o->gap);
+    if (o->offset != FACET_PANEL_OFFSET_OUTER && o->offset != FACET_PANEL_OFFSET_INNER &&
+        o->offset != FACET_PANEL_OFFSET_CENTER)
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
+                          "offset must be outer, inner or center (%d)", (int)o->offset);
+    if (o->edge != FACET_PANEL_EDGE_SQUARE && o->edge != FACET_PANEL_EDGE_BISECTOR)
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
+                          "edge must be square or bisector (%d)", (int)o->edge);
+    if (!(o->planarity_tol_abs >= 0.0) || !(o->planarity_tol_rel >= 0.0) ||
+        !isfinite(o->planarity_tol_abs) || !isfinite(o->planarity_tol_rel))
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
+                          "planarity tolerances must be finite numbers >= 0");
+
+    const facet_mesh *m = mesh;
+    const int32_t nf = m->n_faces, nv = m->n_vertices;
+    work w;
+    memset(&w, 0, sizeof w);
+    w.mesh = m;
+    w.nc = m->face_start[nf];
+    const size_t nc = (size_t)w.nc;
+    w.corner_face = malloc(nc * sizeof *w.corner_face);
+    w.nbr = malloc(nc * sizeof *w.nbr);
+    w.nbr_corner = malloc(nc * sizeof *w.nbr_corner);
+    w.sign = malloc((size_t)nf);
+    w.xyz = malloc(3 * (size_t)nv * sizeof *w.xyz);
+    w.plane = malloc(4 * (size_t)nf * sizeof *w.plane);
+    w.eplane = malloc(4 * nc * sizeof *w.eplane);
+    w.fold = malloc(nc * sizeof *w.fold);
+    if (!w.corner_face || !w.nbr || !w.nbr_corner || !w.sign || !w.xyz || !w.plane ||
+        !w.eplane || !w.fold) {
+        work_free(&w);
+        return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1,
+                          "out of memory for %d faces", (int)nf);
+    }
+    facet_panel_result r;
+    memset(&r, 0, sizeof r);
+    r.worst_node = -1;
+
+    /* Centre and scale. */
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int32_t v = 0; v < nv; ++v)
+        for (int k = 0; k < 3; ++k) {
+            const double x = m->xyz[3 * v + k];
+            if (!isfinite(x)) {
+                work_free(&w);
+                return facet_fail(error, FACET_ERROR_NONFINITE, -1, v,
+                                  "vertex %d has a NaN or infinite coordinate", (int)v);
+            }
+            lo[k] = fmin(lo[k], x), hi[k] = fmax(hi[k], x);
+        }
+    double centre[3], scale = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        centre[k] = 0.5 * (lo[k] + hi[k]);
+        scale = fmax(scale, hi[k] - lo[k]);
+    }
+    if (!(scale > 0.0))
+        scale = 1.0;
+    const double inv = 1.0 / scale;
+    for (int32_t v = 0; v < nv; ++v)
+        for (int k = 0; k < 3; ++k)
+            w.xyz[3 * v + k] = (m->xyz[3 * v + k] - centre[k]) * inv;
+    const double th = o->thickness * inv, half_gap = 0.5 * o->gap * inv;
+
+    status = build_adjacency(&w, &r.n_non_manifold_edges, error);
+    if (status == FACET_OK)
+        status = orient(&w, o->flip != 0, &r.n_components, error);
+    if (status < 0) {
+        work_free(&w);
+        return status;
+    }
+
+    /* Planes and planarity. */
+    int64_t n_bad = 0;
+    for (int32_t f = 0; f < nf; ++f) {
+        const int32_t s = m->face_start[f], d = m->face_start[f + 1] - s;
+        double n[3], off, maxd;
+        const double mean_edge =
+            facet_face_measure(d, w.xyz, m->face_vertices + s, n, &off, &maxd, NULL);
+        /* Newell normal gives the winding's side. */
+        double nw[3] = {0, 0, 0};
+        for (int32_t k = 0; k < d; ++k) {
+            const double *p = w.xyz + 3 * m->face_vertices[s + k];
+            const double *q = w.xyz + 3 * m->face_vertices[s + (k + 1) % d];
+            nw[0] += (p[1] - q[1]) * (p[2] + q[2]);
+            nw[1] += (p[2] - q[2]) * (p[0] + q[0]);
+            nw[2] += (p[0] - q[0]) * (p[1] + q[1]);
+        }
+        double sg = dot3(n, nw) < 0.0 ? -1.0 : 1.0;
+        sg *= w.sign[f];
+        w.plane[4 * f + 0] = sg * n[0];
+        w.plane[4 * f + 1] = sg * n[1];
+        w.plane[4 * f + 2] = sg * n[2];
+        w.plane[4 * f + 3] = sg * off;
+        const double dist = maxd * scale;
+        if (out->planarity)
+            out->planarity[f] = dist;
+        r.max_planarity = fmax(r.max_planarity, dist);
+        const double tol = fmax(o->planarity_tol_abs, o->planarity_tol_rel * mean_edge * scale);
+        if (dist > tol) {
+            if (out->nonplanar)
+                out->nonplanar[n_bad] = f;
+            ++n_bad;
+        }
+        if (w.sign[f] < 0)
+            ++r.n_reversed;
+        if (out->reversed)
+            out->reversed[f] = w.sign[f] < 0;
+    }
+    r.n_nonplanar = n_bad;
+    if (n_bad > 0) {
+        char list[160] = "";
+        size_t used = 0;
+        int64_t shown = 0;
+        for (int32_t f = 0; f < nf && shown < 5; ++f) {
+            const int32_t s = m->face_start[f];
+            double n[3], maxd;
+            const double me =
+                facet_face_measure(m->face_start[f + 1] - s, w.xyz, m->face_vertices + s, n,
+                                   NULL, &maxd, NULL);
+            const double tol = fmax(o->planarity_tol_abs, o->planarity_tol_rel * me * scale);
+            if (maxd * scale > tol) {
+                int len = snprintf(list + used, sizeof list - used, "%s%d (%.3g)",
+                                   shown ? ", " : "", (int)f, maxd * scale);
+                if (len > 0 && (size_t)len < sizeof list - used)
+                    used += (size_t)len;
+                ++shown;
+            }
+        }
+        work_free(&w);
+        r.seconds = facet_now() - t_start;
+        if (result)
+            *result = r;
+        return facet_fail(error, FACET_ERROR_NOT_PLANAR, -1, -1,
+                          "%lld face%s not planar within the tolerance: %s%s; planarize first",
+                          (long long)n_bad, n_bad == 1 ? " is" : "s are", list,
+                          n_bad > shown ? ", ..." : "");
+    }
+
+    /* Edge planes and fold angles, per input corner (edge corner -> next). */
+    for (int32_t f = 0; f < nf; ++f) {
+        const double *nf_ = w.plane + 4 * f;
+        const double sg = w.sign[f];
+        for (int64_t c = m->face_start[f]; c < m->face_start[f + 1]; ++c) {
+            const double *p = w.xyz + 3 * m->face_vertices[c];
+            const double *q = w.xyz + 3 * m->face_vertices[next_corner(m, f, c)];
+            /* Consistent direction of this edge: along the winding. */
+            double e[3] = {sg * (q[0] - p[0]), sg * (q[1] - p[1]), sg * (q[2] - p[2])};
+            /* Project onto the face's plane, then normalise. */
+            const double en = dot3(e, nf_);
+            for (int k = 0; k < 3; ++k)
+                e[k] -= en * nf_[k];
+            const double le = norm3(e);
+            if (!(le > 1e-14)) {
+                work_free(&w);
+                return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
+                                  "face %d: edge from vertex %d has no length in the face's plane",
+                                  (int)f, (int)m->face_vertices[c]);
+            }
+            for (int k = 0; k < 3; ++k)
+                e[k] /= le;
+            double mi[3]; /* inward in the face's plane */
+            cross3(nf_, e, mi);
+            double pl[3] = {mi[0], mi[1], mi[2]};
+            double fold = 0.0;
+            const int32_t h = w.nbr[c];
+            if (h >= 0) {
+                const double *nh = w.plane + 4 * h;
+                double x[3];
+                cross3(nf_, nh, x);
+                const double sn = norm3(x), cs = dot3(nf_, nh);
+                const double psi = atan2(sn, cs);
+                /* Convex on top (a ridge) when the neighbour's normal leans
+                 * away from this face's interior. */
+                fold = dot3(nh, mi) < 0.0 ? psi : -psi;
+                if (psi > PI - 1e-6) {
+                    work_free(&w);
+                    return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
+                                      "faces %d and %d fold back onto each other at vertex %d",
+                                      (int)f, (int)h, (int)m->face_vertices[c]);
+                }
+                if (o->edge == FACET_PANEL_EDGE_BISECTOR && psi > 1e-12) {
+                    double avg[3] = {nf_[0] + nh[0], nf_[1] + nh[1], nf_[2] + nh[2]};
+                    double b[3];
+                    cross3(e, avg, b);
+                    const double lb = norm3(b);
+                    for (int k = 0; k < 3; ++k)
+                        b[k] /= lb;
+                    if (dot3(b, mi) < 0.0)
+                        for (int k = 0; k < 3; ++k)
+                            b[k] = -b[k];
+                    pl[0] = b[0], pl[1] = b[1], pl[2] = b[2];
+                }
+            }
+            /* The edge line on the face's plane: p projected. */
+            const double pd = dot3(nf_, p) + nf_[3];
+            const double p0[3] = {p[0] - pd * nf_[0], p[1] - pd * nf_[1], p[2] - pd * nf_[2]};
+            w.eplane[4 * c + 0] = pl[0];
+            w.eplane[4 * c + 1] = pl[1];
+            w.eplane[4 * c + 2] = pl[2];
+            w.eplane[4 * c + 3] = dot3(pl, p0) + half_gap;
+            w.fold[c] = fold;
+            if (out->neighbor)
+                out->neighbor[c] = h;
+            if (out->dihedral)
+                out->dihedral[c] = h >= 0 ? PI - fold : 0.0;
+            if (out->bevel)
+                out->bevel[c] = atan2(dot3(pl, nf_), dot3(pl, mi));
+        }
+        if (o->progress && (f & 1023) == 1023 && o->progress(o->progress_user, f + 1, 2 * (int64_t)nf)) {
+            work_free(&w);
+            return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
+        }
+    }
+
+    /* Offsets of the top and bottom planes from the mesh plane. */
+    double up = th, down = 0.0;
+    if (o->offset == FACET_PANEL_OFFSET_INNER)
+        up = 0.0, down = -th;
+    else if (o->offset == FACET_PANEL_OFFSET_CENTER)
+        up = 0.5 * th, down = -0.5 * th;
+
+    /* Outlines: each corner is where the top (bottom) plane meets the planes
+     * of the two edges at that corner. */
+    for (int32_t f = 0; f < nf; ++f) {
+        const double *n = w.plane + 4 * f;
+        const int32_t s = m->face_start[f], d = m->face_start[f + 1] - s;
+        for (int64_t c = s; c < s + d; ++c) {
+            const int64_t cp = prev_corner(m, f, c);
+            const double *a = w.eplane + 4 * cp, *b = w.eplane + 4 * c;
+            double xt[3], xb[3];
+            const double dt = solve3(n, up - n[3], a, a[3], b, b[3], xt);
+            const double db = solve3(n, down - n[3], a, a[3], b, b[3], xb);
+            if (dt == 0.0 || db == 0.0) {
+                work_free(&w);
+                return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
+                                  "face %d: the edges at vertex %d are collinear; remove the "
+                                  "vertex or split the face",
+                                  (int)f, (int)m->face_vertices[c]);
+            }
+            for (int k = 0; k < 3; ++k) {
+                if (out->top)
+                    out->top[3 * c + k] = xt[k] * scale + centre[k];
+                if (out->bottom)
+                    out->bottom[3 * c + k] = xb[k] * scale + centre[k];
+            }
+        }
+        /* Every edge of the offset outlines must keep its direction: a gap
+         * or bevel wider than the panel turns an edge around. */
+        for (int64_t c = s; c < s + d; ++c) {
+            const int64_t cn = next_corner(m, f, c);
+            const double *p = w.xyz + 3 * m->face_vertices[c];
+            const double *q = w.xyz + 3 * m->face_vertices[cn];
+            const double *a = w.eplane + 4 * prev_corner(m, f, c), *b = w.eplane + 4 * c,
+                         *bb = w.eplane + 4 * cn;
+            for (int side = 0; side < 2; ++side) {
+                const double h = side ? down : up;
+                double x0[3], x1[3];
+                solve3(n, h - n[3], a, a[3], b, b[3], x0);
+                solve3(n, h - n[3], b, b[3], bb, bb[3], x1);
+                const double ed[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+                const double od[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
+                if (!(dot3(ed, od) > 1e-9 * dot3(ed, ed))) {
+                    work_free(&w);
+                    return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
+                                      "face %d: the %s outline loses its edge from vertex %d "
+                                      "(gap %.6g or bevel too large for the panel)",
+                                      (int)f, side ? "bottom" : "top",
+                                      (int)m->face_vertices[c], o->gap);
+                }
+            }
+        }
+        if (out->plane) {
+            out->plane[4 * f + 0] = n[0];
+            out->plane[4 * f + 1] = n[1];
+            out->plane[4 * f + 2] = n[2];
+            out->plane[4 * f + 3] = n[3] * scale - dot3(n, centre);
+        }
+        if (out->frame) {
+            const double *p = w.xyz + 3 * m->face_vertices[s];
+            const double *q = w.xyz + 3 * m->face_vertices[s + 1];
+            const double pd = dot3(n, p) + n[3];
+            const double p0[3] = {p[0] - pd * n[0], p[1] - pd * n[1], p[2] - pd * n[2]};
+            double ex[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+            const double en = dot3(ex, n);
+            for (int k = 0; k < 3; ++k)
+                ex[k] -= en * n[k];
+            const double le = norm3(ex);
+            for (int k = 0; k < 3; ++k)
+                ex[k] /= le;
+            double ey[3];
+            cross3(n, ex, ey);
+            double *F = out->frame + 12 * f;
+            const double *rows[3] = {ex, ey, n};
+            /* flat = R (x - origin) with origin = p0 * scale + centre. */
+            for (int i = 0; i < 3; ++i) {
+                double org = 0.0;
+                for (int k = 0; k < 3; ++k) {
+                    F[3 * i + k] = rows[i][k];
+                    org += rows[i][k] * (p0[k] * scale + centre[k]);
+                }
+                F[9 + i] = -org;
+            }
+        }
+        if (o->progress && (f & 1023) == 1023 &&
+            o->progress(o->progress_user, nf + f + 1, 2 * (int64_t)nf)) {
+            work_free(&w);
+            return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
+        }
+    }
+
+    /* Node deviation from the bisector planes (the mesh's own property,
+     * whatever the edge mode): each undirected edge once. */
+    double *acc = calloc(7 * (size_t)(nv ? nv : 1), sizeof *acc);
+    double *axis = malloc(3 * (size_t)(nv ? nv : 1) * sizeof *axis);
+    if (!acc || !axis) {
+        free(acc);
+        free(axis);
+        work_free(&w);
+        return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory (nodes)");
+    }
+    for (int pass = 0; pass < 2; ++pass) {
+        for (int32_t f = 0; f < nf; ++f) {
+            const double *n = w.plane + 4 * f;
+            const double sg = w.sign[f];
+            for (int64_t c = m->face_start[f]; c < m->face_start[f + 1]; ++c) {
+                const int32_t h = w.nbr[c];
+                if (h >= 0 && h < f)
+                    continue;
+                const int32_t va = m->face_vertices[c];
+                const int32_t vb = m->face_vertices[next_corner(m, f, c)];
+                const double *p = w.xyz + 3 * va, *q = w.xyz + 3 * vb;
+                double e[3] = {sg * (q[0] - p[0]), sg * (q[1] - p[1]), sg * (q[2] - p[2])};
+                double b[3];
+                if (h >= 0) {
+                    const double *nh = w.plane + 4 * h;
+                    const double avg[3] = {n[0] + nh[0], n[1] + nh[1], n[2] + nh[2]};
+                    cross3(e, avg, b);
+                } else {
+                    cross3(n, e, b);
+                }
+                const double lb = norm3(b);
+                if (!(lb > 0.0))
+                    continue;
+                for (int k = 0; k < 3; ++k)
+                    b[k] /= lb;
+                const int32_t ends[2] = {va, vb};
+                for (int j = 0; j < 2; ++j) {
+                    const int32_t v = ends[j];
+                    if (pass == 0) {
+                        double *A = acc + 7 * v;
+                        A[0] += b[0] * b[0], A[1] += b[0] * b[1], A[2] += b[0] * b[2];
+                        A[3] += b[1] * b[1], A[4] += b[1] * b[2], A[5] += b[2] * b[2];
+                        A[6] += 1.0;
+                    } else if (acc[7 * v + 6] >= 3.0) {
+                        const double dev = asin(fmin(1.0, fabs(dot3(b, axis + 3 * v))));
+                        if (dev > acc[7 * v]) /* acc[7v] reused as the max */
+                            acc[7 * v] = dev;
+                    }
+                }
+            }
+        }
+        if (pass == 0)
+            for (int32_t v = 0; v < nv; ++v) {
+                if (acc[7 * v + 6] >= 3.0)
+                    facet_sym3_smallest_eigenvector(acc + 7 * v, axis + 3 * v);
+                acc[7 * v] = 0.0; /* from now on: the largest deviation */
+            }
+    }
+    for (int32_t v = 0; v < nv; ++v) {
+        const double dev = acc[7 * v];
+        if (out->node_deviation)
+            out->node_deviation[v] = dev;
+        if (dev > r.max_node_deviation) {
+            r.max_node_deviation = dev;
+            r.worst_node = v;
+        }
+    }
+    free(acc);
+    free(axis);
+    work_free(&w);
+    r.seconds = facet_now() - t_start;
+    if (result)
+        *result = r;
+    if (r.n_non_manifold_edges > 0)
+        return facet_fail(error, FACET_WARNING_PANEL_NON_MANIFOLD, -1, -1,
+                          "%lld non-manifold edges treated as boundary",
+                          (long long)r.n_non_manifold_edges);
+    return FACET_OK;
+}

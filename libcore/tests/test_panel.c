@@ -1,0 +1,238 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* Panel geometry against known answers: a planar-quad grid on a cylinder
+ * (exactly planar, torsion-free) and a roof ridge. */
+#include "check.h"
+#include "facet.h"
+
+#include <stdint.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+/* nu x nv quads on a cylinder of radius R (vertices on the circle at
+ * angles i*da, heights j*h). Faces wound (i,j) (i+1,j) (i+1,j+1) (i,j+1). */
+enum { NU = 4, NV = 3 };
+static double xyz[3 * (NU + 1) * (NV + 1)];
+static int32_t start[NU * NV + 1], fv[4 * NU * NV];
+
+static void cylinder(double R, double da, double h)
+{
+    for (int j = 0; j <= NV; ++j)
+        for (int i = 0; i <= NU; ++i) {
+            double *p = xyz + 3 * (j * (NU + 1) + i);
+            p[0] = R * cos(i * da), p[1] = R * sin(i * da), p[2] = j * h;
+        }
+    int f = 0;
+    for (int j = 0; j < NV; ++j)
+        for (int i = 0; i < NU; ++i, ++f) {
+            start[f] = 4 * f;
+            int32_t *q = fv + 4 * f;
+            q[0] = j * (NU + 1) + i, q[1] = q[0] + 1, q[2] = q[1] + NU + 1, q[3] = q[0] + NU + 1;
+        }
+    start[f] = 4 * f;
+}
+
+static double dist3(const double *a, const double *b)
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+static int cancel_now(void *user, int64_t done, int64_t total)
+{
+    (void)user, (void)done, (void)total;
+    return 1;
+}
+
+int main(void)
+{
+    const double R = 5000.0, da = 0.2, h = 800.0, t = 40.0;
+    cylinder(R, da, h);
+    /* Georeferenced offset: coordinates in the millions. */
+    for (int v = 0; v < (NU + 1) * (NV + 1); ++v)
+        xyz[3 * v] += 2.5e6, xyz[3 * v + 1] += 1.2e6;
+    facet_mesh m = {(NU + 1) * (NV + 1), NU * NV, xyz, start, fv};
+    const int nc = 4 * NU * NV, nf = NU * NV, nv = (NU + 1) * (NV + 1);
+    double top[3 * 4 * NU * NV], bottom[3 * 4 * NU * NV], plane[4 * NU * NV], frame[12 * NU * NV];
+    double dih[4 * NU * NV], bev[4 * NU * NV], dev[(NU + 1) * (NV + 1)], pl[NU * NV];
+    int32_t nbr[4 * NU * NV], rev[NU * NV], bad[NU * NV];
+    facet_panel_output out = {plane, top, bottom, frame, rev, nbr, dih, bev, dev, pl, bad};
+    facet_panel_options o;
+    facet_panel_options_default(&o);
+    o.thickness = t;
+    facet_panel_result r;
+    facet_error e;
+    CHECK_STATUS(facet_panels(&m, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_components == 1);
+    CHECK(r.n_reversed == 0);
+    /* Square, no gap, outer: bottom = the face, top = face + t n. */
+    for (int c = 0; c < nc; ++c) {
+        const double *p = xyz + 3 * fv[c];
+        CHECK(dist3(bottom + 3 * c, p) < 1e-8);
+        CHECK_NEAR(dist3(top + 3 * c, p), t, 1e-8);
+        CHECK_NEAR(bev[c], 0.0, 1e-12);
+    }
+    /* Across the vertical edges the fold is da; the faces are wound so the
+     * normal points into the cylinder here (i increasing, z up: e_u x e_z
+     * points outward... whichever way, |pi - dihedral| = da). */
+    int n_interior = 0;
+    for (int c = 0; c < nc; ++c)
+        if (nbr[c] >= 0) {
+            ++n_interior;
+            const double fold = fabs(PI - dih[c]);
+            CHECK(fabs(fold - da) < 1e-9 || fabs(fold) < 1e-9);
+        } else {
+            CHECK(dih[c] == 0.0);
+        }
+    CHECK(n_interior == 2 * ((NU - 1) * NV + NU * (NV - 1)));
+    /* Torsion-free: every node's edge planes share a line. */
+    CHECK(r.max_node_deviation < 1e-9);
+    /* Unfold frame: corner 0 at the origin, corner 1 on +x, z = 0. */
+    for (int f = 0; f < nf; ++f) {
+        const double *F = frame + 12 * f;
+        for (int k = 0; k < 4; ++k) {
+            const double *p = xyz + 3 * fv[4 * f + k];
+            double q[3];
+            for (int i = 0; i < 3; ++i)
+                q[i] = F[3 * i] * p[0] + F[3 * i + 1] * p[1] + F[3 * i + 2] * p[2] + F[9 + i];
+            CHECK(fabs(q[2]) < 1e-6);
+            if (k == 0)
+                CHECK(fabs(q[0]) < 1e-6 && fabs(q[1]) < 1e-6);
+            if (k == 1)
+                CHECK(fabs(q[0] - dist3(p, xyz + 3 * fv[4 * f])) < 1e-6 && fabs(q[1]) < 1e-6);
+        }
+    }
+
+    /* Bisector edges with a gap: neighbours' side planes are parallel and
+     * g apart; bevels are half the fold. */
+    const double g = 10.0;
+    o.edge = FACET_PANEL_EDGE_BISECTOR;
+    o.gap = g;
+    CHECK_STATUS(facet_panels(&m, &o, &out, &r, &e), FACET_OK);
+    for (int c = 0; c < nc; ++c)
+        if (nbr[c] >= 0 && fabs(PI - dih[c]) > 1e-6)
+            CHECK_NEAR(fabs(bev[c]), da / 2, 1e-9);
+    /* Face 0's edge 1 (corners 1 -> 2) borders face 1 at its edge 3
+     * (corners 3 -> 0). Distance from face 1's side-face corners to face
+     * 0's side plane through top[1], top[2], bottom[1]. */
+    {
+        const double *a = top + 3 * 1, *b = top + 3 * 2, *c = bottom + 3 * 1;
+        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        double ln = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        const int other[4] = {4 + 3, 4 + 0, 4 + 3, 4 + 0};
+        const double *pts[4] = {top, top, bottom, bottom};
+        for (int k = 0; k < 4; ++k) {
+            const double *p = pts[k] + 3 * other[k];
+            double d = ((p[0] - a[0]) * n[0] + (p[1] - a[1]) * n[1] + (p[2] - a[2]) * n[2]) / ln;
+            CHECK_NEAR(fabs(d), g, 1e-7);
+        }
+    }
+
+    /* Flip: every face reversed, normals negated. */
+    double n0[3] = {plane[0], plane[1], plane[2]};
+    o.flip = 1;
+    o.gap = 0;
+    CHECK_STATUS(facet_panels(&m, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_reversed == nf);
+    CHECK_NEAR(plane[0], -n0[0], 1e-12);
+    CHECK_NEAR(plane[2], -n0[2], 1e-12);
+
+    /* Inconsistent input winding is repaired: reverse face 5's loop. */
+    int32_t saved[4];
+    memcpy(saved, fv + 20, sizeof saved);
+    fv[20] = saved[3], fv[21] = saved[2], fv[22] = saved[1], fv[23] = saved[0];
+    o.flip = 0;
+    CHECK_STATUS(facet_panels(&m, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_reversed == 1 && rev[5] == 1);
+    CHECK_NEAR(plane[4 * 5 + 0] * plane[4 * 4 + 0] + plane[4 * 5 + 1] * plane[4 * 4 + 1], cos(da),
+               1e-9);
+    memcpy(fv + 20, saved, sizeof saved);
+
+    /* Errors: bad thickness, a gap wider than the panel, a bent face. */
+    o.thickness = 0;
+    CHECK_STATUS(facet_panels(&m, &o, &out, &r, &e), FACET_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(e.message, "thickness") != NULL);
+    o.thickness = t;
+    o.gap = 2 * R;
+    CHECK_STATUS(facet_panels(&m, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
+    CHECK(strstr(e.message, "gap") != NULL);
+    o.gap = 0;
+    xyz[3 * 6 + 0] += 5.0; /* move vertex 6: faces 0, 1, 4, 5 bend */
+    for (int f = 0; f < nf; ++f)
+        bad[f] = -1;
+    CHECK_STATUS(facet_panels(&m, &o, &out, &r, &e), FACET_ERROR_NOT_PLANAR);
+    CHECK(r.n_nonplanar == 4);
+    CHECK(bad[0] == 0 && bad[1] == 1 && bad[2] == 4 && bad[3] == 5);
+    CHECK(strstr(e.message, "4 faces are not planar") != NULL);
+    o.planarity_tol_abs = 10.0; /* within the tolerance: accepted */
+    CHECK_STATUS(facet_panels(&m, &o, &out, &r, &e), FACET_OK);
+    xyz[3 * 6 + 0] -= 5.0;
+    (void)nv;
+
+    /* A Moebius strip cannot be oriented: the error names a face. */
+    {
+        enum { NS = 8 };
+        double mx[3 * 2 * NS];
+        int32_t ms[NS + 1], mf[4 * NS];
+        for (int i = 0; i < NS; ++i) {
+            const double a = 2 * PI * i / NS, tw = a / 2;
+            for (int k = 0; k < 2; ++k) {
+                const double rad = 10.0 + (k ? -1.0 : 1.0) * cos(tw);
+                mx[3 * (2 * i + k) + 0] = rad * cos(a);
+                mx[3 * (2 * i + k) + 1] = rad * sin(a);
+                mx[3 * (2 * i + k) + 2] = (k ? -1.0 : 1.0) * sin(tw);
+            }
+        }
+        for (int i = 0; i < NS; ++i) {
+            ms[i] = 4 * i;
+            const int j = (i + 1) % NS;
+            mf[4 * i + 0] = 2 * i, mf[4 * i + 1] = 2 * i + 1;
+            if (j == 0) /* the twist: top meets bottom */
+                mf[4 * i + 2] = 0, mf[4 * i + 3] = 1;
+            else
+                mf[4 * i + 2] = 2 * j + 1, mf[4 * i + 3] = 2 * j;
+        }
+        ms[NS] = 4 * NS;
+        facet_mesh mm = {2 * NS, NS, mx, ms, mf};
+        facet_panel_options mo;
+        facet_panel_options_default(&mo);
+        facet_panel_output none;
+        memset(&none, 0, sizeof none);
+        CHECK_STATUS(facet_panels(&mm, &mo, &none, NULL, &e), FACET_ERROR_NOT_ORIENTABLE);
+        CHECK(strstr(e.message, "cannot be oriented") != NULL);
+        CHECK(e.face >= 0 && e.face < NS);
+    }
+
+    /* Cancel from the progress callback (called every 1024 faces). */
+    {
+        enum { G = 40 };
+        static double gx[3 * (G + 1) * (G + 1)];
+        static int32_t gs[G * G + 1], gf[4 * G * G];
+        for (int j = 0; j <= G; ++j)
+            for (int i = 0; i <= G; ++i) {
+                double *q = gx + 3 * (j * (G + 1) + i);
+                q[0] = i, q[1] = j, q[2] = 0.0;
+            }
+        for (int f = 0; f < G * G; ++f) {
+            const int i = f % G, j = f / G, a = j * (G + 1) + i;
+            gs[f] = 4 * f;
+            gf[4 * f] = a, gf[4 * f + 1] = a + 1, gf[4 * f + 2] = a + G + 2, gf[4 * f + 3] = a + G + 1;
+        }
+        gs[G * G] = 4 * G * G;
+        facet_mesh gm = {(G + 1) * (G + 1), G * G, gx, gs, gf};
+        facet_panel_options go;
+        facet_panel_options_default(&go);
+        go.thickness = 0.1;
+        go.progress = cancel_now;
+        facet_panel_output none;
+        memset(&none, 0, sizeof none);
+        CHECK_STATUS(facet_panels(&gm, &go, &none, NULL, &e), FACET_ERROR_CANCELLED);
+        go.progress = NULL;
+        facet_panel_result gr;
+        CHECK_STATUS(facet_panels(&gm, &go, &none, &gr, &e), FACET_OK);
+        CHECK(gr.max_node_deviation < 1e-12); /* a flat grid: every node is torsion-free */
+    }
+    return check_report("test_panel");
+}

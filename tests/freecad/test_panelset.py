@@ -1,0 +1,159 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""PanelSet and CutSheets: valid OCC solids, volumes, gaps, DXF and STEP read back."""
+
+import os
+import re
+import sys
+
+import numpy as np
+
+import FreeCAD as App
+import Part
+
+import facet
+import facetwb
+from facet.panels import panels
+from facet_test_support import DocumentTestCase, bits, points_array
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                                "python"))
+from panel_meshes import cylinder, translational  # noqa: E402
+
+T = 30.0
+GAP = 6.0
+
+
+class TestPanelSet(DocumentTestCase):
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.mesh = translational(nu=5, nv=4, step=1000.0)
+        cls.source = facetwb.make_polymesh(cls.mesh, label="translational")
+        cls.square = facetwb.make_panelset(cls.source, thickness=T)
+        cls.mitred = facetwb.make_panelset(cls.source, thickness=T, edge="bisector", gap=GAP,
+                                           name="Mitred")
+        cls.doc.recompute()
+
+    def test_square_solids_valid_with_volume_area_times_thickness(self):
+        obj = self.square
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        solids = obj.Shape.Solids
+        self.assertEqual(len(solids), 20)
+        self.assertEqual(obj.PanelCount, 20)
+        self.assertEqual(obj.PartIds[0], "P-R01C01")
+        self.assertEqual(len(set(obj.PartIds)), 20)
+        for solid, area, volume in zip(solids, obj.Areas, obj.Volumes):
+            self.assertTrue(solid.isValid())
+            solid.check(True)  # BRepCheck: raises on any fault
+            self.assertAlmostEqual(solid.Volume / (area * T), 1.0, places=9)
+            self.assertAlmostEqual(volume, solid.Volume, places=6)
+            self.assertEqual(len(solid.Faces), 6)
+
+    def test_mitred_neighbours_do_not_overlap_and_keep_the_gap(self):
+        obj = self.mitred
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        ps = panels(self.mesh, T, edge="bisector", gap=GAP)
+        solids = obj.Shape.Solids
+        checked = 0
+        for p in ps:
+            for h in p.neighbors:
+                if h is None or h < p.face:
+                    continue
+                a, b = solids[p.face], solids[h]
+                a.check(True)
+                common = a.common(b)
+                self.assertLess(abs(common.Volume), 1e-6 * a.Volume)
+                self.assertAlmostEqual(a.distToShape(b)[0], GAP, places=6)
+                checked += 1
+        self.assertEqual(checked, 4 * 4 + 5 * 3)
+
+    def test_source_unchanged(self):
+        np.testing.assert_array_equal(bits(points_array(self.source)), bits(self.mesh.vertices))
+
+    def test_bad_thickness_marks_the_object_invalid(self):
+        obj = facetwb.make_panelset(self.source, thickness=T, name="Bad")
+        obj.Thickness = 0.0
+        self.doc.recompute()
+        self.assertFalse(obj.isValid())
+        self.doc.removeObject(obj.Name)
+
+    def test_cutsheets_dxf_and_step_read_back(self):
+        out = os.path.join(self.tmp.name, "cut")
+        sheets = facetwb.make_cutsheets(self.mitred, sheet=(2600.0, 1400.0), margin=10.0,
+                                        spacing=6.0, output_dir=out)
+        self.doc.recompute()
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        self.assertGreater(sheets.SheetCount, 0)
+        self.assertEqual(list(sheets.Unplaced), [])
+        self.assertTrue(0 < sheets.Utilisation < 1)
+        for name in ("sheets.dxf", "panels.step", "schedule.csv", "schedule.json"):
+            self.assertTrue(os.path.exists(os.path.join(out, name)), name)
+
+        # DXF: ezdxf audit, then FreeCAD's own importer gives the same CUT outlines
+        import ezdxf
+        import Import
+
+        path = os.path.join(out, "sheets.dxf")
+        dxf = ezdxf.readfile(path)
+        self.assertFalse(dxf.audit().has_errors)
+        cuts = [np.array([(x, y) for x, y, *_ in e.get_points()])
+                for e in dxf.modelspace().query("LWPOLYLINE[layer=='CUT']")]
+        self.assertEqual(len(cuts), 20)
+        doc = App.newDocument("DxfBack")
+        Import.readDXF(path, doc.Name, True)
+        # the importer makes one edge per polyline segment: every CUT segment must be there
+        def key(a, b):
+            pa = tuple(np.round(a, 6))
+            pb = tuple(np.round(b, 6))
+            return (pa, pb) if pa <= pb else (pb, pa)
+
+        segments = set()
+        for o in doc.Objects:
+            shape = getattr(o, "Shape", None)
+            if shape is None or shape.isNull():
+                continue
+            for e in shape.Edges:
+                a, b = e.Vertexes[0].Point, e.Vertexes[-1].Point
+                segments.add(key((a.x, a.y), (b.x, b.y)))
+        for cut in cuts:
+            for i in range(len(cut)):
+                self.assertIn(key(cut[i], cut[(i + 1) % len(cut)]), segments)
+        App.closeDocument(doc.Name)
+
+        # STEP: the same solids (volumes, in order) and each product named by its part ID
+        step = os.path.join(out, "panels.step")
+        shape = Part.read(step)
+        solids = shape.Solids
+        self.assertEqual(len(solids), 20)
+        for s, v in zip(solids, self.mitred.Volumes):
+            self.assertTrue(s.isValid())
+            self.assertAlmostEqual(s.Volume / v, 1.0, places=9)
+        text = open(step, encoding="latin-1").read()
+        names = re.findall(r"PRODUCT\('([^']*)'", text)
+        self.assertEqual([n for n in names if n.startswith("P-")], list(self.mitred.PartIds))
+
+    def test_z_save_reopen(self):
+        ids = list(self.square.PartIds)
+        volumes = list(self.square.Volumes)
+        name = self.square.Name
+        doc = self.save_and_reopen("panels.FCStd")
+        obj = doc.getObject(name)
+        self.assertEqual(obj.Proxy.Type, "Facet::PanelSet")
+        self.assertEqual(list(obj.PartIds), ids)
+        obj.touch()
+        doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        np.testing.assert_allclose(list(obj.Volumes), volumes, rtol=1e-12)
+
+
+class TestPanelSetOnPlanarized(DocumentTestCase):
+    def test_cylinder_planarized_chain(self):
+        source = facetwb.make_polymesh(cylinder(), label="cyl")
+        planar = facetwb.make_planarized(source, tolerance=1e-9)
+        ps = facetwb.make_panelset(planar, thickness=20.0, edge="bisector")
+        self.doc.recompute()
+        self.assertTrue(ps.isValid(), ps.getStatusString())
+        self.assertEqual(ps.PanelCount, 24)
+        self.assertLess(ps.MaxNodeDeviation.Value, 1e-5)
+        for s in ps.Shape.Solids:
+            s.check(True)

@@ -1,0 +1,36 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Exactly planar quad meshes for the panel tests (also used by the FreeCAD tests)."""
+
+import numpy as np
+
+from facet.mesh import PolyMesh
+
+
+def grid_faces(nu, nv):
+    """Quads of an (nu+1) x (nv+1) vertex grid, row-major, counter-clockwise."""
+    faces = []
+    for j in range(nv):
+        for i in range(nu):
+            a = j * (nu + 1) + i
+            faces.append([a, a + 1, a + nu + 2, a + nu + 1])
+    return faces
+
+
+def cylinder(nu=6, nv=4, radius=5000.0, angle=0.15, height=900.0, origin=(0.0, 0.0, 0.0)):
+    """Planar quads on a cylinder (torsion-free: every node has a straight axis)."""
+    pts = []
+    for j in range(nv + 1):
+        for i in range(nu + 1):
+            pts.append([radius * np.cos(i * angle), radius * np.sin(i * angle), j * height])
+    return PolyMesh.from_faces(np.array(pts) + np.asarray(origin), grid_faces(nu, nv))
+
+
+def translational(nu=5, nv=4, step=1000.0):
+    """Planar quads (parallelograms) of a translational surface a(u) + b(v):
+    doubly curved, so its nodes are not torsion-free."""
+    pts = []
+    for j in range(nv + 1):
+        for i in range(nu + 1):
+            x, y = i * step, j * step
+            pts.append([x, y, 0.00012 * (x - 2500.0) ** 2 - 0.00009 * (y - 2000.0) ** 2])
+    return PolyMesh.from_faces(np.array(pts), grid_faces(nu, nv))

@@ -1,0 +1,409 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Panels: geometry, IDs, unfolding, nesting, cut files and the command line."""
+
+import csv
+import os
+import sys
+import json
+import math
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import facet
+from facet.errors import Cancelled
+from facet.panels import PanelError, grid_positions, panels
+from facet.unfold import label_point, unfold
+from panel_meshes import cylinder, grid_faces, translational
+
+
+def face_points(mesh, p):
+    return mesh.vertices[p.vertices]
+
+
+def angles(poly):
+    out = []
+    k = len(poly)
+    for i in range(k):
+        a, b, c = poly[i - 1], poly[i], poly[(i + 1) % k]
+        u, v = a - b, c - b
+        out.append(math.atan2(np.linalg.norm(np.cross(u, v)) if len(u) == 3 else abs(u[0] * v[1] - u[1] * v[0]), np.dot(u, v)))
+    return np.array(out)
+
+
+@pytest.mark.parametrize("make", [cylinder, translational])
+def test_square_edges_no_gap_are_congruent_prisms(make):
+    mesh = make()
+    ps = panels(mesh, 40.0)
+    assert len(ps) == mesh.n_faces
+    for p in ps:
+        face = face_points(mesh, p)
+        for flat in (p.flat_bottom, p.flat_top):
+            l3 = np.linalg.norm(np.roll(face, -1, axis=0) - face, axis=1)
+            l2 = np.linalg.norm(np.roll(flat, -1, axis=0) - flat, axis=1)
+            np.testing.assert_allclose(l2, l3, rtol=1e-9)
+            np.testing.assert_allclose(angles(flat), angles(face), rtol=1e-9, atol=1e-12)
+        assert p.volume == pytest.approx(p.area * 40.0, rel=1e-9)
+        assert p.bevel_deg == pytest.approx([0.0] * 4, abs=1e-9)
+        # outer: the bottom lies on the mesh, the top t above along the normal
+        np.testing.assert_allclose(p.bottom, face, atol=1e-7)
+        np.testing.assert_allclose(p.top - p.bottom, np.tile(40.0 * p.normal, (4, 1)), atol=1e-7)
+
+
+def test_offset_sides():
+    mesh = cylinder()
+    face = None
+    for offset, lo, hi in (("outer", 0, 40), ("inner", -40, 0), ("center", -20, 20)):
+        p = panels(mesh, 40.0, offset=offset).panels[3]
+        face = face_points(mesh, p)
+        np.testing.assert_allclose((p.bottom - face) @ p.normal, lo, atol=1e-7)
+        np.testing.assert_allclose((p.top - face) @ p.normal, hi, atol=1e-7)
+
+
+def test_bisector_gap_is_constant_and_bevels_are_half_the_fold():
+    mesh = translational()
+    g = 6.0
+    ps = panels(mesh, 30.0, edge="bisector", gap=g)
+    by_face = {p.face: p for p in ps}
+    checked = 0
+    for p in ps:
+        sides = p.side_faces()
+        for k, h in enumerate(p.neighbors):
+            if h is None:
+                continue
+            fold = 180.0 - p.dihedral_deg[k]
+            assert abs(p.bevel_deg[k]) == pytest.approx(abs(fold) / 2, abs=1e-9)
+            q = by_face[h]
+            kq = q.neighbors.index(p.face)
+            s = sides[k]
+            n = np.cross(s[1] - s[0], s[3] - s[0])
+            n /= np.linalg.norm(n)
+            other = q.side_faces()[kq]
+            d = (other - s[0]) @ n
+            np.testing.assert_allclose(np.abs(d), g, rtol=1e-9)
+            checked += 1
+    assert checked == 2 * (4 * 4 + 5 * 3)
+
+
+def test_node_deviation_zero_on_cylinder_positive_on_translational():
+    assert panels(cylinder(), 10.0).max_node_deviation_deg < 1e-7
+    ps = panels(translational(), 10.0)
+    assert ps.max_node_deviation_deg > 0.01
+    assert ps.worst_node is not None
+    assert ps.node_deviation_deg.shape == (30,)
+
+
+def test_grid_ids_and_index_ids():
+    ps = panels(cylinder(nu=6, nv=4), 10.0)
+    assert ps.id_scheme == "grid" and ps.grid_shape == (4, 6)
+    assert ps.panels[0].id == "P-R01C01"
+    assert ps.panels[7].id == "P-R02C02"
+    assert len({p.id for p in ps}) == 24
+    ps = panels(cylinder(), 10.0, ids="index", prefix="F")
+    assert ps.panels[5].id == "F0005"
+    # triangles: not a grid
+    tri = facet.PolyMesh.from_faces(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.0]]),
+                                    [[0, 1, 2], [1, 3, 2]])
+    assert panels(tri, 0.01).id_scheme == "index"
+    with pytest.raises(PanelError, match="not a regular quad grid"):
+        panels(tri, 0.01, ids="grid")
+    custom = panels(tri, 0.01, ids=["A", "B"])
+    assert [p.id for p in custom] == ["A", "B"]
+
+
+def test_grid_detection_survives_a_reversed_face():
+    mesh = cylinder(nu=3, nv=2)
+    faces = mesh.faces()
+    faces[4] = faces[4][::-1]
+    bad = facet.PolyMesh.from_faces(mesh.vertices, faces)
+    ps = panels(bad, 10.0)
+    assert ps.n_reversed == 1
+    assert ps.id_scheme == "grid"
+    assert any("reversed" in w for w in ps.warnings)
+    n0 = panels(mesh, 10.0).panels[4].normal
+    np.testing.assert_allclose(ps.panels[4].normal, n0, atol=1e-12)
+    assert grid_positions(bad) is None  # without the orientation it is not read as a grid
+
+
+def test_flip_swaps_the_sides():
+    a = panels(cylinder(), 10.0).panels[0]
+    b = panels(cylinder(), 10.0, flip=True).panels[0]
+    np.testing.assert_allclose(a.normal, -b.normal, atol=1e-12)
+
+
+def test_bad_inputs_are_one_line_panel_errors():
+    mesh = cylinder()
+    for kwargs, text in (({"thickness": 0}, "thickness"), ({"thickness": -1}, "thickness"),
+                         ({"thickness": float("nan")}, "thickness"),
+                         ({"thickness": 1, "gap": -1}, "gap"),
+                         ({"thickness": 1, "offset": "up"}, "offset"),
+                         ({"thickness": 1, "edge": "round"}, "edge"),
+                         ({"thickness": 1, "gap": 5000}, "gap")):
+        with pytest.raises(PanelError, match=text) as info:
+            panels(mesh, **kwargs)
+        assert "\n" not in str(info.value)
+
+
+def test_nonplanar_faces_are_listed():
+    mesh = cylinder()
+    xyz = mesh.vertices.copy()
+    xyz[8] += (30.0, 0, 0)  # bends the four faces around vertex 8
+    with pytest.raises(PanelError, match="4 faces are not planar") as info:
+        panels(mesh.with_vertices(xyz), 10.0)
+    assert info.value.faces == [0, 1, 6, 7]
+    assert isinstance(info.value, facet.InputError)
+    # within an absolute tolerance it is accepted
+    panels(mesh.with_vertices(xyz), 10.0, tol_abs=20.0)
+
+
+def test_georeferenced_coordinates_give_the_same_panels():
+    a = panels(cylinder(), 40.0, edge="bisector", gap=5)
+    b = panels(cylinder(origin=(2.6e6, 1.2e6, 400.0)), 40.0, edge="bisector", gap=5)
+    for p, q in zip(a, b):
+        np.testing.assert_allclose(p.flat_bottom, q.flat_bottom, atol=1e-6)
+        assert p.volume == pytest.approx(q.volume, rel=1e-9)
+
+
+def test_source_mesh_is_not_modified():
+    mesh = translational()
+    before = mesh.vertices.copy()
+    panels(mesh, 10.0, edge="bisector", gap=2)
+    np.testing.assert_array_equal(mesh.vertices, before)
+
+
+def test_progress_cancels():
+    mesh = cylinder(nu=60, nv=40)
+    with pytest.raises(Cancelled):
+        panels(mesh, 10.0, progress=lambda done, total: True)
+
+
+def test_wave_facade_planarized(tmp_path):
+    from pathlib import Path
+
+    example = Path(__file__).resolve().parents[2] / "examples" / "wave_facade.obj"
+    mesh = facet.read_mesh(example)
+    planar = facet.planarize(mesh, tol=1e-6).mesh
+    ps = panels(planar, 40.0, edge="bisector", gap=8)
+    assert ps.id_scheme == "grid"
+    assert all(p.volume > 0 for p in ps)
+    with pytest.raises(PanelError, match="not planar"):
+        panels(mesh, 40.0)
+
+
+# ---- unfolding -------------------------------------------------------------
+
+def test_label_point_matches_polylabel():
+    from shapely.geometry import Point, Polygon
+    from shapely.ops import polylabel
+
+    poly = np.array([[0, 0], [10, 0], [10, 2], [3, 2], [3, 8], [0, 8.0]])
+    (x, y), depth = label_point(poly)
+    ref = polylabel(Polygon(poly), 1e-4)
+    assert Polygon(poly).contains(Point(x, y))
+    assert depth == pytest.approx(Polygon(poly).exterior.distance(ref), rel=0.02)
+
+
+def test_unfold_labels_inside_and_bevel_texts():
+    from shapely.geometry import Point, Polygon
+
+    ps = panels(translational(), 30.0, edge="bisector", gap=4)
+    drawings = unfold(ps)
+    for p, d in zip(ps, drawings):
+        assert Polygon(d.cut).contains(Point(d.label_position))
+        assert d.label_height > 0
+        bevelled = sum(1 for b in p.bevel_deg if abs(b) > 1e-6)
+        assert len(d.bevels) == bevelled
+        for text, x, y, ang, h in d.bevels:
+            assert Polygon(d.cut).contains(Point(x, y))
+            assert text.endswith("\u00b0")
+        assert Polygon(d.footprint).buffer(1e-6).contains(Polygon(d.cut))
+
+
+def test_grain_turns_parts_and_is_checked():
+    ps = panels(cylinder(), 10.0)
+    drawings = unfold(ps, grain=(0, 0, 1))
+    for p, d in zip(ps, drawings):
+        # the cylinder's vertical edges become parallel to +x
+        e = d.cut[2] - d.cut[1]
+        assert abs(e[1]) < 1e-6 * np.linalg.norm(e)
+        assert d.grain is not None
+    with pytest.raises(PanelError, match="grain"):
+        unfold(ps, grain=(0, 0, 0))
+
+
+# ---- nesting ---------------------------------------------------------------
+
+def _parts():
+    ps = panels(translational(nu=6, nv=5, step=400.0), 18.0, edge="bisector", gap=4)
+    return {d.id: d.footprint for d in unfold(ps)}
+
+
+@pytest.mark.parametrize("rotations", ["none", "90", "free"])
+def test_nesting_holds_margin_and_spacing(rotations):
+    from facet.nest import nest, verify
+
+    parts = _parts()
+    r = nest(parts, (1300, 900), margin=15, spacing=8, rotations=rotations)
+    assert not r.unplaced
+    assert len(r.placements) == len(parts)
+    assert verify(r, parts) == []
+    assert 0 < r.utilisation < 1
+    assert all(0 < s.utilisation < 1 for s in r.sheets)
+    if rotations == "none":
+        assert all(pl.angle_deg == 0 for pl in r.placements.values())
+    # a tighter check than the nester's own: shrink the margin test
+    from shapely.geometry import Polygon
+    for pid, pl in r.placements.items():
+        placed = Polygon(pl.transform(np.asarray(parts[pid])))
+        minx, miny, maxx, maxy = placed.bounds
+        assert minx >= 15 - 1e-6 and miny >= 15 - 1e-6
+        assert maxx <= 1300 - 15 + 1e-6 and maxy <= 900 - 15 + 1e-6
+
+
+def test_verify_catches_overlap():
+    from facet.nest import Placement, nest, verify
+
+    parts = _parts()
+    r = nest(parts, (1300, 900), margin=15, spacing=8)
+    a, b = list(r.placements)[:2]
+    pa = r.placements[a]
+    r.placements[b] = Placement(b, pa.sheet, pa.angle_deg, pa.x, pa.y)
+    problems = verify(r, parts)
+    assert any(a in p and b in p for p in problems)
+
+
+def test_parts_too_big_are_unplaced_and_bad_sheets_rejected():
+    from facet.nest import NestError, nest
+
+    parts = _parts()
+    big = {"BIG": np.array([[0, 0], [5000, 0], [5000, 100], [0, 100.0]]), **parts}
+    r = nest(big, (1300, 900), margin=15, spacing=8)
+    assert r.unplaced == ["BIG"]
+    for kwargs in ({"sheet": (0, 100)}, {"sheet": (100, 100), "margin": 60},
+                   {"sheet": (100, 100), "spacing": -1}, {"sheet": (100, 100), "rotations": "45"}):
+        with pytest.raises(NestError):
+            nest(parts, **kwargs)
+
+
+def test_nesting_progress_cancels():
+    from facet.nest import nest
+
+    with pytest.raises(Cancelled):
+        nest(_parts(), (1300, 900), progress=lambda d, t: True)
+
+
+# ---- files -----------------------------------------------------------------
+
+def _made(tmp_path, **kw):
+    from facet.cli_panels import run_pipeline
+
+    mesh = translational(nu=6, nv=5, step=400.0)
+    return run_pipeline(mesh, 18.0, edge="bisector", gap=4, sheet=(1300, 900), margin=15,
+                        spacing=8, dxf=str(tmp_path / "cut.dxf"),
+                        schedule=str(tmp_path / "schedule.csv"), svg=str(tmp_path / "svg"),
+                        png=str(tmp_path / "png"), **kw)
+
+
+def test_dxf_layers_units_audit_and_outlines(tmp_path):
+    import ezdxf
+
+    report, ps, drawings, result = _made(tmp_path)
+    doc = ezdxf.readfile(tmp_path / "cut.dxf")
+    assert doc.header["$INSUNITS"] == 4
+    assert not doc.audit().has_errors
+    for layer in ("CUT", "LABEL", "BEVEL", "SHEET", "GRAIN"):
+        assert layer in doc.layers
+    msp = doc.modelspace()
+    cuts = [e for e in msp.query("LWPOLYLINE[layer=='CUT']")]
+    assert len(cuts) == len(ps)
+    assert all(c.closed for c in cuts)
+    labels = {e.dxf.text: e for e in msp.query("TEXT[layer=='LABEL']")}
+    assert set(labels) == {p.id for p in ps}
+    sheets = msp.query("LWPOLYLINE[layer=='SHEET']")
+    assert len(sheets) == len(result.sheets)
+    # every CUT outline is a placed part's outline, point for point
+    from facet.cutsheets import sheet_offsets
+
+    offsets = sheet_offsets(result)
+    by_id = {d.id: d for d in drawings}
+    expected = []
+    for pid, pl in result.placements.items():
+        expected.append(pl.transform(by_id[pid].cut) + (offsets[pl.sheet], 0))
+    got = [np.array([(x, y) for x, y, *_ in c.get_points()]) for c in cuts]
+    for e in expected:
+        assert any(g.shape == e.shape and np.allclose(g, e, atol=1e-9) for g in got)
+    assert msp.query("TEXT[layer=='BEVEL']")
+
+
+def test_schedule_csv_and_json(tmp_path):
+    report, ps, drawings, result = _made(tmp_path)
+    rows = list(csv.DictReader(open(tmp_path / "schedule.csv", encoding="utf-8")))
+    assert len(rows) == len(ps)
+    first = rows[0]
+    p = ps.by_id(first["id"])
+    assert float(first["area"]) == p.area  # repr round-trips exactly
+    assert [float(x) for x in first["bevel_deg"].split(";")] == p.bevel_deg
+    assert int(first["sheet"]) == result.placements[p.id].sheet + 1
+    assert float(first["thickness"]) == 18.0
+    from facet.cutsheets import schedule_rows, write_schedule_json
+
+    write_schedule_json(tmp_path / "s.json", schedule_rows(ps, result))
+    data = json.load(open(tmp_path / "s.json"))
+    assert data["panels"][0]["id"] == first["id"]
+    svgs = sorted((tmp_path / "svg").glob("*.svg"))
+    pngs = sorted((tmp_path / "png").glob("*.png"))
+    assert len(svgs) == len(pngs) == len(result.sheets)
+    assert svgs[0].read_text().count("<path") == len(result.sheets[0].parts)
+    assert pngs[0].read_bytes()[:4] == b"\x89PNG"
+
+
+# ---- command line ----------------------------------------------------------
+
+def test_cli_panels_report(facet_command, tmp_path):
+    from facet import write_mesh
+
+    mesh_path = tmp_path / "t.obj"
+    write_mesh(translational(nu=6, nv=5, step=400.0), mesh_path)
+    done = facet_command("panels", mesh_path, "--thickness", "18", "--edge", "bisector",
+                         "--gap", "4", "--sheet", "1300x900", "--margin", "15", "--spacing",
+                         "8", "--dxf", tmp_path / "o.dxf", "--schedule", tmp_path / "o.csv",
+                         "--report", tmp_path / "r.json")
+    assert done.returncode == 0, done.stderr
+    r = json.load(open(tmp_path / "r.json"))
+    for key in ("panels", "sheets", "unplaced", "utilisation", "max_node_deviation", "seconds"):
+        assert key in r
+    assert len(r["panels"]) == 30 and r["unplaced"] == []
+    assert set(r["seconds"]) >= {"panels", "unfold", "nest", "dxf", "schedule"}
+    assert (tmp_path / "o.dxf").exists()
+
+
+@pytest.mark.parametrize("args, text", [
+    (["--thickness", "0"], "thickness"),
+    (["--thickness", "-3"], "thickness"),
+    (["--thickness", "10", "--gap", "9000"], "gap"),
+    (["--thickness", "10", "--sheet", "0x10"], "sheet"),
+    (["--thickness", "10", "--dxf", "x.dxf"], "--sheet"),
+])
+def test_cli_panels_bad_input_exit_2(facet_command, tmp_path, args, text):
+    from facet import write_mesh
+
+    mesh_path = tmp_path / "t.obj"
+    write_mesh(translational(), mesh_path)
+    done = facet_command("panels", mesh_path, *args)
+    assert done.returncode == 2, (done.stdout, done.stderr)
+    assert text in done.stderr
+    assert "Traceback" not in done.stderr
+
+
+def test_step_says_clearly_when_freecad_is_missing(monkeypatch):
+    import facet.step as step
+
+    monkeypatch.setitem(sys.modules, "FreeCAD", None)
+    monkeypatch.setattr(step, "_CANDIDATES", ())
+    monkeypatch.delenv("FREECAD_LIB", raising=False)
+    with pytest.raises(step.FreeCADMissing, match="STEP export needs FreeCAD") as info:
+        step.import_freecad()
+    assert "\n" not in str(info.value)
+    assert not isinstance(info.value, facet.InputError)  # exit 1 on the command line, not 2

@@ -1,0 +1,103 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Benchmark of the panel pipeline: mesh -> panels -> solids, outlines, nesting, DXF, STEP,
+schedule, each stage timed (wall clock, perf_counter). Not a test: it asserts nothing about
+speed; it prints the figures and writes them as JSON.
+
+    /usr/bin/python3 tools/bench_panels.py [--panels 10000] [--out DIR] [--no-step]
+
+The mesh is a planar-quad grid on a cylinder (radius 40 m, panels about 600 x 450 mm), so
+every face is exactly planar; edges are mitred with a 6 mm gap, 30 mm thick; sheets
+3000 x 1500 with a 10 mm margin and 6 mm spacing, quarter-turn rotations.
+"""
+
+import argparse
+import json
+import math
+import os
+import platform
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "workbench"))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--panels", type=int, default=10000)
+    parser.add_argument("--out", default=os.path.join(os.path.dirname(HERE), "out", "bench_panels"))
+    parser.add_argument("--no-step", action="store_true", help="skip solids and STEP")
+    args = parser.parse_args()
+
+    import numpy as np
+
+    from facet.cutsheets import schedule_rows, write_dxf, write_schedule_csv
+    from facet.mesh import PolyMesh
+    from facet.nest import nest, verify
+    from facet.panels import panels
+    from facet.unfold import unfold
+
+    os.makedirs(args.out, exist_ok=True)
+    n = int(round(math.sqrt(args.panels)))
+    nu, nv = n, max(1, args.panels // n)
+    radius, height = 40000.0, 450.0
+    angle = 600.0 / radius
+    pts = [[radius * math.cos(i * angle), radius * math.sin(i * angle), j * height]
+           for j in range(nv + 1) for i in range(nu + 1)]
+    faces = []
+    for j in range(nv):
+        for i in range(nu):
+            a = j * (nu + 1) + i
+            faces.append([a, a + 1, a + nu + 2, a + nu + 1])
+    mesh = PolyMesh.from_faces(np.array(pts), faces)
+    times = {}
+
+    t = time.perf_counter()
+    ps = panels(mesh, 30.0, edge="bisector", gap=6.0)
+    times["panels (core geometry + Python objects)"] = time.perf_counter() - t
+    times["  of which core facet_panels"] = ps.seconds
+    t = time.perf_counter()
+    drawings = unfold(ps)
+    times["outlines (unfold, labels, footprints)"] = time.perf_counter() - t
+    parts = {d.id: d.footprint for d in drawings}
+    t = time.perf_counter()
+    result = nest(parts, (3000.0, 1500.0), margin=10.0, spacing=6.0, rotations="90")
+    times["nesting (libnest2d)"] = time.perf_counter() - t
+    t = time.perf_counter()
+    problems = verify(result, parts)
+    times["nesting check (shapely)"] = time.perf_counter() - t
+    t = time.perf_counter()
+    write_dxf(os.path.join(args.out, "sheets.dxf"), result, drawings)
+    times["DXF (ezdxf, audited)"] = time.perf_counter() - t
+    t = time.perf_counter()
+    write_schedule_csv(os.path.join(args.out, "schedule.csv"), schedule_rows(ps, result))
+    times["schedule CSV"] = time.perf_counter() - t
+    if not args.no_step:
+        from facet.step import panel_solids, write_step
+
+        t = time.perf_counter()
+        solids = panel_solids(ps)
+        times["solids (OCC)"] = time.perf_counter() - t
+        t = time.perf_counter()
+        write_step(os.path.join(args.out, "panels.step"), solids)
+        times["STEP (FreeCAD Import)"] = time.perf_counter() - t
+    total = sum(v for k, v in times.items() if not k.startswith("  "))
+    report = {
+        "panels": len(ps), "sheets": len(result.sheets), "unplaced": len(result.unplaced),
+        "utilisation": result.utilisation, "nesting_problems": len(problems),
+        "seconds": times, "total_seconds": total,
+        "machine": {"cpus": os.cpu_count(), "python": platform.python_version()},
+    }
+    for k, v in times.items():
+        print(f"{k:<45} {v:9.2f} s")
+    print(f"{'total':<45} {total:9.2f} s")
+    print(f"{len(ps)} panels on {len(result.sheets)} sheets, utilisation "
+          f"{100 * result.utilisation:.1f}%, {len(result.unplaced)} unplaced, "
+          f"{len(problems)} nesting problems")
+    with open(os.path.join(args.out, "bench_panels.json"), "w", encoding="utf-8") as f:
+        json.dump(report, f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

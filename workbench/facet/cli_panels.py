@@ -1,0 +1,231 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""``facet panels``: from a planar mesh to panel solids, cut sheets and a schedule.
+
+::
+
+    python3 -m facet panels MESH --thickness T [--offset outer|inner|center]
+        [--gap G] [--edge square|bisector] [--flip] [--ids auto|grid|index]
+        [--prefix P] [--tol T] [--sheet WxH] [--margin M] [--spacing S]
+        [--rotations none|90|free] [--grain X,Y,Z] [--dxf OUT.dxf] [--per-sheet]
+        [--step OUT.step] [--schedule OUT.csv|OUT.json] [--svg DIR] [--png DIR]
+        [--report R.json]
+
+Exit status 0 done (parts that fit on no sheet are listed as unplaced, not an
+error), 1 failed (also: --step without FreeCAD), 2 bad input (a zero
+thickness, faces not planar, a gap that consumes a panel...), 130 Ctrl+C.
+"""
+
+import math
+import os
+import sys
+import time
+
+__all__ = ["add_commands", "run_panels", "run_pipeline"]
+
+
+def _sheet(text):
+    import argparse
+
+    parts = text.lower().replace("*", "x").split("x")
+    try:
+        w, h = (float(p) for p in parts)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not WIDTHxHEIGHT (e.g. 3000x1500)") from None
+    if not (w > 0 and h > 0 and math.isfinite(w) and math.isfinite(h)):
+        raise argparse.ArgumentTypeError(f"sheet {text!r} must have a width and height > 0")
+    return w, h
+
+
+def _vector(text):
+    import argparse
+
+    try:
+        v = tuple(float(p) for p in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not X,Y,Z") from None
+    if len(v) != 3:
+        raise argparse.ArgumentTypeError(f"{text!r} is not X,Y,Z")
+    return v
+
+
+def add_commands(commands):
+    """Add the ``panels`` sub-command to the argparse sub-parsers object."""
+    from facet.cli import _non_negative_float
+
+    p = commands.add_parser(
+        "panels",
+        help="panel solids, nested cut sheets (DXF), STEP and a schedule from a planar mesh",
+        description="Turn every planar face into a panel of the given thickness with square or "
+        "mitred edges, lay the panels flat with their IDs and bevel angles, nest them on "
+        "stock sheets and write DXF, STEP, a schedule and previews.",
+    )
+    p.add_argument("input", metavar="MESH", help="planar mesh (.obj, .off, .json)")
+    p.add_argument("--item", metavar="NAME", help="mesh to read from a RhinoVAULT .json session")
+    p.add_argument("--thickness", type=float, required=True, help="panel thickness (model units)")
+    p.add_argument("--offset", choices=("outer", "inner", "center"), default="outer",
+                   help="panel on the outer side of the surface (default), inner, or centred")
+    p.add_argument("--gap", type=float, default=0.0, help="joint width between panels")
+    p.add_argument("--edge", choices=("square", "bisector"), default="square",
+                   help="edge cuts square to the panel (default) or mitred")
+    p.add_argument("--flip", action="store_true", help="swap the outer and inner sides")
+    p.add_argument("--ids", choices=("auto", "grid", "index"), default="auto",
+                   help="part IDs from grid row/column (auto: when the mesh is a grid) or index")
+    p.add_argument("--prefix", default="P-", help="part ID prefix (default P-)")
+    p.add_argument("--tol", type=_non_negative_float, default=1e-6,
+                   help="planarity tolerance relative to each face's mean edge (default 1e-6)")
+    p.add_argument("--tol-abs", type=_non_negative_float, default=0.0,
+                   help="planarity tolerance in model units (the larger one applies)")
+    p.add_argument("--sheet", type=_sheet, metavar="WxH", help="stock sheet size: nest the parts")
+    p.add_argument("--margin", type=float, default=0.0, help="clear border along sheet edges")
+    p.add_argument("--spacing", type=float, default=0.0, help="least distance between parts")
+    p.add_argument("--rotations", choices=("none", "90", "free"), default="90",
+                   help="rotations allowed in nesting (none with --grain)")
+    p.add_argument("--grain", type=_vector, metavar="X,Y,Z",
+                   help="grain direction in model space: parts turned to it, rotations locked")
+    p.add_argument("--dxf", metavar="OUT.dxf", help="cut sheets as DXF (needs --sheet)")
+    p.add_argument("--per-sheet", action="store_true", help="one DXF file per sheet")
+    p.add_argument("--step", metavar="OUT.step", help="panel solids as STEP (needs FreeCAD)")
+    p.add_argument("--schedule", metavar="OUT.csv", help="schedule as .csv or .json")
+    p.add_argument("--svg", metavar="DIR", help="SVG preview of each sheet")
+    p.add_argument("--png", metavar="DIR", help="PNG preview of each sheet")
+    p.add_argument("--report", metavar="R.json", help="JSON report")
+    p.set_defaults(run=run_panels)
+
+
+def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False,
+                 ids="auto", prefix="P-", tol=1e-6, tol_abs=0.0, sheet=None, margin=0.0,
+                 spacing=0.0, rotations="90", grain=None, dxf=None, per_sheet=False,
+                 step=None, schedule=None, svg=None, png=None, progress=None):
+    """Everything ``facet panels`` does, as a function (also used by the
+    benchmark). Returns (report dict, PanelSet, drawings, NestResult or None).
+
+    ``progress(stage, done, total)`` returning True cancels.
+    """
+    from facet.errors import InputError
+    from facet.cutsheets import (schedule_rows, write_dxf, write_png, write_schedule_csv,
+                                 write_schedule_json, write_svg)
+    from facet.nest import nest
+    from facet.panels import panels
+    from facet.unfold import unfold
+
+    if dxf and sheet is None:
+        raise InputError("--dxf needs --sheet WxH (the DXF holds nested sheets)")
+    if (svg or png) and sheet is None:
+        raise InputError("--svg and --png need --sheet WxH (they preview nested sheets)")
+    if schedule and os.path.splitext(schedule)[1].lower() not in (".csv", ".json"):
+        raise InputError(f"{schedule}: the schedule must be .csv or .json")
+    if grain is not None and rotations != "none":
+        rotations = "none"
+
+    def stage_progress(stage):
+        if progress is None:
+            return None
+        return lambda done, total: progress(stage, done, total)
+
+    times = {}
+    t = time.perf_counter()
+    ps = panels(mesh, thickness, offset=offset, gap=gap, edge=edge, flip=flip, ids=ids,
+                prefix=prefix, tol=tol, tol_abs=tol_abs, progress=stage_progress("panels"))
+    times["panels"] = time.perf_counter() - t
+    t = time.perf_counter()
+    drawings = unfold(ps, grain=grain)
+    times["unfold"] = time.perf_counter() - t
+    result = None
+    if sheet is not None:
+        t = time.perf_counter()
+        result = nest({d.id: d.footprint for d in drawings}, sheet, margin=margin,
+                      spacing=spacing, rotations=rotations, progress=stage_progress("nest"))
+        times["nest"] = time.perf_counter() - t
+    files = {}
+    if dxf:
+        t = time.perf_counter()
+        files["dxf"] = write_dxf(dxf, result, drawings, per_sheet=per_sheet)
+        times["dxf"] = time.perf_counter() - t
+    rows = None
+    if schedule:
+        t = time.perf_counter()
+        rows = schedule_rows(ps, result)
+        if schedule.lower().endswith(".json"):
+            write_schedule_json(schedule, rows, meta=ps.options)
+        else:
+            write_schedule_csv(schedule, rows)
+        files["schedule"] = [schedule]
+        times["schedule"] = time.perf_counter() - t
+    if svg:
+        t = time.perf_counter()
+        files["svg"] = write_svg(svg, result, drawings)
+        times["svg"] = time.perf_counter() - t
+    if png:
+        t = time.perf_counter()
+        files["png"] = write_png(png, result, drawings)
+        times["png"] = time.perf_counter() - t
+    if step:
+        from facet.step import panel_solids, write_step
+
+        t = time.perf_counter()
+        solids = panel_solids(ps, progress=stage_progress("solids"))
+        times["solids"] = time.perf_counter() - t
+        t = time.perf_counter()
+        write_step(step, solids)
+        times["step"] = time.perf_counter() - t
+        files["step"] = [step]
+
+    report = {
+        "kind": "panels",
+        "input": mesh.info.get("source") if mesh.info else None,
+        "options": dict(ps.options, sheet=sheet, margin=margin, spacing=spacing,
+                        rotations=rotations, grain=grain),
+        "n_panels": len(ps),
+        "id_scheme": ps.id_scheme,
+        "grid_shape": ps.grid_shape,
+        "panels": schedule_rows(ps, result) if rows is None else rows,
+        "sheets": [] if result is None else [
+            {"index": s.index + 1, "parts": s.parts, "utilisation": s.utilisation}
+            for s in result.sheets],
+        "unplaced": [] if result is None else list(result.unplaced),
+        "utilisation": None if result is None else result.utilisation,
+        "max_node_deviation": ps.max_node_deviation_deg,
+        "max_node_deviation_unit": "degrees",
+        "worst_node": ps.worst_node,
+        "max_planarity": float(ps.planarity.max()),
+        "warnings": ps.warnings,
+        "files": files,
+        "seconds": times,
+    }
+    return report, ps, drawings, result
+
+
+def run_panels(args):
+    """Run ``facet panels``; return the exit status."""
+    from facet.cli import EXIT_OK, _read
+    from facet.report import write_json
+
+    mesh = _read(args)
+    report, ps, drawings, result = run_pipeline(
+        mesh, args.thickness, offset=args.offset, gap=args.gap, edge=args.edge, flip=args.flip,
+        ids=args.ids, prefix=args.prefix, tol=args.tol, tol_abs=args.tol_abs, sheet=args.sheet,
+        margin=args.margin, spacing=args.spacing, rotations=args.rotations, grain=args.grain,
+        dxf=args.dxf, per_sheet=args.per_sheet, step=args.step, schedule=args.schedule,
+        svg=args.svg, png=args.png)
+    report["input"] = args.input
+    if args.report:
+        write_json(report, args.report)
+    out = sys.stdout
+    print(f"  panels        {len(ps)} ({ps.id_scheme} IDs"
+          + (f", {ps.grid_shape[0]} x {ps.grid_shape[1]} grid" if ps.grid_shape else "") + ")",
+          file=out)
+    print(f"  nodes         largest deviation from a common axis "
+          f"{ps.max_node_deviation_deg:.3g} degrees", file=out)
+    if result is not None:
+        print(f"  sheets        {len(result.sheets)}, utilisation {100 * result.utilisation:.1f}%"
+              f", {len(result.unplaced)} unplaced", file=out)
+        if result.unplaced:
+            shown = ", ".join(result.unplaced[:8]) + (", ..." if len(result.unplaced) > 8 else "")
+            print(f"facet: warning: {len(result.unplaced)} parts fit on no sheet: {shown}",
+                  file=sys.stderr)
+    for kind, paths in report["files"].items():
+        print(f"  {kind:<13} {', '.join(paths[:3])}" + (" ..." if len(paths) > 3 else ""),
+              file=out)
+    for w in ps.warnings:
+        print(f"facet: warning: {w}", file=sys.stderr)
+    return EXIT_OK

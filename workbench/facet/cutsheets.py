@@ -1,0 +1,287 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Cut files: DXF sheets (ezdxf), the schedule (CSV, JSON), SVG and PNG previews.
+
+DXF layers:
+
+========  =============================================================
+CUT       each part's cut outline (its bottom face), closed polylines
+LABEL     the part ID, engraving text inside the outline
+BEVEL     the top face's outline where it differs, and each bevel angle
+SHEET     sheet borders and sheet names
+GRAIN     grain arrows
+========  =============================================================
+
+Units are millimetres ($INSUNITS 4): model units are taken as mm. Sheets lie
+side by side along +x, ``sheet_gap`` apart, in one file, or one file per
+sheet (``per_sheet=True``).
+"""
+
+import csv
+import io
+import json
+import math
+import os
+
+import numpy as np
+
+from facet.report import json_safe
+
+__all__ = ["LAYERS", "write_dxf", "schedule_rows", "write_schedule_csv",
+           "write_schedule_json", "write_svg", "write_png", "sheet_offsets"]
+
+#: Layer name -> ACI colour.
+LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "SHEET": 8, "GRAIN": 6}
+
+
+def _atomic_write(path, data, binary=False):
+    path = os.fspath(path)
+    tmp = f"{path}.tmp{os.getpid()}"
+    with open(tmp, "wb" if binary else "w", **({} if binary else {"encoding": "utf-8",
+                                                                  "newline": ""})) as f:
+        f.write(data)
+    os.replace(tmp, path)
+
+
+def sheet_offsets(nest_result, sheet_gap=None):
+    """x offset of each sheet when laid side by side."""
+    w, h = nest_result.sheet_size
+    gap = 0.1 * w if sheet_gap is None else sheet_gap
+    return [i * (w + gap) for i in range(len(nest_result.sheets))]
+
+
+def _placed(nest_result, drawings):
+    by_id = {d.id: d for d in drawings}
+    for pid, pl in nest_result.placements.items():
+        yield pl, by_id[pid]
+
+
+def _rotate_angle(pl, deg):
+    return (deg + pl.angle_deg) % 360.0
+
+
+def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None):
+    """Write the nested sheets as DXF (ezdxf; audited before saving).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file; with ``per_sheet`` a pattern whose ``{sheet}`` is replaced
+        by the sheet number (1-based), or ``name.dxf`` -> ``name_01.dxf``.
+    nest_result : facet.nest.NestResult
+    drawings : list of facet.unfold.PartDrawing
+    per_sheet : bool
+    sheet_gap : float, optional
+        Distance between sheets side by side (default a tenth of the width).
+
+    Returns
+    -------
+    list of str
+        The files written.
+    """
+    import ezdxf
+    from ezdxf.enums import TextEntityAlignment
+
+    w, h = nest_result.sheet_size
+    offsets = sheet_offsets(nest_result, sheet_gap)
+    path = os.fspath(path)
+
+    def new_doc():
+        doc = ezdxf.new("R2010", setup=True)
+        doc.units = ezdxf.units.MM
+        doc.header["$MEASUREMENT"] = 1
+        for name, colour in LAYERS.items():
+            doc.layers.add(name, color=colour)
+        return doc
+
+    def text(msp, s, x, y, height, rotation, layer):
+        t = msp.add_text(s, dxfattribs={"height": height, "rotation": rotation, "layer": layer})
+        t.set_placement((x, y), align=TextEntityAlignment.MIDDLE_CENTER)
+
+    docs = {}
+    for i, sheet in enumerate(nest_result.sheets):
+        key = i if per_sheet else 0
+        if key not in docs:
+            docs[key] = new_doc()
+        msp = docs[key].modelspace()
+        x0 = 0.0 if per_sheet else offsets[i]
+        msp.add_lwpolyline([(x0, 0), (x0 + w, 0), (x0 + w, h), (x0, h)], close=True,
+                           dxfattribs={"layer": "SHEET"})
+        text(msp, f"SHEET {i + 1}", x0 + 0.5 * w, -0.04 * h, 0.02 * h, 0.0, "SHEET")
+    for pl, d in _placed(nest_result, drawings):
+        msp = docs[pl.sheet if per_sheet else 0].modelspace()
+        off = np.array([0.0 if per_sheet else offsets[pl.sheet], 0.0])
+        cut = pl.transform(d.cut) + off
+        msp.add_lwpolyline(cut.tolist(), close=True, dxfattribs={"layer": "CUT"})
+        if not np.allclose(d.top, d.cut, rtol=0, atol=1e-9 * max(w, h)):
+            msp.add_lwpolyline((pl.transform(d.top) + off).tolist(), close=True,
+                               dxfattribs={"layer": "BEVEL", "linetype": "DASHED"})
+        lx, ly = pl.transform([d.label_position])[0] + off
+        text(msp, d.id, lx, ly, d.label_height, pl.angle_deg % 360.0, "LABEL")
+        for s, bx, by, ang, bh in d.bevels:
+            px, py = pl.transform([(bx, by)])[0] + off
+            text(msp, s, px, py, bh, _rotate_angle(pl, ang), "BEVEL")
+        if d.grain is not None:
+            a, b = pl.transform(d.grain) + off
+            msp.add_line(a.tolist(), b.tolist(), dxfattribs={"layer": "GRAIN"})
+            u = (b - a) / max(np.linalg.norm(b - a), 1e-300)
+            n = np.array([-u[1], u[0]])
+            size = 0.15 * np.linalg.norm(b - a)
+            for sgn in (1, -1):
+                msp.add_line(b.tolist(), (b - size * u + sgn * 0.5 * size * n).tolist(),
+                             dxfattribs={"layer": "GRAIN"})
+    if not docs:  # nothing placed: still a valid (empty) drawing, so no stale file remains
+        docs[0] = new_doc()
+    written = []
+    for key in sorted(docs):
+        doc = docs[key]
+        auditor = doc.audit()
+        if auditor.has_errors:
+            raise RuntimeError(f"ezdxf audit found {len(auditor.errors)} errors in the DXF")
+        if per_sheet:
+            if "{sheet}" in path:
+                target = path.replace("{sheet}", f"{key + 1:02d}")
+            else:
+                root, ext = os.path.splitext(path)
+                target = f"{root}_{key + 1:02d}{ext or '.dxf'}"
+        else:
+            target = path
+        tmp = f"{target}.tmp{os.getpid()}"
+        doc.saveas(tmp)
+        os.replace(tmp, target)
+        written.append(target)
+    return written
+
+
+def schedule_rows(panel_set, nest_result=None):
+    """The schedule: one dict per panel (see :meth:`facet.panels.Panel.schedule_row`)
+    with sheet (1-based, None when not nested or unplaced), x, y and
+    rotation_deg on the sheet."""
+    rows = []
+    for p in panel_set.panels:
+        row = p.schedule_row()
+        pl = nest_result.placements.get(p.id) if nest_result is not None else None
+        row["sheet"] = None if pl is None else pl.sheet + 1
+        row["x"] = None if pl is None else pl.x
+        row["y"] = None if pl is None else pl.y
+        row["rotation_deg"] = None if pl is None else pl.angle_deg
+        rows.append(row)
+    return rows
+
+
+_CSV_COLUMNS = ["id", "face", "area", "area_top", "perimeter", "width", "height", "thickness",
+                "edge_lengths", "bevel_deg", "dihedral_deg", "sheet", "x", "y",
+                "rotation_deg"]
+
+
+def _cell(value):
+    if value is None:
+        return ""
+    if isinstance(value, float):
+        return repr(value) if math.isfinite(value) else ""
+    if isinstance(value, (list, tuple)):
+        return ";".join(_cell(v) for v in value)
+    return str(value)
+
+
+def write_schedule_csv(path, rows):
+    """CSV, one row per panel; list cells joined with ';' (floats as repr,
+    17 significant digits where needed)."""
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(_CSV_COLUMNS)
+    for row in rows:
+        writer.writerow([_cell(row.get(c)) for c in _CSV_COLUMNS])
+    _atomic_write(path, buf.getvalue())
+
+
+def write_schedule_json(path, rows, meta=None):
+    """JSON: {"meta": ..., "panels": rows}."""
+    text = json.dumps(json_safe({"meta": meta or {}, "panels": rows}), allow_nan=False,
+                      indent=1) + "\n"
+    _atomic_write(path, text)
+
+
+def _svg_path(points):
+    return "M " + " L ".join(f"{x!r} {y!r}" for x, y in points) + " Z"
+
+
+def write_svg(directory, nest_result, drawings, stem="sheet"):
+    """One SVG preview per sheet (``stem_01.svg``...), in model units with y up.
+
+    Returns
+    -------
+    list of str
+    """
+    from xml.sax.saxutils import escape
+
+    os.makedirs(directory, exist_ok=True)
+    w, h = nest_result.sheet_size
+    by_sheet = {}
+    for pl, d in _placed(nest_result, drawings):
+        by_sheet.setdefault(pl.sheet, []).append((pl, d))
+    written = []
+    stroke = max(w, h) / 1500.0
+    for i, sheet in enumerate(nest_result.sheets):
+        out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w!r} {h!r}" '
+               f'width="{1000}" height="{1000 * h / w:.0f}">',
+               f'<title>sheet {i + 1}: {len(sheet.parts)} parts, '
+               f'{100 * sheet.utilisation:.1f}% used</title>',
+               f'<g transform="matrix(1 0 0 -1 0 {h!r})">',
+               f'<rect x="0" y="0" width="{w!r}" height="{h!r}" fill="#f4f1ea" '
+               f'stroke="#777" stroke-width="{stroke!r}"/>']
+        for pl, d in by_sheet.get(i, []):
+            cut = pl.transform(d.cut)
+            out.append(f'<path d="{_svg_path(cut)}" fill="#c9d8e8" stroke="#c00" '
+                       f'stroke-width="{stroke!r}"/>')
+            lx, ly = pl.transform([d.label_position])[0]
+            out.append(f'<text x="{lx!r}" y="{-ly!r}" transform="scale(1 -1)" '
+                       f'font-size="{d.label_height!r}" text-anchor="middle" '
+                       f'dominant-baseline="middle" fill="#003">{escape(d.id)}</text>')
+        out.append("</g></svg>\n")
+        target = os.path.join(directory, f"{stem}_{i + 1:02d}.svg")
+        _atomic_write(target, "\n".join(out))
+        written.append(target)
+    return written
+
+
+def write_png(directory, nest_result, drawings, stem="sheet", dpi=100):
+    """One PNG preview per sheet (matplotlib, Agg).
+
+    Returns
+    -------
+    list of str
+    """
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Polygon as MplPolygon
+    from matplotlib.patches import Rectangle
+
+    os.makedirs(directory, exist_ok=True)
+    w, h = nest_result.sheet_size
+    by_sheet = {}
+    for pl, d in _placed(nest_result, drawings):
+        by_sheet.setdefault(pl.sheet, []).append((pl, d))
+    written = []
+    for i, sheet in enumerate(nest_result.sheets):
+        fig, ax = plt.subplots(figsize=(10, 10 * h / w + 0.6))
+        ax.add_patch(Rectangle((0, 0), w, h, facecolor="#f4f1ea", edgecolor="#777"))
+        for pl, d in by_sheet.get(i, []):
+            ax.add_patch(MplPolygon(pl.transform(d.cut), closed=True, facecolor="#c9d8e8",
+                                    edgecolor="#c00", linewidth=0.6))
+            lx, ly = pl.transform([d.label_position])[0]
+            ax.text(lx, ly, d.id, ha="center", va="center", fontsize=6,
+                    rotation=pl.angle_deg % 360.0)
+        ax.set_xlim(-0.02 * w, 1.02 * w)
+        ax.set_ylim(-0.02 * h, 1.02 * h)
+        ax.set_aspect("equal")
+        ax.set_title(f"sheet {i + 1}: {len(sheet.parts)} parts, "
+                     f"{100 * sheet.utilisation:.1f}% used")
+        target = os.path.join(directory, f"{stem}_{i + 1:02d}.png")
+        tmp = target + f".tmp{os.getpid()}.png"
+        fig.savefig(tmp, dpi=dpi)
+        plt.close(fig)
+        os.replace(tmp, target)
+        written.append(target)
+    return written

@@ -1,0 +1,280 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Nesting flat parts on stock sheets with libnest2d (Debian's pynest2d).
+
+libnest2d works on integer coordinates (Clipper): outlines are scaled so
+that the sheet's longer side spans about 2**20 units, and the spacing and
+margin are rounded up by two units (a few micrometres on a 3 m sheet), so
+the true outlines keep at least the spacing asked for. :func:`verify` checks
+the result independently with shapely (GEOS).
+
+Parts are nested in batches so that progress can be reported and the work
+cancelled between batches; the parts of each batch's last, partly filled
+sheet go back into the next batch.
+
+>>> result = nest({"A": outline_a, "B": outline_b}, sheet=(2500, 1250),
+...               margin=10, spacing=6, rotations="90")   # doctest: +SKIP
+>>> result.sheets[0].utilisation                          # doctest: +SKIP
+0.41
+"""
+
+import math
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from facet.errors import Cancelled, InputError
+
+__all__ = ["NestError", "Placement", "Sheet", "NestResult", "nest", "verify", "ROTATIONS"]
+
+#: Allowed rotations by name: angles tried, radians.
+ROTATIONS = {
+    "none": (0.0,),
+    "90": tuple(k * math.pi / 2 for k in range(4)),
+    "free": tuple(k * math.pi / 6 for k in range(12)),
+}
+
+_UNITS = float(2 ** 20)
+_BATCH = 400
+_BATCH_MIN = 8
+_BATCH_SHEETS = 2.0
+
+
+class NestError(InputError):
+    """Bad nesting input: sheet size, margin, spacing, rotations or a part."""
+
+
+@dataclass
+class Placement:
+    """Where a part lies: ``sheet_xy = rotate(angle) @ part_xy + (x, y)``,
+    with the sheet's lower-left corner at (0, 0)."""
+
+    id: str
+    sheet: int
+    angle_deg: float
+    x: float
+    y: float
+
+    def transform(self, points):
+        """Part coordinates (k, 2) -> sheet coordinates."""
+        a = math.radians(self.angle_deg)
+        c, s = math.cos(a), math.sin(a)
+        pts = np.asarray(points, dtype=float)
+        return pts @ np.array([[c, s], [-s, c]]) + (self.x, self.y)
+
+
+@dataclass
+class Sheet:
+    index: int
+    width: float
+    height: float
+    parts: list = field(default_factory=list)
+    used_area: float = 0.0
+
+    @property
+    def utilisation(self):
+        """Area of the parts over the sheet's area."""
+        return self.used_area / (self.width * self.height)
+
+
+@dataclass
+class NestResult:
+    sheet_size: tuple
+    margin: float
+    spacing: float
+    rotations: str
+    sheets: list
+    placements: dict
+    unplaced: list
+    seconds: float = 0.0
+
+    @property
+    def utilisation(self):
+        """Overall: area of the placed parts over the area of all sheets."""
+        if not self.sheets:
+            return 0.0
+        return sum(s.used_area for s in self.sheets) / (
+            len(self.sheets) * self.sheet_size[0] * self.sheet_size[1])
+
+
+def _check(name, value, minimum, strict):
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise NestError(f"{name} must be a number, not {value!r}") from None
+    if not math.isfinite(value) or value < minimum or (strict and value == minimum):
+        raise NestError(f"{name} must be a finite number {'>' if strict else '>='} "
+                        f"{minimum:g}, not {value!r}")
+    return value
+
+
+def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
+         progress=None):
+    """Nest flat parts on as many sheets as needed.
+
+    Parameters
+    ----------
+    parts : dict
+        Part ID -> (k, 2) outline (any winding) or shapely Polygon.
+    sheet : (width, height)
+        Stock sheet size, model units.
+    margin : float
+        Clear border along every sheet edge, >= 0.
+    spacing : float
+        Smallest distance between two parts (the kerf and more), >= 0.
+    rotations : {"none", "90", "free"}
+        None (grain locked), quarter turns, or every 30 degrees.
+    accuracy : float
+        libnest2d's placer accuracy in (0, 1].
+    progress : callable, optional
+        ``progress(done, total)`` between batches; True cancels.
+
+    Returns
+    -------
+    NestResult
+        Parts that fit on no sheet are listed in ``unplaced``.
+    """
+    import time
+
+    import pynest2d
+    from shapely.geometry import Polygon
+    from shapely.geometry.polygon import orient
+
+    t0 = time.perf_counter()
+    try:
+        width, height = (float(v) for v in sheet)
+    except (TypeError, ValueError):
+        raise NestError(f"sheet must be (width, height), not {sheet!r}") from None
+    width = _check("sheet width", width, 0.0, True)
+    height = _check("sheet height", height, 0.0, True)
+    margin = _check("margin", margin, 0.0, False)
+    spacing = _check("spacing", spacing, 0.0, False)
+    accuracy = _check("accuracy", accuracy, 0.0, True)
+    if rotations not in ROTATIONS:
+        raise NestError(f"rotations must be one of {', '.join(ROTATIONS)}, not {rotations!r}")
+    if 2 * margin >= min(width, height):
+        raise NestError(f"margin {margin:g} leaves nothing of a {width:g} x {height:g} sheet")
+    scale = _UNITS / max(width, height)
+    dist = max(1, int(math.ceil(spacing * scale)) + 2)
+    inner_w = int(math.floor((width - 2 * margin) * scale)) - 2
+    inner_h = int(math.floor((height - 2 * margin) * scale)) - 2
+
+    polys = {}
+    for pid, outline in parts.items():
+        poly = outline if isinstance(outline, Polygon) else Polygon(np.asarray(outline, float))
+        if not poly.is_valid or poly.area <= 0:
+            raise NestError(f"part {pid}: outline is not a simple polygon with an area")
+        polys[pid] = orient(poly, sign=-1.0)  # clockwise, as Clipper wants outer contours
+
+    config = pynest2d.NfpConfig()
+    config.rotations = list(ROTATIONS[rotations])
+    config.alignment = pynest2d.NfpConfig.Alignment.BOTTOM_LEFT
+    config.starting_point = pynest2d.NfpConfig.Alignment.BOTTOM_LEFT
+    config.accuracy = accuracy
+
+    def make_item(pid):
+        coords = np.asarray(polys[pid].exterior.coords)
+        pts = [pynest2d.Point(int(round(x * scale)), int(round(y * scale))) for x, y in coords]
+        return pynest2d.Item(pts)
+
+    # largest first: what first-fit packs best
+    order = sorted(polys, key=lambda k: -polys[k].area)
+    # First-fit tries every part on every open sheet: batches of a few
+    # sheets' worth of parts keep that from growing with the part count.
+    mean_area = sum(p.area for p in polys.values()) / max(1, len(polys))
+    per_sheet = max(1.0, (width - 2 * margin) * (height - 2 * margin) / max(mean_area, 1e-300))
+    batch_size = int(min(_BATCH, max(_BATCH_MIN, _BATCH_SHEETS * per_sheet)))
+    total = len(order)
+    sheets, placements, unplaced = [], {}, []
+    pending = []
+    done = 0
+    box_w, box_h = inner_w + dist, inner_h + dist
+    while order or pending:
+        batch = pending + order[:batch_size]
+        order = order[batch_size:]
+        items = [make_item(pid) for pid in batch]
+        pynest2d.nest(items, pynest2d.Box(box_w, box_h), dist, config)
+        bins = {}
+        for pid, item in zip(batch, items):
+            b = item.binId()
+            if b < 0:
+                unplaced.append(pid)
+            else:
+                bins.setdefault(b, []).append((pid, item))
+        keys = sorted(bins)
+        pending = []
+        if order and keys:
+            # the last sheet is partly filled: its parts go into the next batch
+            pending = [pid for pid, _ in bins.pop(keys[-1])]
+            keys = keys[:-1]
+        for b in keys:
+            sheet_obj = Sheet(index=len(sheets), width=width, height=height)
+            for pid, item in bins[b]:
+                angle = float(item.rotation())
+                tr = item.translation()
+                # libnest2d's box is centred on 0; the sheet's corner is at 0
+                x = tr.x() / scale + 0.5 * box_w / scale + margin + 1.0 / scale - 0.5 * dist / scale
+                y = tr.y() / scale + 0.5 * box_h / scale + margin + 1.0 / scale - 0.5 * dist / scale
+                # item coordinates were scaled from model units: translation
+                # applies to scaled, rotated coordinates
+                placements[pid] = Placement(pid, sheet_obj.index, math.degrees(angle), x, y)
+                sheet_obj.parts.append(pid)
+                sheet_obj.used_area += polys[pid].area
+            sheets.append(sheet_obj)
+        done = total - len(order)
+        if progress is not None and progress(done, total):
+            raise Cancelled("nesting cancelled")
+    return NestResult(sheet_size=(width, height), margin=margin, spacing=spacing,
+                      rotations=rotations, sheets=sheets, placements=placements,
+                      unplaced=unplaced, seconds=time.perf_counter() - t0)
+
+
+def verify(result, parts, tolerance=None):
+    """Check a nesting independently with shapely.
+
+    Parameters
+    ----------
+    result : NestResult
+    parts : dict
+        The outlines given to :func:`nest`.
+    tolerance : float, optional
+        Slack for rounding, model units; default 1e-6 of the sheet's size.
+
+    Returns
+    -------
+    list of str
+        What is wrong (empty when every part lies inside its sheet less the
+        margin, and every two parts on a sheet are at least the spacing
+        apart).
+    """
+    from shapely.geometry import Polygon, box
+    from shapely.strtree import STRtree
+
+    width, height = result.sheet_size
+    tol = tolerance if tolerance is not None else 1e-6 * max(width, height)
+    m = result.margin
+    inner = box(m - tol, m - tol, width - m + tol, height - m + tol)
+    problems = []
+    by_sheet = {}
+    for pid, pl in result.placements.items():
+        poly = parts[pid] if isinstance(parts[pid], Polygon) else Polygon(parts[pid])
+        placed = Polygon(pl.transform(np.asarray(poly.exterior.coords)))
+        if not inner.contains(placed):
+            problems.append(f"part {pid} on sheet {pl.sheet} leaves the sheet less its margin")
+        by_sheet.setdefault(pl.sheet, []).append((pid, placed))
+    for sheet, items in by_sheet.items():
+        geoms = [g for _, g in items]
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # shapely 1.8 announces 2.0's STRtree
+            tree = STRtree(geoms)
+        index = {id(g): k for k, g in enumerate(geoms)}
+        for k, (pid, g) in enumerate(items):
+            for other in tree.query(g.buffer(max(result.spacing - tol, 0.0))):
+                j = index[id(other)]
+                if j <= k:
+                    continue
+                d = g.distance(other)
+                if d < result.spacing - tol:
+                    problems.append(f"parts {pid} and {items[j][0]} on sheet {sheet} are "
+                                    f"{d:.6g} apart (spacing {result.spacing:g})")
+    return problems

@@ -1,0 +1,125 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Panel solids through FreeCAD/OCC: Part solids and STEP files.
+
+FreeCAD is imported only when a function here is called: inside FreeCAD it
+is already there; from a plain Python it is looked for where Debian and the
+FreeCAD AppImage/conda builds put its libraries (and in ``$FREECAD_LIB``).
+When it cannot be imported, :class:`FreeCADMissing` says so in one line.
+
+Each solid is built from shared edges (top ring, bottom ring, one edge per
+side), so its faces share their edges and the shell is closed: a valid OCC
+solid (BRepCheck) whose volume is the polyhedron's.
+"""
+
+import os
+import sys
+
+from facet.errors import Cancelled, FacetError
+
+__all__ = ["FreeCADMissing", "import_freecad", "panel_solid", "panel_solids", "write_step"]
+
+_CANDIDATES = (
+    "/usr/lib/freecad-python3/lib",
+    "/usr/lib/freecad/lib",
+    "/usr/local/lib/freecad/lib",
+    "/opt/freecad/lib",
+)
+
+
+class FreeCADMissing(FacetError):
+    """FreeCAD's Python modules cannot be imported (STEP needs them)."""
+
+
+def import_freecad():
+    """Import FreeCAD and Part (and Import, for STEP).
+
+    Returns
+    -------
+    (FreeCAD, Part)
+
+    Raises
+    ------
+    FreeCADMissing
+    """
+    try:
+        import FreeCAD  # noqa: F401
+    except ImportError:
+        extra = [os.environ.get("FREECAD_LIB", "")] + list(_CANDIDATES)
+        for path in extra:
+            if path and os.path.isdir(path) and path not in sys.path:
+                sys.path.append(path)
+        try:
+            import FreeCAD  # noqa: F401,F811
+        except ImportError as exc:
+            raise FreeCADMissing(
+                "STEP export needs FreeCAD, which was not found (looked in "
+                f"{', '.join(p for p in extra if p)}; set FREECAD_LIB to its lib folder): "
+                f"{exc}") from None
+    import FreeCAD
+    import Part
+
+    return FreeCAD, Part
+
+
+def panel_solid(panel, Part=None, FreeCAD=None):
+    """The OCC solid of one panel (a Part.Solid with outward faces)."""
+    if Part is None:
+        FreeCAD, Part = import_freecad()
+    V = FreeCAD.Vector
+    top = [V(*map(float, p)) for p in panel.top]
+    bottom = [V(*map(float, p)) for p in panel.bottom]
+    k = len(top)
+    top_edges = [Part.LineSegment(top[i], top[(i + 1) % k]).toShape() for i in range(k)]
+    bot_edges = [Part.LineSegment(bottom[i], bottom[(i + 1) % k]).toShape() for i in range(k)]
+    side_edges = [Part.LineSegment(bottom[i], top[i]).toShape() for i in range(k)]
+    faces = [Part.Face(Part.Wire(top_edges)), Part.Face(Part.Wire(bot_edges))]
+    for i in range(k):
+        j = (i + 1) % k
+        wire = Part.Wire([bot_edges[i], side_edges[j], top_edges[i], side_edges[i]])
+        faces.append(Part.Face(wire))
+    shell = Part.Shell(faces)
+    solid = Part.Solid(shell)
+    if solid.Volume < 0:
+        solid.reverse()
+    return solid
+
+
+def panel_solids(panel_set, progress=None):
+    """[(id, Part.Solid)] for every panel; ``progress(done, total)`` returning
+    True cancels (raises :class:`facet.Cancelled`)."""
+    FreeCAD, Part = import_freecad()
+    out = []
+    n = len(panel_set.panels)
+    for i, p in enumerate(panel_set.panels):
+        out.append((p.id, panel_solid(p, Part, FreeCAD)))
+        if progress is not None and (i % 200 == 199 or i == n - 1) and progress(i + 1, n):
+            raise Cancelled("solids cancelled")
+    return out
+
+
+def write_step(path, named_solids):
+    """Write solids to a STEP file, each named by its ID (the product name
+    FreeCAD's importer and other CAD systems show).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    named_solids : list of (str, Part.Solid)
+    """
+    FreeCAD, Part = import_freecad()
+    import Import
+
+    path = os.fspath(path)
+    doc = FreeCAD.newDocument("FacetStepExport", hidden=True, temp=True)
+    try:
+        objs = []
+        for name, solid in named_solids:
+            obj = doc.addObject("Part::Feature", "Panel")
+            obj.Label = name
+            obj.Shape = solid
+            objs.append(obj)
+        tmp = f"{path}.tmp{os.getpid()}.step"
+        Import.export(objs, tmp)
+        os.replace(tmp, path)
+    finally:
+        FreeCAD.closeDocument(doc.Name)

@@ -1,0 +1,320 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""PanelSet and CutSheets: panel solids and nested cut sheets as parametric objects.
+
+PanelSet (``Part::FeaturePython``) links a planar mesh (a PolyMesh or Planarized object) in
+``Source`` and, on recompute, runs ``facet.panels`` with its properties; its ``Shape`` is one
+compound of OCC solids, one per panel, in the order of ``PartIds`` (solid k is panel
+``PartIds[k]``). Each solid is checked with BRepCheck (``isValid``) before it is stored.
+
+CutSheets (``Part::FeaturePython``) links a PanelSet, nests its flat parts on stock sheets
+(``facet.nest``) and, when ``OutputDir`` is set, writes the DXF, STEP, schedule and previews
+there. Its ``Shape`` is the sheet layout (sheet borders and cut outlines, flat, side by side).
+
+The source is never modified. The numerics are in ``facet``; this module is wiring.
+"""
+
+import FreeCAD as App
+
+from facetwb import compat
+
+TYPE_PANELSET = "Facet::PanelSet"
+TYPE_CUTSHEETS = "Facet::CutSheets"
+
+OFFSETS = ["outer", "inner", "center"]
+EDGE_MODES = ["square", "bisector"]
+ID_SCHEMES = ["auto", "grid", "index"]
+ROTATIONS = ["90", "none", "free"]
+
+
+class _Proxy:
+    TYPE = ""
+
+    def __init__(self, obj):
+        self.Type = self.TYPE
+        obj.Proxy = self
+        self.init_properties(obj)
+
+    def onDocumentRestored(self, obj):
+        self.init_properties(obj)
+
+    def onChanged(self, obj, prop):
+        pass
+
+    def dumps(self):
+        return {"Type": self.Type}
+
+    def loads(self, state):
+        self.Type = self.TYPE
+        if isinstance(state, dict):
+            self.Type = state.get("Type", self.TYPE)
+
+    def __getstate__(self):
+        return self.dumps()
+
+    def __setstate__(self, state):
+        self.loads(state)
+
+
+def _enum(obj, name, group, doc, values, default):
+    if compat.add_property(obj, "App::PropertyEnumeration", name, group, doc):
+        setattr(obj, name, values)
+        setattr(obj, name, default)
+
+
+def _output(obj, type_name, name, doc, group="Result"):
+    compat.add_property(obj, type_name, name, group, doc, attr=compat.PROP_OUTPUT,
+                        editor_mode=compat.EDITOR_READ_ONLY)
+
+
+class PanelSet(_Proxy):
+    """Proxy of a set of panel solids made from a planar mesh."""
+
+    TYPE = TYPE_PANELSET
+
+    def init_properties(self, obj):
+        add = compat.add_property
+        add(obj, "App::PropertyLink", "Source", "Base",
+            "The planar mesh (PolyMesh or Planarized object); never modified")
+        add(obj, "App::PropertyLength", "Thickness", "Panels", "Panel thickness", value=40.0)
+        _enum(obj, "Offset", "Panels", "Panel on the outer (+normal) side of the surface, "
+              "the inner side, or centred on it", OFFSETS, "outer")
+        add(obj, "App::PropertyLength", "Gap", "Panels",
+            "Joint width between neighbouring panels")
+        _enum(obj, "EdgeMode", "Panels", "Edge cuts square to the panel, or mitred on the "
+              "bisector of the two panels' planes", EDGE_MODES, "square")
+        add(obj, "App::PropertyBool", "Flip", "Panels", "Swap the outer and inner sides")
+        add(obj, "App::PropertyFloat", "Tolerance", "Panels",
+            "Planarity accepted, relative to each face's mean edge length", value=1e-6)
+        add(obj, "App::PropertyLength", "ToleranceAbs", "Panels",
+            "Planarity accepted, in model units (the larger tolerance applies)")
+        _enum(obj, "IdScheme", "Part IDs", "auto: grid row and column when the mesh is a "
+              "regular quad grid, else the face index", ID_SCHEMES, "auto")
+        add(obj, "App::PropertyString", "IdPrefix", "Part IDs", "Prefix of every part ID",
+            value="P-")
+        _output(obj, "App::PropertyStringList", "PartIds", "Part ID of each solid, in order")
+        _output(obj, "App::PropertyInteger", "PanelCount", "Number of panels")
+        _output(obj, "App::PropertyFloatList", "Volumes", "Volume of each solid")
+        _output(obj, "App::PropertyFloatList", "Areas", "Bottom face area of each panel")
+        _output(obj, "App::PropertyAngle", "MaxNodeDeviation",
+                "Largest angle by which a node's edge planes miss a common axis")
+        _output(obj, "App::PropertyStringList", "Warnings", "What was found worth telling")
+
+    def panel_set(self, obj):
+        """The facet.panels.PanelSet for the current properties (computed afresh)."""
+        from facet.panels import panels
+        from facetwb import conversion
+
+        if obj.Source is None:
+            raise ValueError(f"{obj.Label}: Source is empty, no mesh to make panels of")
+        mesh = conversion.mesh_from_object(obj.Source)
+        return panels(mesh, obj.Thickness.Value, offset=obj.Offset, gap=obj.Gap.Value,
+                      edge=obj.EdgeMode, flip=bool(obj.Flip), ids=obj.IdScheme,
+                      prefix=obj.IdPrefix, tol=obj.Tolerance, tol_abs=obj.ToleranceAbs.Value)
+
+    def execute(self, obj):
+        import Part
+
+        from facet.step import panel_solid
+
+        ps = self.panel_set(obj)
+        solids = []
+        for p in ps.panels:
+            solid = panel_solid(p, Part, App)
+            if not solid.isValid():
+                raise ValueError(f"{obj.Label}: panel {p.id} is not a valid solid")
+            solids.append(solid)
+        obj.Shape = Part.makeCompound(solids)
+        obj.PartIds = [p.id for p in ps.panels]
+        obj.PanelCount = len(ps.panels)
+        obj.Volumes = [s.Volume for s in solids]
+        obj.Areas = [p.area for p in ps.panels]
+        obj.MaxNodeDeviation = ps.max_node_deviation_deg
+        obj.Warnings = list(ps.warnings)
+
+
+class CutSheets(_Proxy):
+    """Proxy of the nested cut sheets of a PanelSet (and the files written from them)."""
+
+    TYPE = TYPE_CUTSHEETS
+
+    def init_properties(self, obj):
+        add = compat.add_property
+        add(obj, "App::PropertyLink", "Panels", "Base", "The PanelSet to cut")
+        add(obj, "App::PropertyLength", "SheetWidth", "Sheet", "Stock sheet width",
+            value=3000.0)
+        add(obj, "App::PropertyLength", "SheetHeight", "Sheet", "Stock sheet height",
+            value=1500.0)
+        add(obj, "App::PropertyLength", "Margin", "Sheet", "Clear border along sheet edges",
+            value=10.0)
+        add(obj, "App::PropertyLength", "Spacing", "Sheet", "Least distance between parts",
+            value=6.0)
+        _enum(obj, "Rotations", "Sheet", "Rotations allowed when nesting (none when a grain "
+              "is set)", ROTATIONS, "90")
+        add(obj, "App::PropertyVector", "Grain", "Sheet",
+            "Grain direction in model space (zero: no grain)")
+        add(obj, "App::PropertyPath", "OutputDir", "Files",
+            "Folder for sheets.dxf, panels.step, schedule.csv/.json and previews "
+            "(empty: write nothing)")
+        add(obj, "App::PropertyBool", "WriteStep", "Files", "Also write panels.step",
+            value=True)
+        _output(obj, "App::PropertyInteger", "SheetCount", "Number of sheets")
+        _output(obj, "App::PropertyFloat", "Utilisation", "Part area over sheet area, all sheets")
+        _output(obj, "App::PropertyFloatList", "SheetUtilisation", "Per sheet")
+        _output(obj, "App::PropertyStringList", "Unplaced", "Parts that fit on no sheet")
+        _output(obj, "App::PropertyStringList", "Files", "Files written")
+
+    def execute(self, obj):
+        import os
+
+        import Part
+
+        from facet.cli_panels import run_pipeline
+        from facetwb import conversion
+
+        ps_obj = obj.Panels
+        if ps_obj is None or getattr(getattr(ps_obj, "Proxy", None), "Type", "") != TYPE_PANELSET:
+            raise ValueError(f"{obj.Label}: Panels must be a PanelSet")
+        g = obj.Grain
+        grain = None if g.Length == 0 else (g.x, g.y, g.z)
+        out = obj.OutputDir
+        if out:
+            os.makedirs(out, exist_ok=True)
+        mesh = conversion.mesh_from_object(ps_obj.Source)
+        report, ps, drawings, result = run_pipeline(
+            mesh, ps_obj.Thickness.Value, offset=ps_obj.Offset, gap=ps_obj.Gap.Value,
+            edge=ps_obj.EdgeMode, flip=bool(ps_obj.Flip), ids=ps_obj.IdScheme,
+            prefix=ps_obj.IdPrefix, tol=ps_obj.Tolerance, tol_abs=ps_obj.ToleranceAbs.Value,
+            sheet=(obj.SheetWidth.Value, obj.SheetHeight.Value), margin=obj.Margin.Value,
+            spacing=obj.Spacing.Value, rotations=obj.Rotations, grain=grain,
+            dxf=os.path.join(out, "sheets.dxf") if out else None,
+            schedule=os.path.join(out, "schedule.csv") if out else None,
+            svg=os.path.join(out, "svg") if out else None,
+            step=os.path.join(out, "panels.step") if out and obj.WriteStep else None)
+        if out:
+            from facet.cutsheets import schedule_rows, write_schedule_json
+
+            path = os.path.join(out, "schedule.json")
+            write_schedule_json(path, schedule_rows(ps, result), meta=ps.options)
+            report["files"]["schedule"].append(path)
+        # the layout: sheets side by side, flat in the xy plane
+        from facet.cutsheets import sheet_offsets
+
+        offsets = sheet_offsets(result)
+        w, h = result.sheet_size
+        V = App.Vector
+        wires = []
+        for x0 in offsets:
+            wires.append(Part.makePolygon([V(x0, 0, 0), V(x0 + w, 0, 0), V(x0 + w, h, 0),
+                                           V(x0, h, 0), V(x0, 0, 0)]))
+        by_id = {d.id: d for d in drawings}
+        for pid, pl in result.placements.items():
+            pts = pl.transform(by_id[pid].cut)
+            x0 = offsets[pl.sheet]
+            ring = [V(float(x) + x0, float(y), 0) for x, y in pts]
+            wires.append(Part.makePolygon(ring + [ring[0]]))
+        obj.Shape = Part.makeCompound(wires)
+        obj.SheetCount = len(result.sheets)
+        obj.Utilisation = float(result.utilisation)
+        obj.SheetUtilisation = [float(s.utilisation) for s in result.sheets]
+        obj.Unplaced = list(result.unplaced)
+        obj.Files = [f for paths in report["files"].values() for f in paths]
+
+
+def is_panelset(obj):
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE_PANELSET
+
+
+def is_cutsheets(obj):
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE_CUTSHEETS
+
+
+class ViewProviderPanels:
+    """A Part view provider with Facet's icon (PanelSet and CutSheets)."""
+
+    def __init__(self, vobj, icon):
+        self.icon = icon
+        vobj.Proxy = self
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+
+    def getIcon(self):
+        from facetwb import paths
+
+        return paths.icon_path(getattr(self, "icon", "Facet_PanelSet"))
+
+    def claimChildren(self):
+        return []
+
+    def dumps(self):
+        return {"icon": getattr(self, "icon", "Facet_PanelSet")}
+
+    def loads(self, state):
+        self.icon = state.get("icon", "Facet_PanelSet") if isinstance(state, dict) else \
+            "Facet_PanelSet"
+
+    def __getstate__(self):
+        return self.dumps()
+
+    def __setstate__(self, state):
+        self.loads(state)
+
+
+def make_panelset(source, thickness=40.0, offset="outer", gap=0.0, edge="square", flip=False,
+                  ids="auto", prefix="P-", name="PanelSet"):
+    """Add a PanelSet on ``source`` (a PolyMesh or Planarized object); recompute to build.
+
+    Returns
+    -------
+    App.DocumentObject
+    """
+    if offset not in OFFSETS:
+        raise ValueError(f"offset must be one of {OFFSETS}, not {offset!r}")
+    if edge not in EDGE_MODES:
+        raise ValueError(f"edge must be one of {EDGE_MODES}, not {edge!r}")
+    doc = source.Document
+    obj = doc.addObject("Part::FeaturePython", name)
+    PanelSet(obj)
+    obj.Label = f"{source.Label} panels"
+    obj.Source = source
+    obj.Thickness = thickness
+    obj.Offset = offset
+    obj.Gap = gap
+    obj.EdgeMode = edge
+    obj.Flip = bool(flip)
+    obj.IdScheme = ids
+    obj.IdPrefix = prefix
+    if App.GuiUp:
+        ViewProviderPanels(obj.ViewObject, "Facet_PanelSet")
+        obj.ViewObject.ShapeColor = (0.78, 0.84, 0.91)
+    return obj
+
+
+def make_cutsheets(panelset, sheet=(3000.0, 1500.0), margin=10.0, spacing=6.0,
+                   rotations="90", grain=None, output_dir="", write_step=True,
+                   name="CutSheets"):
+    """Add a CutSheets object nesting ``panelset``'s parts; recompute to nest and write.
+
+    Returns
+    -------
+    App.DocumentObject
+    """
+    if rotations not in ROTATIONS:
+        raise ValueError(f"rotations must be one of {ROTATIONS}, not {rotations!r}")
+    doc = panelset.Document
+    obj = doc.addObject("Part::FeaturePython", name)
+    CutSheets(obj)
+    obj.Label = f"{panelset.Label} cut sheets"
+    obj.Panels = panelset
+    obj.SheetWidth, obj.SheetHeight = float(sheet[0]), float(sheet[1])
+    obj.Margin = margin
+    obj.Spacing = spacing
+    obj.Rotations = rotations
+    if grain is not None:
+        obj.Grain = App.Vector(*grain)
+    obj.OutputDir = output_dir
+    obj.WriteStep = bool(write_step)
+    if App.GuiUp:
+        ViewProviderPanels(obj.ViewObject, "Facet_CutSheets")
+        obj.ViewObject.LineColor = (0.8, 0.0, 0.0)
+    return obj
