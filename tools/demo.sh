@@ -1,8 +1,10 @@
 #!/bin/sh
 # SPDX-License-Identifier: LGPL-2.1-or-later
-# make demo: planarize the bundled facade headless and write the planarized
-# OBJ, the JSON report, a FreeCAD document (source, result, planarity colour
-# map) and PNG renders of it.   tools/demo.sh [OUT_DIR]
+# make demo: the facade workflow on the bundled example, headless: planarize
+# (OBJ and JSON report), turn the flat faces into mitred 8 mm panels nested
+# on 3000 x 1500 sheets (DXF cut sheets, STEP solids, CSV/JSON schedule, SVG
+# previews), and a FreeCAD document (source, result, planarity colour map)
+# with PNG renders.   tools/demo.sh [OUT_DIR]
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-out/demo}
@@ -14,6 +16,14 @@ python=${PYTHON:-/usr/bin/python3}
 echo "== planarize (command line)"
 PYTHONPATH="$root/workbench" "$python" -m facet planarize "$mesh" \
     -o "$out/wave_facade_planar.obj" --report "$out/wave_facade_report.json"
+echo
+echo "== panels and cut sheets (command line; STEP through FreeCAD's OCC)"
+PYTHONPATH="$root/workbench" "$python" -m facet panels \
+    "$out/wave_facade_planar.obj" --thickness 8 --gap 6 --edge bisector \
+    --sheet 3000x1500 --margin 20 --spacing 10 --rotations 90 \
+    --dxf "$out/wave_facade_cutsheets.dxf" --step "$out/wave_facade_panels.step" \
+    --schedule "$out/wave_facade_schedule.csv" --svg "$out/sheets" \
+    --report "$out/wave_facade_panels.json"
 echo
 echo "== FreeCAD document and render (FreeCAD under Xvfb)"
 sh "$root/tests/fc_env.sh" demo "$mesh" "$out"
