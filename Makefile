@@ -58,9 +58,11 @@ test-gui:
 demo: deps-test build
 	sh tools/demo.sh $(OUT)/demo
 
+# BENCH_ARGS: options of tools/bench/run_bench.py, e.g. BENCH_ARGS=--quick
 bench: build
-	mkdir -p $(OUT)
-	$(BUILD)/libcore/bench/bench_planarize --runs 5 --json $(OUT)/bench.json
+	mkdir -p $(OUT)/bench
+	$(BUILD)/libcore/bench/bench_planarize --runs 5 --json $(OUT)/bench/bench_c.json
+	PYTHONPATH=$(CURDIR)/workbench $(PYTHON) tools/bench/run_bench.py --out $(OUT)/bench $(BENCH_ARGS)
 
 install: build
 	sh tools/install.sh "$(PREFIX)" "$(PYTHON)"
