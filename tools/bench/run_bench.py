@@ -146,7 +146,7 @@ def worker(args):
     fv = np.ascontiguousarray(data["face_vertices"])
     spec = json.loads(args.spec)
     n_faces = fs.size - 1
-    angle_in = face_angles_min(v, fs, fv)
+    angle_in = data["angle_in"]  # computed by the parent: no big temporaries here
     out = np.empty_like(v)
     peak_reset = reset_peak_rss()
     rss0 = current_rss_bytes()
@@ -248,6 +248,9 @@ def run_worker(npz, spec_json, threads, blas_threads, timeout):
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join([str(ROOT / "workbench")] + (
         [env["PYTHONPATH"]] if env.get("PYTHONPATH") else []))
+    # A fixed mmap threshold: big blocks come from mmap and go back on free,
+    # so RSS growth is not hidden by reused heap memory.
+    env.setdefault("MALLOC_MMAP_THRESHOLD_", "131072")
     if blas_threads is None:
         env.pop("OPENBLAS_NUM_THREADS", None)
     else:
@@ -328,6 +331,8 @@ def select_specs(args):
                  s["family"] == "quad_grid" and s["faces"] <= 10_000]
     else:
         specs = families.family_specs(max_faces=args.max_faces)
+    if args.no_families:
+        specs = []
     if not args.no_public:
         public, pnotes = families.public_meshes(include_shared=not (args.no_shared or args.quick))
         notes += pnotes
@@ -339,12 +344,17 @@ def select_specs(args):
     return specs, notes
 
 
+def save_mesh(path, mesh):
+    np.savez(path, vertices=mesh.vertices, face_start=mesh.face_start,
+             face_vertices=mesh.face_vertices,
+             angle_in=face_angles_min(mesh.vertices, mesh.face_start, mesh.face_vertices))
+
+
 def blas_check(tmp, timeout, quick):
     """L/G x30 on Level 5 with OPENBLAS_NUM_THREADS unset, 1 and 2 (threads=1 and 2)."""
     mesh = families.level_patch(5)
     npz = Path(tmp) / "blas_check.npz"
-    np.savez(npz, vertices=mesh.vertices, face_start=mesh.face_start,
-             face_vertices=mesh.face_vertices)
+    save_mesh(npz, mesh)
     cfg = dict(CONFIGS[2], runs=3 if quick else 7, budget=None)
     spec = json.dumps({"configs": [cfg], "time_cap": 10.0})
     rows = []
@@ -365,11 +375,11 @@ def main(argv=None):
     ap.add_argument("--threads", default="1,2", help="thread counts, comma separated")
     ap.add_argument("--max-faces", type=int, default=None, help="largest mesh (default 1M; quick 10k)")
     ap.add_argument("--lg-max-faces", type=int, default=None,
-                    help="largest mesh for L/G x30 (default 110k; quick 4k)")
+                    help="largest mesh for L/G x30 (default 20k: ~50 s per run at 100k here; quick 4k)")
     ap.add_argument("--tol-max-faces", type=int, default=None,
                     help="largest mesh for to-tolerance solves (default 1M; quick 4k)")
     ap.add_argument("--tol-budget", type=float, default=None,
-                    help="seconds before a to-tolerance solve is cancelled (default 20; quick 5)")
+                    help="seconds before a to-tolerance solve is cancelled (default 10; quick 2)")
     ap.add_argument("--time-cap", type=float, default=None,
                     help="stop timing a configuration after this many seconds of runs "
                          "(at least one run; default 4, quick 1)")
@@ -377,6 +387,7 @@ def main(argv=None):
     ap.add_argument("--configs", default="", help="configuration names, comma separated (default all)")
     ap.add_argument("--only", action="append", default=[], help="meshes whose name contains this")
     ap.add_argument("--no-public", action="store_true", help="generated families only")
+    ap.add_argument("--no-families", action="store_true", help="public meshes only")
     ap.add_argument("--no-shared", action="store_true", help="leave out /work/shared/data")
     ap.add_argument("--no-plot", action="store_true")
     ap.add_argument("--no-blas-check", action="store_true",
@@ -390,7 +401,7 @@ def main(argv=None):
         args.threads = int(args.threads)
         worker(args)
         return 0
-    defaults = (10_000, 4_000, 4_000, 2.0, 1.0) if args.quick else (1_000_000, 110_000, 1_000_000, 20.0, 4.0)
+    defaults = (10_000, 4_000, 4_000, 2.0, 1.0) if args.quick else (1_000_000, 20_000, 1_000_000, 10.0, 4.0)
     args.time_cap = args.time_cap if args.time_cap is not None else defaults[4]
     args.max_faces = args.max_faces or defaults[0]
     args.lg_max_faces = args.lg_max_faces if args.lg_max_faces is not None else defaults[1]
@@ -423,8 +434,7 @@ def main(argv=None):
         for spec in specs:
             mesh = families.generate(spec)
             npz = Path(tmp) / "mesh.npz"
-            np.savez(npz, vertices=mesh.vertices, face_start=mesh.face_start,
-                     face_vertices=mesh.face_vertices)
+            save_mesh(npz, mesh)
             entry = {"name": mesh.name, "family": mesh.family, "faces": mesh.n_faces,
                      "vertices": mesh.n_vertices, "source": spec.get("source", mesh.source),
                      "params": mesh.params, "by_threads": []}
