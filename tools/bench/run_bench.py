@@ -598,25 +598,34 @@ def plot(doc, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(8, 6), dpi=110)
+    fig, ax = plt.subplots(figsize=(9, 6.5), dpi=110)
     styles = {1: "-", 2: "--"}
-    colors = {}
-    for cfg in [c["name"] for c in CONFIGS]:
+    markers = {"level": "o", "hex_torus": "h", "quad_grid": "s", "quad_torus": "D", "hypar": "x"}
+    palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    families_seen = []
+    for ci, cfg in enumerate(c["name"] for c in CONFIGS):
+        color = palette[ci % len(palette)]
         for threads in (1, 2):
-            pts = []
-            for m in doc["meshes"]:
-                if m["family"] == "public":
+            labelled = False
+            for family, marker in markers.items():
+                pts = []
+                for m in doc["meshes"]:
+                    if m["family"] != family:
+                        continue
+                    r = result_of(m, threads, cfg)
+                    if r and r.get("status") == "ok":
+                        pts.append((m["faces"], r["median_seconds"]))
+                if not pts:
                     continue
-                r = result_of(m, threads, cfg)
-                if r and r.get("status") == "ok":
-                    pts.append((m["faces"], r["median_seconds"]))
-            if not pts:
-                continue
-            pts.sort()
-            x, y = zip(*pts)
-            line, = ax.plot(x, y, styles.get(threads, ":"), marker="o", ms=3,
-                            color=colors.get(cfg), label=f"{cfg}, {threads} thread{'s' * (threads > 1)}")
-            colors.setdefault(cfg, line.get_color())
+                if family not in families_seen:
+                    families_seen.append(family)
+                pts.sort()
+                x, y = zip(*pts)
+                ax.plot(x, y, styles.get(threads, ":"), marker=marker, ms=4, color=color,
+                        label=None if labelled else f"{cfg}, {threads} thread{'s' * (threads > 1)}")
+                labelled = True
+    for family in families_seen:  # marker key
+        ax.plot([], [], "k" + markers[family], ls="none", ms=4, label=family.replace("_", " "))
     px = [row[1] for row in families.PAPER_TABLE1]
     ax.plot(px, [row[3] / 1e3 for row in families.PAPER_TABLE1], "k^", ms=5, label="paper L/G x30 (2012)")
     ax.plot(px, [row[4] / 1e3 for row in families.PAPER_TABLE1], "kv", ms=5, label="paper L/L x100 (2012)")
