@@ -58,10 +58,11 @@ test-gui:
 demo: deps-test build
 	sh tools/demo.sh $(OUT)/demo
 
-# BENCH_ARGS: options of tools/bench/run_bench.py, e.g. BENCH_ARGS=--quick
+# BENCH_ARGS: options of tools/bench/run_bench.py; BENCH_ARGS=--quick is a smoke run (< 1 min)
 bench: build
 	mkdir -p $(OUT)/bench
-	$(BUILD)/libcore/bench/bench_planarize --runs 5 --json $(OUT)/bench/bench_c.json
+	$(BUILD)/libcore/bench/bench_planarize $(if $(findstring --quick,$(BENCH_ARGS)),--max-faces 10000 --runs 3,--runs 5) \
+	    --json $(OUT)/bench/bench_c.json
 	PYTHONPATH=$(CURDIR)/workbench $(PYTHON) tools/bench/run_bench.py --out $(OUT)/bench $(BENCH_ARGS)
 
 install: build
