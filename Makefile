@@ -59,12 +59,16 @@ test-gui:
 demo: deps-test build
 	sh tools/demo.sh $(OUT)/demo
 
+# BENCH_ARGS: options of tools/bench/run_bench.py; BENCH_ARGS=--quick is a smoke run (< 1 min)
 bench: build
-	mkdir -p $(OUT)
-	$(BUILD)/libcore/bench/bench_planarize --runs 5 --json $(OUT)/bench.json
-	$(BUILD)/libcore/bench/bench_surface --runs 5 --json $(OUT)/bench_surface.json
-	$(BUILD)/libcore/bench/bench_lift --runs 5 --json $(OUT)/bench_lift.json
+	mkdir -p $(OUT)/bench
+	$(BUILD)/libcore/bench/bench_planarize $(if $(findstring --quick,$(BENCH_ARGS)),--max-faces 10000 --runs 3,--runs 5) \
+	    --json $(OUT)/bench/bench_c.json
+	$(BUILD)/libcore/bench/bench_surface --runs 5 --json $(OUT)/bench/bench_surface.json
+	$(BUILD)/libcore/bench/bench_lift --runs 5 --json $(OUT)/bench/bench_lift.json
+	PYTHONPATH=$(CURDIR)/workbench $(PYTHON) tools/bench/run_bench.py --out $(OUT)/bench $(BENCH_ARGS)
 
+# the 10,000-panel fabrication pipeline, each stage timed
 bench-panels: build
 	$(PYTHON) tools/bench_panels.py --panels 10000 --out $(OUT)/bench_panels
 
