@@ -202,6 +202,10 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
         cholmod_start(&s->cm);
         s->cm.print = 0;
         s->cm.error_handler = NULL;
+        /* Simplicial LDL': the system's supernodes are small (vertex blocks
+         * and face offsets), and the supernodal path spends its time in BLAS
+         * and OpenMP synchronisation (futex calls) instead (docs/benchmarks.md). */
+        s->cm.supernodal = CHOLMOD_SIMPLICIAL;
         s->cholmod_started = 1;
     }
     if (s->factor && key == s->couple_key)
