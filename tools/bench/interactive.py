@@ -109,8 +109,8 @@ def main(argv=None):
     ap.add_argument("--edits", type=int, default=50)
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--method", choices=("lg", "ll"), default="lg")
-    ap.add_argument("--warm-mu0", type=float, default=1e-4,
-                    help="first penalty weight of a warm solve (facet.Planarizer uses 1e-4 for lg)")
+    ap.add_argument("--warm-mu0", type=float, default=1e-5,
+                    help="first penalty weight of a warm solve (facet.Planarizer uses 1e-5)")
     ap.add_argument("--runs", type=int, default=9, help="runs of L/G x30 on Level 5")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--json", default=str(ROOT / "out" / "bench" / "interactive.json"))
