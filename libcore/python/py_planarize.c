@@ -262,29 +262,51 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
                          (r.stop_reason == FACET_STOP_TOLERANCE) ? Py_True : Py_False);
 }
 
-/* set_fixed(vertices): int32 buffer of vertex indices, or None to clear. */
-static PyObject *planarizer_set_fixed(PyObject *self_obj, PyObject *arg)
+/* The handle of a planarizer that may be configured now; NULL with an error set. */
+static facet_planarizer *idle_handle(PyObject *self_obj)
 {
     planarizer_object *self = (planarizer_object *)self_obj;
-    module_state *st = py_state(PyType_GetModule(Py_TYPE(self_obj)));
     if (!self->handle || self->busy) {
         PyErr_SetString(PyExc_RuntimeError, "Planarizer is not initialised or is solving");
         return NULL;
     }
+    return self->handle;
+}
+
+/* A setter taking a buffer ('i' any length, or 'd' of n_faces) or None. */
+static PyObject *set_array(PyObject *self_obj, PyObject *arg, const char *name, char code)
+{
+    planarizer_object *self = (planarizer_object *)self_obj;
+    module_state *st = py_state(PyType_GetModule(Py_TYPE(self_obj)));
+    facet_planarizer *handle = idle_handle(self_obj);
+    if (!handle)
+        return NULL;
+    Py_buffer view;
+    const int given = arg != Py_None;
+    if (given && py_get_buffer(arg, name, code, 0, code == 'd' ? self->n_faces : -1, &view) < 0)
+        return NULL;
     facet_error error;
-    facet_status status;
-    if (arg == Py_None) {
-        status = facet_planarizer_set_fixed(self->handle, 0, NULL, &error);
-    } else {
-        Py_buffer view;
-        if (py_get_buffer(arg, "vertices", 'i', 0, -1, &view) < 0)
-            return NULL;
-        status = facet_planarizer_set_fixed(self->handle, (int32_t)(view.len / 4), view.buf, &error);
+    const facet_status status =
+        code == 'i' ? facet_planarizer_set_fixed(handle, given ? (int32_t)(view.len / 4) : 0,
+                                                 given ? view.buf : NULL, &error)
+                    : facet_planarizer_set_face_weights(handle, given ? view.buf : NULL, &error);
+    if (given)
         PyBuffer_Release(&view);
-    }
     if (status < 0)
         return py_raise_status(st, status, &error);
     Py_RETURN_NONE;
+}
+
+/* set_fixed(vertices): int32 buffer of vertex indices, or None to clear. */
+static PyObject *planarizer_set_fixed(PyObject *self_obj, PyObject *arg)
+{
+    return set_array(self_obj, arg, "vertices", 'i');
+}
+
+/* set_face_weights(weights): float64 buffer of n_faces weights, or None for all 1. */
+static PyObject *planarizer_set_face_weights(PyObject *self_obj, PyObject *arg)
+{
+    return set_array(self_obj, arg, "weights", 'd');
 }
 
 /* set_reference(surface): a facet._core.Surface, or None. */
@@ -293,10 +315,8 @@ static PyObject *planarizer_set_reference(PyObject *self_obj, PyObject *arg)
     planarizer_object *self = (planarizer_object *)self_obj;
     PyObject *module = PyType_GetModule(Py_TYPE(self_obj));
     module_state *st = py_state(module);
-    if (!self->handle || self->busy) {
-        PyErr_SetString(PyExc_RuntimeError, "Planarizer is not initialised or is solving");
+    if (!idle_handle(self_obj))
         return NULL;
-    }
     const facet_surface *surface = NULL;
     if (arg != Py_None && !(surface = py_surface_handle(module, arg)))
         return NULL;
@@ -309,30 +329,6 @@ static PyObject *planarizer_set_reference(PyObject *self_obj, PyObject *arg)
     Py_RETURN_NONE;
 }
 
-/* set_face_weights(weights): float64 buffer of n_faces weights, or None for all 1. */
-static PyObject *planarizer_set_face_weights(PyObject *self_obj, PyObject *arg)
-{
-    planarizer_object *self = (planarizer_object *)self_obj;
-    module_state *st = py_state(PyType_GetModule(Py_TYPE(self_obj)));
-    if (!self->handle || self->busy) {
-        PyErr_SetString(PyExc_RuntimeError, "Planarizer is not initialised or is solving");
-        return NULL;
-    }
-    facet_error error;
-    facet_status status;
-    if (arg == Py_None) {
-        status = facet_planarizer_set_face_weights(self->handle, NULL, &error);
-    } else {
-        Py_buffer view;
-        if (py_get_buffer(arg, "weights", 'd', 0, self->n_faces, &view) < 0)
-            return NULL;
-        status = facet_planarizer_set_face_weights(self->handle, view.buf, &error);
-        PyBuffer_Release(&view);
-    }
-    if (status < 0)
-        return py_raise_status(st, status, &error);
-    Py_RETURN_NONE;
-}
 
 static PyObject *planarizer_get_n_vertices(PyObject *self, void *closure)
 {

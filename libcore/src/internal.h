@@ -26,6 +26,10 @@ facet_status facet_mesh_check_arrays(const facet_mesh *mesh, facet_error *error)
 /* Checks that every face index is in range (O(corners), no allocation). */
 facet_status facet_mesh_check_indices(const facet_mesh *mesh, facet_error *error);
 
+/* What a measurement over the faces needs: arrays (facet_mesh_check_arrays),
+ * coordinates, and every index in range. */
+facet_status facet_mesh_check_measurable(const facet_mesh *mesh, facet_error *error);
+
 /* facet_mesh_validate without the coordinates when check_coordinates is 0. */
 facet_status facet_mesh_validate_topology(const facet_mesh *mesh, int check_coordinates,
                                           facet_mesh_report *report, facet_error *error);

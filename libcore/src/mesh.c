@@ -47,6 +47,16 @@ static int compare_u64(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+facet_status facet_mesh_check_measurable(const facet_mesh *mesh, facet_error *error)
+{
+    facet_status status = facet_mesh_check_arrays(mesh, error);
+    if (status != FACET_OK)
+        return status;
+    if (!mesh->xyz)
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "mesh has no coordinates");
+    return facet_mesh_check_indices(mesh, error);
+}
+
 facet_status facet_mesh_validate(const facet_mesh *mesh, facet_mesh_report *report,
                                  facet_error *error)
 {

@@ -188,12 +188,7 @@ facet_status facet_planarity(const facet_mesh *mesh, int threads, double *max_ab
                              facet_error *error)
 {
     facet_error_clear(error);
-    facet_status status = facet_mesh_check_arrays(mesh, error);
-    if (status != FACET_OK)
-        return status;
-    if (!mesh->xyz)
-        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "mesh has no coordinates");
-    status = facet_mesh_check_indices(mesh, error);
+    facet_status status = facet_mesh_check_measurable(mesh, error);
     if (status != FACET_OK)
         return status;
     const int32_t nf = mesh->n_faces;

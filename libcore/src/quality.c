@@ -68,12 +68,7 @@ facet_status facet_face_shape(const facet_mesh *mesh, const double *xyz_input, i
                               facet_error *error)
 {
     facet_error_clear(error);
-    facet_status status = facet_mesh_check_arrays(mesh, error);
-    if (status != FACET_OK)
-        return status;
-    if (!mesh->xyz)
-        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "mesh has no coordinates");
-    status = facet_mesh_check_indices(mesh, error);
+    facet_status status = facet_mesh_check_measurable(mesh, error);
     if (status != FACET_OK)
         return status;
     const int32_t nf = mesh->n_faces;
