@@ -2,16 +2,15 @@
 """Facet_Cleanup: collapse the short edges of the selected polygon meshes, then planarize."""
 
 import FreeCAD as App
-import FreeCADGui as Gui
 
 from facetwb import paths
-from facetwb.commands.macro import object_expression, run_as_macro
+from facetwb.commands.macro import derive, object_expression, selected
 
 
 def _selected_meshes():
     from facetwb.objects.polymesh import is_polymesh
 
-    return [obj for obj in Gui.Selection.getSelection() if is_polymesh(obj)]
+    return selected(is_polymesh)
 
 
 class CommandCleanup:
@@ -35,13 +34,5 @@ class CommandCleanup:
         sources = _selected_meshes()
         if not sources:
             return
-        doc = sources[0].Document
-        before = set(doc.Objects)
         lines = [f"facetwb.make_cleanup({object_expression(src)})" for src in sources]
-        lines.append(f'FreeCAD.getDocument("{doc.Name}").recompute()')
-        if not run_as_macro(doc, "Collapse short edges", lines):
-            return
-        for obj in doc.Objects:
-            if obj not in before and is_cleanup(obj):
-                printer = App.Console.PrintMessage if obj.isValid() else App.Console.PrintError
-                printer(cleanup_summary(obj) + "\n")
+        derive(sources[0].Document, "Collapse short edges", lines, is_cleanup, cleanup_summary)

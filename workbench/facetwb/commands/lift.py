@@ -6,7 +6,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb import paths
-from facetwb.commands.macro import object_expression, run_as_macro
+from facetwb.commands.macro import derive, object_expression, run_as_macro
 
 PLAN_FILE_FILTER = "Plan drawings (*.dxf *.csv *.obj *.off *.json)"
 
@@ -88,17 +88,9 @@ class CommandLift:
         if chosen is None:
             return
         plan, target = chosen
-        doc = plan.Document
-        before = set(doc.Objects)
         lines = [f"facetwb.make_lifting({object_expression(plan)}, "
-                 f"targets={object_expression(target)})",
-                 f'FreeCAD.getDocument("{doc.Name}").recompute()']
-        if not run_as_macro(doc, "Lift plan", lines):
-            return
-        for obj in doc.Objects:
-            if obj not in before and is_lifting(obj):
-                printer = App.Console.PrintMessage if obj.isValid() else App.Console.PrintError
-                printer(lifting_summary(obj) + "\n")
+                 f"targets={object_expression(target)})"]
+        derive(plan.Document, "Lift plan", lines, is_lifting, lifting_summary)
 
 
 class CommandLiftMix:

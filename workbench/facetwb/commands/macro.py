@@ -29,3 +29,31 @@ def run_as_macro(doc, title, lines, modules=("facetwb",)):
 def object_expression(obj):
     """Python expression that finds ``obj`` again when a macro replays."""
     return f'FreeCAD.getDocument("{obj.Document.Name}").getObject("{obj.Name}")'
+
+
+def selected(test):
+    """The selected objects for which ``test(obj)`` holds, in selection order."""
+    return [obj for obj in Gui.Selection.getSelection() if test(obj)]
+
+
+def derive(doc, title, lines, is_result, summary, select=False):
+    """Run ``lines`` and a recompute of ``doc`` as the macro ``title`` (run_as_macro), then
+    print ``summary(obj)`` for each new object for which ``is_result(obj)`` holds: in the
+    report view's message colour when it is valid, as an error when not.
+
+    With ``select`` the new objects become the selection. Returns them, or None when the
+    macro failed (the document is then as it was).
+    """
+    before = set(doc.Objects)
+    lines = list(lines) + [f'FreeCAD.getDocument("{doc.Name}").recompute()']
+    if not run_as_macro(doc, title, lines):
+        return None
+    made = [obj for obj in doc.Objects if obj not in before and is_result(obj)]
+    for obj in made:
+        printer = App.Console.PrintMessage if obj.isValid() else App.Console.PrintError
+        printer(summary(obj) + "\n")
+    if select:
+        Gui.Selection.clearSelection()
+        for obj in made:
+            Gui.Selection.addSelection(obj)
+    return made

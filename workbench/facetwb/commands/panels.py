@@ -2,14 +2,9 @@
 """Facet_PanelSet and Facet_CutSheets: panel solids from a planar mesh, nested cut sheets."""
 
 import FreeCAD as App
-import FreeCADGui as Gui
 
 from facetwb import paths
-from facetwb.commands.macro import object_expression, run_as_macro
-
-
-def _selected(test):
-    return [obj for obj in Gui.Selection.getSelection() if test(obj)]
+from facetwb.commands.macro import derive, object_expression, selected
 
 
 def _is_mesh(obj):
@@ -24,16 +19,10 @@ def _is_panelset(obj):
     return is_panelset(obj)
 
 
-def _report(doc, before, test, describe):
-    made = [obj for obj in doc.Objects if obj not in before and test(obj)]
-    for obj in made:
-        if obj.isValid():
-            App.Console.PrintMessage(describe(obj) + "\n")
-        else:
-            App.Console.PrintError(f"{obj.Label}: failed: {obj.getStatusString()}\n")
-    Gui.Selection.clearSelection()
-    for obj in made:
-        Gui.Selection.addSelection(obj)
+def _described(describe):
+    """A summary that says why an object failed, else ``describe(obj)``."""
+    return lambda obj: describe(obj) if obj.isValid() else (
+        f"{obj.Label}: failed: {obj.getStatusString()}")
 
 
 class CommandPanelSet:
@@ -49,20 +38,16 @@ class CommandPanelSet:
         }
 
     def IsActive(self):
-        return App.ActiveDocument is not None and bool(_selected(_is_mesh))
+        return App.ActiveDocument is not None and bool(selected(_is_mesh))
 
     def Activated(self):
-        sources = _selected(_is_mesh)
+        sources = selected(_is_mesh)
         if not sources:
             return
-        doc = sources[0].Document
-        before = set(doc.Objects)
         lines = [f"facetwb.make_panelset({object_expression(src)})" for src in sources]
-        lines.append(f'FreeCAD.getDocument("{doc.Name}").recompute()')
-        if run_as_macro(doc, "Panels", lines):
-            _report(doc, before, _is_panelset, lambda o: (
-                f"{o.Label}: {o.PanelCount} panels, node deviation up to "
-                f"{o.MaxNodeDeviation.Value:.3g} degrees"))
+        derive(sources[0].Document, "Panels", lines, _is_panelset, _described(lambda o: (
+            f"{o.Label}: {o.PanelCount} panels, node deviation up to "
+            f"{o.MaxNodeDeviation.Value:.3g} degrees")), select=True)
 
 
 class CommandCutSheets:
@@ -78,19 +63,15 @@ class CommandCutSheets:
         }
 
     def IsActive(self):
-        return App.ActiveDocument is not None and bool(_selected(_is_panelset))
+        return App.ActiveDocument is not None and bool(selected(_is_panelset))
 
     def Activated(self):
         from facetwb.objects.panelset import is_cutsheets
 
-        sources = _selected(_is_panelset)
+        sources = selected(_is_panelset)
         if not sources:
             return
-        doc = sources[0].Document
-        before = set(doc.Objects)
         lines = [f"facetwb.make_cutsheets({object_expression(src)})" for src in sources]
-        lines.append(f'FreeCAD.getDocument("{doc.Name}").recompute()')
-        if run_as_macro(doc, "Cut sheets", lines):
-            _report(doc, before, is_cutsheets, lambda o: (
-                f"{o.Label}: {o.SheetCount} sheets, utilisation {100 * o.Utilisation:.1f}%, "
-                f"{len(o.Unplaced)} unplaced"))
+        derive(sources[0].Document, "Cut sheets", lines, is_cutsheets, _described(lambda o: (
+            f"{o.Label}: {o.SheetCount} sheets, utilisation {100 * o.Utilisation:.1f}%, "
+            f"{len(o.Unplaced)} unplaced")), select=True)

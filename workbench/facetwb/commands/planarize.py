@@ -2,16 +2,15 @@
 """Facet_Planarize: make the selected polygon meshes' faces planar."""
 
 import FreeCAD as App
-import FreeCADGui as Gui
 
 from facetwb import paths
-from facetwb.commands.macro import object_expression, run_as_macro
+from facetwb.commands.macro import derive, object_expression, selected
 
 
 def _selected_meshes():
     from facetwb.objects.polymesh import is_polymesh
 
-    return [obj for obj in Gui.Selection.getSelection() if is_polymesh(obj)]
+    return selected(is_polymesh)
 
 
 class CommandPlanarize:
@@ -35,18 +34,6 @@ class CommandPlanarize:
         sources = _selected_meshes()
         if not sources:
             return
-        doc = sources[0].Document
-        before = set(doc.Objects)
         lines = [f"facetwb.make_planarized({object_expression(src)})" for src in sources]
-        lines.append(f'FreeCAD.getDocument("{doc.Name}").recompute()')
-        if not run_as_macro(doc, "Planarize", lines):
-            return
-        results = [obj for obj in doc.Objects if obj not in before and is_planarized(obj)]
-        for obj in results:
-            if obj.isValid():
-                App.Console.PrintMessage(planarize_summary(obj) + "\n")
-            else:
-                App.Console.PrintError(planarize_summary(obj) + "\n")
-        Gui.Selection.clearSelection()
-        for obj in results:
-            Gui.Selection.addSelection(obj)
+        derive(sources[0].Document, "Planarize", lines, is_planarized, planarize_summary,
+               select=True)
