@@ -144,6 +144,8 @@ def test_command_line_terms(tmp_path, data_dir):
     data = json.loads(report.read_text())
     assert data["converged"]
     assert data["options"]["boundary"] == "sliding"
+    # the surface preset keeps its shape term unless --shape says otherwise
+    assert data["options"]["shape"] == "asap"
     assert data["quality"]["distance_rms"] >= 0.0
     result = facet.read_mesh(out)
     source = facet.read_mesh(data_dir / "hypar.obj")

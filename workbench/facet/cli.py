@@ -171,8 +171,8 @@ def build_parser():
     terms.add_argument(
         "--shape",
         choices=("none", "asap", "arap"),
-        default="none",
-        help="keep each panel a similar (asap) or congruent (arap) copy of its control face",
+        help="keep each panel a similar (asap) or congruent (arap) copy of its control face "
+        "(default: none with --data point, a mild asap with plane and surface)",
     )
     terms.add_argument("--shape-weight", type=_positive_float, metavar="W", help="default 1")
     terms.add_argument("--laplacian", type=_non_negative_float, metavar="W",
@@ -398,8 +398,8 @@ def _term_options(args, mesh):
     """The solver terms asked for on the command line, checked against `mesh`."""
     from facet.io import read_mesh
 
-    options = {"data": args.data, "boundary": args.boundary, "shape": args.shape}
-    for name in ("shape_weight", "laplacian", "normal_laplacian", "boundary_fairness",
+    options = {"data": args.data, "boundary": args.boundary}
+    for name in ("shape", "shape_weight", "laplacian", "normal_laplacian", "boundary_fairness",
                  "circular", "parallelogram", "anderson", "time_budget"):
         value = getattr(args, name)
         if value is not None:
