@@ -192,6 +192,33 @@ static void householder3_apply(int32_t k, const double *a, const double beta[3],
     }
 }
 
+/* The basis of a face's affine height functions, [1, x, y] at its k corners
+ * (centred on the corners' centroid and scaled by their RMS radius), in
+ * h[3k] column-major, factorised in place by householder3: the constraint
+ * rows of the face and its planarity measure both come from this QR. */
+static void face_basis(const facet_lifter *s, const int32_t *idx, int32_t k, double *h,
+                       double beta[3], double diag[3])
+{
+    double mx = 0.0, my = 0.0;
+    for (int32_t i = 0; i < k; ++i) {
+        mx += s->plan_xy[2 * idx[i]];
+        my += s->plan_xy[2 * idx[i] + 1];
+    }
+    mx /= k, my /= k;
+    double r2 = 0.0;
+    for (int32_t i = 0; i < k; ++i) {
+        double dx = s->plan_xy[2 * idx[i]] - mx, dy = s->plan_xy[2 * idx[i] + 1] - my;
+        r2 += dx * dx + dy * dy;
+    }
+    double r = sqrt(r2 / k);
+    for (int32_t i = 0; i < k; ++i) {
+        h[i] = 1.0;
+        h[k + i] = r > 0 ? (s->plan_xy[2 * idx[i]] - mx) / r : 0.0;
+        h[2 * k + i] = r > 0 ? (s->plan_xy[2 * idx[i] + 1] - my) / r : 0.0;
+    }
+    householder3(k, h, beta, diag);
+}
+
 static int compare_edge(const void *pa, const void *pb)
 {
     const int32_t *a = pa, *b = pb;
@@ -388,26 +415,9 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
         for (int32_t f = 0; f < nf; ++f) {
             const int32_t b = s->face_start[f], k = s->face_start[f + 1] - b;
             const int32_t *idx = s->face_vertices + b;
-            double mx = 0.0, my = 0.0;
-            for (int32_t i = 0; i < k; ++i) {
-                mx += s->plan_xy[2 * idx[i]];
-                my += s->plan_xy[2 * idx[i] + 1];
-            }
-            mx /= k, my /= k;
-            double r2 = 0.0;
-            for (int32_t i = 0; i < k; ++i) {
-                double dx = s->plan_xy[2 * idx[i]] - mx, dy = s->plan_xy[2 * idx[i] + 1] - my;
-                r2 += dx * dx + dy * dy;
-            }
-            double r = sqrt(r2 / k);
             double *h = scratch, *x = scratch + 3 * (size_t)k;
-            for (int32_t i = 0; i < k; ++i) {
-                h[i] = 1.0;
-                h[k + i] = r > 0 ? (s->plan_xy[2 * idx[i]] - mx) / r : 0.0;
-                h[2 * k + i] = r > 0 ? (s->plan_xy[2 * idx[i] + 1] - my) / r : 0.0;
-            }
             double beta[3], diag[3];
-            householder3(k, h, beta, diag);
+            face_basis(s, idx, k, h, beta, diag);
             double sk = sqrt((double)k);
             if (!(fabs(diag[1]) > PLAN_DEGENERATE_REL * sk) ||
                 !(fabs(diag[2]) > PLAN_DEGENERATE_REL * sk)) {
@@ -574,28 +584,15 @@ static double face_vertical_residual(const facet_lifter *s, int32_t f, const dou
     if (k <= 3)
         return 0.0;
     const int32_t *idx = s->face_vertices + b;
-    double mx = 0.0, my = 0.0, mz = 0.0;
-    for (int32_t i = 0; i < k; ++i) {
-        mx += s->plan_xy[2 * idx[i]];
-        my += s->plan_xy[2 * idx[i] + 1];
+    double mz = 0.0;
+    for (int32_t i = 0; i < k; ++i)
         mz += z[idx[i]];
-    }
-    mx /= k, my /= k, mz /= k;
-    double r2 = 0.0;
-    for (int32_t i = 0; i < k; ++i) {
-        double dx = s->plan_xy[2 * idx[i]] - mx, dy = s->plan_xy[2 * idx[i] + 1] - my;
-        r2 += dx * dx + dy * dy;
-    }
-    double r = sqrt(r2 / k);
+    mz /= k;
     double *h = scratch, *x = scratch + 3 * (size_t)k;
-    for (int32_t i = 0; i < k; ++i) {
-        h[i] = 1.0;
-        h[k + i] = r > 0 ? (s->plan_xy[2 * idx[i]] - mx) / r : 0.0;
-        h[2 * k + i] = r > 0 ? (s->plan_xy[2 * idx[i] + 1] - my) / r : 0.0;
+    for (int32_t i = 0; i < k; ++i)
         x[i] = z[idx[i]] - mz;
-    }
     double beta[3], diag[3];
-    householder3(k, h, beta, diag);
+    face_basis(s, idx, k, h, beta, diag);
     /* x <- Q' x: reflectors in forward order. */
     for (int j = 0; j < 3; ++j) {
         if (beta[j] == 0.0)
