@@ -297,6 +297,26 @@ facet_status facet_planarizer_solve(facet_planarizer *planarizer, const double *
                                     double *xyz_out, facet_planarize_result *result,
                                     facet_error *error);
 
+/* A live update after the designer moved some control vertices (xyz_in: all
+ * control positions, same topology): cheaper than a warm re-solve, for
+ * following a drag. The vertices whose control position differs from the
+ * last solve's or update's, and those within `rings` edges of them (0: 4),
+ * are re-solved with `options` (warm ignored); the other vertices of the
+ * faces they touch are held, and every other vertex keeps its previous
+ * result bit for bit. The region's control positions are the previous
+ * result moved by the edit, so it follows the edit instead of being pulled
+ * back to the original control mesh. If the held rim keeps the region from
+ * the tolerance, the region grows (rings doubled) up to the whole mesh. The
+ * region's topology (and symbolic factorization) is kept while the same
+ * vertices are edited. result->planarity_* are over all faces. A full solve
+ * (facet_planarizer_solve) afterwards gives the globally optimal result.
+ * After the fixed vertices, face weights or reference changed, the next
+ * update is a full warm solve. Needs a previous solve on this handle (else FACET_ERROR_INVALID_ARGUMENT). */
+facet_status facet_planarizer_update(facet_planarizer *planarizer, const double *xyz_in,
+                                     const facet_planarize_options *options, int32_t rings,
+                                     double *xyz_out, facet_planarize_result *result,
+                                     facet_error *error);
+
 /* The last error's message of a handle ("" when none). Valid until the next
  * call on the handle. */
 const char *facet_planarizer_message(const facet_planarizer *planarizer);

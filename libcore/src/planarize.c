@@ -248,7 +248,7 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     s->vertex_start = calloc((size_t)nv + 1, sizeof(int32_t));
     s->vertex_faces = malloc(sizeof(int32_t) * (size_t)nc);
     s->fixed = malloc((size_t)nv);
-    s->p = malloc(v3), s->q = malloc(v3), s->previous = malloc(v3);
+    s->p = malloc(v3), s->q = malloc(v3), s->previous = malloc(v3), s->previous_control = malloc(v3);
     s->vertex_normal = malloc(v3);
     s->slide_target = calloc(3 * (size_t)nv, sizeof(double));
     s->slide_tangent = calloc(3 * (size_t)nv, sizeof(double));
@@ -261,7 +261,7 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     s->face_energy_mu = malloc(fd), s->face_energy_con = malloc(fd), s->face_residual = malloc(fd);
     s->control_centroid = malloc(3 * fd);
     if (!s->face_start || !s->face_vertices || !s->vertex_start || !s->vertex_faces || !s->fixed ||
-        !s->p || !s->q || !s->previous || !s->vertex_normal || !s->slide_target ||
+        !s->p || !s->q || !s->previous || !s->previous_control || !s->vertex_normal || !s->slide_target ||
         !s->slide_tangent || !s->vertex_energy_mu || !s->vertex_energy_con ||
         !s->vertex_residual || !s->aa_x_fallback || !s->q_next || !s->normal || !s->normal_fit || !s->offset ||
         !s->face_dev || !s->face_edge || !s->face_sq || !s->face_energy_mu ||
@@ -302,6 +302,7 @@ void facet_planarizer_free(facet_planarizer **handle)
         return;
     facet_planarizer *s = *handle;
     facet_pl_global_free(s);
+    facet_planarizer_free(&s->live);
     if (s->cholmod_started)
         cholmod_finish(&s->cm);
     void *arrays[] = {s->face_start, s->face_vertices, s->vertex_start, s->vertex_faces,
@@ -314,7 +315,8 @@ void facet_planarizer_free(facet_planarizer **handle)
                       s->control_centroid, s->shape, s->circle_target, s->slide_target,
                       s->slide_tangent, s->laplace_weight, s->previous, s->aa_df, s->aa_dg,
                       s->aa_f, s->aa_g, s->aa_x_fallback, s->q_next, s->surface_point,
-                      s->surface_normal, s->surface_query};
+                      s->surface_normal, s->surface_query, s->previous_control,
+                      s->live_vertex, s->live_changed, s->live_mark, s->live_xyz, s->live_face_dev};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
         free(arrays[k]);
     free(s);
@@ -338,6 +340,8 @@ facet_status facet_planarizer_set_fixed(facet_planarizer *s, int32_t n, const in
             return facet_fail(error, FACET_ERROR_INDEX_OUT_OF_RANGE, -1, vertices[k],
                               "fixed vertex %d (entry %d) is out of range (%d vertices)",
                               (int)vertices[k], (int)k, (int)s->nv);
+    if (n == s->n_user_fixed && (n == 0 || memcmp(vertices, s->user_fixed, sizeof(int32_t) * (size_t)n) == 0))
+        return FACET_OK; /* unchanged: a live region stays valid */
     int32_t *copy = NULL;
     if (n > 0) {
         copy = malloc(sizeof(int32_t) * (size_t)n);
@@ -348,6 +352,7 @@ facet_status facet_planarizer_set_fixed(facet_planarizer *s, int32_t n, const in
     free(s->user_fixed);
     s->user_fixed = copy;
     s->n_user_fixed = n;
+    s->live_stale = 1; /* the next live update solves in full */
     return FACET_OK;
 }
 
@@ -357,6 +362,8 @@ facet_status facet_planarizer_set_reference(facet_planarizer *s, const facet_sur
     facet_error_clear(error);
     if (!s)
         return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "planarizer is NULL");
+    if (s->reference != surface)
+        s->live_stale = 1;
     s->reference = surface;
     return FACET_OK;
 }
@@ -367,6 +374,11 @@ facet_status facet_planarizer_set_face_weights(facet_planarizer *s, const double
     facet_error_clear(error);
     if (!s)
         return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "planarizer is NULL");
+    if (!weights && !s->face_weight)
+        return FACET_OK;
+    if (weights && s->face_weight && memcmp(weights, s->face_weight, sizeof(double) * (size_t)s->nf) == 0)
+        return FACET_OK; /* unchanged: a live region stays valid */
+    s->live_stale = 1;
     if (!weights) {
         free(s->face_weight);
         s->face_weight = NULL;
@@ -787,6 +799,8 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     free(x_before);
     if (status < 0 && status != FACET_ERROR_CANCELLED)
         return status;
+    if (s->previous_control != xyz_in) /* before xyz_out, which may be xyz_in */
+        memmove(s->previous_control, xyz_in, sizeof(double) * 3 * (size_t)nv);
 
     if (it == 0) {
         /* Nothing was solved: give back the starting point bit for bit. */
@@ -801,6 +815,9 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     if (s->previous != xyz_out)
         memmove(s->previous, xyz_out, sizeof(double) * 3 * (size_t)nv);
     s->has_previous = 1;
+    s->live_face_valid = 0;
+    s->live_stale = 0;
+    s->live_rings = 0; /* the live region's held settings may have changed */
     if (result) {
         result->iterations = it;
         result->stop_reason = reason;
