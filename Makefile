@@ -67,6 +67,8 @@ bench: build
 	$(BUILD)/libcore/bench/bench_surface --runs 5 --json $(OUT)/bench/bench_surface.json
 	$(BUILD)/libcore/bench/bench_lift --runs 5 --json $(OUT)/bench/bench_lift.json
 	PYTHONPATH=$(CURDIR)/workbench $(PYTHON) tools/bench/run_bench.py --out $(OUT)/bench $(BENCH_ARGS)
+	$(PYTHON) tools/bench/interactive.py --live --mesh quad_grid --mesh hex_torus --mesh level6 \
+	    --json $(OUT)/bench/interactive.json
 
 # the 10,000-panel fabrication pipeline, each stage timed
 bench-panels: build
