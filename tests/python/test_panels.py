@@ -294,6 +294,25 @@ def test_nesting_progress_cancels():
         nest(_parts(), (1300, 900), progress=lambda d, t: True)
 
 
+def test_nesting_in_chunks_is_the_same_for_any_number_of_workers(monkeypatch):
+    import facet.nest as fn
+
+    parts = _parts()
+    monkeypatch.setattr(fn, "_CHUNK", 8)  # 30 parts: 3 chunks and the open sheets
+    one = fn.nest(parts, (1300, 900), margin=15, spacing=8, workers=1)
+    two = fn.nest(parts, (1300, 900), margin=15, spacing=8, workers=2)
+    assert fn.verify(one, parts) == [] and fn.verify(two, parts) == []
+    assert not one.unplaced and len(one.placements) == len(parts)
+    assert one.placements == two.placements
+    assert [s.parts for s in one.sheets] == [s.parts for s in two.sheets]
+    seen = []
+    with pytest.raises(Cancelled):
+        fn.nest(parts, (1300, 900), workers=2, progress=lambda d, t: seen.append(d) or True)
+    assert seen and seen[0] < len(parts)
+    with pytest.raises(fn.NestError, match="workers"):
+        fn.nest(parts, (1300, 900), workers=0)
+
+
 # ---- files -----------------------------------------------------------------
 
 def _made(tmp_path, **kw):

@@ -18,6 +18,8 @@ sheet go back into the next batch.
 """
 
 import math
+import os
+import sys
 import warnings
 from dataclasses import dataclass, field
 
@@ -38,6 +40,9 @@ _UNITS = float(2 ** 20)
 _BATCH = 400
 _BATCH_MIN = 8
 _BATCH_SHEETS = 2.0
+#: parts per independently nested chunk (see nest())
+_CHUNK = 500
+_MAX_WORKERS = 2
 
 
 class NestError(InputError):
@@ -109,7 +114,7 @@ def _check(name, value, minimum, strict):
 
 
 def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
-         progress=None):
+         progress=None, workers=None):
     """Nest flat parts on as many sheets as needed.
 
     Parameters
@@ -128,6 +133,10 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
         libnest2d's placer accuracy in (0, 1].
     progress : callable, optional
         ``progress(done, total)`` between batches; True cancels.
+    workers : int, optional
+        Processes nesting chunks of the parts side by side; default: one
+        per CPU, at most two, when there are several chunks (1 nests in
+        this process). The result is the same for any number of workers.
 
     Returns
     -------
@@ -166,33 +175,109 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
             raise NestError(f"part {pid}: outline is not a simple polygon with an area")
         polys[pid] = orient(poly, sign=-1.0)  # clockwise, as Clipper wants outer contours
 
-    config = pynest2d.NfpConfig()
-    config.rotations = list(ROTATIONS[rotations])
-    config.alignment = pynest2d.NfpConfig.Alignment.BOTTOM_LEFT
-    config.starting_point = pynest2d.NfpConfig.Alignment.BOTTOM_LEFT
-    config.accuracy = accuracy
-
-    def make_item(pid):
-        coords = np.asarray(polys[pid].exterior.coords)
-        pts = [pynest2d.Point(int(round(x * scale)), int(round(y * scale))) for x, y in coords]
-        return pynest2d.Item(pts)
+    sheets, placements, unplaced = [], {}, []
 
     # largest first: what first-fit packs best
     order = sorted(polys, key=lambda k: -polys[k].area)
-    # First-fit tries every part on every open sheet: batches of a few
-    # sheets' worth of parts keep that from growing with the part count.
+    # First-fit tries every part on every open sheet, so one libnest2d call
+    # costs more than linearly in its parts: parts go in batches of a few
+    # sheets' worth.
     mean_area = sum(p.area for p in polys.values()) / max(1, len(polys))
     per_sheet = max(1.0, (width - 2 * margin) * (height - 2 * margin) / max(mean_area, 1e-300))
     batch_size = int(min(_BATCH, max(_BATCH_MIN, _BATCH_SHEETS * per_sheet)))
+    items = {}
+    for pid in order:
+        coords = np.asarray(polys[pid].exterior.coords)
+        items[pid] = [(int(round(x * scale)), int(round(y * scale))) for x, y in coords]
+    box = (inner_w + dist, inner_h + dist)
+    settings = (box, dist, list(ROTATIONS[rotations]), float(accuracy), batch_size)
+    # Chunks of the size order (round robin, so each has large and small
+    # parts) are nested independently, each leaving its last, partly filled
+    # sheet open; the parts of the open sheets are nested together at the
+    # end. The chunks depend only on the parts, never on the number of
+    # workers, so the result does not either.
+    n_chunks = max(1, len(order) // _CHUNK)
+    chunks = [[(pid, items[pid]) for pid in order[k::n_chunks]] for k in range(n_chunks)]
     total = len(order)
-    sheets, placements, unplaced = [], {}, []
-    pending = []
-    done = 0
-    box_w, box_h = inner_w + dist, inner_h + dist
+    workers = _workers(workers, n_chunks)
+    if workers > 1:
+        results = _run_parallel(chunks, settings, workers, progress, total)
+    else:
+        results = []
+        done = 0
+        for chunk in chunks:
+            def step(n, base=done):
+                return progress is not None and progress(base + n, total)
+            results.append(_nest_chunk(chunk, settings, keep_last=n_chunks > 1, progress=step))
+            done += len(chunk)
+    bins = []
+    open_parts = []
+    for chunk_bins, rest, chunk_unplaced in results:
+        bins.extend(chunk_bins)
+        open_parts.extend(rest)
+        unplaced.extend(chunk_unplaced)
+    if open_parts:
+        open_parts.sort(key=lambda pid: -polys[pid].area)
+        last_bins, _, last_unplaced = _nest_chunk([(pid, items[pid]) for pid in open_parts],
+                                                  settings, keep_last=False)
+        bins.extend(last_bins)
+        unplaced.extend(last_unplaced)
+    if progress is not None and progress(total, total):
+        raise Cancelled("nesting cancelled")
+    rank = {pid: k for k, pid in enumerate(order)}
+    unplaced.sort(key=rank.__getitem__)
+    box_w, box_h = box
+    for placed in bins:
+        sheet_obj = Sheet(index=len(sheets), width=width, height=height)
+        for pid, angle, tx, ty in placed:
+            # libnest2d's box is centred on 0; the sheet's corner is at 0;
+            # the translation applies to scaled, rotated coordinates
+            x = (tx + 0.5 * box_w + 1.0 - 0.5 * dist) / scale + margin
+            y = (ty + 0.5 * box_h + 1.0 - 0.5 * dist) / scale + margin
+            placements[pid] = Placement(pid, sheet_obj.index, math.degrees(angle), x, y)
+            sheet_obj.parts.append(pid)
+            sheet_obj.used_area += polys[pid].area
+        sheets.append(sheet_obj)
+    return NestResult(sheet_size=(width, height), margin=margin, spacing=spacing,
+                      rotations=rotations, sheets=sheets, placements=placements,
+                      unplaced=unplaced, seconds=time.perf_counter() - t0)
+
+
+def _config(rotations, accuracy):
+    import pynest2d
+
+    config = pynest2d.NfpConfig()
+    config.rotations = list(rotations)
+    config.alignment = pynest2d.NfpConfig.Alignment.BOTTOM_LEFT
+    config.starting_point = pynest2d.NfpConfig.Alignment.BOTTOM_LEFT
+    config.accuracy = accuracy
+    # libnest2d's own parallelism starts a thread per candidate (no TBB in
+    # Debian's build): twice as slow as serial; processes share the work
+    config.parallel = False
+    return config
+
+
+def _nest_chunk(chunk, settings, keep_last, progress=None):
+    """Nest ``chunk`` = [(pid, integer outline)] batch by batch (the parts of
+    a batch's last, partly filled sheet go into the next batch).
+
+    Returns ([[(pid, angle, tx, ty)] per full sheet], open, unplaced): with
+    ``keep_last`` the parts of the last, partly filled sheet are not placed
+    but returned in ``open``.
+    """
+    import pynest2d
+
+    (box_w, box_h), dist, rotations, accuracy, batch_size = settings
+    config = _config(rotations, accuracy)
+    outlines = dict(chunk)
+    order = [pid for pid, _ in chunk]
+    bins_out, unplaced, pending = [], [], []
+    total = len(order)
     while order or pending:
         batch = pending + order[:batch_size]
         order = order[batch_size:]
-        items = [make_item(pid) for pid in batch]
+        items = [pynest2d.Item([pynest2d.Point(x, y) for x, y in outlines[pid]])
+                 for pid in batch]
         pynest2d.nest(items, pynest2d.Box(box_w, box_h), dist, config)
         bins = {}
         for pid, item in zip(batch, items):
@@ -200,33 +285,130 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
             if b < 0:
                 unplaced.append(pid)
             else:
-                bins.setdefault(b, []).append((pid, item))
+                tr = item.translation()
+                bins.setdefault(b, []).append((pid, float(item.rotation()), tr.x(), tr.y()))
         keys = sorted(bins)
         pending = []
-        if order and keys:
-            # the last sheet is partly filled: its parts go into the next batch
-            pending = [pid for pid, _ in bins.pop(keys[-1])]
+        if (order or keep_last) and keys:
+            # the last sheet is partly filled: its parts go on
+            pending = [p[0] for p in bins.pop(keys[-1])]
             keys = keys[:-1]
-        for b in keys:
-            sheet_obj = Sheet(index=len(sheets), width=width, height=height)
-            for pid, item in bins[b]:
-                angle = float(item.rotation())
-                tr = item.translation()
-                # libnest2d's box is centred on 0; the sheet's corner is at 0
-                x = tr.x() / scale + 0.5 * box_w / scale + margin + 1.0 / scale - 0.5 * dist / scale
-                y = tr.y() / scale + 0.5 * box_h / scale + margin + 1.0 / scale - 0.5 * dist / scale
-                # item coordinates were scaled from model units: translation
-                # applies to scaled, rotated coordinates
-                placements[pid] = Placement(pid, sheet_obj.index, math.degrees(angle), x, y)
-                sheet_obj.parts.append(pid)
-                sheet_obj.used_area += polys[pid].area
-            sheets.append(sheet_obj)
-        done = total - len(order)
-        if progress is not None and progress(done, total):
+        bins_out.extend(bins[b] for b in keys)
+        if not order:
+            break
+        if progress is not None and progress(total - len(order)):
             raise Cancelled("nesting cancelled")
-    return NestResult(sheet_size=(width, height), margin=margin, spacing=spacing,
-                      rotations=rotations, sheets=sheets, placements=placements,
-                      unplaced=unplaced, seconds=time.perf_counter() - t0)
+    return bins_out, pending, unplaced
+
+
+def _python():
+    """A Python interpreter for worker processes (inside FreeCAD,
+    sys.executable is FreeCAD), or None."""
+    exe = sys.executable or ""
+    if os.path.basename(exe).startswith("python") and os.access(exe, os.X_OK):
+        return exe
+    v = sys.version_info
+    for folder in (os.path.join(sys.base_exec_prefix, "bin"), "/usr/bin", "/usr/local/bin"):
+        exe = os.path.join(folder, f"python{v.major}.{v.minor}")
+        if os.access(exe, os.X_OK):
+            return exe
+    return None
+
+
+def _workers(workers, n_chunks):
+    if workers is None:
+        workers = min(_MAX_WORKERS, os.cpu_count() or 1)
+        if _python() is None:
+            workers = 1
+    else:
+        try:
+            workers = int(workers)
+        except (TypeError, ValueError):
+            raise NestError(f"workers must be a whole number, not {workers!r}") from None
+        if workers < 1:
+            raise NestError(f"workers must be >= 1, not {workers}")
+    return max(1, min(workers, n_chunks))
+
+
+def _run_parallel(chunks, settings, workers, progress, total):
+    """Nest chunks in ``workers`` Python processes (worker k takes chunks k,
+    k + workers, ...); results in chunk order."""
+    import pickle
+    import queue
+    import subprocess
+    import threading
+
+    package_dir = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (package_dir, env.get("PYTHONPATH")) if p)
+    env["OMP_NUM_THREADS"] = "1"
+    exe = _python()
+    procs = []
+    events = queue.Queue()
+
+    def read(k, proc):
+        try:
+            while True:
+                msg = pickle.load(proc.stdout)
+                events.put((k, msg))
+                if msg[0] in ("done", "error"):
+                    return
+        except Exception as exc:  # a worker that died
+            events.put((k, ("error", f"nesting worker {k} stopped: {exc!r}")))
+
+    results = [None] * len(chunks)
+    try:
+        for k in range(workers):
+            mine = list(range(k, len(chunks), workers))
+            proc = subprocess.Popen([exe, "-c", "from facet.nest import _worker_main; _worker_main()"],
+                                    stdin=subprocess.PIPE, stdout=subprocess.PIPE, env=env)
+            procs.append(proc)
+            pickle.dump(([(i, chunks[i]) for i in mine], settings), proc.stdin,
+                        protocol=pickle.HIGHEST_PROTOCOL)
+            proc.stdin.close()
+            threading.Thread(target=read, args=(k, proc), daemon=True).start()
+        running, done = workers, 0
+        while running:
+            try:
+                k, msg = events.get(timeout=0.2)
+            except queue.Empty:
+                if progress is not None and progress(done, total):
+                    raise Cancelled("nesting cancelled") from None
+                continue
+            if msg[0] == "chunk":
+                _, i, result = msg
+                results[i] = result
+                done += len(chunks[i])
+                if progress is not None and progress(done, total):
+                    raise Cancelled("nesting cancelled")
+            elif msg[0] == "done":
+                running -= 1
+            else:
+                raise NestError(msg[1])
+    finally:
+        for proc in procs:
+            if proc.poll() is None:
+                proc.kill()
+            proc.wait()
+            proc.stdout.close()
+    return results
+
+
+def _worker_main():
+    """Entry point of a nesting worker process: chunks in on stdin, one
+    pickled message per nested chunk out on stdout."""
+    import pickle
+
+    out = sys.stdout.buffer
+    try:
+        chunks, settings = pickle.load(sys.stdin.buffer)
+        for i, chunk in chunks:
+            pickle.dump(("chunk", i, _nest_chunk(chunk, settings, keep_last=True)), out)
+            out.flush()
+        pickle.dump(("done",), out)
+    except Exception as exc:  # reported by the parent in one line
+        pickle.dump(("error", f"nesting worker failed: {exc!r}"), out)
+    out.flush()
 
 
 def verify(result, parts, tolerance=None):
