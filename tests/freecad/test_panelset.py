@@ -131,6 +131,20 @@ class TestPanelSet(DocumentTestCase):
         text = open(step, encoding="latin-1").read()
         names = re.findall(r"PRODUCT\('([^']*)'", text)
         self.assertEqual([n for n in names if n.startswith("P-")], list(self.mitred.PartIds))
+        # FreeCAD's STEP importer (headless: not its default link group, which
+        # crashes FreeCAD 0.20 without a GUI) gives one object per panel, by ID
+        back = App.newDocument("StepBack")
+        try:
+            Import.insert(step, back.Name, useLinkGroup=False)
+            got = {o.Label: o.Shape for o in back.Objects
+                   if o.TypeId == "Part::Feature" and o.Label.startswith("P-")}
+            self.assertEqual(sorted(got), sorted(self.mitred.PartIds))
+            for pid, v in zip(self.mitred.PartIds, self.mitred.Volumes):
+                self.assertTrue(got[pid].isValid())
+                self.assertAlmostEqual(got[pid].Volume / v, 1.0, places=9)
+        finally:
+            App.closeDocument(back.Name)
+        self.assertEqual(text.count("PCURVE"), 0)  # planar faces: written without
 
     def test_z_save_reopen(self):
         ids = list(self.square.PartIds)

@@ -97,7 +97,7 @@ def panel_solids(panel_set, progress=None):
     return out
 
 
-def write_step(path, named_solids):
+def write_step(path, named_solids, pcurves=False):
     """Write solids to a STEP file, each named by its ID (the product name
     FreeCAD's importer and other CAD systems show).
 
@@ -105,12 +105,32 @@ def write_step(path, named_solids):
     ----------
     path : str or os.PathLike
     named_solids : list of (str, Part.Solid)
+    pcurves : bool
+        Also write every edge's curve in the parameter space of its faces
+        (OCC's ``write.surfacecurve.mode``). Panels are bounded by planes, for
+        which a reader rebuilds them exactly; without them the file is half
+        the size and written three times as fast. The setting of the session
+        (FreeCAD's preference) is restored afterwards.
+
+    Notes
+    -----
+    The solids are written as one assembly (FreeCAD's ``Import.export``), one
+    product per solid named by its ID. To read it back headless with FreeCAD
+    0.20, call ``Import.insert(path, doc, useLinkGroup=False)`` (or
+    ``merge=False``): with the defaults (merge into one App::LinkGroup),
+    ``Import.insert`` / ``Import.open`` crash freecadcmd on any STEP
+    assembly, ours or not (the importer's link-group path needs the GUI). The
+    panels then come in as Part::Feature objects labelled by their IDs.
+    ``Part.read`` gives the solids without names.
     """
     FreeCAD, Part = import_freecad()
     import Import
 
     path = os.fspath(path)
     doc = FreeCAD.newDocument("FacetStepExport", hidden=True, temp=True)
+    user_mode = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Mod/Part/General") \
+        .GetInt("WriteSurfaceCurveMode", 1)
+    tmp = f"{path}.tmp{os.getpid()}.step"
     try:
         objs = []
         for name, solid in named_solids:
@@ -118,8 +138,11 @@ def write_step(path, named_solids):
             obj.Label = name
             obj.Shape = solid
             objs.append(obj)
-        tmp = f"{path}.tmp{os.getpid()}.step"
+        Part.setStaticValue("write.surfacecurve.mode", 1 if pcurves else 0)
         Import.export(objs, tmp)
         os.replace(tmp, path)
     finally:
+        Part.setStaticValue("write.surfacecurve.mode", user_mode)
         FreeCAD.closeDocument(doc.Name)
+        if os.path.exists(tmp):
+            os.remove(tmp)
