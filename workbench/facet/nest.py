@@ -39,7 +39,7 @@ ROTATIONS = {
 _UNITS = float(2 ** 20)
 _BATCH = 400
 _BATCH_MIN = 8
-_BATCH_SHEETS = 2.0
+_BATCH_SHEETS = 1.0
 #: parts per independently nested chunk (see nest())
 _CHUNK = 500
 _MAX_WORKERS = 2
