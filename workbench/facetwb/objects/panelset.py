@@ -302,6 +302,15 @@ class ViewProviderPanels:
         obj = getattr(self, "Object", None)
         return list(getattr(obj, "PanelObjects", None) or [])
 
+    def onDelete(self, vobj, subelements):
+        """The per-panel objects belong to the PanelSet: they go with it."""
+        obj = vobj.Object
+        doc = obj.Document
+        for child in list(getattr(obj, "PanelObjects", None) or []):
+            if child is not None and doc.getObject(child.Name) is not None:
+                doc.removeObject(child.Name)
+        return True
+
     def dumps(self):
         return {"icon": getattr(self, "icon", "Facet_PanelSet")}
 
