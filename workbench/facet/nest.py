@@ -18,8 +18,6 @@ sheet go back into the next batch.
 """
 
 import math
-import os
-import sys
 import warnings
 from dataclasses import dataclass, field
 
@@ -42,7 +40,6 @@ _BATCH_MIN = 8
 _BATCH_SHEETS = 1.0
 #: parts per independently nested chunk (see nest())
 _CHUNK = 500
-_MAX_WORKERS = 2
 
 
 class NestError(InputError):
@@ -201,7 +198,15 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
     total = len(order)
     workers = _workers(workers, n_chunks)
     if workers > 1:
-        results = _run_parallel(chunks, settings, workers, progress, total)
+        from facet.parallel import WorkerError, run_chunks
+
+        try:
+            results = run_chunks("facet.nest:_nest_chunk_open", chunks, settings, workers,
+                                 progress=(None if progress is None else
+                                           lambda d, t: progress(d, total)),
+                                 weights=[len(c) for c in chunks])
+        except WorkerError as exc:
+            raise NestError(f"nesting: {exc}") from None
     else:
         results = []
         done = 0
@@ -301,25 +306,11 @@ def _nest_chunk(chunk, settings, keep_last, progress=None):
     return bins_out, pending, unplaced
 
 
-def _python():
-    """A Python interpreter for worker processes (inside FreeCAD,
-    sys.executable is FreeCAD), or None."""
-    exe = sys.executable or ""
-    if os.path.basename(exe).startswith("python") and os.access(exe, os.X_OK):
-        return exe
-    v = sys.version_info
-    for folder in (os.path.join(sys.base_exec_prefix, "bin"), "/usr/bin", "/usr/local/bin"):
-        exe = os.path.join(folder, f"python{v.major}.{v.minor}")
-        if os.access(exe, os.X_OK):
-            return exe
-    return None
-
-
 def _workers(workers, n_chunks):
+    from facet.parallel import default_workers
+
     if workers is None:
-        workers = min(_MAX_WORKERS, os.cpu_count() or 1)
-        if _python() is None:
-            workers = 1
+        workers = default_workers()
     else:
         try:
             workers = int(workers)
@@ -330,85 +321,9 @@ def _workers(workers, n_chunks):
     return max(1, min(workers, n_chunks))
 
 
-def _run_parallel(chunks, settings, workers, progress, total):
-    """Nest chunks in ``workers`` Python processes (worker k takes chunks k,
-    k + workers, ...); results in chunk order."""
-    import pickle
-    import queue
-    import subprocess
-    import threading
-
-    package_dir = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join(p for p in (package_dir, env.get("PYTHONPATH")) if p)
-    env["OMP_NUM_THREADS"] = "1"
-    exe = _python()
-    procs = []
-    events = queue.Queue()
-
-    def read(k, proc):
-        try:
-            while True:
-                msg = pickle.load(proc.stdout)
-                events.put((k, msg))
-                if msg[0] in ("done", "error"):
-                    return
-        except Exception as exc:  # a worker that died
-            events.put((k, ("error", f"nesting worker {k} stopped: {exc!r}")))
-
-    results = [None] * len(chunks)
-    try:
-        for k in range(workers):
-            mine = list(range(k, len(chunks), workers))
-            proc = subprocess.Popen([exe, "-c", "from facet.nest import _worker_main; _worker_main()"],
-                                    stdin=subprocess.PIPE, stdout=subprocess.PIPE, env=env)
-            procs.append(proc)
-            pickle.dump(([(i, chunks[i]) for i in mine], settings), proc.stdin,
-                        protocol=pickle.HIGHEST_PROTOCOL)
-            proc.stdin.close()
-            threading.Thread(target=read, args=(k, proc), daemon=True).start()
-        running, done = workers, 0
-        while running:
-            try:
-                k, msg = events.get(timeout=0.2)
-            except queue.Empty:
-                if progress is not None and progress(done, total):
-                    raise Cancelled("nesting cancelled") from None
-                continue
-            if msg[0] == "chunk":
-                _, i, result = msg
-                results[i] = result
-                done += len(chunks[i])
-                if progress is not None and progress(done, total):
-                    raise Cancelled("nesting cancelled")
-            elif msg[0] == "done":
-                running -= 1
-            else:
-                raise NestError(msg[1])
-    finally:
-        for proc in procs:
-            if proc.poll() is None:
-                proc.kill()
-            proc.wait()
-            proc.stdout.close()
-    return results
-
-
-def _worker_main():
-    """Entry point of a nesting worker process: chunks in on stdin, one
-    pickled message per nested chunk out on stdout."""
-    import pickle
-
-    out = sys.stdout.buffer
-    try:
-        chunks, settings = pickle.load(sys.stdin.buffer)
-        for i, chunk in chunks:
-            pickle.dump(("chunk", i, _nest_chunk(chunk, settings, keep_last=True)), out)
-            out.flush()
-        pickle.dump(("done",), out)
-    except Exception as exc:  # reported by the parent in one line
-        pickle.dump(("error", f"nesting worker failed: {exc!r}"), out)
-    out.flush()
+def _nest_chunk_open(chunk, settings):
+    """A worker's chunk: nested with its last sheet left open."""
+    return _nest_chunk(chunk, settings, keep_last=True)
 
 
 def verify(result, parts, tolerance=None):

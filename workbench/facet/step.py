@@ -84,17 +84,63 @@ def panel_solid(panel, Part=None, FreeCAD=None):
     return solid
 
 
-def panel_solids(panel_set, progress=None):
+#: panels per chunk built in a worker process
+_SOLID_CHUNK = 250
+
+
+def panel_solids(panel_set, progress=None, workers=None):
     """[(id, Part.Solid)] for every panel; ``progress(done, total)`` returning
-    True cancels (raises :class:`facet.Cancelled`)."""
+    True cancels (raises :class:`facet.Cancelled`).
+
+    With more than one worker (default: one per CPU, at most two, for more
+    than two chunks of panels) chunks of solids are built in worker
+    processes and come back as OCC's BRep text (exact: the same bits); when
+    the workers cannot run (no FreeCAD for a plain Python), they are built
+    here.
+    """
+    from facet.parallel import WorkerError, default_workers, run_chunks
+
     FreeCAD, Part = import_freecad()
+    panels = list(panel_set.panels)
+    n = len(panels)
+    chunks = [[(p.top, p.bottom) for p in panels[i:i + _SOLID_CHUNK]]
+              for i in range(0, n, _SOLID_CHUNK)]
+    workers = default_workers() if workers is None else max(1, int(workers))
+    if workers > 1 and len(chunks) > 2:
+        try:
+            texts = run_chunks("facet.step:_solids_chunk", chunks, None,
+                               min(workers, len(chunks)), progress=progress,
+                               weights=[len(c) for c in chunks])
+        except WorkerError:
+            texts = None
+        if texts is not None:
+            solids = []
+            for text in texts:
+                shape = Part.Shape()
+                shape.importBrepFromString(text, False)
+                solids.extend(shape.Solids)
+            if len(solids) == n:
+                return [(p.id, s) for p, s in zip(panels, solids)]
     out = []
-    n = len(panel_set.panels)
-    for i, p in enumerate(panel_set.panels):
+    for i, p in enumerate(panels):
         out.append((p.id, panel_solid(p, Part, FreeCAD)))
         if progress is not None and (i % 200 == 199 or i == n - 1) and progress(i + 1, n):
             raise Cancelled("solids cancelled")
     return out
+
+
+class _Outline:
+    __slots__ = ("top", "bottom")
+
+    def __init__(self, top, bottom):
+        self.top, self.bottom = top, bottom
+
+
+def _solids_chunk(chunk, settings):
+    """A worker's chunk: [(top, bottom)] -> BRep text of their compound."""
+    FreeCAD, Part = import_freecad()
+    solids = [panel_solid(_Outline(t, b), Part, FreeCAD) for t, b in chunk]
+    return Part.makeCompound(solids).exportBrepToString()
 
 
 def write_step(path, named_solids, pcurves=False):
