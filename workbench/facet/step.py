@@ -176,18 +176,27 @@ def write_step(path, named_solids, pcurves=False):
     doc = FreeCAD.newDocument("FacetStepExport", hidden=True, temp=True)
     user_mode = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Mod/Part/General") \
         .GetInt("WriteSurfaceCurveMode", 1)
+    # FreeCAD makes names and labels unique by scanning every object (each
+    # addObject and Label costs O(objects): 10,000 panels took minutes). The
+    # names given here are unique already, and so are the IDs, so labels are
+    # not checked while they are set (the preference is restored).
+    labels = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Document")
+    user_duplicates = labels.GetBool("DuplicateLabels", False)
     tmp = f"{path}.tmp{os.getpid()}.step"
     try:
+        labels.SetBool("DuplicateLabels", True)
         objs = []
-        for name, solid in named_solids:
-            obj = doc.addObject("Part::Feature", "Panel")
+        for i, (name, solid) in enumerate(named_solids):
+            obj = doc.addObject("Part::Feature", f"Panel{i:07d}")
             obj.Label = name
             obj.Shape = solid
             objs.append(obj)
+        labels.SetBool("DuplicateLabels", user_duplicates)
         Part.setStaticValue("write.surfacecurve.mode", 1 if pcurves else 0)
         Import.export(objs, tmp)
         os.replace(tmp, path)
     finally:
+        labels.SetBool("DuplicateLabels", user_duplicates)
         Part.setStaticValue("write.surfacecurve.mode", user_mode)
         FreeCAD.closeDocument(doc.Name)
         if os.path.exists(tmp):

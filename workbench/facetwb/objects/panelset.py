@@ -175,7 +175,8 @@ class PanelSet(_Proxy):
             if doc.getObject(extra.Name) is not None:
                 doc.removeObject(extra.Name)
         for k in range(len(keep), want):
-            keep.append(doc.addObject("Part::Feature", "Panel"))
+            # a name of its own: FreeCAD finds a free "Panel..." by scanning every object
+            keep.append(doc.addObject("Part::Feature", f"{obj.Name}_Panel{k:05d}"))
         for child, p, solid in zip(keep, ps.panels, solids):
             child.Label = p.id
             child.Shape = solid
