@@ -426,3 +426,25 @@ def test_step_says_clearly_when_freecad_is_missing(monkeypatch):
         step.import_freecad()
     assert "\n" not in str(info.value)
     assert not isinstance(info.value, facet.InputError)  # exit 1 on the command line, not 2
+
+
+def test_panel_solids_in_worker_processes_match_the_serial_ones(monkeypatch):
+    import facet.step as step
+
+    try:
+        step.import_freecad()
+    except step.FreeCADMissing:
+        pytest.skip("FreeCAD is not installed")
+    ps = panels(translational(nu=6, nv=5, step=400.0), 18.0, edge="bisector", gap=4)
+    monkeypatch.setattr(step, "_SOLID_CHUNK", 7)  # 30 panels: 5 chunks
+    serial = step.panel_solids(ps, workers=1)
+    seen = []
+    parallel = step.panel_solids(ps, workers=2, progress=lambda d, t: seen.append(d) and False)
+    assert [i for i, _ in parallel] == [p.id for p in ps.panels] == [i for i, _ in serial]
+    for (_, a), (_, b), p in zip(serial, parallel, ps.panels):
+        assert b.isValid()
+        assert b.Volume == pytest.approx(a.Volume, rel=1e-12)
+        assert b.Volume == pytest.approx(p.volume, rel=1e-9)
+    assert seen and max(seen) == len(ps.panels)
+    with pytest.raises(Cancelled):
+        step.panel_solids(ps, workers=2, progress=lambda d, t: True)

@@ -94,9 +94,9 @@ def panel_solids(panel_set, progress=None, workers=None):
 
     With more than one worker (default: one per CPU, at most two, for more
     than two chunks of panels) chunks of solids are built in worker
-    processes and come back as OCC's BRep text (exact: the same bits); when
-    the workers cannot run (no FreeCAD for a plain Python), they are built
-    here.
+    processes and come back as OCC's BRep text (coordinates to within a unit
+    in the last place or so: 7e-11 mm at 40 m); when the workers cannot run
+    (no FreeCAD for a plain Python), they are built here.
     """
     from facet.parallel import WorkerError, default_workers, run_chunks
 
