@@ -92,20 +92,21 @@ def panel_solids(panel_set, progress=None, workers=None):
     """[(id, Part.Solid)] for every panel; ``progress(done, total)`` returning
     True cancels (raises :class:`facet.Cancelled`).
 
-    With more than one worker (default: one per CPU, at most two, for more
-    than two chunks of panels) chunks of solids are built in worker
-    processes and come back as OCC's BRep text (coordinates to within a unit
+    With ``workers`` > 1 (default 1: on the shared 2-CPU test machine two
+    workers were slower, 11-14 s against 7.5-9 s for 2,000 panels, as each
+    starts FreeCAD and the solids travel as text) chunks of solids are built
+    in worker processes and come back as OCC's BRep text (coordinates to within a unit
     in the last place or so: 7e-11 mm at 40 m); when the workers cannot run
     (no FreeCAD for a plain Python), they are built here.
     """
-    from facet.parallel import WorkerError, default_workers, run_chunks
+    from facet.parallel import WorkerError, run_chunks
 
     FreeCAD, Part = import_freecad()
     panels = list(panel_set.panels)
     n = len(panels)
     chunks = [[(p.top, p.bottom) for p in panels[i:i + _SOLID_CHUNK]]
               for i in range(0, n, _SOLID_CHUNK)]
-    workers = default_workers() if workers is None else max(1, int(workers))
+    workers = 1 if workers is None else max(1, int(workers))
     if workers > 1 and len(chunks) > 2:
         try:
             texts = run_chunks("facet.step:_solids_chunk", chunks, None,
