@@ -448,3 +448,24 @@ def test_panel_solids_in_worker_processes_match_the_serial_ones(monkeypatch):
     assert seen and max(seen) == len(ps.panels)
     with pytest.raises(Cancelled):
         step.panel_solids(ps, workers=2, progress=lambda d, t: True)
+
+
+def test_half_turn_symmetric_parts_skip_the_redundant_rotations():
+    from facet.nest import _half_turn_symmetric, nest, verify
+
+    assert _half_turn_symmetric([(0, 0), (0, 4), (6, 4), (6, 0), (0, 0)])
+    assert _half_turn_symmetric([(0, 0), (1, 3), (5, 3), (4, 0)])          # parallelogram
+    assert not _half_turn_symmetric([(0, 0), (0, 4), (2, 4), (2, 2), (6, 2), (6, 0)])  # L
+    assert not _half_turn_symmetric([(0, 0), (2, 3), (5, 3), (4, 0)])      # trapezoid
+    # rectangles with collinear extra vertices (dropped before nesting)
+    rects = {f"R{k}": np.array([[0, 0], [150, 0], [300 + k, 0], [300 + k, 200], [0, 200.0]])
+             for k in range(12)}
+    r = nest(rects, (1000, 700), margin=5, spacing=4, rotations="90", workers=1)
+    assert verify(r, rects) == [] and not r.unplaced
+    assert {pl.angle_deg for pl in r.placements.values()} <= {0.0, 90.0}
+    # concave parts (libnest2d overlapped them; now nested by their convex hull),
+    # not symmetric: every quarter turn may be used again
+    ells = {f"L{k}": np.array([[0, 0], [0, 300], [100, 300], [100, 100], [250, 100],
+                               [250, 0.0]]) for k in range(10)}
+    r = nest(ells, (1000, 700), margin=5, spacing=4, rotations="90", workers=1)
+    assert verify(r, ells) == [] and not r.unplaced

@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Nesting flat parts on stock sheets with libnest2d (Debian's pynest2d).
 
-libnest2d works on integer coordinates (Clipper): outlines are scaled so
+libnest2d places convex outlines correctly only (its no-fit polygons of
+concave parts let them overlap), so a concave part is nested by its convex
+hull. libnest2d works on integer coordinates (Clipper): outlines are scaled so
 that the sheet's longer side spans about 2**20 units, and the spacing and
 margin are rounded up by two units (a few micrometres on a 3 m sheet), so
 the true outlines keep at least the spacing asked for. :func:`verify` checks
@@ -184,8 +186,20 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
     batch_size = int(min(_BATCH, max(_BATCH_MIN, _BATCH_SHEETS * per_sheet)))
     items = {}
     for pid in order:
-        coords = np.asarray(polys[pid].exterior.coords)
-        items[pid] = [(int(round(x * scale)), int(round(y * scale))) for x, y in coords]
+        # collinear vertices dropped (the same outline; libnest2d's no-fit
+        # polygons cost more with every vertex)
+        simple = polys[pid].simplify(0.0, preserve_topology=True)
+        if simple.is_empty or simple.geom_type != "Polygon" or not simple.is_valid:
+            simple = polys[pid]
+        if simple.convex_hull.area > simple.area * (1 + 1e-9):
+            # libnest2d's no-fit polygons (Clipper back end, as Debian builds
+            # it) are right for convex parts only: concave parts overlapped.
+            # A concave part is nested by its convex hull, which holds it.
+            simple = simple.convex_hull
+        simple = orient(simple, sign=-1.0)
+        coords = np.asarray(simple.exterior.coords)
+        ring = [(int(round(x * scale)), int(round(y * scale))) for x, y in coords]
+        items[pid] = (ring, _half_turn_symmetric(ring))
     box = (inner_w + dist, inner_h + dist)
     settings = (box, dist, list(ROTATIONS[rotations]), float(accuracy), batch_size)
     # Chunks of the size order (round robin, so each has large and small
@@ -194,7 +208,7 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
     # end. The chunks depend only on the parts, never on the number of
     # workers, so the result does not either.
     n_chunks = max(1, len(order) // _CHUNK)
-    chunks = [[(pid, items[pid]) for pid in order[k::n_chunks]] for k in range(n_chunks)]
+    chunks = [[(pid,) + items[pid] for pid in order[k::n_chunks]] for k in range(n_chunks)]
     total = len(order)
     workers = _workers(workers, n_chunks)
     if workers > 1:
@@ -223,7 +237,7 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
         unplaced.extend(chunk_unplaced)
     if open_parts:
         open_parts.sort(key=lambda pid: -polys[pid].area)
-        last_bins, _, last_unplaced = _nest_chunk([(pid, items[pid]) for pid in open_parts],
+        last_bins, _, last_unplaced = _nest_chunk([(pid,) + items[pid] for pid in open_parts],
                                                   settings, keep_last=False)
         bins.extend(last_bins)
         unplaced.extend(last_unplaced)
@@ -262,8 +276,18 @@ def _config(rotations, accuracy):
     return config
 
 
+def _half_turn_symmetric(ring):
+    """Whether an integer outline is its own image under a half turn about
+    its bounding box's centre (exactly, in the integer coordinates)."""
+    pts = set(ring[:-1] if ring and ring[0] == ring[-1] else ring)
+    xs = [p[0] for p in pts]
+    ys = [p[1] for p in pts]
+    cx, cy = min(xs) + max(xs), min(ys) + max(ys)  # twice the centre
+    return {(cx - x, cy - y) for x, y in pts} == pts
+
+
 def _nest_chunk(chunk, settings, keep_last, progress=None):
-    """Nest ``chunk`` = [(pid, integer outline)] batch by batch (the parts of
+    """Nest ``chunk`` = [(pid, integer outline, half-turn symmetric)] batch by batch (the parts of
     a batch's last, partly filled sheet go into the next batch).
 
     Returns ([[(pid, angle, tx, ty)] per full sheet], open, unplaced): with
@@ -274,8 +298,13 @@ def _nest_chunk(chunk, settings, keep_last, progress=None):
 
     (box_w, box_h), dist, rotations, accuracy, batch_size = settings
     config = _config(rotations, accuracy)
-    outlines = dict(chunk)
-    order = [pid for pid, _ in chunk]
+    # a half turn maps a symmetric part onto itself: when every part of a
+    # batch is, the rotations from 180 degrees on add nothing to the search
+    half = [r for r in rotations if r < math.pi - 1e-9]
+    config_half = _config(half, accuracy) if len(half) < len(rotations) else config
+    outlines = {pid: ring for pid, ring, _ in chunk}
+    symmetric = {pid: sym for pid, _, sym in chunk}
+    order = [pid for pid, _, _ in chunk]
     bins_out, unplaced, pending = [], [], []
     total = len(order)
     while order or pending:
@@ -283,7 +312,8 @@ def _nest_chunk(chunk, settings, keep_last, progress=None):
         order = order[batch_size:]
         items = [pynest2d.Item([pynest2d.Point(x, y) for x, y in outlines[pid]])
                  for pid in batch]
-        pynest2d.nest(items, pynest2d.Box(box_w, box_h), dist, config)
+        cfg = config_half if all(symmetric[pid] for pid in batch) else config
+        pynest2d.nest(items, pynest2d.Box(box_w, box_h), dist, cfg)
         bins = {}
         for pid, item in zip(batch, items):
             b = item.binId()
