@@ -144,7 +144,7 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
     """
     import time
 
-    import pynest2d
+    import pynest2d  # noqa: F401  (missing: fail here, before any work)
     from shapely.geometry import Polygon
     from shapely.geometry.polygon import orient
 
