@@ -16,6 +16,7 @@ The source is never modified. The numerics are in ``facet``; this module is wiri
 import FreeCAD as App
 
 from facetwb import compat
+from facetwb.recompute import guarded
 
 TYPE_PANELSET = "Facet::PanelSet"
 TYPE_CUTSHEETS = "Facet::CutSheets"
@@ -111,6 +112,7 @@ class PanelSet(_Proxy):
                       edge=obj.EdgeMode, flip=bool(obj.Flip), ids=obj.IdScheme,
                       prefix=obj.IdPrefix, tol=obj.Tolerance, tol_abs=obj.ToleranceAbs.Value)
 
+    @guarded
     def execute(self, obj):
         import Part
 
@@ -163,6 +165,7 @@ class CutSheets(_Proxy):
         _output(obj, "App::PropertyStringList", "Unplaced", "Parts that fit on no sheet")
         _output(obj, "App::PropertyStringList", "Files", "Files written")
 
+    @guarded
     def execute(self, obj):
         import os
 
