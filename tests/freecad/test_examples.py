@@ -6,8 +6,10 @@ The committed files are copied first: the test never changes them.
 """
 
 import importlib
+import json
 import os
 import shutil
+import subprocess
 import tempfile
 import unittest
 
@@ -75,6 +77,27 @@ class ExampleChecks:
                                                atol=1e-15 * np.abs(want).max(), err_msg=name)
                 else:
                     self.assertEqual(got[key], value, f"{name} {key}")
+
+
+    def test_reopens_in_a_fresh_process(self):
+        """As a designer opens it: a new freecadcmd with the workbench from Mod/Facet."""
+        path = os.path.join(self.tmp.name, "fresh-" + self.NAME)
+        shutil.copy(os.path.join(EXAMPLES, self.NAME), path)
+        out = os.path.join(self.tmp.name, "fresh.json")
+        env = dict(os.environ, FACET_REOPEN_IN=path, FACET_REOPEN_OUT=out)
+        child = os.path.join(ROOT, "tests", "freecad", "reopen_child.py")
+        done = subprocess.run(["freecadcmd", child], env=env, capture_output=True, text=True,
+                              timeout=600)
+        self.assertTrue(os.path.exists(out), done.stdout + done.stderr)
+        with open(out, encoding="utf-8") as handle:
+            result = json.load(handle)
+        self.assertNotIn("error", result, result.get("error"))
+        self.assertNotIn("blocked import", done.stdout + done.stderr)
+        self.assertEqual(set(result["recomputed"]), set(self.stored))
+        for name, entry in result["recomputed"].items():
+            self.assertTrue(entry["valid"], f"{name}: {entry['status']}")
+            if "points" in entry:
+                self.assertEqual(entry["points"], self.recomputed[name]["points"], name)
 
 
 class TestFacadeExample(ExampleChecks, unittest.TestCase):
