@@ -24,7 +24,7 @@ CORE = $(BUILD)/libcore/.built
 FC_ENV = sh tests/fc_env.sh
 
 .PHONY: all build deps deps-build deps-test test test-c test-python test-freecad test-gui \
-        demo bench bench-panels install uninstall clean
+        demo examples bench bench-panels install uninstall clean
 
 all: build
 
@@ -58,6 +58,10 @@ test-gui:
 
 demo: deps-test build
 	sh tools/demo.sh $(OUT)/demo
+
+# examples/facade.FCStd and examples/roof.FCStd (commit them after a change)
+examples: deps-test build
+	$(FC_ENV) freecadcmd tools/make_examples.py
 
 # BENCH_ARGS: options of tools/bench/run_bench.py; BENCH_ARGS=--quick is a smoke run (< 1 min)
 bench: build

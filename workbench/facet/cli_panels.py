@@ -96,13 +96,15 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
                  ids="auto", prefix="P-", tol=1e-6, tol_abs=0.0, sheet=None, margin=0.0,
                  spacing=0.0, rotations="90", grain=None, dxf=None, per_sheet=False,
                  step=None, schedule=None, svg=None, png=None, progress=None,
-                 panel_set=None, solids=None):
+                 panel_set=None, solids=None, allow_unplaced=False):
     """Everything ``facet panels`` does, as a function (also used by the
     benchmark). Returns (report dict, PanelSet, drawings, NestResult or None).
 
     ``progress(stage, done, total)`` returning True cancels. ``panel_set``
     (a facet PanelSet already computed from ``mesh`` with these options) and
     ``solids`` (its [(id, Part.Solid)], for STEP) are reused when given.
+    Parts that fit on no sheet raise :class:`facet.errors.InputError`
+    (nothing written) unless `allow_unplaced` is true.
     """
     from facet.errors import InputError
     from facet.cutsheets import (schedule_rows, write_dxf, write_png, write_schedule_csv,
@@ -142,6 +144,13 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
         result = nest({d.id: d.footprint for d in drawings}, sheet, margin=margin,
                       spacing=spacing, rotations=rotations, progress=stage_progress("nest"))
         times["nest"] = time.perf_counter() - t
+        if result.unplaced and not allow_unplaced:
+            source = mesh.info.get("source") if mesh.info else None
+            shown = ", ".join(result.unplaced[:4]) + (", ..." if len(result.unplaced) > 4 else "")
+            raise InputError(
+                f"{source + ': ' if source else ''}{len(result.unplaced)} of {len(drawings)} "
+                f"parts fit on no {sheet[0]:g} x {sheet[1]:g} sheet (margin {margin:g}): "
+                f"{shown}; use a larger --sheet")
     files = {}
     if dxf:
         t = time.perf_counter()

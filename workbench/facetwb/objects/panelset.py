@@ -20,6 +20,7 @@ The source is never modified. The numerics are in ``facet``; this module is wiri
 import FreeCAD as App
 
 from facetwb import compat
+from facetwb.recompute import guarded
 
 TYPE_PANELSET = "Facet::PanelSet"
 TYPE_CUTSHEETS = "Facet::CutSheets"
@@ -141,6 +142,7 @@ class PanelSet(_Proxy):
             return ps, solids
         return self.panel_set(obj), None
 
+    @guarded
     def execute(self, obj):
         import Part
 
@@ -218,6 +220,7 @@ class CutSheets(_Proxy):
         _output(obj, "App::PropertyStringList", "Unplaced", "Parts that fit on no sheet")
         _output(obj, "App::PropertyStringList", "Files", "Files written")
 
+    @guarded
     def execute(self, obj):
         import os
 
