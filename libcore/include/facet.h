@@ -139,7 +139,8 @@ facet_status facet_mesh_validate(const facet_mesh *mesh, facet_mesh_report *repo
  *             max_abs / mean_edge);
  *  diagonal   for quads, libigl's measure: distance between the two diagonal
  *             lines divided by the mean diagonal length; -1 for other faces.
- * The mesh must be valid (facet_mesh_validate); this call checks only sizes.
+ * The mesh must be valid (facet_mesh_validate); this call checks sizes,
+ * indices and that coordinates are finite (FACET_ERROR_NONFINITE).
  * threads <= 0 means the OpenMP default. Results do not depend on threads. */
 facet_status facet_planarity(const facet_mesh *mesh, int threads, double *max_abs,
                              double *rms_abs, double *mean_edge, double *diagonal,
@@ -147,7 +148,9 @@ facet_status facet_planarity(const facet_mesh *mesh, int threads, double *max_ab
 
 /* Least-squares plane of n points (xyz[3*n]): unit normal and offset with
  * normal . x + offset = 0 on the plane; returns the smallest eigenvalue of
- * the (unnormalised) scatter matrix, or -1 when n < 3. Thread-safe. */
+ * the (unnormalised) scatter matrix, or -1 (normal and offset untouched) when
+ * n < 3, xyz or normal is NULL, or a coordinate is NaN or infinite.
+ * Thread-safe. */
 double facet_fit_plane(int32_t n, const double *xyz, double normal[3], double *offset);
 
 /* ------------------------------------------------------------------------ */
@@ -379,7 +382,8 @@ facet_status facet_surface_closest(const facet_surface *surface, int64_t n, cons
  *              e over the face's mean edge length,
  *              max over the face's edges of |r_e(xyz) / r_e(xyz_input) - 1|,
  *              edges of zero input length left out.
- * The mesh must be valid; this call checks sizes and indices. */
+ * The mesh must be valid; this call checks sizes, indices and that the
+ * coordinates (and xyz_input's) are finite (FACET_ERROR_NONFINITE). */
 facet_status facet_face_shape(const facet_mesh *mesh, const double *xyz_input, int32_t threads,
                               double *min_angle, double *area, double *ratio_change,
                               facet_error *error);

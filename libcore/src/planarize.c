@@ -40,6 +40,8 @@ facet_status facet_pl_fail(facet_planarizer *s, facet_error *error, facet_status
 
 void facet_planarize_options_default(facet_method method, facet_planarize_options *o)
 {
+    if (!o)
+        return;
     memset(o, 0, sizeof *o);
     o->method = method;
     o->mu0 = 1.0;
