@@ -462,6 +462,11 @@ static void test_surface_api(void)
         CHECK(all_finite(fc, 3) && all_finite(fn, 3));
         CHECK(!isnan(fd) && fd > 0.0);
         CHECK(fc[0] >= 0.0 && fc[0] <= 1.0 && fc[1] >= 0.0 && fc[1] <= 1.0 && fc[2] == 0.0);
+        const double y = far[k] > 0.0 ? 1.0 : 0.0; /* the nearest edge of the square */
+        const double expect = hypot(far[k] - y, 0.25 * far[k]);
+        CHECK(fabs(fd - expect) <= 1e-12 * expect);
+        /* along the nearest edge every point is as close to rounding: any x */
+        CHECK_NEAR(fc[1], y, 1e-12);
         if (ft < 0)
             fprintf(stderr, "  query at %g found no triangle\n", far[k]);
     }
