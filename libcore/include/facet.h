@@ -19,7 +19,8 @@
  *    out-parameter and freed by facet_*_free(T **), which sets the pointer to
  *    NULL and accepts NULL.
  *  - Deterministic: the same inputs and options give the same bits whatever
- *    the thread count.
+ *    the thread count. A thread count above max(64, 4 x processors, the
+ *    OpenMP default) is clamped to it.
  *
  * Data model: a polygon mesh is n_vertices points xyz[3*n_vertices] and
  * n_faces faces in CSR form: face f has the vertices
@@ -294,7 +295,11 @@ void facet_planarizer_free(facet_planarizer **planarizer);
  * centred and scaled inside. On error the message is also kept in the handle
  * (facet_planarizer_message). xyz_out never receives a NaN: a non-finite
  * iterate stops the solve with FACET_ERROR_NUMERICAL and xyz_out is left
- * untouched. Returns FACET_WARNING_NOT_CONVERGED when max_iter ran out. */
+ * untouched. Returns FACET_WARNING_NOT_CONVERGED when max_iter ran out, and
+ * also (stop reason FACET_STOP_STAGNATION, said in the message) when after
+ * at least one iteration the next step was not finite -- an ill-conditioned
+ * problem, such as weights many orders of magnitude apart: xyz_out is then
+ * the last finite iterate. */
 facet_status facet_planarizer_solve(facet_planarizer *planarizer, const double *xyz_in,
                                     const facet_planarize_options *options,
                                     double *xyz_out, facet_planarize_result *result,

@@ -52,7 +52,7 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
                           double *offset, double *max_distance, double *rms_distance);
 
 /* Sets the number of OpenMP threads for a parallel region: n <= 0 gives the
- * OpenMP default. */
+ * OpenMP default; n is clamped to max(64, 4 x processors, the default). */
 int facet_thread_count(int requested);
 
 /* max and min without fmax's call and NaN rules (callers pass no NaN). */

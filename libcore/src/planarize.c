@@ -664,6 +664,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     int32_t accepted = 0, rejected = 0;
     double energy_mu = 0.0, energy_con = 0.0, last_mu = 0.0, last_con = 0.0;
     const int staircase = options->hold_tol > 0.0;
+    int numerical_stop = 0;
     int32_t level_steps = 0;
     double level_first_move = 0.0; /* squared */
     double *x_before = NULL;
@@ -743,13 +744,22 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             if (!facet_pl_vertex_step(s, mu, nthreads)) {
                 status = facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
                                        "a vertex update was not finite");
-                break;
             }
         } else {
             status = facet_pl_global_step(s, mu, nthreads, error);
-            if (status != FACET_OK)
-                break;
         }
+        if (status == FACET_ERROR_NUMERICAL && it > 0) {
+            /* An ill-conditioned problem (weights many orders of magnitude
+             * apart) whose next step is not finite: the steps leave s->q at
+             * the last (finite) iterate, which is the best result there is. */
+            status = FACET_OK;
+            reason = FACET_STOP_STAGNATION;
+            numerical_stop = 1;
+            facet_error_clear(error);
+            break;
+        }
+        if (status != FACET_OK)
+            break;
         double move = 0.0; /* largest vertex move of the plain step, squared */
         if (staircase)
             for (int32_t v = 0; v < nv; ++v) {
@@ -790,6 +800,9 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     if (status < 0 && status != FACET_ERROR_CANCELLED)
         return status;
 
+    for (size_t k = 0; it > 0 && k < 3 * (size_t)nv; ++k)
+        if (!isfinite(s->q[k])) /* never a NaN in xyz_out, whatever went wrong */
+            return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the solution is not finite");
     if (it == 0) {
         /* Nothing was solved: give back the starting point bit for bit. */
         if (xyz_out != start_xyz)
@@ -819,7 +832,11 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     if (reason == FACET_STOP_MAX_ITER || reason == FACET_STOP_STAGNATION || reason == FACET_STOP_TIME) {
         snprintf(s->message, sizeof s->message,
                  "planarity %.3g (relative) after %d iterations: tolerance not reached%s", max_rel,
-                 (int)it, reason == FACET_STOP_TIME ? " within the time budget" : "");
+                 (int)it,
+                 reason == FACET_STOP_TIME ? " within the time budget"
+                 : numerical_stop ? "; stopped at the last finite iterate, the next step was not "
+                                    "finite (weights too many orders of magnitude apart?)"
+                                  : "");
         return facet_fail(error, FACET_WARNING_NOT_CONVERGED, -1, -1, "%s", s->message);
     }
     return FACET_OK;
