@@ -340,7 +340,8 @@ typedef struct facet_surface facet_surface;
 
 /* Triangles of n_vertices points xyz[3*n_vertices]; tri[3*n_triangles]. Copies
  * what it needs. Errors: FACET_ERROR_EMPTY_MESH, FACET_ERROR_NONFINITE (a
- * vertex used by a triangle), FACET_ERROR_INDEX_OUT_OF_RANGE. Zero-area
+ * vertex used by a triangle), FACET_ERROR_INDEX_OUT_OF_RANGE,
+ * FACET_ERROR_TOO_LARGE (a bounding box wider than a double holds). Zero-area
  * triangles are allowed (their closest point is found on their edges; their
  * normal is 0 0 0). */
 facet_status facet_surface_create(int32_t n_vertices, const double *xyz, int32_t n_triangles,

@@ -273,6 +273,11 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
         centre[k] = 0.5 * (lo[k] + hi[k]);
         scale = fmax(scale, hi[k] - lo[k]);
     }
+    if (!isfinite(scale)) { /* would scale every vertex to 0 and give NaN planes */
+        work_free(&w);
+        return facet_fail(error, FACET_ERROR_TOO_LARGE, -1, -1,
+                          "coordinates too large: the mesh's extent overflows a double");
+    }
     if (!(scale > 0.0))
         scale = 1.0;
     const double inv = 1.0 / scale;

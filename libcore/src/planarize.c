@@ -622,7 +622,10 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         }
     }
     double scale = edge_sum / (double)s->nc;
-    if (!(scale > 0.0) || !isfinite(scale))
+    if (!isfinite(scale)) /* was reported as "every edge has zero length" */
+        return facet_pl_fail(s, error, FACET_ERROR_TOO_LARGE,
+                             "coordinates too large: the edge lengths overflow a double");
+    if (!(scale > 0.0))
         return facet_pl_fail(s, error, FACET_ERROR_DEGENERATE_FACE,
                              "every edge of the mesh has zero length");
     const double inv = 1.0 / scale;

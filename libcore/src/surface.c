@@ -274,6 +274,19 @@ void facet_surface_free(facet_surface **surface)
 static facet_status create_from_corners(int32_t nt, double *corners, int32_t *face,
                                         facet_surface **out, facet_error *error)
 {
+    /* a bounding box wider than a double can hold would scale everything to
+     * 0 and give NaN answers */
+    for (int k = 0; k < 3; ++k) {
+        double lo = DBL_MAX, hi = -DBL_MAX;
+        for (size_t i = k; i < 9 * (size_t)nt; i += 3)
+            lo = fmin(lo, corners[i]), hi = fmax(hi, corners[i]);
+        if (!isfinite(hi - lo)) {
+            free(corners);
+            free(face);
+            return facet_fail(error, FACET_ERROR_TOO_LARGE, -1, -1,
+                              "coordinates too large: the surface's extent overflows a double");
+        }
+    }
     facet_surface *s = calloc(1, sizeof *s);
     double *centroid = malloc(sizeof *centroid * 3 * (size_t)nt);
     if (!s || !centroid) {

@@ -310,6 +310,16 @@ static void test_planarizer_api(void)
     CHECK(untouched(out, 3 * nv));
     free(same);
 
+    /* finite coordinates whose edge lengths overflow: refused, named */
+    double *huge = malloc(sizeof(double) * 3 * nv);
+    memcpy(huge, t.xyz, sizeof(double) * 3 * nv);
+    huge[0] = -1.5e308, huge[3] = 1.5e308;
+    fill(out, 3 * nv);
+    CHECK_FAILS(facet_planarizer_solve(p, huge, &o, out, &res, &e), FACET_ERROR_TOO_LARGE);
+    CHECK(strstr(e.message, "too large") != NULL);
+    CHECK(untouched(out, 3 * nv));
+    free(huge);
+
     /* set_fixed */
     int32_t fixed[3] = {0, 5, 11};
     CHECK_FAILS(facet_planarizer_set_fixed(NULL, 3, fixed, &e), FACET_ERROR_INVALID_ARGUMENT);
@@ -405,6 +415,12 @@ static void test_surface_api(void)
     CHECK(e.vertex == 2);
     nanxyz[7] = -INFINITY;
     CHECK_FAILS(facet_surface_create(4, nanxyz, 2, tri, &s, &e), FACET_ERROR_NONFINITE);
+    /* finite coordinates whose extent overflows: refused */
+    double wide[12];
+    memcpy(wide, xyz, sizeof wide);
+    wide[0] = -1.5e308, wide[3] = 1.5e308;
+    CHECK_FAILS(facet_surface_create(4, wide, 2, tri, &s, &e), FACET_ERROR_TOO_LARGE);
+    CHECK(s == NULL);
     /* all triangles at one point: allowed, zero area, finite answers */
     const double point[12] = {1e7, 2e7, 3, 1e7, 2e7, 3, 1e7, 2e7, 3, 1e7, 2e7, 3};
     CHECK_STATUS(facet_surface_create(4, point, 2, tri, &s, &e), FACET_OK);
@@ -781,6 +797,11 @@ static void test_panels_api(void)
     CHECK(facet_panels(&m, &o, &out, &r, &e) < 0);
     CHECK(e.message[0] != '\0');
     t.face_vertices[5] = saved;
+    /* finite coordinates whose extent overflows: refused */
+    const double x0 = t.xyz[0], x3 = t.xyz[3];
+    t.xyz[0] = -1.5e308, t.xyz[3] = 1.5e308;
+    CHECK_FAILS(facet_panels(&m, &o, &out, &r, &e), FACET_ERROR_TOO_LARGE);
+    t.xyz[0] = x0, t.xyz[3] = x3;
     /* every output NULL, result NULL, error NULL */
     CHECK_STATUS(facet_panels(&m, &o, &none, NULL, NULL), FACET_OK);
     /* all outputs, both edge kinds, all offsets */
