@@ -66,7 +66,8 @@ extern "C" {
     X(FACET_ERROR_NOT_PLANAR, -30, "faces not planar within the tolerance")           \
     X(FACET_ERROR_NOT_ORIENTABLE, -31, "faces cannot be oriented consistently")       \
     X(FACET_ERROR_PANEL_GEOMETRY, -32, "panel outline degenerate or consumed")        \
-    X(FACET_WARNING_PANEL_NON_MANIFOLD, 20, "non-manifold edges treated as boundary")
+    X(FACET_WARNING_PANEL_NON_MANIFOLD, 20, "non-manifold edges treated as boundary") \
+    X(FACET_ERROR_COORDINATE_RANGE, -60, "coordinate beyond 1e15 in magnitude")
 
 typedef enum facet_status {
 #define FACET_STATUS_ENUM(name, value, text) name = value,
@@ -413,7 +414,8 @@ typedef struct facet_cleanup_result {
  * manifold. Passes repeat until no edge is short or none can go.
  * Outputs, caller-allocated at input size: xyz_out[3*n_vertices],
  * face_start_out[n_faces+1], face_vertices_out[corners], vertex_map[n_vertices]
- * (input vertex -> output vertex; isolated vertices are kept),
+ * (input vertex -> output vertex, -1 when its faces were all removed;
+ * isolated vertices are kept),
  * collapsed_edges[2*n_vertices] (input vertex
  * pairs, in collapse order), removed_faces[n_faces] (input face indices).
  * Any of vertex_map, collapsed_edges, removed_faces may be NULL.
@@ -648,6 +650,19 @@ typedef struct facet_panel_result {
 facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *options,
                           facet_panel_output *out, facet_panel_result *result,
                           facet_error *error);
+
+/* ------------------------------------------------------------------------ */
+/* Input range (hardening)                                                   */
+/* ------------------------------------------------------------------------ */
+
+/* The largest coordinate magnitude the library accepts (mesh vertices, plan
+ * x and y, lift targets, surface points and queries, planarizer control
+ * positions). Beyond it squared distances and sums of squares overflow to
+ * infinity (1e300 squared); 1e15 is 1e12 m in millimetres, far beyond any
+ * georeferenced model. A finite coordinate beyond it is
+ * FACET_ERROR_COORDINATE_RANGE (lift targets: FACET_ERROR_BAD_TARGET),
+ * naming the vertex. */
+#define FACET_COORDINATE_MAX 1e15
 
 #ifdef __cplusplus
 }

@@ -376,6 +376,10 @@ facet_status facet_surface_create(int32_t n_vertices, const double *xyz, int32_t
                 return facet_fail(error, FACET_ERROR_NONFINITE, t, v,
                                   "vertex %d of triangle %d has a non-finite coordinate", (int)v,
                                   (int)t);
+            if (!facet_point_in_range(p, 3))
+                return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, t, v,
+                                  "vertex %d of triangle %d has a coordinate beyond 1e15 in "
+                                  "magnitude", (int)v, (int)t);
         }
     double *corners = malloc(sizeof *corners * 9 * (size_t)n_triangles);
     if (!corners)
@@ -412,6 +416,10 @@ facet_status facet_surface_create_from_mesh(const facet_mesh *mesh, facet_surfac
             if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
                 return facet_fail(error, FACET_ERROR_NONFINITE, f, fv[k],
                                   "vertex %d has a non-finite coordinate", (int)fv[k]);
+            if (!facet_point_in_range(p, 3))
+                return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, f, fv[k],
+                                  "vertex %d has a coordinate beyond 1e15 in magnitude",
+                                  (int)fv[k]);
         }
     }
     if (nt > INT32_MAX / 2 - 1)
@@ -555,6 +563,10 @@ facet_status facet_surface_closest(const facet_surface *surface, int64_t n, cons
             return facet_fail(error, FACET_ERROR_NONFINITE, -1, i,
                               "query point %lld has a non-finite coordinate (%g, %g, %g)",
                               (long long)i, p[0], p[1], p[2]);
+        if (!facet_point_in_range(p, 3))
+            return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, -1, i,
+                              "query point %lld has a coordinate beyond 1e15 in magnitude "
+                              "(%g, %g, %g)", (long long)i, p[0], p[1], p[2]);
     }
     const facet_surface *s = surface;
     const int nthreads = facet_thread_count(threads);

@@ -187,25 +187,39 @@ def _dxf_segments(path, arc_tolerance):
     return segments
 
 
+def _csv_rows(path, error):
+    """(line number, non-empty stripped cells) of a CSV file, comments and
+    blank lines left out. Bytes that are not UTF-8 become U+FFFD (so the line
+    is refused as not numbers, with its number); a line csv cannot parse (a
+    NUL byte) raises `error` naming it; OSError as `error` too."""
+    from facet.io.files import read_lines
+
+    try:
+        lines = read_lines(path)
+    except OSError as exc:
+        raise error(f"{path}: cannot read the file ({exc.strerror})") from None
+    for number, line in enumerate(lines, 1):
+        try:
+            row = next(csv.reader([line]), [])
+        except csv.Error as exc:
+            raise error(f"{path}: line {number}: not CSV ({exc})") from None
+        cells = [c.strip() for c in row if c.strip()]
+        if cells and not cells[0].startswith("#"):
+            yield number, cells
+
+
 def _csv_segments(path):
     segments = []
-    try:
-        with open(path, newline="", encoding="utf-8") as handle:
-            for number, row in enumerate(csv.reader(handle), 1):
-                cells = [c.strip() for c in row if c.strip()]
-                if not cells or cells[0].startswith("#"):
-                    continue
-                try:
-                    values = [float(c) for c in cells]
-                except ValueError:
-                    if number == 1:  # a header line
-                        continue
-                    raise PlanError(f"{path}: line {number}: not four numbers x1,y1,x2,y2")
-                if len(values) != 4 or not all(np.isfinite(values)):
-                    raise PlanError(f"{path}: line {number}: need four finite numbers x1,y1,x2,y2")
-                segments.append(((values[0], values[1]), (values[2], values[3])))
-    except OSError as exc:
-        raise PlanError(f"{path}: cannot read the file ({exc.strerror})") from None
+    for number, cells in _csv_rows(path, PlanError):
+        try:
+            values = [float(c) for c in cells]
+        except ValueError:
+            if number == 1:  # a header line
+                continue
+            raise PlanError(f"{path}: line {number}: not four numbers x1,y1,x2,y2")
+        if len(values) != 4 or not all(np.isfinite(values)):
+            raise PlanError(f"{path}: line {number}: need four finite numbers x1,y1,x2,y2")
+        segments.append(((values[0], values[1]), (values[2], values[3])))
     if not segments:
         raise PlanError(f"{path}: no segments")
     return segments
@@ -571,23 +585,16 @@ def read_targets(plan, path, *, tolerance=None):
     xy, _ = _plan_xy(plan)
     if suffix == ".csv":
         rows = []
-        try:
-            with open(path, newline="", encoding="utf-8") as handle:
-                for number, row in enumerate(csv.reader(handle), 1):
-                    cells = [c.strip() for c in row if c.strip()]
-                    if not cells or cells[0].startswith("#"):
-                        continue
-                    try:
-                        values = [float(c) for c in cells]
-                    except ValueError:
-                        if number == 1:
-                            continue
-                        raise InputError(f"{path}: line {number}: not three numbers x,y,z")
-                    if len(values) != 3 or not all(np.isfinite(values)):
-                        raise InputError(f"{path}: line {number}: need three finite numbers x,y,z")
-                    rows.append(values)
-        except OSError as exc:
-            raise InputError(f"{path}: cannot read the file ({exc.strerror})") from None
+        for number, cells in _csv_rows(path, InputError):
+            try:
+                values = [float(c) for c in cells]
+            except ValueError:
+                if number == 1:
+                    continue
+                raise InputError(f"{path}: line {number}: not three numbers x,y,z")
+            if len(values) != 3 or not all(np.isfinite(values)):
+                raise InputError(f"{path}: line {number}: need three finite numbers x,y,z")
+            rows.append(values)
         if tolerance is None:
             tolerance = 1e-6 * (float(np.ptp(xy, axis=0).max()) or 1.0)
         try:
