@@ -132,8 +132,25 @@ def _dxf_segments(path, arc_tolerance):
         document = ezdxf.readfile(os.fspath(path))
     except IOError as exc:
         raise PlanError(f"{path}: cannot read the file ({exc})") from None
-    except ezdxf.DXFStructureError as exc:
-        raise PlanError(f"{path}: not a valid DXF file ({exc})") from None
+    except (ezdxf.DXFError, ValueError) as exc:
+        # DXFStructureError, and DXFValueError for a value ezdxf refuses (a
+        # layer name it cannot take, ...), UnicodeDecodeError (a ValueError)
+        raise PlanError(f"{path}: not a valid DXF file ({_one_line(exc)})") from None
+    try:
+        return _dxf_model_segments(path, document, arc_tolerance, ezpath)
+    except PlanError:
+        raise
+    except (ezdxf.DXFError, ValueError, TypeError, IndexError, KeyError, AttributeError) as exc:
+        # an entity ezdxf loaded but cannot answer for (found by fuzzing)
+        raise PlanError(f"{path}: a malformed entity ({type(exc).__name__}: {_one_line(exc)})") from None
+
+
+def _one_line(exc):
+    text = " ".join(str(exc).split())
+    return text if len(text) <= 200 else text[:197] + "..."
+
+
+def _dxf_model_segments(path, document, arc_tolerance, ezpath):
     segments = []
     curved = ("ARC", "CIRCLE", "ELLIPSE", "SPLINE")
     skipped = {}
