@@ -37,6 +37,8 @@
 
 int LLVMFuzzerInitialize(int *argc, char ***argv);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsigned int seed);
+size_t LLVMFuzzerMutate(uint8_t *data, size_t size, size_t max_size);
 
 #define N_COUNTERS (1u << 16)
 __attribute__((section("__libfuzzer_extra_counters"), used)) static uint8_t counters[N_COUNTERS];
@@ -137,3 +139,110 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     Py_DECREF(r);
     return 0;
 }
+
+/* ------------------------------------------------------------------------
+ * Structure-aware mutations for the text formats (every reader but the
+ * first byte's selector is line based): half of the mutations work on whole
+ * lines or numbers -- duplicate, delete or swap a line, replace a number by
+ * an extreme one, change the selector -- the other half are libFuzzer's own
+ * byte mutations. Absent from the replay build (no LLVMFuzzerMutate there).
+ * ---------------------------------------------------------------------- */
+#ifdef FACET_CUSTOM_MUTATOR
+
+static uint32_t rng(uint32_t *state)
+{
+    *state ^= *state << 13;
+    *state ^= *state >> 17;
+    *state ^= *state << 5;
+    return *state;
+}
+
+/* Start offsets of the lines of data[1..size) (at most max), count returned. */
+static size_t line_starts(const uint8_t *data, size_t size, size_t *starts, size_t max)
+{
+    size_t n = 0;
+    if (size <= 1) return 0;
+    starts[n++] = 1;
+    for (size_t i = 1; i + 1 < size && n < max; i++)
+        if (data[i] == '\n') starts[n++] = i + 1;
+    return n;
+}
+
+static size_t line_end(const uint8_t *data, size_t size, size_t start)
+{
+    while (start < size && data[start] != '\n') start++;
+    return start < size ? start + 1 : size; /* past the newline */
+}
+
+size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsigned int seed)
+{
+    uint32_t state = seed | 1u;
+    static const char *numbers[] = {"nan", "inf", "-inf", "1e308", "-1e308", "1e16", "4.9e-324",
+                                    "0", "-0", "-1", "2147483647", "2147483648", "-2147483649",
+                                    "99999999999999999999", "1e-7", "6500000.001", "0x10", "1_0"};
+    size_t starts[4096];
+    switch (rng(&state) % 8) {
+    case 0: /* duplicate a line */
+    case 1: {
+        size_t n = line_starts(data, size, starts, 4096);
+        if (n == 0) break;
+        size_t a = starts[rng(&state) % n], b = line_end(data, size, a), len = b - a;
+        if (size + len > max_size) break;
+        memmove(data + b + len, data + b, size - b);
+        memcpy(data + b, data + a, len);
+        return size + len;
+    }
+    case 2: { /* delete a line */
+        size_t n = line_starts(data, size, starts, 4096);
+        if (n == 0) break;
+        size_t a = starts[rng(&state) % n], b = line_end(data, size, a);
+        memmove(data + a, data + b, size - b);
+        return size - (b - a);
+    }
+    case 3: { /* swap two lines (by rotating the span between them) */
+        size_t n = line_starts(data, size, starts, 4096);
+        if (n < 2) break;
+        size_t i = rng(&state) % n, j = rng(&state) % n;
+        if (i == j) break;
+        if (i > j) { size_t t = i; i = j; j = t; }
+        size_t a = starts[i], b = line_end(data, size, a), c = starts[j], d = line_end(data, size, c);
+        uint8_t tmp[8192];
+        if (d - a > sizeof tmp || b > c) break;
+        size_t o = 0;
+        memcpy(tmp + o, data + c, d - c), o += d - c;
+        memcpy(tmp + o, data + b, c - b), o += c - b;
+        memcpy(tmp + o, data + a, b - a), o += b - a;
+        memcpy(data + a, tmp, o);
+        return size;
+    }
+    case 4:
+    case 5: { /* replace a number by an extreme one */
+        size_t idx[1024], n = 0;
+        for (size_t i = 1; i < size && n < 1024; i++)
+            if ((data[i] >= '0' && data[i] <= '9') && (i == 1 || !((data[i - 1] >= '0' && data[i - 1] <= '9') ||
+                                                                 data[i - 1] == '.' || data[i - 1] == '-')))
+                idx[n++] = i;
+        if (n == 0) break;
+        size_t a = idx[rng(&state) % n], b = a;
+        while (b < size && ((data[b] >= '0' && data[b] <= '9') || data[b] == '.' || data[b] == 'e' ||
+                            data[b] == 'E' || data[b] == '-' || data[b] == '+'))
+            b++;
+        const char *r = numbers[rng(&state) % (sizeof numbers / sizeof numbers[0])];
+        size_t len = strlen(r);
+        if (size - (b - a) + len > max_size) break;
+        memmove(data + a + len, data + b, size - b);
+        memcpy(data + a, r, len);
+        return size - (b - a) + len;
+    }
+    case 6: /* another reader for the same bytes */
+        if (size > 0) {
+            data[0] = (uint8_t)rng(&state);
+            return size;
+        }
+        break;
+    default:
+        break;
+    }
+    return LLVMFuzzerMutate(data, size, max_size);
+}
+#endif

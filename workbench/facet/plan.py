@@ -132,22 +132,28 @@ def _dxf_segments(path, arc_tolerance):
         document = ezdxf.readfile(os.fspath(path))
     except IOError as exc:
         raise PlanError(f"{path}: cannot read the file ({exc})") from None
-    except (ezdxf.DXFError, ValueError) as exc:
-        # DXFStructureError, and DXFValueError for a value ezdxf refuses (a
-        # layer name it cannot take, ...), UnicodeDecodeError (a ValueError)
-        raise PlanError(f"{path}: not a valid DXF file ({_one_line(exc)})") from None
+    except MemoryError:
+        raise
+    except Exception as exc:  # noqa: BLE001 - see below
+        # ezdxf is the parser here: DXFStructureError, DXFValueError (a layer
+        # name it cannot take), and, on damaged files, whatever its tag
+        # reader meets (OverflowError from a group code "inf", ValueError,
+        # UnicodeDecodeError, IndexError... found by fuzzing). All of them
+        # mean "ezdxf cannot read this file"; say so in one line.
+        raise PlanError(f"{path}: not a valid DXF file ({_exception_line(exc)})") from None
     try:
         return _dxf_model_segments(path, document, arc_tolerance, ezpath)
-    except PlanError:
+    except (PlanError, MemoryError):
         raise
-    except (ezdxf.DXFError, ValueError, TypeError, IndexError, KeyError, AttributeError) as exc:
-        # an entity ezdxf loaded but cannot answer for (found by fuzzing)
-        raise PlanError(f"{path}: a malformed entity ({type(exc).__name__}: {_one_line(exc)})") from None
+    except Exception as exc:  # noqa: BLE001 - an entity ezdxf loaded but cannot answer for
+        raise PlanError(f"{path}: a malformed entity ({_exception_line(exc)})") from None
 
 
-def _one_line(exc):
+def _exception_line(exc):
     text = " ".join(str(exc).split())
-    return text if len(text) <= 200 else text[:197] + "..."
+    if len(text) > 200:
+        text = text[:197] + "..."
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
 
 
 def _dxf_model_segments(path, document, arc_tolerance, ezpath):
