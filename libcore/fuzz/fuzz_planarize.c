@@ -83,7 +83,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     o.tol_abs = maybe(&b, o.tol_abs);
     o.max_iter = 1 + fz_below(&b, 12);
     o.iterations = fz_u8(&b) < 64 ? fz_below(&b, 8) : 0;
-    if (fz_u8(&b) < 4) o.max_iter = (int32_t)fz_u32(&b);
+    /* zero or negative limits (refused or not); not huge ones: a solve of a
+     * billion iterations is what was asked for, not a finding */
+    if (fz_u8(&b) < 4) o.max_iter = -(int32_t)(fz_u32(&b) % 1000u);
     o.warm = 0;
     o.data_tangent = maybe(&b, fz_u8(&b) < 200 ? 1.0 : fz_range(&b, 0.0, 2.0, 0));
     o.data_normal = maybe(&b, fz_u8(&b) < 200 ? 1.0 : fz_range(&b, 0.0, 2.0, 0));
@@ -123,6 +125,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     facet_error e2;
     fz_error_init(&e);
     fz_error_init(&e2);
+    if (getenv("FACET_FUZZ_VERBOSE"))
+        fprintf(stderr, "planarize: nv %d nf %d method %d max_iter %d iterations %d mu0 %g ratio %g mu_min %g "
+                "tol %g %g data %g %g surface %g lap %g nlap %g bfair %g shape %d %g boundary %d circ %g "
+                "par %g hold %g %d anderson %d cancel %d\n", (int)nv, (int)nf, (int)o.method, (int)o.max_iter,
+                (int)o.iterations, o.mu0, o.ratio, o.mu_min, o.tol_abs, o.tol_rel, o.data_tangent, o.data_normal,
+                o.surface_weight, o.laplacian, o.normal_laplacian, o.boundary_fairness, (int)o.shape,
+                o.shape_weight, (int)o.boundary, o.circular, o.parallelogram, o.hold_tol, (int)o.hold_max,
+                (int)o.anderson, (int)cancel.iteration);
     o.threads = 1;
     facet_status s1 = facet_planarizer_solve(p, in, &o, out1, &r1, &e);
     fz_check_status("facet_planarizer_solve", s1, &e);
