@@ -73,6 +73,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (fz_u8(&b) < 8) kind = (facet_basis_kind)(fz_u8(&b) % 4);
     int32_t count = fz_below(&b, 12) - 1;
     size_t basis_n = count > 0 ? (size_t)count * (size_t)nv : 0;
+    if (getenv("FACET_FUZZ_VERBOSE")) {
+        fprintf(stderr, "lift: nv %d nf %d rank_tol %g vertex %d kind %d count %d\n", (int)nv,
+                (int)m.mesh.n_faces, opt.rank_tol, (int)vertex, (int)kind, (int)count);
+        for (int32_t v = 0; v < nv; v++)
+            fprintf(stderr, "  v%d %.17g %.17g w %.17g t %.17g\n", (int)v, m.xyz[3 * v], m.xyz[3 * v + 1],
+                    weights ? weights[v] : 1.0, targets[v]);
+        for (int32_t f = 0; f < m.mesh.n_faces && f < 50; f++) {
+            fprintf(stderr, "  f%d:", (int)f);
+            for (int32_t k = m.face_start[f]; k < m.face_start[f + 1] && k < FZ_MAX_CORNERS; k++)
+                fprintf(stderr, " %d", (int)m.face_vertices[k]);
+            fprintf(stderr, "\n");
+        }
+    }
     double *out[2][4];
     int32_t dim[2];
     facet_status s[2];

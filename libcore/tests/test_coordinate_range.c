@@ -76,6 +76,24 @@ int main(void)
     z[4] = 1.0;
     CHECK(facet_lifter_solve(l, z, h, NULL, &e) >= 0);
     facet_lifter_free(&l);
+    /* a denormal weight among ordinary ones: refused by name (it used to
+     * normalise to 0 and make the fundamental lifting NaN) */
+    double w[9] = {1, 1, 1, 1, 4.9406564584124654e-324, 1, 1, 1, 1};
+    CHECK_STATUS(facet_lifter_create(&plan.mesh, w, NULL, &l, &e), FACET_ERROR_BAD_WEIGHT);
+    CHECK(l == NULL && e.vertex == 4);
+    w[4] = 1e-90;
+    CHECK_STATUS(facet_lifter_create(&plan.mesh, w, NULL, &l, &e), FACET_OK);
+    CHECK_STATUS(facet_lifter_fundamental(l, 4, h, &e), FACET_OK);
+    for (int v = 0; v < 9; ++v)
+        CHECK(isfinite(h[v]));
+    facet_lifter_free(&l);
+    for (int v = 0; v < 9; ++v)
+        w[v] = 1.7e308; /* the sum would overflow */
+    CHECK_STATUS(facet_lifter_create(&plan.mesh, w, NULL, &l, &e), FACET_OK);
+    CHECK(facet_lifter_solve(l, z, h, NULL, &e) >= 0);
+    for (int v = 0; v < 9; ++v)
+        CHECK(isfinite(h[v]));
+    facet_lifter_free(&l);
     test_mesh_free(&plan);
     free(in);
     free(out);
