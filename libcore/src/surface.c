@@ -295,7 +295,12 @@ static facet_status create_from_corners(int32_t nt, double *corners, int32_t *fa
         s->centre[k] = 0.5 * (lo[k] + hi[k]);
         extent = fmax(extent, hi[k] - lo[k]);
     }
-    s->scale = extent > 0.0 ? 1.0 / extent : 1.0;
+    /* A floor on the extent keeps every scaled query finite and its squared
+     * distance too: |query - centre| <= 2e15 (FACET_COORDINATE_MAX), times
+     * 1e125 is 2e140, squared 4e280. Without it a surface a denormal wide
+     * had scale inf, and any surface under 1e-140 wide lost its closest
+     * triangle to an infinite distance (found by fuzzing). */
+    s->scale = 1.0 / fmax(extent, 1e-125);
     s->normals = malloc(sizeof *s->normals * 3 * (size_t)nt);
     s->order = malloc(sizeof *s->order * (size_t)nt);
     s->flat = malloc((size_t)nt);
