@@ -48,7 +48,7 @@ KINDS = (
 )
 
 #: The largest mesh handed on to the solvers (bigger ones are only read).
-SOLVE_LIMIT = 2000
+SOLVE_LIMIT = 300
 
 _DIR = tempfile.mkdtemp(prefix="facet-fuzz-")
 
