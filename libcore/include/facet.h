@@ -67,7 +67,7 @@ extern "C" {
     X(FACET_ERROR_NOT_ORIENTABLE, -31, "faces cannot be oriented consistently")       \
     X(FACET_ERROR_PANEL_GEOMETRY, -32, "panel outline degenerate or consumed")        \
     X(FACET_WARNING_PANEL_NON_MANIFOLD, 20, "non-manifold edges treated as boundary") \
-    X(FACET_ERROR_COORDINATE_RANGE, -60, "coordinate beyond 1e15 in magnitude")
+    X(FACET_ERROR_COORDINATE_RANGE, -60, "coordinate beyond 1e30 in magnitude")
 
 typedef enum facet_status {
 #define FACET_STATUS_ENUM(name, value, text) name = value,
@@ -657,12 +657,13 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
 
 /* The largest coordinate magnitude the library accepts (mesh vertices, plan
  * x and y, lift targets, surface points and queries, planarizer control
- * positions). Beyond it squared distances and sums of squares overflow to
- * infinity (1e300 squared); 1e15 is 1e12 m in millimetres, far beyond any
- * georeferenced model. A finite coordinate beyond it is
- * FACET_ERROR_COORDINATE_RANGE (lift targets: FACET_ERROR_BAD_TARGET),
- * naming the vertex. */
-#define FACET_COORDINATE_MAX 1e15
+ * positions). Beyond about 1e100 products of coordinates that are not
+ * centred first (scatter matrices, squared distances) overflow to infinity
+ * (fuzzing found them at 1e300); 1e30 leaves room for their cubes and is
+ * far beyond any model in mm, m or georeferenced coordinates. A finite
+ * coordinate beyond it is FACET_ERROR_COORDINATE_RANGE (lift targets:
+ * FACET_ERROR_BAD_TARGET), naming the vertex. */
+#define FACET_COORDINATE_MAX 1e30
 
 #ifdef __cplusplus
 }

@@ -278,7 +278,7 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
     for (int32_t v = 0; v < nv; ++v)
         if (!facet_point_in_range(plan->xyz + 3 * v, 2))
             return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, -1, v,
-                              "plan vertex %d has x or y beyond 1e15 in magnitude (%g, %g)",
+                              "plan vertex %d has x or y beyond 1e30 in magnitude (%g, %g)",
                               (int)v, plan->xyz[3 * v], plan->xyz[3 * v + 1]);
     if (weights)
         for (int32_t v = 0; v < nv; ++v)
@@ -687,7 +687,7 @@ facet_status facet_lifter_solve(facet_lifter *s, const double *targets, double *
                                "target height of vertex %d is not finite", (int)v);
         else if (!facet_point_in_range(targets + v, 1))
             return lifter_fail(s, error, FACET_ERROR_BAD_TARGET, -1, v,
-                               "target height of vertex %d is %g, beyond 1e15 in magnitude",
+                               "target height of vertex %d is %g, beyond 1e30 in magnitude",
                                (int)v, targets[v]);
     double t0 = facet_now();
     /* targets may alias heights: keep a copy in xyz's z slots. */

@@ -86,7 +86,7 @@ facet_status facet_mesh_validate_topology(const facet_mesh *mesh, int check_coor
                               p[1], p[2]);
         if (!facet_point_in_range(p, 3))
             return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, -1, v,
-                              "vertex %d has a coordinate beyond 1e15 in magnitude (%g, %g, %g)",
+                              "vertex %d has a coordinate beyond 1e30 in magnitude (%g, %g, %g)",
                               (int)v, p[0], p[1], p[2]);
     }
 

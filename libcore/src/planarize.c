@@ -600,7 +600,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         }
         if (!facet_point_in_range(p, 3)) {
             snprintf(s->message, sizeof s->message,
-                     "vertex %d has a coordinate beyond 1e15 in magnitude (%g, %g, %g)", (int)v,
+                     "vertex %d has a coordinate beyond 1e30 in magnitude (%g, %g, %g)", (int)v,
                      p[0], p[1], p[2]);
             return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, -1, v, "%s", s->message);
         }

@@ -296,11 +296,11 @@ static facet_status create_from_corners(int32_t nt, double *corners, int32_t *fa
         extent = fmax(extent, hi[k] - lo[k]);
     }
     /* A floor on the extent keeps every scaled query finite and its squared
-     * distance too: |query - centre| <= 2e15 (FACET_COORDINATE_MAX), times
-     * 1e125 is 2e140, squared 4e280. Without it a surface a denormal wide
+     * distance too: |query - centre| <= 2e30 (FACET_COORDINATE_MAX), times
+     * 1e110 is 2e140, squared 4e280. Without it a surface a denormal wide
      * had scale inf, and any surface under 1e-140 wide lost its closest
      * triangle to an infinite distance (found by fuzzing). */
-    s->scale = 1.0 / fmax(extent, 1e-125);
+    s->scale = 1.0 / fmax(extent, 1e-110);
     s->normals = malloc(sizeof *s->normals * 3 * (size_t)nt);
     s->order = malloc(sizeof *s->order * (size_t)nt);
     s->flat = malloc((size_t)nt);
@@ -383,7 +383,7 @@ facet_status facet_surface_create(int32_t n_vertices, const double *xyz, int32_t
                                   (int)t);
             if (!facet_point_in_range(p, 3))
                 return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, t, v,
-                                  "vertex %d of triangle %d has a coordinate beyond 1e15 in "
+                                  "vertex %d of triangle %d has a coordinate beyond 1e30 in "
                                   "magnitude", (int)v, (int)t);
         }
     double *corners = malloc(sizeof *corners * 9 * (size_t)n_triangles);
@@ -423,7 +423,7 @@ facet_status facet_surface_create_from_mesh(const facet_mesh *mesh, facet_surfac
                                   "vertex %d has a non-finite coordinate", (int)fv[k]);
             if (!facet_point_in_range(p, 3))
                 return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, f, fv[k],
-                                  "vertex %d has a coordinate beyond 1e15 in magnitude",
+                                  "vertex %d has a coordinate beyond 1e30 in magnitude",
                                   (int)fv[k]);
         }
     }
@@ -570,7 +570,7 @@ facet_status facet_surface_closest(const facet_surface *surface, int64_t n, cons
                               (long long)i, p[0], p[1], p[2]);
         if (!facet_point_in_range(p, 3))
             return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, -1, i,
-                              "query point %lld has a coordinate beyond 1e15 in magnitude "
+                              "query point %lld has a coordinate beyond 1e30 in magnitude "
                               "(%g, %g, %g)", (long long)i, p[0], p[1], p[2]);
     }
     const facet_surface *s = surface;
