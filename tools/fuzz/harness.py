@@ -19,13 +19,12 @@ Outcomes:
   propagates, and the C driver (libcore/fuzz/fuzz_python.c) prints it and
   aborts.
 
-It is also a script: ``python3 harness.py FILE...`` replays inputs (the
-regression test in tests/python/test_fuzz_regressions.py does the same), and
-``python3 harness.py --mutate SECONDS CORPUS_DIR [FINDINGS_DIR]`` runs the
-structure-aware mutator (:mod:`mutate`) without libFuzzer.
+It is also a script: ``PYTHONPATH=workbench python3 tools/fuzz/harness.py
+FILE_OR_DIR...`` replays inputs and lists the findings (the regression test
+tests/python/test_fuzz_regressions.py does the same). The structure-aware
+mutator is on the C side (LLVMFuzzerCustomMutator in fuzz_python.c).
 """
 
-import math
 import os
 import sys
 import tempfile
@@ -173,10 +172,6 @@ def replay(paths):
 
 
 def main(argv):
-    if argv[:1] == ["--mutate"]:
-        from mutate import run
-
-        return run(float(argv[1]), argv[2], argv[3] if len(argv) > 3 else None)
     failures = replay(argv)
     for f, what in failures:
         print(f"{f}: {what}")
@@ -185,5 +180,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     sys.exit(main(sys.argv[1:]))
