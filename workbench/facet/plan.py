@@ -57,6 +57,9 @@ __all__ = [
 #: given targets, which makes the optimum unique without bending it.
 FREE_WEIGHT = 1e-6
 
+#: Largest coordinate magnitude accepted (FACET_COORDINATE_MAX of the core).
+COORDINATE_MAX = 1e30
+
 
 class PlanError(InputError):
     """A drawing is not a plan: no bounded face, overlapping faces, a face
@@ -313,6 +316,12 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
     if not np.all(np.isfinite(array)):
         bad = int(np.flatnonzero(~np.all(np.isfinite(array), axis=(1, 2)))[0])
         raise PlanError(f"{where}segment {bad} has a NaN or infinite coordinate")
+    beyond = np.abs(array) > COORDINATE_MAX
+    if beyond.any():
+        # the compiled core refuses them too; here the snapping's KD-tree
+        # overflowed first (found by fuzzing: a CSV segment at 1e308)
+        bad = int(np.flatnonzero(beyond.any(axis=(1, 2)))[0])
+        raise PlanError(f"{where}segment {bad} has a coordinate beyond {COORDINATE_MAX:g} in magnitude")
     points = array.reshape(-1, 2)
     lower, upper = points.min(axis=0), points.max(axis=0)
     size = float(np.hypot(*(upper - lower)))
