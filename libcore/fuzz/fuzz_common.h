@@ -72,7 +72,8 @@ static inline double fz_special(fz_bytes *b)
     if (k < 7) return -(double)INFINITY;
     if (k < 40) return specials[k % (sizeof specials / sizeof specials[0])];
     if (k < 60) {
-        uint64_t bits = (uint64_t)fz_u32(b) | (uint64_t)fz_u32(b) << 32;
+        uint64_t lo = fz_u32(b), hi = fz_u32(b);
+        uint64_t bits = lo | hi << 32;
         double d;
         memcpy(&d, &bits, sizeof d);
         return d;
@@ -184,10 +185,13 @@ static inline void fz_grid_mesh(fz_bytes *b, fz_mesh *m)
         uint8_t what = fz_u8(b) % 8;
         if (c == 0 || nv == 0) break;
         switch (what) {
-        case 0: m->face_vertices[fz_below(b, c)] = fz_below(b, nv + 3) - 1; break;
-        case 1: m->xyz[fz_below(b, 3 * nv)] = fz_special(b); break;
-        case 2: if (nf > 0) m->face_start[1 + fz_below(b, nf)] = fz_below(b, c + 2); break;
-        case 3: m->face_vertices[fz_below(b, c)] = m->face_vertices[fz_below(b, c)]; break;
+        /* value first, then index: the order clang gave these statements when
+         * the regressions were recorded, spelled out so that every compiler
+         * decodes the same (C leaves it unspecified; gcc does the index first) */
+        case 0: { int32_t value = fz_below(b, nv + 3) - 1; m->face_vertices[fz_below(b, c)] = value; break; }
+        case 1: { double value = fz_special(b); m->xyz[fz_below(b, 3 * nv)] = value; break; }
+        case 2: if (nf > 0) { int32_t value = fz_below(b, c + 2); m->face_start[1 + fz_below(b, nf)] = value; } break;
+        case 3: { int32_t value = m->face_vertices[fz_below(b, c)]; m->face_vertices[fz_below(b, c)] = value; break; }
         case 4: { /* a vertex moved onto another: zero-length edge */
             int32_t u = fz_below(b, nv), w = fz_below(b, nv);
             memcpy(m->xyz + 3 * u, m->xyz + 3 * w, 3 * sizeof(double));

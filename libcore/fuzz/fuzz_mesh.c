@@ -45,8 +45,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* a second geometry of the same topology for ratio_change */
     m2 = m;
     int32_t nv = m.mesh.n_vertices;
-    for (int32_t k = 0, n = fz_below(&b, 8); k < n && nv > 0; k++)
-        m2.xyz[fz_below(&b, 3 * nv)] += fz_range(&b, -1.0, 1.0, 30);
+    for (int32_t k = 0, n = fz_below(&b, 8); k < n && nv > 0; k++) {
+        double delta = fz_range(&b, -1.0, 1.0, 30); /* value first: see fuzz_common.h */
+        m2.xyz[fz_below(&b, 3 * nv)] += delta;
+    }
     int32_t nf = m.mesh.n_faces;
     double *o1 = fz_calloc(7 * (size_t)nf, sizeof(double));
     double *o2 = fz_calloc(7 * (size_t)nf, sizeof(double));

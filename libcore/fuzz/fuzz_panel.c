@@ -57,9 +57,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     facet_panel_options opt;
     facet_panel_options_default(&opt);
     opt.thickness = fz_u8(&b) < 16 ? fz_special(&b) : fz_range(&b, 0.0, 0.5, 0);
-    opt.offset = (facet_panel_offset)(fz_u8(&b) % (fz_u8(&b) < 8 ? 5 : 3));
+    uint8_t pick = fz_u8(&b); /* left to right, spelled out (see fuzz_common.h) */
+    opt.offset = (facet_panel_offset)(pick % (fz_u8(&b) < 8 ? 5 : 3));
     opt.gap = fz_u8(&b) < 16 ? fz_special(&b) : (fz_u8(&b) < 128 ? 0.0 : fz_range(&b, 0.0, 0.2, 0));
-    opt.edge = (facet_panel_edge)(fz_u8(&b) % (fz_u8(&b) < 8 ? 4 : 2));
+    pick = fz_u8(&b);
+    opt.edge = (facet_panel_edge)(pick % (fz_u8(&b) < 8 ? 4 : 2));
     opt.flip = fz_u8(&b) & 1;
     if (fz_u8(&b) < 32) opt.planarity_tol_abs = fz_special(&b);
     if (fz_u8(&b) < 64) opt.planarity_tol_rel = fz_u8(&b) < 32 ? fz_special(&b) : fz_range(&b, 0.0, 0.2, 0);

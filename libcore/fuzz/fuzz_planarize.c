@@ -116,7 +116,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* control positions: the mesh's, sometimes with a bad value */
     double *in = fz_calloc(3 * (size_t)nv, sizeof(double));
     memcpy(in, m.xyz, 3 * (size_t)nv * sizeof(double));
-    if (fz_u8(&b) < 8 && nv > 0) in[fz_below(&b, 3 * nv)] = fz_special(&b);
+    if (fz_u8(&b) < 8 && nv > 0) {
+        double value = fz_special(&b); /* value first: see fuzz_common.h */
+        in[fz_below(&b, 3 * nv)] = value;
+    }
     double *out1 = fz_calloc(3 * (size_t)nv, sizeof(double));
     double *out2 = fz_calloc(3 * (size_t)nv, sizeof(double));
     facet_planarize_result r1, r2;

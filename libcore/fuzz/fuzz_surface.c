@@ -45,7 +45,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             double base = nv > 0 ? m.xyz[3 * fz_below(&b, nv) + k] : 0.0;
             q[3 * i + k] = isfinite(base) ? base + fz_range(&b, -2.0, 2.0, 0) : 0.0;
         }
-    if (fz_u8(&b) < 16) q[fz_below(&b, 3 * (int32_t)nq)] = fz_special(&b);
+    if (fz_u8(&b) < 16) {
+        double value = fz_special(&b); /* value first: see fuzz_common.h */
+        q[fz_below(&b, 3 * (int32_t)nq)] = value;
+    }
     double *closest[2], *dist[2], *normal[2];
     int32_t *tri[2];
     facet_status st[2];
