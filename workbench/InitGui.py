@@ -25,6 +25,9 @@ class FacetWorkbench(FreeCADGui.Workbench):
         facetwb.commands.register()
         self.appendToolbar("Facet", facetwb.commands.COMMANDS)
         self.appendMenu("&Facet", facetwb.commands.COMMANDS)
+        from facetwb.taskpanels.preferences_page import PreferencesPage
+
+        FreeCADGui.addPreferencePage(PreferencesPage, "Facet")
 
     def Activated(self):
         pass

@@ -6,7 +6,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb import paths
-from facetwb.commands.macro import derive, object_expression, run_as_macro
+from facetwb.commands.macro import object_expression, run_as_macro
 
 PLAN_FILE_FILTER = "Plan drawings (*.dxf *.csv *.obj *.off *.json)"
 
@@ -79,18 +79,15 @@ class CommandLift:
         return selection[0], selection[1]
 
     def IsActive(self):
-        return App.ActiveDocument is not None and self._selection() is not None
+        return (App.ActiveDocument is not None and Gui.Control.activeDialog() is False
+                and self._selection() is not None)
 
     def Activated(self):
-        from facetwb.objects.lifting import is_lifting, lifting_summary
+        from facetwb.taskpanels.derive_panels import LiftPanel
 
         chosen = self._selection()
-        if chosen is None:
-            return
-        plan, target = chosen
-        lines = [f"facetwb.make_lifting({object_expression(plan)}, "
-                 f"targets={object_expression(target)})"]
-        derive(plan.Document, "Lift plan", lines, is_lifting, lifting_summary)
+        if chosen is not None:
+            Gui.Control.showDialog(LiftPanel(list(chosen)))
 
 
 class CommandLiftMix:

@@ -2,9 +2,10 @@
 """Facet_Planarize: make the selected polygon meshes' faces planar."""
 
 import FreeCAD as App
+import FreeCADGui as Gui
 
 from facetwb import paths
-from facetwb.commands.macro import derive, object_expression, selected
+from facetwb.commands.macro import selected
 
 
 def _selected_meshes():
@@ -26,14 +27,12 @@ class CommandPlanarize:
         }
 
     def IsActive(self):
-        return App.ActiveDocument is not None and bool(_selected_meshes())
+        return (App.ActiveDocument is not None and Gui.Control.activeDialog() is False
+                and bool(_selected_meshes()))
 
     def Activated(self):
-        from facetwb.objects.planarized import is_planarized, planarize_summary
+        from facetwb.taskpanels.derive_panels import PlanarizePanel
 
         sources = _selected_meshes()
-        if not sources:
-            return
-        lines = [f"facetwb.make_planarized({object_expression(src)})" for src in sources]
-        derive(sources[0].Document, "Planarize", lines, is_planarized, planarize_summary,
-               select=True)
+        if sources:
+            Gui.Control.showDialog(PlanarizePanel(sources))
