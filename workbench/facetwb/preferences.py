@@ -37,8 +37,6 @@ DEFAULTS = {
     "SheetOutputDir": ("string", ""),
     # display
     "LegendMax": ("float", 0.0),
-    # lifting
-    "LiftTolerance": ("float", 0.0),
 }
 
 #: Choices of the string preferences that are enumerations (first: default).
