@@ -6,6 +6,8 @@
 #   make test     every test: C (ctest), Python (pytest), FreeCAD headless, FreeCAD GUI (Xvfb)
 #   make bench    solver benchmarks (ns per face per iteration, 1 and 2 threads)
 #   make install  the workbench into FreeCAD's user Mod folders and a `facet` command
+#   make screenshots  the tutorial's screenshots (taken by the GUI test) into docs/images
+#   make translations resources/translations/Facet.ts from the sources and .ui forms
 
 # FreeCAD's interpreter: Debian's, not whatever python3 is first on PATH.
 PYTHON ?= /usr/bin/python3
@@ -18,13 +20,14 @@ PKGS_BUILD = gcc make cmake pkg-config libsuitesparse-dev liblapack-dev python3-
 PKGS_PYTHON = python3-pytest python3-numpy python3-scipy python3-shapely python3-ezdxf \
               python3-matplotlib python3-pynest2d
 PKGS_FREECAD = freecad xvfb xauth
+PKGS_TRANSLATE = pyqt5-dev-tools
 ENSURE = sh tools/ensure-packages.sh
 
 CORE = $(BUILD)/libcore/.built
 FC_ENV = sh tests/fc_env.sh
 
 .PHONY: all build deps deps-build deps-test test test-c test-python test-freecad test-gui \
-        demo bench bench-panels install uninstall clean
+        demo bench bench-panels install uninstall clean screenshots translations
 
 all: build
 
@@ -55,6 +58,20 @@ test-freecad:
 
 test-gui:
 	$(FC_ENV) gui $(OUT)/gui
+
+# the tutorial's screenshots, taken by the GUI test (tests/gui), into docs/images
+SCREENSHOTS = facade_surface taskpanel_surface_mesh facade_control_mesh facade_planarized \
+              facade_panels facade_cutsheets lifting lifting_mix planarity
+screenshots: deps-test build
+	$(FC_ENV) gui $(OUT)/gui
+	mkdir -p docs/images
+	for name in $(SCREENSHOTS); do cp $(OUT)/gui/$$name.png docs/images/; done
+
+# resources/translations/Facet.ts from the Python sources and the .ui forms (pylupdate5)
+translations:
+	@$(ENSURE) $(PKGS_TRANSLATE)
+	pylupdate5 workbench/InitGui.py workbench/facetwb/*.py workbench/facetwb/*/*.py \
+	    resources/ui/*.ui -ts resources/translations/Facet.ts
 
 demo: deps-test build
 	sh tools/demo.sh $(OUT)/demo

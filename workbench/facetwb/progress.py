@@ -13,6 +13,8 @@ callable returning True cancels: the ``facet`` function raises ``facet.Cancelled
 
 import contextlib
 
+from facetwb.translation import translate
+
 #: The active reporters (innermost last).
 _stack = []
 
@@ -99,13 +101,3 @@ def cancel_after(calls):
     (0 turns it off). For tests of Cancel without a person pressing it."""
     global _cancel_at
     _cancel_at = int(calls)
-
-
-def translate(context, text):
-    """Qt's translate when the GUI is up, else ``text``."""
-    try:
-        from PySide import QtCore
-
-        return QtCore.QCoreApplication.translate(context, text)
-    except Exception:  # noqa: BLE001 - headless or no Qt: the source string
-        return text

@@ -2,7 +2,8 @@
 """Facet's GUI commands. ``register()`` adds them to FreeCAD (InitGui.py calls it)."""
 
 #: Commands in toolbar and menu order.
-COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_SurfaceMesh", "Facet_Planarize", "Facet_Cleanup",
+COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_SurfaceMesh",
+            "Facet_Planarize", "Facet_Cleanup",
             "Facet_PlanGraph", "Facet_Lift", "Facet_LiftMix", "Facet_PanelSet",
             "Facet_CutSheets"]
 

@@ -5,6 +5,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb import paths
+from facetwb.translation import QT_TRANSLATE_NOOP
 from facetwb.commands.macro import selected
 
 
@@ -26,10 +27,12 @@ class CommandPanelSet:
     def GetResources(self):
         return {
             "Pixmap": paths.icon_path("Facet_PanelSet"),
-            "MenuText": "Panels",
-            "ToolTip": "Turn every planar face of the selected mesh into a panel solid with "
-                       "its thickness and edge cuts, named by part ID (edit Thickness, Offset, "
-                       "Gap, EdgeMode in the property view)",
+            "MenuText": QT_TRANSLATE_NOOP("Facet_PanelSet", "Panels"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "Facet_PanelSet",
+                "Turn every planar face of the selected mesh into a panel solid with "
+                "its thickness and edge cuts, named by part ID (edit Thickness, Offset, "
+                "Gap, EdgeMode in the property view)"),
         }
 
     def IsActive(self):
@@ -50,10 +53,12 @@ class CommandCutSheets:
     def GetResources(self):
         return {
             "Pixmap": paths.icon_path("Facet_CutSheets"),
-            "MenuText": "Cut sheets",
-            "ToolTip": "Lay the selected panels flat with their IDs and bevel angles, nest them "
-                       "on stock sheets, and write DXF, STEP, schedule and previews to the "
-                       "folder set in OutputDir",
+            "MenuText": QT_TRANSLATE_NOOP("Facet_CutSheets", "Cut sheets"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "Facet_CutSheets",
+                "Lay the selected panels flat with their IDs and bevel angles, nest them "
+                "on stock sheets, and write DXF, STEP, schedule and previews to the "
+                "folder set in OutputDir"),
         }
 
     def IsActive(self):

@@ -5,6 +5,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb import paths
+from facetwb.translation import QT_TRANSLATE_NOOP
 from facetwb.commands.macro import selected
 
 
@@ -20,10 +21,12 @@ class CommandPlanarize:
     def GetResources(self):
         return {
             "Pixmap": paths.icon_path("Facet_Planarize"),
-            "MenuText": "Planarize",
-            "ToolTip": "Move the vertices of the selected polygon mesh as little as possible so "
-                       "that every face is planar (a flat panel). The source is kept; the result "
-                       "is coloured by planarity.",
+            "MenuText": QT_TRANSLATE_NOOP("Facet_Planarize", "Planarize"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "Facet_Planarize",
+                "Move the vertices of the selected polygon mesh as little as possible so "
+                "that every face is planar (a flat panel). The source is kept; the result "
+                "is coloured by planarity."),
         }
 
     def IsActive(self):

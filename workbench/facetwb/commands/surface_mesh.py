@@ -7,11 +7,7 @@ import FreeCADGui as Gui
 
 from facetwb import paths
 from facetwb.commands.macro import selected
-from facetwb.progress import translate
-
-
-def QT_TRANSLATE_NOOP(context, text):  # noqa: N802 - Qt's name, for pylupdate
-    return text
+from facetwb.translation import QT_TRANSLATE_NOOP
 
 
 def _sources():
@@ -26,7 +22,8 @@ class CommandSurfaceMesh:
     def GetResources(self):
         return {
             "Pixmap": paths.icon_path("Facet_SurfaceMesh"),
-            "MenuText": QT_TRANSLATE_NOOP("Facet_SurfaceMesh", "Surface to control mesh"),
+            "MenuText": QT_TRANSLATE_NOOP(
+                "Facet_SurfaceMesh", "Surface to control mesh"),
             "ToolTip": QT_TRANSLATE_NOOP(
                 "Facet_SurfaceMesh",
                 "Panelize the selected surfaces (Part, Surface or Curves faces, shells, "
@@ -45,6 +42,3 @@ class CommandSurfaceMesh:
         sources = _sources()
         if sources:
             Gui.Control.showDialog(SurfaceMeshPanel(sources))
-
-
-__all__ = ["CommandSurfaceMesh", "translate"]

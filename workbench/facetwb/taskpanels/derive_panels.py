@@ -15,6 +15,7 @@ import FreeCADGui as Gui
 from facetwb import preferences, progress
 from facetwb.commands.macro import object_expression
 from facetwb.taskpanels import forms
+from facetwb.translation import QT_TRANSLATE_NOOP
 
 #: The open panel, if any (for scripts and the GUI test).
 active = None
@@ -145,7 +146,7 @@ def _legend_max(doc, made):
 
 class SurfaceMeshPanel(DerivePanel):
     UI = "surface_mesh"
-    TITLE = "Surface to control mesh"
+    TITLE = QT_TRANSLATE_NOOP("Facet", "Surface to control mesh")
     FIELDS = (("Pattern", "SurfacePattern", ["quad", "hex", "tri-quad"], None),
               ("CountU", "SurfaceCountU", None, None),
               ("CountV", "SurfaceCountV", None, None),
@@ -183,7 +184,7 @@ class SurfaceMeshPanel(DerivePanel):
 
 class PlanarizePanel(DerivePanel):
     UI = "planarize"
-    TITLE = "Planarize"
+    TITLE = QT_TRANSLATE_NOOP("Facet", "Planarize")
     FIELDS = (("Method", "PlanarizeMethod", ["lg", "ll"], None),
               ("Tolerance", "PlanarizeTolerance", None, None),
               ("ToleranceAbs", "PlanarizeToleranceAbs", None, None),
@@ -216,7 +217,7 @@ class PlanarizePanel(DerivePanel):
 
 class PanelsPanel(DerivePanel):
     UI = "panels"
-    TITLE = "Panels"
+    TITLE = QT_TRANSLATE_NOOP("Facet", "Panels")
     FIELDS = (("Thickness", "PanelThickness", None, None),
               ("Offset", "PanelOffset", ["outer", "inner", "center"], None),
               ("Gap", "PanelGap", None, None),
@@ -247,7 +248,7 @@ class PanelsPanel(DerivePanel):
 
 class CutSheetsPanel(DerivePanel):
     UI = "cutsheets"
-    TITLE = "Cut sheets"
+    TITLE = QT_TRANSLATE_NOOP("Facet", "Cut sheets")
     FIELDS = (("SheetWidth", "SheetWidth", None, None),
               ("SheetHeight", "SheetHeight", None, None),
               ("Margin", "SheetMargin", None, None),
@@ -283,7 +284,7 @@ class LiftPanel(DerivePanel):
     """sources: [plan, target or None]."""
 
     UI = "lifting"
-    TITLE = "Lift plan"
+    TITLE = QT_TRANSLATE_NOOP("Facet", "Lift plan")
     FIELDS = (("Snap", None, None, 0.0),)
 
     def setup(self):
