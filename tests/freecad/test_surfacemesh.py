@@ -46,6 +46,25 @@ class TestSurfaceMesh(DocumentTestCase):
         self.assertTrue(np.allclose(np.hypot(mesh.vertices[:, 0], mesh.vertices[:, 1]), 2000.0))
         self.assertEqual(side.Shape.exportBrepToString(), shape_before)
 
+    def test_hex_grid_closes_around_a_cylinder(self):
+        cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
+        cyl.Radius, cyl.Height = 2000, 3000
+        self.doc.recompute()
+        side = self.doc.addObject("Part::Feature", "Side")
+        side.Shape = cyl.Shape.Faces[0]
+        obj = facetwb.make_surface_mesh(side, "hex", 12, 5)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual((obj.FaceCount, face_sizes(obj)), (60, [6]))
+        mesh = facetwb.get_mesh(obj)
+        count = {}
+        for face in mesh.faces():
+            for a, b in zip(face, np.roll(face, -1)):
+                key = (min(a, b), max(a, b))
+                count[key] = count.get(key, 0) + 1
+        self.assertEqual(sum(1 for n in count.values() if n == 1), 2 * 24)  # two zigzag rims
+        self.assertTrue(all(outward(obj, np.array([0.0, 0.0, 1500.0]))))
+
     def test_trimmed_face_keeps_cells_inside(self):
         cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
         cyl.Radius, cyl.Height = 2000, 3000

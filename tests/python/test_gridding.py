@@ -183,3 +183,36 @@ def test_pair_triangles_prefers_the_most_rectangular():
     faces = pair_triangles(strip, max_corner_deviation=60).faces()
     quads = [sorted(int(i) for i in f) for f in faces if len(f) == 4]
     assert quads == [[0, 1, 2, 3]]
+
+
+@pytest.mark.parametrize("pattern,sizes", [("quad", {4}), ("hex", {6})])
+def test_periodic_grid_closes_around(pattern, sizes):
+    mesh = sample_surface(cylinder, (0, 2 * math.pi), (0, 3000), pattern, 8, 5,
+                          periodic_u=True)
+    mesh.validate()
+    assert {len(f) for f in mesh.faces()} == sizes
+    assert mesh.n_faces == 40
+    # no vertex twice: the seam is shared, not duplicated
+    rounded = {tuple(np.round(p, 6)) for p in mesh.vertices}
+    assert len(rounded) == mesh.n_vertices
+    # boundary edges only at the bottom and top (z = 0 and z = 3000)
+    count = {}
+    for face in mesh.faces():
+        for a, b in zip(face, np.roll(face, -1)):
+            key = (min(a, b), max(a, b))
+            count[key] = count.get(key, 0) + 1
+    boundary = [key for key, n in count.items() if n == 1]
+    # the bottom and top rings only: 8 edges each (quads), 16 each (hexagons' zigzags)
+    assert len(boundary) == (16 if pattern == "quad" else 32)
+    z = mesh.vertices[np.array(boundary).ravel(), 2]
+    assert np.all((z < 200.0) | (z > 2800.0))
+    ring = mesh.vertices[np.array(boundary).ravel()]
+    assert np.allclose(np.hypot(ring[:, 0], ring[:, 1]), 1000.0)
+    # every hexagon / quad turns outward (counter-clockwise seen from outside)
+    for face in mesh.faces():
+        corners = mesh.vertices[face]
+        normal = np.cross(corners, np.roll(corners, -1, axis=0)).sum(axis=0)
+        centre = corners.mean(axis=0)
+        assert np.dot(normal[:2], centre[:2]) > 0
+    with pytest.raises(GridError, match="nu is 2"):
+        sample_surface(cylinder, (0, 1), (0, 1), pattern, 2, 2, periodic_u=True)

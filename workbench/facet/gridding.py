@@ -65,30 +65,40 @@ def _check_range(name, values):
     return low, high
 
 
-def quad_grid(nu, nv):
+def quad_grid(nu, nv, periodic_u=False):
     """Topology and unit parameters of an ``nu x nv`` quad grid.
+
+    With ``periodic_u`` the grid closes around u (a cylinder): u = 1 is u = 0, so the last
+    column of quads joins the first and there are ``nu`` columns of vertices (nu >= 3).
 
     Returns
     -------
     uv : ndarray, shape ((nu + 1) * (nv + 1), 2)
-        Parameters in [0, 1]^2; vertex ``i + j * (nu + 1)`` is at ``(i / nu, j / nv)``.
+        Parameters in [0, 1]^2; vertex ``i + j * (nu + 1)`` is at ``(i / nu, j / nv)``
+        (``nu`` instead of ``nu + 1`` columns when periodic).
     faces : ndarray of int32, shape (nu * nv, 4)
         Counter-clockwise in (u, v), so normals follow the surface's ``du x dv``.
     """
-    nu = _check_count("nu", nu)
+    nu = _check_count("nu", nu, 3 if periodic_u else 1)
     nv = _check_count("nv", nv)
-    i, j = np.meshgrid(np.arange(nu + 1), np.arange(nv + 1))
+    columns = nu if periodic_u else nu + 1
+    i, j = np.meshgrid(np.arange(columns), np.arange(nv + 1))
     uv = np.column_stack([i.ravel() / nu, j.ravel() / nv]).astype(np.float64)
     ci, cj = np.meshgrid(np.arange(nu), np.arange(nv))
-    a = (ci + cj * (nu + 1)).ravel()
-    faces = np.column_stack([a, a + 1, a + nu + 2, a + nu + 1]).astype(np.int32)
-    return uv, faces
+    ci, cj = ci.ravel(), cj.ravel()
+    right = (ci + 1) % columns
+    faces = np.column_stack([ci + cj * columns, right + cj * columns,
+                             right + (cj + 1) * columns, ci + (cj + 1) * columns])
+    return uv, faces.astype(np.int32)
 
 
-def hex_grid(nu, nv):
+def hex_grid(nu, nv, periodic_u=False):
     """Topology and unit parameters of a honeycomb: ``nv`` rows of ``nu`` hexagons.
 
     Rows alternate by half a hexagon; vertices lie on ``nv + 1`` zigzag lines. With
+    ``periodic_u`` the honeycomb closes around u (nu >= 3): the half hexagons at the ends of
+    the odd rows become whole ones across the seam, and u is ``i / (2 nu)`` for vertex column
+    ``i``. Otherwise, with
     parameters scaled to a square the hexagons are regular when the domain's aspect
     (u length / v length) is ``sqrt(3) (nu + 1/2) / (1.5 nv + 1/2)`` (see
     :func:`grid_counts`).
@@ -100,25 +110,26 @@ def hex_grid(nu, nv):
     faces : ndarray of int32, shape (nu * nv, 6)
         Counter-clockwise in (u, v).
     """
-    nu = _check_count("nu", nu)
+    nu = _check_count("nu", nu, 3 if periodic_u else 1)
     nv = _check_count("nv", nv)
-    columns = 2 * nu + 2
+    columns = 2 * nu if periodic_u else 2 * nu + 2
     r = 1.0
     w = math.sqrt(3.0) * r
     cells = []
     for j in range(nv):
         for a in range(nu):
             c = 2 * a + (j % 2)
-            bottom = [(c + k, j) for k in range(3)]
-            top = [(c + k, j + 1) for k in (2, 1, 0)]
+            bottom = [((c + k) % columns, j) for k in range(3)]
+            top = [((c + k) % columns, j + 1) for k in (2, 1, 0)]
             cells.append(bottom + top)
     used = sorted({vertex for cell in cells for vertex in cell}, key=lambda p: (p[1], p[0]))
     index = {p: k for k, p in enumerate(used)}
     xy = np.array([(i * w / 2.0, 1.5 * r * j + 0.5 * r * ((i + j + 1) % 2)) for i, j in used],
                   dtype=np.float64)
-    assert xy.shape[0] <= columns * (nv + 1)
     low, high = xy.min(axis=0), xy.max(axis=0)
     uv = (xy - low) / (high - low)
+    if periodic_u:
+        uv[:, 0] = np.array([i for i, _j in used], dtype=np.float64) / columns
     faces = np.array([[index[p] for p in cell] for cell in cells], dtype=np.int32)
     return uv, faces
 
@@ -174,7 +185,8 @@ def _evaluate(evaluate, u, v):
     return xyz
 
 
-def sample_surface(evaluate, u_range, v_range, pattern, nu, nv, inside=None, progress=None):
+def sample_surface(evaluate, u_range, v_range, pattern, nu, nv, inside=None, progress=None,
+                   periodic_u=False):
     """A control mesh of ``pattern`` on the surface ``evaluate`` over the parameter rectangle.
 
     Parameters
@@ -192,6 +204,9 @@ def sample_surface(evaluate, u_range, v_range, pattern, nu, nv, inside=None, pro
     progress : callable, optional
         ``progress(done, total)`` as the points are evaluated; returning True cancels
         (raises :class:`facet.Cancelled`).
+    periodic_u : bool
+        The surface is closed in u with period ``u_range[1] - u_range[0]``: the grid closes
+        around (see :func:`quad_grid`, :func:`hex_grid`).
 
     Returns
     -------
@@ -203,7 +218,8 @@ def sample_surface(evaluate, u_range, v_range, pattern, nu, nv, inside=None, pro
         raise GridError(f"pattern must be one of {PATTERNS}, not {pattern!r}")
     u_range = _check_range("u range", u_range)
     v_range = _check_range("v range", v_range)
-    uv, faces = quad_grid(nu, nv) if pattern == "quad" else hex_grid(nu, nv)
+    grid = quad_grid if pattern == "quad" else hex_grid
+    uv, faces = grid(nu, nv, periodic_u=bool(periodic_u))
     u = u_range[0] + uv[:, 0] * (u_range[1] - u_range[0])
     v = v_range[0] + uv[:, 1] * (v_range[1] - v_range[0])
     chunk = 4096

@@ -12,7 +12,9 @@ parameter rectangle (``Face.valueAt``) into
   Mesh's own triangles, paired into quads (``facet.gridding.pair_triangles``).
 
 The faces of a shell are welded along shared edges (and the seam and poles of closed surfaces
-closed up). Cells of a trimmed face with a corner outside the trim are dropped. Faces follow
+closed up: a face all the way round a periodic u gets a grid that closes around, hexagons
+included). Cells of a trimmed face with a corner outside the trim are dropped, so a trimmed
+face's mesh stops short of its trim by up to one cell (use tri-quad to follow a trim). Faces follow
 the face's orientation. The result is a Facet polygon mesh (Planarize, Panels take it); the
 source is never modified. Numerics are in ``facet.gridding``; this module is wiring.
 """
@@ -90,6 +92,19 @@ def _is_trimmed(face):
         return True
 
 
+def _closed_in_u(face):
+    """True when the face goes once all the way round its surface's periodic u."""
+    surface = face.Surface
+    try:
+        if not surface.isUPeriodic():
+            return False
+        u0, u1, _v0, _v1 = face.ParameterRange
+        period = surface.UPeriod()
+        return abs((u1 - u0) - period) <= 1e-9 * period and not _is_trimmed(face)
+    except Exception:  # noqa: BLE001 - not every surface answers: then it is open
+        return False
+
+
 def _oriented(mesh, reverse):
     if not reverse:
         return mesh
@@ -136,9 +151,10 @@ def surface_control_mesh(obj):
                 nu, nv = gridding.grid_counts(evaluate, (u0, u1), (v0, v1), size, pattern)
             else:
                 nu, nv = int(obj.CountU), int(obj.CountV)
+            closed = _closed_in_u(face) and nu >= 3
             mesh = gridding.sample_surface(evaluate, (u0, u1), (v0, v1), pattern, nu, nv,
                                            inside=inside if _is_trimmed(face) else None,
-                                           progress=hook)
+                                           progress=hook, periodic_u=closed)
         except facet.InputError as error:
             raise ValueError(f"{obj.Label}: face {number} of {source.Label}: {error}") from None
         parts.append(_oriented(mesh, face.Orientation == "Reversed"))
