@@ -430,9 +430,10 @@ def check_panels(check, out_dir):
     App.closeDocument(doc.Name)
 
 
-def accept_panel(check, command, fields=()):
+def accept_panel(check, command, fields=(), shot=None):
     """Run ``command``, check that its task panel opened with a tooltip on every field, set
-    ``fields`` ((name, value, choices), ...) and press OK. Returns the panel."""
+    ``fields`` ((name, value, choices), ...), save the main window to ``shot`` (a path) if
+    given, and press OK. Returns the panel."""
     import FreeCADGui as Gui
 
     from facetwb.taskpanels import derive_panels, forms
@@ -447,6 +448,11 @@ def accept_panel(check, command, fields=()):
     check(not missing, f"{command}: every field has a tooltip (missing: {missing})")
     for name, value, choices in fields:
         forms.set_value(panel.form, name, value, choices)
+    if shot:
+        import ui_checks
+
+        ui_checks.window_shot(shot)
+        check(os.path.getsize(shot) > 10000, f"{command}: window screenshot {shot} written")
     check(panel.accept() and derive_panels.active is None
           and not Gui.Control.activeDialog(), f"{command}: OK applies and closes the panel")
     Gui.updateGui()

@@ -53,11 +53,27 @@ def command_active(command_class):
 
 
 def window_shot(path):
-    """The whole main window (task panel, tree, 3D view) as a PNG."""
+    """The whole main window (task panel, tree, 3D view) as a PNG.
+
+    Qt's grab() leaves the OpenGL 3D view empty, so the view's own image (saveImage) is
+    painted into its place.
+    """
     import FreeCADGui as Gui
+    from PySide import QtCore, QtGui
 
     Gui.updateGui()
-    Gui.getMainWindow().grab().save(path)
+    window = Gui.getMainWindow()
+    shot = window.grab()
+    view = Gui.ActiveDocument.ActiveView if Gui.ActiveDocument else None
+    widget = view.graphicsView() if view is not None and hasattr(view, "graphicsView") else None
+    if widget is not None and widget.isVisible():
+        tmp = path + ".view.png"
+        view.saveImage(tmp, widget.width(), widget.height(), "Current")
+        painter = QtGui.QPainter(shot)
+        painter.drawImage(widget.mapTo(window, QtCore.QPoint(0, 0)), QtGui.QImage(tmp))
+        painter.end()
+        os.remove(tmp)
+    shot.save(path)
     return path
 
 
@@ -159,7 +175,8 @@ def run(check, out_dir, g):
           "Cancel in the progress dialog: the Planarized object is not kept")
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(control)
-    g.accept_panel(check, "Facet_Planarize", [("Tolerance", 1e-7, None)])
+    g.accept_panel(check, "Facet_Planarize", [("Tolerance", 1e-7, None)],
+                   shot=os.path.join(out_dir, "taskpanel_planarize.png"))
     results = [obj for obj in doc.Objects if facetwb.is_planarized(obj)]
     if not check(len(results) == 1, "Facet_Planarize added one Planarized object"):
         return
@@ -186,7 +203,8 @@ def run(check, out_dir, g):
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(planar)
     g.accept_panel(check, "Facet_PanelSet", [("Thickness", 30.0, None),
-                                             ("EdgeMode", "bisector", ["square", "bisector"])])
+                                             ("EdgeMode", "bisector", ["square", "bisector"])],
+                   shot=os.path.join(out_dir, "taskpanel_panels.png"))
     sets = [obj for obj in doc.Objects if facetwb.is_panelset(obj)]
     if not check(len(sets) == 1 and sets[0].isValid() and sets[0].PanelCount == 72
                  and sets[0].Thickness.Value == 30.0 and sets[0].EdgeMode == "bisector",
@@ -203,7 +221,8 @@ def run(check, out_dir, g):
     Gui.Selection.addSelection(panels)
     g.accept_panel(check, "Facet_CutSheets", [("SheetWidth", 4000.0, None),
                                               ("SheetHeight", 2500.0, None),
-                                              ("OutputDir", out, None)])
+                                              ("OutputDir", out, None)],
+                   shot=os.path.join(out_dir, "taskpanel_cutsheets.png"))
     sheets = [obj for obj in doc.Objects if facetwb.is_cutsheets(obj)]
     if not check(len(sheets) == 1 and sheets[0].isValid() and not sheets[0].Unplaced,
                  "Facet_CutSheets nested every part"):
@@ -229,8 +248,36 @@ def run(check, out_dir, g):
     check(control.isValid() and [tuple(p) for p in control.Points] != points,
           "the control mesh follows a change of its surface")
     App.closeDocument(doc.Name)
+    check_cleanup(check, g, out_dir, empty)
     check_mesh_pairing(check, g)
     check_preferences_page(check)
+
+
+def check_cleanup(check, g, out_dir, empty):
+    """Facet_Cleanup on the hypar: one undo step, the result drawn."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+
+    import facet
+    import facetwb
+
+    doc = App.newDocument("Cleanup")
+    source = facetwb.make_polymesh(facet.read_mesh(os.path.join(g.ROOT, "tests", "data",
+                                                                "hypar.obj")), doc=doc)
+    doc.recompute()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(source)
+    Gui.runCommand("Facet_Cleanup")
+    made = [o for o in doc.Objects if facetwb.is_cleanup(o)]
+    check(len(made) == 1 and made[0].isValid(),
+          f"Facet_Cleanup adds a valid Cleanup ({made and made[0].getStatusString()})")
+    Gui.Selection.clearSelection()
+    path = os.path.join(out_dir, "cleanup.png")
+    g.save_view(Gui.ActiveDocument.ActiveView, path)
+    check_drawn(check, g, path, empty, "cleanup", share=0.02)
+    doc.undo()
+    check(not any(facetwb.is_cleanup(o) for o in doc.Objects), "undo removes the Cleanup")
+    App.closeDocument(doc.Name)
 
 
 def check_mesh_pairing(check, g):

@@ -256,6 +256,37 @@ class CutSheetsPanel(DerivePanel):
               ("Rotations", "SheetRotations", ["90", "none", "free"], None),
               ("OutputDir", "SheetOutputDir", None, None))
 
+    def setup(self):
+        """A Browse button beside the output folder."""
+        from facetwb.compat import qt_gui
+
+        QtGui = qt_gui()
+        field = forms.widget(self.form, "OutputDir")
+        layout = self.form.layout()
+        index = layout.indexOf(field)
+        row, column, _rows, _columns = layout.getItemPosition(index)
+        box = QtGui.QWidget()
+        line = QtGui.QHBoxLayout(box)
+        line.setContentsMargins(0, 0, 0, 0)
+        layout.removeWidget(field)
+        line.addWidget(field, 1)
+        self.browse = QtGui.QToolButton()
+        self.browse.setText("...")
+        self.browse.setToolTip(progress.translate("Facet", "Choose the output folder"))
+        line.addWidget(self.browse)
+        layout.addWidget(box, row, column)
+        self.browse.clicked.connect(self.choose_folder)
+
+    def choose_folder(self):
+        from facetwb.compat import qt_gui
+
+        field = forms.widget(self.form, "OutputDir")
+        folder = qt_gui().QFileDialog.getExistingDirectory(
+            Gui.getMainWindow(), progress.translate("Facet", "Folder for the cut files"),
+            field.text())
+        if folder:
+            field.setText(folder)
+
     def check(self):
         v = self.values
         if not (v["SheetWidth"] > 2 * v["Margin"] and v["SheetHeight"] > 2 * v["Margin"]):
