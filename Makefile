@@ -60,8 +60,9 @@ test-gui:
 	$(FC_ENV) gui $(OUT)/gui
 
 # the tutorial's screenshots, taken by the GUI test (tests/gui), into docs/images
-SCREENSHOTS = facade_surface taskpanel_surface_mesh facade_control_mesh facade_planarized \
-              facade_panels facade_cutsheets lifting lifting_mix planarity
+SCREENSHOTS = facade_surface taskpanel_surface_mesh facade_control_mesh taskpanel_planarize \
+              facade_planarized taskpanel_panels facade_panels taskpanel_cutsheets \
+              facade_cutsheets lifting lifting_mix
 screenshots: deps-test build
 	$(FC_ENV) gui $(OUT)/gui
 	mkdir -p docs/images

@@ -117,7 +117,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="287"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="318"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
@@ -394,6 +394,16 @@
     <message>
         <location filename="../ui/preferences.ui" line="274"/>
         <source>Planarity shown in the top colour (red) of new meshes&apos; colour maps (0: the largest face value)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="275"/>
+        <source>Choose the output folder</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="284"/>
+        <source>Folder for the cut files</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -681,18 +691,8 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/planarize.ui" line="29"/>
-        <source>Tolerance (relative)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../ui/planarize.ui" line="35"/>
         <source>Stop when every vertex is within this fraction of its face&apos;s mean edge length from the face&apos;s plane (1e-6: 2 micrometres on a 2 m panel)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/planarize.ui" line="40"/>
-        <source>Tolerance (absolute)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -708,6 +708,16 @@
     <message>
         <location filename="../ui/planarize.ui" line="60"/>
         <source>Give up after this many iterations (0: the solver&apos;s default)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="29"/>
+        <source>Rel. tolerance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="40"/>
+        <source>Abs. tolerance</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

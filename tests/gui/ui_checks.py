@@ -165,6 +165,11 @@ def run(check, out_dir, g):
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(control)
     check(command_active(CommandPlanarize), "Planarize: active with the control mesh")
+    g.accept_panel(check, "Facet_Planarize", [("Tolerance", 1e-7, None)],
+                   shot=os.path.join(out_dir, "taskpanel_planarize.png"))
+    # A second Planarize, cancelled in the progress dialog, leaves no trace.
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(control)
     before = [obj.Name for obj in doc.Objects]
     progress.cancel_after(1)
     try:
@@ -173,10 +178,6 @@ def run(check, out_dir, g):
         progress.cancel_after(0)
     check([obj.Name for obj in doc.Objects] == before,
           "Cancel in the progress dialog: the Planarized object is not kept")
-    Gui.Selection.clearSelection()
-    Gui.Selection.addSelection(control)
-    g.accept_panel(check, "Facet_Planarize", [("Tolerance", 1e-7, None)],
-                   shot=os.path.join(out_dir, "taskpanel_planarize.png"))
     results = [obj for obj in doc.Objects if facetwb.is_planarized(obj)]
     if not check(len(results) == 1, "Facet_Planarize added one Planarized object"):
         return
@@ -219,6 +220,9 @@ def run(check, out_dir, g):
 
     out = tempfile.mkdtemp(prefix="facet-gui-sheets-")
     Gui.Selection.addSelection(panels)
+    check_browse(check, out)
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(panels)
     g.accept_panel(check, "Facet_CutSheets", [("SheetWidth", 4000.0, None),
                                               ("SheetHeight", 2500.0, None),
                                               ("OutputDir", out, None)],
@@ -251,6 +255,35 @@ def run(check, out_dir, g):
     check_cleanup(check, g, out_dir, empty)
     check_mesh_pairing(check, g)
     check_preferences_page(check)
+
+
+def check_browse(check, folder):
+    """The Cut sheets panel's Browse button fills the output folder; Cancel adds nothing."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    from PySide import QtGui
+
+    from facetwb.taskpanels import derive_panels, forms
+
+    doc = App.ActiveDocument
+    before = [obj.Name for obj in doc.Objects]
+    Gui.runCommand("Facet_CutSheets")
+    Gui.updateGui()
+    panel = derive_panels.active
+    if not check(panel is not None, "Facet_CutSheets opens its task panel"):
+        return
+    dialog = QtGui.QFileDialog.getExistingDirectory
+    try:
+        QtGui.QFileDialog.getExistingDirectory = staticmethod(lambda *args, **kw: folder)
+        panel.browse.click()
+    finally:
+        QtGui.QFileDialog.getExistingDirectory = dialog
+    check(forms.get_value(panel.form, "OutputDir") == folder,
+          "Browse sets the cut sheets' output folder")
+    panel.reject()
+    Gui.updateGui()
+    check([obj.Name for obj in doc.Objects] == before,
+          "Cancel of the Cut sheets panel leaves the document as it was")
 
 
 def check_cleanup(check, g, out_dir, empty):

@@ -64,3 +64,22 @@ def test_every_command_string_is_in_the_template():
                                                  "run make translations"
     contexts = {context for context, _source in pairs}
     assert set(commands()) <= contexts, "a command's strings are missing from Facet.ts"
+
+
+def test_documents_show_screenshots_taken_by_the_gui_test():
+    import re
+
+    makefile = open(os.path.join(ROOT, "Makefile")).read()
+    listed = re.search(r"SCREENSHOTS = ((?:[\w ]|\\\n)+)", makefile).group(1).split()
+    listed = [name for name in listed if name != "\\"]
+    gui_sources = "".join(open(p).read() for p in glob.glob(os.path.join(ROOT, "tests", "gui",
+                                                                           "*.py")))
+    for name in listed:
+        assert f'"{name}.png"' in gui_sources, f"{name}.png is not taken by tests/gui"
+    for doc in ("docs/tutorial.md", "README.md"):
+        text = open(os.path.join(ROOT, doc)).read()
+        for image in re.findall(r"\(((?:docs/)?images/[\w.]+\.png)\)", text):
+            name = os.path.basename(image)[:-4]
+            assert name in listed, f"{doc} shows {image}, which make screenshots does not copy"
+            assert os.path.isfile(os.path.join(ROOT, "docs", "images", name + ".png")), \
+                f"{doc}: docs/images/{name}.png is missing: run make screenshots"

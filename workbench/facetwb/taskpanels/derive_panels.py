@@ -192,7 +192,7 @@ class PlanarizePanel(DerivePanel):
 
     def check(self):
         if not self.values["Tolerance"] > 0:
-            raise ValueError(f"Tolerance (relative) is {self.values['Tolerance']!r}; it must "
+            raise ValueError(f"Rel. tolerance is {self.values['Tolerance']!r}; it must "
                              "be above 0")
 
     def lines(self):
