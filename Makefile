@@ -9,6 +9,8 @@
 #   make bench    solver benchmarks (ns per face per iteration, 1 and 2 threads)
 #   make install  the workbench into FreeCAD's user Mod folders and a `facet` command
 #   make fuzz     libFuzzer on the C API and the Python readers (FUZZ_SECONDS per target)
+#   make screenshots  the tutorial's screenshots (taken by the GUI test) into docs/images
+#   make translations resources/translations/Facet.ts from the sources and .ui forms
 
 # FreeCAD's interpreter: Debian's, not whatever python3 is first on PATH.
 PYTHON ?= /usr/bin/python3
@@ -23,6 +25,7 @@ PKGS_PYTHON = python3-pytest python3-numpy python3-scipy python3-shapely python3
 PKGS_FREECAD = freecad xvfb xauth
 PKGS_MEMCHECK = valgrind
 PKGS_FUZZ = clang libclang-rt-14-dev libomp-14-dev python3.11-dev
+PKGS_TRANSLATE = pyqt5-dev-tools
 ENSURE = sh tools/ensure-packages.sh
 
 CORE = $(BUILD)/libcore/.built
@@ -30,7 +33,7 @@ FC_ENV = sh tests/fc_env.sh
 
 .PHONY: all build deps deps-build deps-test test test-c test-python test-freecad test-gui \
         demo examples bench bench-panels install uninstall clean build-sanitize test-sanitize \
-        check-memory fuzz fuzz-build
+        check-memory fuzz fuzz-build screenshots translations
 
 all: build
 
@@ -87,6 +90,21 @@ test-freecad:
 
 test-gui:
 	$(FC_ENV) gui $(OUT)/gui
+
+# the tutorial's screenshots, taken by the GUI test (tests/gui), into docs/images
+SCREENSHOTS = facade_surface taskpanel_surface_mesh facade_control_mesh taskpanel_planarize \
+              facade_planarized taskpanel_panels facade_panels taskpanel_cutsheets \
+              facade_cutsheets lifting lifting_mix
+screenshots: deps-test build
+	$(FC_ENV) gui $(OUT)/gui
+	mkdir -p docs/images
+	for name in $(SCREENSHOTS); do cp $(OUT)/gui/$$name.png docs/images/; done
+
+# resources/translations/Facet.ts from the Python sources and the .ui forms (pylupdate5)
+translations:
+	@$(ENSURE) $(PKGS_TRANSLATE)
+	pylupdate5 workbench/InitGui.py workbench/facetwb/*.py workbench/facetwb/*/*.py \
+	    resources/ui/*.ui -ts resources/translations/Facet.ts
 
 demo: deps-test build
 	sh tools/demo.sh $(OUT)/demo
