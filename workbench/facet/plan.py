@@ -145,7 +145,8 @@ def _dxf_segments(path, arc_tolerance):
         raise PlanError(f"{path}: not a DXF file (no DXF header: binary DXF, DWG or "
                         "another format?)") from None
     except ezdxf.DXFStructureError as exc:
-        raise PlanError(f"{path}: not a valid DXF file ({exc})") from None
+        # one line: ezdxf quotes the offending tag, newline included
+        raise PlanError(f"{path}: not a valid DXF file ({' '.join(str(exc).split())})") from None
     except MemoryError:
         raise
     except Exception as exc:  # noqa: BLE001 - see below
