@@ -40,6 +40,8 @@ facet_status facet_pl_fail(facet_planarizer *s, facet_error *error, facet_status
 
 void facet_planarize_options_default(facet_method method, facet_planarize_options *o)
 {
+    if (!o)
+        return;
     memset(o, 0, sizeof *o);
     o->method = method;
     o->mu0 = 1.0;
@@ -651,7 +653,10 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         }
     }
     double scale = edge_sum / (double)s->nc;
-    if (!(scale > 0.0) || !isfinite(scale))
+    if (!isfinite(scale)) /* was reported as "every edge has zero length" */
+        return facet_pl_fail(s, error, FACET_ERROR_TOO_LARGE,
+                             "coordinates too large: the edge lengths overflow a double");
+    if (!(scale > 0.0))
         return facet_pl_fail(s, error, FACET_ERROR_DEGENERATE_FACE,
                              "every edge of the mesh has zero length");
     const double inv = 1.0 / scale;
@@ -693,6 +698,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     int32_t accepted = 0, rejected = 0;
     double energy_mu = 0.0, energy_con = 0.0, last_mu = 0.0, last_con = 0.0;
     const int staircase = options->hold_tol > 0.0;
+    int numerical_stop = 0;
     int32_t level_steps = 0;
     int32_t since = 0;       /* the stagnation window starts here */
     int32_t guard_last = -1; /* last iteration with a corner below its angle floor */
@@ -792,13 +798,22 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             if (!facet_pl_vertex_step(s, mu, nthreads)) {
                 status = facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
                                        "a vertex update was not finite");
-                break;
             }
         } else {
             status = facet_pl_global_step(s, mu, nthreads, error);
-            if (status != FACET_OK)
-                break;
         }
+        if (status == FACET_ERROR_NUMERICAL && it > 0) {
+            /* An ill-conditioned problem (weights many orders of magnitude
+             * apart) whose next step is not finite: the steps leave s->q at
+             * the last (finite) iterate, which is the best result there is. */
+            status = FACET_OK;
+            reason = FACET_STOP_STAGNATION;
+            numerical_stop = 1;
+            facet_error_clear(error);
+            break;
+        }
+        if (status != FACET_OK)
+            break;
         double move = 0.0; /* largest vertex move of the plain step, squared */
         if (staircase)
             for (int32_t v = 0; v < nv; ++v) {
@@ -841,6 +856,9 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     if (s->previous_control != xyz_in) /* before xyz_out, which may be xyz_in */
         memmove(s->previous_control, xyz_in, sizeof(double) * 3 * (size_t)nv);
 
+    for (size_t k = 0; it > 0 && k < 3 * (size_t)nv; ++k)
+        if (!isfinite(s->q[k])) /* never a NaN in xyz_out, whatever went wrong */
+            return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the solution is not finite");
     if (it == 0) {
         /* Nothing was solved: give back the starting point bit for bit. */
         if (xyz_out != start_xyz)
@@ -873,7 +891,11 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     if (reason == FACET_STOP_MAX_ITER || reason == FACET_STOP_STAGNATION || reason == FACET_STOP_TIME) {
         snprintf(s->message, sizeof s->message,
                  "planarity %.3g (relative) after %d iterations: tolerance not reached%s", max_rel,
-                 (int)it, reason == FACET_STOP_TIME ? " within the time budget" : "");
+                 (int)it,
+                 reason == FACET_STOP_TIME ? " within the time budget"
+                 : numerical_stop ? "; stopped at the last finite iterate, the next step was not "
+                                    "finite (weights too many orders of magnitude apart?)"
+                                  : "");
         return facet_fail(error, FACET_WARNING_NOT_CONVERGED, -1, -1, "%s", s->message);
     }
     return FACET_OK;

@@ -75,6 +75,15 @@ static int32_t mark_region(facet_planarizer *s, const int32_t *changed, int32_t 
     return inside;
 }
 
+/* Whether face f has a vertex in the marked region (and so is re-solved). */
+static int in_region(const facet_planarizer *s, int32_t f)
+{
+    for (int32_t c = s->face_start[f]; c < s->face_start[f + 1]; ++c)
+        if (s->live_mark[s->face_vertices[c]] == 1)
+            return 1;
+    return 0;
+}
+
 /* Builds the region's submesh and its planarizer. */
 static facet_status build_region(facet_planarizer *s, const int32_t *changed, int32_t n_changed,
                                  int32_t rings, facet_error *error)
@@ -93,10 +102,7 @@ static facet_status build_region(facet_planarizer *s, const int32_t *changed, in
         local[v] = s->live_mark[v] ? sub_nv++ : -1;
     /* faces touching the region, in order */
     for (int32_t f = 0; f < nf; ++f) {
-        int touches = 0;
-        for (int32_t c = s->face_start[f]; c < s->face_start[f + 1] && !touches; ++c)
-            touches = s->live_mark[s->face_vertices[c]] == 1;
-        if (touches)
+        if (in_region(s, f))
             ++sub_nf, sub_nc += s->face_start[f + 1] - s->face_start[f];
     }
     int32_t *face_start = malloc(sizeof(int32_t) * ((size_t)sub_nf + 1));
@@ -118,10 +124,7 @@ static facet_status build_region(facet_planarizer *s, const int32_t *changed, in
     int32_t at = 0, g = 0;
     face_start[0] = 0;
     for (int32_t f = 0; f < nf; ++f) {
-        int touches = 0;
-        for (int32_t c = s->face_start[f]; c < s->face_start[f + 1] && !touches; ++c)
-            touches = s->live_mark[s->face_vertices[c]] == 1;
-        if (!touches)
+        if (!in_region(s, f))
             continue;
         for (int32_t c = s->face_start[f]; c < s->face_start[f + 1]; ++c)
             face_vertices[at++] = local[s->face_vertices[c]];
@@ -271,10 +274,7 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
     double *dev_abs = s->live_face_dev, *dev_rel = s->live_face_dev + nf;
     for (int32_t f = 0; f < nf; ++f) {
         if (s->live_face_valid && n_changed > 0) {
-            int touches = 0;
-            for (int32_t c = s->face_start[f]; c < s->face_start[f + 1] && !touches; ++c)
-                touches = s->live_mark[s->face_vertices[c]] == 1;
-            if (!touches)
+            if (!in_region(s, f))
                 continue;
         } else if (s->live_face_valid) {
             break;
