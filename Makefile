@@ -8,6 +8,9 @@
 #   make check-memory  the C tests under valgrind memcheck (normal build)
 #   make bench    solver benchmarks (ns per face per iteration, 1 and 2 threads)
 #   make install  the workbench into FreeCAD's user Mod folders and a `facet` command
+#   make fuzz     libFuzzer on the C API and the Python readers (FUZZ_SECONDS per target)
+#   make screenshots  the tutorial's screenshots (taken by the GUI test) into docs/images
+#   make translations resources/translations/Facet.ts from the sources and .ui forms
 
 # FreeCAD's interpreter: Debian's, not whatever python3 is first on PATH.
 PYTHON ?= /usr/bin/python3
@@ -21,6 +24,8 @@ PKGS_PYTHON = python3-pytest python3-numpy python3-scipy python3-shapely python3
               python3-matplotlib python3-pynest2d
 PKGS_FREECAD = freecad xvfb xauth
 PKGS_MEMCHECK = valgrind
+PKGS_FUZZ = clang libclang-rt-14-dev libomp-14-dev python3.11-dev
+PKGS_TRANSLATE = pyqt5-dev-tools
 ENSURE = sh tools/ensure-packages.sh
 
 CORE = $(BUILD)/libcore/.built
@@ -28,7 +33,7 @@ FC_ENV = sh tests/fc_env.sh
 
 .PHONY: all build deps deps-build deps-test test test-c test-python test-freecad test-gui \
         demo examples bench bench-panels install uninstall clean build-sanitize test-sanitize \
-        check-memory
+        check-memory fuzz fuzz-build screenshots translations
 
 all: build
 
@@ -86,6 +91,21 @@ test-freecad:
 test-gui:
 	$(FC_ENV) gui $(OUT)/gui
 
+# the tutorial's screenshots, taken by the GUI test (tests/gui), into docs/images
+SCREENSHOTS = facade_surface taskpanel_surface_mesh facade_control_mesh taskpanel_planarize \
+              facade_planarized taskpanel_panels facade_panels taskpanel_cutsheets \
+              facade_cutsheets lifting lifting_mix
+screenshots: deps-test build
+	$(FC_ENV) gui $(OUT)/gui
+	mkdir -p docs/images
+	for name in $(SCREENSHOTS); do cp $(OUT)/gui/$$name.png docs/images/; done
+
+# resources/translations/Facet.ts from the Python sources and the .ui forms (pylupdate5)
+translations:
+	@$(ENSURE) $(PKGS_TRANSLATE)
+	pylupdate5 workbench/InitGui.py workbench/facetwb/*.py workbench/facetwb/*/*.py \
+	    resources/ui/*.ui -ts resources/translations/Facet.ts
+
 demo: deps-test build
 	sh tools/demo.sh $(OUT)/demo
 
@@ -107,6 +127,21 @@ bench: build
 # the 10,000-panel fabrication pipeline, each stage timed
 bench-panels: build
 	$(PYTHON) tools/bench_panels.py --panels 10000 --out $(OUT)/bench_panels
+
+# FUZZ_SECONDS per target, 7 targets: the default is 12 minutes in all.
+# Findings go to $(BUILD)/fuzz/findings/ and make the target fail; keep each
+# as a regression input in libcore/fuzz/regressions/<target>/ (see libcore/fuzz/README.md).
+FUZZ_SECONDS ?= 105
+FUZZ_TARGETS ?= mesh planarize lift panel cleanup surface python
+fuzz-build: deps-build
+	@$(ENSURE) $(PKGS_FUZZ)
+	CC=clang cmake -S libcore -B $(BUILD)/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFACET_FUZZ=ON \
+	    -DFACET_SANITIZE=address,undefined -DFACET_BENCH=OFF -DFACET_TESTS=OFF \
+	    -DPython3_EXECUTABLE=$(PYTHON) -DFACET_PYTHON_OUTPUT_DIR=$(CURDIR)/$(BUILD)/fuzz/pyext
+	cmake --build $(BUILD)/fuzz -j $(JOBS)
+
+fuzz: fuzz-build
+	sh tools/fuzz/run_fuzz.sh $(BUILD)/fuzz $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 install: build
 	sh tools/install.sh "$(PREFIX)" "$(PYTHON)"

@@ -20,11 +20,19 @@ class FacetWorkbench(FreeCADGui.Workbench):
     del _icon_path
 
     def Initialize(self):
-        import facetwb.commands
+        import os
 
+        import facetwb.commands
+        from facetwb import paths
+
+        FreeCADGui.addLanguagePath(os.path.join(paths.resources_dir(), "translations"))
+        FreeCADGui.updateLocale()
         facetwb.commands.register()
         self.appendToolbar("Facet", facetwb.commands.COMMANDS)
         self.appendMenu("&Facet", facetwb.commands.COMMANDS)
+        from facetwb.taskpanels.preferences_page import PreferencesPage
+
+        FreeCADGui.addPreferencePage(PreferencesPage, "Facet")
 
     def Activated(self):
         pass

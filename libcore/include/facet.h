@@ -67,7 +67,8 @@ extern "C" {
     X(FACET_ERROR_NOT_PLANAR, -30, "faces not planar within the tolerance")           \
     X(FACET_ERROR_NOT_ORIENTABLE, -31, "faces cannot be oriented consistently")       \
     X(FACET_ERROR_PANEL_GEOMETRY, -32, "panel outline degenerate or consumed")        \
-    X(FACET_WARNING_PANEL_NON_MANIFOLD, 20, "non-manifold edges treated as boundary")
+    X(FACET_WARNING_PANEL_NON_MANIFOLD, 20, "non-manifold edges treated as boundary") \
+    X(FACET_ERROR_COORDINATE_RANGE, -60, "coordinate beyond 1e30 in magnitude")
 
 typedef enum facet_status {
 #define FACET_STATUS_ENUM(name, value, text) name = value,
@@ -448,7 +449,8 @@ typedef struct facet_cleanup_result {
  * manifold. Passes repeat until no edge is short or none can go.
  * Outputs, caller-allocated at input size: xyz_out[3*n_vertices],
  * face_start_out[n_faces+1], face_vertices_out[corners], vertex_map[n_vertices]
- * (input vertex -> output vertex; isolated vertices are kept),
+ * (input vertex -> output vertex, -1 when its faces were all removed;
+ * isolated vertices are kept),
  * collapsed_edges[2*n_vertices] (input vertex
  * pairs, in collapse order), removed_faces[n_faces] (input face indices).
  * Any of vertex_map, collapsed_edges, removed_faces may be NULL.
@@ -683,6 +685,20 @@ typedef struct facet_panel_result {
 facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *options,
                           facet_panel_output *out, facet_panel_result *result,
                           facet_error *error);
+
+/* ------------------------------------------------------------------------ */
+/* Input range (hardening)                                                   */
+/* ------------------------------------------------------------------------ */
+
+/* The largest coordinate magnitude the library accepts (mesh vertices, plan
+ * x and y, lift targets, surface points and queries, planarizer control
+ * positions). Beyond about 1e100 products of coordinates that are not
+ * centred first (scatter matrices, squared distances) overflow to infinity
+ * (fuzzing found them at 1e300); 1e30 leaves room for their cubes and is
+ * far beyond any model in mm, m or georeferenced coordinates. A finite
+ * coordinate beyond it is FACET_ERROR_COORDINATE_RANGE (lift targets:
+ * FACET_ERROR_BAD_TARGET), naming the vertex. */
+#define FACET_COORDINATE_MAX 1e30
 
 #ifdef __cplusplus
 }

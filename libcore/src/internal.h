@@ -5,6 +5,7 @@
 
 #include "facet.h"
 
+#include <math.h>
 #include <stdarg.h>
 
 #if defined(__GNUC__)
@@ -56,6 +57,17 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
 int facet_thread_count(int requested);
 
 /* max and min without fmax's call and NaN rules (callers pass no NaN). */
+/* A point the library accepts: every coordinate finite and within
+ * FACET_COORDINATE_MAX (NaN fails the comparison). Check isfinite first to
+ * tell FACET_ERROR_NONFINITE from FACET_ERROR_COORDINATE_RANGE. */
+static inline int facet_point_in_range(const double *p, int dims)
+{
+    for (int k = 0; k < dims; ++k)
+        if (!(fabs(p[k]) <= FACET_COORDINATE_MAX))
+            return 0;
+    return 1;
+}
+
 static inline double facet_max(double a, double b)
 {
     return a > b ? a : b;

@@ -30,6 +30,10 @@
  * dim null(C) = n - r >= 3. */
 #include "internal.h"
 
+/* Smallest weight accepted, relative to the largest: below it the
+ * normalised weight's square root leaves the range of useful doubles. */
+#define FACET_LIFT_WEIGHT_RATIO 1e-100
+
 #include <SuiteSparseQR_C.h>
 #include <math.h>
 #include <stdlib.h>
@@ -271,12 +275,27 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
         if (!isfinite(plan->xyz[3 * v]) || !isfinite(plan->xyz[3 * v + 1]))
             return facet_fail(error, FACET_ERROR_NONFINITE, -1, v,
                               "plan vertex %d has a NaN or infinite x or y", (int)v);
+    for (int32_t v = 0; v < nv; ++v)
+        if (!facet_point_in_range(plan->xyz + 3 * v, 2))
+            return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, -1, v,
+                              "plan vertex %d has x or y beyond 1e30 in magnitude (%g, %g)",
+                              (int)v, plan->xyz[3 * v], plan->xyz[3 * v + 1]);
     if (weights)
         for (int32_t v = 0; v < nv; ++v)
             if (!(weights[v] > 0.0) || !isfinite(weights[v]))
                 return facet_fail(error, FACET_ERROR_BAD_WEIGHT, -1, v,
                                   "weight of vertex %d is %g: weights must be finite and > 0",
                                   (int)v, weights[v]);
+    if (weights) {
+        double wmax = 0.0;
+        for (int32_t v = 0; v < nv; ++v)
+            wmax = fmax(wmax, weights[v]);
+        for (int32_t v = 0; v < nv; ++v)
+            if (weights[v] < FACET_LIFT_WEIGHT_RATIO * wmax)
+                return facet_fail(error, FACET_ERROR_BAD_WEIGHT, -1, v,
+                                  "weight of vertex %d is %g, less than 1e-100 of the largest "
+                                  "weight (%g)", (int)v, weights[v], wmax);
+    }
     if ((int64_t)nc > INT32_MAX / 4)
         return facet_fail(error, FACET_ERROR_TOO_LARGE, -1, -1, "plan too large: %d corners",
                           (int)nc);
@@ -312,12 +331,17 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
         s->plan_xy[2 * v] = plan->xyz[3 * v];
         s->plan_xy[2 * v + 1] = plan->xyz[3 * v + 1];
     }
-    /* Weights normalised to mean 1. */
-    double wsum = 0.0;
+    /* Weights normalised to mean 1, through w / wmax so that neither the sum
+     * (weights near DBL_MAX) nor the normalised weight (a denormal weight
+     * became 0, then 0/0 in the projection: found by fuzzing) leaves the
+     * range of doubles; create refused ratios below FACET_LIFT_WEIGHT_RATIO. */
+    double wmax = 0.0, wsum = 0.0;
     for (int32_t v = 0; v < nv; ++v)
-        wsum += weights ? weights[v] : 1.0;
+        wmax = fmax(wmax, weights ? weights[v] : 1.0);
     for (int32_t v = 0; v < nv; ++v)
-        s->sqw[v] = sqrt((weights ? weights[v] : 1.0) * nv / wsum);
+        wsum += (weights ? weights[v] : 1.0) / wmax;
+    for (int32_t v = 0; v < nv; ++v)
+        s->sqw[v] = sqrt((weights ? weights[v] : 1.0) / wmax * nv / wsum);
 
     /* Unique edges, for the Laplacian. */
     int32_t ne = 0;
@@ -661,6 +685,10 @@ facet_status facet_lifter_solve(facet_lifter *s, const double *targets, double *
         if (!isfinite(targets[v]))
             return lifter_fail(s, error, FACET_ERROR_BAD_TARGET, -1, v,
                                "target height of vertex %d is not finite", (int)v);
+        else if (!facet_point_in_range(targets + v, 1))
+            return lifter_fail(s, error, FACET_ERROR_BAD_TARGET, -1, v,
+                               "target height of vertex %d is %g, beyond 1e30 in magnitude",
+                               (int)v, targets[v]);
     double t0 = facet_now();
     /* targets may alias heights: keep a copy in xyz's z slots. */
     for (int32_t v = 0; v < nv; ++v)
@@ -757,6 +785,11 @@ facet_status facet_lifter_fundamental(facet_lifter *s, int32_t vertex, double *h
     if (!project(s, heights, heights))
         return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1,
                            "applying the stored Q failed (out of memory)");
+    for (int32_t v = 0; v < s->nv; ++v)
+        if (!isfinite(heights[v]))
+            return lifter_fail(s, error, FACET_ERROR_NUMERICAL, -1, v,
+                               "the fundamental lifting of vertex %d is not finite at vertex %d",
+                               (int)vertex, (int)v);
     return FACET_OK;
 }
 
@@ -791,6 +824,11 @@ facet_status facet_lifter_basis(facet_lifter *s, facet_basis_kind kind, int32_t 
     int blas = blas_serial_begin();
     facet_status status = basis_serial(s, kind, count, basis, values, error);
     blas_serial_end(blas);
+    if (status >= 0 && count > 0)
+        for (size_t i = 0; i < (size_t)count * (size_t)s->nv; ++i)
+            if (!isfinite(basis[i]) || (values && i < (size_t)count && !isfinite(values[i])))
+                return lifter_fail(s, error, FACET_ERROR_NUMERICAL, -1, -1,
+                                   "basis function %d is not finite", (int)(i / (size_t)s->nv));
     return status;
 }
 

@@ -99,6 +99,10 @@ facet_status facet_mesh_validate_topology(const facet_mesh *mesh, int check_coor
             return facet_fail(error, FACET_ERROR_NONFINITE, -1, v,
                               "vertex %d has a non-finite coordinate (%g, %g, %g)", (int)v, p[0],
                               p[1], p[2]);
+        if (!facet_point_in_range(p, 3))
+            return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, -1, v,
+                              "vertex %d has a coordinate beyond 1e30 in magnitude (%g, %g, %g)",
+                              (int)v, p[0], p[1], p[2]);
     }
 
     status = facet_mesh_check_indices(mesh, error);

@@ -266,6 +266,12 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                 return facet_fail(error, FACET_ERROR_NONFINITE, -1, v,
                                   "vertex %d has a NaN or infinite coordinate", (int)v);
             }
+            if (!facet_point_in_range(&x, 1)) {
+                work_free(&w);
+                return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, -1, v,
+                                  "vertex %d has a coordinate beyond 1e30 in magnitude (%g)",
+                                  (int)v, x);
+            }
             lo[k] = fmin(lo[k], x), hi[k] = fmax(hi[k], x);
         }
     double centre[3], scale = 0.0;

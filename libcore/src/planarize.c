@@ -631,6 +631,12 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                      "vertex %d has a non-finite coordinate (%g, %g, %g)", (int)v, p[0], p[1], p[2]);
             return facet_fail(error, FACET_ERROR_NONFINITE, -1, v, "%s", s->message);
         }
+        if (!facet_point_in_range(p, 3)) {
+            snprintf(s->message, sizeof s->message,
+                     "vertex %d has a coordinate beyond 1e30 in magnitude (%g, %g, %g)", (int)v,
+                     p[0], p[1], p[2]);
+            return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, -1, v, "%s", s->message);
+        }
     }
     const int nthreads = facet_thread_count(options->threads);
 

@@ -310,7 +310,12 @@ static facet_status create_from_corners(int32_t nt, double *corners, int32_t *fa
         s->centre[k] = 0.5 * (lo[k] + hi[k]);
         extent = fmax(extent, hi[k] - lo[k]);
     }
-    s->scale = extent > 0.0 ? 1.0 / extent : 1.0;
+    /* A floor on the extent keeps every scaled query finite and its squared
+     * distance too: |query - centre| <= 2e30 (FACET_COORDINATE_MAX), times
+     * 1e110 is 2e140, squared 4e280. Without it a surface a denormal wide
+     * had scale inf, and any surface under 1e-140 wide lost its closest
+     * triangle to an infinite distance (found by fuzzing). */
+    s->scale = 1.0 / fmax(extent, 1e-110);
     s->normals = malloc(sizeof *s->normals * 3 * (size_t)nt);
     s->order = malloc(sizeof *s->order * (size_t)nt);
     s->flat = malloc((size_t)nt);
@@ -391,6 +396,10 @@ facet_status facet_surface_create(int32_t n_vertices, const double *xyz, int32_t
                 return facet_fail(error, FACET_ERROR_NONFINITE, t, v,
                                   "vertex %d of triangle %d has a non-finite coordinate", (int)v,
                                   (int)t);
+            if (!facet_point_in_range(p, 3))
+                return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, t, v,
+                                  "vertex %d of triangle %d has a coordinate beyond 1e30 in "
+                                  "magnitude", (int)v, (int)t);
         }
     double *corners = malloc(sizeof *corners * 9 * (size_t)n_triangles);
     if (!corners)
@@ -427,6 +436,10 @@ facet_status facet_surface_create_from_mesh(const facet_mesh *mesh, facet_surfac
             if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
                 return facet_fail(error, FACET_ERROR_NONFINITE, f, fv[k],
                                   "vertex %d has a non-finite coordinate", (int)fv[k]);
+            if (!facet_point_in_range(p, 3))
+                return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, f, fv[k],
+                                  "vertex %d has a coordinate beyond 1e30 in magnitude",
+                                  (int)fv[k]);
         }
     }
     if (nt > INT32_MAX / 2 - 1)
@@ -570,6 +583,10 @@ facet_status facet_surface_closest(const facet_surface *surface, int64_t n, cons
             return facet_fail(error, FACET_ERROR_NONFINITE, -1, i,
                               "query point %lld has a non-finite coordinate (%g, %g, %g)",
                               (long long)i, p[0], p[1], p[2]);
+        if (!facet_point_in_range(p, 3))
+            return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, -1, i,
+                              "query point %lld has a coordinate beyond 1e30 in magnitude "
+                              "(%g, %g, %g)", (long long)i, p[0], p[1], p[2]);
     }
     const facet_surface *s = surface;
     const int nthreads = facet_thread_count(threads);

@@ -310,13 +310,14 @@ static void test_planarizer_api(void)
     CHECK(untouched(out, 3 * nv));
     free(same);
 
-    /* finite coordinates whose edge lengths overflow: refused, named */
+    /* finite coordinates beyond FACET_COORDINATE_MAX (their edge lengths
+     * would overflow): refused, the vertex named */
     double *huge = malloc(sizeof(double) * 3 * nv);
     memcpy(huge, t.xyz, sizeof(double) * 3 * nv);
     huge[0] = -1.5e308, huge[3] = 1.5e308;
     fill(out, 3 * nv);
-    CHECK_FAILS(facet_planarizer_solve(p, huge, &o, out, &res, &e), FACET_ERROR_TOO_LARGE);
-    CHECK(strstr(e.message, "too large") != NULL);
+    CHECK_FAILS(facet_planarizer_solve(p, huge, &o, out, &res, &e), FACET_ERROR_COORDINATE_RANGE);
+    CHECK(e.vertex == 0);
     CHECK(untouched(out, 3 * nv));
     free(huge);
 
@@ -415,11 +416,11 @@ static void test_surface_api(void)
     CHECK(e.vertex == 2);
     nanxyz[7] = -INFINITY;
     CHECK_FAILS(facet_surface_create(4, nanxyz, 2, tri, &s, &e), FACET_ERROR_NONFINITE);
-    /* finite coordinates whose extent overflows: refused */
+    /* finite coordinates whose extent overflows: beyond FACET_COORDINATE_MAX, refused */
     double wide[12];
     memcpy(wide, xyz, sizeof wide);
     wide[0] = -1.5e308, wide[3] = 1.5e308;
-    CHECK_FAILS(facet_surface_create(4, wide, 2, tri, &s, &e), FACET_ERROR_TOO_LARGE);
+    CHECK_FAILS(facet_surface_create(4, wide, 2, tri, &s, &e), FACET_ERROR_COORDINATE_RANGE);
     CHECK(s == NULL);
     /* all triangles at one point: allowed, zero area, finite answers */
     const double point[12] = {1e7, 2e7, 3, 1e7, 2e7, 3, 1e7, 2e7, 3, 1e7, 2e7, 3};
@@ -466,9 +467,9 @@ static void test_surface_api(void)
     CHECK_STATUS(facet_surface_closest(s, 2, q, 64, c, d, t, n, &e), FACET_OK);
     CHECK(all_finite(c, 6) && all_finite(d, 2) && all_finite(n, 6));
     CHECK_NEAR(d[0], 1.0, 1e-14);
-    /* far away but finite query points: the closest point is still a point
-     * of the surface and the distance finite */
-    const double far[] = {1e7, -1e12, 1e20, 1e100, -1e150, 1e200, 1e300, -1.7e308};
+    /* far away query points up to FACET_COORDINATE_MAX: the closest point is
+     * still a point of the surface and the distance finite */
+    const double far[] = {1e7, -1e12, 1e20, -1e25, 3e29, -0.999 * FACET_COORDINATE_MAX};
     for (size_t k = 0; k < sizeof far / sizeof far[0]; ++k) {
         const double fq[3] = {0.5, far[k], 0.25 * far[k]};
         double fc[3], fd, fn[3];
@@ -485,6 +486,17 @@ static void test_surface_api(void)
         CHECK_NEAR(fc[1], y, 1e-12);
         if (ft < 0)
             fprintf(stderr, "  query at %g found no triangle\n", far[k]);
+    }
+    /* beyond it: refused, the query named, outputs untouched */
+    {
+        const double fq[6] = {0.5, 0.5, 0.0, 0.5, 1e100, 0.0};
+        double fc[6], fd[2], fn[6];
+        int32_t ft[2] = {-7, -7};
+        fill(fc, 6);
+        CHECK_FAILS(facet_surface_closest(s, 2, fq, 1, fc, fd, ft, fn, &e),
+                    FACET_ERROR_COORDINATE_RANGE);
+        CHECK(e.vertex == 1);
+        CHECK(untouched(fc, 6) && ft[0] == -7);
     }
     facet_surface_free(&s);
 
@@ -797,10 +809,10 @@ static void test_panels_api(void)
     CHECK(facet_panels(&m, &o, &out, &r, &e) < 0);
     CHECK(e.message[0] != '\0');
     t.face_vertices[5] = saved;
-    /* finite coordinates whose extent overflows: refused */
+    /* finite coordinates whose extent overflows: beyond FACET_COORDINATE_MAX, refused */
     const double x0 = t.xyz[0], x3 = t.xyz[3];
     t.xyz[0] = -1.5e308, t.xyz[3] = 1.5e308;
-    CHECK_FAILS(facet_panels(&m, &o, &out, &r, &e), FACET_ERROR_TOO_LARGE);
+    CHECK_FAILS(facet_panels(&m, &o, &out, &r, &e), FACET_ERROR_COORDINATE_RANGE);
     t.xyz[0] = x0, t.xyz[3] = x3;
     /* every output NULL, result NULL, error NULL */
     CHECK_STATUS(facet_panels(&m, &o, &none, NULL, NULL), FACET_OK);

@@ -4,7 +4,8 @@ and recomputes to the same bits; property changes and object creation undo and r
 deleting a source leaves its dependents in a clear error state; a cancelled solve keeps the
 previous result.
 
-Object types: PolyMesh, Planarized, Cleanup, PlanGraph, Lifting, PanelSet, CutSheets.
+Object types: PolyMesh, SurfaceMesh, Planarized, Cleanup, PlanGraph, Lifting, PanelSet,
+CutSheets.
 """
 
 import json
@@ -25,7 +26,7 @@ from facetwb import importer
 sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
 import bad_input_cases as cases  # noqa: E402
 
-TYPES = {"Facet::PolyMesh", "Facet::Planarized", "Facet::Cleanup", "Facet::PlanGraph",
+TYPES = {"Facet::PolyMesh", "Facet::SurfaceMesh", "Facet::Planarized", "Facet::Cleanup", "Facet::PlanGraph",
          "Facet::Lifting", "Facet::PanelSet", "Facet::CutSheets"}
 
 
@@ -47,9 +48,15 @@ def build_document(doc, folder):
     panels = facetwb.make_panelset(planarized, thickness=0.05)
     sheets = facetwb.make_cutsheets(panels, sheet=(3.0, 3.0), margin=0.01, spacing=0.01,
                                     write_step=False)
+    import Part
+
+    cylinder = doc.addObject("Part::Feature", "Surface")
+    cylinder.Shape = Part.makeCylinder(2000.0, 3000.0).Faces[0]  # the lateral face
+    gridded = facetwb.make_surface_mesh(cylinder, pattern="quad", count_u=12, count_v=4)
     doc.recompute()
     return {"source": source, "planarized": planarized, "cleanup": cleanup, "plan": plan,
-            "lifting": lifting, "panels": panels, "sheets": sheets}
+            "lifting": lifting, "panels": panels, "sheets": sheets, "surface": cylinder,
+            "gridded": gridded}
 
 
 class TestDocuments(DocumentTestCase):
@@ -130,6 +137,9 @@ class TestDocuments(DocumentTestCase):
 
     def test_undo_redo_sheet_size(self):
         self._undo_redo(self.objects["sheets"], "SheetWidth", 2.0)
+
+    def test_undo_redo_surface_grid(self):
+        self._undo_redo(self.objects["gridded"], "CountU", 16)
 
     def test_undo_redo_object_creation(self):
         doc = self.doc
@@ -214,6 +224,9 @@ class TestDeletedSources(DocumentTestCase):
 
     def test_3_delete_source_leaves_planarized_and_cleanup_in_error(self):
         self._delete("source", ["planarized", "cleanup"], "Source")
+
+    def test_4_delete_surface_leaves_surfacemesh_in_error(self):
+        self._delete("surface", ["gridded"], "Source")
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@ import sys
 import traceback
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 MESH = os.path.join(ROOT, "tests", "data", "hypar.obj")
 WIDTH, HEIGHT = 1600, 1000
 
@@ -141,8 +142,7 @@ def run(out_dir):
     command = Gui.Command.get("Facet_Planarize") if hasattr(Gui, "Command") else None
     if command is not None and hasattr(command, "isActive"):
         check(command.isActive(), "Facet_Planarize is active with a PolyMesh selected")
-    Gui.runCommand("Facet_Planarize")
-    doc.recompute()
+    accept_panel(check, "Facet_Planarize")
     results = [obj for obj in doc.Objects if facetwb.is_planarized(obj)]
     if not check(len(results) == 1, "Facet_Planarize added one Planarized object"):
         return check
@@ -211,6 +211,9 @@ def run(out_dir):
     App.closeDocument(doc.Name)
     check_lifting(check, out_dir)
     check_panels(check, out_dir)
+    import ui_checks
+
+    ui_checks.run(check, out_dir, sys.modules[__name__])
     return check
 
 
@@ -302,7 +305,7 @@ def check_lifting(check, out_dir):
     Gui.Selection.addSelection(plan)
     Gui.Selection.addSelection(dome)
     before = set(doc.Objects)
-    Gui.runCommand("Facet_Lift")
+    accept_panel(check, "Facet_Lift")
     liftings = [obj for obj in doc.Objects if obj not in before and facetwb.is_lifting(obj)]
     check(len(liftings) == 1, "Facet_Lift makes a Lifting")
     if not liftings:
@@ -317,6 +320,7 @@ def check_lifting(check, out_dir):
           "the dome and the plan are hidden")
     heights = [p.z for p in lifting.Points]
     check(max(heights) - min(heights) > 100, "the roof is not flat")
+    Gui.Selection.clearSelection()  # selected objects are drawn in the highlight colour
     path = os.path.join(out_dir, "lifting.png")
     save_view(Gui.ActiveDocument.ActiveView, path)
     check_screenshot(check, path, "lifting", legend=False)
@@ -380,8 +384,7 @@ def check_panels(check, out_dir):
     doc.recompute()
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(source)
-    Gui.runCommand("Facet_PanelSet")
-    doc.recompute()
+    accept_panel(check, "Facet_PanelSet")
     sets = [obj for obj in doc.Objects if facetwb.is_panelset(obj)]
     if not check(len(sets) == 1, "Facet_PanelSet added one PanelSet"):
         return
@@ -407,8 +410,7 @@ def check_panels(check, out_dir):
 
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(ps)
-    Gui.runCommand("Facet_CutSheets")
-    doc.recompute()
+    accept_panel(check, "Facet_CutSheets")
     sheets = [obj for obj in doc.Objects if facetwb.is_cutsheets(obj)]
     if not check(len(sheets) == 1, "Facet_CutSheets added one CutSheets object"):
         return
@@ -426,6 +428,35 @@ def check_panels(check, out_dir):
     red = int(((pixels[..., 0] > 150) & (pixels[..., 1] < 90) & (pixels[..., 2] < 90)).sum())
     check(red > 500, f"cutsheets: the red cut outlines are drawn ({red} pixels)")
     App.closeDocument(doc.Name)
+
+
+def accept_panel(check, command, fields=(), shot=None):
+    """Run ``command``, check that its task panel opened with a tooltip on every field, set
+    ``fields`` ((name, value, choices), ...), save the main window to ``shot`` (a path) if
+    given, and press OK. Returns the panel."""
+    import FreeCADGui as Gui
+
+    from facetwb.taskpanels import derive_panels, forms
+
+    Gui.runCommand(command)
+    Gui.updateGui()
+    panel = derive_panels.active
+    if not check(panel is not None and bool(Gui.Control.activeDialog()),
+                 f"{command} opens its task panel"):
+        return None
+    missing = [name for name, *_ in panel.FIELDS if not forms.widget(panel.form, name).toolTip()]
+    check(not missing, f"{command}: every field has a tooltip (missing: {missing})")
+    for name, value, choices in fields:
+        forms.set_value(panel.form, name, value, choices)
+    if shot:
+        import ui_checks
+
+        ui_checks.window_shot(shot)
+        check(os.path.getsize(shot) > 10000, f"{command}: window screenshot {shot} written")
+    check(panel.accept() and derive_panels.active is None
+          and not Gui.Control.activeDialog(), f"{command}: OK applies and closes the panel")
+    Gui.updateGui()
+    return panel
 
 
 def check_import_command(check):

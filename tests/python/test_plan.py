@@ -217,3 +217,25 @@ def test_lift_command_moves_a_rounded_drawing(facet_command, tmp_path):
     done = facet_command("lift", plan, "-o", out, "--targets", points,
                          "--move-tolerance", "1e-12")
     assert done.returncode == 1 and "MORE THAN" in done.stdout
+
+
+def test_csv_text_with_stray_bytes_and_binary_data(tmp_path):
+    # A spreadsheet export in Latin-1 ("Höhe" header, a comment with "ü"):
+    # read, the header skipped; the same numbers as a UTF-8 file.
+    rows = "".join(f"{a[0]},{a[1]},{b[0]},{b[1]}\n" for a, b in SQUARE)
+    latin = tmp_path / "latin.csv"
+    latin.write_bytes("x1,y1,x2,y2 Höhe\n# Grundriss Süd\n".encode("latin-1") + rows.encode())
+    utf8 = tmp_path / "utf8.csv"
+    utf8.write_text(rows)
+    a, b = read_plan(latin), read_plan(utf8)
+    assert np.array_equal(a.mesh.vertices, b.mesh.vertices)
+    # A stray byte on a data line: refused by its line number.
+    bad = tmp_path / "bad.csv"
+    bad.write_bytes(rows.encode() + b"1,2,3,4\xe9\n")
+    with pytest.raises(PlanError, match=r"bad\.csv: line 5: not four numbers"):
+        read_plan(bad)
+    # Binary data: not a text file, the byte named.
+    binary = tmp_path / "binary.csv"
+    binary.write_bytes(b"1,2\x00\x01\xff\xfe")
+    with pytest.raises(PlanError, match=r"binary\.csv: not a text file: byte 6 is not UTF-8"):
+        read_plan(binary)

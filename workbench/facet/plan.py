@@ -57,6 +57,9 @@ __all__ = [
 #: given targets, which makes the optimum unique without bending it.
 FREE_WEIGHT = 1e-6
 
+#: Largest coordinate magnitude accepted (FACET_COORDINATE_MAX of the core).
+COORDINATE_MAX = 1e30
+
 
 class PlanError(InputError):
     """A drawing is not a plan: no bounded face, overlapping faces, a face
@@ -143,6 +146,31 @@ def _dxf_segments(path, arc_tolerance):
                         "another format?)") from None
     except ezdxf.DXFStructureError as exc:
         raise PlanError(f"{path}: not a valid DXF file ({exc})") from None
+    except MemoryError:
+        raise
+    except Exception as exc:  # noqa: BLE001 - see below
+        # ezdxf is the parser here: DXFValueError (a layer name it cannot
+        # take), and, on damaged files, whatever its tag
+        # reader meets (OverflowError from a group code "inf", ValueError,
+        # UnicodeDecodeError, IndexError... found by fuzzing). All of them
+        # mean "ezdxf cannot read this file"; say so in one line.
+        raise PlanError(f"{path}: not a valid DXF file ({_exception_line(exc)})") from None
+    try:
+        return _dxf_model_segments(path, document, arc_tolerance, ezpath)
+    except (PlanError, MemoryError):
+        raise
+    except Exception as exc:  # noqa: BLE001 - an entity ezdxf loaded but cannot answer for
+        raise PlanError(f"{path}: a malformed entity ({_exception_line(exc)})") from None
+
+
+def _exception_line(exc):
+    text = " ".join(str(exc).split())
+    if len(text) > 200:
+        text = text[:197] + "..."
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+
+
+def _dxf_model_segments(path, document, arc_tolerance, ezpath):
     segments = []
     curved = ("ARC", "CIRCLE", "ELLIPSE", "SPLINE")
     skipped = {}
@@ -196,34 +224,53 @@ def _dxf_segments(path, arc_tolerance):
     return segments
 
 
-def _not_text(exc):
-    """What is wrong with a CSV file that the csv module or UTF-8 refused."""
-    if isinstance(exc, UnicodeDecodeError):
-        return f"not a text file: byte {exc.start + 1} is not UTF-8 (binary data?)"
-    return f"not a CSV text file ({exc})"
+def _csv_rows(path, error):
+    """(line number, non-empty stripped cells) of a CSV file, comments and
+    blank lines left out. A file that is not text (control bytes beside bytes
+    that are not UTF-8, or a NUL) raises `error` naming the first bad byte; in
+    a text file, bytes that are not UTF-8 (a Latin-1 header) become U+FFFD, so
+    the line is skipped as a header or refused as not numbers, by its number.
+    OSError is raised as `error` too."""
+    try:
+        with open(path, "rb") as handle:
+            data = handle.read()
+    except OSError as exc:
+        raise error(f"{path}: cannot read the file ({exc.strerror})") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        if b"\0" in data or any(b < 32 and b not in b"\t\n\r\f" for b in data[:4096]):
+            raise error(f"{path}: not a text file: byte {exc.start + 1} is not UTF-8 "
+                        "(binary data?)") from None
+        text = data.decode("utf-8", errors="replace")
+    nul = data.find(b"\0")
+    if nul >= 0:
+        raise error(f"{path}: not a text file: byte {nul + 1} is NUL (binary data?)")
+    if text.startswith("\ufeff"):
+        text = text[1:]
+    lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
+    for number, line in enumerate(lines, 1):
+        try:
+            row = next(csv.reader([line]), [])
+        except csv.Error as exc:
+            raise error(f"{path}: line {number}: not CSV ({exc})") from None
+        cells = [c.strip() for c in row if c.strip()]
+        if cells and not cells[0].startswith("#"):
+            yield number, cells
 
 
 def _csv_segments(path):
     segments = []
-    try:
-        with open(path, newline="", encoding="utf-8") as handle:
-            for number, row in enumerate(csv.reader(handle), 1):
-                cells = [c.strip() for c in row if c.strip()]
-                if not cells or cells[0].startswith("#"):
-                    continue
-                try:
-                    values = [float(c) for c in cells]
-                except ValueError:
-                    if number == 1:  # a header line
-                        continue
-                    raise PlanError(f"{path}: line {number}: not four numbers x1,y1,x2,y2")
-                if len(values) != 4 or not all(np.isfinite(values)):
-                    raise PlanError(f"{path}: line {number}: need four finite numbers x1,y1,x2,y2")
-                segments.append(((values[0], values[1]), (values[2], values[3])))
-    except OSError as exc:
-        raise PlanError(f"{path}: cannot read the file ({exc.strerror})") from None
-    except (UnicodeDecodeError, csv.Error) as exc:
-        raise PlanError(f"{path}: {_not_text(exc)}") from None
+    for number, cells in _csv_rows(path, PlanError):
+        try:
+            values = [float(c) for c in cells]
+        except ValueError:
+            if number == 1:  # a header line
+                continue
+            raise PlanError(f"{path}: line {number}: not four numbers x1,y1,x2,y2")
+        if len(values) != 4 or not all(np.isfinite(values)):
+            raise PlanError(f"{path}: line {number}: need four finite numbers x1,y1,x2,y2")
+        segments.append(((values[0], values[1]), (values[2], values[3])))
     if not segments:
         raise PlanError(f"{path}: no segments")
     return segments
@@ -294,6 +341,12 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
     if not np.all(np.isfinite(array)):
         bad = int(np.flatnonzero(~np.all(np.isfinite(array), axis=(1, 2)))[0])
         raise PlanError(f"{where}segment {bad} has a NaN or infinite coordinate")
+    beyond = np.abs(array) > COORDINATE_MAX
+    if beyond.any():
+        # the compiled core refuses them too; here the snapping's KD-tree
+        # overflowed first (found by fuzzing: a CSV segment at 1e308)
+        bad = int(np.flatnonzero(beyond.any(axis=(1, 2)))[0])
+        raise PlanError(f"{where}segment {bad} has a coordinate beyond {COORDINATE_MAX:g} in magnitude")
     points = array.reshape(-1, 2)
     lower, upper = points.min(axis=0), points.max(axis=0)
     size = float(np.hypot(*(upper - lower)))
@@ -589,25 +642,16 @@ def read_targets(plan, path, *, tolerance=None):
     xy, _ = _plan_xy(plan)
     if suffix == ".csv":
         rows = []
-        try:
-            with open(path, newline="", encoding="utf-8") as handle:
-                for number, row in enumerate(csv.reader(handle), 1):
-                    cells = [c.strip() for c in row if c.strip()]
-                    if not cells or cells[0].startswith("#"):
-                        continue
-                    try:
-                        values = [float(c) for c in cells]
-                    except ValueError:
-                        if number == 1:
-                            continue
-                        raise InputError(f"{path}: line {number}: not three numbers x,y,z")
-                    if len(values) != 3 or not all(np.isfinite(values)):
-                        raise InputError(f"{path}: line {number}: need three finite numbers x,y,z")
-                    rows.append(values)
-        except OSError as exc:
-            raise InputError(f"{path}: cannot read the file ({exc.strerror})") from None
-        except (UnicodeDecodeError, csv.Error) as exc:
-            raise InputError(f"{path}: {_not_text(exc)}") from None
+        for number, cells in _csv_rows(path, InputError):
+            try:
+                values = [float(c) for c in cells]
+            except ValueError:
+                if number == 1:
+                    continue
+                raise InputError(f"{path}: line {number}: not three numbers x,y,z")
+            if len(values) != 3 or not all(np.isfinite(values)):
+                raise InputError(f"{path}: line {number}: need three finite numbers x,y,z")
+            rows.append(values)
         if tolerance is None:
             tolerance = 1e-6 * (float(np.ptp(xy, axis=0).max()) or 1.0)
         try:

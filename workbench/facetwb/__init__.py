@@ -40,6 +40,8 @@ _API = {
     "make_cutsheets": "facetwb.objects.panelset",
     "is_panelset": "facetwb.objects.panelset",
     "is_cutsheets": "facetwb.objects.panelset",
+    "make_surface_mesh": "facetwb.objects.surfacemesh",
+    "is_surface_mesh": "facetwb.objects.surfacemesh",
 }
 
 __all__ = sorted(_API)

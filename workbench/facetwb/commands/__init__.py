@@ -2,7 +2,8 @@
 """Facet's GUI commands. ``register()`` adds them to FreeCAD (InitGui.py calls it)."""
 
 #: Commands in toolbar and menu order.
-COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize", "Facet_Cleanup",
+COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_SurfaceMesh",
+            "Facet_Planarize", "Facet_Cleanup",
             "Facet_PlanGraph", "Facet_Lift", "Facet_LiftMix", "Facet_PanelSet",
             "Facet_CutSheets"]
 
@@ -16,11 +17,13 @@ def register():
     from facetwb.commands.lift import CommandLift, CommandLiftMix, CommandPlanGraph
     from facetwb.commands.panels import CommandCutSheets, CommandPanelSet
     from facetwb.commands.planarize import CommandPlanarize
+    from facetwb.commands.surface_mesh import CommandSurfaceMesh
     from facetwb.commands.to_polymesh import CommandToPolyMesh
 
     known = set(Gui.listCommands())
     for name, command in (("Facet_ImportMesh", CommandImportMesh()),
                           ("Facet_ToPolyMesh", CommandToPolyMesh()),
+                          ("Facet_SurfaceMesh", CommandSurfaceMesh()),
                           ("Facet_Planarize", CommandPlanarize()),
                           ("Facet_Cleanup", CommandCleanup()),
                           ("Facet_PlanGraph", CommandPlanGraph()),

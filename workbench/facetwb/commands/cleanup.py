@@ -4,6 +4,7 @@
 import FreeCAD as App
 
 from facetwb import paths
+from facetwb.translation import QT_TRANSLATE_NOOP
 from facetwb.commands.macro import derive, object_expression, selected
 
 
@@ -19,10 +20,12 @@ class CommandCleanup:
     def GetResources(self):
         return {
             "Pixmap": paths.icon_path("Facet_Cleanup"),
-            "MenuText": "Collapse short edges",
-            "ToolTip": "Collapse the edges of the selected polygon mesh shorter than a tenth of "
-                       "its mean edge (change MinEdge in the new object), then planarize again. "
-                       "The result is a new mesh with fewer panels; the source is kept.",
+            "MenuText": QT_TRANSLATE_NOOP("Facet_Cleanup", "Collapse short edges"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "Facet_Cleanup",
+                "Collapse the edges of the selected polygon mesh shorter than a tenth of "
+                "its mean edge (change MinEdge in the new object), then planarize again. "
+                "The result is a new mesh with fewer panels; the source is kept."),
         }
 
     def IsActive(self):

@@ -7,6 +7,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb import paths
+from facetwb.translation import QT_TRANSLATE_NOOP
 from facetwb.commands.macro import run_as_macro
 from facetwb.compat import qt_gui
 
@@ -19,9 +20,11 @@ class CommandImportMesh:
     def GetResources(self):
         return {
             "Pixmap": paths.icon_path("Facet_ImportMesh"),
-            "MenuText": "Import polygon mesh...",
-            "ToolTip": "Import an OBJ or OFF file as a Facet polygon mesh (quads, hexagons and "
-                       "other polygons are kept, not split into triangles)",
+            "MenuText": QT_TRANSLATE_NOOP("Facet_ImportMesh", "Import polygon mesh..."),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "Facet_ImportMesh",
+                "Import an OBJ or OFF file as a Facet polygon mesh (quads, hexagons and "
+                "other polygons are kept, not split into triangles)"),
         }
 
     def IsActive(self):

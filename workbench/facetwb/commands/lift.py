@@ -6,7 +6,8 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb import paths
-from facetwb.commands.macro import derive, object_expression, run_as_macro
+from facetwb.translation import QT_TRANSLATE_NOOP
+from facetwb.commands.macro import object_expression, run_as_macro
 
 PLAN_FILE_FILTER = "Plan drawings (*.dxf *.csv *.obj *.off *.json)"
 
@@ -29,11 +30,13 @@ class CommandPlanGraph:
     def GetResources(self):
         return {
             "Pixmap": paths.icon_path("Facet_PlanGraph"),
-            "MenuText": "Plan graph",
-            "ToolTip": "Make a plan graph (faces seen from above) from the selected Sketches, "
-                       "Draft wires or Part edges, or, with nothing selected, from a drawing "
-                       "file (.dxf, .csv, plan mesh). Crossings are split, dangling edges "
-                       "dropped. It follows changes of the drawing.",
+            "MenuText": QT_TRANSLATE_NOOP("Facet_PlanGraph", "Plan graph"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "Facet_PlanGraph",
+                "Make a plan graph (faces seen from above) from the selected Sketches, "
+                "Draft wires or Part edges, or, with nothing selected, from a drawing "
+                "file (.dxf, .csv, plan mesh). Crossings are split, dangling edges "
+                "dropped. It follows changes of the drawing."),
         }
 
     def IsActive(self):
@@ -64,10 +67,12 @@ class CommandLift:
     def GetResources(self):
         return {
             "Pixmap": paths.icon_path("Facet_Lift"),
-            "MenuText": "Lift plan",
-            "ToolTip": "Select a plan (PlanGraph or Facet mesh), then a target surface (mesh or "
-                       "shape): every plan vertex gets a height so that every face is exactly "
-                       "planar, as close as possible to the surface straight above it.",
+            "MenuText": QT_TRANSLATE_NOOP("Facet_Lift", "Lift plan"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "Facet_Lift",
+                "Select a plan (PlanGraph or Facet mesh), then a target surface (mesh or "
+                "shape): every plan vertex gets a height so that every face is exactly "
+                "planar, as close as possible to the surface straight above it."),
         }
 
     def _selection(self):
@@ -79,18 +84,15 @@ class CommandLift:
         return selection[0], selection[1]
 
     def IsActive(self):
-        return App.ActiveDocument is not None and self._selection() is not None
+        return (App.ActiveDocument is not None and Gui.Control.activeDialog() is False
+                and self._selection() is not None)
 
     def Activated(self):
-        from facetwb.objects.lifting import is_lifting, lifting_summary
+        from facetwb.taskpanels.derive_panels import LiftPanel
 
         chosen = self._selection()
-        if chosen is None:
-            return
-        plan, target = chosen
-        lines = [f"facetwb.make_lifting({object_expression(plan)}, "
-                 f"targets={object_expression(target)})"]
-        derive(plan.Document, "Lift plan", lines, is_lifting, lifting_summary)
+        if chosen is not None:
+            Gui.Control.showDialog(LiftPanel(list(chosen)))
 
 
 class CommandLiftMix:
@@ -99,10 +101,12 @@ class CommandLiftMix:
     def GetResources(self):
         return {
             "Pixmap": paths.icon_path("Facet_LiftMix"),
-            "MenuText": "Shape lifting",
-            "ToolTip": "Sliders for the selected Lifting: add the smoothest other planar-faced "
-                       "shapes over the same plan; the result follows live and every face "
-                       "stays exactly planar.",
+            "MenuText": QT_TRANSLATE_NOOP("Facet_LiftMix", "Shape lifting"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "Facet_LiftMix",
+                "Sliders for the selected Lifting: add the smoothest other planar-faced "
+                "shapes over the same plan; the result follows live and every face "
+                "stays exactly planar."),
         }
 
     def _selected(self):

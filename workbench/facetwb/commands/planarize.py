@@ -2,9 +2,11 @@
 """Facet_Planarize: make the selected polygon meshes' faces planar."""
 
 import FreeCAD as App
+import FreeCADGui as Gui
 
 from facetwb import paths
-from facetwb.commands.macro import derive, object_expression, selected
+from facetwb.translation import QT_TRANSLATE_NOOP
+from facetwb.commands.macro import selected
 
 
 def _selected_meshes():
@@ -19,21 +21,21 @@ class CommandPlanarize:
     def GetResources(self):
         return {
             "Pixmap": paths.icon_path("Facet_Planarize"),
-            "MenuText": "Planarize",
-            "ToolTip": "Move the vertices of the selected polygon mesh as little as possible so "
-                       "that every face is planar (a flat panel). The source is kept; the result "
-                       "is coloured by planarity.",
+            "MenuText": QT_TRANSLATE_NOOP("Facet_Planarize", "Planarize"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "Facet_Planarize",
+                "Move the vertices of the selected polygon mesh as little as possible so "
+                "that every face is planar (a flat panel). The source is kept; the result "
+                "is coloured by planarity."),
         }
 
     def IsActive(self):
-        return App.ActiveDocument is not None and bool(_selected_meshes())
+        return (App.ActiveDocument is not None and Gui.Control.activeDialog() is False
+                and bool(_selected_meshes()))
 
     def Activated(self):
-        from facetwb.objects.planarized import is_planarized, planarize_summary
+        from facetwb.taskpanels.derive_panels import PlanarizePanel
 
         sources = _selected_meshes()
-        if not sources:
-            return
-        lines = [f"facetwb.make_planarized({object_expression(src)})" for src in sources]
-        derive(sources[0].Document, "Planarize", lines, is_planarized, planarize_summary,
-               select=True)
+        if sources:
+            Gui.Control.showDialog(PlanarizePanel(sources))

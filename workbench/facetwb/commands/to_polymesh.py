@@ -5,6 +5,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb import paths
+from facetwb.translation import QT_TRANSLATE_NOOP
 from facetwb.commands.macro import object_expression, run_as_macro
 
 
@@ -28,10 +29,12 @@ class CommandToPolyMesh:
     def GetResources(self):
         return {
             "Pixmap": paths.icon_path("Facet_ToPolyMesh"),
-            "MenuText": "To polygon mesh",
-            "ToolTip": "Make a Facet polygon mesh from the selected Mesh or Part objects: a shape "
-                       "of planar polygons gives one panel per face, other shapes and meshes "
-                       "give triangles. It follows changes of its source.",
+            "MenuText": QT_TRANSLATE_NOOP("Facet_ToPolyMesh", "To polygon mesh"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "Facet_ToPolyMesh",
+                "Make a Facet polygon mesh from the selected Mesh or Part objects: a shape "
+                "of planar polygons gives one panel per face, other shapes and meshes "
+                "give triangles. It follows changes of its source."),
         }
 
     def IsActive(self):

@@ -19,7 +19,7 @@ The source is never modified. The numerics are in ``facet``; this module is wiri
 
 import FreeCAD as App
 
-from facetwb import compat
+from facetwb import compat, progress
 from facetwb.recompute import guarded
 
 TYPE_PANELSET = "Facet::PanelSet"
@@ -118,7 +118,8 @@ class PanelSet(_Proxy):
         mesh = conversion.mesh_from_object(obj.Source)
         return panels(mesh, obj.Thickness.Value, offset=obj.Offset, gap=obj.Gap.Value,
                       edge=obj.EdgeMode, flip=bool(obj.Flip), ids=obj.IdScheme,
-                      prefix=obj.IdPrefix, tol=obj.Tolerance, tol_abs=obj.ToleranceAbs.Value)
+                      prefix=obj.IdPrefix, tol=obj.Tolerance, tol_abs=obj.ToleranceAbs.Value,
+                      progress=progress.hook())
 
     def _key(self, obj):
         """What the computed panels depend on, besides the Source's geometry."""
@@ -248,7 +249,8 @@ class CutSheets(_Proxy):
             dxf=os.path.join(out, "sheets.dxf") if out else None,
             schedule=os.path.join(out, "schedule.csv") if out else None,
             svg=os.path.join(out, "svg") if out else None,
-            step=os.path.join(out, "panels.step") if out and obj.WriteStep else None)
+            step=os.path.join(out, "panels.step") if out and obj.WriteStep else None,
+            progress=_stage_progress(progress.hook()))
         if out:
             from facet.cutsheets import schedule_rows, write_schedule_json
 
@@ -327,6 +329,11 @@ class ViewProviderPanels:
 
     def __setstate__(self, state):
         self.loads(state)
+
+
+def _stage_progress(hook):
+    """run_pipeline's ``progress(stage, done, total)`` for a ``(done, total)`` hook."""
+    return None if hook is None else (lambda stage, done, total: hook(done, total))
 
 
 def make_panelset(source, thickness=40.0, offset="outer", gap=0.0, edge="square", flip=False,

@@ -10,7 +10,7 @@ mesh (so it can be the source of the next step) with the solver's report in ``Re
 import FreeCAD as App
 
 import facet
-from facetwb import compat
+from facetwb import compat, progress
 from facetwb.recompute import guarded
 from facetwb import conversion
 from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
@@ -146,6 +146,7 @@ class Planarized(PolyMesh):
             tol_abs=obj.ToleranceAbs.Value or None,
             max_iter=obj.MaxIterations or None,
             threads=obj.Threads or None,
+            progress=progress.hook(),
             **term_options(obj, mesh),
         )
         set_mesh(obj, result.mesh)

@@ -1,0 +1,792 @@
+<?xml version="1.0" encoding="utf-8"?>
+<!DOCTYPE TS>
+<TS version="2.1">
+<context>
+    <name>Cutsheets</name>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="6"/>
+        <source>Cut sheets</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="10"/>
+        <source>Lays the panels flat, nests them on stock sheets and writes the cut files.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="16"/>
+        <source>Sheet width</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="22"/>
+        <source>Width of the stock sheets</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="30"/>
+        <source>Sheet height</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="36"/>
+        <source>Height of the stock sheets</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="44"/>
+        <source>Sheet margin</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="50"/>
+        <source>Border left free around each sheet</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="58"/>
+        <source>Part spacing</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="64"/>
+        <source>Free space between neighbouring parts (the cutter&apos;s kerf and more)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="72"/>
+        <source>Rotations</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="78"/>
+        <source>Rotations the nester may use: 90 degree steps, none (keeps the grain), or any angle</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="79"/>
+        <source>90 degree steps</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="80"/>
+        <source>None</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="81"/>
+        <source>Free</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="86"/>
+        <source>Output folder</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="92"/>
+        <source>Folder for the DXF, STEP, schedule and previews (empty: nothing is written, the layout is only shown)</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Facet</name>
+    <message>
+        <location filename="../../workbench/facetwb/progress.py" line="63"/>
+        <source>Cancel</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="149"/>
+        <source>Surface to control mesh</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="187"/>
+        <source>Planarize</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="220"/>
+        <source>Panels</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="251"/>
+        <source>Cut sheets</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="318"/>
+        <source>Lift plan</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="6"/>
+        <source>Facet</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="10"/>
+        <source>Defaults of the Facet commands. Lengths are shown in the unit system chosen under General &gt; Units.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="16"/>
+        <source>Planarize method</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="22"/>
+        <source>Local/global: a few large linear solves, fast on big meshes (the default). Local/local: many cheap per-face steps.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="23"/>
+        <source>Local/global</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="24"/>
+        <source>Local/local</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="29"/>
+        <source>Planarity tolerance (relative)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="35"/>
+        <source>Stop when every vertex is within this fraction of its face&apos;s mean edge length from the face&apos;s plane (1e-6: 2 micrometres on a 2 m panel)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="40"/>
+        <source>Planarity tolerance (absolute)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="46"/>
+        <source>Stop when every vertex is within this distance of its face&apos;s plane (0: only the relative tolerance)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="54"/>
+        <source>Max. iterations</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="60"/>
+        <source>Give up after this many iterations (0: the solver&apos;s default)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="67"/>
+        <source>Surface mesh pattern</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="73"/>
+        <source>Default pattern of Surface to control mesh</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="74"/>
+        <source>Quad grid</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="75"/>
+        <source>Hex grid</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="76"/>
+        <source>Paired triangles</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="81"/>
+        <source>Panels along u</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="87"/>
+        <source>Default panel count along u</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="94"/>
+        <source>Panels along v</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="100"/>
+        <source>Default panel count along v</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="107"/>
+        <source>Panel size</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="113"/>
+        <source>Default target panel size (0: use the counts)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="121"/>
+        <source>Panel thickness</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="127"/>
+        <source>Default panel thickness</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="135"/>
+        <source>Panel offset</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="141"/>
+        <source>Default side of the surface the panels lie on</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="142"/>
+        <source>Outer</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="143"/>
+        <source>Inner</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="144"/>
+        <source>Centre</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="149"/>
+        <source>Joint gap</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="155"/>
+        <source>Default joint gap between panels</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="163"/>
+        <source>Edge cut</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="169"/>
+        <source>Default edge cut</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="170"/>
+        <source>Square</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="171"/>
+        <source>Bisector</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="176"/>
+        <source>Part ID prefix</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="182"/>
+        <source>Default part ID prefix</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="187"/>
+        <source>Sheet width</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="193"/>
+        <source>Default stock sheet width</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="201"/>
+        <source>Sheet height</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="207"/>
+        <source>Default stock sheet height</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="215"/>
+        <source>Sheet margin</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="221"/>
+        <source>Default sheet margin</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="229"/>
+        <source>Part spacing</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="235"/>
+        <source>Default space between parts</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="243"/>
+        <source>Rotations</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="249"/>
+        <source>Default rotations of the nester</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="250"/>
+        <source>90 degree steps</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="251"/>
+        <source>None</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="252"/>
+        <source>Free</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="257"/>
+        <source>Output folder</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="263"/>
+        <source>Default folder for cut files (empty: none written)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="268"/>
+        <source>Colour map top</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="274"/>
+        <source>Planarity shown in the top colour (red) of new meshes&apos; colour maps (0: the largest face value)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="275"/>
+        <source>Choose the output folder</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="284"/>
+        <source>Folder for the cut files</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Facet_Cleanup</name>
+    <message>
+        <location filename="../../workbench/facetwb/commands/cleanup.py" line="23"/>
+        <source>Collapse short edges</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/cleanup.py" line="24"/>
+        <source>Collapse the edges of the selected polygon mesh shorter than a tenth of its mean edge (change MinEdge in the new object), then planarize again. The result is a new mesh with fewer panels; the source is kept.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Facet_CutSheets</name>
+    <message>
+        <location filename="../../workbench/facetwb/commands/panels.py" line="56"/>
+        <source>Cut sheets</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/panels.py" line="57"/>
+        <source>Lay the selected panels flat with their IDs and bevel angles, nest them on stock sheets, and write DXF, STEP, schedule and previews to the folder set in OutputDir</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Facet_ImportMesh</name>
+    <message>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="23"/>
+        <source>Import polygon mesh...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="24"/>
+        <source>Import an OBJ or OFF file as a Facet polygon mesh (quads, hexagons and other polygons are kept, not split into triangles)</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Facet_Lift</name>
+    <message>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="70"/>
+        <source>Lift plan</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="71"/>
+        <source>Select a plan (PlanGraph or Facet mesh), then a target surface (mesh or shape): every plan vertex gets a height so that every face is exactly planar, as close as possible to the surface straight above it.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Facet_LiftMix</name>
+    <message>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="104"/>
+        <source>Shape lifting</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="105"/>
+        <source>Sliders for the selected Lifting: add the smoothest other planar-faced shapes over the same plan; the result follows live and every face stays exactly planar.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Facet_PanelSet</name>
+    <message>
+        <location filename="../../workbench/facetwb/commands/panels.py" line="30"/>
+        <source>Panels</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/panels.py" line="31"/>
+        <source>Turn every planar face of the selected mesh into a panel solid with its thickness and edge cuts, named by part ID (edit Thickness, Offset, Gap, EdgeMode in the property view)</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Facet_PlanGraph</name>
+    <message>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="33"/>
+        <source>Plan graph</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="34"/>
+        <source>Make a plan graph (faces seen from above) from the selected Sketches, Draft wires or Part edges, or, with nothing selected, from a drawing file (.dxf, .csv, plan mesh). Crossings are split, dangling edges dropped. It follows changes of the drawing.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Facet_Planarize</name>
+    <message>
+        <location filename="../../workbench/facetwb/commands/planarize.py" line="24"/>
+        <source>Planarize</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/planarize.py" line="25"/>
+        <source>Move the vertices of the selected polygon mesh as little as possible so that every face is planar (a flat panel). The source is kept; the result is coloured by planarity.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Facet_SurfaceMesh</name>
+    <message>
+        <location filename="../../workbench/facetwb/commands/surface_mesh.py" line="25"/>
+        <source>Surface to control mesh</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/surface_mesh.py" line="27"/>
+        <source>Panelize the selected surfaces (Part, Surface or Curves faces, shells, solids) into a quad grid, a hexagonal grid or triangles paired into quads, or pair the triangles of a selected Mesh. The control mesh follows changes of the surface; the surface is not modified.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Facet_ToPolyMesh</name>
+    <message>
+        <location filename="../../workbench/facetwb/commands/to_polymesh.py" line="32"/>
+        <source>To polygon mesh</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/to_polymesh.py" line="33"/>
+        <source>Make a Facet polygon mesh from the selected Mesh or Part objects: a shape of planar polygons gives one panel per face, other shapes and meshes give triangles. It follows changes of its source.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Liftplan</name>
+    <message>
+        <location filename="../ui/lifting.ui" line="6"/>
+        <source>Lift plan</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/lifting.ui" line="10"/>
+        <source>Gives every vertex of the plan a height so that every face is exactly planar, as close as possible to the target surface.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/lifting.ui" line="16"/>
+        <source>Target surface</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/lifting.ui" line="22"/>
+        <source>The surface the roof should follow: every plan vertex gets the height that keeps every face planar and the roof closest to this surface</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/lifting.ui" line="27"/>
+        <source>Snap distance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/lifting.ui" line="33"/>
+        <source>Largest plan distance from a pinned point to its vertex (0: 1e-6 of the plan&apos;s size)</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Panels</name>
+    <message>
+        <location filename="../ui/panels.ui" line="6"/>
+        <source>Panels</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="10"/>
+        <source>Turns every planar face of the selected mesh into a panel solid with a part ID.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="16"/>
+        <source>Thickness</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="22"/>
+        <source>Panel thickness</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="30"/>
+        <source>Offset</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="36"/>
+        <source>Outer: the panel lies on the outer (+normal) side of the surface; inner: the inner side; centre: centred on it</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="37"/>
+        <source>Outer</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="38"/>
+        <source>Inner</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="39"/>
+        <source>Centre</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="44"/>
+        <source>Joint gap</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="50"/>
+        <source>Width of the open joint between neighbouring panels</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="58"/>
+        <source>Edge cut</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="64"/>
+        <source>Square: edges cut square to the panel. Bisector: edges mitred on the plane halfway between neighbouring panels, so the joint closes</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="65"/>
+        <source>Square</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="66"/>
+        <source>Bisector</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="71"/>
+        <source>Part ID prefix</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.ui" line="77"/>
+        <source>Text before every part number on the panels, schedule and cut sheets</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Planarize</name>
+    <message>
+        <location filename="../ui/planarize.ui" line="6"/>
+        <source>Planarize</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="10"/>
+        <source>Moves the vertices of the selected mesh as little as possible so that every face is planar. The source mesh is kept.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="16"/>
+        <source>Method</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="22"/>
+        <source>Local/global: a few large linear solves, fast on big meshes (the default). Local/local: many cheap per-face steps.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="23"/>
+        <source>Local/global</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="24"/>
+        <source>Local/local</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="35"/>
+        <source>Stop when every vertex is within this fraction of its face&apos;s mean edge length from the face&apos;s plane (1e-6: 2 micrometres on a 2 m panel)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="46"/>
+        <source>Stop when every vertex is within this distance of its face&apos;s plane (0: only the relative tolerance)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="54"/>
+        <source>Max. iterations</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="60"/>
+        <source>Give up after this many iterations (0: the solver&apos;s default)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="29"/>
+        <source>Rel. tolerance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="40"/>
+        <source>Abs. tolerance</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Surfacetocontrolmesh</name>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="6"/>
+        <source>Surface to control mesh</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="10"/>
+        <source>Samples the selected surface into a control mesh that follows the surface when it changes. The surface is not modified.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="16"/>
+        <source>Pattern</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="22"/>
+        <source>Quad grid: quads along the surface&apos;s u and v lines. Hex grid: a honeycomb. Paired triangles: a triangulation whose best neighbouring triangles are joined into quads.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="23"/>
+        <source>Quad grid</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="24"/>
+        <source>Hex grid</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="25"/>
+        <source>Paired triangles</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="30"/>
+        <source>Panels along u</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="36"/>
+        <source>Number of panels along the surface&apos;s u direction, per face (used when the panel size is 0)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="43"/>
+        <source>Panels along v</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="49"/>
+        <source>Number of panels (hex grid: rows) along the surface&apos;s v direction, per face (used when the panel size is 0)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="56"/>
+        <source>Panel size</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/surface_mesh.ui" line="62"/>
+        <source>Target panel width: quad edge, hexagon across flats, triangle edge. 0 uses the counts above.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+</TS>

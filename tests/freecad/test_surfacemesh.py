@@ -1,0 +1,186 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""SurfaceMesh: control meshes sampled from FreeCAD surfaces (Facet_SurfaceMesh's scripting
+API), the preferences, and progress/Cancel in recomputes (headless)."""
+
+import math
+
+import FreeCAD as App
+import Mesh
+import numpy as np
+
+import facetwb
+from facet_test_support import DocumentTestCase, points_array
+from facetwb import preferences, progress
+
+
+def face_sizes(obj):
+    return sorted(set(np.diff(np.array(obj.FaceStart)).tolist()))
+
+
+def outward(obj, centre):
+    mesh = facetwb.get_mesh(obj)
+    result = []
+    for face in mesh.faces():
+        corners = mesh.vertices[face]
+        normal = np.cross(corners, np.roll(corners, -1, axis=0)).sum(axis=0)
+        result.append(float(np.dot(normal, corners.mean(axis=0) - centre)) > 0.0)
+    return result
+
+
+class TestSurfaceMesh(DocumentTestCase):
+    def test_cylinder_quad_grid_closed_and_outward(self):
+        cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
+        cyl.Radius, cyl.Height = 2000, 3000
+        self.doc.recompute()
+        side = self.doc.addObject("Part::Feature", "Side")
+        side.Shape = cyl.Shape.Faces[0]
+        shape_before = side.Shape.exportBrepToString()
+        obj = facetwb.make_surface_mesh(side, "quad", 12, 4)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual((obj.FaceCount, obj.VertexCount), (48, 60))  # seam welded
+        self.assertEqual(face_sizes(obj), [4])
+        mesh = facetwb.get_mesh(obj)
+        mesh.validate()
+        self.assertTrue(all(outward(obj, np.array([0.0, 0.0, 1500.0]))))
+        self.assertTrue(np.allclose(np.hypot(mesh.vertices[:, 0], mesh.vertices[:, 1]), 2000.0))
+        self.assertEqual(side.Shape.exportBrepToString(), shape_before)
+
+    def test_hex_grid_closes_around_a_cylinder(self):
+        cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
+        cyl.Radius, cyl.Height = 2000, 3000
+        self.doc.recompute()
+        side = self.doc.addObject("Part::Feature", "Side")
+        side.Shape = cyl.Shape.Faces[0]
+        obj = facetwb.make_surface_mesh(side, "hex", 12, 5)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual((obj.FaceCount, face_sizes(obj)), (60, [6]))
+        mesh = facetwb.get_mesh(obj)
+        count = {}
+        for face in mesh.faces():
+            for a, b in zip(face, np.roll(face, -1)):
+                key = (min(a, b), max(a, b))
+                count[key] = count.get(key, 0) + 1
+        self.assertEqual(sum(1 for n in count.values() if n == 1), 2 * 24)  # two zigzag rims
+        self.assertTrue(all(outward(obj, np.array([0.0, 0.0, 1500.0]))))
+
+    def test_trimmed_face_keeps_cells_inside(self):
+        cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
+        cyl.Radius, cyl.Height = 2000, 3000
+        self.doc.recompute()
+        disc = self.doc.addObject("Part::Feature", "Disc")
+        disc.Shape = [f for f in cyl.Shape.Faces if f.Surface.__class__.__name__ == "Plane"][0]
+        obj = facetwb.make_surface_mesh(disc, "quad", 8, 8)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        radii = np.hypot(points_array(obj)[:, 0], points_array(obj)[:, 1])
+        self.assertLessEqual(radii.max(), 2000.0 + 1e-6)
+        self.assertTrue(0 < obj.FaceCount < 64)
+
+    def test_panel_size_and_follows_source(self):
+        box = self.doc.addObject("Part::Box", "Wall")
+        box.Length, box.Width, box.Height = 6000, 10, 3000
+        obj = facetwb.make_surface_mesh(box, "quad", panel_size=1000.0)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        lengths = [np.linalg.norm(a - b) for a, b in
+                   ((facetwb.get_mesh(obj).vertices[i], facetwb.get_mesh(obj).vertices[j])
+                    for i, j in facetwb.get_mesh(obj).edges())]
+        self.assertLessEqual(max(lengths), 1000.0 + 1e-6)
+        before = points_array(obj).copy()
+        box.Height = 4000
+        self.doc.recompute()
+        self.assertEqual(points_array(obj)[:, 2].max(), 4000.0)
+        self.assertNotEqual(before.shape, points_array(obj).shape)
+
+    def test_hex_grid_on_a_bspline_face(self):
+        import Part
+
+        poles = [[App.Vector(1000 * i, 1000 * j, 300 * math.sin(i + j)) for j in range(4)]
+                 for i in range(4)]
+        surface = Part.BSplineSurface()
+        surface.buildFromPolesMultsKnots(poles, [4, 4], [4, 4], [0, 1], [0, 1], False, False,
+                                         3, 3)
+        feature = self.doc.addObject("Part::Feature", "Free")
+        feature.Shape = surface.toShape()
+        obj = facetwb.make_surface_mesh(feature, "hex", 5, 4)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual((obj.FaceCount, face_sizes(obj)), (20, [6]))
+        self.assertGreater(obj.PlanarityMaxAbs.Value, 1.0)
+
+    def test_mesh_triangles_paired(self):
+        mesh = Mesh.Mesh()
+        for i in range(3):
+            a = App.Vector(1000 * i, 0, 0)
+            b, c, d = (a + App.Vector(1000, 0, 0), a + App.Vector(1000, 1000, 0),
+                       a + App.Vector(0, 1000, 0))
+            mesh.addFacet(a, b, c)
+            mesh.addFacet(a, c, d)
+        feature = self.doc.addObject("Mesh::Feature", "Tris")
+        feature.Mesh = mesh
+        obj = facetwb.make_surface_mesh(feature, "tri-quad")
+        bad = facetwb.make_surface_mesh(feature, "quad")
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual((obj.FaceCount, face_sizes(obj)), (3, [4]))
+        self.assertFalse(bad.isValid())
+
+    def test_bad_arguments(self):
+        box = self.doc.addObject("Part::Box", "Box")
+        with self.assertRaisesRegex(ValueError, "pattern must be one of"):
+            facetwb.make_surface_mesh(box, "hexagons")
+        with self.assertRaisesRegex(ValueError, "count_u is 0"):
+            facetwb.make_surface_mesh(box, count_u=0)
+        with self.assertRaisesRegex(ValueError, "panel_size is nan"):
+            facetwb.make_surface_mesh(box, panel_size=float("nan"))
+
+    def test_save_reopen_recompute(self):
+        sphere = self.doc.addObject("Part::Sphere", "Sphere")
+        obj = facetwb.make_surface_mesh(sphere, "quad", 8, 6)
+        self.doc.recompute()
+        name, points = obj.Name, points_array(obj)
+        self.assertEqual(obj.VertexCount, 42)
+        doc = self.save_and_reopen("surface.FCStd")
+        obj = doc.getObject(name)
+        self.assertTrue(facetwb.is_surface_mesh(obj))
+        self.assertTrue(np.array_equal(points_array(obj), points))
+        obj.CountU = 10
+        doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.VertexCount, 10 * 5 + 2)
+
+
+class TestPreferencesAndProgress(DocumentTestCase):
+    def tearDown(self):
+        preferences.reset()
+        progress.cancel_after(0)
+
+    def test_preferences_defaults_and_values(self):
+        preferences.reset()
+        self.assertEqual(preferences.get("PanelThickness"), 40.0)
+        self.assertEqual(preferences.get("SheetRotations"), "90")
+        preferences.set("PanelThickness", 25.0)
+        self.assertEqual(preferences.get("PanelThickness"), 25.0)
+        preferences.group().SetString("PanelOffset", "sideways")
+        self.assertEqual(preferences.get("PanelOffset"), "outer")
+        with self.assertRaisesRegex(ValueError, "PanelEdge must be one of"):
+            preferences.set("PanelEdge", "round")
+
+    def test_cancel_stops_the_planarizer(self):
+        hypar = facetwb.make_polymesh(__import__("facet").read_mesh(
+            __import__("facet_test_support").data_path("hypar.obj")), doc=self.doc)
+        result = facetwb.make_planarized(hypar, tolerance=1e-12)
+        progress.cancel_after(2)
+        with progress.reporting("test") as reporter:
+            self.doc.recompute()
+        self.assertTrue(reporter.cancelled)
+        self.assertEqual(reporter.calls, 2)
+        self.assertFalse(result.isValid())
+        self.assertIn("ancel", result.getStatusString())
+        progress.cancel_after(0)
+        self.assertIsNone(progress.hook())
+        result.touch()
+        self.doc.recompute()
+        self.assertTrue(result.isValid(), result.getStatusString())

@@ -1,0 +1,103 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Progress and Cancel for recomputes that can take a while.
+
+Document objects run their solver inside ``execute``, where no dialog can be passed in. A
+command (or task panel) that starts a long recompute opens a :func:`reporting` context; the
+objects' ``execute`` passes :func:`hook` to the ``facet`` functions as their ``progress``
+callable. Headless, or with no context open, :func:`hook` is None and nothing is reported.
+
+``facet`` progress callables get ``(done, total, ...)`` or ``(iteration, max_iterations,
+planarity)``; both start with a count and its total, which is all this module reads. A
+callable returning True cancels: the ``facet`` function raises ``facet.Cancelled``.
+"""
+
+import contextlib
+
+from facetwb.translation import translate
+
+#: The active reporters (innermost last).
+_stack = []
+
+
+def hook():
+    """The progress callable for ``facet`` functions, or None when nobody is listening."""
+    if not _stack:
+        return None
+    reporter = _stack[-1]
+    return reporter
+
+
+@contextlib.contextmanager
+def reporting(title, minimum_seconds=0.5):
+    """Show ``title`` with a progress bar and a Cancel button (GUI) while the block runs.
+
+    Yields the reporter; ``reporter.cancelled`` tells afterwards whether Cancel was pressed.
+    Without the GUI the reporter only records the calls (scripts, tests).
+    """
+    reporter = _Reporter(title, minimum_seconds)
+    _stack.append(reporter)
+    try:
+        yield reporter
+    finally:
+        _stack.remove(reporter)
+        reporter.close()
+
+
+class _Reporter:
+    """A progress callable backed by a QProgressDialog when the GUI is up."""
+
+    def __init__(self, title, minimum_seconds):
+        import FreeCAD as App
+
+        self.title = title
+        self.cancelled = False
+        self.calls = 0
+        self.dialog = None
+        #: For tests: cancel at this call number (0: never).
+        self.cancel_at = _cancel_at
+        if App.GuiUp:
+            from facetwb.compat import qt_gui
+            import FreeCADGui as Gui
+
+            QtGui = qt_gui()
+            self.dialog = QtGui.QProgressDialog(title, translate("Facet", "Cancel"), 0, 1000,
+                                                Gui.getMainWindow())
+            self.dialog.setWindowTitle("Facet")
+            self.dialog.setMinimumDuration(int(1000 * minimum_seconds))
+            self.dialog.setAutoClose(False)
+            self.dialog.setAutoReset(False)
+            self.dialog.setValue(0)
+
+    def __call__(self, done=0, total=0, *rest):
+        self.calls += 1
+        if self.cancel_at and self.calls >= self.cancel_at:
+            self.cancelled = True
+        if self.dialog is not None:
+            from facetwb.compat import qt_gui
+
+            try:
+                fraction = float(done) / float(total) if total else 0.0
+            except (TypeError, ValueError, ZeroDivisionError):
+                fraction = 0.0
+            self.dialog.setValue(int(1000 * min(max(fraction, 0.0), 1.0)))
+            qt_gui().QApplication.processEvents()
+            if self.dialog.wasCanceled():
+                self.cancelled = True
+        return self.cancelled
+
+    def close(self):
+        if self.dialog is not None:
+            self.dialog.close()
+            self.dialog.deleteLater()
+            self.dialog = None
+
+
+#: Tests set this to make the next reporters cancel at the given call (0: never).
+_cancel_at = 0
+
+
+def cancel_after(calls):
+    """Make every reporter opened from now on cancel at its ``calls``-th progress call
+    (0 turns it off). For tests of Cancel without a person pressing it."""
+    global _cancel_at
+    _cancel_at = int(calls)

@@ -1,0 +1,356 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Task panels that make a Facet object from the selection: Surface to control mesh,
+Planarize, Lift plan, Panels, Cut sheets.
+
+Each panel shows the parameters (defaults from the preferences, tooltips on every field).
+Nothing is added to the document until OK: OK makes the objects as macro lines
+(``Gui.doCommand``, so they are recorded), recomputes with a progress dialog whose Cancel
+stops the solver, and commits everything as ONE undo step; Cancel in the progress dialog, an
+error, or the panel's Cancel leave the document as it was. Wiring only.
+"""
+
+import FreeCAD as App
+import FreeCADGui as Gui
+
+from facetwb import preferences, progress
+from facetwb.commands.macro import object_expression
+from facetwb.taskpanels import forms
+from facetwb.translation import QT_TRANSLATE_NOOP
+
+#: The open panel, if any (for scripts and the GUI test).
+active = None
+
+
+class DerivePanel:
+    """Base class: subclasses set UI, TITLE, FIELDS and write ``lines()``.
+
+    FIELDS: (field name, preference name or None, choices or None, default when no
+    preference). ``self.values`` holds the fields' values when ``lines`` is called.
+    """
+
+    UI = ""
+    TITLE = ""
+    FIELDS = ()
+
+    def __init__(self, sources):
+        global active
+        self.sources = list(sources)
+        self.doc = self.sources[0].Document
+        self.form = forms.load(self.UI)
+        self.form.setWindowTitle(progress.translate("Facet", self.TITLE))
+        self.values = {}
+        for name, pref, choices, default in self.FIELDS:
+            value = preferences.get(pref) if pref else default
+            forms.set_value(self.form, name, value, choices)
+        self.setup()
+        self.made = []
+        active = self
+
+    def setup(self):
+        """Subclasses: fill fields that depend on the selection."""
+
+    def lines(self):
+        raise NotImplementedError
+
+    def is_result(self, obj):
+        return True
+
+    def summary(self, obj):
+        return f"{obj.Label}: made" if obj.isValid() else (
+            f"{obj.Label}: failed: {obj.getStatusString()}")
+
+    def read(self):
+        """Read every field into ``self.values``; False (message shown) when one is bad."""
+        try:
+            for name, pref, choices, default in self.FIELDS:
+                number = isinstance(default, float) or (
+                    pref is not None and preferences.DEFAULTS[pref][0] == "float")
+                self.values[name] = forms.get_value(self.form, name, choices, number)
+            self.check()
+        except ValueError as error:
+            self.show_message(str(error))
+            return False
+        return True
+
+    def check(self):
+        """Subclasses: raise ValueError naming a field whose value cannot work."""
+
+    def show_message(self, text):
+        forms.widget(self.form, "message").setText(text)
+        if text:
+            App.Console.PrintError(f"Facet: {self.TITLE}: {text}\n")
+
+    # --- Gui.Control ---------------------------------------------------------------------
+
+    def accept(self):
+        if not self.read():
+            return False
+        doc = self.doc
+        before = set(doc.Objects)
+        doc.openTransaction(self.TITLE)
+        try:
+            Gui.addModule("facetwb")
+            for line in self.lines():
+                Gui.doCommand(line)
+            with progress.reporting(progress.translate("Facet", self.TITLE) + " ...") as r:
+                doc.recompute()
+            if r.cancelled:
+                doc.abortTransaction()
+                doc.recompute()
+                App.Console.PrintWarning(f"Facet: {self.TITLE} cancelled; nothing changed\n")
+                self._close()
+                return True
+        except Exception as error:  # noqa: BLE001 - leave the document as it was
+            doc.abortTransaction()
+            self.show_message(f"{self.TITLE} failed: {error}")
+            return False
+        self.after(doc)
+        doc.commitTransaction()
+        self.made = [obj for obj in doc.Objects if obj not in before and self.is_result(obj)]
+        for obj in self.made:
+            printer = App.Console.PrintMessage if obj.isValid() else App.Console.PrintError
+            printer(self.summary(obj) + "\n")
+        Gui.Selection.clearSelection()
+        for obj in self.made:
+            Gui.Selection.addSelection(obj)
+        self._close()
+        return True
+
+    def after(self, doc):
+        """Subclasses: view settings on the new objects, inside the transaction."""
+
+    def reject(self):
+        self._close()
+        return True
+
+    def _close(self):
+        global active
+        active = None
+        Gui.Control.closeDialog()
+
+    def getStandardButtons(self):
+        from facetwb.compat import qt_gui
+
+        buttons = qt_gui().QDialogButtonBox
+        return int(buttons.Ok | buttons.Cancel)
+
+
+def _legend_max(doc, made):
+    top = preferences.get("LegendMax")
+    if top > 0:
+        for obj in made:
+            vobj = getattr(obj, "ViewObject", None)
+            if vobj is not None and "LegendMax" in vobj.PropertiesList:
+                vobj.LegendMax = top
+
+
+class SurfaceMeshPanel(DerivePanel):
+    UI = "surface_mesh"
+    TITLE = QT_TRANSLATE_NOOP("Facet", "Surface to control mesh")
+    FIELDS = (("Pattern", "SurfacePattern", ["quad", "hex", "tri-quad"], None),
+              ("CountU", "SurfaceCountU", None, None),
+              ("CountV", "SurfaceCountV", None, None),
+              ("PanelSize", "SurfacePanelSize", None, None))
+
+    def setup(self):
+        if all(obj.isDerivedFrom("Mesh::Feature") for obj in self.sources):
+            forms.set_value(self.form, "Pattern", "tri-quad", self.FIELDS[0][2])
+
+    def check(self):
+        v = self.values
+        if v["Pattern"] != "tri-quad" and any(o.isDerivedFrom("Mesh::Feature")
+                                              for o in self.sources):
+            raise ValueError("a Mesh has no (u, v) parameters: choose Paired triangles")
+
+    def lines(self):
+        v = self.values
+        return [f"facetwb.make_surface_mesh({object_expression(src)}, "
+                f"pattern={v['Pattern']!r}, count_u={v['CountU']}, count_v={v['CountV']}, "
+                f"panel_size={v['PanelSize']!r})" for src in self.sources]
+
+    def is_result(self, obj):
+        from facetwb.objects.surfacemesh import is_surface_mesh
+
+        return is_surface_mesh(obj)
+
+    def summary(self, obj):
+        if not obj.isValid():
+            return f"{obj.Label}: failed: {obj.getStatusString()}"
+        return f"{obj.Label}: {obj.FaceCount} panels, {obj.VertexCount} vertices"
+
+    def after(self, doc):
+        _legend_max(doc, [o for o in doc.Objects if self.is_result(o)])
+
+
+class PlanarizePanel(DerivePanel):
+    UI = "planarize"
+    TITLE = QT_TRANSLATE_NOOP("Facet", "Planarize")
+    FIELDS = (("Method", "PlanarizeMethod", ["lg", "ll"], None),
+              ("Tolerance", "PlanarizeTolerance", None, None),
+              ("ToleranceAbs", "PlanarizeToleranceAbs", None, None),
+              ("MaxIterations", "PlanarizeMaxIterations", None, None))
+
+    def check(self):
+        if not self.values["Tolerance"] > 0:
+            raise ValueError(f"Rel. tolerance is {self.values['Tolerance']!r}; it must "
+                             "be above 0")
+
+    def lines(self):
+        v = self.values
+        return [f"facetwb.make_planarized({object_expression(src)}, method={v['Method']!r}, "
+                f"tolerance={v['Tolerance']!r}, tolerance_abs={v['ToleranceAbs']!r}, "
+                f"max_iterations={v['MaxIterations']})" for src in self.sources]
+
+    def is_result(self, obj):
+        from facetwb.objects.planarized import is_planarized
+
+        return is_planarized(obj)
+
+    def summary(self, obj):
+        from facetwb.objects.planarized import planarize_summary
+
+        return planarize_summary(obj)
+
+    def after(self, doc):
+        _legend_max(doc, [o for o in doc.Objects if self.is_result(o)])
+
+
+class PanelsPanel(DerivePanel):
+    UI = "panels"
+    TITLE = QT_TRANSLATE_NOOP("Facet", "Panels")
+    FIELDS = (("Thickness", "PanelThickness", None, None),
+              ("Offset", "PanelOffset", ["outer", "inner", "center"], None),
+              ("Gap", "PanelGap", None, None),
+              ("EdgeMode", "PanelEdge", ["square", "bisector"], None),
+              ("IdPrefix", "PanelIdPrefix", None, None))
+
+    def check(self):
+        if not self.values["Thickness"] > 0:
+            raise ValueError("Thickness must be above 0")
+
+    def lines(self):
+        v = self.values
+        return [f"facetwb.make_panelset({object_expression(src)}, "
+                f"thickness={v['Thickness']!r}, offset={v['Offset']!r}, gap={v['Gap']!r}, "
+                f"edge={v['EdgeMode']!r}, prefix={v['IdPrefix']!r})" for src in self.sources]
+
+    def is_result(self, obj):
+        from facetwb.objects.panelset import is_panelset
+
+        return is_panelset(obj)
+
+    def summary(self, obj):
+        if not obj.isValid():
+            return f"{obj.Label}: failed: {obj.getStatusString()}"
+        return (f"{obj.Label}: {obj.PanelCount} panels, node deviation up to "
+                f"{obj.MaxNodeDeviation.Value:.3g} degrees")
+
+
+class CutSheetsPanel(DerivePanel):
+    UI = "cutsheets"
+    TITLE = QT_TRANSLATE_NOOP("Facet", "Cut sheets")
+    FIELDS = (("SheetWidth", "SheetWidth", None, None),
+              ("SheetHeight", "SheetHeight", None, None),
+              ("Margin", "SheetMargin", None, None),
+              ("Spacing", "SheetSpacing", None, None),
+              ("Rotations", "SheetRotations", ["90", "none", "free"], None),
+              ("OutputDir", "SheetOutputDir", None, None))
+
+    def setup(self):
+        """A Browse button beside the output folder."""
+        from facetwb.compat import qt_gui
+
+        QtGui = qt_gui()
+        field = forms.widget(self.form, "OutputDir")
+        layout = self.form.layout()
+        index = layout.indexOf(field)
+        row, column, _rows, _columns = layout.getItemPosition(index)
+        box = QtGui.QWidget()
+        line = QtGui.QHBoxLayout(box)
+        line.setContentsMargins(0, 0, 0, 0)
+        layout.removeWidget(field)
+        line.addWidget(field, 1)
+        self.browse = QtGui.QToolButton()
+        self.browse.setText("...")
+        self.browse.setToolTip(progress.translate("Facet", "Choose the output folder"))
+        line.addWidget(self.browse)
+        layout.addWidget(box, row, column)
+        self.browse.clicked.connect(self.choose_folder)
+
+    def choose_folder(self):
+        from facetwb.compat import qt_gui
+
+        field = forms.widget(self.form, "OutputDir")
+        folder = qt_gui().QFileDialog.getExistingDirectory(
+            Gui.getMainWindow(), progress.translate("Facet", "Folder for the cut files"),
+            field.text())
+        if folder:
+            field.setText(folder)
+
+    def check(self):
+        v = self.values
+        if not (v["SheetWidth"] > 2 * v["Margin"] and v["SheetHeight"] > 2 * v["Margin"]):
+            raise ValueError("the sheet margin leaves no room on the sheet")
+
+    def lines(self):
+        v = self.values
+        return [f"facetwb.make_cutsheets({object_expression(src)}, "
+                f"sheet=({v['SheetWidth']!r}, {v['SheetHeight']!r}), margin={v['Margin']!r}, "
+                f"spacing={v['Spacing']!r}, rotations={v['Rotations']!r}, "
+                f"output_dir={v['OutputDir']!r})" for src in self.sources]
+
+    def is_result(self, obj):
+        from facetwb.objects.panelset import is_cutsheets
+
+        return is_cutsheets(obj)
+
+    def summary(self, obj):
+        if not obj.isValid():
+            return f"{obj.Label}: failed: {obj.getStatusString()}"
+        return (f"{obj.Label}: {obj.SheetCount} sheets, utilisation "
+                f"{100 * obj.Utilisation:.1f}%, {len(obj.Unplaced)} unplaced")
+
+
+class LiftPanel(DerivePanel):
+    """sources: [plan, target or None]."""
+
+    UI = "lifting"
+    TITLE = QT_TRANSLATE_NOOP("Facet", "Lift plan")
+    FIELDS = (("Snap", None, None, 0.0),)
+
+    def setup(self):
+        from facetwb.objects.surfacemesh import can_panelize
+        from facetwb.objects.polymesh import is_polymesh
+
+        self.plan = self.sources[0]
+        wanted = self.sources[1] if len(self.sources) > 1 else None
+        self.targets = [o for o in self.doc.Objects
+                        if o is not self.plan and (can_panelize(o) or (
+                            is_polymesh(o) and o is not self.plan))]
+        combo = forms.widget(self.form, "Target")
+        for obj in self.targets:
+            combo.addItem(obj.Label)
+        if wanted in self.targets:
+            combo.setCurrentIndex(self.targets.index(wanted))
+
+    def check(self):
+        if not self.targets:
+            raise ValueError("there is no target surface in the document")
+
+    def lines(self):
+        target = self.targets[forms.widget(self.form, "Target").currentIndex()]
+        lines = [f"lifting = facetwb.make_lifting({object_expression(self.plan)}, "
+                 f"targets={object_expression(target)})"]
+        if self.values["Snap"]:
+            lines.append(f"lifting.Snap = {self.values['Snap']!r}")
+        return lines
+
+    def is_result(self, obj):
+        from facetwb.objects.lifting import is_lifting
+
+        return is_lifting(obj)
+
+    def summary(self, obj):
+        from facetwb.objects.lifting import lifting_summary
+
+        return lifting_summary(obj)
