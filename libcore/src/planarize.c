@@ -46,7 +46,7 @@ void facet_planarize_options_default(facet_method method, facet_planarize_option
     o->method = method;
     o->mu0 = 1.0;
     /* The staircase schedule with Anderson acceleration (docs/solver-notes.md):
-     * mu falls tenfold once a step moves no vertex by more than 0.3% of the
+     * mu falls tenfold once a step moves no vertex by more than 1% of the
      * largest move of the first step at that mu (or after 40 steps), so each
      * mu's fixed point is nearly reached before the next: the result follows
      * the penalty path, which is what keeps vertices from sliding, and
@@ -61,14 +61,17 @@ void facet_planarize_options_default(facet_method method, facet_planarize_option
      * L/G's can be tiny because its global solve does not amplify the
      * ill-conditioned plane intersections at vertices of nearly parallel
      * faces the way L/L's local solve does.
-     * Those figures are for a hold of 1%. It let panels collapse on a 64 x 64
-     * hypar grid (9 faces below 5 degrees, the smallest 0.3) and, with the
-     * angle floor, stalled there at 5e-5. A hold of 0.3% with the angle floor
-     * (5 degrees) degenerates no face on any benchmark or public mesh, for
-     * 10-60% more iterations (tubemesh 133, quad_dome 31, conical1 49, 64 x
-     * 64 hypar 189 with 13 degrees; docs/solver-notes.md). */
+     * A hold of 1% lets panels collapse on some meshes: a 64 x 64 hypar grid
+     * ends with 9 faces below 5 degrees (the smallest 0.3), Level 5 with
+     * plane data 1.7 degrees. The angle floor (opt-in, angle_floor) with a
+     * hold of 0.3% keeps every face of the benchmark and public meshes above
+     * 5 degrees with point data (64 x 64 hypar: 191 iterations, 11.4
+     * degrees), but not with plane or surface data (Level 5: 4.4 and 4.2
+     * degrees after the floor lets go), nor with a sliding boundary and held
+     * vertices, and it costs 10-60% more iterations and live updates 3-20
+     * times more; so neither is the default (docs/solver-notes.md). */
     o->ratio = 0.1;
-    o->hold_tol = 0.003;
+    o->hold_tol = 0.01;
     o->hold_max = 40;
     o->anderson = 5;
     if (method == FACET_METHOD_LOCAL_GLOBAL) {
@@ -85,7 +88,7 @@ void facet_planarize_options_default(facet_method method, facet_planarize_option
     o->shape = FACET_SHAPE_NONE;
     o->shape_weight = 1.0;
     o->boundary = FACET_BOUNDARY_FREE;
-    o->angle_floor = 5.0;
+    o->angle_floor = 0.0; /* off: see above */
 }
 
 /* ---- topology --------------------------------------------------------------- */
@@ -771,11 +774,16 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             reason = FACET_STOP_TIME;
             break;
         }
-        /* Stagnation: mu at its floor and no 2% gain over the last WINDOW iterations. */
+        /* Stagnation: mu at its floor and no 2% gain over the last WINDOW
+         * iterations; while the angle floor holds a corner, less than a
+         * halving is a crawl that the floor causes (Level 5 with plane data
+         * lost 4% per WINDOW for 700 iterations) and lets the floor go. */
         const double measure = facet_max(max_rel, constraint);
+        const int guarding = s->o.angle_floor > 0.0 && guard_last >= since &&
+                             it - guard_last < WINDOW;
         if (!fixed_count && it >= since + WINDOW && mu <= options->mu_min &&
-            measure > 0.98 * history[it % WINDOW]) {
-            if (s->o.angle_floor > 0.0 && guard_last >= since && it - guard_last < WINDOW) {
+            measure > (guarding ? 0.5 : 0.98) * history[it % WINDOW]) {
+            if (guarding) {
                 /* The angle floor holds a corner that every nearby planar
                  * mesh closes: a planar mesh with a narrow panel (which the
                  * quality report names) serves better than no planar mesh,
