@@ -301,7 +301,7 @@ static double dot_n(const double *a, const double *b, size_t n)
 }
 
 /* Solves matrix * pcg_dx = rhs by conjugate gradients preconditioned with
- * the (older) factorization, to a residual 1e-12 of the right-hand side's.
+ * the (older) factorization, to a residual PCG_TOL of the right-hand side's.
  * Returns the steps taken, or 0 if it did not get there (or failed). Serial
  * and in a fixed order: the same bits for any thread count. */
 static int pcg_solve(facet_planarizer *s)
