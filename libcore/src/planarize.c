@@ -642,6 +642,10 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         }
     }
     const int nthreads = facet_thread_count(options->threads);
+    /* A factorization left by an earlier solve must not precondition this
+     * one: the result would depend on what was solved before (the fuzz
+     * replay's 1-then-2-thread oracle caught it). */
+    s->factor_ready = 0;
 
     /* Normalisation: centre of the bounding box, mean edge length. */
     double lo[3] = {xyz_in[0], xyz_in[1], xyz_in[2]}, hi[3] = {lo[0], lo[1], lo[2]};
