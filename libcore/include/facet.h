@@ -248,6 +248,13 @@ typedef struct facet_planarize_options {
     facet_boundary_mode boundary; /* (FREE) */
     double circular;          /* vertices of each face on a circle: weight (0 = off) */
     double parallelogram;     /* quads as parallelograms: weight (0 = off) */
+    double angle_floor;       /* degrees: a corner angle that falls below this (or below
+                                 its control angle, if smaller) is opened back to it with
+                                 the planarity's weight; inactive while every corner is
+                                 wider; let go when it stalls the solve (the quality report
+                                 then names the narrow faces). Opt-in: it helps with point
+                                 data and hold_tol 0.003, not with plane/surface data or a
+                                 sliding boundary (0 = off, the default; < 60) */
     /* --- schedule, acceleration and budget */
     double hold_tol;          /* > 0: staircase schedule: mu falls (by ratio) only once the
                                  largest vertex move of a step is <= hold_tol times that of
@@ -261,8 +268,8 @@ typedef struct facet_planarize_options {
 /* Defaults for a method: mu0 1; the staircase schedule (ratio 0.1, hold_tol
  * 0.01, hold_max 40) with Anderson acceleration of depth 5; mu_min 1e-6
  * (L/L) or 1e-12 (L/G); tol_rel 1e-6, tol_abs off; max_iter 3000 (L/L) or
- * 1000 (L/G); data 1 and 1 (point-to-point); no regularizer, constraint or
- * time budget. The paper's schedule is hold_tol 0, anderson 0, ratio 0.7
+ * 1000 (L/G); data 1 and 1 (point-to-point); no angle floor, no
+ * regularizer, other constraint or time budget. The paper's schedule is hold_tol 0, anderson 0, ratio 0.7
  * (L/G) or 0.9 (L/L). */
 void facet_planarize_options_default(facet_method method, facet_planarize_options *options);
 

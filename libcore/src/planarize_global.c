@@ -32,7 +32,15 @@ void facet_pl_global_free(facet_planarizer *s)
         cholmod_free_factor(&s->factor, &s->cm);
         cholmod_free_dense(&s->rhs, &s->cm);
         cholmod_free_dense(&s->current, &s->cm);
+        cholmod_free_dense(&s->pcg_p, &s->cm);
+        cholmod_free_dense(&s->pcg_ap, &s->cm);
+        cholmod_free_dense(&s->pcg_r, &s->cm);
+        cholmod_free_dense(&s->pcg_x, &s->cm);
+        cholmod_free_dense(&s->pcg_dx, &s->cm);
+        cholmod_free_dense(&s->pcg_y, &s->cm);
+        cholmod_free_dense(&s->pcg_e, &s->cm);
     }
+    s->factor_ready = 0;
     free(s->corner_slot);
     free(s->couple_start);
     free(s->couple_vertex);
@@ -274,6 +282,81 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
 
 /* ---- one global step ---------------------------------------------------- */
 
+enum {
+    FACTOR_AGE = 8, /* steps a factorization serves as a preconditioner */
+    PCG_MAX = 20,   /* conjugate gradient steps before refactorizing instead */
+    PCG_SLOW = 4    /* more steps than this: refactorize at the next step */
+};
+
+#ifndef PCG_TOL
+#define PCG_TOL 1e-6 /* residual of the increment, relative */
+#endif
+
+static double dot_n(const double *a, const double *b, size_t n)
+{
+    double sum = 0.0;
+    for (size_t k = 0; k < n; ++k)
+        sum += a[k] * b[k];
+    return sum;
+}
+
+/* Solves matrix * pcg_dx = rhs by conjugate gradients preconditioned with
+ * the (older) factorization, to a residual PCG_TOL of the right-hand side's.
+ * Returns the steps taken, or 0 if it did not get there (or failed). Serial
+ * and in a fixed order: the same bits for any thread count. */
+static int pcg_solve(facet_planarizer *s)
+{
+    cholmod_common *cm = &s->cm;
+    const size_t n = s->matrix->nrow;
+    if (!s->pcg_p) {
+        s->pcg_p = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, cm);
+        s->pcg_ap = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, cm);
+        s->pcg_r = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, cm);
+        s->pcg_x = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, cm);
+        if (!s->pcg_p || !s->pcg_ap || !s->pcg_r || !s->pcg_x)
+            return 0;
+    }
+    double *r = s->pcg_r->x, *p = s->pcg_p->x, *ap = s->pcg_ap->x, *x = s->pcg_x->x;
+    memcpy(r, s->rhs->x, sizeof(double) * n);
+    memset(x, 0, sizeof(double) * n);
+    const double r0 = sqrt(dot_n(r, r, n));
+    if (!(r0 > 0.0)) {
+        if (!cholmod_solve2(CHOLMOD_A, s->factor, s->pcg_r, NULL, &s->pcg_dx, NULL, &s->pcg_y, &s->pcg_e, cm))
+            return 0;
+        memset(s->pcg_dx->x, 0, sizeof(double) * n);
+        return 1;
+    }
+    if (!cholmod_solve2(CHOLMOD_A, s->factor, s->pcg_r, NULL, &s->pcg_dx, NULL, &s->pcg_y, &s->pcg_e, cm))
+        return 0;
+    memcpy(p, s->pcg_dx->x, sizeof(double) * n);
+    double rz = dot_n(r, s->pcg_dx->x, n);
+    double zero[2] = {0.0, 0.0}, one[2] = {1.0, 0.0};
+    for (int step = 1; step <= PCG_MAX; ++step) {
+        if (!cholmod_sdmult(s->matrix, 0, one, zero, s->pcg_p, s->pcg_ap, cm))
+            return 0;
+        const double pap = dot_n(p, ap, n);
+        if (!(pap > 0.0) || !isfinite(pap))
+            return 0;
+        const double alpha = rz / pap;
+        for (size_t k = 0; k < n; ++k) {
+            x[k] += alpha * p[k];
+            r[k] -= alpha * ap[k];
+        }
+        if (sqrt(dot_n(r, r, n)) <= PCG_TOL * r0) {
+            memcpy(s->pcg_dx->x, x, sizeof(double) * n);
+            return step;
+        }
+        if (!cholmod_solve2(CHOLMOD_A, s->factor, s->pcg_r, NULL, &s->pcg_dx, NULL, &s->pcg_y, &s->pcg_e, cm))
+            return 0;
+        const double *z = s->pcg_dx->x;
+        const double rz_next = dot_n(r, z, n), beta = rz_next / rz;
+        rz = rz_next;
+        for (size_t k = 0; k < n; ++k)
+            p[k] = z[k] + beta * p[k];
+    }
+    return 0;
+}
+
 static double face_weight(const facet_planarizer *s, int32_t f)
 {
     return s->face_weight ? s->face_weight[f] : 1.0;
@@ -349,6 +432,11 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
             b1 += m01 * g[0] + m11 * g[1] + m12 * g[2];
             b2 += m02 * g[0] + m12 * g[1] + m22 * g[2];
         }
+        if (o->angle_floor > 0.0 && s->guard_count[v] > 0.0) { /* angle floor targets */
+            const double *t = s->guard_sum + 3 * (size_t)v, g = w * s->guard_count[v];
+            b0 += w * t[0], b1 += w * t[1], b2 += w * t[2];
+            a00 += g, a11 += g, a22 += g;
+        }
         const int32_t nk = s->couple_start[v + 1] - s->couple_start[v];
         for (int a = 0; a < 3; ++a) {
             double *col = x + cp[3 * v + a];
@@ -407,9 +495,6 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
                 for (int a = 0; a < 3; ++a)
                     b[3 * v + a] = p[3 * (size_t)v + a];
     }
-    if (!cholmod_factorize(s->matrix, s->factor, &s->cm) || s->cm.status != CHOLMOD_OK)
-        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
-                             "the sparse factorization failed (matrix not positive definite)");
     /* Solve for the increment from the current iterate: A dx = b - A x. At
      * small mu the matrix's condition grows like 1/mu (a vertex may slide
      * along its planes almost freely), and the rounding error of a solve is
@@ -421,10 +506,32 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
     double minus_one[2] = {-1.0, 0.0}, one[2] = {1.0, 0.0};
     if (!cholmod_sdmult(s->matrix, 0, minus_one, one, s->current, s->rhs, &s->cm))
         return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse residual failed");
-    cholmod_dense *sol = cholmod_solve(CHOLMOD_A, s->factor, s->rhs, &s->cm);
-    if (!sol)
-        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse solve failed");
-    const double *y = sol->x;
+    /* Between the planes' steps only the normals turn (and mu stays within a
+     * level of the schedule), so the last factorization stays a very good
+     * preconditioner: conjugate gradients with it replace a refactorization
+     * (each costs a sparse product and two triangular solves, against the
+     * factorization's fill), and the factor is renewed when mu changed, when it
+     * is FACTOR_AGE steps old, or when the iteration needed many steps. */
+    const double *y = NULL;
+    if (s->factor_ready && s->factor_mu == mu && s->factor_age < FACTOR_AGE) {
+        const int steps = pcg_solve(s);
+        if (steps > 0) {
+            s->factor_age += steps > PCG_SLOW ? FACTOR_AGE : 1;
+            y = s->pcg_dx->x;
+        }
+    }
+    if (!y) {
+        if (!cholmod_factorize(s->matrix, s->factor, &s->cm) || s->cm.status != CHOLMOD_OK) {
+            s->factor_ready = 0;
+            return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
+                                 "the sparse factorization failed (matrix not positive definite)");
+        }
+        s->factor_ready = 1, s->factor_mu = mu, s->factor_age = 0;
+        if (!cholmod_solve2(CHOLMOD_A, s->factor, s->rhs, NULL, &s->pcg_dx, NULL, &s->pcg_y, &s->pcg_e,
+                            &s->cm))
+            return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse solve failed");
+        y = s->pcg_dx->x;
+    }
     int finite = 1;
     for (size_t k = 0; k < 3 * (size_t)nv; ++k)
         if (!isfinite(y[k]))
@@ -432,7 +539,6 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
     if (finite)
         for (size_t k = 0; k < 3 * (size_t)nv; ++k)
             s->q[k] += y[k];
-    cholmod_free_dense(&sol, &s->cm);
     if (!finite)
         return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
                              "the sparse solve gave a non-finite result");

@@ -56,6 +56,13 @@ struct facet_planarizer {
     double *control_centroid;             /* per face, of p (shape term) */
     double *shape;                        /* per face: s R, 9 values (shape term) */
     double *circle_target;                /* per corner, 3 values (circular term) */
+    /* angle floor: per corner the cosine of its floor and of its angle now; per
+     * face whether a corner is below its floor; per vertex the count and sum
+     * of its targets */
+    double *corner_floor, *corner_cos;
+    uint8_t *face_guard;
+    double *guard_count, *guard_sum;
+    int guard_on;                         /* some corner is below its floor now */
     double *slide_target, *slide_tangent; /* per vertex (sliding boundary) */
     double *laplace_weight;               /* per vertex_adj entry: normalised weight */
     double *surface_point, *surface_normal; /* per vertex: closest reference point, its normal */
@@ -86,6 +93,10 @@ struct facet_planarizer {
     cholmod_factor *factor;
     cholmod_dense *rhs;
     cholmod_dense *current; /* [q; d] of the iterate: the step solves for the increment */
+    /* the factorization as a preconditioner (planarize_global.c, pcg_solve) */
+    int factor_ready, factor_age;
+    double factor_mu;
+    cholmod_dense *pcg_p, *pcg_ap, *pcg_r, *pcg_x, *pcg_dx, *pcg_y, *pcg_e;
     int32_t *corner_slot;   /* per corner: index in matrix->x of its first coupling entry */
     int32_t couple_key;     /* COUPLE_* flags the matrix pattern was built for; -1 none */
     /* the scalar coupling matrix K (vertex x vertex, symmetric): per vertex v,

@@ -251,6 +251,55 @@ static double closest_on_segment(const double x[3], const double a[3], const dou
 
 /* What depends on the control positions p and the options only: fixed
  * vertices, control normals, control face centroids, Laplacian weights. */
+/* Cosine of the corner angle at c between a and b (1 when an edge has no length). */
+static double corner_cosine(const double *xyz, int32_t a, int32_t c, int32_t b)
+{
+    const double *pa = xyz + 3 * (size_t)a, *pc = xyz + 3 * (size_t)c, *pb = xyz + 3 * (size_t)b;
+    const double u[3] = {pa[0] - pc[0], pa[1] - pc[1], pa[2] - pc[2]};
+    const double v[3] = {pb[0] - pc[0], pb[1] - pc[1], pb[2] - pc[2]};
+    const double uu = dot3(u, u), vv = dot3(v, v);
+    if (!(uu > 0.0 && vv > 0.0))
+        return 1.0;
+    return dot3(u, v) / sqrt(uu * vv);
+}
+
+/* Rotates x about the unit axis n by the angle with this cosine and sine. */
+static void rotate3(const double x[3], const double n[3], double c, double s, double out[3])
+{
+    double nx[3];
+    cross3(n, x, nx);
+    const double d = dot3(n, x) * (1.0 - c);
+    for (int a = 0; a < 3; ++a)
+        out[a] = x[a] * c + nx[a] * s + n[a] * d;
+}
+
+/* The angle floor's projection of one corner (a, c, b) of a face with unit
+ * normal n whose angle has the cosine `now` > `floor` (the floor's cosine):
+ * both edges turn apart about n by half the missing angle, and the three
+ * points shift together so that their centroid stays. Writes the target of
+ * corner `role` (0 a, 1 c, 2 b) to t. */
+static void corner_target(const double *xyz, int32_t a, int32_t c, int32_t b, const double n[3],
+                          double now, double floor, int role, double t[3])
+{
+    const double *pa = xyz + 3 * (size_t)a, *pc = xyz + 3 * (size_t)c, *pb = xyz + 3 * (size_t)b;
+    const double u[3] = {pa[0] - pc[0], pa[1] - pc[1], pa[2] - pc[2]};
+    const double v[3] = {pb[0] - pc[0], pb[1] - pc[1], pb[2] - pc[2]};
+    double uv[3];
+    cross3(u, v, uv);
+    /* turning from u towards v is positive about n when u x v points along n */
+    const double sign = dot3(uv, n) >= 0.0 ? 1.0 : -1.0;
+    const double half = 0.5 * (acos(facet_min(1.0, floor)) - acos(facet_min(1.0, now)));
+    const double ch = cos(half), sh = sin(half);
+    double ua[3], vb[3];
+    rotate3(u, n, ch, -sign * sh, ua); /* u turns away from v, v away from u */
+    rotate3(v, n, ch, sign * sh, vb);
+    double shift[3];
+    for (int k = 0; k < 3; ++k)
+        shift[k] = ((ua[k] - u[k]) + (vb[k] - v[k])) / 3.0;
+    for (int k = 0; k < 3; ++k)
+        t[k] = (role == 0 ? pc[k] + ua[k] : role == 1 ? pc[k] : pc[k] + vb[k]) - shift[k];
+}
+
 void facet_pl_prepare_solve(facet_planarizer *s)
 {
     const int32_t nv = s->nv, nf = s->nf;
@@ -303,6 +352,18 @@ void facet_pl_prepare_solve(facet_planarizer *s)
         double *n = s->vertex_normal + 3 * (size_t)v;
         if (!(normalize3(n) > 0.0))
             n[0] = 0.0, n[1] = 0.0, n[2] = 1.0;
+    }
+    /* angle floor: per corner, the cosine of min(floor, control angle) */
+    if (o->angle_floor > 0.0) {
+        const double floor_cos = cos(o->angle_floor * 3.14159265358979323846 / 180.0);
+        for (int32_t f = 0; f < nf; ++f) {
+            const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
+            for (int32_t k = 0; k < n; ++k) {
+                const double c = corner_cosine(s->p, s->face_vertices[b + (k + n - 1) % n],
+                                               s->face_vertices[b + k], s->face_vertices[b + (k + 1) % n]);
+                s->corner_floor[b + k] = facet_max(floor_cos, c);
+            }
+        }
     }
     /* Laplacian weights, normalised to sum 1 around each vertex */
     for (int32_t v = 0; v < nv; ++v) {
@@ -494,7 +555,26 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
     }
     }
 
-    if (!energies && !sliding) {
+    int guard = 0; /* some corner below its angle floor */
+    if (o->angle_floor > 0.0) {
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
+        for (int32_t f = 0; f < nf; ++f) {
+            const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
+            int below = 0;
+            for (int32_t k = 0; k < n; ++k) {
+                const double c = corner_cosine(q, s->face_vertices[b + (k + n - 1) % n],
+                                               s->face_vertices[b + k], s->face_vertices[b + (k + 1) % n]);
+                s->corner_cos[b + k] = c;
+                below |= c > s->corner_floor[b + k];
+            }
+            s->face_guard[f] = (uint8_t)below;
+            guard = guard || below;
+        }
+        if (!guard)
+            memset(s->guard_count, 0, sizeof(double) * (size_t)nv);
+    }
+    s->guard_on = guard;
+    if (!energies && !sliding && !guard) {
         memset(s->vertex_residual, 0, sizeof(double) * (size_t)nv);
         return FACET_OK;
     }
@@ -549,6 +629,33 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
             memcpy(s->slide_tangent + 3 * (size_t)v, tangent, sizeof tangent);
             e_con += best;
             residual = sqrt(best);
+        }
+        if (guard) { /* the corners below their floor that v belongs to */
+            double count = 0.0, sum[3] = {0.0, 0.0, 0.0};
+            for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
+                const int32_t f = s->vertex_faces[k];
+                if (!s->face_guard[f])
+                    continue;
+                const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
+                int32_t at = 0;
+                while (s->face_vertices[b + at] != v)
+                    ++at;
+                for (int role = 0; role < 3; ++role) { /* v as a, c or b of a corner */
+                    const int32_t corner = (at + 1 - role + n) % n;
+                    if (!(s->corner_cos[b + corner] > s->corner_floor[b + corner]))
+                        continue;
+                    double t[3];
+                    corner_target(q, s->face_vertices[b + (corner + n - 1) % n], s->face_vertices[b + corner],
+                                  s->face_vertices[b + (corner + 1) % n], s->normal + 3 * (size_t)f,
+                                  s->corner_cos[b + corner], s->corner_floor[b + corner], role, t);
+                    const double d[3] = {x[0] - t[0], x[1] - t[1], x[2] - t[2]};
+                    e_con += dot3(d, d);
+                    sum[0] += t[0], sum[1] += t[1], sum[2] += t[2];
+                    count += 1.0;
+                }
+            }
+            s->guard_count[v] = count;
+            memcpy(s->guard_sum + 3 * (size_t)v, sum, sizeof sum);
         }
         s->vertex_energy_mu[v] = e_mu;
         s->vertex_energy_con[v] = e_con;
@@ -689,6 +796,11 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
             for (int c = 0; c < 6; ++c)
                 a[c] += m[c];
             add_matvec(b, m, target);
+        }
+        if (o->angle_floor > 0.0 && s->guard_count[v] > 0.0) { /* angle floor targets */
+            const double *t = s->guard_sum + 3 * (size_t)v, g = w * s->guard_count[v];
+            b[0] += w * t[0], b[1] += w * t[1], b[2] += w * t[2];
+            a[0] += g, a[3] += g, a[5] += g;
         }
         /* 3x3 Cholesky */
         const double l00 = sqrt(a[0]);

@@ -56,6 +56,7 @@ TERMS = {
     "boundary": ("free", "fixed", "sliding"),
     "circular": float,
     "parallelogram": float,
+    "angle_floor": float,
     "anderson": int,
     "hold_tol": float,
     "hold_max": int,

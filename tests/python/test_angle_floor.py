@@ -1,0 +1,43 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The opt-in angle floor (``angle_floor``): on a 64 x 64 hypar grid the
+default solve lets panels collapse; with the floor (and the finer hold it is
+meant for) no corner ends below it, and the mesh is still planar."""
+
+import os
+import sys
+
+import numpy as np
+import pytest
+
+import facet
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "tools", "bench"))
+import families  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def hypar64():
+    b = families.hypar(64)
+    return facet.PolyMesh(b.vertices, b.face_start, b.face_vertices)
+
+
+def test_default_lets_a_panel_collapse_on_the_hypar(hypar64):
+    # the case the floor exists for: if this stops failing, the floor's test
+    # below proves nothing about it
+    r = facet.planarize(hypar64, threads=1)
+    assert r.converged
+    assert np.min(r.quality.min_angle) < 5.0
+
+
+def test_angle_floor_keeps_every_corner_above_it(hypar64):
+    r = facet.planarize(hypar64, angle_floor=5.0, hold_tol=0.003, threads=1)
+    assert r.converged and np.max(r.planarity.max_rel) <= 1e-6
+    assert np.min(r.quality.min_angle) > 5.0
+    assert np.min(r.quality.input_min_angle) > 5.0  # the input had none below
+
+
+def test_angle_floor_is_checked():
+    mesh = facet.PolyMesh.from_faces(np.eye(3), [[0, 1, 2]])
+    for bad in (-1.0, 60.0, 1e300):
+        with pytest.raises(facet.FacetError, match="angle_floor"):
+            facet.planarize(mesh, angle_floor=bad)
