@@ -24,8 +24,9 @@ static double dot3(const double a[3], const double b[3])
 double facet_sym3_smallest_eigenvector(const double a[6], double v[3])
 {
     double scale = 0.0;
-    for (int k = 0; k < 6; ++k)
-        scale = fmax(scale, fabs(a[k]));
+    for (int k = 0; k < 6; ++k) /* fmax without the libm call (a NaN is skipped, as by fmax) */
+        if (fabs(a[k]) > scale)
+            scale = fabs(a[k]);
     if (!(scale > 0.0)) {
         v[0] = 0.0, v[1] = 0.0, v[2] = 1.0;
         return 0.0;
@@ -143,7 +144,8 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
         const double *q = xyz + 3 * (size_t)idx[k + 1 < n ? k + 1 : 0];
         const double d = fabs(normal[0] * (p[0] - c[0]) + normal[1] * (p[1] - c[1]) +
                               normal[2] * (p[2] - c[2]));
-        dmax = fmax(dmax, d);
+        if (d > dmax) /* fmax without the libm call */
+            dmax = d;
         dsum += d * d;
         const double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
         esum += sqrt(dot3(e, e));
