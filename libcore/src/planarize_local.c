@@ -561,11 +561,26 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
         for (int32_t f = 0; f < nf; ++f) {
             const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
             int below = 0;
+            const int32_t *fv = s->face_vertices + b;
             for (int32_t k = 0; k < n; ++k) {
-                const double c = corner_cosine(q, s->face_vertices[b + (k + n - 1) % n],
-                                               s->face_vertices[b + k], s->face_vertices[b + (k + 1) % n]);
+                /* The exact cosine (a sqrt) only where the corner may be below
+                 * its floor: the floor's cosine is > 0.5, so a corner is below
+                 * only if u.v > 0 and (u.v)^2 > floor^2 |u|^2 |v|^2, tested
+                 * with a margin far above rounding so that the decision stays
+                 * that of the exact cosine. */
+                const double *pa = q + 3 * (size_t)fv[k > 0 ? k - 1 : n - 1], *pc = q + 3 * (size_t)fv[k];
+                const double *pb = q + 3 * (size_t)fv[k + 1 < n ? k + 1 : 0];
+                const double u[3] = {pa[0] - pc[0], pa[1] - pc[1], pa[2] - pc[2]};
+                const double v[3] = {pb[0] - pc[0], pb[1] - pc[1], pb[2] - pc[2]};
+                const double uv = dot3(u, v), uu = dot3(u, u), vv = dot3(v, v);
+                const double floor = s->corner_floor[b + k];
+                double c = -1.0; /* any value not above the floor */
+                if (!(uu > 0.0 && vv > 0.0))
+                    c = 1.0; /* as corner_cosine: an edge without length */
+                else if (uv > 0.0 && uv * uv > (1.0 - 1e-9) * (floor * floor) * (uu * vv))
+                    c = uv / sqrt(uu * vv);
                 s->corner_cos[b + k] = c;
-                below |= c > s->corner_floor[b + k];
+                below |= c > floor;
             }
             s->face_guard[f] = (uint8_t)below;
             guard = guard || below;
