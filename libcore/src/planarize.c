@@ -326,7 +326,8 @@ void facet_planarizer_free(facet_planarizer **handle)
                       s->aa_f, s->aa_g, s->aa_x_fallback, s->q_next, s->surface_point,
                       s->surface_normal, s->surface_query, s->previous_control,
                       s->live_vertex, s->live_changed, s->live_mark, s->live_xyz, s->live_face_dev,
-                      s->guard_count, s->guard_sum, s->corner_floor, s->corner_cos, s->face_guard};
+                      s->guard_count, s->guard_sum, s->corner_floor, s->corner_cos, s->face_guard,
+                      s->face_plane_terms};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
         free(arrays[k]);
     free(s);
@@ -490,6 +491,9 @@ static int ensure_workspace(facet_planarizer *s)
         if (!s->guard_count || !s->guard_sum || !s->corner_floor || !s->corner_cos || !s->face_guard)
             return 0;
     }
+    if (o->method == FACET_METHOD_LOCAL_LOCAL && !s->face_plane_terms &&
+        !(s->face_plane_terms = malloc(sizeof(double) * 9 * (size_t)s->nf)))
+        return 0;
     if (o->anderson > 0 && !s->aa_df) {
         const size_t v3 = 3 * (size_t)s->nv;
         s->aa_df = malloc(sizeof(double) * v3 * FACET_ANDERSON_MAX);

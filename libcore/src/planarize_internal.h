@@ -69,6 +69,7 @@ struct facet_planarizer {
     double *surface_query;                /* per vertex: q in model units (the query) */
     double scale, centre[3];              /* model = normalised * scale + centre */
     double *q_next;                       /* local/local: the new iterate (Jacobi) */
+    double *face_plane_terms;             /* local/local, per face: w_f n n^T (6) and w_f d n (3) */
     double *previous;                     /* last result, model units (warm start) */
     double *previous_control;             /* the control positions it was solved from */
     int has_previous;

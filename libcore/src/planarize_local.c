@@ -721,6 +721,18 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
     const double *q_old = s->q;
     double *q_new = s->q_next;
     const int extra = shape || o->circular > 0.0 || o->parallelogram > 0.0; /* per-face terms */
+    /* Each face's planarity term once per face rather than once per corner:
+     * pw n n^T and pw d n, the same products the vertices add up. */
+    double *terms = s->face_plane_terms;
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (int32_t f = 0; f < s->nf; ++f) {
+        const double *n = s->normal + 3 * (size_t)f;
+        const double pw = w * face_weight(s, f), d = s->offset[f];
+        double *t = terms + 9 * (size_t)f;
+        t[0] = pw * n[0] * n[0], t[1] = pw * n[0] * n[1], t[2] = pw * n[0] * n[2];
+        t[3] = pw * n[1] * n[1], t[4] = pw * n[1] * n[2], t[5] = pw * n[2] * n[2];
+        t[6] = pw * d * n[0], t[7] = pw * d * n[1], t[8] = pw * d * n[2];
+    }
     int finite = 1;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(&& : finite)
     for (int32_t v = 0; v < nv; ++v) {
@@ -745,10 +757,9 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
         }
         for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
             const int32_t f = s->vertex_faces[k];
-            const double *n = s->normal + 3 * (size_t)f;
-            const double pw = w * face_weight(s, f), d = s->offset[f];
-            add_outer(a, pw, n);
-            b[0] -= pw * d * n[0], b[1] -= pw * d * n[1], b[2] -= pw * d * n[2];
+            const double *pt = terms + 9 * (size_t)f;
+            a[0] += pt[0], a[1] += pt[1], a[2] += pt[2], a[3] += pt[3], a[4] += pt[4], a[5] += pt[5];
+            b[0] -= pt[6], b[1] -= pt[7], b[2] -= pt[8];
             if (!extra)
                 continue;
             const int32_t fb = s->face_start[f], fn = s->face_start[f + 1] - fb;
