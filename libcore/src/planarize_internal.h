@@ -94,6 +94,13 @@ struct facet_planarizer {
     cholmod_factor *factor;
     cholmod_dense *rhs;
     cholmod_dense *current; /* [q; d] of the iterate: the step solves for the increment */
+    /* The matrix as CHOLMOD factorizes it, permuted once at the analysis:
+     * triu(P A P^T), whose entry j is matrix->x[pmap[j]]; factor is its
+     * factorization in the natural order, so no factorization transposes
+     * the matrix (planarize_global.c). perm: the fill-reducing order. */
+    cholmod_sparse *pmatrix;
+    int32_t *pmap, *perm;
+    cholmod_dense *perm_b, *perm_x;
     /* the factorization as a preconditioner (planarize_global.c, pcg_solve) */
     int factor_ready, factor_age;
     double factor_mu;
