@@ -209,8 +209,6 @@ static facet_status build_coupling(facet_planarizer *s, facet_error *error)
 
 /* ---- pattern and analysis ------------------------------------------------- */
 
-enum { ORDER_NESDIS = 4000 }; /* unknowns (about 1,000 quads) */
-
 facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
 {
     const int32_t key = facet_pl_couple_key(&s->o);
@@ -281,18 +279,6 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
     double *x = s->matrix->x;
     for (size_t k = 0; k < at; ++k)
         x[k] = 1.0;
-    /* The fill-reducing order: AMD, and from ORDER_NESDIS unknowns up also
-     * CHOLMOD's nested dissection (METIS), of which it keeps the one with
-     * less fill. On these surface meshes nested dissection saves 10-25% of
-     * the factorization's flops (Level 5: 4.1 -> 3.2 Mflop; 100k quads: 777
-     * -> 625 Mflop) for an analysis once per topology that costs about as
-     * much as a few factorizations (docs/benchmarks.md). */
-    s->cm.nmethods = 1;
-    s->cm.method[0].ordering = CHOLMOD_AMD;
-    if (n >= ORDER_NESDIS) {
-        s->cm.nmethods = 2;
-        s->cm.method[1].ordering = CHOLMOD_NESDIS;
-    }
     cholmod_factor *analysis = cholmod_analyze(s->matrix, &s->cm);
     if (!analysis || s->cm.status < CHOLMOD_OK) {
         cholmod_free_factor(&analysis, &s->cm);
