@@ -828,18 +828,19 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
             b[0] += w * t[0], b[1] += w * t[1], b[2] += w * t[2];
             a[0] += g, a[3] += g, a[5] += g;
         }
-        /* 3x3 Cholesky */
-        const double l00 = sqrt(a[0]);
-        const double l10 = a[1] / l00, l20 = a[2] / l00;
-        const double l11 = sqrt(a[3] - l10 * l10);
-        const double l21 = (a[4] - l20 * l10) / l11;
-        const double l22 = sqrt(a[5] - l20 * l20 - l21 * l21);
-        const double y0 = b[0] / l00;
-        const double y1 = (b[1] - l10 * y0) / l11;
-        const double y2 = (b[2] - l20 * y0 - l21 * y1) / l22;
-        const double x2 = y2 / l22;
-        const double x1 = (y1 - l21 * x2) / l11;
-        const double x0 = (y0 - l10 * x1 - l20 * x2) / l00;
+        /* 3x3 LDL^T: Cholesky's accuracy without its three square roots,
+         * and three reciprocals instead of six divisions */
+        const double i0 = 1.0 / a[0];
+        const double l10 = a[1] * i0, l20 = a[2] * i0;
+        const double d1 = a[3] - l10 * a[1];
+        const double i1 = 1.0 / d1;
+        const double l21 = (a[4] - l20 * a[1]) * i1;
+        const double i2 = 1.0 / (a[5] - l20 * a[2] - l21 * l21 * d1);
+        const double z1 = b[1] - l10 * b[0];
+        const double z2 = b[2] - l20 * b[0] - l21 * z1;
+        const double x2 = z2 * i2;
+        const double x1 = z1 * i1 - l21 * x2;
+        const double x0 = b[0] * i0 - l10 * x1 - l20 * x2;
         if (isfinite(x0) && isfinite(x1) && isfinite(x2)) {
             out[0] = x0, out[1] = x1, out[2] = x2;
         } else {
