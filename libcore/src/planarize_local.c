@@ -390,26 +390,115 @@ static double face_weight(const facet_planarizer *s, int32_t f)
     return s->face_weight ? s->face_weight[f] : 1.0;
 }
 
+enum { FIT_MAX_CORNERS = 8 }; /* faces up to this size take fit_face's one pass */
+
+/* One face of at most FIT_MAX_CORNERS corners in one pass over its points:
+ * what facet_face_measure gives (the same arithmetic in the same order, so
+ * the same bits) and, when floor is not NULL, the angle floor's test of
+ * each corner (as the separate loop it replaces: a corner's exact cosine is
+ * taken only where a squared test with a margin says it may be below its
+ * floor, whose cosine is > 0.5). The corner vectors are the edges': at
+ * corner k, u = -e(k-1) and v = e(k), exactly. Returns whether some corner
+ * is below its floor. */
+static inline __attribute__((always_inline)) int fit_face(int32_t n, const double *xyz, const int32_t *idx, double normal[3],
+                    double *offset, double *max_distance, double *square_sum, double *edge_mean,
+                    const double *floor, double *corner_cos)
+{
+    double x[FIT_MAX_CORNERS][3];
+    double c[3] = {0.0, 0.0, 0.0};
+    for (int32_t k = 0; k < n; ++k) {
+        const double *p = xyz + 3 * (size_t)idx[k];
+        x[k][0] = p[0], x[k][1] = p[1], x[k][2] = p[2];
+        c[0] += p[0], c[1] += p[1], c[2] += p[2];
+    }
+    const double inv = 1.0 / (double)n;
+    c[0] *= inv, c[1] *= inv, c[2] *= inv;
+    double a[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    for (int32_t k = 0; k < n; ++k) {
+        const double dx = x[k][0] - c[0], dy = x[k][1] - c[1], dz = x[k][2] - c[2];
+        a[0] += dx * dx, a[1] += dx * dy, a[2] += dx * dz;
+        a[3] += dy * dy, a[4] += dy * dz, a[5] += dz * dz;
+    }
+    double nn[3];
+    facet_sym3_smallest_eigenvector(a, nn);
+    double dmax = 0.0, dsum = 0.0, esum = 0.0;
+    double e[FIT_MAX_CORNERS][3], ee[FIT_MAX_CORNERS];
+    for (int32_t k = 0; k < n; ++k) {
+        const double *p = x[k], *q = x[k + 1 < n ? k + 1 : 0];
+        const double d = fabs(nn[0] * (p[0] - c[0]) + nn[1] * (p[1] - c[1]) + nn[2] * (p[2] - c[2]));
+        if (d > dmax)
+            dmax = d;
+        dsum += d * d;
+        e[k][0] = q[0] - p[0], e[k][1] = q[1] - p[1], e[k][2] = q[2] - p[2];
+        ee[k] = dot3(e[k], e[k]);
+        esum += sqrt(ee[k]);
+    }
+    normal[0] = nn[0], normal[1] = nn[1], normal[2] = nn[2];
+    *offset = -dot3(nn, c);
+    *max_distance = dmax;
+    const double rms = sqrt(dsum / (double)n);
+    *square_sum = rms * rms * (double)n;
+    *edge_mean = esum / (double)n;
+    int below = 0;
+    if (floor)
+        for (int32_t k = 0; k < n; ++k) {
+            const int32_t before = k > 0 ? k - 1 : n - 1;
+            const double uv = -dot3(e[before], e[k]), uu = ee[before], vv = ee[k];
+            double cosine = -1.0; /* any value not above the floor */
+            if (!(uu > 0.0 && vv > 0.0))
+                cosine = 1.0; /* as corner_cosine: an edge without length */
+            else if (uv > 0.0 && uv * uv > (1.0 - 1e-9) * (floor[k] * floor[k]) * (uu * vv))
+                cosine = uv / sqrt(uu * vv);
+            corner_cos[k] = cosine;
+            below |= cosine > floor[k];
+        }
+    return below;
+}
+
 /* The planes: best fit (the planarity measurement), then the regularised
- * normals when the face-normal Laplacian is on. */
-static void fit_planes(facet_planarizer *s, double mu, int nthreads)
+ * normals when the face-normal Laplacian is on. With the angle floor on, the
+ * same pass tests the corners against it (face_guard, corner_cos); returns
+ * whether some corner is below its floor. */
+static int fit_planes(facet_planarizer *s, double mu, int nthreads)
 {
     const int32_t nf = s->nf;
     const int32_t *start = s->face_start, *fv = s->face_vertices;
     const double *q = s->q;
-#pragma omp parallel for schedule(static) num_threads(nthreads)
+    const int floor_on = s->o.angle_floor > 0.0;
+    int guard = 0;
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
     for (int32_t f = 0; f < nf; ++f) {
-        const int32_t n = start[f + 1] - start[f];
-        double rms;
-        s->face_edge[f] = facet_face_measure(n, q, fv + start[f], s->normal + 3 * (size_t)f,
-                                             &s->offset[f], &s->face_dev[f], &rms);
-        s->face_sq[f] = rms * rms * (double)n;
+        const int32_t b = start[f], n = start[f + 1] - b;
+        int below = 0;
+        if (n == 4) { /* quads: the same code with the loops unrolled */
+            below = fit_face(4, q, fv + b, s->normal + 3 * (size_t)f, &s->offset[f], &s->face_dev[f],
+                             &s->face_sq[f], &s->face_edge[f], floor_on ? s->corner_floor + b : NULL,
+                             floor_on ? s->corner_cos + b : NULL);
+        } else if (n <= FIT_MAX_CORNERS) {
+            below = fit_face(n, q, fv + b, s->normal + 3 * (size_t)f, &s->offset[f], &s->face_dev[f],
+                             &s->face_sq[f], &s->face_edge[f], floor_on ? s->corner_floor + b : NULL,
+                             floor_on ? s->corner_cos + b : NULL);
+        } else {
+            double rms;
+            s->face_edge[f] = facet_face_measure(n, q, fv + b, s->normal + 3 * (size_t)f, &s->offset[f],
+                                                 &s->face_dev[f], &rms);
+            s->face_sq[f] = rms * rms * (double)n;
+            for (int32_t k = 0; floor_on && k < n; ++k) {
+                const double c = corner_cosine(q, fv[b + (k > 0 ? k - 1 : n - 1)], fv[b + k],
+                                               fv[b + (k + 1 < n ? k + 1 : 0)]);
+                s->corner_cos[b + k] = c;
+                below |= c > s->corner_floor[b + k];
+            }
+        }
+        if (floor_on)
+            s->face_guard[f] = (uint8_t)below;
+        guard = guard || below;
     }
     /* a regularizer: weighed by mu against the planarity's 1 - mu, so it
      * fades as the penalty hardens */
     const double lambda = mu < 1.0 ? s->o.normal_laplacian * mu / (1.0 - mu) : 0.0;
     if (!(lambda > 0.0))
-        return;
+        return guard;
     memcpy(s->normal_fit, s->normal, sizeof(double) * 3 * (size_t)nf);
 #pragma omp parallel for schedule(static) num_threads(nthreads)
     for (int32_t f = 0; f < nf; ++f) {
@@ -456,6 +545,7 @@ static void fit_planes(facet_planarizer *s, double mu, int nthreads)
             s->offset[f] = -dot3(nn, c);
         }
     }
+    return guard;
 }
 
 facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
@@ -463,7 +553,7 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
     const int32_t nv = s->nv, nf = s->nf;
     const facet_planarize_options *o = &s->o;
     const double *p = s->p, *q = s->q;
-    fit_planes(s, mu, nthreads);
+    const int guard = fit_planes(s, mu, nthreads); /* some corner below its angle floor */
     const int surface = o->surface_weight > 0.0 && s->reference;
     if (surface) { /* closest points of the reference surface, in model units */
         for (size_t k = 0; k < 3 * (size_t)nv; ++k)
@@ -555,36 +645,7 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
     }
     }
 
-    int guard = 0; /* some corner below its angle floor */
     if (o->angle_floor > 0.0) {
-#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
-        for (int32_t f = 0; f < nf; ++f) {
-            const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
-            int below = 0;
-            const int32_t *fv = s->face_vertices + b;
-            for (int32_t k = 0; k < n; ++k) {
-                /* The exact cosine (a sqrt) only where the corner may be below
-                 * its floor: the floor's cosine is > 0.5, so a corner is below
-                 * only if u.v > 0 and (u.v)^2 > floor^2 |u|^2 |v|^2, tested
-                 * with a margin far above rounding so that the decision stays
-                 * that of the exact cosine. */
-                const double *pa = q + 3 * (size_t)fv[k > 0 ? k - 1 : n - 1], *pc = q + 3 * (size_t)fv[k];
-                const double *pb = q + 3 * (size_t)fv[k + 1 < n ? k + 1 : 0];
-                const double u[3] = {pa[0] - pc[0], pa[1] - pc[1], pa[2] - pc[2]};
-                const double v[3] = {pb[0] - pc[0], pb[1] - pc[1], pb[2] - pc[2]};
-                const double uv = dot3(u, v), uu = dot3(u, u), vv = dot3(v, v);
-                const double floor = s->corner_floor[b + k];
-                double c = -1.0; /* any value not above the floor */
-                if (!(uu > 0.0 && vv > 0.0))
-                    c = 1.0; /* as corner_cosine: an edge without length */
-                else if (uv > 0.0 && uv * uv > (1.0 - 1e-9) * (floor * floor) * (uu * vv))
-                    c = uv / sqrt(uu * vv);
-                s->corner_cos[b + k] = c;
-                below |= c > floor;
-            }
-            s->face_guard[f] = (uint8_t)below;
-            guard = guard || below;
-        }
         if (!guard)
             memset(s->guard_count, 0, sizeof(double) * (size_t)nv);
     }
