@@ -909,7 +909,9 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
             finite = 0;
         }
     }
-    if (finite)
-        memcpy(s->q, q_new, sizeof(double) * 3 * (size_t)nv);
+    if (finite) { /* the new iterate becomes the current one: swap, no copy */
+        s->q_next = s->q;
+        s->q = q_new;
+    }
     return finite;
 }
