@@ -38,15 +38,7 @@ double facet_sym3_smallest_eigenvector(const double a[6], double v[3])
     const double c1 = b00 * b11 - b01 * b01 + b00 * b22 - b02 * b02 + b11 * b22 - b12 * b12;
     const double c0 = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) +
                       b02 * (b01 * b12 - b11 * b02);
-    /* f(x) = x^3 - c2 x^2 + c1 x - c0. Newton's steps shrink quadratically,
-     * and the eigenvector below turns by about (error of x) / (lambda2 -
-     * lambda): once a step is below 1e-8 of the gap, what remains of the
-     * error (its square) no longer shows in a double. c1 / c2 stands for the
-     * gap: for lambda << lambda2 <= lambda1 it lies in [lambda2 / 2,
-     * lambda2]. A nearly planar face (the usual case inside a solve) thus
-     * takes one step where the test against 1e-17 took three, and the steps
-     * are a chain of dependent divisions: most of the solver's time. */
-    const double close = c2 > 0.0 ? 1e-8 * (c1 / c2) : 0.0;
+    /* f(x) = x^3 - c2 x^2 + c1 x - c0 */
     double x = 0.0;
     for (int it = 0; it < 64; ++it) {
         const double f = ((x - c2) * x + c1) * x - c0;
@@ -58,7 +50,7 @@ double facet_sym3_smallest_eigenvector(const double a[6], double v[3])
         if (!(next > x))
             break;
         x = next;
-        if (step > -1e-17 * (1.0 + x) || -step <= close)
+        if (step > -1e-17 * (1.0 + x))
             break;
     }
     const double r0[3] = {b00 - x, b01, b02};
