@@ -390,41 +390,56 @@ static double face_weight(const facet_planarizer *s, int32_t f)
     return s->face_weight ? s->face_weight[f] : 1.0;
 }
 
-enum { FIT_MAX_CORNERS = 8 }; /* faces up to this size take fit_face's one pass */
+enum { FIT_MAX_CORNERS = 8 }; /* faces up to this size take the one-pass fit below */
 
-/* One face of at most FIT_MAX_CORNERS corners in one pass over its points:
- * what facet_face_measure gives (the same arithmetic in the same order, so
- * the same bits) and, when floor is not NULL, the angle floor's test of
- * each corner (as the separate loop it replaces: a corner's exact cosine is
- * taken only where a squared test with a margin says it may be below its
+/* One face of at most FIT_MAX_CORNERS corners in one pass over its points,
+ * in two halves around the eigenvector (so that two faces can share
+ * facet_sym3_smallest_eigenvector2): what facet_face_measure gives (the
+ * same arithmetic in the same order, so the same bits) and, when floor is
+ * not NULL, the angle floor's test of each corner (a corner's exact cosine
+ * is taken only where a squared test with a margin says it may be below its
  * floor, whose cosine is > 0.5). The corner vectors are the edges': at
- * corner k, u = -e(k-1) and v = e(k), exactly. Returns whether some corner
- * is below its floor. */
-static inline __attribute__((always_inline)) int fit_face(int32_t n, const double *xyz, const int32_t *idx, double normal[3],
-                    double *offset, double *max_distance, double *square_sum, double *edge_mean,
-                    const double *floor, double *corner_cos)
+ * corner k, u = -e(k-1) and v = e(k), exactly. */
+typedef struct {
+    double x[FIT_MAX_CORNERS][3]; /* the points */
+    double c[3];                  /* their centroid */
+    double a[6];                  /* their scatter */
+} face_fit;
+
+static inline __attribute__((always_inline)) void fit_face_begin(int32_t n, const double *xyz,
+                                                                 const int32_t *idx, face_fit *w)
 {
-    double x[FIT_MAX_CORNERS][3];
     double c[3] = {0.0, 0.0, 0.0};
     for (int32_t k = 0; k < n; ++k) {
         const double *p = xyz + 3 * (size_t)idx[k];
-        x[k][0] = p[0], x[k][1] = p[1], x[k][2] = p[2];
+        w->x[k][0] = p[0], w->x[k][1] = p[1], w->x[k][2] = p[2];
         c[0] += p[0], c[1] += p[1], c[2] += p[2];
     }
     const double inv = 1.0 / (double)n;
     c[0] *= inv, c[1] *= inv, c[2] *= inv;
     double a[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     for (int32_t k = 0; k < n; ++k) {
-        const double dx = x[k][0] - c[0], dy = x[k][1] - c[1], dz = x[k][2] - c[2];
+        const double dx = w->x[k][0] - c[0], dy = w->x[k][1] - c[1], dz = w->x[k][2] - c[2];
         a[0] += dx * dx, a[1] += dx * dy, a[2] += dx * dz;
         a[3] += dy * dy, a[4] += dy * dz, a[5] += dz * dz;
     }
-    double nn[3];
-    facet_sym3_smallest_eigenvector(a, nn);
+    memcpy(w->c, c, sizeof c);
+    memcpy(w->a, a, sizeof a);
+}
+
+/* Given the unit normal nn of the face: its offset, largest distance, sum
+ * of squared distances, mean edge length, and the floor's test. Returns
+ * whether some corner is below its floor. */
+static inline __attribute__((always_inline)) int fit_face_end(
+    int32_t n, const face_fit *w, const double nn[3], double normal[3], double *offset,
+    double *max_distance, double *square_sum, double *edge_mean, const double *floor,
+    double *corner_cos)
+{
+    const double *c = w->c;
     double dmax = 0.0, dsum = 0.0, esum = 0.0;
     double e[FIT_MAX_CORNERS][3], ee[FIT_MAX_CORNERS];
     for (int32_t k = 0; k < n; ++k) {
-        const double *p = x[k], *q = x[k + 1 < n ? k + 1 : 0];
+        const double *p = w->x[k], *q = w->x[k + 1 < n ? k + 1 : 0];
         const double d = fabs(nn[0] * (p[0] - c[0]) + nn[1] * (p[1] - c[1]) + nn[2] * (p[2] - c[2]));
         if (d > dmax)
             dmax = d;
@@ -455,44 +470,76 @@ static inline __attribute__((always_inline)) int fit_face(int32_t n, const doubl
     return below;
 }
 
+/* Face f the general way: facet_face_measure, then the floor's test. */
+static int fit_face_general(facet_planarizer *s, int32_t f, int floor_on)
+{
+    const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
+    const int32_t *fv = s->face_vertices;
+    double rms;
+    s->face_edge[f] = facet_face_measure(n, s->q, fv + b, s->normal + 3 * (size_t)f, &s->offset[f],
+                                         &s->face_dev[f], &rms);
+    s->face_sq[f] = rms * rms * (double)n;
+    int below = 0;
+    for (int32_t k = 0; floor_on && k < n; ++k) {
+        const double c = corner_cosine(s->q, fv[b + (k > 0 ? k - 1 : n - 1)], fv[b + k],
+                                       fv[b + (k + 1 < n ? k + 1 : 0)]);
+        s->corner_cos[b + k] = c;
+        below |= c > s->corner_floor[b + k];
+    }
+    return below;
+}
+
+#define FIT_FACE_END(n_, f_, w_, nn_)                                                             \
+    fit_face_end((n_), (w_), (nn_), s->normal + 3 * (size_t)(f_), &s->offset[f_], &s->face_dev[f_], \
+                 &s->face_sq[f_], &s->face_edge[f_], floor_on ? s->corner_floor + start[f_] : NULL, \
+                 floor_on ? s->corner_cos + start[f_] : NULL)
+
 /* The planes: best fit (the planarity measurement), then the regularised
  * normals when the face-normal Laplacian is on. With the angle floor on, the
  * same pass tests the corners against it (face_guard, corner_cos); returns
- * whether some corner is below its floor. */
+ * whether some corner is below its floor. Faces go in pairs, so that their
+ * eigenvectors' Newton steps overlap (facet_sym3_smallest_eigenvector2);
+ * quads have their loops unrolled. Every face gets the same bits as alone. */
 static int fit_planes(facet_planarizer *s, double mu, int nthreads)
 {
     const int32_t nf = s->nf;
     const int32_t *start = s->face_start, *fv = s->face_vertices;
     const double *q = s->q;
     const int floor_on = s->o.angle_floor > 0.0;
+    const int32_t pairs = nf / 2 + nf % 2;
     int guard = 0;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
-    for (int32_t f = 0; f < nf; ++f) {
-        const int32_t b = start[f], n = start[f + 1] - b;
-        int below = 0;
-        if (n == 4) { /* quads: the same code with the loops unrolled */
-            below = fit_face(4, q, fv + b, s->normal + 3 * (size_t)f, &s->offset[f], &s->face_dev[f],
-                             &s->face_sq[f], &s->face_edge[f], floor_on ? s->corner_floor + b : NULL,
-                             floor_on ? s->corner_cos + b : NULL);
-        } else if (n <= FIT_MAX_CORNERS) {
-            below = fit_face(n, q, fv + b, s->normal + 3 * (size_t)f, &s->offset[f], &s->face_dev[f],
-                             &s->face_sq[f], &s->face_edge[f], floor_on ? s->corner_floor + b : NULL,
-                             floor_on ? s->corner_cos + b : NULL);
+    for (int32_t pair = 0; pair < pairs; ++pair) {
+        const int32_t f = 2 * pair, g = f + 1;
+        const int32_t nf0 = start[f + 1] - start[f], ng = g < nf ? start[g + 1] - start[g] : 0;
+        int below_f = 0, below_g = 0;
+        if (nf0 == 4 && ng == 4) {
+            face_fit wf, wg;
+            double nnf[3], nng[3];
+            fit_face_begin(4, q, fv + start[f], &wf);
+            fit_face_begin(4, q, fv + start[g], &wg);
+            facet_sym3_smallest_eigenvector2(wf.a, wg.a, nnf, nng);
+            below_f = FIT_FACE_END(4, f, &wf, nnf);
+            below_g = FIT_FACE_END(4, g, &wg, nng);
+        } else if (nf0 <= FIT_MAX_CORNERS && ng >= 3 && ng <= FIT_MAX_CORNERS) {
+            face_fit wf, wg;
+            double nnf[3], nng[3];
+            fit_face_begin(nf0, q, fv + start[f], &wf);
+            fit_face_begin(ng, q, fv + start[g], &wg);
+            facet_sym3_smallest_eigenvector2(wf.a, wg.a, nnf, nng);
+            below_f = FIT_FACE_END(nf0, f, &wf, nnf);
+            below_g = FIT_FACE_END(ng, g, &wg, nng);
         } else {
-            double rms;
-            s->face_edge[f] = facet_face_measure(n, q, fv + b, s->normal + 3 * (size_t)f, &s->offset[f],
-                                                 &s->face_dev[f], &rms);
-            s->face_sq[f] = rms * rms * (double)n;
-            for (int32_t k = 0; floor_on && k < n; ++k) {
-                const double c = corner_cosine(q, fv[b + (k > 0 ? k - 1 : n - 1)], fv[b + k],
-                                               fv[b + (k + 1 < n ? k + 1 : 0)]);
-                s->corner_cos[b + k] = c;
-                below |= c > s->corner_floor[b + k];
-            }
+            below_f = fit_face_general(s, f, floor_on);
+            if (g < nf)
+                below_g = fit_face_general(s, g, floor_on);
         }
-        if (floor_on)
-            s->face_guard[f] = (uint8_t)below;
-        guard = guard || below;
+        if (floor_on) {
+            s->face_guard[f] = (uint8_t)below_f;
+            if (g < nf)
+                s->face_guard[g] = (uint8_t)below_g;
+        }
+        guard = guard || below_f || below_g;
     }
     /* a regularizer: weighed by mu against the planarity's 1 - mu, so it
      * fades as the penalty hardens */
