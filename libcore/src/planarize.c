@@ -749,10 +749,13 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             const double e = s->face_edge[f];
             max_rel = facet_max(max_rel, e > 0.0 ? s->face_dev[f] / e : (s->face_dev[f] > 0.0 ? INFINITY : 0.0));
         }
-        for (int32_t f = 0; f < nf; ++f)
-            constraint = facet_max(constraint, s->face_residual[f]);
-        for (int32_t v = 0; v < nv; ++v)
-            constraint = facet_max(constraint, s->vertex_residual[v]);
+        /* the residuals are zero unless these terms are on (planarize_local.c) */
+        if (options->circular > 0.0 || options->parallelogram > 0.0)
+            for (int32_t f = 0; f < nf; ++f)
+                constraint = facet_max(constraint, s->face_residual[f]);
+        if (options->boundary == FACET_BOUNDARY_SLIDING)
+            for (int32_t v = 0; v < nv; ++v)
+                constraint = facet_max(constraint, s->vertex_residual[v]);
         /* A warm start begins at the previous (planar) result: it must take the
          * edited control positions into account before it may stop. */
         if (use_tol && (it > 0 || !warm) && (tol_abs <= 0.0 || max_abs <= tol_abs) &&
