@@ -45,6 +45,10 @@ facet_status facet_mesh_validate_topology(const facet_mesh *mesh, int check_coor
  * Writes a unit vector to v and returns the eigenvalue. */
 double facet_sym3_smallest_eigenvector(const double a[6], double v[3]);
 
+/* The same for two matrices at once (the same bits as two calls; faster:
+ * their Newton steps overlap). */
+void facet_sym3_smallest_eigenvector2(const double a[6], const double b[6], double va[3], double vb[3]);
+
 /* One face (the points xyz[idx[k]], k < n, in order around it): its
  * least-squares plane (unit normal, and offset with normal . x + offset = 0;
  * offset may be NULL), the largest and RMS distance of its vertices from

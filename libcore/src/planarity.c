@@ -20,38 +20,54 @@ static double dot3(const double a[3], const double b[3])
 /* Trig-free: the smallest root of the characteristic polynomial by Newton's
  * method from 0 (for a PSD matrix every root is >= 0, so Newton from 0 rises
  * monotonically to the smallest), then the eigenvector as the largest cross
- * product of two rows of (A - lambda I). */
-double facet_sym3_smallest_eigenvector(const double a[6], double v[3])
+ * product of two rows of (A - lambda I). In three parts, so that two
+ * matrices can go through Newton's steps side by side (below). */
+typedef struct {
+    double scale, b00, b01, b02, b11, b12, b22, c0, c1, c2;
+} sym3_problem;
+
+/* Returns 0 for the zero matrix (any unit vector is an eigenvector). */
+static inline int sym3_prepare(const double a[6], sym3_problem *p)
 {
     double scale = 0.0;
-    for (int k = 0; k < 6; ++k)
-        scale = fmax(scale, fabs(a[k]));
-    if (!(scale > 0.0)) {
-        v[0] = 0.0, v[1] = 0.0, v[2] = 1.0;
-        return 0.0;
-    }
+    for (int k = 0; k < 6; ++k) /* fmax without the libm call (a NaN is skipped, as by fmax) */
+        if (fabs(a[k]) > scale)
+            scale = fabs(a[k]);
+    if (!(scale > 0.0))
+        return 0;
     const double inv = 1.0 / scale;
     const double b00 = a[0] * inv, b01 = a[1] * inv, b02 = a[2] * inv;
     const double b11 = a[3] * inv, b12 = a[4] * inv, b22 = a[5] * inv;
-    const double c2 = b00 + b11 + b22;
-    const double c1 = b00 * b11 - b01 * b01 + b00 * b22 - b02 * b02 + b11 * b22 - b12 * b12;
-    const double c0 = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) +
-                      b02 * (b01 * b12 - b11 * b02);
-    /* f(x) = x^3 - c2 x^2 + c1 x - c0 */
-    double x = 0.0;
-    for (int it = 0; it < 64; ++it) {
-        const double f = ((x - c2) * x + c1) * x - c0;
-        const double df = (3.0 * x - 2.0 * c2) * x + c1;
-        if (!(f < 0.0) || !(df > 0.0))
-            break;
-        const double step = f / df;
-        const double next = x - step;
-        if (!(next > x))
-            break;
-        x = next;
-        if (step > -1e-17 * (1.0 + x))
-            break;
-    }
+    p->scale = scale;
+    p->b00 = b00, p->b01 = b01, p->b02 = b02, p->b11 = b11, p->b12 = b12, p->b22 = b22;
+    p->c2 = b00 + b11 + b22;
+    p->c1 = b00 * b11 - b01 * b01 + b00 * b22 - b02 * b02 + b11 * b22 - b12 * b12;
+    p->c0 = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) +
+            b02 * (b01 * b12 - b11 * b02);
+    return 1;
+}
+
+/* One Newton step on f(x) = x^3 - c2 x^2 + c1 x - c0 from *x (updated);
+ * returns 0 when Newton is done. */
+static inline int sym3_newton_step(const sym3_problem *p, double *x_io)
+{
+    const double x = *x_io, c0 = p->c0, c1 = p->c1, c2 = p->c2;
+    const double f = ((x - c2) * x + c1) * x - c0;
+    const double df = (3.0 * x - 2.0 * c2) * x + c1;
+    if (!(f < 0.0) || !(df > 0.0))
+        return 0;
+    const double step = f / df;
+    const double next = x - step;
+    if (!(next > x))
+        return 0;
+    *x_io = next;
+    return !(step > -1e-17 * (1.0 + next));
+}
+
+/* The eigenvector for the eigenvalue x (scaled); returns the eigenvalue. */
+static inline double sym3_finish(const sym3_problem *p, double x, double v[3])
+{
+    const double b00 = p->b00, b01 = p->b01, b02 = p->b02, b11 = p->b11, b12 = p->b12, b22 = p->b22;
     const double r0[3] = {b00 - x, b01, b02};
     const double r1[3] = {b01, b11 - x, b12};
     const double r2[3] = {b02, b12, b22 - x};
@@ -92,7 +108,43 @@ double facet_sym3_smallest_eigenvector(const double a[6], double v[3])
             v[0] = c[0] * s, v[1] = c[1] * s, v[2] = c[2] * s;
         }
     }
-    return x * scale;
+    return x * p->scale;
+}
+
+double facet_sym3_smallest_eigenvector(const double a[6], double v[3])
+{
+    sym3_problem p;
+    if (!sym3_prepare(a, &p)) {
+        v[0] = 0.0, v[1] = 0.0, v[2] = 1.0;
+        return 0.0;
+    }
+    double x = 0.0;
+    for (int it = 0; it < 64 && sym3_newton_step(&p, &x); ++it) {
+    }
+    return sym3_finish(&p, x, v);
+}
+
+void facet_sym3_smallest_eigenvector2(const double a[6], const double b[6], double va[3], double vb[3])
+{
+    sym3_problem pa, pb;
+    if (!sym3_prepare(a, &pa) || !sym3_prepare(b, &pb)) {
+        facet_sym3_smallest_eigenvector(a, va);
+        facet_sym3_smallest_eigenvector(b, vb);
+        return;
+    }
+    /* Newton's steps are a chain of dependent divisions: two independent
+     * chains in one loop let the processor overlap them. Each matrix takes
+     * exactly the steps it takes alone, so the results are the same bits. */
+    double x = 0.0, y = 0.0;
+    int run_x = 1, run_y = 1;
+    for (int it = 0; it < 64 && (run_x || run_y); ++it) {
+        if (run_x)
+            run_x = sym3_newton_step(&pa, &x);
+        if (run_y)
+            run_y = sym3_newton_step(&pb, &y);
+    }
+    sym3_finish(&pa, x, va);
+    sym3_finish(&pb, y, vb);
 }
 
 /* Plane of the points p[idx[k]] (or p[k] when idx is NULL). Returns the
@@ -143,7 +195,8 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
         const double *q = xyz + 3 * (size_t)idx[k + 1 < n ? k + 1 : 0];
         const double d = fabs(normal[0] * (p[0] - c[0]) + normal[1] * (p[1] - c[1]) +
                               normal[2] * (p[2] - c[2]));
-        dmax = fmax(dmax, d);
+        if (d > dmax) /* fmax without the libm call */
+            dmax = d;
         dsum += d * d;
         const double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
         esum += sqrt(dot3(e, e));

@@ -329,7 +329,8 @@ void facet_planarizer_free(facet_planarizer **handle)
                       s->aa_f, s->aa_g, s->aa_x_fallback, s->q_next, s->surface_point,
                       s->surface_normal, s->surface_query, s->previous_control,
                       s->live_vertex, s->live_changed, s->live_mark, s->live_xyz, s->live_face_dev,
-                      s->guard_count, s->guard_sum, s->corner_floor, s->corner_cos, s->face_guard};
+                      s->guard_count, s->guard_sum, s->corner_floor, s->corner_cos, s->face_guard,
+                      s->face_plane_terms};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
         free(arrays[k]);
     free(s);
@@ -493,6 +494,9 @@ static int ensure_workspace(facet_planarizer *s)
         if (!s->guard_count || !s->guard_sum || !s->corner_floor || !s->corner_cos || !s->face_guard)
             return 0;
     }
+    if (o->method == FACET_METHOD_LOCAL_LOCAL && !s->face_plane_terms &&
+        !(s->face_plane_terms = malloc(sizeof(double) * 9 * (size_t)s->nf)))
+        return 0;
     if (o->anderson > 0 && !s->aa_df) {
         const size_t v3 = 3 * (size_t)s->nv;
         s->aa_df = malloc(sizeof(double) * v3 * FACET_ANDERSON_MAX);
@@ -758,10 +762,13 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             const double e = s->face_edge[f];
             max_rel = facet_max(max_rel, e > 0.0 ? s->face_dev[f] / e : (s->face_dev[f] > 0.0 ? INFINITY : 0.0));
         }
-        for (int32_t f = 0; f < nf; ++f)
-            constraint = facet_max(constraint, s->face_residual[f]);
-        for (int32_t v = 0; v < nv; ++v)
-            constraint = facet_max(constraint, s->vertex_residual[v]);
+        /* the residuals are zero unless these terms are on (planarize_local.c) */
+        if (options->circular > 0.0 || options->parallelogram > 0.0)
+            for (int32_t f = 0; f < nf; ++f)
+                constraint = facet_max(constraint, s->face_residual[f]);
+        if (options->boundary == FACET_BOUNDARY_SLIDING)
+            for (int32_t v = 0; v < nv; ++v)
+                constraint = facet_max(constraint, s->vertex_residual[v]);
         /* A warm start begins at the previous (planar) result: it must take the
          * edited control positions into account before it may stop. */
         if (use_tol && (it > 0 || !warm) && (tol_abs <= 0.0 || max_abs <= tol_abs) &&

@@ -39,7 +39,13 @@ void facet_pl_global_free(facet_planarizer *s)
         cholmod_free_dense(&s->pcg_dx, &s->cm);
         cholmod_free_dense(&s->pcg_y, &s->cm);
         cholmod_free_dense(&s->pcg_e, &s->cm);
+        cholmod_free_sparse(&s->pmatrix, &s->cm);
+        cholmod_free_dense(&s->perm_b, &s->cm);
+        cholmod_free_dense(&s->perm_x, &s->cm);
     }
+    free(s->pmap);
+    free(s->perm);
+    s->pmap = s->perm = NULL;
     s->factor_ready = 0;
     free(s->corner_slot);
     free(s->couple_start);
@@ -273,11 +279,68 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
     double *x = s->matrix->x;
     for (size_t k = 0; k < at; ++k)
         x[k] = 1.0;
-    s->factor = cholmod_analyze(s->matrix, &s->cm);
+    cholmod_factor *analysis = cholmod_analyze(s->matrix, &s->cm);
+    if (!analysis || s->cm.status < CHOLMOD_OK) {
+        cholmod_free_factor(&analysis, &s->cm);
+        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "sparse analysis failed");
+    }
+    /* Permute once: cholmod_factorize of the upper triangle in a
+     * fill-reducing order transposes the matrix twice per call (a tenth of
+     * an L/G iteration at 3k faces). The same two transposes, done here on
+     * the entries' own indices, give the permuted matrix and where each of
+     * its entries comes from; every factorization then gathers the values
+     * and factorizes in the natural order: the same arithmetic. */
+    s->perm = malloc(sizeof(int32_t) * n);
+    s->pmap = malloc(sizeof(int32_t) * at);
+    s->perm_b = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->perm_x = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    if (!s->perm || !s->pmap || !s->perm_b || !s->perm_x) {
+        cholmod_free_factor(&analysis, &s->cm);
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+    }
+    const int *order_perm = analysis->Perm;
+    for (size_t k = 0; k < n; ++k)
+        s->perm[k] = order_perm[k];
+    for (size_t k = 0; k < at; ++k)
+        x[k] = (double)k; /* exact: at < 2^31 */
+    cholmod_sparse *lower = cholmod_ptranspose(s->matrix, 2, analysis->Perm, NULL, 0, &s->cm);
+    cholmod_free_factor(&analysis, &s->cm);
+    s->pmatrix = lower ? cholmod_ptranspose(lower, 2, NULL, NULL, 0, &s->cm) : NULL;
+    cholmod_free_sparse(&lower, &s->cm);
+    if (!s->pmatrix || (size_t)((int *)s->pmatrix->p)[n] != at)
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+    const double *px = s->pmatrix->x;
+    for (size_t k = 0; k < at; ++k)
+        s->pmap[k] = (int32_t)px[k];
+    const int nmethods = s->cm.nmethods, postorder = s->cm.postorder;
+    const int ordering = s->cm.method[0].ordering;
+    s->cm.nmethods = 1, s->cm.method[0].ordering = CHOLMOD_NATURAL, s->cm.postorder = 0;
+    s->factor = cholmod_analyze(s->pmatrix, &s->cm);
+    s->cm.nmethods = nmethods, s->cm.method[0].ordering = ordering, s->cm.postorder = postorder;
     if (!s->factor || s->cm.status < CHOLMOD_OK)
         return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "sparse analysis failed");
     s->couple_key = key;
     return FACET_OK;
+}
+
+/* out = A^-1 in by the factorization, in the unknowns' own order. */
+static int factor_solve(facet_planarizer *s, const cholmod_dense *in, cholmod_dense **out)
+{
+    const size_t n = s->matrix->nrow;
+    const double *b = in->x;
+    double *pb = s->perm_b->x;
+    for (size_t k = 0; k < n; ++k)
+        pb[k] = b[s->perm[k]];
+    if (!cholmod_solve2(CHOLMOD_A, s->factor, s->perm_b, NULL, &s->perm_x, NULL, &s->pcg_y, &s->pcg_e,
+                        &s->cm))
+        return 0;
+    if (!*out && !(*out = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm)))
+        return 0;
+    const double *px = s->perm_x->x;
+    double *y = (*out)->x;
+    for (size_t k = 0; k < n; ++k)
+        y[s->perm[k]] = px[k];
+    return 1;
 }
 
 /* ---- one global step ---------------------------------------------------- */
@@ -321,12 +384,12 @@ static int pcg_solve(facet_planarizer *s)
     memset(x, 0, sizeof(double) * n);
     const double r0 = sqrt(dot_n(r, r, n));
     if (!(r0 > 0.0)) {
-        if (!cholmod_solve2(CHOLMOD_A, s->factor, s->pcg_r, NULL, &s->pcg_dx, NULL, &s->pcg_y, &s->pcg_e, cm))
+        if (!factor_solve(s, s->pcg_r, &s->pcg_dx))
             return 0;
         memset(s->pcg_dx->x, 0, sizeof(double) * n);
         return 1;
     }
-    if (!cholmod_solve2(CHOLMOD_A, s->factor, s->pcg_r, NULL, &s->pcg_dx, NULL, &s->pcg_y, &s->pcg_e, cm))
+    if (!factor_solve(s, s->pcg_r, &s->pcg_dx))
         return 0;
     memcpy(p, s->pcg_dx->x, sizeof(double) * n);
     double rz = dot_n(r, s->pcg_dx->x, n);
@@ -346,7 +409,7 @@ static int pcg_solve(facet_planarizer *s)
             memcpy(s->pcg_dx->x, x, sizeof(double) * n);
             return step;
         }
-        if (!cholmod_solve2(CHOLMOD_A, s->factor, s->pcg_r, NULL, &s->pcg_dx, NULL, &s->pcg_y, &s->pcg_e, cm))
+        if (!factor_solve(s, s->pcg_r, &s->pcg_dx))
             return 0;
         const double *z = s->pcg_dx->x;
         const double rz_next = dot_n(r, z, n), beta = rz_next / rz;
@@ -521,14 +584,18 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
         }
     }
     if (!y) {
-        if (!cholmod_factorize(s->matrix, s->factor, &s->cm) || s->cm.status != CHOLMOD_OK) {
+        const double *ax = s->matrix->x;
+        double *px = s->pmatrix->x;
+        const size_t nnz = (size_t)cp[3 * (size_t)nv + (size_t)nf];
+        for (size_t k = 0; k < nnz; ++k)
+            px[k] = ax[s->pmap[k]];
+        if (!cholmod_factorize(s->pmatrix, s->factor, &s->cm) || s->cm.status != CHOLMOD_OK) {
             s->factor_ready = 0;
             return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
                                  "the sparse factorization failed (matrix not positive definite)");
         }
         s->factor_ready = 1, s->factor_mu = mu, s->factor_age = 0;
-        if (!cholmod_solve2(CHOLMOD_A, s->factor, s->rhs, NULL, &s->pcg_dx, NULL, &s->pcg_y, &s->pcg_e,
-                            &s->cm))
+        if (!factor_solve(s, s->rhs, &s->pcg_dx))
             return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse solve failed");
         y = s->pcg_dx->x;
     }

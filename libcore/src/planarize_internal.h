@@ -69,6 +69,7 @@ struct facet_planarizer {
     double *surface_query;                /* per vertex: q in model units (the query) */
     double scale, centre[3];              /* model = normalised * scale + centre */
     double *q_next;                       /* local/local: the new iterate (Jacobi) */
+    double *face_plane_terms;             /* local/local, per face: w_f n n^T (6) and w_f d n (3) */
     double *previous;                     /* last result, model units (warm start) */
     double *previous_control;             /* the control positions it was solved from */
     int has_previous;
@@ -93,6 +94,13 @@ struct facet_planarizer {
     cholmod_factor *factor;
     cholmod_dense *rhs;
     cholmod_dense *current; /* [q; d] of the iterate: the step solves for the increment */
+    /* The matrix as CHOLMOD factorizes it, permuted once at the analysis:
+     * triu(P A P^T), whose entry j is matrix->x[pmap[j]]; factor is its
+     * factorization in the natural order, so no factorization transposes
+     * the matrix (planarize_global.c). perm: the fill-reducing order. */
+    cholmod_sparse *pmatrix;
+    int32_t *pmap, *perm;
+    cholmod_dense *perm_b, *perm_x;
     /* the factorization as a preconditioner (planarize_global.c, pcg_solve) */
     int factor_ready, factor_age;
     double factor_mu;

@@ -390,26 +390,162 @@ static double face_weight(const facet_planarizer *s, int32_t f)
     return s->face_weight ? s->face_weight[f] : 1.0;
 }
 
+enum { FIT_MAX_CORNERS = 8 }; /* faces up to this size take the one-pass fit below */
+
+/* One face of at most FIT_MAX_CORNERS corners in one pass over its points,
+ * in two halves around the eigenvector (so that two faces can share
+ * facet_sym3_smallest_eigenvector2): what facet_face_measure gives (the
+ * same arithmetic in the same order, so the same bits) and, when floor is
+ * not NULL, the angle floor's test of each corner (a corner's exact cosine
+ * is taken only where a squared test with a margin says it may be below its
+ * floor, whose cosine is > 0.5). The corner vectors are the edges': at
+ * corner k, u = -e(k-1) and v = e(k), exactly. */
+typedef struct {
+    double x[FIT_MAX_CORNERS][3]; /* the points */
+    double c[3];                  /* their centroid */
+    double a[6];                  /* their scatter */
+} face_fit;
+
+static inline __attribute__((always_inline)) void fit_face_begin(int32_t n, const double *xyz,
+                                                                 const int32_t *idx, face_fit *w)
+{
+    double c[3] = {0.0, 0.0, 0.0};
+    for (int32_t k = 0; k < n; ++k) {
+        const double *p = xyz + 3 * (size_t)idx[k];
+        w->x[k][0] = p[0], w->x[k][1] = p[1], w->x[k][2] = p[2];
+        c[0] += p[0], c[1] += p[1], c[2] += p[2];
+    }
+    const double inv = 1.0 / (double)n;
+    c[0] *= inv, c[1] *= inv, c[2] *= inv;
+    double a[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    for (int32_t k = 0; k < n; ++k) {
+        const double dx = w->x[k][0] - c[0], dy = w->x[k][1] - c[1], dz = w->x[k][2] - c[2];
+        a[0] += dx * dx, a[1] += dx * dy, a[2] += dx * dz;
+        a[3] += dy * dy, a[4] += dy * dz, a[5] += dz * dz;
+    }
+    memcpy(w->c, c, sizeof c);
+    memcpy(w->a, a, sizeof a);
+}
+
+/* Given the unit normal nn of the face: its offset, largest distance, sum
+ * of squared distances, mean edge length, and the floor's test. Returns
+ * whether some corner is below its floor. */
+static inline __attribute__((always_inline)) int fit_face_end(
+    int32_t n, const face_fit *w, const double nn[3], double normal[3], double *offset,
+    double *max_distance, double *square_sum, double *edge_mean, const double *floor,
+    double *corner_cos)
+{
+    const double *c = w->c;
+    double dmax = 0.0, dsum = 0.0, esum = 0.0;
+    double e[FIT_MAX_CORNERS][3], ee[FIT_MAX_CORNERS];
+    for (int32_t k = 0; k < n; ++k) {
+        const double *p = w->x[k], *q = w->x[k + 1 < n ? k + 1 : 0];
+        const double d = fabs(nn[0] * (p[0] - c[0]) + nn[1] * (p[1] - c[1]) + nn[2] * (p[2] - c[2]));
+        if (d > dmax)
+            dmax = d;
+        dsum += d * d;
+        e[k][0] = q[0] - p[0], e[k][1] = q[1] - p[1], e[k][2] = q[2] - p[2];
+        ee[k] = dot3(e[k], e[k]);
+        esum += sqrt(ee[k]);
+    }
+    normal[0] = nn[0], normal[1] = nn[1], normal[2] = nn[2];
+    *offset = -dot3(nn, c);
+    *max_distance = dmax;
+    const double rms = sqrt(dsum / (double)n);
+    *square_sum = rms * rms * (double)n;
+    *edge_mean = esum / (double)n;
+    int below = 0;
+    if (floor)
+        for (int32_t k = 0; k < n; ++k) {
+            const int32_t before = k > 0 ? k - 1 : n - 1;
+            const double uv = -dot3(e[before], e[k]), uu = ee[before], vv = ee[k];
+            double cosine = -1.0; /* any value not above the floor */
+            if (!(uu > 0.0 && vv > 0.0))
+                cosine = 1.0; /* as corner_cosine: an edge without length */
+            else if (uv > 0.0 && uv * uv > (1.0 - 1e-9) * (floor[k] * floor[k]) * (uu * vv))
+                cosine = uv / sqrt(uu * vv);
+            corner_cos[k] = cosine;
+            below |= cosine > floor[k];
+        }
+    return below;
+}
+
+/* Face f the general way: facet_face_measure, then the floor's test. */
+static int fit_face_general(facet_planarizer *s, int32_t f, int floor_on)
+{
+    const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
+    const int32_t *fv = s->face_vertices;
+    double rms;
+    s->face_edge[f] = facet_face_measure(n, s->q, fv + b, s->normal + 3 * (size_t)f, &s->offset[f],
+                                         &s->face_dev[f], &rms);
+    s->face_sq[f] = rms * rms * (double)n;
+    int below = 0;
+    for (int32_t k = 0; floor_on && k < n; ++k) {
+        const double c = corner_cosine(s->q, fv[b + (k > 0 ? k - 1 : n - 1)], fv[b + k],
+                                       fv[b + (k + 1 < n ? k + 1 : 0)]);
+        s->corner_cos[b + k] = c;
+        below |= c > s->corner_floor[b + k];
+    }
+    return below;
+}
+
+#define FIT_FACE_END(n_, f_, w_, nn_)                                                             \
+    fit_face_end((n_), (w_), (nn_), s->normal + 3 * (size_t)(f_), &s->offset[f_], &s->face_dev[f_], \
+                 &s->face_sq[f_], &s->face_edge[f_], floor_on ? s->corner_floor + start[f_] : NULL, \
+                 floor_on ? s->corner_cos + start[f_] : NULL)
+
 /* The planes: best fit (the planarity measurement), then the regularised
- * normals when the face-normal Laplacian is on. */
-static void fit_planes(facet_planarizer *s, double mu, int nthreads)
+ * normals when the face-normal Laplacian is on. With the angle floor on, the
+ * same pass tests the corners against it (face_guard, corner_cos); returns
+ * whether some corner is below its floor. Faces go in pairs, so that their
+ * eigenvectors' Newton steps overlap (facet_sym3_smallest_eigenvector2);
+ * quads have their loops unrolled. Every face gets the same bits as alone. */
+static int fit_planes(facet_planarizer *s, double mu, int nthreads)
 {
     const int32_t nf = s->nf;
     const int32_t *start = s->face_start, *fv = s->face_vertices;
     const double *q = s->q;
-#pragma omp parallel for schedule(static) num_threads(nthreads)
-    for (int32_t f = 0; f < nf; ++f) {
-        const int32_t n = start[f + 1] - start[f];
-        double rms;
-        s->face_edge[f] = facet_face_measure(n, q, fv + start[f], s->normal + 3 * (size_t)f,
-                                             &s->offset[f], &s->face_dev[f], &rms);
-        s->face_sq[f] = rms * rms * (double)n;
+    const int floor_on = s->o.angle_floor > 0.0;
+    const int32_t pairs = nf / 2 + nf % 2;
+    int guard = 0;
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
+    for (int32_t pair = 0; pair < pairs; ++pair) {
+        const int32_t f = 2 * pair, g = f + 1;
+        const int32_t nf0 = start[f + 1] - start[f], ng = g < nf ? start[g + 1] - start[g] : 0;
+        int below_f = 0, below_g = 0;
+        if (nf0 == 4 && ng == 4) {
+            face_fit wf, wg;
+            double nnf[3], nng[3];
+            fit_face_begin(4, q, fv + start[f], &wf);
+            fit_face_begin(4, q, fv + start[g], &wg);
+            facet_sym3_smallest_eigenvector2(wf.a, wg.a, nnf, nng);
+            below_f = FIT_FACE_END(4, f, &wf, nnf);
+            below_g = FIT_FACE_END(4, g, &wg, nng);
+        } else if (nf0 <= FIT_MAX_CORNERS && ng >= 3 && ng <= FIT_MAX_CORNERS) {
+            face_fit wf, wg;
+            double nnf[3], nng[3];
+            fit_face_begin(nf0, q, fv + start[f], &wf);
+            fit_face_begin(ng, q, fv + start[g], &wg);
+            facet_sym3_smallest_eigenvector2(wf.a, wg.a, nnf, nng);
+            below_f = FIT_FACE_END(nf0, f, &wf, nnf);
+            below_g = FIT_FACE_END(ng, g, &wg, nng);
+        } else {
+            below_f = fit_face_general(s, f, floor_on);
+            if (g < nf)
+                below_g = fit_face_general(s, g, floor_on);
+        }
+        if (floor_on) {
+            s->face_guard[f] = (uint8_t)below_f;
+            if (g < nf)
+                s->face_guard[g] = (uint8_t)below_g;
+        }
+        guard = guard || below_f || below_g;
     }
     /* a regularizer: weighed by mu against the planarity's 1 - mu, so it
      * fades as the penalty hardens */
     const double lambda = mu < 1.0 ? s->o.normal_laplacian * mu / (1.0 - mu) : 0.0;
     if (!(lambda > 0.0))
-        return;
+        return guard;
     memcpy(s->normal_fit, s->normal, sizeof(double) * 3 * (size_t)nf);
 #pragma omp parallel for schedule(static) num_threads(nthreads)
     for (int32_t f = 0; f < nf; ++f) {
@@ -456,6 +592,7 @@ static void fit_planes(facet_planarizer *s, double mu, int nthreads)
             s->offset[f] = -dot3(nn, c);
         }
     }
+    return guard;
 }
 
 facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
@@ -463,7 +600,7 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
     const int32_t nv = s->nv, nf = s->nf;
     const facet_planarize_options *o = &s->o;
     const double *p = s->p, *q = s->q;
-    fit_planes(s, mu, nthreads);
+    const int guard = fit_planes(s, mu, nthreads); /* some corner below its angle floor */
     const int surface = o->surface_weight > 0.0 && s->reference;
     if (surface) { /* closest points of the reference surface, in model units */
         for (size_t k = 0; k < 3 * (size_t)nv; ++k)
@@ -555,21 +692,7 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
     }
     }
 
-    int guard = 0; /* some corner below its angle floor */
     if (o->angle_floor > 0.0) {
-#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
-        for (int32_t f = 0; f < nf; ++f) {
-            const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
-            int below = 0;
-            for (int32_t k = 0; k < n; ++k) {
-                const double c = corner_cosine(q, s->face_vertices[b + (k + n - 1) % n],
-                                               s->face_vertices[b + k], s->face_vertices[b + (k + 1) % n]);
-                s->corner_cos[b + k] = c;
-                below |= c > s->corner_floor[b + k];
-            }
-            s->face_guard[f] = (uint8_t)below;
-            guard = guard || below;
-        }
         if (!guard)
             memset(s->guard_count, 0, sizeof(double) * (size_t)nv);
     }
@@ -706,6 +829,18 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
     const double *q_old = s->q;
     double *q_new = s->q_next;
     const int extra = shape || o->circular > 0.0 || o->parallelogram > 0.0; /* per-face terms */
+    /* Each face's planarity term once per face rather than once per corner:
+     * pw n n^T and pw d n, the same products the vertices add up. */
+    double *terms = s->face_plane_terms;
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (int32_t f = 0; f < s->nf; ++f) {
+        const double *n = s->normal + 3 * (size_t)f;
+        const double pw = w * face_weight(s, f), d = s->offset[f];
+        double *t = terms + 9 * (size_t)f;
+        t[0] = pw * n[0] * n[0], t[1] = pw * n[0] * n[1], t[2] = pw * n[0] * n[2];
+        t[3] = pw * n[1] * n[1], t[4] = pw * n[1] * n[2], t[5] = pw * n[2] * n[2];
+        t[6] = pw * d * n[0], t[7] = pw * d * n[1], t[8] = pw * d * n[2];
+    }
     int finite = 1;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(&& : finite)
     for (int32_t v = 0; v < nv; ++v) {
@@ -730,10 +865,9 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
         }
         for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
             const int32_t f = s->vertex_faces[k];
-            const double *n = s->normal + 3 * (size_t)f;
-            const double pw = w * face_weight(s, f), d = s->offset[f];
-            add_outer(a, pw, n);
-            b[0] -= pw * d * n[0], b[1] -= pw * d * n[1], b[2] -= pw * d * n[2];
+            const double *pt = terms + 9 * (size_t)f;
+            a[0] += pt[0], a[1] += pt[1], a[2] += pt[2], a[3] += pt[3], a[4] += pt[4], a[5] += pt[5];
+            b[0] -= pt[6], b[1] -= pt[7], b[2] -= pt[8];
             if (!extra)
                 continue;
             const int32_t fb = s->face_start[f], fn = s->face_start[f + 1] - fb;
@@ -802,18 +936,19 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
             b[0] += w * t[0], b[1] += w * t[1], b[2] += w * t[2];
             a[0] += g, a[3] += g, a[5] += g;
         }
-        /* 3x3 Cholesky */
-        const double l00 = sqrt(a[0]);
-        const double l10 = a[1] / l00, l20 = a[2] / l00;
-        const double l11 = sqrt(a[3] - l10 * l10);
-        const double l21 = (a[4] - l20 * l10) / l11;
-        const double l22 = sqrt(a[5] - l20 * l20 - l21 * l21);
-        const double y0 = b[0] / l00;
-        const double y1 = (b[1] - l10 * y0) / l11;
-        const double y2 = (b[2] - l20 * y0 - l21 * y1) / l22;
-        const double x2 = y2 / l22;
-        const double x1 = (y1 - l21 * x2) / l11;
-        const double x0 = (y0 - l10 * x1 - l20 * x2) / l00;
+        /* 3x3 LDL^T: Cholesky's accuracy without its three square roots,
+         * and three reciprocals instead of six divisions */
+        const double i0 = 1.0 / a[0];
+        const double l10 = a[1] * i0, l20 = a[2] * i0;
+        const double d1 = a[3] - l10 * a[1];
+        const double i1 = 1.0 / d1;
+        const double l21 = (a[4] - l20 * a[1]) * i1;
+        const double i2 = 1.0 / (a[5] - l20 * a[2] - l21 * l21 * d1);
+        const double z1 = b[1] - l10 * b[0];
+        const double z2 = b[2] - l20 * b[0] - l21 * z1;
+        const double x2 = z2 * i2;
+        const double x1 = z1 * i1 - l21 * x2;
+        const double x0 = b[0] * i0 - l10 * x1 - l20 * x2;
         if (isfinite(x0) && isfinite(x1) && isfinite(x2)) {
             out[0] = x0, out[1] = x1, out[2] = x2;
         } else {
@@ -821,7 +956,9 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
             finite = 0;
         }
     }
-    if (finite)
-        memcpy(s->q, q_new, sizeof(double) * 3 * (size_t)nv);
+    if (finite) { /* the new iterate becomes the current one: swap, no copy */
+        s->q_next = s->q;
+        s->q = q_new;
+    }
     return finite;
 }
