@@ -428,26 +428,88 @@ def test_step_says_clearly_when_freecad_is_missing(monkeypatch):
     assert not isinstance(info.value, facet.InputError)  # exit 1 on the command line, not 2
 
 
-def test_panel_solids_in_worker_processes_match_the_serial_ones(monkeypatch):
+def _freecad_step():
     import facet.step as step
 
     try:
         step.import_freecad()
     except step.FreeCADMissing:
         pytest.skip("FreeCAD is not installed")
+    return step
+
+
+def test_panel_solids_are_valid_closed_polyhedra_in_chunks(monkeypatch):
+    step = _freecad_step()
     ps = panels(translational(nu=6, nv=5, step=400.0), 18.0, edge="bisector", gap=4)
-    monkeypatch.setattr(step, "_SOLID_CHUNK", 7)  # 30 panels: 5 chunks
-    serial = step.panel_solids(ps, workers=1)
+    monkeypatch.setattr(step, "_SOLID_CHUNK", 7)  # 30 panels: 5 texts read
     seen = []
-    parallel = step.panel_solids(ps, workers=2, progress=lambda d, t: seen.append(d) and False)
-    assert [i for i, _ in parallel] == [p.id for p in ps.panels] == [i for i, _ in serial]
-    for (_, a), (_, b), p in zip(serial, parallel, ps.panels):
-        assert b.isValid()
-        assert b.Volume == pytest.approx(a.Volume, rel=1e-12)
-        assert b.Volume == pytest.approx(p.volume, rel=1e-9)
-    assert seen and max(seen) == len(ps.panels)
+    solids = step.panel_solids(ps, progress=lambda d, t: seen.append(d) and False)
+    assert [i for i, _ in solids] == [p.id for p in ps.panels]
+    assert seen == [7, 14, 21, 28, 30]
+    for (_, s), p in zip(solids, ps.panels):
+        k = len(p.top)
+        assert s.isValid() and s.ShapeType == "Solid"
+        assert len(s.Faces) == k + 2 and len(s.Edges) == 3 * k and len(s.Vertexes) == 2 * k
+        assert s.Shells[0].isClosed()
+        assert s.Volume == pytest.approx(p.volume, rel=1e-9)  # positive: faces point out
+        corners = sorted((round(v.X, 6), round(v.Y, 6), round(v.Z, 6)) for v in s.Vertexes)
+        assert corners == sorted(tuple(round(float(c), 6) for c in q)
+                                 for q in np.vstack([p.top, p.bottom]))
+    fast = step.panel_solids(ps, brepcheck=False)
+    assert [s.Volume for _, s in fast] == [s.Volume for _, s in solids]
     with pytest.raises(Cancelled):
-        step.panel_solids(ps, workers=2, progress=lambda d, t: True)
+        step.panel_solids(ps, progress=lambda d, t: True)
+
+
+def test_panel_solids_of_reversed_rings_still_face_outwards():
+    step = _freecad_step()
+    ps = panels(translational(nu=3, nv=2, step=400.0), 18.0, edge="bisector", gap=4)
+    p = ps.panels[0]
+    a = step.panel_solid(p)
+    p.top, p.bottom = p.top[::-1].copy(), p.bottom[::-1].copy()
+    b = step.panel_solid(p)
+    assert b.isValid() and a.Volume > 0
+    assert b.Volume == pytest.approx(a.Volume, rel=1e-12)
+
+
+@pytest.mark.parametrize("spoil, message", [
+    (lambda t, b: t.__setitem__((0, 2), t[0, 2] + 5.0), "its top is not planar"),
+    (lambda t, b: t.__setitem__(0, np.nan), "a corner is not finite"),
+    (lambda t, b: b.__setitem__(slice(None), t), "edge 8 of its solid has no length"),
+])
+def test_panel_solids_refuse_outlines_that_bound_no_solid(spoil, message):
+    step = _freecad_step()
+    ps = panels(translational(nu=3, nv=2, step=400.0), 18.0)
+    p = ps.panels[4]
+    top, bottom = p.top.copy(), p.bottom.copy()
+    spoil(top, bottom)
+    p.top, p.bottom = top, bottom
+    with pytest.raises(step.SolidError, match=message) as info:
+        step.panel_solids(ps)
+    assert str(info.value).startswith(f"panel {p.id}: ")
+
+
+@pytest.mark.parametrize("top, bottom, message", [
+    # a side face whose top edge runs against its bottom edge (every face planar)
+    ([(4, 0, 1), (0, 0, 1), (0, 3, 1), (4, 3, 1)], [(0, 0, 0), (4, 0, 0), (4, 3, 0), (0, 3, 0)],
+     "side face 0 is twisted"),
+    ([(0, 0, 1), (4, 0, 1), (4, 0, 1), (0, 3, 1)], [(0, 0, 0), (4, 0, 0), (4, 0, 0), (0, 3, 0)],
+     "edge 1 of its solid has no length"),
+    ([(0, 0, 1), (6, 0, 1), (0, 3, 1), (2, 3, 1)], [(0, 0, 0), (6, 0, 0), (0, 3, 0), (2, 3, 0)],
+     "outline crosses itself"),
+])
+def test_panel_solids_refuse_degenerate_panels(top, bottom, message):
+    step = _freecad_step()
+
+    class Panel:
+        id = "P-X"
+
+    class Set:
+        panels = [Panel()]
+
+    Set.panels[0].top, Set.panels[0].bottom = np.array(top, float), np.array(bottom, float)
+    with pytest.raises(step.SolidError, match=message):
+        step.panel_solids(Set)
 
 
 def test_half_turn_symmetric_parts_skip_the_redundant_rotations():
