@@ -205,6 +205,41 @@ def test_label_point_matches_polylabel():
     assert depth == pytest.approx(Polygon(poly).exterior.distance(ref), rel=0.02)
 
 
+@pytest.mark.parametrize("edge, offset", [("bisector", "outer"), ("bisector", "inner"),
+                                          ("square", "center")])
+def test_convex_footprints_and_labels_match_the_general_ones(edge, offset):
+    from shapely.geometry import Polygon
+
+    from facet.unfold import _convex, _convex_footprints, _edge_distance, _inside, label_points
+
+    ps = panels(translational(nu=6, nv=5, step=400.0), 18.0, edge=edge, offset=offset, gap=4)
+    feet = _convex_footprints(ps.panels)
+    assert all(f is not None for f in feet)  # every panel here is convex
+    for p, f in zip(ps.panels, feet):
+        general = p.footprint()
+        fast = Polygon(f)
+        assert fast.is_valid
+        assert fast.symmetric_difference(general).area <= 1e-12 * general.area
+    # the convex depth is the general one
+    outlines = [p.flat_bottom for p in ps.panels]
+    poly = np.array(outlines)
+    assert _convex(poly).all()
+    for (xy, depth), o in zip(label_points(outlines), outlines):
+        pts = np.array([[xy]])
+        assert _inside(o[None], pts)[0, 0]
+        assert depth == pytest.approx(_edge_distance(o[None], pts)[0, 0], rel=1e-12)
+
+
+def test_concave_panels_keep_the_general_footprint():
+    from facet.unfold import _convex_footprints
+
+    class P:
+        flat_bottom = np.array([[0, 0], [10, 0], [10, 2], [3, 2], [3, 8], [0, 8.0]])
+        flat_top = flat_bottom
+
+    assert _convex_footprints([P()]) == [None]
+
+
 def test_unfold_labels_inside_and_bevel_texts():
     from shapely.geometry import Point, Polygon
 
