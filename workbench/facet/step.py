@@ -21,8 +21,8 @@ import numpy as np
 
 from facet.errors import Cancelled, FacetError
 
-__all__ = ["FreeCADMissing", "SolidError", "import_freecad", "panel_solid", "panel_solids",
-           "write_step"]
+__all__ = ["FreeCADMissing", "SolidError", "StepJob", "import_freecad", "panel_solid",
+           "panel_solids", "start_step", "write_step"]
 
 _CANDIDATES = (
     "/usr/lib/freecad-python3/lib",
@@ -389,3 +389,128 @@ def write_step(path, named_solids, pcurves=False):
         FreeCAD.closeDocument(doc.Name)
         if os.path.exists(tmp):
             os.remove(tmp)
+
+
+def _step_job(job, settings):
+    """A worker's job: build the solids and write the STEP file. Returns
+    ("ok", {stage: seconds}) or ("error", class name, message) for the
+    errors :class:`StepJob` raises again in the parent."""
+    import time
+
+    path, ids, tops, bottoms = job
+    brepcheck, pcurves = settings
+    try:
+        t = time.perf_counter()
+        FreeCAD, Part = import_freecad()
+        solids = []
+        for c0 in range(0, len(ids), _SOLID_CHUNK):
+            c1 = c0 + _SOLID_CHUNK
+            solids.extend(_read_solids(Part, ids[c0:c1], tops[c0:c1], bottoms[c0:c1],
+                                       brepcheck))
+        t1 = time.perf_counter()
+        write_step(path, list(zip(ids, solids)), pcurves=pcurves)
+        return ("ok", {"solids": t1 - t, "step": time.perf_counter() - t1})
+    except (SolidError, FreeCADMissing) as exc:
+        return ("error", type(exc).__name__, str(exc))
+
+
+class StepJob:
+    """Solids and STEP file of a panel set made in a worker process while
+    this process goes on (:func:`start_step`); :meth:`wait` for the result.
+
+    Attributes
+    ----------
+    seconds : dict
+        After :meth:`wait`: wall time of "solids" and "step" in the worker
+        (or here, when no worker process could run).
+    in_worker : bool
+    """
+
+    def __init__(self, path, panel_set, brepcheck, pcurves):
+        import threading
+
+        from facet.parallel import python_executable
+
+        self.path = os.fspath(path)
+        self._panels = list(panel_set.panels)
+        self._settings = (bool(brepcheck), bool(pcurves))
+        self._cancel = threading.Event()
+        self._result = None
+        self.seconds = {}
+        self.in_worker = python_executable() is not None
+        self._thread = None
+        if self.in_worker:
+            job = (self.path, [p.id for p in self._panels],
+                   [np.asarray(p.top, dtype=float) for p in self._panels],
+                   [np.asarray(p.bottom, dtype=float) for p in self._panels])
+            self._thread = threading.Thread(target=self._run, args=(job,), daemon=True)
+            self._thread.start()
+
+    def _run(self, job):
+        from facet.parallel import WorkerError, run_chunks
+
+        try:
+            self._result = run_chunks("facet.step:_step_job", [job], self._settings, 1,
+                                      progress=lambda done, total: self._cancel.is_set())[0]
+        except Cancelled:
+            self._result = ("cancelled",)
+        except WorkerError as exc:
+            self._result = ("worker", str(exc))
+
+    def cancel(self):
+        """Stop the worker (nothing is written)."""
+        self._cancel.set()
+        if self._thread is not None:
+            self._thread.join()
+
+    def wait(self, progress=None):
+        """Wait for the file; ``progress(done, total)`` (0 or 1 of 1)
+        returning True cancels. Returns the path.
+
+        Raises
+        ------
+        SolidError, FreeCADMissing, Cancelled, FacetError
+        """
+        import time
+
+        if self._thread is None:  # no worker: made here, now
+            t = time.perf_counter()
+            solids = panel_solids(_Panels(self._panels), progress=progress,
+                                  brepcheck=self._settings[0])
+            t1 = time.perf_counter()
+            write_step(self.path, solids, pcurves=self._settings[1])
+            self.seconds = {"solids": t1 - t, "step": time.perf_counter() - t1}
+            return self.path
+        while self._thread.is_alive():
+            self._thread.join(0.2)
+            if progress is not None and progress(0, 1):
+                self.cancel()
+                raise Cancelled("STEP cancelled")
+        result = self._result
+        if result[0] == "ok":
+            self.seconds = result[1]
+            if progress is not None:
+                progress(1, 1)
+            return self.path
+        if result[0] == "cancelled":
+            raise Cancelled("STEP cancelled")
+        if result[0] == "error":
+            cls = {"SolidError": SolidError, "FreeCADMissing": FreeCADMissing}[result[1]]
+            raise cls(result[2])
+        raise FacetError(f"STEP: {result[1]}")
+
+
+class _Panels:
+    def __init__(self, panels):
+        self.panels = panels
+
+
+def start_step(path, panel_set, brepcheck=True, pcurves=False):
+    """Start making the panels' solids and their STEP file (as
+    :func:`panel_solids` and :func:`write_step` do) in a worker process, so
+    that nesting and the DXF can go on meanwhile; returns a :class:`StepJob`.
+
+    Where no worker process can be started (no Python interpreter for it),
+    the job is done by :meth:`StepJob.wait`, in this process.
+    """
+    return StepJob(path, panel_set, brepcheck, pcurves)
