@@ -566,3 +566,59 @@ def test_half_turn_symmetric_parts_skip_the_redundant_rotations():
                                [250, 0.0]]) for k in range(10)}
     r = nest(ells, (1000, 700), margin=5, spacing=4, rotations="90", workers=1)
     assert verify(r, ells) == [] and not r.unplaced
+
+
+# ---- solids and STEP in a worker process -----------------------------------
+
+def test_step_job_writes_the_solids_in_a_worker_while_this_process_goes_on(tmp_path):
+    step = _freecad_step()
+    FreeCAD, Part = step.import_freecad()
+    ps = panels(translational(nu=4, nv=3, step=400.0), 18.0, edge="bisector", gap=4)
+    path = tmp_path / "p.step"
+    job = step.start_step(path, ps)
+    assert job.in_worker
+    assert job.wait() == str(path)
+    assert set(job.seconds) == {"solids", "step"}
+    assert os.listdir(tmp_path) == ["p.step"]  # no temporary file left
+    back = Part.read(str(path))
+    assert len(back.Solids) == len(ps.panels)
+    got = sorted(s.Volume for s in back.Solids)
+    assert got == pytest.approx(sorted(p.volume for p in ps.panels), rel=1e-9)
+    text = path.read_text()
+    assert all(f"'{p.id}'" in text for p in ps.panels)  # each product named by its ID
+
+
+def test_step_job_cancelled_or_failed_writes_nothing(tmp_path):
+    step = _freecad_step()
+    ps = panels(translational(nu=4, nv=3, step=400.0), 18.0, edge="bisector", gap=4)
+    job = step.start_step(tmp_path / "c.step", ps)
+    job.cancel()
+    assert os.listdir(tmp_path) == []
+    with pytest.raises(Cancelled):
+        step.start_step(tmp_path / "c.step", ps).wait(progress=lambda d, t: True)
+    assert os.listdir(tmp_path) == []
+    p = ps.panels[5]
+    p.top = p.top.copy()
+    p.top[0, 2] += 5.0  # not planar: the worker's SolidError comes back as one
+    with pytest.raises(step.SolidError, match=f"panel {p.id}: its top is not planar"):
+        step.start_step(tmp_path / "f.step", ps).wait()
+    assert os.listdir(tmp_path) == []
+
+
+def test_cli_panels_writes_step_next_to_the_other_files(tmp_path, facet_command):
+    from facet import write_mesh
+
+    step = _freecad_step()
+    FreeCAD, Part = step.import_freecad()
+    mesh_path = tmp_path / "m.obj"
+    write_mesh(translational(nu=4, nv=3, step=400.0), mesh_path)
+    report = tmp_path / "r.json"
+    done = facet_command("panels", mesh_path, "--thickness", "18", "--edge", "bisector",
+                         "--gap", "4", "--sheet", "2000x1000", "--dxf", tmp_path / "s.dxf",
+                         "--step", tmp_path / "p.step", "--report", report)
+    assert done.returncode == 0, done.stderr
+    data = json.loads(report.read_text())
+    assert {"solids", "step", "step_wait", "total"} <= set(data["seconds"])
+    assert data["seconds"]["total"] >= data["seconds"]["nest"]
+    assert len(Part.read(str(tmp_path / "p.step")).Solids) == 12
+    assert not [f for f in os.listdir(tmp_path) if ".part" in f]

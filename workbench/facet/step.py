@@ -397,7 +397,7 @@ def _step_job(job, settings):
     errors :class:`StepJob` raises again in the parent."""
     import time
 
-    path, ids, tops, bottoms = job
+    path, ids, tops, bottoms = job  # path: the temporary file the parent renames
     brepcheck, pcurves = settings
     try:
         t = time.perf_counter()
@@ -432,6 +432,9 @@ class StepJob:
         from facet.parallel import python_executable
 
         self.path = os.fspath(path)
+        # written under another name, renamed by wait(): nothing appears at
+        # `path` unless the whole job succeeded and was waited for
+        self._tmp = f"{self.path}.part{os.getpid()}-{id(self):x}.step"
         self._panels = list(panel_set.panels)
         self._settings = (bool(brepcheck), bool(pcurves))
         self._cancel = threading.Event()
@@ -440,7 +443,7 @@ class StepJob:
         self.in_worker = python_executable() is not None
         self._thread = None
         if self.in_worker:
-            job = (self.path, [p.id for p in self._panels],
+            job = (self._tmp, [p.id for p in self._panels],
                    [np.asarray(p.top, dtype=float) for p in self._panels],
                    [np.asarray(p.bottom, dtype=float) for p in self._panels])
             self._thread = threading.Thread(target=self._run, args=(job,), daemon=True)
@@ -458,10 +461,12 @@ class StepJob:
             self._result = ("worker", str(exc))
 
     def cancel(self):
-        """Stop the worker (nothing is written)."""
+        """Stop the worker; nothing is written."""
         self._cancel.set()
         if self._thread is not None:
             self._thread.join()
+        if os.path.exists(self._tmp):
+            os.remove(self._tmp)
 
     def wait(self, progress=None):
         """Wait for the file; ``progress(done, total)`` (0 or 1 of 1)
@@ -489,6 +494,7 @@ class StepJob:
         result = self._result
         if result[0] == "ok":
             self.seconds = result[1]
+            os.replace(self._tmp, self.path)
             if progress is not None:
                 progress(1, 1)
             return self.path
