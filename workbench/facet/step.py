@@ -88,23 +88,33 @@ def _topology(k):
     """The boundary of a k-cornered panel: (edges, loops, loop corners, edge faces).
 
     Corners: top 0..k-1, bottom k..2k-1. Edges: top i (top i -> top i+1) is
-    i, bottom i is k + i, side i (bottom i -> top i) is 2k + i. Faces: top,
-    bottom, then side i (bottom i, bottom i+1, top i+1, top i). Each loop is
-    [(edge, forward)] counter-clockwise about the outward normal when the
-    top ring turns counter-clockwise seen from above the top.
+    i, bottom i is k + i, side i (bottom i -> top i) is 2k + i. Faces: the
+    bottom, side i (bottom i, bottom i+1, top i+1, top i) as face 1 + i, the
+    top last, so that OCC lists the corners (``Shape.Vertexes``) as the
+    solids built face by face did: bottom 0..k-1, then top 1, 0, 2, ..., k-1.
+    Each loop is [(edge, forward)], counter-clockwise about the outward
+    normal when the top ring turns counter-clockwise seen from above the top
+    (the bottom's edges are listed against their order around it, which OCC
+    does not mind).
     """
     edges = ([(i, (i + 1) % k) for i in range(k)]
              + [(k + i, k + (i + 1) % k) for i in range(k)]
              + [(k + i, i) for i in range(k)])
-    loops = [[(i, True) for i in range(k)], [(k + i, False) for i in reversed(range(k))]]
-    corners = [list(range(k)), [k + (i + 1) % k for i in reversed(range(k))]]
+    loops = [[(k + i, False) for i in range(k)]]
+    corners = [[k + (i + 1) % k for i in reversed(range(k))]]
     for i in range(k):
         j = (i + 1) % k
         loops.append([(k + i, True), (2 * k + j, True), (i, False), (2 * k + i, False)])
         corners.append([k + i, k + j, j, i])
-    edge_faces = ([(0, 2 + i) for i in range(k)] + [(1, 2 + i) for i in range(k)]
-                  + [(2 + i, 2 + (i - 1) % k) for i in range(k)])
+    loops.append([(i, True) for i in range(k)])
+    corners.append(list(range(k)))
+    edge_faces = ([(k + 1, 1 + i) for i in range(k)] + [(0, 1 + i) for i in range(k)]
+                  + [(1 + i, 1 + (i - 1) % k) for i in range(k)])
     return edges, loops, corners, edge_faces
+
+
+def _face_name(k, f):
+    return "bottom" if f == 0 else "top" if f == k + 1 else f"side face {f - 1}"
 
 
 @functools.lru_cache(maxsize=None)
@@ -161,8 +171,8 @@ def _simple_rings(ids, rings, planes):
     in its plane: convex ones by their turns, the others with shapely."""
     from shapely.geometry import Polygon
 
-    for f, name in ((0, "top"), (1, "bottom")):
-        ring = rings[f]
+    k = rings[0].shape[1]
+    for f, name, ring in ((k + 1, "top", rings[0]), (0, "bottom", rings[1])):
         c, n, x, y = (planes[:, f, 3 * i:3 * i + 3] for i in range(4))
         rel = ring - c[:, None, :]
         flat = np.stack([_dot(rel, x[:, None, :]), _dot(rel, y[:, None, :])], axis=2)
@@ -190,6 +200,7 @@ def _solids_text(ids, tops, bottoms):
     # shapes are referred to by their position counted from the end
     ref0 = (total + 1 - before).astype(float)
     curves, surfaces, records = [None] * n, [None] * n, [None] * n
+    sign = np.ones(n, dtype=np.int64)
     for k in (int(v) for v in np.unique(ks)):
         if k < 3:
             i = int(np.flatnonzero(ks == k)[0])
@@ -202,18 +213,17 @@ def _solids_text(ids, tops, bottoms):
         if bad.any():
             raise SolidError(f"panel {gids[int(np.argmax(bad))]}: a corner is not finite")
         planes, dev, volume = _faces(top, bottom)
-        flip = volume < 0
-        if flip.any():  # rings turning the other way: reversed, so faces face out
-            top[flip], bottom[flip] = top[flip][:, ::-1], bottom[flip][:, ::-1]
-            planes, dev, volume = _faces(top, bottom)
+        # rings turning the other way: every face points inwards, so the
+        # solid is written reversed (as the solids built face by face were)
+        sign[idx] = np.where(volume < 0, -1, 1)
+        volume = np.abs(volume)
         edges, loops, _, edge_faces = _topology(k)
         v = np.concatenate([top, bottom], axis=1)
         size = np.sqrt(_dot(v.max(axis=1) - v.min(axis=1), v.max(axis=1) - v.min(axis=1)))
         bad = dev > _PLANAR_REL * size[:, None]
         if bad.any():
             m, f = np.argwhere(bad)[0]
-            face = ("top", "bottom")[f] if f < 2 else f"side face {f - 2}"
-            raise SolidError(f"panel {gids[m]}: its {face} is not planar (corners "
+            raise SolidError(f"panel {gids[m]}: its {_face_name(k, f)} is not planar (corners "
                              f"{dev[m, f]:.3g} from its plane)")
         start = v[:, [a for a, _ in edges]]
         d = v[:, [b for _, b in edges]] - start
@@ -258,7 +268,8 @@ def _solids_text(ids, tops, bottoms):
             surfaces[i] = "".join(["1 %r %r %r %r %r %r %r %r %r %r %r %r\n" % tuple(r)
                                    for r in plane_rows[m]])
     compound = ("Co\n\n1100000\n"
-                + " ".join("+%d 0" % r for r in (total + 1 - before - n_shapes).tolist())
+                + " ".join("%+d 0" % r for r in
+                           (sign * (total + 1 - before - n_shapes)).tolist())
                 + " *\n")
     return "".join([_HEADER, "Curves %d\n" % int(3 * ks.sum())] + curves
                    + ["Polygon3D 0\nPolygonOnTriangulations 0\n",
