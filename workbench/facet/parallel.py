@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Chunks of work in worker processes (nesting, panel solids).
+"""Chunks of work in worker processes (nesting; panel solids and STEP beside it).
 
 Two cores are what the target machines have; libnest2d and OCC release
 nothing to Python threads, so the work goes to plain Python processes
