@@ -622,3 +622,48 @@ def test_cli_panels_writes_step_next_to_the_other_files(tmp_path, facet_command)
     assert data["seconds"]["total"] >= data["seconds"]["nest"]
     assert len(Part.read(str(tmp_path / "p.step")).Solids) == 12
     assert not [f for f in os.listdir(tmp_path) if ".part" in f]
+
+
+def test_step_job_without_a_worker_interpreter_runs_in_this_process(tmp_path, monkeypatch):
+    import facet.parallel
+
+    step = _freecad_step()
+    FreeCAD, Part = step.import_freecad()
+    monkeypatch.setattr(facet.parallel, "python_executable", lambda: None)
+    ps = panels(translational(nu=3, nv=2, step=400.0), 18.0, edge="bisector", gap=4)
+    job = step.start_step(tmp_path / "p.step", ps)
+    assert not job.in_worker and not os.listdir(tmp_path)  # nothing done until wait()
+    seen = []
+    job.wait(progress=lambda d, t: seen.append(d) and False)
+    assert seen[-1] == len(ps.panels) and set(job.seconds) == {"solids", "step"}
+    assert len(Part.read(str(tmp_path / "p.step")).Solids) == len(ps.panels)
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="SIGINT is POSIX")
+def test_ctrl_c_while_the_step_worker_runs_writes_nothing(tmp_path, facet_env):
+    import signal
+    import subprocess
+    import time
+
+    from facet import write_mesh
+
+    _freecad_step()
+    mesh_path = tmp_path / "m.obj"
+    write_mesh(translational(nu=60, nv=60, step=400.0), mesh_path)  # 3,600 panels
+    process = subprocess.Popen(
+        [sys.executable, "-m", "facet", "panels", mesh_path, "--thickness", "18", "--edge",
+         "bisector", "--gap", "4", "--sheet", "2000x1000", "--step", tmp_path / "p.step",
+         "--dxf", tmp_path / "s.dxf"],
+        env=facet_env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    try:
+        time.sleep(3.0)  # nesting and the STEP worker both running
+        assert process.poll() is None, process.communicate()
+        process.send_signal(signal.SIGINT)
+        out, err = process.communicate(timeout=60)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
+    assert process.returncode == 130, err
+    assert sorted(os.listdir(tmp_path)) == ["m.obj"]  # no STEP, no part of one, no DXF

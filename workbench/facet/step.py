@@ -471,13 +471,21 @@ class StepJob:
         except WorkerError as exc:
             self._result = ("worker", str(exc))
 
+    def _cleanup(self):
+        """Remove what a stopped worker left: its file and write_step's own
+        temporary one (a killed worker cleans nothing up)."""
+        import glob
+
+        for leftover in [self._tmp] + glob.glob(glob.escape(self._tmp) + ".tmp*.step"):
+            if os.path.exists(leftover):
+                os.remove(leftover)
+
     def cancel(self):
         """Stop the worker; nothing is written."""
         self._cancel.set()
         if self._thread is not None:
             self._thread.join()
-        if os.path.exists(self._tmp):
-            os.remove(self._tmp)
+        self._cleanup()
 
     def wait(self, progress=None):
         """Wait for the file; ``progress(done, total)`` (0 or 1 of 1)
@@ -503,6 +511,8 @@ class StepJob:
                 self.cancel()
                 raise Cancelled("STEP cancelled")
         result = self._result
+        if result[0] != "ok":
+            self._cleanup()
         if result[0] == "ok":
             self.seconds = result[1]
             os.replace(self._tmp, self.path)
