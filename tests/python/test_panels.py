@@ -667,3 +667,16 @@ def test_ctrl_c_while_the_step_worker_runs_writes_nothing(tmp_path, facet_env):
             process.communicate()
     assert process.returncode == 130, err
     assert sorted(os.listdir(tmp_path)) == ["m.obj"]  # no STEP, no part of one, no DXF
+
+
+def test_panel_solids_check_convex_outlines_without_shapely(monkeypatch):
+    import shapely.geometry
+
+    step = _freecad_step()
+    ps = panels(translational(nu=6, nv=5, step=400.0), 18.0, edge="bisector", gap=4)
+    calls = []
+    polygon = shapely.geometry.Polygon
+    monkeypatch.setattr(shapely.geometry, "Polygon",
+                        lambda *a, **k: calls.append(1) or polygon(*a, **k))
+    assert len(step.panel_solids(ps)) == len(ps.panels)
+    assert calls == []  # top and bottom found convex (and so simple) by their turns

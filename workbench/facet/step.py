@@ -172,7 +172,9 @@ def _simple_rings(ids, rings, planes):
     from shapely.geometry import Polygon
 
     k = rings[0].shape[1]
-    for f, name, ring in ((k + 1, "top", rings[0]), (0, "bottom", rings[1])):
+    # each ring in the order that turns counter-clockwise about its face's
+    # normal (the bottom's normal was taken from it reversed)
+    for f, name, ring in ((k + 1, "top", rings[0]), (0, "bottom", rings[1][:, ::-1])):
         c, n, x, y = (planes[:, f, 3 * i:3 * i + 3] for i in range(4))
         rel = ring - c[:, None, :]
         flat = np.stack([_dot(rel, x[:, None, :]), _dot(rel, y[:, None, :])], axis=2)
