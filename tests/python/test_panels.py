@@ -205,6 +205,41 @@ def test_label_point_matches_polylabel():
     assert depth == pytest.approx(Polygon(poly).exterior.distance(ref), rel=0.02)
 
 
+@pytest.mark.parametrize("edge, offset", [("bisector", "outer"), ("bisector", "inner"),
+                                          ("square", "center")])
+def test_convex_footprints_and_labels_match_the_general_ones(edge, offset):
+    from shapely.geometry import Polygon
+
+    from facet.unfold import _convex, _convex_footprints, _edge_distance, _inside, label_points
+
+    ps = panels(translational(nu=6, nv=5, step=400.0), 18.0, edge=edge, offset=offset, gap=4)
+    feet = _convex_footprints(ps.panels)
+    assert all(f is not None for f in feet)  # every panel here is convex
+    for p, f in zip(ps.panels, feet):
+        general = p.footprint()
+        fast = Polygon(f)
+        assert fast.is_valid
+        assert fast.symmetric_difference(general).area <= 1e-12 * general.area
+    # the convex depth is the general one
+    outlines = [p.flat_bottom for p in ps.panels]
+    poly = np.array(outlines)
+    assert _convex(poly).all()
+    for (xy, depth), o in zip(label_points(outlines), outlines):
+        pts = np.array([[xy]])
+        assert _inside(o[None], pts)[0, 0]
+        assert depth == pytest.approx(_edge_distance(o[None], pts)[0, 0], rel=1e-12)
+
+
+def test_concave_panels_keep_the_general_footprint():
+    from facet.unfold import _convex_footprints
+
+    class P:
+        flat_bottom = np.array([[0, 0], [10, 0], [10, 2], [3, 2], [3, 8], [0, 8.0]])
+        flat_top = flat_bottom
+
+    assert _convex_footprints([P()]) == [None]
+
+
 def test_unfold_labels_inside_and_bevel_texts():
     from shapely.geometry import Point, Polygon
 
@@ -428,26 +463,88 @@ def test_step_says_clearly_when_freecad_is_missing(monkeypatch):
     assert not isinstance(info.value, facet.InputError)  # exit 1 on the command line, not 2
 
 
-def test_panel_solids_in_worker_processes_match_the_serial_ones(monkeypatch):
+def _freecad_step():
     import facet.step as step
 
     try:
         step.import_freecad()
     except step.FreeCADMissing:
         pytest.skip("FreeCAD is not installed")
+    return step
+
+
+def test_panel_solids_are_valid_closed_polyhedra_in_chunks(monkeypatch):
+    step = _freecad_step()
     ps = panels(translational(nu=6, nv=5, step=400.0), 18.0, edge="bisector", gap=4)
-    monkeypatch.setattr(step, "_SOLID_CHUNK", 7)  # 30 panels: 5 chunks
-    serial = step.panel_solids(ps, workers=1)
+    monkeypatch.setattr(step, "_SOLID_CHUNK", 7)  # 30 panels: 5 texts read
     seen = []
-    parallel = step.panel_solids(ps, workers=2, progress=lambda d, t: seen.append(d) and False)
-    assert [i for i, _ in parallel] == [p.id for p in ps.panels] == [i for i, _ in serial]
-    for (_, a), (_, b), p in zip(serial, parallel, ps.panels):
-        assert b.isValid()
-        assert b.Volume == pytest.approx(a.Volume, rel=1e-12)
-        assert b.Volume == pytest.approx(p.volume, rel=1e-9)
-    assert seen and max(seen) == len(ps.panels)
+    solids = step.panel_solids(ps, progress=lambda d, t: seen.append(d) and False)
+    assert [i for i, _ in solids] == [p.id for p in ps.panels]
+    assert seen == [7, 14, 21, 28, 30]
+    for (_, s), p in zip(solids, ps.panels):
+        k = len(p.top)
+        assert s.isValid() and s.ShapeType == "Solid"
+        assert len(s.Faces) == k + 2 and len(s.Edges) == 3 * k and len(s.Vertexes) == 2 * k
+        assert s.Shells[0].isClosed()
+        assert s.Volume == pytest.approx(p.volume, rel=1e-9)  # positive: faces point out
+        corners = sorted((round(v.X, 6), round(v.Y, 6), round(v.Z, 6)) for v in s.Vertexes)
+        assert corners == sorted(tuple(round(float(c), 6) for c in q)
+                                 for q in np.vstack([p.top, p.bottom]))
+    fast = step.panel_solids(ps, brepcheck=False)
+    assert [s.Volume for _, s in fast] == [s.Volume for _, s in solids]
     with pytest.raises(Cancelled):
-        step.panel_solids(ps, workers=2, progress=lambda d, t: True)
+        step.panel_solids(ps, progress=lambda d, t: True)
+
+
+def test_panel_solids_of_reversed_rings_still_face_outwards():
+    step = _freecad_step()
+    ps = panels(translational(nu=3, nv=2, step=400.0), 18.0, edge="bisector", gap=4)
+    p = ps.panels[0]
+    a = step.panel_solid(p)
+    p.top, p.bottom = p.top[::-1].copy(), p.bottom[::-1].copy()
+    b = step.panel_solid(p)
+    assert b.isValid() and a.Volume > 0
+    assert b.Volume == pytest.approx(a.Volume, rel=1e-12)
+
+
+@pytest.mark.parametrize("spoil, message", [
+    (lambda t, b: t.__setitem__((0, 2), t[0, 2] + 5.0), "is not planar"),
+    (lambda t, b: t.__setitem__(0, np.nan), "a corner is not finite"),
+    (lambda t, b: b.__setitem__(slice(None), t), "edge 8 of its solid has no length"),
+])
+def test_panel_solids_refuse_outlines_that_bound_no_solid(spoil, message):
+    step = _freecad_step()
+    ps = panels(translational(nu=3, nv=2, step=400.0), 18.0)
+    p = ps.panels[4]
+    top, bottom = p.top.copy(), p.bottom.copy()
+    spoil(top, bottom)
+    p.top, p.bottom = top, bottom
+    with pytest.raises(step.SolidError, match=message) as info:
+        step.panel_solids(ps)
+    assert str(info.value).startswith(f"panel {p.id}: ")
+
+
+@pytest.mark.parametrize("top, bottom, message", [
+    # a side face whose top edge runs against its bottom edge (every face planar)
+    ([(4, 0, 1), (0, 0, 1), (0, 3, 1), (4, 3, 1)], [(0, 0, 0), (4, 0, 0), (4, 3, 0), (0, 3, 0)],
+     "side face 0 is twisted"),
+    ([(0, 0, 1), (4, 0, 1), (4, 0, 1), (0, 3, 1)], [(0, 0, 0), (4, 0, 0), (4, 0, 0), (0, 3, 0)],
+     "edge 1 of its solid has no length"),
+    ([(0, 0, 1), (6, 0, 1), (0, 3, 1), (2, 3, 1)], [(0, 0, 0), (6, 0, 0), (0, 3, 0), (2, 3, 0)],
+     "outline crosses itself"),
+])
+def test_panel_solids_refuse_degenerate_panels(top, bottom, message):
+    step = _freecad_step()
+
+    class Panel:
+        id = "P-X"
+
+    class Set:
+        panels = [Panel()]
+
+    Set.panels[0].top, Set.panels[0].bottom = np.array(top, float), np.array(bottom, float)
+    with pytest.raises(step.SolidError, match=message):
+        step.panel_solids(Set)
 
 
 def test_half_turn_symmetric_parts_skip_the_redundant_rotations():
@@ -469,3 +566,117 @@ def test_half_turn_symmetric_parts_skip_the_redundant_rotations():
                                [250, 0.0]]) for k in range(10)}
     r = nest(ells, (1000, 700), margin=5, spacing=4, rotations="90", workers=1)
     assert verify(r, ells) == [] and not r.unplaced
+
+
+# ---- solids and STEP in a worker process -----------------------------------
+
+def test_step_job_writes_the_solids_in_a_worker_while_this_process_goes_on(tmp_path):
+    step = _freecad_step()
+    FreeCAD, Part = step.import_freecad()
+    ps = panels(translational(nu=4, nv=3, step=400.0), 18.0, edge="bisector", gap=4)
+    path = tmp_path / "p.step"
+    job = step.start_step(path, ps)
+    assert job.in_worker
+    assert job.wait() == str(path)
+    assert set(job.seconds) == {"solids", "step"}
+    assert os.listdir(tmp_path) == ["p.step"]  # no temporary file left
+    back = Part.read(str(path))
+    assert len(back.Solids) == len(ps.panels)
+    got = sorted(s.Volume for s in back.Solids)
+    assert got == pytest.approx(sorted(p.volume for p in ps.panels), rel=1e-9)
+    text = path.read_text()
+    assert all(f"'{p.id}'" in text for p in ps.panels)  # each product named by its ID
+
+
+def test_step_job_cancelled_or_failed_writes_nothing(tmp_path):
+    step = _freecad_step()
+    ps = panels(translational(nu=4, nv=3, step=400.0), 18.0, edge="bisector", gap=4)
+    job = step.start_step(tmp_path / "c.step", ps)
+    job.cancel()
+    assert os.listdir(tmp_path) == []
+    with pytest.raises(Cancelled):
+        step.start_step(tmp_path / "c.step", ps).wait(progress=lambda d, t: True)
+    assert os.listdir(tmp_path) == []
+    p = ps.panels[5]
+    p.top = p.top.copy()
+    p.top[0, 2] += 5.0  # not planar: the worker's SolidError comes back as one
+    with pytest.raises(step.SolidError, match=f"panel {p.id}: its .* is not planar"):
+        step.start_step(tmp_path / "f.step", ps).wait()
+    assert os.listdir(tmp_path) == []
+
+
+def test_cli_panels_writes_step_next_to_the_other_files(tmp_path, facet_command):
+    from facet import write_mesh
+
+    step = _freecad_step()
+    FreeCAD, Part = step.import_freecad()
+    mesh_path = tmp_path / "m.obj"
+    write_mesh(translational(nu=4, nv=3, step=400.0), mesh_path)
+    report = tmp_path / "r.json"
+    done = facet_command("panels", mesh_path, "--thickness", "18", "--edge", "bisector",
+                         "--gap", "4", "--sheet", "2000x1000", "--dxf", tmp_path / "s.dxf",
+                         "--step", tmp_path / "p.step", "--report", report)
+    assert done.returncode == 0, done.stderr
+    data = json.loads(report.read_text())
+    assert {"solids", "step", "step_wait", "total"} <= set(data["seconds"])
+    assert data["seconds"]["total"] >= data["seconds"]["nest"]
+    assert len(Part.read(str(tmp_path / "p.step")).Solids) == 12
+    assert not [f for f in os.listdir(tmp_path) if ".part" in f]
+
+
+def test_step_job_without_a_worker_interpreter_runs_in_this_process(tmp_path, monkeypatch):
+    import facet.parallel
+
+    step = _freecad_step()
+    FreeCAD, Part = step.import_freecad()
+    monkeypatch.setattr(facet.parallel, "python_executable", lambda: None)
+    ps = panels(translational(nu=3, nv=2, step=400.0), 18.0, edge="bisector", gap=4)
+    job = step.start_step(tmp_path / "p.step", ps)
+    assert not job.in_worker and not os.listdir(tmp_path)  # nothing done until wait()
+    seen = []
+    job.wait(progress=lambda d, t: seen.append(d) and False)
+    assert seen[-1] == len(ps.panels) and set(job.seconds) == {"solids", "step"}
+    assert len(Part.read(str(tmp_path / "p.step")).Solids) == len(ps.panels)
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="SIGINT is POSIX")
+def test_ctrl_c_while_the_step_worker_runs_writes_nothing(tmp_path, facet_env):
+    import signal
+    import subprocess
+    import time
+
+    from facet import write_mesh
+
+    _freecad_step()
+    mesh_path = tmp_path / "m.obj"
+    write_mesh(translational(nu=60, nv=60, step=400.0), mesh_path)  # 3,600 panels
+    process = subprocess.Popen(
+        [sys.executable, "-m", "facet", "panels", mesh_path, "--thickness", "18", "--edge",
+         "bisector", "--gap", "4", "--sheet", "2000x1000", "--step", tmp_path / "p.step",
+         "--dxf", tmp_path / "s.dxf"],
+        env=facet_env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    try:
+        time.sleep(3.0)  # nesting and the STEP worker both running
+        assert process.poll() is None, process.communicate()
+        process.send_signal(signal.SIGINT)
+        out, err = process.communicate(timeout=60)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
+    assert process.returncode == 130, err
+    assert sorted(os.listdir(tmp_path)) == ["m.obj"]  # no STEP, no part of one, no DXF
+
+
+def test_panel_solids_check_convex_outlines_without_shapely(monkeypatch):
+    import shapely.geometry
+
+    step = _freecad_step()
+    ps = panels(translational(nu=6, nv=5, step=400.0), 18.0, edge="bisector", gap=4)
+    calls = []
+    polygon = shapely.geometry.Polygon
+    monkeypatch.setattr(shapely.geometry, "Polygon",
+                        lambda *a, **k: calls.append(1) or polygon(*a, **k))
+    assert len(step.panel_solids(ps)) == len(ps.panels)
+    assert calls == []  # top and bottom found convex (and so simple) by their turns

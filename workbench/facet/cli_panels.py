@@ -100,18 +100,18 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
     """Everything ``facet panels`` does, as a function (also used by the
     benchmark). Returns (report dict, PanelSet, drawings, NestResult or None).
 
-    ``progress(stage, done, total)`` returning True cancels. ``panel_set``
+    ``progress(stage, done, total)`` returning True cancels. With ``step``
+    (and no ``solids``) the solids and the STEP file are made in a worker
+    process while the other stages run (:func:`facet.step.start_step`);
+    their times in the report are the worker's, and ``total`` is the wall
+    clock of the whole. ``panel_set``
     (a facet PanelSet already computed from ``mesh`` with these options) and
     ``solids`` (its [(id, Part.Solid)], for STEP) are reused when given.
     Parts that fit on no sheet raise :class:`facet.errors.InputError`
     (nothing written) unless `allow_unplaced` is true.
     """
     from facet.errors import InputError
-    from facet.cutsheets import (schedule_rows, write_dxf, write_png, write_schedule_csv,
-                                 write_schedule_json, write_svg)
-    from facet.nest import nest
     from facet.panels import panels
-    from facet.unfold import unfold
 
     if dxf and sheet is None:
         raise InputError("--dxf needs --sheet WxH (the DXF holds nested sheets)")
@@ -128,13 +128,41 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
         return lambda done, total: progress(stage, done, total)
 
     times = {}
-    t = time.perf_counter()
+    t_start = t = time.perf_counter()
     if panel_set is not None:
         ps = panel_set
     else:
         ps = panels(mesh, thickness, offset=offset, gap=gap, edge=edge, flip=flip, ids=ids,
                     prefix=prefix, tol=tol, tol_abs=tol_abs, progress=stage_progress("panels"))
     times["panels"] = time.perf_counter() - t
+    job = None
+    if step and (solids is None or len(solids) != len(ps.panels)):
+        from facet.step import start_step
+
+        # solids and STEP do not depend on the rest: a worker process makes
+        # them while this one unfolds, nests and writes the DXF
+        job = start_step(step, ps)
+    try:
+        return _rest_of_pipeline(
+            mesh, ps, job, times, t_start, sheet=sheet, margin=margin, spacing=spacing,
+            rotations=rotations, grain=grain, dxf=dxf, per_sheet=per_sheet, step=step,
+            schedule=schedule, svg=svg, png=png, allow_unplaced=allow_unplaced,
+            solids=solids, stage_progress=stage_progress)
+    except BaseException:
+        if job is not None:
+            job.cancel()
+        raise
+
+
+def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,
+                      dxf, per_sheet, step, schedule, svg, png, allow_unplaced, solids,
+                      stage_progress):
+    from facet.cutsheets import (schedule_rows, write_dxf, write_png, write_schedule_csv,
+                                 write_schedule_json, write_svg)
+    from facet.errors import InputError
+    from facet.nest import nest
+    from facet.unfold import unfold
+
     t = time.perf_counter()
     drawings = unfold(ps, grain=grain)
     times["unfold"] = time.perf_counter() - t
@@ -174,17 +202,23 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
         t = time.perf_counter()
         files["png"] = write_png(png, result, drawings)
         times["png"] = time.perf_counter() - t
-    if step:
-        from facet.step import panel_solids, write_step
-
+    if job is not None:
         t = time.perf_counter()
-        if solids is None or len(solids) != len(ps.panels):
-            solids = panel_solids(ps, progress=stage_progress("solids"))
-        times["solids"] = time.perf_counter() - t
+        job.wait(progress=stage_progress("step"))
+        times["step_wait"] = time.perf_counter() - t
+        # the worker's own times, overlapping the stages above
+        times["solids"] = job.seconds["solids"]
+        times["step"] = job.seconds["step"]
+        files["step"] = [step]
+    elif step:
+        from facet.step import write_step
+
+        times["solids"] = 0.0  # reused
         t = time.perf_counter()
         write_step(step, solids)
         times["step"] = time.perf_counter() - t
         files["step"] = [step]
+    times["total"] = time.perf_counter() - t_start
 
     report = {
         "kind": "panels",

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Chunks of work in worker processes (nesting, panel solids).
+"""Chunks of work in worker processes (nesting; panel solids and STEP beside it).
 
 Two cores are what the target machines have; libnest2d and OCC release
 nothing to Python threads, so the work goes to plain Python processes
@@ -45,11 +45,14 @@ def python_executable():
     return None
 
 
-def default_workers():
-    """min(MAX_WORKERS, CPUs), or 1 when no interpreter is found."""
+def default_workers(per_cpu=1, maximum=MAX_WORKERS):
+    """min(maximum, per_cpu x CPUs), or 1 when no interpreter is found.
+
+    More than one per CPU pays where a worker waits much of its time (as
+    libnest2d's do, on the threads it starts and joins)."""
     if python_executable() is None:
         return 1
-    return max(1, min(MAX_WORKERS, os.cpu_count() or 1))
+    return max(1, min(int(maximum), int(per_cpu * (os.cpu_count() or 1))))
 
 
 def run_chunks(function, chunks, settings, workers, progress=None, weights=None):

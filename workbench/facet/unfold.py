@@ -100,6 +100,27 @@ def _edge_distance(poly, pts):
     return np.sqrt(np.min(np.sum((p - q) ** 2, axis=3), axis=2))
 
 
+def _convex(poly):
+    """(P, k, 2) -> (P,) bool: counter-clockwise, strictly convex outlines
+    (every turn to the left, once around)."""
+    d = np.roll(poly, -1, axis=1) - poly
+    dn = np.roll(d, -1, axis=1)
+    cross = d[..., 0] * dn[..., 1] - d[..., 1] * dn[..., 0]
+    turn = np.arctan2(cross, np.sum(d * dn, axis=2))
+    return (cross > 0).all(axis=1) & (np.abs(turn.sum(axis=1) - 2 * np.pi) < 1e-6)
+
+
+def _convex_depth(poly, pts):
+    """Distance of points (P, m, 2) from convex counter-clockwise outlines
+    (P, k, 2) when inside, else -1: the smallest distance to an edge's line."""
+    d = np.roll(poly, -1, axis=1) - poly
+    normal = np.stack([d[..., 1], -d[..., 0]], axis=2)  # outward
+    normal /= np.maximum(np.sqrt(np.sum(normal * normal, axis=2)), 1e-300)[..., None]
+    offset = np.sum(normal * poly, axis=2)  # (P, k)
+    depth = (offset[:, None, :] - np.einsum("pmi,pki->pmk", pts, normal)).min(axis=2)
+    return np.where(depth > 0, depth, -1.0)
+
+
 def label_points(outlines, rounds=4, n=16):
     """The point inside each outline farthest from its edges (the pole of
     inaccessibility, as shapely's polylabel finds it), by a grid search
@@ -129,10 +150,18 @@ def label_points(outlines, rounds=4, n=16):
             centre, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
             best = poly.mean(axis=1)
             depth = np.full(len(idx), -1.0)
+            # inside a convex outline the distance to the outline is the
+            # smallest distance to an edge's line: much cheaper
+            convex = _convex(poly)
             for _ in range(rounds):
                 pts = centre[:, None, :] + grid[None, :, :] * half[:, None, :]
-                inside = _inside(poly, pts)
-                dist = np.where(inside, _edge_distance(poly, pts), -1.0)
+                dist = np.empty(pts.shape[:2])
+                if convex.any():
+                    dist[convex] = _convex_depth(poly[convex], pts[convex])
+                if not convex.all():
+                    other = ~convex
+                    inside = _inside(poly[other], pts[other])
+                    dist[other] = np.where(inside, _edge_distance(poly[other], pts[other]), -1.0)
                 j = np.argmax(dist, axis=1)
                 found = dist[np.arange(len(idx)), j]
                 better = found > depth
@@ -148,6 +177,48 @@ def label_points(outlines, rounds=4, n=16):
 def label_point(outline, rounds=4, n=16):
     """:func:`label_points` for one outline: ((x, y), depth)."""
     return label_points([outline], rounds, n)[0]
+
+
+def _convex_footprints(panels):
+    """The footprint (what :meth:`facet.panels.Panel.footprint` gives) of each
+    panel whose flat top and bottom are convex, vectorised; None for the
+    others.
+
+    The solid of such a panel is convex, so its footprint is the convex hull
+    of its corners: along each edge the outer of the top edge and the bottom
+    edge (they are parallel: the side face is planar and meets two parallel
+    planes), and where the next edge's outer line is on the other face, the
+    side edge between them. Returns a list of (m, 2) arrays or None.
+    """
+    out = [None] * len(panels)
+    groups = {}
+    for i, p in enumerate(panels):
+        groups.setdefault(len(p.flat_bottom), []).append(i)
+    for k, idx in groups.items():
+        bottom = np.array([panels[i].flat_bottom for i in idx], dtype=float).reshape(-1, k, 2)
+        top = np.array([panels[i].flat_top for i in idx], dtype=float).reshape(-1, k, 2)
+        if top.shape != bottom.shape:
+            continue
+        scale = np.maximum(np.abs(bottom).max(axis=(1, 2)), 1.0)
+        db = np.roll(bottom, -1, axis=1) - bottom
+        dt = np.roll(top, -1, axis=1) - top
+        lb = np.sqrt(np.sum(db * db, axis=2))
+        lt = np.sqrt(np.sum(dt * dt, axis=2))
+        parallel = (np.abs(db[..., 0] * dt[..., 1] - db[..., 1] * dt[..., 0])
+                    <= 1e-9 * lb * lt) & (np.sum(db * dt, axis=2) > 0)
+        ok = _convex(bottom) & _convex(top) & parallel.all(axis=1)
+        normal = np.stack([db[..., 1], -db[..., 0]], axis=2) / np.maximum(lb, 1e-300)[..., None]
+        # the top's edge is the outer one where it lies farther out
+        use_top = (np.sum(normal * (top - bottom), axis=2) > 1e-9 * scale[:, None])
+        prev_top = np.roll(use_top, 1, axis=1)  # the edge ending at corner j
+        for m in np.flatnonzero(ok):
+            pts = []
+            for j in range(k):
+                pts.append(top[m, j] if prev_top[m, j] else bottom[m, j])
+                if use_top[m, j] != prev_top[m, j]:
+                    pts.append(top[m, j] if use_top[m, j] else bottom[m, j])
+            out[idx[m]] = np.array(pts)
+    return out
 
 
 def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
@@ -193,13 +264,16 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
             angle = math.atan2(gl[1], gl[0])
         angles.append(angle)
     labels = label_points([_rot(p.flat_bottom, a) for p, a in zip(panel_set.panels, angles)])
-    for p, angle, ((lx, ly), depth) in zip(panel_set.panels, angles, labels):
+    convex_feet = _convex_footprints(panel_set.panels)
+    for p, angle, ((lx, ly), depth), fp in zip(panel_set.panels, angles, labels, convex_feet):
         cut = _rot(p.flat_bottom, angle)
         top = _rot(p.flat_top, angle)
-        fp = p.footprint()
-        if fp.geom_type != "Polygon":
-            fp = fp.convex_hull
-        foot = _ccw(_rot(np.asarray(fp.exterior.coords)[:-1], angle))
+        if fp is None:
+            fp = p.footprint()
+            if fp.geom_type != "Polygon":
+                fp = fp.convex_hull
+            fp = np.asarray(fp.exterior.coords)[:-1]
+        foot = _ccw(_rot(fp, angle))
         area = 0.5 * abs(np.dot(cut[:, 0], np.roll(cut[:, 1], -1)) -
                          np.dot(cut[:, 1], np.roll(cut[:, 0], -1)))
         h = label_height if label_height is not None else 0.1 * math.sqrt(area)

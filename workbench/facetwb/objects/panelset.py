@@ -147,16 +147,15 @@ class PanelSet(_Proxy):
     def execute(self, obj):
         import Part
 
-        from facet.step import panel_solid
+        from facet.step import SolidError, panel_solids
 
         self._cache = None
         ps = self.panel_set(obj)
-        solids = []
-        for p in ps.panels:
-            solid = panel_solid(p, Part, App)
-            if not solid.isValid():
-                raise ValueError(f"{obj.Label}: panel {p.id} is not a valid solid")
-            solids.append(solid)
+        try:
+            # every solid checked by BRepCheck (brepcheck=True)
+            solids = [s for _, s in panel_solids(ps, brepcheck=True)]
+        except SolidError as exc:
+            raise ValueError(f"{obj.Label}: {exc}") from None
         obj.Shape = Part.makeCompound(solids)
         obj.PartIds = [p.id for p in ps.panels]
         obj.PanelCount = len(ps.panels)
