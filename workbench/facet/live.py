@@ -1,0 +1,300 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Edit and observe: move control vertices and re-planarize at interactive rates.
+
+A :class:`LiveSolver` keeps one :class:`facet.Planarizer` alive for a control
+mesh. The designer picks a vertex; :func:`soft_weights` spreads the move over
+its neighbours within a radius (soft selection); every frame of a drag runs a
+*warm* re-solve limited to a time budget (:meth:`LiveSolver.frame`), so the
+result follows the hand and keeps converging while the hand rests; when the
+drag ends, :meth:`LiveSolver.settle` solves to the full tolerance.
+
+The solver never touches the caller's mesh: the control positions live in
+:attr:`LiveSolver.control` (a copy).
+
+>>> live = LiveSolver(mesh)                           # doctest: +SKIP
+>>> live.begin_drag(17, radius=2.0, falloff="smooth")  # doctest: +SKIP
+>>> live.drag([0.0, 0.0, 0.3])                         # doctest: +SKIP
+>>> result = live.frame()                              # doctest: +SKIP
+>>> live.end_drag(); final = live.settle()             # doctest: +SKIP
+"""
+
+import math
+
+import numpy as np
+
+from facet.errors import InputError
+from facet.planarize import METHODS, Planarizer
+
+__all__ = ["FALLOFFS", "EditError", "LiveSolver", "soft_weights"]
+
+#: Soft-selection falloff curves, weight as a function of t = distance / radius
+#: in [0, 1]: smooth (1 - 3t^2 + 2t^3, flat at the picked vertex and at the
+#: rim), linear (1 - t), constant (1 inside the radius).
+FALLOFFS = ("smooth", "linear", "constant")
+
+#: Seconds of solving per drag frame (the rest of a 33 ms frame is for the
+#: scene update and the redraw).
+FRAME_SECONDS = 0.015
+
+
+class EditError(InputError):
+    """A live-edit input cannot be used (vertex index, radius, falloff, move)."""
+
+
+def soft_weights(vertices, center, radius, falloff="smooth"):
+    """Weights with which the vertices follow a move of vertex ``center``.
+
+    Parameters
+    ----------
+    vertices : array_like (n, 3)
+        Positions the distances are measured at (the control mesh at the start
+        of the drag).
+    center : int
+        The picked vertex; its weight is 1.
+    radius : float
+        Vertices closer than this (straight-line distance, model units) move
+        too; 0 moves the picked vertex alone.
+    falloff : {"smooth", "linear", "constant"}
+        How the weight falls from 1 at the picked vertex to 0 at the radius.
+
+    Returns
+    -------
+    numpy.ndarray (n,)
+        Weights in [0, 1].
+
+    Raises
+    ------
+    EditError
+        When the vertex is out of range, the radius negative or not finite, or
+        the falloff unknown.
+    """
+    xyz = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
+    n = xyz.shape[0]
+    center = _vertex_index(center, n)
+    radius = _radius(radius)
+    if falloff not in FALLOFFS:
+        raise EditError(f"falloff must be one of {', '.join(FALLOFFS)}, not {falloff!r}")
+    weights = np.zeros(n)
+    if radius > 0.0:
+        # Distances relative to the radius: the same weights in mm, m or georeferenced
+        # coordinates (the difference is taken before squaring).
+        t = np.linalg.norm((xyz - xyz[center]) / radius, axis=1)
+        inside = t < 1.0
+        ti = t[inside]
+        if falloff == "smooth":
+            weights[inside] = 1.0 - ti * ti * (3.0 - 2.0 * ti)
+        elif falloff == "linear":
+            weights[inside] = 1.0 - ti
+        else:
+            weights[inside] = 1.0
+    weights[center] = 1.0
+    return weights
+
+
+def _vertex_index(vertex, n):
+    try:
+        index = int(vertex)
+    except (TypeError, ValueError):
+        raise EditError(f"vertex must be an index, not {vertex!r}") from None
+    if index != vertex or not 0 <= index < n:
+        raise EditError(f"vertex {vertex} is out of range ({n} vertices)")
+    return index
+
+
+def _radius(radius):
+    try:
+        value = float(radius)
+    except (TypeError, ValueError):
+        raise EditError(f"radius must be a length, not {radius!r}") from None
+    if not math.isfinite(value) or value < 0.0:
+        raise EditError(f"radius must be 0 or a positive length, not {radius!r}")
+    return value
+
+
+class LiveSolver:
+    """A planarization that follows edits of the control mesh.
+
+    Parameters
+    ----------
+    mesh : facet.PolyMesh
+        The control mesh (topology and starting positions; not modified).
+    method : {"lg", "ll"}
+        Scheme of the final solve (:meth:`settle`).
+    live_method : {"lg", "ll"}
+        Scheme of the drag frames (default "ll": many cheap iterations fit in
+        a frame, one L/G iteration of a 10k-face mesh nearly fills it).
+    tol, tol_abs, max_iter, threads
+        As :meth:`facet.Planarizer.solve`, for :meth:`settle` and as the goal
+        of the frames.
+    frame_seconds : float
+        Solve time per frame (:data:`FRAME_SECONDS`): the frames run as many
+        iterations as the last ones took in that time (at least one).
+    frame_threads : int
+        Threads of the frames (default 1: a frame's few short iterations lose
+        more to waking threads than they gain; measured at 10k faces on a
+        loaded 2-core machine, 1 thread 22 ms a frame, 2 threads 220 ms).
+    result : facet.PlanarizeResult, optional
+        A solution of ``mesh`` to start the frames from (e.g. the planarized
+        object the designer is looking at). Default: solved here.
+    **options
+        Terms and data options of :meth:`facet.Planarizer.solve` (``data``,
+        ``fixed``, ``boundary``...), used by every solve.
+    """
+
+    def __init__(self, mesh, *, method="lg", live_method="ll", tol=1e-6, tol_abs=None,
+                 max_iter=None, threads=None, frame_seconds=FRAME_SECONDS, frame_threads=1,
+                 result=None,
+                 progress=None, **options):
+        for name, value in (("method", method), ("live_method", live_method)):
+            if value not in METHODS:
+                raise EditError(f"{name} must be one of {', '.join(METHODS)}, not {value!r}")
+        frame_seconds = float(frame_seconds)
+        if not math.isfinite(frame_seconds) or frame_seconds <= 0.0:
+            raise EditError(f"frame_seconds must be a positive time, not {frame_seconds!r}")
+        options.pop("time_budget", None)  # frames are sized by frame_seconds instead
+        self.method = method
+        self.live_method = live_method
+        self.frame_seconds = frame_seconds
+        self.frame_threads = int(frame_threads or 0)
+        self._goal = {"tol": tol, "tol_abs": tol_abs, "threads": threads}
+        self._max_iter = max_iter
+        self._options = options
+        self._planarizer = Planarizer(mesh)
+        self.mesh = mesh
+        self.control = np.array(mesh.vertices, dtype=np.float64)
+        self.original = self.control.copy()
+        self._drag = None
+        self.frames = 0
+        self._iteration_seconds = frame_seconds / 3.0  # first guess; measured by frame()
+        if result is not None and mesh.same_topology(result.mesh):
+            # Start the warm frames from the result the designer sees: one
+            # iteration from it (it is planar already, so it stays where it is)
+            # leaves it as the solver's previous result.
+            self._planarizer.solve(result.mesh.vertices, method=live_method, iterations=1,
+                                   threads=self.frame_threads, **options)
+            self._set_result(result)
+        else:
+            self._solve(warm=False, method=method, progress=progress)
+        self.settled = True
+
+    # --- drags ------------------------------------------------------------------------------
+
+    def begin_drag(self, vertex, radius=0.0, falloff="smooth"):
+        """Start moving ``vertex`` with its neighbours within ``radius``.
+
+        Returns the soft-selection weights (n,)."""
+        weights = soft_weights(self.control, vertex, radius, falloff)
+        moving = np.flatnonzero(weights > 0.0)
+        self._drag = (int(vertex), self.control.copy(), moving, weights[moving])
+        return weights
+
+    @property
+    def dragging(self):
+        """True between :meth:`begin_drag` and :meth:`end_drag`."""
+        return self._drag is not None
+
+    @property
+    def drag_vertex(self):
+        """The picked vertex of the current drag, or None."""
+        return None if self._drag is None else self._drag[0]
+
+    def drag(self, offset):
+        """Move the picked vertex by ``offset`` (from where the drag began) and
+        its neighbours by their weights. Returns the indices of the vertices
+        that moved."""
+        if self._drag is None:
+            raise EditError("drag() without begin_drag(): pick a vertex first")
+        delta = np.asarray(offset, dtype=np.float64).reshape(-1)
+        if delta.shape != (3,) or not np.all(np.isfinite(delta)):
+            raise EditError(f"the move must be three finite numbers, not {offset!r}")
+        _vertex, base, moving, weights = self._drag
+        self.control[moving] = base[moving] + weights[:, None] * delta
+        self.settled = False
+        return moving
+
+    def drag_to(self, position):
+        """Move the picked vertex to ``position`` (see :meth:`drag`)."""
+        if self._drag is None:
+            raise EditError("drag_to() without begin_drag(): pick a vertex first")
+        target = np.asarray(position, dtype=np.float64).reshape(-1)
+        if target.shape != (3,):
+            raise EditError(f"the position must be three numbers, not {position!r}")
+        vertex, base = self._drag[0], self._drag[1]
+        return self.drag(target - base[vertex])
+
+    def end_drag(self):
+        """End the current drag (the moved control positions stay)."""
+        self._drag = None
+
+    def set_control(self, vertices):
+        """Replace all control positions (e.g. restore them)."""
+        xyz = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
+        if xyz.shape != self.control.shape or not np.all(np.isfinite(xyz)):
+            raise EditError(f"control positions must be {self.control.shape[0]} finite points")
+        self.control[:] = xyz
+        self._drag = None
+        self.settled = False
+
+    @property
+    def moved(self):
+        """True if a control vertex differs from where the session started."""
+        return not np.array_equal(self.control, self.original)
+
+    # --- solves ----------------------------------------------------------------------------
+
+    def frame(self):
+        """One drag frame: a warm re-solve of the current control positions that
+        fits in about :attr:`frame_seconds`. Returns the PlanarizeResult (maybe
+        short of the tolerance: later frames continue from it).
+
+        The warm start is predicted: the previous result moved by the same
+        offsets as the control vertices since then, so the planar result
+        follows the hand at once and the iterations only restore planarity
+        (a warm start from the previous result alone barely moves: its small
+        first penalty weight keeps it at the old planar solution)."""
+        moved = self.control - self._result_control
+        if np.any(moved):
+            start = np.ascontiguousarray(self.result.mesh.vertices + moved)
+            # One iteration from the predicted positions leaves them (slightly
+            # flattened) as the solver's previous result: the warm start.
+            self._planarizer._core.solve(  # noqa: SLF001 (same package)
+                start, np.empty_like(start), method=self.live_method, iterations=1,
+                threads=self.frame_threads)
+        count = max(1, int(self.frame_seconds / self._iteration_seconds))
+        if self._max_iter:
+            count = min(count, int(self._max_iter))
+        result = self._solve(warm=True, method=self.live_method, max_iter=count,
+                             threads=self.frame_threads)
+        if result.iterations > 0:
+            per = result.solve_seconds / result.iterations
+            self._iteration_seconds = 0.5 * self._iteration_seconds + 0.5 * per
+        self.frames += 1
+        return result
+
+    @property
+    def converged(self):
+        """True once the last result of the current control positions reached the
+        tolerance."""
+        return bool(self.result.converged)
+
+    def settle(self, progress=None):
+        """Solve the current control positions to the full tolerance with
+        :attr:`method`, warm from the last frame (``progress`` as
+        :meth:`facet.Planarizer.solve`; raises facet.Cancelled)."""
+        self._solve(warm=True, method=self.method, progress=progress)
+        self.settled = True
+        return self.result
+
+    def _solve(self, warm, method, progress=None, max_iter=None, threads=None):
+        goal = dict(self._goal)
+        if threads is not None:
+            goal["threads"] = threads
+        result = self._planarizer.solve(
+            self.control, method=method, warm=warm, max_iter=max_iter or self._max_iter,
+            progress=progress, **goal, **self._options)
+        self._set_result(result)
+        return result
+
+    def _set_result(self, result):
+        self.result = result
+        self._result_control = self.control.copy()
