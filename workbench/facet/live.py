@@ -133,9 +133,9 @@ class LiveSolver:
         Threads of the frames (default 1: a frame's few short iterations lose
         more to waking threads than they gain; measured at 10k faces on a
         loaded 2-core machine, 1 thread 22 ms a frame, 2 threads 220 ms).
-    result : facet.PlanarizeResult, optional
+    result : facet.PlanarizeResult, facet.PolyMesh or array_like (n, 3), optional
         A solution of ``mesh`` to start the frames from (e.g. the planarized
-        object the designer is looking at). Default: solved here.
+        object the designer is looking at). Default: solved here (cold).
     **options
         Terms and data options of :meth:`facet.Planarizer.solve` (``data``,
         ``fixed``, ``boundary``...), used by every solve.
@@ -166,13 +166,18 @@ class LiveSolver:
         self._drag = None
         self.frames = 0
         self._iteration_seconds = frame_seconds / 3.0  # first guess; measured by frame()
-        if result is not None and mesh.same_topology(result.mesh):
+        if result is not None:
+            positions = getattr(result, "mesh", result)
+            positions = np.asarray(getattr(positions, "vertices", positions), dtype=np.float64)
+            if positions.shape != self.control.shape or not np.all(np.isfinite(positions)):
+                raise EditError(f"the result to start from must be {self.control.shape[0]} "
+                                "finite points (the control mesh's vertex count)")
             # Start the warm frames from the result the designer sees: one
             # iteration from it (it is planar already, so it stays where it is)
             # leaves it as the solver's previous result.
-            self._planarizer.solve(result.mesh.vertices, method=live_method, iterations=1,
-                                   threads=self.frame_threads, **options)
-            self._set_result(result)
+            seeded = self._planarizer.solve(positions, method=live_method, iterations=1,
+                                            threads=self.frame_threads, **options)
+            self._set_result(result if hasattr(result, "planarity") else seeded)
         else:
             self._solve(warm=False, method=method, progress=progress)
         self.settled = True

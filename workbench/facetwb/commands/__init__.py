@@ -2,8 +2,8 @@
 """Facet's GUI commands. ``register()`` adds them to FreeCAD (InitGui.py calls it)."""
 
 #: Commands in toolbar and menu order.
-COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize", "Facet_Cleanup",
-            "Facet_PlanGraph", "Facet_Lift", "Facet_LiftMix", "Facet_PanelSet",
+COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_Planarize", "Facet_EditControlMesh",
+            "Facet_Cleanup", "Facet_PlanGraph", "Facet_Lift", "Facet_LiftMix", "Facet_PanelSet",
             "Facet_CutSheets"]
 
 
@@ -12,6 +12,7 @@ def register():
     import FreeCADGui as Gui
 
     from facetwb.commands.cleanup import CommandCleanup
+    from facetwb.commands.edit_control import CommandEditControlMesh
     from facetwb.commands.import_mesh import CommandImportMesh
     from facetwb.commands.lift import CommandLift, CommandLiftMix, CommandPlanGraph
     from facetwb.commands.panels import CommandCutSheets, CommandPanelSet
@@ -22,6 +23,7 @@ def register():
     for name, command in (("Facet_ImportMesh", CommandImportMesh()),
                           ("Facet_ToPolyMesh", CommandToPolyMesh()),
                           ("Facet_Planarize", CommandPlanarize()),
+                          ("Facet_EditControlMesh", CommandEditControlMesh()),
                           ("Facet_Cleanup", CommandCleanup()),
                           ("Facet_PlanGraph", CommandPlanGraph()),
                           ("Facet_Lift", CommandLift()),

@@ -1,0 +1,572 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Edit and observe: drag the control vertices of a Planarized object in the 3D view.
+
+An :class:`EditSession` shows the control mesh of a Planarized object (its ``Source``, a
+PolyMesh) as a wireframe with a marker on every vertex, over the planar result. Press the
+left mouse button on a marker and drag: the vertex moves in the plane through it facing
+the view, its neighbours within the soft-selection radius follow by the falloff weight,
+and the planar result follows in the same view (a :class:`facet.live.LiveSolver` keeps the
+solver alive; a frame re-solves warm for about 15 ms on a worker thread; moves that arrive
+while a frame is solving are merged into the next frame). Releasing the button solves to
+the object's full tolerance. The result is coloured by planarity or by the distance of each
+panel from the control mesh.
+
+Nothing in the document changes while editing: the moved positions live in the session.
+**Done** (the task panel's OK, or Esc in the 3D view) writes them to the control PolyMesh in
+one undoable transaction and recomputes; **Cancel** leaves the control mesh as it was.
+
+Numerics (soft selection, solves, colours) come from ``facet``; this module is wiring:
+Coin nodes, mouse events, a Qt timer and the task panel.
+"""
+
+import threading
+import time
+
+import numpy as np
+from pivy import coin
+
+import FreeCAD as App
+import FreeCADGui as Gui
+
+from facet.live import FALLOFFS, LiveSolver
+from facetwb.objects.planarized import is_planarized, term_options
+from facetwb.objects.polymesh import get_mesh, is_polymesh
+from facetwb.viewproviders import colormap
+
+#: What the result's colours show while editing.
+COLOR_BY = ("Planarity", "Distance to control")
+
+#: Pick radius around a marker, pixels.
+PICK_PIXELS = 12
+
+#: Marker colours: still vertices, vertices moved by the soft selection (scaled by weight).
+MARKER_COLOR = (0.10, 0.10, 0.12)
+SELECTED_COLOR = (1.00, 0.45, 0.00)
+WIRE_COLOR = (0.95, 0.55, 0.10)
+
+#: The running session (one at a time).
+_active = None
+
+
+class EditError(ValueError):
+    """The selection cannot be edited (one line naming the object and why)."""
+
+
+def active_session():
+    """The running EditSession, or None."""
+    return _active
+
+
+def control_of(obj):
+    """``(planarized, control)`` for a Planarized object or the PolyMesh it planarizes.
+
+    Raises EditError when the object has no editable control mesh."""
+    if is_planarized(obj):
+        planarized = obj
+    elif is_polymesh(obj):
+        users = [o for o in obj.InList if is_planarized(o) and o.Source is obj]
+        if not users:
+            raise EditError(f"{obj.Label}: no Planarized object uses it; planarize it first")
+        if len(users) > 1:
+            raise EditError(f"{obj.Label}: {len(users)} Planarized objects use it; select the "
+                            "one to edit")
+        planarized = users[0]
+    else:
+        raise EditError(f"{obj.Label} is not a Planarized object or its control PolyMesh")
+    control = planarized.Source
+    if control is None:
+        raise EditError(f"{planarized.Label}: Source is empty, there is no control mesh")
+    if not is_polymesh(control) or is_planarized(control):
+        raise EditError(f"{planarized.Label}: its Source {control.Label} is not a PolyMesh; "
+                        "convert it with 'To PolyMesh' to edit its vertices")
+    if getattr(control, "Source", None) is not None:
+        raise EditError(f"{control.Label} is rebuilt from {control.Source.Label} on recompute; "
+                        "edit a PolyMesh that holds its own mesh")
+    return planarized, control
+
+
+def solver_settings(planarized, mesh):
+    """LiveSolver keyword arguments from a Planarized object's properties."""
+    return dict(method=planarized.Method, tol=planarized.Tolerance,
+                tol_abs=planarized.ToleranceAbs.Value or None,
+                max_iter=planarized.MaxIterations or None,
+                threads=planarized.Threads or None, **term_options(planarized, mesh))
+
+
+class EditSession:
+    """Interactive editing of one Planarized object's control mesh (see the module doc).
+
+    Parameters
+    ----------
+    obj : App.DocumentObject
+        A Planarized object or its control PolyMesh.
+    view : Gui 3D view, optional
+        Default: the active view.
+    threaded : bool
+        Solve on a worker thread (the 3D view stays responsive); False solves in the
+        event handlers (tests, benchmarks that time each part).
+    """
+
+    def __init__(self, obj, view=None, threaded=True):
+        self.planarized, self.control_obj = control_of(obj)
+        self.view = view or Gui.ActiveDocument.ActiveView
+        self.vobj = self.planarized.ViewObject
+        self.threaded = threaded
+        mesh = get_mesh(self.control_obj)
+        self.mesh = mesh
+        try:
+            shown = get_mesh(self.planarized)
+            start = shown if shown.same_topology(mesh) else None
+        except ValueError:
+            start = None
+        self.live = LiveSolver(mesh, result=start, **solver_settings(self.planarized, mesh))
+        self.edge_length = mesh.mean_edge_length()
+        self.radius = 2.0 * self.edge_length
+        self.falloff = "smooth"
+        self.color_by = COLOR_BY[0]
+        self.plane = None  # (point, normal) of the current drag
+        self.pending = False  # a move arrived while a frame was solving
+        self.worker = None
+        self.worker_result = None
+        self.worker_error = None
+        self.closed = False
+        self.stats = {"frames": 0, "solve": [], "scene": [], "moves": 0}
+        self.listeners = []  # callables(session) told after each shown frame
+        self._build_scene()
+        self._previous_mode = self.vobj.DisplayMode
+        if "Planarity" in self.vobj.getEnumerationsOfProperty("DisplayMode"):
+            self.vobj.DisplayMode = "Planarity"
+        self.vobj.Visibility = True
+        self._callbacks = [
+            (coin.SoMouseButtonEvent.getClassTypeId(), self._on_button),
+            (coin.SoLocation2Event.getClassTypeId(), self._on_move),
+            (coin.SoKeyboardEvent.getClassTypeId(), self._on_key),
+        ]
+        for kind, callback in self._callbacks:
+            self.view.addEventCallbackPivy(kind, callback)
+        self.timer = None
+        if threaded:
+            from PySide import QtCore
+
+            self.timer = QtCore.QTimer()
+            self.timer.setInterval(4)
+            self.timer.timeout.connect(self.poll)
+            self.timer.start()
+        self.show_result(self.live.result)
+
+    # --- scene ----------------------------------------------------------------------------
+
+    def _build_scene(self):
+        self.root = coin.SoSeparator()
+        self.coords = coin.SoCoordinate3()
+        self.root.addChild(self.coords)
+        wire = coin.SoSeparator()
+        unlit = coin.SoLightModel()
+        unlit.model = coin.SoLightModel.BASE_COLOR
+        wire_material = coin.SoMaterial()
+        wire_material.diffuseColor.setValue(*WIRE_COLOR)
+        style = coin.SoDrawStyle()
+        style.lineWidth = 1.5
+        self.wire = coin.SoIndexedLineSet()
+        edges = np.asarray(self.mesh.edges(), dtype=np.int64).reshape(-1, 2)
+        index = np.hstack([edges, np.full((edges.shape[0], 1), -1, dtype=np.int64)]).ravel()
+        _set_field(self.wire.coordIndex, index.tolist())
+        for node in (unlit, wire_material, style, self.wire):
+            wire.addChild(node)
+        self.root.addChild(wire)
+        markers = coin.SoSeparator()
+        binding = coin.SoMaterialBinding()
+        binding.value = coin.SoMaterialBinding.PER_VERTEX
+        self.marker_material = coin.SoMaterial()
+        # Points, not an SoMarkerSet: one draw call for all of them (markers are drawn one
+        # bitmap at a time: seconds per frame at 10k vertices with software OpenGL).
+        point_style = coin.SoDrawStyle()
+        point_style.pointSize = 5.0
+        self.markers = coin.SoPointSet()
+        for node in (unlit, binding, self.marker_material, point_style, self.markers):
+            markers.addChild(node)
+        self.root.addChild(markers)
+        self._set_control_coords()
+        self._color_markers(None)
+        self.view.getSceneGraph().addChild(self.root)
+
+    def _set_control_coords(self):
+        _set_field(self.coords.point, self.live.control)
+
+    def _color_markers(self, weights):
+        n = self.mesh.n_vertices
+        if weights is None:
+            rgb = np.tile(MARKER_COLOR, (n, 1))
+        else:
+            w = np.asarray(weights)[:, None]
+            rgb = (1.0 - w) * np.asarray(MARKER_COLOR) + w * np.asarray(SELECTED_COLOR)
+        _set_field(self.marker_material.diffuseColor, rgb)
+
+    def face_values(self, result):
+        """Per-face values of the colour map and the legend title."""
+        if self.color_by == "Distance to control":
+            distance = np.linalg.norm(result.mesh.vertices - self.live.control, axis=1)
+            per_corner = distance[self.mesh.face_vertices]
+            return np.maximum.reduceat(per_corner, self.mesh.face_start[:-1]), \
+                "Distance to control"
+        return np.asarray(result.planarity.max_abs, dtype=np.float64), "Planarity"
+
+    def show_result(self, result):
+        """Draw ``result`` in the Planarized object's nodes (coordinates and colours in
+        bulk; the document is not touched)."""
+        t0 = time.perf_counter()
+        proxy = self.vobj.Proxy
+        _set_field(proxy.coords.point, result.mesh.vertices)
+        values, title = self.face_values(result)
+        if getattr(proxy, "face_count", 0) == values.size:
+            legend_max = self.vobj.LegendMax.Value if hasattr(self.vobj, "LegendMax") else 0.0
+            top = float(values.max()) if values.size else 0.0
+            scale = legend_max if legend_max > 0.0 else top
+            _set_field(proxy.planarity_material.diffuseColor, colormap.colors(values, scale))
+            proxy.legend.update(scale, actual_max=top, title=title, kind="length")
+        self.stats["scene"].append(time.perf_counter() - t0)
+        self.stats["frames"] += 1
+        for listener in list(self.listeners):
+            listener(self)
+
+    # --- picking and dragging -------------------------------------------------------------
+
+    def screen_position(self, vertex):
+        """Pixel position (Coin convention, origin bottom left) of a control vertex."""
+        x, y = self.view.getPointOnScreen(App.Vector(*self.live.control[vertex]))
+        return int(x), int(y)
+
+    def pick(self, position):
+        """The control vertex drawn nearest ``position`` (pixels) within PICK_PIXELS, the
+        one nearer the viewer when two are as near; or None."""
+        size = self.view.getSize()
+        x, y = position
+        direction = np.array(tuple(self.view.getViewDirection()))
+        best, best_key = None, None
+        for vertex, point in enumerate(self.live.control):
+            sx, sy = self.view.getPointOnScreen(App.Vector(*point))
+            if abs(sx - x) > PICK_PIXELS or abs(sy - y) > PICK_PIXELS:
+                continue
+            if not (0 <= sx < size[0] and 0 <= sy < size[1]):
+                continue
+            key = (round(float(np.hypot(sx - x, sy - y))), float(np.dot(point, direction)))
+            if key[0] <= PICK_PIXELS and (best is None or key < best_key):
+                best, best_key = vertex, key
+        return best
+
+    def _ray(self, position):
+        """A point and a direction of the line of sight through ``position`` (pixels)."""
+        point = np.array(tuple(self.view.getPoint(int(position[0]), int(position[1]))))
+        camera = self.view.getCameraNode()
+        if camera.getTypeId() == coin.SoPerspectiveCamera.getClassTypeId():
+            eye = np.array(camera.position.getValue().getValue())
+            direction = point - eye
+        else:
+            direction = np.array(tuple(self.view.getViewDirection()))
+        return point, direction / np.linalg.norm(direction)
+
+    def begin_drag(self, vertex):
+        """Start dragging ``vertex`` (index) in the view plane through it."""
+        weights = self.live.begin_drag(vertex, self.radius, self.falloff)
+        normal = np.array(tuple(self.view.getViewDirection()))
+        self.plane = (self.live.control[vertex].copy(), normal / np.linalg.norm(normal))
+        self._color_markers(weights)
+
+    def drag_to_screen(self, position):
+        """Move the dragged vertex under ``position`` (pixels), in its view plane."""
+        if self.plane is None:
+            return
+        origin, normal = self.plane
+        point, direction = self._ray(position)
+        denominator = float(np.dot(direction, normal))
+        if abs(denominator) < 1e-12:
+            return
+        target = point + direction * float(np.dot(origin - point, normal)) / denominator
+        self.move_to(target)
+
+    def move_to(self, target):
+        """Move the dragged vertex to ``target`` (model coordinates) and ask for a frame."""
+        self.live.drag_to(target)
+        self.stats["moves"] += 1
+        self._set_control_coords()
+        self.request_frame()
+
+    def end_drag(self):
+        """Release: end the drag and solve to the full tolerance."""
+        if self.plane is None:
+            return
+        self.plane = None
+        self.live.end_drag()
+        self._color_markers(None)
+        self.request_settle()
+
+    # --- solving ----------------------------------------------------------------------------
+
+    @property
+    def busy(self):
+        """True while a solve runs on the worker thread."""
+        return self.worker is not None
+
+    def request_frame(self):
+        if self.busy:
+            self.pending = True  # merged: the next frame takes the latest positions
+            return
+        self._start(self.live.frame)
+
+    def request_settle(self):
+        if self.busy:
+            self.pending = True
+            return
+        self._start(self.live.settle)
+
+    def _start(self, solve):
+        self.pending = False
+        if not self.threaded:
+            t0 = time.perf_counter()
+            result = solve()
+            self.stats["solve"].append(time.perf_counter() - t0)
+            self.show_result(result)
+            return
+
+        def run():
+            t0 = time.perf_counter()
+            try:
+                self.worker_result = solve()
+            except Exception as exc:  # noqa: BLE001 - reported in the main thread
+                self.worker_error = exc
+            self.stats["solve"].append(time.perf_counter() - t0)
+
+        self.worker = threading.Thread(target=run, name="facet-live", daemon=True)
+        self.worker.start()
+
+    def poll(self):
+        """Show a finished solve and start the next one (the Qt timer calls this)."""
+        if self.worker is None or self.worker.is_alive():
+            return
+        self.worker.join()
+        self.worker = None
+        result, error = self.worker_result, self.worker_error
+        self.worker_result = self.worker_error = None
+        if error is not None:
+            App.Console.PrintError(f"Facet: edit of {self.planarized.Label}: {error}\n")
+        elif result is not None and not self.closed:
+            self.show_result(result)
+        if self.closed:
+            return
+        if self.pending or (self.live.dragging and not self.live.converged):
+            self.request_frame()  # the hand moved on, or the frame is short of the tolerance
+        elif not self.live.dragging and not self.live.settled:
+            self.request_settle()
+
+    def wait(self, timeout=60.0):
+        """Process solves until none runs and none is pending (tests, benchmarks)."""
+        end = time.monotonic() + timeout
+        while (self.busy or self.pending) and time.monotonic() < end:
+            if self.worker is not None:
+                self.worker.join(0.002)
+            self.poll()
+        return not (self.busy or self.pending)
+
+    # --- events -----------------------------------------------------------------------------
+
+    def _on_button(self, node):
+        event = node.getEvent()
+        if event.getButton() != coin.SoMouseButtonEvent.BUTTON1:
+            return
+        position = tuple(event.getPosition().getValue())
+        if event.getState() == coin.SoButtonEvent.DOWN:
+            vertex = self.pick(position)
+            if vertex is not None:
+                self.begin_drag(vertex)
+                node.setHandled()
+        elif event.getState() == coin.SoButtonEvent.UP and self.plane is not None:
+            self.drag_to_screen(position)
+            self.end_drag()
+            node.setHandled()
+
+    def _on_move(self, node):
+        if self.plane is None:
+            return
+        self.drag_to_screen(tuple(node.getEvent().getPosition().getValue()))
+        node.setHandled()
+
+    def _on_key(self, node):
+        event = node.getEvent()
+        if event.getKey() == coin.SoKeyboardEvent.ESCAPE and \
+                event.getState() == coin.SoButtonEvent.DOWN:
+            node.setHandled()
+            # Leave the event handler before the view's callbacks are removed.
+            from PySide import QtCore
+
+            QtCore.QTimer.singleShot(0, finish)
+
+    # --- ending -----------------------------------------------------------------------------
+
+    def done(self):
+        """Write the moved control vertices to the control PolyMesh (one undoable
+        transaction) and recompute. Returns True if something was written."""
+        self.wait()
+        moved = self.live.moved
+        self.close()
+        if not moved:
+            self._restore_view()
+            return False
+        doc = self.control_obj.Document
+        doc.openTransaction("Edit control mesh")
+        try:
+            self.control_obj.Points = [tuple(p) for p in self.live.control.tolist()]
+            doc.recompute()
+        except Exception:
+            doc.abortTransaction()
+            raise
+        doc.commitTransaction()
+        return True
+
+    def cancel(self):
+        """Leave the control mesh as it was and show the stored result again."""
+        self.wait()
+        self.close()
+        self._restore_view()
+
+    def _restore_view(self):
+        proxy = self.vobj.Proxy
+        if hasattr(proxy, "redraw_mesh"):
+            proxy.redraw_mesh(self.planarized)
+
+    def close(self):
+        """Remove the session's nodes, callbacks and timer (idempotent)."""
+        global _active
+        if self.closed:
+            return
+        self.closed = True
+        if self.timer is not None:
+            self.timer.stop()
+        for kind, callback in self._callbacks:
+            try:
+                self.view.removeEventCallbackPivy(kind, callback)
+            except Exception:  # noqa: BLE001 - the view may be closed already
+                pass
+        try:
+            self.view.getSceneGraph().removeChild(self.root)
+        except Exception:  # noqa: BLE001
+            pass
+        try:
+            self.vobj.DisplayMode = self._previous_mode
+        except Exception:  # noqa: BLE001
+            pass
+        if _active is self:
+            _active = None
+
+
+class EditPanel:
+    """Task panel of an edit: soft-selection radius and falloff, colours, status."""
+
+    def __init__(self, session):
+        from PySide import QtGui
+
+        self.session = session
+        self.form = QtGui.QWidget()
+        self.form.setWindowTitle("Edit control mesh")
+        layout = QtGui.QFormLayout(self.form)
+        help_text = QtGui.QLabel(
+            "Drag a control vertex (dot) with the left mouse button; the planar result "
+            "follows. OK (or Esc) keeps the edit, Cancel drops it.")
+        help_text.setWordWrap(True)
+        layout.addRow(help_text)
+        self.radius = QtGui.QDoubleSpinBox()
+        self.radius.setDecimals(3)
+        self.radius.setRange(0.0, 1e9)
+        self.radius.setSuffix(" mm")
+        self.radius.setValue(session.radius)
+        self.radius.setToolTip("Vertices closer than this to the dragged one move with it "
+                               "(0: the dragged vertex alone)")
+        self.radius.valueChanged.connect(self._radius)
+        layout.addRow("Radius", self.radius)
+        self.falloff = QtGui.QComboBox()
+        self.falloff.addItems(list(FALLOFFS))
+        self.falloff.setToolTip("How much the neighbours move: smooth, linear with the "
+                                "distance, or all of them as much as the dragged vertex")
+        self.falloff.currentIndexChanged.connect(self._falloff)
+        layout.addRow("Falloff", self.falloff)
+        self.color_by = QtGui.QComboBox()
+        self.color_by.addItems(list(COLOR_BY))
+        self.color_by.setToolTip("Colour the result by the planarity of each panel or by how "
+                                 "far its corners are from the control mesh")
+        self.color_by.currentIndexChanged.connect(self._color_by)
+        layout.addRow("Colour by", self.color_by)
+        self.status = QtGui.QLabel("")
+        self.status.setWordWrap(True)
+        layout.addRow(self.status)
+        session.listeners.append(self._update_status)
+        self._update_status(session)
+
+    def _radius(self, value):
+        self.session.radius = float(value)
+
+    def _falloff(self, index):
+        self.session.falloff = FALLOFFS[index]
+
+    def _color_by(self, index):
+        self.session.color_by = COLOR_BY[index]
+        self.session.show_result(self.session.live.result)
+
+    def _update_status(self, session):
+        result = session.live.result
+        state = "solved" if result.converged else "solving..."
+        self.status.setText(f"{state} planarity {result.planarity.max_rel_all:.2g} of the "
+                            f"edge length, {result.iterations} iterations")
+
+    def getStandardButtons(self):
+        from PySide import QtGui
+
+        return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
+
+    def accept(self):
+        finish(True)
+        return True
+
+    def reject(self):
+        finish(False)
+        return True
+
+
+def start(obj, view=None, threaded=True, panel=True):
+    """Start editing ``obj`` (a Planarized object or its control PolyMesh). Returns the
+    session; raises EditError (one line) when it cannot be edited."""
+    global _active
+    if _active is not None:
+        finish(False)
+    session = EditSession(obj, view=view, threaded=threaded)
+    _active = session
+    if panel and App.GuiUp:
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
+        Gui.Control.showDialog(EditPanel(session))
+    return session
+
+
+def finish(keep=True):
+    """End the running edit: keep (Done) writes the control mesh, else Cancel."""
+    session = _active
+    if session is None:
+        return False
+    if Gui.Control.activeDialog():
+        Gui.Control.closeDialog()
+    try:
+        return session.done() if keep else (session.cancel() or False)
+    except Exception as exc:  # noqa: BLE001 - one line in the report view
+        App.Console.PrintError(f"Facet: edit of {session.planarized.Label} failed: {exc}\n")
+        return False
+
+
+def _set_field(field, values):
+    """Set a Coin multiple-value field from an (n, k) array or a list, in bulk."""
+    if isinstance(values, np.ndarray):
+        values = values.tolist()
+    field.setNum(len(values))
+    if values:
+        field.setValues(0, len(values), values)
+
+
+__all__ = ["COLOR_BY", "EditError", "EditPanel", "EditSession", "active_session", "control_of",
+           "finish", "start"]
