@@ -211,6 +211,7 @@ def run(out_dir):
     App.closeDocument(doc.Name)
     check_lifting(check, out_dir)
     check_panels(check, out_dir)
+    check_edit_control(check, out_dir)
     return check
 
 
@@ -425,6 +426,113 @@ def check_panels(check, out_dir):
     pixels = image_pixels(path).astype(int)
     red = int(((pixels[..., 0] > 150) & (pixels[..., 1] < 90) & (pixels[..., 2] < 90)).sum())
     check(red > 500, f"cutsheets: the red cut outlines are drawn ({red} pixels)")
+    App.closeDocument(doc.Name)
+
+
+def _mouse(kind, position, down=True):
+    """A stand-in for the SoEventCallback node a 3D view hands to its callbacks."""
+    from pivy import coin
+
+    if kind == "button":
+        event = coin.SoMouseButtonEvent()
+        event.setButton(coin.SoMouseButtonEvent.BUTTON1)
+        event.setState(coin.SoButtonEvent.DOWN if down else coin.SoButtonEvent.UP)
+    else:
+        event = coin.SoLocation2Event()
+    event.setPosition(coin.SbVec2s(int(position[0]), int(position[1])))
+
+    class Node:
+        handled = False
+
+        def getEvent(self):  # noqa: N802 - Coin's name
+            return event
+
+        def setHandled(self):  # noqa: N802
+            Node.handled = True
+
+    return Node()
+
+
+def check_edit_control(check, out_dir):
+    """Facet_EditControlMesh: drag a control vertex with the mouse callbacks, the planar
+    result follows and stays planar; Done writes the control mesh in one undoable step,
+    Cancel leaves it alone."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import numpy as np
+
+    import facet
+    import facetwb
+    from facetwb import edit_control
+    from facetwb.objects.polymesh import get_mesh
+
+    check("Facet_EditControlMesh" in Gui.listCommands(), "command Facet_EditControlMesh is "
+          "registered")
+    doc = App.newDocument("EditControl")
+    mesh = facet.read_mesh(MESH)
+    control = facetwb.make_polymesh(mesh)
+    result = facetwb.make_planarized(control)
+    doc.recompute()
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    Gui.updateGui()
+    original = get_mesh(control).vertices.copy()
+    solved = get_mesh(result).vertices.copy()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(result)
+    Gui.runCommand("Facet_EditControlMesh")
+    session = edit_control.active_session()
+    if not check(session is not None and bool(Gui.Control.activeDialog()),
+                 "Edit control mesh starts a session with its task panel"):
+        App.closeDocument(doc.Name)
+        return
+    vertex = 40  # the middle of the 8 x 8 hypar
+    x, y = session.screen_position(vertex)
+    press = _mouse("button", (x, y), True)
+    session._on_button(press)
+    check(press.handled and session.live.drag_vertex == vertex,
+          f"a press on vertex {vertex}'s marker picks it")
+    for k in range(1, 16):
+        session._on_move(_mouse("move", (x, y + 4 * k)))
+        session.poll()
+        Gui.updateGui()
+    session._on_button(_mouse("button", (x, y + 60), False))
+    check(session.wait(120.0), "the solves finish after the release")
+    live = session.live.result
+    moved = np.linalg.norm(live.mesh.vertices[vertex] - solved[vertex])
+    check(moved > 0.2 * mesh.mean_edge_length(),
+          f"the planar result followed the dragged vertex ({moved:.3g} mm)")
+    check(live.planarity.max_rel_all <= result.Tolerance,
+          f"and stays planar after the release ({live.planarity.max_rel_all:.2g})")
+    drawn = np.array([tuple(p.getValue()) for p in result.ViewObject.Proxy.coords.point])
+    check(np.allclose(drawn, live.mesh.vertices, atol=1e-3),
+          "the 3D view draws the moved result")
+    check(np.array_equal(get_mesh(control).vertices, original),
+          "the control PolyMesh is untouched while editing")
+    path = os.path.join(out_dir, "edit_control.png")
+    save_view(view, path)
+    check_screenshot(check, path, "edit control", legend=True)
+    check(edit_control.finish(True), "Done writes the moved control vertices")
+    after = get_mesh(control).vertices
+    check(np.allclose(after, session.live.control) and not np.allclose(after, original),
+          "the control PolyMesh holds the moved vertices")
+    check(result.isValid() and result.PlanarityMaxRel <= result.Tolerance,
+          "the Planarized object is recomputed from them, planar")
+    check(edit_control.active_session() is None, "the session has ended")
+    doc.undo()
+    doc.recompute()
+    check(np.array_equal(get_mesh(control).vertices, original), "undo restores the control mesh")
+    # Cancel: nothing is written.
+    session = edit_control.start(result)
+    x, y = session.screen_position(vertex)
+    session._on_button(_mouse("button", (x, y), True))
+    session._on_move(_mouse("move", (x, y + 30)))
+    session._on_button(_mouse("button", (x, y + 30), False))
+    session.wait(120.0)
+    edit_control.finish(False)
+    check(np.array_equal(get_mesh(control).vertices, original)
+          and edit_control.active_session() is None, "Cancel leaves the control mesh alone")
     App.closeDocument(doc.Name)
 
 

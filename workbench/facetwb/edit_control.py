@@ -547,9 +547,11 @@ def start(obj, view=None, threaded=True, panel=True):
 
 def finish(keep=True):
     """End the running edit: keep (Done) writes the control mesh, else Cancel."""
+    global _active
     session = _active
     if session is None:
         return False
+    _active = None  # closing the task dialog may call back into finish()
     if Gui.Control.activeDialog():
         Gui.Control.closeDialog()
     try:
