@@ -533,7 +533,36 @@ def check_edit_control(check, out_dir):
     edit_control.finish(False)
     check(np.array_equal(get_mesh(control).vertices, original)
           and edit_control.active_session() is None, "Cancel leaves the control mesh alone")
+    check_live_parameters(check, result)
     App.closeDocument(doc.Name)
+
+
+def check_live_parameters(check, result):
+    """A solver parameter changed in the property editor re-solves the object by itself,
+    once for a burst of changes."""
+    import time
+
+    import FreeCADGui as Gui
+    import numpy as np
+
+    from facetwb import live_parameters
+    from facetwb.objects.polymesh import get_mesh
+
+    control = get_mesh(result.Source).vertices
+    corner = 0
+    before = get_mesh(result).vertices[corner].copy()
+    result.Tolerance = 1e-7
+    result.Boundary = "fixed"  # boundary vertices stay on the control mesh
+    check(live_parameters.pending() == 1, "two quick parameter changes schedule one re-solve")
+    end = time.monotonic() + 120.0
+    while ("Touched" in result.State or live_parameters.pending()) and time.monotonic() < end:
+        Gui.updateGui()
+        time.sleep(0.02)
+    after = get_mesh(result).vertices[corner]
+    check("Touched" not in result.State and result.isValid(),
+          "the Planarized object re-solved without a recompute command")
+    check(np.allclose(after, control[corner]) and not np.allclose(before, control[corner]),
+          "with the new parameter: its boundary corner sits on the control mesh")
 
 
 def check_import_command(check):

@@ -400,6 +400,18 @@ class EditSession:
 
             QtCore.QTimer.singleShot(0, finish)
 
+    def reconfigure(self):
+        """Re-read the Planarized object's parameters and re-solve the edited control mesh
+        with them (live parameters during an edit)."""
+        self.wait()
+        original = self.live.original
+        control = self.live.control.copy()
+        self.live = LiveSolver(self.mesh.with_vertices(control), result=self.live.result,
+                               **solver_settings(self.planarized, self.mesh))
+        self.live.original = original
+        self.live.settled = False
+        self.request_settle()
+
     # --- ending -----------------------------------------------------------------------------
 
     def done(self):
