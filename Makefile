@@ -24,7 +24,7 @@ CORE = $(BUILD)/libcore/.built
 FC_ENV = sh tests/fc_env.sh
 
 .PHONY: all build deps deps-build deps-test test test-c test-python test-freecad test-gui \
-        demo bench bench-panels install uninstall clean
+        demo bench bench-panels bench-drag install uninstall clean
 
 all: build
 
@@ -71,6 +71,12 @@ bench: build
 # the 10,000-panel fabrication pipeline, each stage timed
 bench-panels: build
 	$(PYTHON) tools/bench_panels.py --panels 10000 --out $(OUT)/bench_panels
+
+# dragging a control vertex of a 10k-face facade in FreeCAD under Xvfb: frames per second
+bench-drag: build
+	mkdir -p $(OUT)/bench
+	FACET_DRAG_JSON=$(abspath $(OUT))/bench/drag_fps.json $(FC_ENV) xvfb-run -a -s "-screen 0 1600x1000x24" \
+	    freecad tools/bench/drag_fps.py
 
 install: build
 	sh tools/install.sh "$(PREFIX)" "$(PYTHON)"
