@@ -257,19 +257,13 @@ class LiveSolver:
         follows the hand at once and the iterations only restore planarity
         (a warm start from the previous result alone barely moves: its small
         first penalty weight keeps it at the old planar solution)."""
-        moved = self.control - self._result_control
-        if np.any(moved):
-            start = np.ascontiguousarray(self.result.mesh.vertices + moved)
-            # One iteration from the predicted positions leaves them (slightly
-            # flattened) as the solver's previous result: the warm start.
-            self._planarizer._core.solve(  # noqa: SLF001 (same package)
-                start, np.empty_like(start), method=self.live_method, iterations=1,
-                threads=self.frame_threads)
+        control = self.control.copy()  # a drag on another thread may move it meanwhile
+        self._predict(control)
         count = max(1, int(self.frame_seconds / self._iteration_seconds))
         if self._max_iter:
             count = min(count, int(self._max_iter))
         result = self._solve(warm=True, method=self.live_method, max_iter=count,
-                             threads=self.frame_threads)
+                             threads=self.frame_threads, control=control)
         if result.iterations > 0:
             per = result.solve_seconds / result.iterations
             self._iteration_seconds = 0.5 * self._iteration_seconds + 0.5 * per
@@ -286,20 +280,35 @@ class LiveSolver:
         """Solve the current control positions to the full tolerance with
         :attr:`method`, warm from the last frame (``progress`` as
         :meth:`facet.Planarizer.solve`; raises facet.Cancelled)."""
-        self._solve(warm=True, method=self.method, progress=progress)
-        self.settled = True
+        control = self.control.copy()
+        self._predict(control)
+        self._solve(warm=True, method=self.method, progress=progress, control=control)
+        self.settled = np.array_equal(control, self.control)
         return self.result
 
-    def _solve(self, warm, method, progress=None, max_iter=None, threads=None):
+    def _predict(self, control):
+        """Make the previous result moved by the control's moves since then the solver's
+        warm start."""
+        moved = control - self._result_control
+        if np.any(moved):
+            start = np.ascontiguousarray(self.result.mesh.vertices + moved)
+            # One iteration from the predicted positions leaves them (slightly
+            # flattened) as the solver's previous result: the warm start.
+            self._planarizer._core.solve(  # noqa: SLF001 (same package)
+                start, np.empty_like(start), method=self.live_method, iterations=1,
+                threads=self.frame_threads)
+
+    def _solve(self, warm, method, progress=None, max_iter=None, threads=None, control=None):
+        control = self.control.copy() if control is None else control
         goal = dict(self._goal)
         if threads is not None:
             goal["threads"] = threads
         result = self._planarizer.solve(
-            self.control, method=method, warm=warm, max_iter=max_iter or self._max_iter,
+            control, method=method, warm=warm, max_iter=max_iter or self._max_iter,
             progress=progress, **goal, **self._options)
-        self._set_result(result)
+        self._set_result(result, control)
         return result
 
-    def _set_result(self, result):
+    def _set_result(self, result, control=None):
         self.result = result
-        self._result_control = self.control.copy()
+        self._result_control = (self.control if control is None else control).copy()
