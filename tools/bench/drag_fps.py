@@ -115,9 +115,10 @@ def run():
     out["frame_seconds"] = session.live.frame_seconds
     x, y = session.screen_position(vertex)
     session._on_button(_button((x, y), True))
-    if session.live.drag_vertex != vertex:
-        raise RuntimeError(f"the press at {x}, {y} picked {session.live.drag_vertex}, "
-                           f"not vertex {vertex}")
+    if session.live.drag_vertex is None:
+        raise RuntimeError(f"the press at {x}, {y} on vertex {vertex} picked nothing")
+    vertex = session.live.drag_vertex  # a neighbour when vertices are under a pixel apart
+    out["vertex"] = vertex
     frames, renders = [], []
     for k in range(1, steps + 1):
         t0 = time.perf_counter()

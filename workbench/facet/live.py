@@ -4,7 +4,7 @@
 A :class:`LiveSolver` keeps one :class:`facet.Planarizer` alive for a control
 mesh. The designer picks a vertex; :func:`soft_weights` spreads the move over
 its neighbours within a radius (soft selection); every frame of a drag runs a
-*warm* re-solve limited to a time budget (:meth:`LiveSolver.frame`), so the
+*warm* re-solve sized to a frame time (:meth:`LiveSolver.frame`), so the
 result follows the hand and keeps converging while the hand rests; when the
 drag ends, :meth:`LiveSolver.settle` solves to the full tolerance.
 

@@ -28,6 +28,7 @@ from pivy import coin
 import FreeCAD as App
 import FreeCADGui as Gui
 
+from facet.errors import Cancelled
 from facet.live import FALLOFFS, LiveSolver
 from facetwb.objects.planarized import is_planarized, term_options
 from facetwb.objects.polymesh import get_mesh, is_polymesh
@@ -130,6 +131,7 @@ class EditSession:
         self.worker_result = None
         self.worker_error = None
         self.closed = False
+        self.closing = False  # Done or Cancel: a running settle stops at its next iteration
         self.stats = {"frames": 0, "solve": [], "scene": [], "moves": 0}
         self.listeners = []  # callables(session) told after each shown frame
         self._build_scene()
@@ -317,7 +319,7 @@ class EditSession:
         if self.busy:
             self.pending = True
             return
-        self._start(self.live.settle)
+        self._start(lambda: self.live.settle(progress=lambda *_args: self.closing))
 
     def _start(self, solve):
         self.pending = False
@@ -347,11 +349,14 @@ class EditSession:
         self.worker = None
         result, error = self.worker_result, self.worker_error
         self.worker_result = self.worker_error = None
+        if isinstance(error, Cancelled):
+            error = None
         if error is not None:
             App.Console.PrintError(f"Facet: edit of {self.planarized.Label}: {error}\n")
         elif result is not None and not self.closed:
             self.show_result(result)
-        if self.closed:
+        if self.closed or self.closing:
+            self.pending = False
             return
         if self.pending or (self.live.dragging and not self.live.converged):
             self.request_frame()  # the hand moved on, or the frame is short of the tolerance
@@ -417,6 +422,7 @@ class EditSession:
     def done(self):
         """Write the moved control vertices to the control PolyMesh (one undoable
         transaction) and recompute. Returns True if something was written."""
+        self.closing = True  # the recompute solves the written mesh anyway
         self.wait()
         moved = self.live.moved
         self.close()
@@ -436,6 +442,7 @@ class EditSession:
 
     def cancel(self):
         """Leave the control mesh as it was and show the stored result again."""
+        self.closing = True
         self.wait()
         self.close()
         self._restore_view()
