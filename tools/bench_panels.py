@@ -4,10 +4,13 @@ schedule, each stage timed (wall clock, perf_counter). Not a test: it asserts no
 speed; it prints the figures and writes them as JSON.
 
     /usr/bin/python3 tools/bench_panels.py [--panels 10000] [--out DIR] [--no-step]
+                                           [--repeat N] [--workers W]
 
 The mesh is a planar-quad grid on a cylinder (radius 40 m, panels about 600 x 450 mm), so
 every face is exactly planar; edges are mitred with a 6 mm gap, 30 mm thick; sheets
-3000 x 1500 with a 10 mm margin and 6 mm spacing, quarter-turn rotations.
+3000 x 1500 with a 10 mm margin and 6 mm spacing, quarter-turn rotations. With --repeat N
+the pipeline runs N times and each stage's median is reported (all runs are in the JSON);
+the load average before and after is recorded, since the machine may be shared.
 """
 
 import argparse
@@ -15,6 +18,7 @@ import json
 import math
 import os
 import platform
+import statistics
 import sys
 import time
 
@@ -27,6 +31,9 @@ def main():
     parser.add_argument("--panels", type=int, default=10000)
     parser.add_argument("--out", default=os.path.join(os.path.dirname(HERE), "out", "bench_panels"))
     parser.add_argument("--no-step", action="store_true", help="skip solids and STEP")
+    parser.add_argument("--repeat", type=int, default=1, help="runs; medians reported")
+    parser.add_argument("--workers", type=int, default=None,
+                        help="nesting worker processes (default: facet.nest's)")
     args = parser.parse_args()
 
     import numpy as np
@@ -50,47 +57,60 @@ def main():
             a = j * (nu + 1) + i
             faces.append([a, a + 1, a + nu + 2, a + nu + 1])
     mesh = PolyMesh.from_faces(np.array(pts), faces)
-    times = {}
 
-    t = time.perf_counter()
-    ps = panels(mesh, 30.0, edge="bisector", gap=6.0)
-    times["panels (core geometry + Python objects)"] = time.perf_counter() - t
-    times["  of which core facet_panels"] = ps.seconds
-    t = time.perf_counter()
-    drawings = unfold(ps)
-    times["outlines (unfold, labels, footprints)"] = time.perf_counter() - t
-    parts = {d.id: d.footprint for d in drawings}
-    t = time.perf_counter()
-    result = nest(parts, (3000.0, 1500.0), margin=10.0, spacing=6.0, rotations="90")
-    times["nesting (libnest2d)"] = time.perf_counter() - t
-    t = time.perf_counter()
-    problems = verify(result, parts)
-    times["nesting check (shapely)"] = time.perf_counter() - t
-    t = time.perf_counter()
-    write_dxf(os.path.join(args.out, "sheets.dxf"), result, drawings)
-    times["DXF (ezdxf, audited)"] = time.perf_counter() - t
-    t = time.perf_counter()
-    write_schedule_csv(os.path.join(args.out, "schedule.csv"), schedule_rows(ps, result))
-    times["schedule CSV"] = time.perf_counter() - t
-    if not args.no_step:
-        from facet.step import panel_solids, write_step
+    def run():
+        times = {}
 
         t = time.perf_counter()
-        solids = panel_solids(ps)
-        times["solids (OCC)"] = time.perf_counter() - t
+        ps = panels(mesh, 30.0, edge="bisector", gap=6.0)
+        times["panels (core geometry + Python objects)"] = time.perf_counter() - t
+        times["  of which core facet_panels"] = ps.seconds
         t = time.perf_counter()
-        write_step(os.path.join(args.out, "panels.step"), solids)
-        times["STEP (FreeCAD Import)"] = time.perf_counter() - t
+        drawings = unfold(ps)
+        times["outlines (unfold, labels, footprints)"] = time.perf_counter() - t
+        parts = {d.id: d.footprint for d in drawings}
+        t = time.perf_counter()
+        result = nest(parts, (3000.0, 1500.0), margin=10.0, spacing=6.0, rotations="90",
+                      workers=args.workers)
+        times["nesting (libnest2d)"] = time.perf_counter() - t
+        t = time.perf_counter()
+        problems = verify(result, parts)
+        times["  nesting check (shapely; not in the total)"] = time.perf_counter() - t
+        t = time.perf_counter()
+        write_dxf(os.path.join(args.out, "sheets.dxf"), result, drawings)
+        times["DXF (ezdxf, audited)"] = time.perf_counter() - t
+        t = time.perf_counter()
+        write_schedule_csv(os.path.join(args.out, "schedule.csv"), schedule_rows(ps, result))
+        times["schedule CSV"] = time.perf_counter() - t
+        if not args.no_step:
+            from facet.step import panel_solids, write_step
+
+            t = time.perf_counter()
+            solids = panel_solids(ps)
+            times["solids (OCC)"] = time.perf_counter() - t
+            t = time.perf_counter()
+            write_step(os.path.join(args.out, "panels.step"), solids)
+            times["STEP (FreeCAD Import, no pcurves)"] = time.perf_counter() - t
+        return times, ps, result, problems
+
+    load_before = os.getloadavg()
+    runs = [run() for _ in range(max(1, args.repeat))]
+    load_after = os.getloadavg()
+    times = {k: statistics.median(r[0][k] for r in runs) for k in runs[0][0]}
+    _, ps, result, problems = runs[-1]
     total = sum(v for k, v in times.items() if not k.startswith("  "))
     report = {
         "panels": len(ps), "sheets": len(result.sheets), "unplaced": len(result.unplaced),
         "utilisation": result.utilisation, "nesting_problems": len(problems),
         "seconds": times, "total_seconds": total,
+        "runs": [r[0] for r in runs], "median_of": len(runs),
+        "load_average_before": load_before, "load_average_after": load_after,
         "machine": {"cpus": os.cpu_count(), "python": platform.python_version()},
     }
     for k, v in times.items():
         print(f"{k:<45} {v:9.2f} s")
-    print(f"{'total':<45} {total:9.2f} s")
+    print(f"{'total':<45} {total:9.2f} s   (median of {len(runs)}; load average "
+          f"{load_before[0]:.1f} before, {load_after[0]:.1f} after, {os.cpu_count()} CPUs)")
     print(f"{len(ps)} panels on {len(result.sheets)} sheets, utilisation "
           f"{100 * result.utilisation:.1f}%, {len(result.unplaced)} unplaced, "
           f"{len(problems)} nesting problems")

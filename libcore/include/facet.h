@@ -19,7 +19,8 @@
  *    out-parameter and freed by facet_*_free(T **), which sets the pointer to
  *    NULL and accepts NULL.
  *  - Deterministic: the same inputs and options give the same bits whatever
- *    the thread count.
+ *    the thread count. A thread count above max(64, 4 x processors, the
+ *    OpenMP default) is clamped to it.
  *
  * Data model: a polygon mesh is n_vertices points xyz[3*n_vertices] and
  * n_faces faces in CSR form: face f has the vertices
@@ -139,7 +140,8 @@ facet_status facet_mesh_validate(const facet_mesh *mesh, facet_mesh_report *repo
  *             max_abs / mean_edge);
  *  diagonal   for quads, libigl's measure: distance between the two diagonal
  *             lines divided by the mean diagonal length; -1 for other faces.
- * The mesh must be valid (facet_mesh_validate); this call checks only sizes.
+ * The mesh must be valid (facet_mesh_validate); this call checks sizes,
+ * indices and that coordinates are finite (FACET_ERROR_NONFINITE).
  * threads <= 0 means the OpenMP default. Results do not depend on threads. */
 facet_status facet_planarity(const facet_mesh *mesh, int threads, double *max_abs,
                              double *rms_abs, double *mean_edge, double *diagonal,
@@ -147,7 +149,9 @@ facet_status facet_planarity(const facet_mesh *mesh, int threads, double *max_ab
 
 /* Least-squares plane of n points (xyz[3*n]): unit normal and offset with
  * normal . x + offset = 0 on the plane; returns the smallest eigenvalue of
- * the (unnormalised) scatter matrix, or -1 when n < 3. Thread-safe. */
+ * the (unnormalised) scatter matrix, or -1 (normal and offset untouched) when
+ * n < 3, xyz or normal is NULL, or a coordinate is NaN or infinite.
+ * Thread-safe. */
 double facet_fit_plane(int32_t n, const double *xyz, double normal[3], double *offset);
 
 /* ------------------------------------------------------------------------ */
@@ -291,11 +295,35 @@ void facet_planarizer_free(facet_planarizer **planarizer);
  * centred and scaled inside. On error the message is also kept in the handle
  * (facet_planarizer_message). xyz_out never receives a NaN: a non-finite
  * iterate stops the solve with FACET_ERROR_NUMERICAL and xyz_out is left
- * untouched. Returns FACET_WARNING_NOT_CONVERGED when max_iter ran out. */
+ * untouched. Returns FACET_WARNING_NOT_CONVERGED when max_iter ran out, and
+ * also (stop reason FACET_STOP_STAGNATION, said in the message) when after
+ * at least one iteration the next step was not finite -- an ill-conditioned
+ * problem, such as weights many orders of magnitude apart: xyz_out is then
+ * the last finite iterate. */
 facet_status facet_planarizer_solve(facet_planarizer *planarizer, const double *xyz_in,
                                     const facet_planarize_options *options,
                                     double *xyz_out, facet_planarize_result *result,
                                     facet_error *error);
+
+/* A live update after the designer moved some control vertices (xyz_in: all
+ * control positions, same topology): cheaper than a warm re-solve, for
+ * following a drag. The vertices whose control position differs from the
+ * last solve's or update's, and those within `rings` edges of them (0: 4),
+ * are re-solved with `options` (warm ignored); the other vertices of the
+ * faces they touch are held, and every other vertex keeps its previous
+ * result bit for bit. The region's control positions are the previous
+ * result moved by the edit, so it follows the edit instead of being pulled
+ * back to the original control mesh. If the held rim keeps the region from
+ * the tolerance, the region grows (rings doubled) up to the whole mesh. The
+ * region's topology (and symbolic factorization) is kept while the same
+ * vertices are edited. result->planarity_* are over all faces. A full solve
+ * (facet_planarizer_solve) afterwards gives the globally optimal result.
+ * After the fixed vertices, face weights or reference changed, the next
+ * update is a full warm solve. Needs a previous solve on this handle (else FACET_ERROR_INVALID_ARGUMENT). */
+facet_status facet_planarizer_update(facet_planarizer *planarizer, const double *xyz_in,
+                                     const facet_planarize_options *options, int32_t rings,
+                                     double *xyz_out, facet_planarize_result *result,
+                                     facet_error *error);
 
 /* The last error's message of a handle ("" when none). Valid until the next
  * call on the handle. */
@@ -332,7 +360,8 @@ typedef struct facet_surface facet_surface;
 
 /* Triangles of n_vertices points xyz[3*n_vertices]; tri[3*n_triangles]. Copies
  * what it needs. Errors: FACET_ERROR_EMPTY_MESH, FACET_ERROR_NONFINITE (a
- * vertex used by a triangle), FACET_ERROR_INDEX_OUT_OF_RANGE. Zero-area
+ * vertex used by a triangle), FACET_ERROR_INDEX_OUT_OF_RANGE,
+ * FACET_ERROR_TOO_LARGE (a bounding box wider than a double holds). Zero-area
  * triangles are allowed (their closest point is found on their edges; their
  * normal is 0 0 0). */
 facet_status facet_surface_create(int32_t n_vertices, const double *xyz, int32_t n_triangles,
@@ -379,7 +408,8 @@ facet_status facet_surface_closest(const facet_surface *surface, int64_t n, cons
  *              e over the face's mean edge length,
  *              max over the face's edges of |r_e(xyz) / r_e(xyz_input) - 1|,
  *              edges of zero input length left out.
- * The mesh must be valid; this call checks sizes and indices. */
+ * The mesh must be valid; this call checks sizes, indices and that the
+ * coordinates (and xyz_input's) are finite (FACET_ERROR_NONFINITE). */
 facet_status facet_face_shape(const facet_mesh *mesh, const double *xyz_input, int32_t threads,
                               double *min_angle, double *area, double *ratio_change,
                               facet_error *error);

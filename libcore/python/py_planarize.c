@@ -116,21 +116,23 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
                                "progress", "data_tangent", "data_normal", "laplacian",
                                "laplacian_weights", "normal_laplacian", "boundary_fairness",
                                "shape", "shape_weight", "boundary", "circular", "parallelogram",
-                               "anderson", "time_budget", "hold_tol", "hold_max", "surface_weight", NULL};
+                               "anderson", "time_budget", "hold_tol", "hold_max", "surface_weight",
+                               "live", "rings", NULL};
     PyObject *in_obj, *out_obj, *progress = Py_None;
     const char *method = "lg", *lap_weights = NULL, *shape = NULL, *boundary = NULL;
     double mu0 = NAN, ratio = NAN, mu_min = NAN, tol_abs = NAN, tol_rel = NAN;
     double data_tangent = NAN, data_normal = NAN, laplacian = NAN, normal_laplacian = NAN;
     double fairness = NAN, shape_weight = NAN, circular = NAN, parallelogram = NAN;
     double time_budget = NAN, hold_tol = NAN, surface_weight = NAN;
-    int hold_max = -1;
+    int hold_max = -1, live = 0, rings = 0;
     int max_iter = -1, iterations = 0, threads = 0, warm = 0, anderson = -1;
     if (!PyArg_ParseTupleAndKeywords(
-            args, kwargs, "OO|$sdddddiiipOdddzddzdzddiddid:solve", keywords, &in_obj, &out_obj,
+            args, kwargs, "OO|$sdddddiiipOdddzddzdzddiddidpi:solve", keywords, &in_obj, &out_obj,
             &method, &mu0, &ratio, &mu_min, &tol_abs, &tol_rel, &max_iter, &iterations, &threads,
             &warm, &progress, &data_tangent, &data_normal, &laplacian, &lap_weights,
             &normal_laplacian, &fairness, &shape, &shape_weight, &boundary, &circular,
-            &parallelogram, &anderson, &time_budget, &hold_tol, &hold_max, &surface_weight))
+            &parallelogram, &anderson, &time_budget, &hold_tol, &hold_max, &surface_weight,
+            &live, &rings))
         return NULL;
     module_state *st = py_state(PyType_GetModule(Py_TYPE(self_obj)));
     if (!self->handle) {
@@ -241,7 +243,8 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
     facet_status status;
     self->busy = 1;
     Py_BEGIN_ALLOW_THREADS
-    status = facet_planarizer_solve(self->handle, in_view.buf, &o, out_view.buf, &r, &error);
+    status = live ? facet_planarizer_update(self->handle, in_view.buf, &o, rings, out_view.buf, &r, &error)
+                  : facet_planarizer_solve(self->handle, in_view.buf, &o, out_view.buf, &r, &error);
     Py_END_ALLOW_THREADS
     self->busy = 0;
     PyBuffer_Release(&in_view);
@@ -348,8 +351,10 @@ static PyMethodDef planarizer_methods[] = {
      "      iterations=0, threads=0, warm=False, progress=None, data_tangent, data_normal,\n"
      "      laplacian, laplacian_weights, normal_laplacian, boundary_fairness, shape,\n"
      "      shape_weight, boundary, circular, parallelogram, anderson, time_budget,\n"
-     "      hold_tol, hold_max, surface_weight) -> dict\n\n"
+     "      hold_tol, hold_max, surface_weight, live=False, rings=0) -> dict\n\n"
      "Planarize the control positions xyz_in (float64, 3*n_vertices) into xyz_out.\n"
+     "live=True: a live update of the region around the vertices edited since the\n"
+     "last solve, `rings` edges deep (0: 4) (facet_planarizer_update).\n"
      "The GIL is released while solving; progress(iteration, max_iter, planarity_max_rel)\n"
      "returning True cancels."},
     {"set_fixed", planarizer_set_fixed, METH_O,

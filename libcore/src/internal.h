@@ -27,8 +27,13 @@ facet_status facet_mesh_check_arrays(const facet_mesh *mesh, facet_error *error)
 facet_status facet_mesh_check_indices(const facet_mesh *mesh, facet_error *error);
 
 /* What a measurement over the faces needs: arrays (facet_mesh_check_arrays),
- * coordinates, and every index in range. */
+ * coordinates, every index in range, and finite coordinates
+ * (FACET_ERROR_NONFINITE naming the first bad vertex). */
 facet_status facet_mesh_check_measurable(const facet_mesh *mesh, facet_error *error);
+
+/* FACET_ERROR_NONFINITE naming the first of n points xyz[3n] with a NaN or
+ * infinite coordinate ("<what> 7 has a non-finite coordinate ..."). */
+facet_status facet_check_finite(int32_t n, const double *xyz, const char *what, facet_error *error);
 
 /* facet_mesh_validate without the coordinates when check_coordinates is 0. */
 facet_status facet_mesh_validate_topology(const facet_mesh *mesh, int check_coordinates,
@@ -47,7 +52,7 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
                           double *offset, double *max_distance, double *rms_distance);
 
 /* Sets the number of OpenMP threads for a parallel region: n <= 0 gives the
- * OpenMP default. */
+ * OpenMP default; n is clamped to max(64, 4 x processors, the default). */
 int facet_thread_count(int requested);
 
 /* max and min without fmax's call and NaN rules (callers pass no NaN). */

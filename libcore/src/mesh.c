@@ -54,7 +54,22 @@ facet_status facet_mesh_check_measurable(const facet_mesh *mesh, facet_error *er
         return status;
     if (!mesh->xyz)
         return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "mesh has no coordinates");
-    return facet_mesh_check_indices(mesh, error);
+    status = facet_mesh_check_indices(mesh, error);
+    if (status != FACET_OK)
+        return status;
+    return facet_check_finite(mesh->n_vertices, mesh->xyz, "vertex", error);
+}
+
+facet_status facet_check_finite(int32_t n, const double *xyz, const char *what, facet_error *error)
+{
+    for (int32_t v = 0; v < n; ++v) {
+        const double *p = xyz + 3 * (size_t)v;
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+            return facet_fail(error, FACET_ERROR_NONFINITE, -1, v,
+                              "%s %d has a non-finite coordinate (%g, %g, %g)", what, (int)v,
+                              p[0], p[1], p[2]);
+    }
+    return FACET_OK;
 }
 
 facet_status facet_mesh_validate(const facet_mesh *mesh, facet_mesh_report *report,

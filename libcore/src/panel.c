@@ -30,6 +30,8 @@ static double norm3(const double a[3])
 
 void facet_panel_options_default(facet_panel_options *options)
 {
+    if (!options)
+        return;
     memset(options, 0, sizeof *options);
     options->thickness = 1.0;
     options->offset = FACET_PANEL_OFFSET_OUTER;
@@ -202,6 +204,8 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
     facet_status status = facet_mesh_check_arrays(mesh, error);
     if (status < 0)
         return status;
+    if (!mesh->xyz) /* was read unchecked */
+        return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "mesh has no coordinates");
     status = facet_mesh_check_indices(mesh, error);
     if (status < 0)
         return status;
@@ -268,6 +272,11 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
     for (int k = 0; k < 3; ++k) {
         centre[k] = 0.5 * (lo[k] + hi[k]);
         scale = fmax(scale, hi[k] - lo[k]);
+    }
+    if (!isfinite(scale)) { /* would scale every vertex to 0 and give NaN planes */
+        work_free(&w);
+        return facet_fail(error, FACET_ERROR_TOO_LARGE, -1, -1,
+                          "coordinates too large: the mesh's extent overflows a double");
     }
     if (!(scale > 0.0))
         scale = 1.0;

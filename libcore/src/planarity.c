@@ -122,6 +122,9 @@ double facet_fit_plane(int32_t n, const double *xyz, double normal[3], double *o
 {
     if (n < 3 || !xyz || !normal)
         return -1.0;
+    for (int32_t k = 0; k < 3 * n; ++k)
+        if (!isfinite(xyz[k]))
+            return -1.0;
     double c[3];
     const double lambda = fit_plane_indexed(n, xyz, NULL, normal, c);
     if (offset)

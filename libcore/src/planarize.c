@@ -40,6 +40,8 @@ facet_status facet_pl_fail(facet_planarizer *s, facet_error *error, facet_status
 
 void facet_planarize_options_default(facet_method method, facet_planarize_options *o)
 {
+    if (!o)
+        return;
     memset(o, 0, sizeof *o);
     o->method = method;
     o->mu0 = 1.0;
@@ -248,7 +250,7 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     s->vertex_start = calloc((size_t)nv + 1, sizeof(int32_t));
     s->vertex_faces = malloc(sizeof(int32_t) * (size_t)nc);
     s->fixed = malloc((size_t)nv);
-    s->p = malloc(v3), s->q = malloc(v3), s->previous = malloc(v3);
+    s->p = malloc(v3), s->q = malloc(v3), s->previous = malloc(v3), s->previous_control = malloc(v3);
     s->vertex_normal = malloc(v3);
     s->slide_target = calloc(3 * (size_t)nv, sizeof(double));
     s->slide_tangent = calloc(3 * (size_t)nv, sizeof(double));
@@ -261,7 +263,7 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     s->face_energy_mu = malloc(fd), s->face_energy_con = malloc(fd), s->face_residual = malloc(fd);
     s->control_centroid = malloc(3 * fd);
     if (!s->face_start || !s->face_vertices || !s->vertex_start || !s->vertex_faces || !s->fixed ||
-        !s->p || !s->q || !s->previous || !s->vertex_normal || !s->slide_target ||
+        !s->p || !s->q || !s->previous || !s->previous_control || !s->vertex_normal || !s->slide_target ||
         !s->slide_tangent || !s->vertex_energy_mu || !s->vertex_energy_con ||
         !s->vertex_residual || !s->aa_x_fallback || !s->q_next || !s->normal || !s->normal_fit || !s->offset ||
         !s->face_dev || !s->face_edge || !s->face_sq || !s->face_energy_mu ||
@@ -302,6 +304,7 @@ void facet_planarizer_free(facet_planarizer **handle)
         return;
     facet_planarizer *s = *handle;
     facet_pl_global_free(s);
+    facet_planarizer_free(&s->live);
     if (s->cholmod_started)
         cholmod_finish(&s->cm);
     void *arrays[] = {s->face_start, s->face_vertices, s->vertex_start, s->vertex_faces,
@@ -314,7 +317,8 @@ void facet_planarizer_free(facet_planarizer **handle)
                       s->control_centroid, s->shape, s->circle_target, s->slide_target,
                       s->slide_tangent, s->laplace_weight, s->previous, s->aa_df, s->aa_dg,
                       s->aa_f, s->aa_g, s->aa_x_fallback, s->q_next, s->surface_point,
-                      s->surface_normal, s->surface_query};
+                      s->surface_normal, s->surface_query, s->previous_control,
+                      s->live_vertex, s->live_changed, s->live_mark, s->live_xyz, s->live_face_dev};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
         free(arrays[k]);
     free(s);
@@ -338,6 +342,8 @@ facet_status facet_planarizer_set_fixed(facet_planarizer *s, int32_t n, const in
             return facet_fail(error, FACET_ERROR_INDEX_OUT_OF_RANGE, -1, vertices[k],
                               "fixed vertex %d (entry %d) is out of range (%d vertices)",
                               (int)vertices[k], (int)k, (int)s->nv);
+    if (n == s->n_user_fixed && (n == 0 || memcmp(vertices, s->user_fixed, sizeof(int32_t) * (size_t)n) == 0))
+        return FACET_OK; /* unchanged: a live region stays valid */
     int32_t *copy = NULL;
     if (n > 0) {
         copy = malloc(sizeof(int32_t) * (size_t)n);
@@ -348,6 +354,7 @@ facet_status facet_planarizer_set_fixed(facet_planarizer *s, int32_t n, const in
     free(s->user_fixed);
     s->user_fixed = copy;
     s->n_user_fixed = n;
+    s->live_stale = 1; /* the next live update solves in full */
     return FACET_OK;
 }
 
@@ -357,6 +364,8 @@ facet_status facet_planarizer_set_reference(facet_planarizer *s, const facet_sur
     facet_error_clear(error);
     if (!s)
         return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "planarizer is NULL");
+    if (s->reference != surface)
+        s->live_stale = 1;
     s->reference = surface;
     return FACET_OK;
 }
@@ -367,6 +376,11 @@ facet_status facet_planarizer_set_face_weights(facet_planarizer *s, const double
     facet_error_clear(error);
     if (!s)
         return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1, "planarizer is NULL");
+    if (!weights && !s->face_weight)
+        return FACET_OK;
+    if (weights && s->face_weight && memcmp(weights, s->face_weight, sizeof(double) * (size_t)s->nf) == 0)
+        return FACET_OK; /* unchanged: a live region stays valid */
+    s->live_stale = 1;
     if (!weights) {
         free(s->face_weight);
         s->face_weight = NULL;
@@ -620,7 +634,10 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         }
     }
     double scale = edge_sum / (double)s->nc;
-    if (!(scale > 0.0) || !isfinite(scale))
+    if (!isfinite(scale)) /* was reported as "every edge has zero length" */
+        return facet_pl_fail(s, error, FACET_ERROR_TOO_LARGE,
+                             "coordinates too large: the edge lengths overflow a double");
+    if (!(scale > 0.0))
         return facet_pl_fail(s, error, FACET_ERROR_DEGENERATE_FACE,
                              "every edge of the mesh has zero length");
     const double inv = 1.0 / scale;
@@ -662,6 +679,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     int32_t accepted = 0, rejected = 0;
     double energy_mu = 0.0, energy_con = 0.0, last_mu = 0.0, last_con = 0.0;
     const int staircase = options->hold_tol > 0.0;
+    int numerical_stop = 0;
     int32_t level_steps = 0;
     double level_first_move = 0.0; /* squared */
     double *x_before = NULL;
@@ -741,13 +759,22 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             if (!facet_pl_vertex_step(s, mu, nthreads)) {
                 status = facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
                                        "a vertex update was not finite");
-                break;
             }
         } else {
             status = facet_pl_global_step(s, mu, nthreads, error);
-            if (status != FACET_OK)
-                break;
         }
+        if (status == FACET_ERROR_NUMERICAL && it > 0) {
+            /* An ill-conditioned problem (weights many orders of magnitude
+             * apart) whose next step is not finite: the steps leave s->q at
+             * the last (finite) iterate, which is the best result there is. */
+            status = FACET_OK;
+            reason = FACET_STOP_STAGNATION;
+            numerical_stop = 1;
+            facet_error_clear(error);
+            break;
+        }
+        if (status != FACET_OK)
+            break;
         double move = 0.0; /* largest vertex move of the plain step, squared */
         if (staircase)
             for (int32_t v = 0; v < nv; ++v) {
@@ -787,7 +814,12 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     free(x_before);
     if (status < 0 && status != FACET_ERROR_CANCELLED)
         return status;
+    if (s->previous_control != xyz_in) /* before xyz_out, which may be xyz_in */
+        memmove(s->previous_control, xyz_in, sizeof(double) * 3 * (size_t)nv);
 
+    for (size_t k = 0; it > 0 && k < 3 * (size_t)nv; ++k)
+        if (!isfinite(s->q[k])) /* never a NaN in xyz_out, whatever went wrong */
+            return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the solution is not finite");
     if (it == 0) {
         /* Nothing was solved: give back the starting point bit for bit. */
         if (xyz_out != start_xyz)
@@ -801,6 +833,9 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     if (s->previous != xyz_out)
         memmove(s->previous, xyz_out, sizeof(double) * 3 * (size_t)nv);
     s->has_previous = 1;
+    s->live_face_valid = 0;
+    s->live_stale = 0;
+    s->live_rings = 0; /* the live region's held settings may have changed */
     if (result) {
         result->iterations = it;
         result->stop_reason = reason;
@@ -817,7 +852,11 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     if (reason == FACET_STOP_MAX_ITER || reason == FACET_STOP_STAGNATION || reason == FACET_STOP_TIME) {
         snprintf(s->message, sizeof s->message,
                  "planarity %.3g (relative) after %d iterations: tolerance not reached%s", max_rel,
-                 (int)it, reason == FACET_STOP_TIME ? " within the time budget" : "");
+                 (int)it,
+                 reason == FACET_STOP_TIME ? " within the time budget"
+                 : numerical_stop ? "; stopped at the last finite iterate, the next step was not "
+                                    "finite (weights too many orders of magnitude apart?)"
+                                  : "");
         return facet_fail(error, FACET_WARNING_NOT_CONVERGED, -1, -1, "%s", s->message);
     }
     return FACET_OK;

@@ -152,7 +152,8 @@ static facet_status build_coupling(facet_planarizer *s, facet_error *error)
         free(list.t);
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the couplings");
     }
-    qsort(list.t, list.n, sizeof *list.t, compare_triplet);
+    if (list.n > 0) /* qsort(NULL, 0, ...) is undefined */
+        qsort(list.t, list.n, sizeof *list.t, compare_triplet);
     /* merge duplicates; split into diagonal and strictly lower (u < v) */
     free(s->couple_start);
     free(s->couple_vertex);

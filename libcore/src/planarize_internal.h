@@ -63,7 +63,21 @@ struct facet_planarizer {
     double scale, centre[3];              /* model = normalised * scale + centre */
     double *q_next;                       /* local/local: the new iterate (Jacobi) */
     double *previous;                     /* last result, model units (warm start) */
+    double *previous_control;             /* the control positions it was solved from */
     int has_previous;
+
+    /* live updates (planarize_live.c): the region around the edited vertices */
+    struct facet_planarizer *live;        /* handle of the region's submesh; NULL: none */
+    int32_t *live_vertex;                 /* submesh vertex -> vertex */
+    int32_t live_nv, live_rings;          /* submesh vertices; rings of the region */
+    int32_t *live_changed;                /* the edited vertices the region was built for */
+    int32_t live_n_changed;
+    uint8_t *live_mark;                   /* per vertex: 1 in the region, 2 its fixed rim */
+    double *live_xyz;                     /* submesh control and result, 6 * live_nv */
+    double *live_face_dev;                /* per face: planarity, absolute then relative */
+    int live_face_valid;                  /* live_face_dev is that of `previous` */
+    int live_stale;                       /* fixed vertices, weights or reference changed
+                                             since the last solve: update solves in full */
 
     /* local/global */
     int cholmod_started;

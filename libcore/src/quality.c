@@ -71,6 +71,11 @@ facet_status facet_face_shape(const facet_mesh *mesh, const double *xyz_input, i
     facet_status status = facet_mesh_check_measurable(mesh, error);
     if (status != FACET_OK)
         return status;
+    if (xyz_input) {
+        status = facet_check_finite(mesh->n_vertices, xyz_input, "input vertex", error);
+        if (status != FACET_OK)
+            return status;
+    }
     const int32_t nf = mesh->n_faces;
     const int32_t *start = mesh->face_start, *fv = mesh->face_vertices;
     const double *xyz = mesh->xyz;

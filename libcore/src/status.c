@@ -56,7 +56,19 @@ void facet_error_clear(facet_error *error)
 int facet_thread_count(int requested)
 {
 #ifdef _OPENMP
-    return requested > 0 ? requested : omp_get_max_threads();
+    if (requested <= 0)
+        return omp_get_max_threads();
+    /* A request far beyond the machine (threads = 1000000) would make libgomp
+     * abort when thread creation fails: clamp it. Results do not depend on
+     * the thread count, so this changes only the time. */
+    int limit = 4 * omp_get_num_procs();
+    if (limit < 64)
+        limit = 64;
+    if (limit < omp_get_max_threads())
+        limit = omp_get_max_threads();
+    if (limit > omp_get_thread_limit())
+        limit = omp_get_thread_limit();
+    return requested < limit ? requested : limit;
 #else
     (void)requested;
     return 1;

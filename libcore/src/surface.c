@@ -12,6 +12,8 @@
 
 #define LEAF_SIZE 4
 #define STACK_SIZE 128
+/* queries farther than this from the centre, in surface sizes, are pulled in */
+#define FAR_LIMIT 1e100
 
 typedef struct {
     double lo[3], hi[3];
@@ -272,6 +274,19 @@ void facet_surface_free(facet_surface **surface)
 static facet_status create_from_corners(int32_t nt, double *corners, int32_t *face,
                                         facet_surface **out, facet_error *error)
 {
+    /* a bounding box wider than a double can hold would scale everything to
+     * 0 and give NaN answers */
+    for (int k = 0; k < 3; ++k) {
+        double lo = DBL_MAX, hi = -DBL_MAX;
+        for (size_t i = k; i < 9 * (size_t)nt; i += 3)
+            lo = fmin(lo, corners[i]), hi = fmax(hi, corners[i]);
+        if (!isfinite(hi - lo)) {
+            free(corners);
+            free(face);
+            return facet_fail(error, FACET_ERROR_TOO_LARGE, -1, -1,
+                              "coordinates too large: the surface's extent overflows a double");
+        }
+    }
     facet_surface *s = calloc(1, sizeof *s);
     double *centroid = malloc(sizeof *centroid * 3 * (size_t)nt);
     if (!s || !centroid) {
@@ -562,8 +577,21 @@ facet_status facet_surface_closest(const facet_surface *surface, int64_t n, cons
 #pragma omp parallel for schedule(dynamic, 256) num_threads(nthreads)
     for (int64_t i = 0; i < n; ++i) {
         const double *p = query + 3 * (size_t)i;
-        const double q[3] = {(p[0] - s->centre[0]) * s->scale, (p[1] - s->centre[1]) * s->scale,
-                             (p[2] - s->centre[2]) * s->scale};
+        double q[3] = {(p[0] - s->centre[0]) * s->scale, (p[1] - s->centre[1]) * s->scale,
+                       (p[2] - s->centre[2]) * s->scale};
+        /* A point more than FAR_LIMIT surface sizes away would overflow the
+         * squared distances (and find no triangle): search from the point at
+         * FAR_LIMIT on the same ray from the centre, whose closest point is
+         * the same to rounding, and add the rest of the way to the distance. */
+        double beyond = 0.0;
+        const double m = facet_max(fabs(q[0]), facet_max(fabs(q[1]), fabs(q[2])));
+        if (m > FAR_LIMIT) {
+            const double u[3] = {q[0] / m, q[1] / m, q[2] / m};
+            const double len = m * sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+            for (int k = 0; k < 3; ++k)
+                q[k] = q[k] / len * FAR_LIMIT;
+            beyond = len - FAR_LIMIT;
+        }
         double c[3] = {0.0, 0.0, 0.0}, d2 = 0.0;
         int32_t slot = -1;
         query_one(s, q, c, &d2, &slot);
@@ -572,7 +600,7 @@ facet_status facet_surface_closest(const facet_surface *surface, int64_t n, cons
             for (int k = 0; k < 3; ++k)
                 closest[3 * (size_t)i + k] = c[k] / s->scale + s->centre[k];
         if (distance)
-            distance[i] = sqrt(d2) / s->scale;
+            distance[i] = (sqrt(d2) + beyond) / s->scale;
         if (triangle)
             triangle[i] = t;
         if (normal)

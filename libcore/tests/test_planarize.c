@@ -6,6 +6,7 @@
 #include "facet.h"
 #include "test_meshes.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 static double max_rel_planarity(const facet_mesh *m, const double *xyz)
@@ -201,8 +202,96 @@ static void test_long_run(facet_method method, int iterations)
     test_mesh_free(&t);
 }
 
+/* Live updates: after a solve, one vertex is dragged; only its region moves,
+ * the whole mesh stays planar, nothing changed means nothing moves, and the
+ * result is the same bits for 1 and 2 threads. */
+static void test_live_update(facet_method method, double tol)
+{
+    test_mesh t = test_grid(30, 24, 0.6, 1000.0, 2.5e6); /* mm, georeferenced */
+    const int32_t nv = t.mesh.n_vertices;
+    const size_t n = 3 * (size_t)nv;
+    facet_planarizer *s = NULL, *s2 = NULL;
+    facet_error e;
+    CHECK_STATUS(facet_planarizer_create(&t.mesh, &s, &e), FACET_OK);
+    CHECK_STATUS(facet_planarizer_create(&t.mesh, &s2, &e), FACET_OK);
+    facet_planarize_options o;
+    facet_planarize_options_default(method, &o);
+    o.tol_rel = tol;
+    double *control = malloc(sizeof(double) * n), *first = malloc(sizeof(double) * n);
+    double *out = malloc(sizeof(double) * n), *out2 = malloc(sizeof(double) * n);
+    memcpy(control, t.xyz, sizeof(double) * n);
+    facet_planarize_result r;
+    /* no previous solve: refused */
+    CHECK_STATUS(facet_planarizer_update(s, control, &o, 0, out, &r, &e), FACET_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(e.message, "previous solve") != NULL);
+    o.threads = 1;
+    CHECK_STATUS(facet_planarizer_solve(s, control, &o, first, &r, &e), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(s2, control, &o, out2, &r, &e), FACET_OK);
+    /* nothing edited: the previous result, bit for bit, no iteration */
+    CHECK_STATUS(facet_planarizer_update(s, control, &o, 0, out, &r, &e), FACET_OK);
+    CHECK(r.iterations == 0 && memcmp(out, first, sizeof(double) * n) == 0);
+    CHECK(r.planarity_max_rel <= tol);
+    CHECK_STATUS(facet_planarizer_update(s, control, &o, -1, out, &r, &e), FACET_ERROR_INVALID_ARGUMENT);
+    CHECK_STATUS(facet_planarizer_update(s, NULL, &o, 0, out, &r, &e), FACET_ERROR_INVALID_ARGUMENT);
+    /* drag vertex (12, 15) in three steps of a hundredth of an edge */
+    const int32_t dragged = 15 * 31 + 12;
+    o.mu0 = 1e-3, o.hold_tol = 0.0;
+    for (int step = 1; step <= 3; ++step) {
+        control[3 * dragged + 2] += 10.0;
+        o.threads = 1;
+        CHECK_STATUS(facet_planarizer_update(s, control, &o, 3, out, &r, &e), FACET_OK);
+        if (getenv("FACET_TEST_VERBOSE"))
+            fprintf(stderr, "live step %d: %d iterations, stop %d\n", step, (int)r.iterations, (int)r.stop_reason);
+        CHECK(r.stop_reason == FACET_STOP_TOLERANCE && r.iterations > 0);
+        CHECK(r.planarity_max_rel <= tol);
+        CHECK(max_rel_planarity(&t.mesh, out) <= tol * 1.0001);
+        o.threads = 2;
+        CHECK_STATUS(facet_planarizer_update(s2, control, &o, 3, out2, &r, &e), FACET_OK);
+        CHECK(memcmp(out, out2, sizeof(double) * n) == 0);
+    }
+    /* the result followed the drag (up 30 mm in all) */
+    CHECK(out[3 * dragged + 2] - first[3 * dragged + 2] > 10.0);
+    /* vertices beyond the region (3 rings and the rim) kept their bits */
+    int32_t moved_far = 0, moved_near = 0;
+    for (int32_t v = 0; v < nv; ++v) {
+        const int32_t dx = abs(v % 31 - 12), dy = abs(v / 31 - 15);
+        const int same = memcmp(out + 3 * (size_t)v, first + 3 * (size_t)v, 3 * sizeof(double)) == 0;
+        if (dx + dy > 4)
+            moved_far += !same;
+        else
+            moved_near += !same;
+    }
+    CHECK(moved_far == 0);
+    CHECK(moved_near > 1);
+    /* a large edit (half an edge) in a one-ring region: the held rim keeps it
+     * from the tolerance, so the region grows until it is reached */
+    control[3 * dragged + 2] += 500.0;
+    o.threads = 0;
+    CHECK_STATUS(facet_planarizer_update(s, control, &o, 1, out, &r, &e), FACET_OK);
+    CHECK(r.stop_reason == FACET_STOP_TOLERANCE);
+    CHECK(max_rel_planarity(&t.mesh, out) <= tol * 1.0001);
+    CHECK(out[3 * dragged + 2] - first[3 * dragged + 2] > 100.0);
+    /* a newly fixed vertex: the next update solves in full and pins it; the
+     * one after is live again and keeps it pinned */
+    const int32_t pin = dragged + 1;
+    CHECK_STATUS(facet_planarizer_set_fixed(s, 1, &pin, &e), FACET_OK);
+    o.threads = 0;
+    for (int step = 0; step < 2; ++step) {
+        control[3 * dragged] += 50.0;
+        CHECK_STATUS(facet_planarizer_update(s, control, &o, 3, out, &r, &e), FACET_OK);
+        CHECK(memcmp(out + 3 * (size_t)pin, control + 3 * (size_t)pin, 3 * sizeof(double)) == 0);
+        CHECK(max_rel_planarity(&t.mesh, out) <= tol * 1.0001);
+    }
+    facet_planarizer_free(&s);
+    facet_planarizer_free(&s2);
+    free(control), free(first), free(out), free(out2);
+    test_mesh_free(&t);
+}
+
 int main(void)
 {
+    test_live_update(FACET_METHOD_LOCAL_GLOBAL, 1e-6);
+    test_live_update(FACET_METHOD_LOCAL_LOCAL, 1e-3);
     test_planar_input_unchanged(FACET_METHOD_LOCAL_LOCAL);
     test_planar_input_unchanged(FACET_METHOD_LOCAL_GLOBAL);
     test_converges(FACET_METHOD_LOCAL_GLOBAL, 1e-6);

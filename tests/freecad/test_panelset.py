@@ -131,6 +131,79 @@ class TestPanelSet(DocumentTestCase):
         text = open(step, encoding="latin-1").read()
         names = re.findall(r"PRODUCT\('([^']*)'", text)
         self.assertEqual([n for n in names if n.startswith("P-")], list(self.mitred.PartIds))
+        # FreeCAD's STEP importer (headless: not its default link group, which
+        # crashes FreeCAD 0.20 without a GUI) gives one object per panel, by ID
+        back = App.newDocument("StepBack")
+        try:
+            Import.insert(step, back.Name, useLinkGroup=False)
+            got = {o.Label: o.Shape for o in back.Objects
+                   if o.TypeId == "Part::Feature" and o.Label.startswith("P-")}
+            self.assertEqual(sorted(got), sorted(self.mitred.PartIds))
+            for pid, v in zip(self.mitred.PartIds, self.mitred.Volumes):
+                self.assertTrue(got[pid].isValid())
+                self.assertAlmostEqual(got[pid].Volume / v, 1.0, places=9)
+        finally:
+            App.closeDocument(back.Name)
+        self.assertEqual(text.count("PCURVE"), 0)  # planar faces: written without
+
+    def test_one_object_per_panel(self):
+        obj = facetwb.make_panelset(self.source, thickness=T, one_per_panel=True, name="Each")
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        children = list(obj.PanelObjects)
+        self.assertEqual([c.Label for c in children], list(obj.PartIds))
+        for c, v in zip(children, obj.Volumes):
+            self.assertTrue(c.Shape.isValid())
+            self.assertAlmostEqual(c.Shape.Volume / v, 1.0, places=12)
+        self.assertFalse(any("Touched" in c.State for c in children))
+        # a recompute reuses the objects; switching off removes them
+        names = [c.Name for c in children]
+        obj.Thickness = 2 * T
+        self.doc.recompute()
+        self.assertEqual([c.Name for c in obj.PanelObjects], names)
+        self.assertAlmostEqual(obj.PanelObjects[0].Shape.Volume / obj.Volumes[0], 1.0, places=12)
+        obj.OnePerPanel = False
+        self.doc.recompute()
+        self.assertEqual(list(obj.PanelObjects), [])
+        self.assertTrue(all(self.doc.getObject(n) is None for n in names))
+        self.doc.removeObject(obj.Name)
+
+    def test_cutsheets_reuse_the_panelsets_panels_and_solids(self):
+        import facet.step  # noqa: F401
+
+        # facet.panels is also the name of a function in facet: the modules by name
+        fpanels, fstep = sys.modules["facet.panels"], sys.modules["facet.step"]
+        ps_obj = facetwb.make_panelset(self.source, thickness=T, name="Reused")
+        sheets = facetwb.make_cutsheets(ps_obj, sheet=(2600.0, 1400.0), margin=10.0,
+                                        spacing=6.0, output_dir=os.path.join(self.tmp.name,
+                                                                             "reuse"))
+        self.doc.recompute()
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        calls = []
+        saved = fpanels.panels, fstep.panel_solids
+
+        def counting(name, f):
+            def wrapped(*a, **k):
+                calls.append(name)
+                return f(*a, **k)
+            return wrapped
+
+        fpanels.panels = counting("panels", saved[0])
+        fstep.panel_solids = counting("solids", saved[1])
+        try:
+            sheets.touch()
+            self.doc.recompute()
+            self.assertTrue(sheets.isValid(), sheets.getStatusString())
+            self.assertEqual(calls, [])  # nothing recomputed: the PanelSet's are reused
+            ps_obj.Thickness = 2 * T   # the PanelSet recomputes first, CutSheets reuse that
+            self.doc.recompute()
+            self.assertEqual(calls, ["panels"])
+            step = Part.read(os.path.join(self.tmp.name, "reuse", "panels.step"))
+            self.assertAlmostEqual(step.Solids[0].Volume / ps_obj.Volumes[0], 1.0, places=9)
+        finally:
+            fpanels.panels, fstep.panel_solids = saved
+        self.doc.removeObject(sheets.Name)
+        self.doc.removeObject(ps_obj.Name)
 
     def test_z_save_reopen(self):
         ids = list(self.square.PartIds)

@@ -89,7 +89,7 @@ def test_face_with_two_vertices(write_file):
     path = write_file("x.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\n\nf 3 4\n")
     with pytest.raises(MeshError) as caught:
         read_obj(path)
-    assert str(caught.value) == f"{path}: line 7: face has 2 vertices (at least 3 needed)"
+    assert str(caught.value) == f"{path}: line 7: face 1 has 2 vertices (at least 3 needed)"
 
 
 def test_no_faces(write_file):
@@ -99,8 +99,8 @@ def test_no_faces(write_file):
     assert str(caught.value) == f"{path}: no faces"
 
 
-def test_empty_file_has_no_faces(write_file):
-    with pytest.raises(MeshError, match="no faces"):
+def test_empty_file_is_named_empty(write_file):
+    with pytest.raises(MeshError, match="file is empty"):
         read_obj(write_file("empty.obj", ""))
 
 

@@ -120,7 +120,7 @@ def test_face_with_two_vertices(write_file):
     path = write_file("x.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n2 0 1\n")
     with pytest.raises(MeshError) as caught:
         read_off(path)
-    assert str(caught.value) == f"{path}: line 7: face has 2 vertices (at least 3 needed)"
+    assert str(caught.value) == f"{path}: line 7: face 1 has 2 vertices (at least 3 needed)"
     assert caught.value.face == 1
 
 

@@ -294,6 +294,25 @@ def test_nesting_progress_cancels():
         nest(_parts(), (1300, 900), progress=lambda d, t: True)
 
 
+def test_nesting_in_chunks_is_the_same_for_any_number_of_workers(monkeypatch):
+    import facet.nest as fn
+
+    parts = _parts()
+    monkeypatch.setattr(fn, "_CHUNK", 8)  # 30 parts: 3 chunks and the open sheets
+    one = fn.nest(parts, (1300, 900), margin=15, spacing=8, workers=1)
+    two = fn.nest(parts, (1300, 900), margin=15, spacing=8, workers=2)
+    assert fn.verify(one, parts) == [] and fn.verify(two, parts) == []
+    assert not one.unplaced and len(one.placements) == len(parts)
+    assert one.placements == two.placements
+    assert [s.parts for s in one.sheets] == [s.parts for s in two.sheets]
+    seen = []
+    with pytest.raises(Cancelled):
+        fn.nest(parts, (1300, 900), workers=2, progress=lambda d, t: seen.append(d) or True)
+    assert seen and seen[0] < len(parts)
+    with pytest.raises(fn.NestError, match="workers"):
+        fn.nest(parts, (1300, 900), workers=0)
+
+
 # ---- files -----------------------------------------------------------------
 
 def _made(tmp_path, **kw):
@@ -407,3 +426,46 @@ def test_step_says_clearly_when_freecad_is_missing(monkeypatch):
         step.import_freecad()
     assert "\n" not in str(info.value)
     assert not isinstance(info.value, facet.InputError)  # exit 1 on the command line, not 2
+
+
+def test_panel_solids_in_worker_processes_match_the_serial_ones(monkeypatch):
+    import facet.step as step
+
+    try:
+        step.import_freecad()
+    except step.FreeCADMissing:
+        pytest.skip("FreeCAD is not installed")
+    ps = panels(translational(nu=6, nv=5, step=400.0), 18.0, edge="bisector", gap=4)
+    monkeypatch.setattr(step, "_SOLID_CHUNK", 7)  # 30 panels: 5 chunks
+    serial = step.panel_solids(ps, workers=1)
+    seen = []
+    parallel = step.panel_solids(ps, workers=2, progress=lambda d, t: seen.append(d) and False)
+    assert [i for i, _ in parallel] == [p.id for p in ps.panels] == [i for i, _ in serial]
+    for (_, a), (_, b), p in zip(serial, parallel, ps.panels):
+        assert b.isValid()
+        assert b.Volume == pytest.approx(a.Volume, rel=1e-12)
+        assert b.Volume == pytest.approx(p.volume, rel=1e-9)
+    assert seen and max(seen) == len(ps.panels)
+    with pytest.raises(Cancelled):
+        step.panel_solids(ps, workers=2, progress=lambda d, t: True)
+
+
+def test_half_turn_symmetric_parts_skip_the_redundant_rotations():
+    from facet.nest import _half_turn_symmetric, nest, verify
+
+    assert _half_turn_symmetric([(0, 0), (0, 4), (6, 4), (6, 0), (0, 0)])
+    assert _half_turn_symmetric([(0, 0), (1, 3), (5, 3), (4, 0)])          # parallelogram
+    assert not _half_turn_symmetric([(0, 0), (0, 4), (2, 4), (2, 2), (6, 2), (6, 0)])  # L
+    assert not _half_turn_symmetric([(0, 0), (2, 3), (5, 3), (4, 0)])      # trapezoid
+    # rectangles with collinear extra vertices (dropped before nesting)
+    rects = {f"R{k}": np.array([[0, 0], [150, 0], [300 + k, 0], [300 + k, 200], [0, 200.0]])
+             for k in range(12)}
+    r = nest(rects, (1000, 700), margin=5, spacing=4, rotations="90", workers=1)
+    assert verify(r, rects) == [] and not r.unplaced
+    assert {pl.angle_deg for pl in r.placements.values()} <= {0.0, 90.0}
+    # concave parts (libnest2d overlapped them; now nested by their convex hull),
+    # not symmetric: every quarter turn may be used again
+    ells = {f"L{k}": np.array([[0, 0], [0, 300], [100, 300], [100, 100], [250, 100],
+                               [250, 0.0]]) for k in range(10)}
+    r = nest(ells, (1000, 700), margin=5, spacing=4, rotations="90", workers=1)
+    assert verify(r, ells) == [] and not r.unplaced

@@ -43,7 +43,10 @@ def percentile(values, q):
     return float(np.percentile(np.asarray(values), q))
 
 
-def warm_resolve(mesh_name, edits, threads, method, warm_mu0, seed):
+from facet.planarize import _LIVE_SCHEDULE  # noqa: E402  (what facet.Planarizer uses)
+
+
+def warm_resolve(mesh_name, edits, threads, method, warm_mu0, seed, live=False, rings=0, drag=False):
     from facet import _core
 
     mesh = MESHES[mesh_name]()
@@ -56,21 +59,42 @@ def warm_resolve(mesh_name, edits, threads, method, warm_mu0, seed):
         faces = mesh.face_vertices.reshape(-1, 6)
     h = families._mean_edge_length(v, faces)
     rng = np.random.default_rng(seed)
-    seconds, iterations, reached, planarity = [], [], 0, []
+    seconds, wall, iterations, reached, planarity = [], [], [], 0, []
+    vertex = int(rng.integers(mesh.n_vertices))
     for _ in range(edits):
-        vertex = int(rng.integers(mesh.n_vertices))
+        if not drag:
+            vertex = int(rng.integers(mesh.n_vertices))
         direction = rng.normal(size=3)
         direction /= np.linalg.norm(direction)
         v[vertex] += 0.01 * h * direction
-        r = p.solve(v, out, method=method, threads=threads, warm=True, mu0=warm_mu0)
+        t = time.perf_counter()
+        if live:
+            r = p.solve(v, out, method=method, threads=threads, live=True, rings=rings, **_LIVE_SCHEDULE)
+        else:
+            r = p.solve(v, out, method=method, threads=threads, warm=True, mu0=warm_mu0)
+        wall.append(time.perf_counter() - t)
         seconds.append(r["seconds"])
         iterations.append(r["iterations"])
         planarity.append(r["planarity_max_rel"])
         reached += r["planarity_max_rel"] <= 1e-6
+    # the edited result against a full solve of the same control: RMS
+    # distance from the control (closeness to the design) of each
+    edited = out.copy()
+    full = np.empty_like(v)
+    p.solve(v, full, method=method, threads=threads)
+
+    def rms_from_control(x):
+        return float(np.sqrt(np.mean(np.sum((x - v) ** 2, axis=1))) / h)
+
     return {
         "mesh": mesh.name,
         "faces": mesh.n_faces,
         "vertices": mesh.n_vertices,
+        "mode": ("live, rings %d" % (rings or 4)) if live else "warm",
+        "edit_pattern": "one vertex dragged" if drag else "random vertices",
+        "rms_from_control_edges": rms_from_control(edited),
+        "rms_from_control_full_solve_edges": rms_from_control(full),
+        "median_wall_seconds": statistics.median(wall),
         "method": method,
         "threads": threads,
         "warm_mu0": warm_mu0,
@@ -111,6 +135,11 @@ def main(argv=None):
     ap.add_argument("--method", choices=("lg", "ll"), default="lg")
     ap.add_argument("--warm-mu0", type=float, default=1e-5,
                     help="first penalty weight of a warm solve (facet.Planarizer uses 1e-5)")
+    ap.add_argument("--live", action="store_true",
+                    help="live updates (Planarizer.solve(live=True)) instead of warm re-solves")
+    ap.add_argument("--rings", type=int, default=0, help="depth of the live region (0: 4)")
+    ap.add_argument("--drag", action="store_true", help="every edit moves the same vertex (a drag)")
+    ap.add_argument("--skip-level5", action="store_true")
     ap.add_argument("--runs", type=int, default=9, help="runs of L/G x30 on Level 5")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--json", default=str(ROOT / "out" / "bench" / "interactive.json"))
@@ -121,14 +150,20 @@ def main(argv=None):
     os.environ.setdefault("OPENBLAS_NUM_THREADS", str(args.threads))
     doc = {"load_average": os.getloadavg(), "warm": [], "level5_lg30": None}
     for name in args.mesh or ["quad_grid", "hex_torus"]:
-        r = warm_resolve(name, args.edits, args.threads, args.method, args.warm_mu0, args.seed)
+        r = warm_resolve(name, args.edits, args.threads, args.method, args.warm_mu0, args.seed,
+                         live=args.live, rings=args.rings, drag=args.drag)
         doc["warm"].append(r)
-        print(f"{r['mesh']:<18} {r['faces']:>6} faces, {args.threads} thread(s), {args.method}: "
-              f"cold {r['cold']['seconds'] * 1e3:.0f} ms / {r['cold']['iterations']} it; warm re-solve "
-              f"after a 1% move: median {r['median_seconds'] * 1e3:.1f} ms, p90 {r['p90_seconds'] * 1e3:.1f} ms,"
-              f" max {r['max_seconds'] * 1e3:.1f} ms; iterations median {r['median_iterations']:g},"
+        print(f"{r['mesh']:<18} {r['faces']:>6} faces, {args.threads} thread(s), {args.method}, {r['mode']}, "
+              f"{r['edit_pattern']}: cold {r['cold']['seconds'] * 1e3:.0f} ms / {r['cold']['iterations']} it; "
+              f"re-solve after a 1% move: median {r['median_seconds'] * 1e3:.2f} ms "
+              f"(wall from Python {r['median_wall_seconds'] * 1e3:.2f} ms), p90 {r['p90_seconds'] * 1e3:.2f} ms,"
+              f" max {r['max_seconds'] * 1e3:.2f} ms; iterations median {r['median_iterations']:g},"
               f" max {r['max_iterations']}; {r['reached_tolerance']}/{r['edits']} reached 1e-6 "
-              f"(target < 16 ms)", flush=True)
+              f"(target < 16 ms); RMS distance from the control {r['rms_from_control_edges']:.4f} edges "
+              f"(a full solve: {r['rms_from_control_full_solve_edges']:.4f})",
+              flush=True)
+    if args.skip_level5:
+        return 0
     lg = level5_lg30(args.threads, args.runs)
     doc["level5_lg30"] = lg
     print(f"Level 5 (3072 faces) L/G x30, {args.threads} thread(s): median {lg['median_seconds'] * 1e3:.1f} ms,"

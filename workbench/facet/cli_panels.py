@@ -95,11 +95,16 @@ def add_commands(commands):
 def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False,
                  ids="auto", prefix="P-", tol=1e-6, tol_abs=0.0, sheet=None, margin=0.0,
                  spacing=0.0, rotations="90", grain=None, dxf=None, per_sheet=False,
-                 step=None, schedule=None, svg=None, png=None, progress=None):
+                 step=None, schedule=None, svg=None, png=None, progress=None,
+                 panel_set=None, solids=None, allow_unplaced=False):
     """Everything ``facet panels`` does, as a function (also used by the
     benchmark). Returns (report dict, PanelSet, drawings, NestResult or None).
 
-    ``progress(stage, done, total)`` returning True cancels.
+    ``progress(stage, done, total)`` returning True cancels. ``panel_set``
+    (a facet PanelSet already computed from ``mesh`` with these options) and
+    ``solids`` (its [(id, Part.Solid)], for STEP) are reused when given.
+    Parts that fit on no sheet raise :class:`facet.errors.InputError`
+    (nothing written) unless `allow_unplaced` is true.
     """
     from facet.errors import InputError
     from facet.cutsheets import (schedule_rows, write_dxf, write_png, write_schedule_csv,
@@ -124,8 +129,11 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
 
     times = {}
     t = time.perf_counter()
-    ps = panels(mesh, thickness, offset=offset, gap=gap, edge=edge, flip=flip, ids=ids,
-                prefix=prefix, tol=tol, tol_abs=tol_abs, progress=stage_progress("panels"))
+    if panel_set is not None:
+        ps = panel_set
+    else:
+        ps = panels(mesh, thickness, offset=offset, gap=gap, edge=edge, flip=flip, ids=ids,
+                    prefix=prefix, tol=tol, tol_abs=tol_abs, progress=stage_progress("panels"))
     times["panels"] = time.perf_counter() - t
     t = time.perf_counter()
     drawings = unfold(ps, grain=grain)
@@ -136,6 +144,13 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
         result = nest({d.id: d.footprint for d in drawings}, sheet, margin=margin,
                       spacing=spacing, rotations=rotations, progress=stage_progress("nest"))
         times["nest"] = time.perf_counter() - t
+        if result.unplaced and not allow_unplaced:
+            source = mesh.info.get("source") if mesh.info else None
+            shown = ", ".join(result.unplaced[:4]) + (", ..." if len(result.unplaced) > 4 else "")
+            raise InputError(
+                f"{source + ': ' if source else ''}{len(result.unplaced)} of {len(drawings)} "
+                f"parts fit on no {sheet[0]:g} x {sheet[1]:g} sheet (margin {margin:g}): "
+                f"{shown}; use a larger --sheet")
     files = {}
     if dxf:
         t = time.perf_counter()
@@ -163,7 +178,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
         from facet.step import panel_solids, write_step
 
         t = time.perf_counter()
-        solids = panel_solids(ps, progress=stage_progress("solids"))
+        if solids is None or len(solids) != len(ps.panels):
+            solids = panel_solids(ps, progress=stage_progress("solids"))
         times["solids"] = time.perf_counter() - t
         t = time.perf_counter()
         write_step(step, solids)

@@ -78,7 +78,7 @@ class MeshError(InputError):
     Notes
     -----
     ``str(error)`` joins the known parts with ``": "``:
-    ``"x.obj: line 7: face has 2 vertices (at least 3 needed)"``.
+    ``"x.obj: line 7: face 1 has 2 vertices (at least 3 needed)"``.
     """
 
     def __init__(self, message, *, source=None, line=None, face=None, vertex=None):

@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Nesting flat parts on stock sheets with libnest2d (Debian's pynest2d).
 
-libnest2d works on integer coordinates (Clipper): outlines are scaled so
+libnest2d places convex outlines correctly only (its no-fit polygons of
+concave parts let them overlap), so a concave part is nested by its convex
+hull. libnest2d works on integer coordinates (Clipper): outlines are scaled so
 that the sheet's longer side spans about 2**20 units, and the spacing and
 margin are rounded up by two units (a few micrometres on a 3 m sheet), so
 the true outlines keep at least the spacing asked for. :func:`verify` checks
@@ -37,7 +39,9 @@ ROTATIONS = {
 _UNITS = float(2 ** 20)
 _BATCH = 400
 _BATCH_MIN = 8
-_BATCH_SHEETS = 2.0
+_BATCH_SHEETS = 1.0
+#: parts per independently nested chunk (see nest())
+_CHUNK = 500
 
 
 class NestError(InputError):
@@ -109,7 +113,7 @@ def _check(name, value, minimum, strict):
 
 
 def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
-         progress=None):
+         progress=None, workers=None):
     """Nest flat parts on as many sheets as needed.
 
     Parameters
@@ -128,6 +132,10 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
         libnest2d's placer accuracy in (0, 1].
     progress : callable, optional
         ``progress(done, total)`` between batches; True cancels.
+    workers : int, optional
+        Processes nesting chunks of the parts side by side; default: one
+        per CPU, at most two, when there are several chunks (1 nests in
+        this process). The result is the same for any number of workers.
 
     Returns
     -------
@@ -136,7 +144,7 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
     """
     import time
 
-    import pynest2d
+    import pynest2d  # noqa: F401  (missing: fail here, before any work)
     from shapely.geometry import Polygon
     from shapely.geometry.polygon import orient
 
@@ -166,67 +174,186 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
             raise NestError(f"part {pid}: outline is not a simple polygon with an area")
         polys[pid] = orient(poly, sign=-1.0)  # clockwise, as Clipper wants outer contours
 
-    config = pynest2d.NfpConfig()
-    config.rotations = list(ROTATIONS[rotations])
-    config.alignment = pynest2d.NfpConfig.Alignment.BOTTOM_LEFT
-    config.starting_point = pynest2d.NfpConfig.Alignment.BOTTOM_LEFT
-    config.accuracy = accuracy
-
-    def make_item(pid):
-        coords = np.asarray(polys[pid].exterior.coords)
-        pts = [pynest2d.Point(int(round(x * scale)), int(round(y * scale))) for x, y in coords]
-        return pynest2d.Item(pts)
+    sheets, placements, unplaced = [], {}, []
 
     # largest first: what first-fit packs best
     order = sorted(polys, key=lambda k: -polys[k].area)
-    # First-fit tries every part on every open sheet: batches of a few
-    # sheets' worth of parts keep that from growing with the part count.
+    # First-fit tries every part on every open sheet, so one libnest2d call
+    # costs more than linearly in its parts: parts go in batches of a few
+    # sheets' worth.
     mean_area = sum(p.area for p in polys.values()) / max(1, len(polys))
     per_sheet = max(1.0, (width - 2 * margin) * (height - 2 * margin) / max(mean_area, 1e-300))
     batch_size = int(min(_BATCH, max(_BATCH_MIN, _BATCH_SHEETS * per_sheet)))
+    items = {}
+    for pid in order:
+        # collinear vertices dropped (the same outline; libnest2d's no-fit
+        # polygons cost more with every vertex)
+        simple = polys[pid].simplify(0.0, preserve_topology=True)
+        if simple.is_empty or simple.geom_type != "Polygon" or not simple.is_valid:
+            simple = polys[pid]
+        if simple.convex_hull.area > simple.area * (1 + 1e-9):
+            # libnest2d's no-fit polygons (Clipper back end, as Debian builds
+            # it) are right for convex parts only: concave parts overlapped.
+            # A concave part is nested by its convex hull, which holds it.
+            simple = simple.convex_hull
+        simple = orient(simple, sign=-1.0)
+        coords = np.asarray(simple.exterior.coords)
+        ring = [(int(round(x * scale)), int(round(y * scale))) for x, y in coords]
+        items[pid] = (ring, _half_turn_symmetric(ring))
+    box = (inner_w + dist, inner_h + dist)
+    settings = (box, dist, list(ROTATIONS[rotations]), float(accuracy), batch_size)
+    # Chunks of the size order (round robin, so each has large and small
+    # parts) are nested independently, each leaving its last, partly filled
+    # sheet open; the parts of the open sheets are nested together at the
+    # end. The chunks depend only on the parts, never on the number of
+    # workers, so the result does not either.
+    n_chunks = max(1, len(order) // _CHUNK)
+    chunks = [[(pid,) + items[pid] for pid in order[k::n_chunks]] for k in range(n_chunks)]
     total = len(order)
-    sheets, placements, unplaced = [], {}, []
-    pending = []
-    done = 0
-    box_w, box_h = inner_w + dist, inner_h + dist
+    workers = _workers(workers, n_chunks)
+    if workers > 1:
+        from facet.parallel import WorkerError, run_chunks
+
+        try:
+            results = run_chunks("facet.nest:_nest_chunk_open", chunks, settings, workers,
+                                 progress=(None if progress is None else
+                                           lambda d, t: progress(d, total)),
+                                 weights=[len(c) for c in chunks])
+        except WorkerError as exc:
+            raise NestError(f"nesting: {exc}") from None
+    else:
+        results = []
+        done = 0
+        for chunk in chunks:
+            def step(n, base=done):
+                return progress is not None and progress(base + n, total)
+            results.append(_nest_chunk(chunk, settings, keep_last=n_chunks > 1, progress=step))
+            done += len(chunk)
+    bins = []
+    open_parts = []
+    for chunk_bins, rest, chunk_unplaced in results:
+        bins.extend(chunk_bins)
+        open_parts.extend(rest)
+        unplaced.extend(chunk_unplaced)
+    if open_parts:
+        open_parts.sort(key=lambda pid: -polys[pid].area)
+        last_bins, _, last_unplaced = _nest_chunk([(pid,) + items[pid] for pid in open_parts],
+                                                  settings, keep_last=False)
+        bins.extend(last_bins)
+        unplaced.extend(last_unplaced)
+    if progress is not None and progress(total, total):
+        raise Cancelled("nesting cancelled")
+    rank = {pid: k for k, pid in enumerate(order)}
+    unplaced.sort(key=rank.__getitem__)
+    box_w, box_h = box
+    for placed in bins:
+        sheet_obj = Sheet(index=len(sheets), width=width, height=height)
+        for pid, angle, tx, ty in placed:
+            # libnest2d's box is centred on 0; the sheet's corner is at 0;
+            # the translation applies to scaled, rotated coordinates
+            x = (tx + 0.5 * box_w + 1.0 - 0.5 * dist) / scale + margin
+            y = (ty + 0.5 * box_h + 1.0 - 0.5 * dist) / scale + margin
+            placements[pid] = Placement(pid, sheet_obj.index, math.degrees(angle), x, y)
+            sheet_obj.parts.append(pid)
+            sheet_obj.used_area += polys[pid].area
+        sheets.append(sheet_obj)
+    return NestResult(sheet_size=(width, height), margin=margin, spacing=spacing,
+                      rotations=rotations, sheets=sheets, placements=placements,
+                      unplaced=unplaced, seconds=time.perf_counter() - t0)
+
+
+def _config(rotations, accuracy):
+    import pynest2d
+
+    config = pynest2d.NfpConfig()
+    config.rotations = list(rotations)
+    config.alignment = pynest2d.NfpConfig.Alignment.BOTTOM_LEFT
+    config.starting_point = pynest2d.NfpConfig.Alignment.BOTTOM_LEFT
+    config.accuracy = accuracy
+    # libnest2d's own parallelism starts a thread per candidate (no TBB in
+    # Debian's build): twice as slow as serial; processes share the work
+    config.parallel = False
+    return config
+
+
+def _half_turn_symmetric(ring):
+    """Whether an integer outline is its own image under a half turn about
+    its bounding box's centre (exactly, in the integer coordinates)."""
+    pts = set(ring[:-1] if ring and ring[0] == ring[-1] else ring)
+    xs = [p[0] for p in pts]
+    ys = [p[1] for p in pts]
+    cx, cy = min(xs) + max(xs), min(ys) + max(ys)  # twice the centre
+    return {(cx - x, cy - y) for x, y in pts} == pts
+
+
+def _nest_chunk(chunk, settings, keep_last, progress=None):
+    """Nest ``chunk`` = [(pid, integer outline, half-turn symmetric)] batch by batch (the parts of
+    a batch's last, partly filled sheet go into the next batch).
+
+    Returns ([[(pid, angle, tx, ty)] per full sheet], open, unplaced): with
+    ``keep_last`` the parts of the last, partly filled sheet are not placed
+    but returned in ``open``.
+    """
+    import pynest2d
+
+    (box_w, box_h), dist, rotations, accuracy, batch_size = settings
+    config = _config(rotations, accuracy)
+    # a half turn maps a symmetric part onto itself: when every part of a
+    # batch is, the rotations from 180 degrees on add nothing to the search
+    half = [r for r in rotations if r < math.pi - 1e-9]
+    config_half = _config(half, accuracy) if len(half) < len(rotations) else config
+    outlines = {pid: ring for pid, ring, _ in chunk}
+    symmetric = {pid: sym for pid, _, sym in chunk}
+    order = [pid for pid, _, _ in chunk]
+    bins_out, unplaced, pending = [], [], []
+    total = len(order)
     while order or pending:
         batch = pending + order[:batch_size]
         order = order[batch_size:]
-        items = [make_item(pid) for pid in batch]
-        pynest2d.nest(items, pynest2d.Box(box_w, box_h), dist, config)
+        items = [pynest2d.Item([pynest2d.Point(x, y) for x, y in outlines[pid]])
+                 for pid in batch]
+        cfg = config_half if all(symmetric[pid] for pid in batch) else config
+        pynest2d.nest(items, pynest2d.Box(box_w, box_h), dist, cfg)
         bins = {}
         for pid, item in zip(batch, items):
             b = item.binId()
             if b < 0:
                 unplaced.append(pid)
             else:
-                bins.setdefault(b, []).append((pid, item))
+                tr = item.translation()
+                bins.setdefault(b, []).append((pid, float(item.rotation()), tr.x(), tr.y()))
         keys = sorted(bins)
         pending = []
-        if order and keys:
-            # the last sheet is partly filled: its parts go into the next batch
-            pending = [pid for pid, _ in bins.pop(keys[-1])]
+        if (order or keep_last) and keys:
+            # the last sheet is partly filled: its parts go on
+            pending = [p[0] for p in bins.pop(keys[-1])]
             keys = keys[:-1]
-        for b in keys:
-            sheet_obj = Sheet(index=len(sheets), width=width, height=height)
-            for pid, item in bins[b]:
-                angle = float(item.rotation())
-                tr = item.translation()
-                # libnest2d's box is centred on 0; the sheet's corner is at 0
-                x = tr.x() / scale + 0.5 * box_w / scale + margin + 1.0 / scale - 0.5 * dist / scale
-                y = tr.y() / scale + 0.5 * box_h / scale + margin + 1.0 / scale - 0.5 * dist / scale
-                # item coordinates were scaled from model units: translation
-                # applies to scaled, rotated coordinates
-                placements[pid] = Placement(pid, sheet_obj.index, math.degrees(angle), x, y)
-                sheet_obj.parts.append(pid)
-                sheet_obj.used_area += polys[pid].area
-            sheets.append(sheet_obj)
-        done = total - len(order)
-        if progress is not None and progress(done, total):
+        bins_out.extend(bins[b] for b in keys)
+        if not order:
+            break
+        if progress is not None and progress(total - len(order)):
             raise Cancelled("nesting cancelled")
-    return NestResult(sheet_size=(width, height), margin=margin, spacing=spacing,
-                      rotations=rotations, sheets=sheets, placements=placements,
-                      unplaced=unplaced, seconds=time.perf_counter() - t0)
+    return bins_out, pending, unplaced
+
+
+def _workers(workers, n_chunks):
+    from facet.parallel import default_workers
+
+    if workers is None:
+        workers = default_workers()
+    else:
+        try:
+            workers = int(workers)
+        except (TypeError, ValueError):
+            raise NestError(f"workers must be a whole number, not {workers!r}") from None
+        if workers < 1:
+            raise NestError(f"workers must be >= 1, not {workers}")
+    return max(1, min(workers, n_chunks))
+
+
+def _nest_chunk_open(chunk, settings):
+    """A worker's chunk: nested with its last sheet left open."""
+    return _nest_chunk(chunk, settings, keep_last=True)
 
 
 def verify(result, parts, tolerance=None):

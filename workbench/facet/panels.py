@@ -355,6 +355,35 @@ def _ids(n, scheme, prefix, grid):
     return [f"{prefix}{f:0{width}d}" for f in range(n)]
 
 
+def _check_face_areas(mesh, source):
+    """Refuse a face with no area (collinear or coincident corners): it has no
+    plane, so it cannot be a panel."""
+    xyz = np.asarray(mesh.vertices, dtype=np.float64)
+    start = np.asarray(mesh.face_start, dtype=np.int64)
+    fv = np.asarray(mesh.face_vertices, dtype=np.int64)
+    if fv.size == 0:
+        return
+    centre = xyz.mean(axis=0)
+    p = xyz[fv] - centre
+    degree = np.diff(start)
+    face = np.repeat(np.arange(degree.size), degree)
+    nxt = np.arange(fv.size) + 1
+    last = start[1:] - 1
+    nxt[last] = start[:-1]
+    normal = np.zeros((degree.size, 3))
+    np.add.at(normal, face, np.cross(p, p[nxt]))
+    area = 0.5 * np.linalg.norm(normal, axis=1)
+    edge = np.linalg.norm(p[nxt] - p, axis=1)
+    mean_edge = np.bincount(face, weights=edge, minlength=degree.size) / degree
+    bad = np.flatnonzero(~(area > 1e-12 * mean_edge * mean_edge))
+    if bad.size:
+        f = int(bad[0])
+        where = f"{source}: " if source else ""
+        more = f" ({bad.size} such faces)" if bad.size > 1 else ""
+        raise PanelError(f"{where}face {f} has no area (its corners are collinear or "
+                         f"coincide){more}", faces=bad.tolist())
+
+
 def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, ids="auto",
            prefix="P-", tol=1e-6, tol_abs=0.0, progress=None):
     """Make the panels of a planar mesh.
@@ -408,6 +437,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         raise PanelError(f"edge must be one of {', '.join(EDGES)}, not {edge!r}")
     source = mesh.info.get("source") if mesh.info else None
     report = mesh.validate()
+    _check_face_areas(mesh, source)
     nf, nv = mesh.n_faces, mesh.n_vertices
     nc = int(mesh.face_start[-1])
     out = {

@@ -129,9 +129,18 @@ def _dxf_segments(path, arc_tolerance):
     except ImportError as exc:  # pragma: no cover - ezdxf is a listed dependency
         raise PlanError(f"{path}: reading DXF needs ezdxf ({exc})") from None
     try:
+        if os.path.getsize(path) == 0:
+            raise PlanError(f"{path}: file is empty")
+        with open(path, "rb"):
+            pass
+    except OSError as exc:
+        raise PlanError(f"{path}: cannot read the file ({exc.strerror})") from None
+    try:
         document = ezdxf.readfile(os.fspath(path))
-    except IOError as exc:
-        raise PlanError(f"{path}: cannot read the file ({exc})") from None
+    except IOError:
+        # the file opens (checked above): ezdxf says it is not DXF
+        raise PlanError(f"{path}: not a DXF file (no DXF header: binary DXF, DWG or "
+                        "another format?)") from None
     except ezdxf.DXFStructureError as exc:
         raise PlanError(f"{path}: not a valid DXF file ({exc})") from None
     segments = []
@@ -187,6 +196,13 @@ def _dxf_segments(path, arc_tolerance):
     return segments
 
 
+def _not_text(exc):
+    """What is wrong with a CSV file that the csv module or UTF-8 refused."""
+    if isinstance(exc, UnicodeDecodeError):
+        return f"not a text file: byte {exc.start + 1} is not UTF-8 (binary data?)"
+    return f"not a CSV text file ({exc})"
+
+
 def _csv_segments(path):
     segments = []
     try:
@@ -206,6 +222,8 @@ def _csv_segments(path):
                 segments.append(((values[0], values[1]), (values[2], values[3])))
     except OSError as exc:
         raise PlanError(f"{path}: cannot read the file ({exc.strerror})") from None
+    except (UnicodeDecodeError, csv.Error) as exc:
+        raise PlanError(f"{path}: {_not_text(exc)}") from None
     if not segments:
         raise PlanError(f"{path}: no segments")
     return segments
@@ -588,6 +606,8 @@ def read_targets(plan, path, *, tolerance=None):
                     rows.append(values)
         except OSError as exc:
             raise InputError(f"{path}: cannot read the file ({exc.strerror})") from None
+        except (UnicodeDecodeError, csv.Error) as exc:
+            raise InputError(f"{path}: {_not_text(exc)}") from None
         if tolerance is None:
             tolerance = 1e-6 * (float(np.ptp(xy, axis=0).max()) or 1.0)
         try:

@@ -203,6 +203,8 @@ def read_compas_json(path, *, item=None, validate=True):
     source = path
     with open(path, encoding="utf-8", errors="replace") as stream:
         text = stream.read()
+    if not text.strip():
+        raise MeshError("file is empty", source=source)
     try:
         document = json.loads(text)
     except json.JSONDecodeError as exc:

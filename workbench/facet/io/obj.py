@@ -71,8 +71,8 @@ def read_obj(path, *, validate=True):
     ------
     MeshError
         With the file name and line: ``"bad.obj: line 4: cannot read 'abc' as
-        a number"``, ``"x.obj: line 7: face has 2 vertices (at least 3
-        needed)"``, ``"x.obj: no faces"``, ``"x.obj: line 3: vertex 2 has a
+        a number"``, ``"x.obj: line 7: face 1 has 2 vertices (at least 3
+        needed)"``, ``"x.obj: no faces"``, ``"x.obj: file is empty"``, ``"x.obj: line 3: vertex 2 has a
         non-finite coordinate"``, an index out of range, or what
         :meth:`PolyMesh.validate` finds.
     OSError
@@ -85,7 +85,8 @@ def read_obj(path, *, validate=True):
     face_start = [0]
     face_lines = []
     n_polylines = 0
-    for number, text in _statements(read_lines(path)):
+    lines = read_lines(path)
+    for number, text in _statements(lines):
         tokens = text.split()
         if not tokens:
             continue
@@ -105,7 +106,7 @@ def read_obj(path, *, validate=True):
             corners = tokens[1:]
             if len(corners) < 3:
                 raise MeshError(
-                    f"face has {len(corners)} vertices (at least 3 needed)",
+                    f"face {len(face_lines)} has {len(corners)} vertices (at least 3 needed)",
                     source=source,
                     line=number,
                     face=len(face_lines),
@@ -136,6 +137,10 @@ def read_obj(path, *, validate=True):
             face_lines.append(number)
         elif keyword in ("l", "curv"):
             n_polylines += 1
+    if not face_lines and not vertex_lines and not n_polylines:
+        if not any(line.strip() for line in lines):
+            raise MeshError("file is empty", source=source)
+        raise MeshError("not an OBJ file: no 'v' or 'f' lines", source=source)
     if not face_lines and n_polylines:
         raise MeshError(
             f"no faces: the file holds {n_polylines} lines or curves ('l', 'curv'), not panels",

@@ -182,7 +182,7 @@ def read_off(path, *, validate=True):
         degree = parse_int(token, source, first_line, "a face's vertex count")
         if degree < 3:
             raise MeshError(
-                f"face has {degree} vertices (at least 3 needed)",
+                f"face {face} has {degree} vertices (at least 3 needed)",
                 source=source,
                 line=first_line,
                 face=face,

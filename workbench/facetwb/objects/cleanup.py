@@ -10,6 +10,7 @@ modified.
 
 import facet
 from facetwb import compat
+from facetwb.recompute import guarded
 from facetwb import conversion
 from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
 
@@ -49,6 +50,7 @@ class Cleanup(PolyMesh):
             "True if the planarization reached the tolerance", attr=output,
             editor_mode=read_only)
 
+    @guarded
     def execute(self, obj):
         if obj.Source is None:
             raise ValueError(f"{obj.Label}: Source is empty, nothing to clean up")

@@ -15,6 +15,7 @@ import numpy as np
 
 import facet
 from facetwb import compat, conversion
+from facetwb.recompute import guarded
 from facetwb.objects.polymesh import PolyMesh, get_mesh, set_mesh, set_planarity
 
 TYPE_LIFTING = "Facet::Lifting"
@@ -141,6 +142,7 @@ class Lifting(PolyMesh):
         dragged.target_max = float(abs(dev[dragged.target_max_vertex]))
         return dragged
 
+    @guarded
     def execute(self, obj):
         if obj.Plan is None:
             raise ValueError(f"{obj.Label}: Plan is empty, nothing to lift")

@@ -5,10 +5,14 @@ PanelSet (``Part::FeaturePython``) links a planar mesh (a PolyMesh or Planarized
 ``Source`` and, on recompute, runs ``facet.panels`` with its properties; its ``Shape`` is one
 compound of OCC solids, one per panel, in the order of ``PartIds`` (solid k is panel
 ``PartIds[k]``). Each solid is checked with BRepCheck (``isValid``) before it is stored.
+With ``OnePerPanel`` it also keeps one plain ``Part::Feature`` per panel (labelled by its part
+ID, listed in ``PanelObjects``, shown under it in the tree) and hides its own compound.
 
 CutSheets (``Part::FeaturePython``) links a PanelSet, nests its flat parts on stock sheets
 (``facet.nest``) and, when ``OutputDir`` is set, writes the DXF, STEP, schedule and previews
 there. Its ``Shape`` is the sheet layout (sheet borders and cut outlines, flat, side by side).
+It reuses the panels and solids its PanelSet computed in this session (recomputing them
+only when the PanelSet has none, e.g. right after the document was opened).
 
 The source is never modified. The numerics are in ``facet``; this module is wiring.
 """
@@ -16,6 +20,7 @@ The source is never modified. The numerics are in ``facet``; this module is wiri
 import FreeCAD as App
 
 from facetwb import compat
+from facetwb.recompute import guarded
 
 TYPE_PANELSET = "Facet::PanelSet"
 TYPE_CUTSHEETS = "Facet::CutSheets"
@@ -91,6 +96,10 @@ class PanelSet(_Proxy):
               "regular quad grid, else the face index", ID_SCHEMES, "auto")
         add(obj, "App::PropertyString", "IdPrefix", "Part IDs", "Prefix of every part ID",
             value="P-")
+        add(obj, "App::PropertyBool", "OnePerPanel", "Part IDs",
+            "Also one Part object per panel, labelled by its part ID (else one compound)")
+        _output(obj, "App::PropertyLinkList", "PanelObjects",
+                "The per-panel objects (with OnePerPanel), in the order of PartIds")
         _output(obj, "App::PropertyStringList", "PartIds", "Part ID of each solid, in order")
         _output(obj, "App::PropertyInteger", "PanelCount", "Number of panels")
         _output(obj, "App::PropertyFloatList", "Volumes", "Volume of each solid")
@@ -111,11 +120,35 @@ class PanelSet(_Proxy):
                       edge=obj.EdgeMode, flip=bool(obj.Flip), ids=obj.IdScheme,
                       prefix=obj.IdPrefix, tol=obj.Tolerance, tol_abs=obj.ToleranceAbs.Value)
 
+    def _key(self, obj):
+        """What the computed panels depend on, besides the Source's geometry."""
+        src = obj.Source
+        return (src.Name if src is not None else None, obj.Thickness.Value, obj.Offset,
+                obj.Gap.Value, obj.EdgeMode, bool(obj.Flip), obj.Tolerance,
+                obj.ToleranceAbs.Value, obj.IdScheme, obj.IdPrefix)
+
+    def computed(self, obj):
+        """(facet PanelSet, [(id, Part.Solid)] or None) as of the last recompute, when
+        still current; else the panels computed afresh (and no solids)."""
+        cache = getattr(self, "_cache", None)
+        stale = ("Touched" in obj.State or obj.Source is None
+                 or "Touched" in obj.Source.State)
+        if cache is not None and not stale and cache[0] == self._key(obj):
+            ps = cache[1]
+            solids = None
+            shape_solids = obj.Shape.Solids
+            if obj.Placement.isIdentity() and len(shape_solids) == len(ps.panels):
+                solids = [(p.id, s) for p, s in zip(ps.panels, shape_solids)]
+            return ps, solids
+        return self.panel_set(obj), None
+
+    @guarded
     def execute(self, obj):
         import Part
 
         from facet.step import panel_solid
 
+        self._cache = None
         ps = self.panel_set(obj)
         solids = []
         for p in ps.panels:
@@ -130,6 +163,30 @@ class PanelSet(_Proxy):
         obj.Areas = [p.area for p in ps.panels]
         obj.MaxNodeDeviation = ps.max_node_deviation_deg
         obj.Warnings = list(ps.warnings)
+        self._update_panel_objects(obj, ps, solids)
+        self._cache = (self._key(obj), ps)
+
+    def _update_panel_objects(self, obj, ps, solids):
+        """Keep one plain Part::Feature per panel (OnePerPanel), reusing the existing ones
+        in order and removing the rest."""
+        doc = obj.Document
+        have = [o for o in obj.PanelObjects if o is not None]
+        want = len(ps.panels) if obj.OnePerPanel else 0
+        keep = have[:want]
+        for extra in have[want:]:
+            if doc.getObject(extra.Name) is not None:
+                doc.removeObject(extra.Name)
+        for k in range(len(keep), want):
+            # a name of its own: FreeCAD finds a free "Panel..." by scanning every object
+            keep.append(doc.addObject("Part::Feature", f"{obj.Name}_Panel{k:05d}"))
+        for child, p, solid in zip(keep, ps.panels, solids):
+            child.Label = p.id
+            child.Shape = solid
+            child.Placement = obj.Placement
+            child.purgeTouched()
+        obj.PanelObjects = keep
+        if App.GuiUp:
+            obj.ViewObject.Visibility = not keep
 
 
 class CutSheets(_Proxy):
@@ -163,6 +220,7 @@ class CutSheets(_Proxy):
         _output(obj, "App::PropertyStringList", "Unplaced", "Parts that fit on no sheet")
         _output(obj, "App::PropertyStringList", "Files", "Files written")
 
+    @guarded
     def execute(self, obj):
         import os
 
@@ -180,8 +238,9 @@ class CutSheets(_Proxy):
         if out:
             os.makedirs(out, exist_ok=True)
         mesh = conversion.mesh_from_object(ps_obj.Source)
+        panel_set, solids = ps_obj.Proxy.computed(ps_obj)
         report, ps, drawings, result = run_pipeline(
-            mesh, ps_obj.Thickness.Value, offset=ps_obj.Offset, gap=ps_obj.Gap.Value,
+            mesh, ps_obj.Thickness.Value, panel_set=panel_set, solids=solids, offset=ps_obj.Offset, gap=ps_obj.Gap.Value,
             edge=ps_obj.EdgeMode, flip=bool(ps_obj.Flip), ids=ps_obj.IdScheme,
             prefix=ps_obj.IdPrefix, tol=ps_obj.Tolerance, tol_abs=ps_obj.ToleranceAbs.Value,
             sheet=(obj.SheetWidth.Value, obj.SheetHeight.Value), margin=obj.Margin.Value,
@@ -244,7 +303,17 @@ class ViewProviderPanels:
         return paths.icon_path(getattr(self, "icon", "Facet_PanelSet"))
 
     def claimChildren(self):
-        return []
+        obj = getattr(self, "Object", None)
+        return list(getattr(obj, "PanelObjects", None) or [])
+
+    def onDelete(self, vobj, subelements):
+        """The per-panel objects belong to the PanelSet: they go with it."""
+        obj = vobj.Object
+        doc = obj.Document
+        for child in list(getattr(obj, "PanelObjects", None) or []):
+            if child is not None and doc.getObject(child.Name) is not None:
+                doc.removeObject(child.Name)
+        return True
 
     def dumps(self):
         return {"icon": getattr(self, "icon", "Facet_PanelSet")}
@@ -261,7 +330,7 @@ class ViewProviderPanels:
 
 
 def make_panelset(source, thickness=40.0, offset="outer", gap=0.0, edge="square", flip=False,
-                  ids="auto", prefix="P-", name="PanelSet"):
+                  ids="auto", prefix="P-", one_per_panel=False, name="PanelSet"):
     """Add a PanelSet on ``source`` (a PolyMesh or Planarized object); recompute to build.
 
     Returns
@@ -284,6 +353,7 @@ def make_panelset(source, thickness=40.0, offset="outer", gap=0.0, edge="square"
     obj.Flip = bool(flip)
     obj.IdScheme = ids
     obj.IdPrefix = prefix
+    obj.OnePerPanel = bool(one_per_panel)
     if App.GuiUp:
         ViewProviderPanels(obj.ViewObject, "Facet_PanelSet")
         obj.ViewObject.ShapeColor = (0.78, 0.84, 0.91)

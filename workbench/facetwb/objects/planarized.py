@@ -11,6 +11,7 @@ import FreeCAD as App
 
 import facet
 from facetwb import compat
+from facetwb.recompute import guarded
 from facetwb import conversion
 from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
 
@@ -133,6 +134,7 @@ class Planarized(PolyMesh):
                             "Root mean square of the distances the vertices moved",
                             attr=output, editor_mode=read_only)
 
+    @guarded
     def execute(self, obj):
         if obj.Source is None:
             raise ValueError(f"{obj.Label}: Source is empty, nothing to planarize")

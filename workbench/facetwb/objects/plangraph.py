@@ -12,6 +12,7 @@ mesh) can use it.
 
 import facet
 from facetwb import compat
+from facetwb.recompute import guarded
 from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
 
 TYPE_PLANGRAPH = "Facet::PlanGraph"
@@ -51,6 +52,7 @@ class PlanGraph(PolyMesh):
         compat.add_property(obj, "App::PropertyInteger", "SnappedEndpoints", "Result",
                             "Endpoints moved by snapping", attr=output, editor_mode=read_only)
 
+    @guarded
     def execute(self, obj):
         from facet.plan import plan_from_segments, read_plan
 

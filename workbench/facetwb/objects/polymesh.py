@@ -26,6 +26,7 @@ import numpy as np
 
 import facet
 from facetwb import compat
+from facetwb.recompute import guarded
 from facetwb import conversion
 
 #: Proxy Type strings: saved in documents, never change them.
@@ -67,6 +68,7 @@ class PolyMesh:
 
     # --- recompute ------------------------------------------------------------------------
 
+    @guarded
     def execute(self, obj):
         source = getattr(obj, "Source", None)
         if source is not None:

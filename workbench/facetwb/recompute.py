@@ -1,0 +1,108 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""One line in the report view when a Facet object cannot recompute.
+
+FreeCAD 0.20 reports an exception raised by a scripted object's ``execute`` with the
+whole Python traceback, although a bad input (a NaN in a file, a plan with no bounded
+face, a panel thickness of 0) is not a bug and its message already says everything::
+
+    Facet: Plan: roof.csv: the drawing has no bounded face (3 dangling edges)
+
+:func:`guarded` wraps ``execute`` methods: a bad-input error (``facet.FacetError``, which
+includes ``InputError`` and ``Cancelled``, a ``ValueError`` naming the object, an
+``OSError`` of a file) is raised again as :class:`RecomputeError` with that one line; the
+object is left in FreeCAD's error state with its previous shape and results (every
+``execute`` computes first and assigns last), and ``obj.getStatusString()`` is the line.
+Any other exception is a bug and keeps its traceback.
+
+How the traceback is left out: FreeCAD formats the error with ``str(type(error))`` and then
+``PyTraceBack_Print``, which prints nothing while ``sys.tracebacklimit`` is 0. The
+metaclass of :class:`RecomputeError` sets it to 0 when FreeCAD asks for the type's name
+(only FreeCAD's error report does that), and it is put back as it was when the document
+finishes recomputing (a document observer) or when the next Facet object recomputes,
+whichever comes first. Nothing else in FreeCAD is changed.
+"""
+
+import functools
+import sys
+
+__all__ = ["RecomputeError", "guarded", "one_line"]
+
+_saved_limit = []
+_observer = []
+
+
+def _restore_traceback_limit():
+    while _saved_limit:
+        value = _saved_limit.pop()
+        if value is None:
+            if hasattr(sys, "tracebacklimit"):
+                del sys.tracebacklimit
+        else:
+            sys.tracebacklimit = value
+
+
+class _DocumentObserver:
+    def slotRecomputedDocument(self, doc):  # noqa: N802 - FreeCAD's name
+        _restore_traceback_limit()
+
+
+def _observe():
+    if _observer:
+        return
+    try:
+        import FreeCAD as App
+
+        observer = _DocumentObserver()
+        App.addDocumentObserver(observer)
+        _observer.append(observer)
+    except Exception:  # noqa: BLE001 - without the observer the next execute restores
+        pass
+
+
+class _OneLineType(type):
+    def __str__(cls):
+        if not _saved_limit:
+            _saved_limit.append(getattr(sys, "tracebacklimit", None))
+        sys.tracebacklimit = 0
+        return "Facet"
+
+
+class RecomputeError(Exception, metaclass=_OneLineType):
+    """A Facet object could not recompute because of its input; ``str()`` is one line."""
+
+
+#: What counts as bad input (one line, no traceback); anything else is a bug.
+def _expected():
+    import facet.errors
+
+    return (facet.errors.FacetError, ValueError, OSError)
+
+
+def one_line(obj, error):
+    """The report-view line for ``error`` raised while recomputing ``obj``."""
+    if isinstance(error, OSError) and error.strerror:
+        text = f"{error.filename}: {error.strerror}" if error.filename else error.strerror
+    else:
+        text = str(error) or type(error).__name__
+    text = " ".join(text.split())
+    label = getattr(obj, "Label", "")
+    if label and not text.startswith(label + ":"):
+        text = f"{label}: {text}"
+    return text
+
+
+def guarded(execute):
+    """Decorate a proxy's ``execute(self, obj)`` (see the module's docstring)."""
+
+    @functools.wraps(execute)
+    def wrapper(self, obj):
+        _restore_traceback_limit()
+        _observe()
+        try:
+            return execute(self, obj)
+        except _expected() as error:
+            if isinstance(error, RecomputeError):
+                raise
+            raise RecomputeError(one_line(obj, error)) from None
+
+    return wrapper
