@@ -3,10 +3,12 @@
 
 A :class:`LiveSolver` keeps one :class:`facet.Planarizer` alive for a control
 mesh. The designer picks a vertex; :func:`soft_weights` spreads the move over
-its neighbours within a radius (soft selection); every frame of a drag runs a
-*warm* re-solve sized to a frame time (:meth:`LiveSolver.frame`), so the
-result follows the hand and keeps converging while the hand rests; when the
-drag ends, :meth:`LiveSolver.settle` solves to the full tolerance.
+its neighbours within a radius (soft selection); every frame of a drag is a
+*live update* (:meth:`LiveSolver.frame`): the region around the moved vertices
+is re-solved to the full tolerance and the rest of the result keeps its
+positions, so every frame is planar. :meth:`LiveSolver.settle` re-solves the
+whole mesh (the nearest planar mesh to the edited control mesh, not only a
+local repair), for when the frames could not reach the tolerance.
 
 The solver never touches the caller's mesh: the control positions live in
 :attr:`LiveSolver.control` (a copy).
@@ -32,9 +34,13 @@ __all__ = ["FALLOFFS", "EditError", "LiveSolver", "soft_weights"]
 #: rim), linear (1 - t), constant (1 inside the radius).
 FALLOFFS = ("smooth", "linear", "constant")
 
-#: Seconds of solving per drag frame (the rest of a 33 ms frame is for the
-#: scene update and the redraw).
+#: Seconds of solving per drag frame that is not a live update (the rest of a
+#: 33 ms frame is for the scene update and the redraw).
 FRAME_SECONDS = 0.015
+
+#: Time limit of one live update (seconds). Measured on a 100 x 100 quad grid
+#: (1 m panels, 13 vertices moved per step by the soft selection): 5-20 ms.
+LIVE_BUDGET = 0.25
 
 
 class EditError(InputError):
@@ -121,14 +127,20 @@ class LiveSolver:
     method : {"lg", "ll"}
         Scheme of the final solve (:meth:`settle`).
     live_method : {"lg", "ll"}
-        Scheme of the drag frames (default "ll": many cheap iterations fit in
-        a frame, one L/G iteration of a 10k-face mesh nearly fills it).
+        Scheme of the drag frames (default "lg": a live update re-solves a
+        small region, where local/global reaches 1e-6 in a few milliseconds;
+        local/local stalls near 1e-5).
     tol, tol_abs, max_iter, threads
         As :meth:`facet.Planarizer.solve`, for :meth:`settle` and as the goal
         of the frames.
     frame_seconds : float
-        Solve time per frame (:data:`FRAME_SECONDS`): the frames run as many
-        iterations as the last ones took in that time (at least one).
+        Solve time per frame when a frame cannot be a live update
+        (:data:`FRAME_SECONDS`): such frames run as many iterations as the
+        last ones took in that time (at least one).
+    live_budget : float
+        Time limit of one live update, seconds (:data:`LIVE_BUDGET`): a
+        region that needs longer stops short of the tolerance and the frames
+        after it continue with whole-mesh re-solves.
     frame_threads : int
         Threads of the frames (default 1: a frame's few short iterations lose
         more to waking threads than they gain; measured at 10k faces on a
@@ -141,17 +153,27 @@ class LiveSolver:
         ``fixed``, ``boundary``...), used by every solve.
     """
 
-    def __init__(self, mesh, *, method="lg", live_method="ll", tol=1e-6, tol_abs=None,
+    def __init__(self, mesh, *, method="lg", live_method="lg", tol=1e-6, tol_abs=None,
                  max_iter=None, threads=None, frame_seconds=FRAME_SECONDS, frame_threads=1,
-                 result=None,
-                 progress=None, **options):
+                 live_budget=None, result=None, progress=None, **options):
         for name, value in (("method", method), ("live_method", live_method)):
             if value not in METHODS:
                 raise EditError(f"{name} must be one of {', '.join(METHODS)}, not {value!r}")
         frame_seconds = float(frame_seconds)
         if not math.isfinite(frame_seconds) or frame_seconds <= 0.0:
             raise EditError(f"frame_seconds must be a positive time, not {frame_seconds!r}")
+        live_budget = LIVE_BUDGET if live_budget is None else float(live_budget)
+        if not math.isfinite(live_budget) or live_budget <= 0.0:
+            raise EditError(f"live_budget must be a positive time, not {live_budget!r}")
         options.pop("time_budget", None)  # frames are sized by frame_seconds instead
+        self.live_budget = live_budget
+        # A data="surface" term measures the distance to the control mesh's own
+        # surface (or a reference): the live update's region data (the previous
+        # result moved by the drag) does not apply; those frames re-solve warm.
+        self._live_usable = options.get("data") != "surface" and \
+            not options.get("surface_weight")
+        self._offset = None  # live updates solve control + offset (see frame())
+        self._live_input = None  # positions given to the last live update
         self.method = method
         self.live_method = live_method
         self.frame_seconds = frame_seconds
@@ -172,12 +194,17 @@ class LiveSolver:
             if positions.shape != self.control.shape or not np.all(np.isfinite(positions)):
                 raise EditError(f"the result to start from must be {self.control.shape[0]} "
                                 "finite points (the control mesh's vertex count)")
-            # Start the warm frames from the result the designer sees: one
-            # iteration from it (it is planar already, so it stays where it is)
-            # leaves it as the solver's previous result.
-            seeded = self._planarizer.solve(positions, method=live_method, iterations=1,
+            # Start the frames from the result the designer sees: one iteration
+            # from it (it is planar already, so it stays where it is) leaves it
+            # as the solver's previous result. Live updates then solve the
+            # control positions plus this offset: a vertex the drag has not
+            # moved is given the very bits of this seed, so it is not re-solved.
+            offset = positions - self.control
+            seed = self.control + offset
+            seeded = self._planarizer.solve(seed, method="ll", iterations=1,
                                             threads=self.frame_threads, **options)
             self._set_result(result if hasattr(result, "planarity") else seeded)
+            self._offset, self._live_input = offset, seed
         else:
             self._solve(warm=False, method=method, progress=progress)
         self.settled = True
@@ -248,16 +275,35 @@ class LiveSolver:
     # --- solves ----------------------------------------------------------------------------
 
     def frame(self):
-        """One drag frame: a warm re-solve of the current control positions that
-        fits in about :attr:`frame_seconds`. Returns the PlanarizeResult (maybe
-        short of the tolerance: later frames continue from it).
+        """One drag frame: re-planarize the current control positions. Returns the
+        PlanarizeResult.
 
-        The warm start is predicted: the previous result moved by the same
-        offsets as the control vertices since then, so the planar result
-        follows the hand at once and the iterations only restore planarity
-        (a warm start from the previous result alone barely moves: its small
-        first penalty weight keeps it at the old planar solution)."""
+        A frame is a *live update* (:meth:`facet.Planarizer.solve` with ``live=True``,
+        ``facet_planarizer_update``): only the vertices the drag moved and their
+        neighbourhood a few edges deep are re-solved, from the previous result moved
+        by the drag, to the full tolerance; every other vertex keeps its previous
+        position bit for bit. The data term of that region is the previous result
+        moved by the drag, so the result follows the hand at once. The update is
+        given the control positions plus :attr:`_offset` (the result the session
+        started from minus its control mesh), so the first frame continues from the
+        result the designer sees, not from a re-solve of the whole mesh.
+
+        When the live update cannot be used (a ``data="surface"`` term: its reference
+        is the moving control mesh) or the last update stopped short of the tolerance
+        with nothing moved since, the frame is a warm re-solve of the whole mesh sized
+        to about :attr:`frame_seconds` (later frames continue from it)."""
         control = self.control.copy()  # a drag on another thread may move it meanwhile
+        if self._live_usable:
+            xyz = control if self._offset is None else control + self._offset
+            if self._live_input is None or self.result.converged or \
+                    not np.array_equal(xyz, self._live_input):
+                result = self._planarizer.solve(
+                    xyz, method=self.live_method, live=True, threads=self.frame_threads,
+                    time_budget=self.live_budget, **self._goal_no_threads(), **self._options)
+                self._live_input = xyz
+                self._set_result(result, control, keep_offset=True)
+                self.frames += 1
+                return result
         self._predict(control)
         count = max(1, int(self.frame_seconds / self._iteration_seconds))
         if self._max_iter:
@@ -269,6 +315,10 @@ class LiveSolver:
             self._iteration_seconds = 0.5 * self._iteration_seconds + 0.5 * per
         self.frames += 1
         return result
+
+    def _goal_no_threads(self):
+        return {"tol": self._goal["tol"], "tol_abs": self._goal["tol_abs"],
+                "max_iter": self._max_iter}
 
     @property
     def converged(self):
@@ -309,6 +359,12 @@ class LiveSolver:
         self._set_result(result, control)
         return result
 
-    def _set_result(self, result, control=None):
+    def _set_result(self, result, control=None, keep_offset=False):
         self.result = result
         self._result_control = (self.control if control is None else control).copy()
+        if not keep_offset:
+            # The solver's previous control is the control mesh itself now.
+            self._offset = self._live_input = None
+        if keep_offset and bool(result.converged) and \
+                np.array_equal(self._result_control, self.control):
+            self.settled = True  # planar to the tolerance at the current positions

@@ -6,10 +6,11 @@ PolyMesh) as a wireframe with a marker on every vertex, over the planar result. 
 left mouse button on a marker and drag: the vertex moves in the plane through it facing
 the view, its neighbours within the soft-selection radius follow by the falloff weight,
 and the planar result follows in the same view (a :class:`facet.live.LiveSolver` keeps the
-solver alive; a frame re-solves warm for about 15 ms on a worker thread; moves that arrive
-while a frame is solving are merged into the next frame). Releasing the button solves to
-the object's full tolerance. The result is coloured by planarity or by the distance of each
-panel from the control mesh.
+solver alive; a frame is a live update: the region around the moved vertices re-solved to
+the object's tolerance, on a worker thread; moves that arrive while a frame is solving are
+merged into the next frame). Releasing the button re-solves the whole mesh only if the last
+frame fell short of the tolerance. The result is coloured by planarity or by the distance
+of each panel from the control mesh.
 
 Nothing in the document changes while editing: the moved positions live in the session.
 **Done** (the task panel's OK, or Esc in the 3D view) writes them to the control PolyMesh in
@@ -294,13 +295,15 @@ class EditSession:
         self.request_frame()
 
     def end_drag(self):
-        """Release: end the drag and solve to the full tolerance."""
+        """Release: end the drag. The frames are planar to the tolerance already (live
+        updates); only when the last one fell short is the whole mesh re-solved."""
         if self.plane is None:
             return
         self.plane = None
         self.live.end_drag()
         self._color_markers(None)
-        self.request_settle()
+        if not self.live.settled:
+            self.request_settle()
 
     # --- solving ----------------------------------------------------------------------------
 
