@@ -6,7 +6,7 @@ import pytest
 
 import facet
 from facet.errors import InputError
-from facet.live import FALLOFFS, EditError, LiveSolver, soft_weights
+from facet.live import FALLOFFS, EditError, LiveSolver, panel_triangles, soft_weights
 
 
 def grid(n=8, scale=1.0, offset=(0.0, 0.0, 0.0)):
@@ -195,3 +195,48 @@ def test_bad_options():
     live = LiveSolver(mesh)
     with pytest.raises(EditError, match="25 finite points"):
         live.set_control(np.zeros((3, 3)))
+
+
+def _area_vector(points):
+    p = points - points.mean(axis=0)
+    return 0.5 * np.cross(p, np.roll(p, -1, axis=0)).sum(axis=0)
+
+
+def test_panel_triangles_cover_each_face_once():
+    # a convex quad, a dart (corner 1 reflex), a dart (corner 0 reflex), a triangle, an
+    # L-shaped hexagon (non-convex), georeferenced
+    o = np.array([3.5e6, 5.6e6, 210.0])
+    pts = [
+        [0, 0, 0], [2, 0, 0], [2, 2, 0], [0, 2, 0],           # 0-3 convex quad
+        [10, 0, 0], [11, 1.5, 0], [12, 0, 0], [11, 3, 0],      # 4-7 dart, 5 reflex
+        [20, 1, 0], [20, -1, 0], [23, 0, 0], [24, 3, 0],       # 8-11 (placeholder)
+        [30, 0, 0], [31, 0, 0], [30, 1, 0],                    # 12-14 triangle
+        [40, 0, 0], [43, 0, 0], [43, 1, 0], [41, 1, 0], [41, 3, 0], [40, 3, 0],  # 15-20 L
+    ]
+    xyz = np.asarray(pts, dtype=np.float64) + o
+    xyz[8] = o + [21.5, 1.0, 0.0]  # corner 8 reflex: the dart 8 9 10 11 points into itself
+    faces = [[0, 1, 2, 3], [4, 5, 6, 7], [8, 9, 10, 11], [12, 13, 14],
+             [15, 16, 17, 18, 19, 20]]
+    mesh = facet.PolyMesh.from_faces(xyz, faces)
+    tri, face = panel_triangles(mesh)
+    assert tri.dtype == np.int32 and face.dtype == np.int32
+    assert list(np.bincount(face)) == [2, 2, 2, 1, 4]
+    assert np.all(np.diff(face) >= 0)
+    for f, corners in enumerate(faces):
+        mine = tri[face == f]
+        assert set(mine.ravel()) <= set(corners)
+        whole = _area_vector(xyz[corners])
+        parts = [_area_vector(xyz[t]) for t in mine]
+        # every triangle wound like its face (no flipped piece) and the areas add up:
+        # together they cover the face once, nothing outside it
+        assert all(np.dot(a, whole) > 0 for a in parts)
+        assert np.allclose(np.sum(parts, axis=0), whole, rtol=1e-9, atol=1e-9)
+    # the dart is cut from its reflex corner 5 (the other diagonal leaves the face)
+    assert {5, 7} <= set(tri[face == 1][0]) and {5, 7} <= set(tri[face == 1][1])
+    assert {8, 10} <= set(tri[face == 2][0]) and {8, 10} <= set(tri[face == 2][1])
+
+
+def test_panel_triangles_of_a_facade_grid():
+    mesh = grid(6, scale=1000.0)
+    tri, face = panel_triangles(mesh)
+    assert tri.shape == (72, 3) and np.array_equal(face, np.repeat(np.arange(36), 2))

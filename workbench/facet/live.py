@@ -27,7 +27,7 @@ import numpy as np
 from facet.errors import InputError
 from facet.planarize import METHODS, Planarizer
 
-__all__ = ["FALLOFFS", "EditError", "LiveSolver", "soft_weights"]
+__all__ = ["FALLOFFS", "EditError", "LiveSolver", "panel_triangles", "soft_weights"]
 
 #: Soft-selection falloff curves, weight as a function of t = distance / radius
 #: in [0, 1]: smooth (1 - 3t^2 + 2t^3, flat at the picked vertex and at the
@@ -95,6 +95,123 @@ def soft_weights(vertices, center, radius, falloff="smooth"):
             weights[inside] = 1.0
     weights[center] = 1.0
     return weights
+
+
+def panel_triangles(mesh, vertices=None):
+    """Triangles covering each face of a polygon mesh, for drawing.
+
+    Each face is split in its own plane (the Newell normal of its corners):
+    a triangle is kept, a quad is cut along the diagonal from its reflex
+    corner (the shorter diagonal when it is convex), a larger polygon is
+    ear-clipped. The triangles depend on the topology and on the positions
+    they were computed from only through that choice of diagonals, so they
+    stay valid while the corners move a little (a drag): a viewer can draw
+    them without re-tessellating the polygons every time coordinates change.
+
+    Parameters
+    ----------
+    mesh : facet.PolyMesh
+    vertices : array_like (n, 3), optional
+        Positions to choose the diagonals with (default: the mesh's).
+
+    Returns
+    -------
+    triangles : numpy.ndarray of int32 (m, 3)
+        Vertex indices, in the winding of their face.
+    face : numpy.ndarray of int32 (m,)
+        The face of each triangle; the triangles of a face are consecutive
+        and the faces in order, so ``face`` is sorted.
+    """
+    xyz = np.asarray(mesh.vertices if vertices is None else vertices,
+                     dtype=np.float64).reshape(-1, 3)
+    start = np.asarray(mesh.face_start, dtype=np.int64)
+    corners = np.asarray(mesh.face_vertices, dtype=np.int64)
+    degree = np.diff(start)
+    # Triangles and quads (the bulk of a facade) vectorized.
+    tri_faces = np.flatnonzero(degree == 3)
+    quad_faces = np.flatnonzero(degree == 4)
+    out_tri = np.empty((0, 3), dtype=np.int64)
+    out_face = np.empty(0, dtype=np.int64)
+    pieces_tri, pieces_face = [], []
+    if tri_faces.size:
+        idx = start[tri_faces][:, None] + np.arange(3)
+        pieces_tri.append(corners[idx])
+        pieces_face.append(tri_faces)
+    if quad_faces.size:
+        q = corners[start[quad_faces][:, None] + np.arange(4)]  # (k, 4)
+        p = xyz[q] - xyz[q].mean(axis=1, keepdims=True)  # centred: georeferenced input
+        normal = np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1])  # Newell normal of a quad
+        turn = np.empty(q.shape)
+        for k in range(4):
+            a, b, c = p[:, k - 1], p[:, k], p[:, (k + 1) % 4]
+            turn[:, k] = np.einsum("ij,ij->i", np.cross(b - a, c - b), normal)
+        reflex = turn < 0.0
+        d02 = np.einsum("ij,ij->i", p[:, 2] - p[:, 0], p[:, 2] - p[:, 0])
+        d13 = np.einsum("ij,ij->i", p[:, 3] - p[:, 1], p[:, 3] - p[:, 1])
+        # diagonal 1-3 when corner 1 or 3 is reflex, 0-2 when 0 or 2 is; else the shorter
+        use13 = (reflex[:, 1] | reflex[:, 3]) | (~(reflex[:, 0] | reflex[:, 2]) & (d13 < d02))
+        first = np.where(use13[:, None], q[:, [0, 1, 3]], q[:, [0, 1, 2]])
+        second = np.where(use13[:, None], q[:, [1, 2, 3]], q[:, [0, 2, 3]])
+        pieces_tri.append(np.stack([first, second], axis=1).reshape(-1, 3))
+        pieces_face.append(np.repeat(quad_faces, 2))
+    for f in np.flatnonzero(degree > 4):
+        ring = corners[start[f]:start[f + 1]]
+        for t in _ear_clip(xyz[ring]):
+            pieces_tri.append(ring[np.asarray(t)][None, :])
+            pieces_face.append(np.array([f]))
+    if pieces_tri:
+        out_tri = np.concatenate(pieces_tri)
+        out_face = np.concatenate(pieces_face)
+        order = np.argsort(out_face, kind="stable")
+        out_tri, out_face = out_tri[order], out_face[order]
+    return out_tri.astype(np.int32), out_face.astype(np.int32)
+
+
+def _ear_clip(points):
+    """Triangles (corner index triples) of one polygon (k, 3), k > 3, ear-clipped in
+    the plane of its Newell normal; a fan when no ear is found (degenerate)."""
+    p = points - points.mean(axis=0)
+    k = p.shape[0]
+    normal = np.zeros(3)
+    for i in range(k):
+        a, b = p[i], p[(i + 1) % k]
+        normal += np.array([(a[1] - b[1]) * (a[2] + b[2]), (a[2] - b[2]) * (a[0] + b[0]),
+                            (a[0] - b[0]) * (a[1] + b[1])])
+    axis = int(np.argmax(np.abs(normal)))
+    uv = np.delete(p, axis, axis=1)
+    if normal[axis] < 0.0:
+        uv = uv[:, ::-1]  # counter-clockwise seen along the normal
+    ring = list(range(k))
+    out = []
+
+    def cross(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    guard = 0
+    while len(ring) > 3 and guard < 4 * k * k:
+        guard += 1
+        for j in range(len(ring)):
+            i0, i1, i2 = ring[j - 1], ring[j], ring[(j + 1) % len(ring)]
+            a, b, c = uv[i0], uv[i1], uv[i2]
+            if cross(a, b, c) <= 0.0:
+                continue  # reflex or flat corner: not an ear
+            inside = False
+            for m in ring:
+                if m in (i0, i1, i2):
+                    continue
+                q = uv[m]
+                if cross(a, b, q) >= 0.0 and cross(b, c, q) >= 0.0 and cross(c, a, q) >= 0.0:
+                    inside = True
+                    break
+            if not inside:
+                out.append((i0, i1, i2))
+                ring.pop(j)
+                break
+        else:
+            break  # no ear: degenerate polygon, fan the rest
+    for j in range(1, len(ring) - 1):
+        out.append((ring[0], ring[j], ring[j + 1]))
+    return out
 
 
 def _vertex_index(vertex, n):
