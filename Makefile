@@ -13,6 +13,7 @@
 PYTHON ?= /usr/bin/python3
 BUILD ?= build
 OUT ?= out
+DRAG_SCREEN ?= 1600x1000x24
 PREFIX ?= $(HOME)/.local
 JOBS ?= 2
 
@@ -111,7 +112,7 @@ bench-panels: build
 # dragging a control vertex of a 10k-face facade in FreeCAD under Xvfb: frames per second
 bench-drag: build
 	mkdir -p $(OUT)/bench
-	FACET_DRAG_JSON=$(abspath $(OUT))/bench/drag_fps.json $(FC_ENV) xvfb-run -a -s "-screen 0 1600x1000x24" \
+	FACET_DRAG_JSON=$(abspath $(OUT))/bench/drag_fps.json $(FC_ENV) xvfb-run -a -s "-screen 0 $(DRAG_SCREEN)" \
 	    freecad tools/bench/drag_fps.py
 
 install: build

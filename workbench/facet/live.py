@@ -438,6 +438,11 @@ class LiveSolver:
                 "max_iter": self._max_iter}
 
     @property
+    def result_control(self):
+        """The control positions :attr:`result` was solved for (a copy taken then)."""
+        return self._result_control
+
+    @property
     def converged(self):
         """True once the last result of the current control positions reached the
         tolerance."""

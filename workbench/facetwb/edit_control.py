@@ -30,13 +30,19 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facet.errors import Cancelled
-from facet.live import FALLOFFS, LiveSolver
+from facet.live import FALLOFFS, LiveSolver, panel_triangles
 from facetwb.objects.planarized import is_planarized, term_options
 from facetwb.objects.polymesh import get_mesh, is_polymesh
 from facetwb.viewproviders import colormap
+from facetwb.viewproviders.legend import tick_labels
 
 #: What the result's colours show while editing.
 COLOR_BY = ("Planarity", "Distance to control")
+
+#: Depth (edges) of the result's region drawn by the live part of a drag: twice the live
+#: update's default region (4 rings), so a region that grows once still stays inside it
+#: (a vertex moved outside it is drawn correctly too, at the cost of that frame's caches).
+REGION_RINGS = 8
 
 #: Pick radius around a marker, pixels.
 PICK_PIXELS = 12
@@ -133,9 +139,16 @@ class EditSession:
         self.worker_error = None
         self.closed = False
         self.closing = False  # Done or Cancel: a running settle stops at its next iteration
-        self.stats = {"frames": 0, "solve": [], "scene": [], "moves": 0}
+        self.stats = {"frames": 0, "solve": [], "scene": [], "moves": 0, "planarity": []}
+        self.shown_control = None  # the control positions of the result drawn
         self.listeners = []  # callables(session) told after each shown frame
+        self._shown = {}  # what each Coin field holds: only changed ranges are set again
+        self._legend_key = None
+        self._navicube = None  # the navigation cube's state while it is hidden for a drag
+        self._rgb = None  # the colour of each panel drawn
+        self.show_still_control = False  # the whole control mesh during a drag
         self._build_scene()
+        self._draw_triangles()
         self._previous_mode = self.vobj.DisplayMode
         if "Planarity" in self.vobj.getEnumerationsOfProperty("DisplayMode"):
             self.vobj.DisplayMode = "Planarity"
@@ -160,41 +173,203 @@ class EditSession:
     # --- scene ----------------------------------------------------------------------------
 
     def _build_scene(self):
+        """The session's nodes, split in what a drag changes and what it does not.
+
+        Coin caches a separator whose contents did not change (an OpenGL display list),
+        and redraws it far faster than it traverses and sends it again; a change of a
+        coordinate invalidates every cache that uses the coordinate node. So a drag draws
+        from two copies of the coordinates: the *still* parts (control edges and points
+        away from the moved vertices; the result's panels and edges away from the live
+        region, drawn by the Planarized object's own nodes) use coordinates that do not
+        change during the drag, and only the *live* parts (around the drag, below
+        separators that do not cache) use the coordinates that change every frame."""
         self.root = coin.SoSeparator()
-        self.coords = coin.SoCoordinate3()
-        self.root.addChild(self.coords)
-        wire = coin.SoSeparator()
+        self.root.renderCaching = coin.SoSeparator.OFF
         unlit = coin.SoLightModel()
         unlit.model = coin.SoLightModel.BASE_COLOR
         wire_material = coin.SoMaterial()
         wire_material.diffuseColor.setValue(*WIRE_COLOR)
         style = coin.SoDrawStyle()
         style.lineWidth = 1.5
-        self.wire = coin.SoIndexedLineSet()
-        edges = np.asarray(self.mesh.edges(), dtype=np.int64).reshape(-1, 2)
-        index = np.hstack([edges, np.full((edges.shape[0], 1), -1, dtype=np.int64)]).ravel()
-        _set_field(self.wire.coordIndex, index.tolist())
-        for node in (unlit, wire_material, style, self.wire):
-            wire.addChild(node)
-        self.root.addChild(wire)
-        markers = coin.SoSeparator()
-        binding = coin.SoMaterialBinding()
-        binding.value = coin.SoMaterialBinding.PER_VERTEX
-        self.marker_material = coin.SoMaterial()
         # Points, not an SoMarkerSet: one draw call for all of them (markers are drawn one
         # bitmap at a time: seconds per frame at 10k vertices with software OpenGL).
         point_style = coin.SoDrawStyle()
         point_style.pointSize = 5.0
-        self.markers = coin.SoPointSet()
-        for node in (unlit, binding, self.marker_material, point_style, self.markers):
-            markers.addChild(node)
-        self.root.addChild(markers)
-        self._set_control_coords()
-        self._color_markers(None)
+        edges = np.asarray(self.mesh.edges(), dtype=np.int64).reshape(-1, 2)
+        self.edge_list = edges
+        # Control mesh, still part: cached.
+        still = coin.SoSeparator()
+        still.renderCaching = coin.SoSeparator.ON
+        self.coords = coin.SoCoordinate3()
+        self.wire = coin.SoIndexedLineSet()
+        self.markers = coin.SoIndexedPointSet()
+        still_marker_material = coin.SoMaterial()
+        still_marker_material.diffuseColor.setValue(*MARKER_COLOR)
+        for node in (self.coords, unlit, wire_material, style, self.wire,
+                     still_marker_material, point_style, self.markers):
+            still.addChild(node)
+        # Control mesh, live part: the moved vertices, their edges.
+        moving = coin.SoSeparator()
+        moving.renderCaching = coin.SoSeparator.OFF
+        self.live_coords = coin.SoCoordinate3()
+        self.live_wire = coin.SoIndexedLineSet()
+        binding = coin.SoMaterialBinding()
+        binding.value = coin.SoMaterialBinding.PER_VERTEX_INDEXED
+        self.marker_material = coin.SoMaterial()
+        self.live_markers = coin.SoIndexedPointSet()
+        for node in (self.live_coords, unlit, wire_material, style, self.live_wire,
+                     binding, self.marker_material, point_style, self.live_markers):
+            moving.addChild(node)
+        # Result, live part: the panels and edges of the live region (the Planarized
+        # object's nodes draw the rest).
+        region = coin.SoSeparator()
+        region.renderCaching = coin.SoSeparator.OFF
+        self.region_coords = coin.SoCoordinate3()
+        hints = coin.SoShapeHints()
+        hints.vertexOrdering = coin.SoShapeHints.COUNTERCLOCKWISE
+        hints.shapeType = coin.SoShapeHints.UNKNOWN_SHAPE_TYPE
+        hints.faceType = coin.SoShapeHints.CONVEX  # triangles
+        hints.creaseAngle = 0.0
+        per_face = coin.SoMaterialBinding()
+        per_face.value = coin.SoMaterialBinding.PER_FACE
+        self.region_material = coin.SoMaterial()
+        self.region_faces = coin.SoIndexedFaceSet()
+        region_edges = coin.SoSeparator()
+        overall = coin.SoMaterialBinding()
+        overall.value = coin.SoMaterialBinding.OVERALL
+        self.region_line_material = coin.SoMaterial()
+        self.region_line_style = coin.SoDrawStyle()
+        self.region_edges = coin.SoIndexedLineSet()
+        self.region_edge_switch = coin.SoSwitch()
+        for node in (overall, unlit, self.region_line_material, self.region_line_style,
+                     self.region_edges):
+            region_edges.addChild(node)
+        self.region_edge_switch.addChild(region_edges)
+        for node in (self.region_coords, hints, coin.SoPolygonOffset(), per_face,
+                     self.region_material, self.region_faces, self.region_edge_switch):
+            region.addChild(node)
+        # During a drag only the control near it is drawn (the live part): the still
+        # control wire and points are a third of the redraw with software OpenGL, and
+        # away from the drag the result's own edges show the panels.
+        self.still_switch = coin.SoSwitch()
+        self.still_switch.addChild(still)
+        self.still_switch.whichChild = coin.SO_SWITCH_ALL
+        for node in (self.still_switch, moving, region):
+            self.root.addChild(node)
+        self.moving_vertices = None  # the control vertices the current drag moves
+        self.region_vertices = None  # the result's vertices drawn by the live part
+        self._set_still_control(None)
         self.view.getSceneGraph().addChild(self.root)
 
+    def _set_still_control(self, moving):
+        """Control edges and points: all of them in the still part, or (during a drag)
+        those away from the ``moving`` vertices (bool mask), the others in the live part
+        (with the soft-selection colours)."""
+        edges = self.edge_list
+        vertices = np.arange(self.mesh.n_vertices)
+        self.still_switch.whichChild = coin.SO_SWITCH_ALL if moving is None or \
+            self.show_still_control else coin.SO_SWITCH_NONE
+        if moving is None:
+            still_edges, live_edges = edges, edges[:0]
+            still_points, live_points = vertices, vertices[:0]
+        else:
+            touch = moving[edges[:, 0]] | moving[edges[:, 1]]
+            still_edges, live_edges = edges[~touch], edges[touch]
+            still_points, live_points = vertices[~moving], vertices[moving]
+        _set_field(self.wire.coordIndex, _line_index(still_edges))
+        _set_field(self.markers.coordIndex, still_points.tolist())
+        _set_field(self.live_wire.coordIndex, _line_index(live_edges))
+        _set_field(self.live_markers.coordIndex, live_points.tolist())
+        self._shown.pop("control", None)
+        self._shown.pop("control_live", None)
+        self._set_changed(self.coords.point, self.live.control, "control")
+        if moving is not None:
+            self._set_changed(self.live_coords.point, self.live.control, "control_live")
+
     def _set_control_coords(self):
-        _set_field(self.coords.point, self.live.control)
+        if self.moving_vertices is not None:
+            self._set_changed(self.live_coords.point, self.live.control, "control_live")
+        else:
+            self._set_changed(self.coords.point, self.live.control, "control")
+
+    def _set_changed(self, field, values, key):
+        """Set the rows of ``values`` (n, k) that differ from what ``field`` holds (one
+        ``setValues`` of the range from the first to the last changed row; the whole
+        field when its size changed or someone else set it). Returns the changed rows
+        (None: all)."""
+        values = np.asarray(values, dtype=np.float64)
+        previous = self._shown.get(key)
+        rows = None
+        if previous is None or previous.shape != values.shape or \
+                field.getNum() != values.shape[0]:
+            _set_field(field, values)
+        else:
+            rows = np.flatnonzero(np.any(values != previous, axis=1))
+            if rows.size == 0:
+                return rows
+            lo, hi = int(rows[0]), int(rows[-1]) + 1
+            field.setValues(lo, hi - lo, values[lo:hi].tolist())
+        self._shown[key] = values.copy()
+        return rows
+
+    def _draw_triangles(self):
+        """Draw the result's panels as triangles while editing (facet.live.panel_triangles,
+        computed once here): Coin would otherwise re-tessellate every polygon whenever the
+        coordinates change (UNKNOWN_FACE_TYPE goes through GLU tessellation)."""
+        proxy = self.vobj.Proxy
+        faces = getattr(proxy, "faces", None)
+        self.tri_face = None
+        if faces is None or getattr(proxy, "face_count", 0) != self.mesh.n_faces:
+            return
+        self.triangles, self.tri_face = panel_triangles(self.mesh,
+                                                        self.live.result.mesh.vertices)
+        self.proxy_edge_index = list(proxy.edges.coordIndex.getValues()) \
+            if hasattr(proxy, "edges") else None
+        self._set_region(None)
+
+    def _set_region(self, region):
+        """Result panels: all in the Planarized object's nodes, or (during a drag) those
+        with a vertex in ``region`` (bool mask over the vertices) in the live part."""
+        if self.tri_face is None:
+            return
+        proxy = self.vobj.Proxy
+        tri, tri_face = self.triangles, self.tri_face
+        if region is None:
+            still = np.ones(tri.shape[0], dtype=bool)
+            live_edges = self.edge_list[:0]
+        else:
+            still = ~np.any(region[tri], axis=1)
+            edges = self.edge_list
+            live_edges = edges[region[edges[:, 0]] | region[edges[:, 1]]]
+        self.still_tri_face, self.live_tri_face = tri_face[still], tri_face[~still]
+        _set_field(proxy.faces.coordIndex, _face_index(tri[still]))
+        _set_field(self.region_faces.coordIndex, _face_index(tri[~still]))
+        if self.proxy_edge_index is not None:
+            if region is None:
+                _set_field(proxy.edges.coordIndex, self.proxy_edge_index)
+            else:
+                edges = self.edge_list
+                still_edges = edges[~(region[edges[:, 0]] | region[edges[:, 1]])]
+                _set_field(proxy.edges.coordIndex, _line_index(still_edges))
+        _set_field(self.region_edges.coordIndex, _line_index(live_edges))
+        self.region_line_material.diffuseColor.setValue(*self.vobj.LineColor[:3])
+        self.region_line_style.lineWidth = max(self.vobj.LineWidth, 0.1)
+        self.region_edge_switch.whichChild = proxy.planarity_edges.whichChild.getValue()
+        drawn = self._shown.get("result_live")
+        for key in ("colors", "colors_live", "result_live"):
+            self._shown.pop(key, None)
+        if self.region_vertices is not None and drawn is not None:
+            # the drag ends: the Planarized object's nodes draw the latest result again
+            self._set_changed(proxy.coords.point, drawn, "result")
+        self.region_vertices = region
+        if region is not None:
+            xyz = self._shown.get("result", self.live.result.mesh.vertices)
+            self._set_changed(self.region_coords.point, xyz, "result_live")
+        if self._rgb is not None:
+            self._set_changed(proxy.planarity_material.diffuseColor,
+                              self._rgb[self.still_tri_face], "colors")
+            self._set_changed(self.region_material.diffuseColor,
+                              self._rgb[self.live_tri_face], "colors_live")
 
     def _color_markers(self, weights):
         n = self.mesh.n_vertices
@@ -219,16 +394,40 @@ class EditSession:
         bulk; the document is not touched)."""
         t0 = time.perf_counter()
         proxy = self.vobj.Proxy
-        _set_field(proxy.coords.point, result.mesh.vertices)
+        # Only what changed: a live update moves the region around the drag. During a
+        # drag the live part draws the region from its own coordinates; the Planarized
+        # object's (cached) nodes change only if a vertex outside the region moved.
+        xyz = result.mesh.vertices
+        region = self.region_vertices
+        if region is not None:
+            rows = self._set_changed(self.region_coords.point, xyz, "result_live")
+            if rows is None or np.any(~region[rows]):
+                self._set_changed(proxy.coords.point, xyz, "result")
+        else:
+            self._set_changed(proxy.coords.point, xyz, "result")
         values, title = self.face_values(result)
         if getattr(proxy, "face_count", 0) == values.size:
             legend_max = self.vobj.LegendMax.Value if hasattr(self.vobj, "LegendMax") else 0.0
             top = float(values.max()) if values.size else 0.0
             scale = legend_max if legend_max > 0.0 else top
-            _set_field(proxy.planarity_material.diffuseColor, colormap.colors(values, scale))
-            proxy.legend.update(scale, actual_max=top, title=title, kind="length")
+            rgb = colormap.colors(values, scale)
+            self._rgb = rgb
+            if self.tri_face is None:
+                self._set_changed(proxy.planarity_material.diffuseColor, rgb, "colors")
+            else:  # per triangle (PER_FACE binding)
+                self._set_changed(proxy.planarity_material.diffuseColor,
+                                  rgb[self.still_tri_face], "colors")
+                self._set_changed(self.region_material.diffuseColor,
+                                  rgb[self.live_tri_face], "colors_live")
+            key = (tuple(tick_labels(scale)), tick_labels(top, 2)[-1], title)
+            if key != self._legend_key:  # the legend's text nodes are rebuilt: only if new
+                proxy.legend.update(scale, actual_max=top, title=title, kind="length")
+                self._legend_key = key
+        if result is self.live.result:
+            self.shown_control = self.live.result_control
         self.stats["scene"].append(time.perf_counter() - t0)
         self.stats["frames"] += 1
+        self.stats["planarity"].append(float(result.planarity.max_rel_all))
         for listener in list(self.listeners):
             listener(self)
 
@@ -274,6 +473,28 @@ class EditSession:
         normal = np.array(tuple(self.view.getViewDirection()))
         self.plane = (self.live.control[vertex].copy(), normal / np.linalg.norm(normal))
         self._color_markers(weights)
+        moving = weights > 0.0
+        self.moving_vertices = moving
+        self._set_still_control(moving)
+        self._set_region(_rings(moving, self.edge_list, REGION_RINGS))
+        self._hide_navicube(True)
+
+    def _hide_navicube(self, hide):
+        """Hide the navigation cube while the button is held (it cannot be used during a
+        drag, and drawing it is a sixth of a frame with software OpenGL); show it again
+        as it was."""
+        try:
+            viewer = self.view.getViewer()
+            if hide and self._navicube is None:
+                self._navicube = bool(viewer.isEnabledNaviCube())
+                if self._navicube:
+                    viewer.setEnabledNaviCube(False)
+            elif not hide and self._navicube is not None:
+                if self._navicube:
+                    viewer.setEnabledNaviCube(True)
+                self._navicube = None
+        except Exception:  # noqa: BLE001 - a view without a cube (or closed)
+            self._navicube = None
 
     def drag_to_screen(self, position):
         """Move the dragged vertex under ``position`` (pixels), in its view plane."""
@@ -302,8 +523,18 @@ class EditSession:
         self.plane = None
         self.live.end_drag()
         self._color_markers(None)
+        self.moving_vertices = None
+        self._set_still_control(None)
+        self._set_region(None)
+        self._hide_navicube(False)
         if not self.live.settled:
             self.request_settle()
+
+    @property
+    def current(self):
+        """True when the result drawn is the solution of the control positions drawn."""
+        return self.shown_control is not None and \
+            np.array_equal(self.shown_control, self.live.control)
 
     # --- solving ----------------------------------------------------------------------------
 
@@ -430,7 +661,6 @@ class EditSession:
         moved = self.live.moved
         self.close()
         if not moved:
-            self._restore_view()
             return False
         doc = self.control_obj.Document
         doc.openTransaction("Edit control mesh")
@@ -448,11 +678,12 @@ class EditSession:
         self.closing = True
         self.wait()
         self.close()
-        self._restore_view()
 
     def _restore_view(self):
+        """Draw the stored result again, as polygons (the session drew triangles)."""
         proxy = self.vobj.Proxy
         if hasattr(proxy, "redraw_mesh"):
+            proxy.drawn_topology = None
             proxy.redraw_mesh(self.planarized)
 
     def close(self):
@@ -463,6 +694,11 @@ class EditSession:
         self.closed = True
         if self.timer is not None:
             self.timer.stop()
+        self._hide_navicube(False)
+        try:
+            self._restore_view()
+        except Exception as exc:  # noqa: BLE001 - the object may be deleted already
+            App.Console.PrintWarning(f"Facet: edit: redrawing the result failed: {exc}\n")
         for kind, callback in self._callbacks:
             try:
                 self.view.removeEventCallbackPivy(kind, callback)
@@ -581,6 +817,28 @@ def finish(keep=True):
     except Exception as exc:  # noqa: BLE001 - one line in the report view
         App.Console.PrintError(f"Facet: edit of {session.planarized.Label} failed: {exc}\n")
         return False
+
+
+def _rings(mask, edges, rings):
+    """``mask`` (bool over the vertices) grown by ``rings`` edges."""
+    grown = mask.copy()
+    for _ in range(rings):
+        touch = grown[edges[:, 0]] | grown[edges[:, 1]]
+        grown[edges[touch, 0]] = True
+        grown[edges[touch, 1]] = True
+    return grown
+
+
+def _line_index(edges):
+    """coordIndex of an SoIndexedLineSet of (k, 2) edges."""
+    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    return np.hstack([edges, np.full((edges.shape[0], 1), -1, dtype=np.int64)]).ravel().tolist()
+
+
+def _face_index(triangles):
+    """coordIndex of an SoIndexedFaceSet of (k, 3) triangles."""
+    tri = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    return np.hstack([tri, np.full((tri.shape[0], 1), -1, dtype=np.int64)]).ravel().tolist()
 
 
 def _set_field(field, values):
