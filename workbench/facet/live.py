@@ -438,6 +438,17 @@ class LiveSolver:
                 "max_iter": self._max_iter}
 
     @property
+    def live_updates(self):
+        """True when the next frame will be a live update (cheap, local): not with a
+        ``data="surface"`` term, nor right after a frame that fell short with nothing
+        moved since."""
+        if not self._live_usable:
+            return False
+        xyz = self.control if self._offset is None else self.control + self._offset
+        return self._live_input is None or bool(self.result.converged) or \
+            not np.array_equal(xyz, self._live_input)
+
+    @property
     def result_control(self):
         """The control positions :attr:`result` was solved for (a copy taken then)."""
         return self._result_control

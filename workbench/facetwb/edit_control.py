@@ -44,6 +44,11 @@ COLOR_BY = ("Planarity", "Distance to control")
 #: (a vertex moved outside it is drawn correctly too, at the cost of that frame's caches).
 REGION_RINGS = 8
 
+#: A drag's frames solve in the mouse handler while they take at most this long (median
+#: of the last three; live updates take 3-10 ms on a 10k-face facade); after slower
+#: ones, on the worker thread for the rest of the drag.
+INLINE_SECONDS = 0.05
+
 #: Pick radius around a marker, pixels.
 PICK_PIXELS = 12
 
@@ -147,6 +152,8 @@ class EditSession:
         self._navicube = None  # the navigation cube's state while it is hidden for a drag
         self._rgb = None  # the colour of each panel drawn
         self.show_still_control = False  # the whole control mesh during a drag
+        self.inline_frames = True  # live updates solved in the event handler (see below)
+        self.inline_times = []
         self._build_scene()
         self._draw_triangles()
         self._previous_mode = self.vobj.DisplayMode
@@ -409,7 +416,10 @@ class EditSession:
         if getattr(proxy, "face_count", 0) == values.size:
             legend_max = self.vobj.LegendMax.Value if hasattr(self.vobj, "LegendMax") else 0.0
             top = float(values.max()) if values.size else 0.0
-            scale = legend_max if legend_max > 0.0 else top
+            # A round top of the scale (1, 2 or 5 times a power of ten): the worst value
+            # changes every frame, and a scale that followed it would recolour every
+            # panel every frame.
+            scale = legend_max if legend_max > 0.0 else _round_up(top)
             rgb = colormap.colors(values, scale)
             self._rgb = rgb
             if self.tri_face is None:
@@ -473,6 +483,7 @@ class EditSession:
         normal = np.array(tuple(self.view.getViewDirection()))
         self.plane = (self.live.control[vertex].copy(), normal / np.linalg.norm(normal))
         self._color_markers(weights)
+        self.inline_frames, self.inline_times = True, []
         moving = weights > 0.0
         self.moving_vertices = moving
         self._set_still_control(moving)
@@ -547,6 +558,18 @@ class EditSession:
         if self.busy:
             self.pending = True  # merged: the next frame takes the latest positions
             return
+        if self.threaded and self.inline_frames and self.live.live_updates:
+            # A live update takes a few milliseconds: solved here, drawn in the same
+            # redraw as the control that moved (every frame shows the result of the
+            # control drawn); a worker thread would compete with the software
+            # rasterizer for the same cores and draw results a move late.
+            t0 = time.perf_counter()
+            self._start(self.live.frame, inline=True)
+            self.inline_times.append(time.perf_counter() - t0)
+            recent = self.inline_times[-3:]
+            if len(recent) == 3 and sorted(recent)[1] > INLINE_SECONDS:
+                self.inline_frames = False  # slow frames: the worker, for this drag
+            return
         self._start(self.live.frame)
 
     def request_settle(self):
@@ -555,9 +578,9 @@ class EditSession:
             return
         self._start(lambda: self.live.settle(progress=lambda *_args: self.closing))
 
-    def _start(self, solve):
+    def _start(self, solve, inline=False):
         self.pending = False
-        if not self.threaded:
+        if not self.threaded or inline:
             t0 = time.perf_counter()
             result = solve()
             self.stats["solve"].append(time.perf_counter() - t0)
@@ -817,6 +840,17 @@ def finish(keep=True):
     except Exception as exc:  # noqa: BLE001 - one line in the report view
         App.Console.PrintError(f"Facet: edit of {session.planarized.Label} failed: {exc}\n")
         return False
+
+
+def _round_up(value):
+    """The smallest of 1, 2, 5 times a power of ten that is >= ``value`` (0 for 0)."""
+    if not value > 0.0 or not np.isfinite(value):
+        return 0.0
+    power = 10.0 ** np.floor(np.log10(value))
+    for step in (1.0, 2.0, 5.0, 10.0):
+        if step * power >= value:
+            return float(step * power)
+    return float(10.0 * power)
 
 
 def _rings(mask, edges, rings):
