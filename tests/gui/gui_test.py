@@ -488,17 +488,47 @@ def check_edit_control(check, out_dir):
         App.closeDocument(doc.Name)
         return
     vertex = 40  # the middle of the 8 x 8 hypar
+    proxy = result.ViewObject.Proxy
+    n_tri = session.triangles.shape[0]
+    check(n_tri == 2 * mesh.n_faces and proxy.faces.coordIndex.getNum() == 4 * n_tri,
+          f"while editing the result is drawn as {n_tri} triangles (computed once)")
+    viewer = view.getViewer()
+    cube = viewer.isEnabledNaviCube()
     x, y = session.screen_position(vertex)
     press = _mouse("button", (x, y), True)
     session._on_button(press)
     check(press.handled and session.live.drag_vertex == vertex,
           f"a press on vertex {vertex}'s marker picks it")
+    still, live_tri = proxy.faces.coordIndex.getNum() // 4, \
+        session.region_faces.coordIndex.getNum() // 4
+    check(live_tri > 0 and still + live_tri == n_tri
+          and proxy.planarity_material.diffuseColor.getNum() == still
+          and session.region_material.diffuseColor.getNum() == live_tri,
+          f"during the drag the live region draws {live_tri} triangles, the object's nodes "
+          f"the other {still}, each with its colour")
+    check(not viewer.isEnabledNaviCube(), "the navigation cube is hidden while dragging")
+    frames0 = len(session.stats["planarity"])
+    current = 0
     for k in range(1, 16):
         session._on_move(_mouse("move", (x, y + 4 * k)))
         session.poll()
         Gui.updateGui()
+        current += bool(session.current)
+    check(current == 15, f"every redraw during the drag shows the result of the control "
+          f"drawn ({current} of 15)")
+    worst = max(session.stats["planarity"][frames0:] or [float("nan")])
+    check(len(session.stats["planarity"]) - frames0 >= 15 and worst <= result.Tolerance,
+          f"every frame of the drag is planar to the tolerance (worst {worst:.2g})")
+    region_xyz = np.array([tuple(p.getValue()) for p in session.region_coords.point])
+    check(np.allclose(region_xyz, session.live.result.mesh.vertices, atol=1e-3),
+          "the live region draws the latest result")
     session._on_button(_mouse("button", (x, y + 60), False))
     check(session.wait(120.0), "the solves finish after the release")
+    check(viewer.isEnabledNaviCube() == cube, "the navigation cube is back after the release")
+    check(proxy.faces.coordIndex.getNum() == 4 * n_tri
+          and session.region_faces.coordIndex.getNum() == 0
+          and proxy.planarity_material.diffuseColor.getNum() == n_tri,
+          "after the release the object's nodes draw all the triangles again")
     live = session.live.result
     moved = np.linalg.norm(live.mesh.vertices[vertex] - solved[vertex])
     check(moved > 0.2 * mesh.mean_edge_length(),
@@ -520,6 +550,8 @@ def check_edit_control(check, out_dir):
     check(result.isValid() and result.PlanarityMaxRel <= result.Tolerance,
           "the Planarized object is recomputed from them, planar")
     check(edit_control.active_session() is None, "the session has ended")
+    check(proxy.faces.coordIndex.getNum() == len(mesh.face_vertices) + mesh.n_faces,
+          "after the edit the object draws its panels as polygons again")
     doc.undo()
     doc.recompute()
     check(np.array_equal(get_mesh(control).vertices, original), "undo restores the control mesh")

@@ -45,9 +45,11 @@ COLOR_BY = ("Planarity", "Distance to control")
 REGION_RINGS = 8
 
 #: A drag's frames solve in the mouse handler while they take at most this long (median
-#: of the last three; live updates take 3-10 ms on a 10k-face facade); after slower
-#: ones, on the worker thread for the rest of the drag.
-INLINE_SECONDS = 0.05
+#: of the last five, solve and scene update; live updates take 3-10 ms on a 10k-face
+#: facade, several times that on a loaded machine); after slower ones (a region that
+#: grew to the whole mesh), on the worker thread for the rest of the drag, so the view
+#: stays responsive.
+INLINE_SECONDS = 0.1
 
 #: Pick radius around a marker, pixels.
 PICK_PIXELS = 12
@@ -566,8 +568,8 @@ class EditSession:
             t0 = time.perf_counter()
             self._start(self.live.frame, inline=True)
             self.inline_times.append(time.perf_counter() - t0)
-            recent = self.inline_times[-3:]
-            if len(recent) == 3 and sorted(recent)[1] > INLINE_SECONDS:
+            recent = self.inline_times[-5:]
+            if len(recent) == 5 and sorted(recent)[2] > INLINE_SECONDS:
                 self.inline_frames = False  # slow frames: the worker, for this drag
             return
         self._start(self.live.frame)
