@@ -212,6 +212,7 @@ def run(out_dir):
     check_lifting(check, out_dir)
     check_panels(check, out_dir)
     check_edit_control(check, out_dir)
+    check_edit_region(check)
     return check
 
 
@@ -566,6 +567,70 @@ def check_edit_control(check, out_dir):
     check(np.array_equal(get_mesh(control).vertices, original)
           and edit_control.active_session() is None, "Cancel leaves the control mesh alone")
     check_live_parameters(check, result)
+    App.closeDocument(doc.Name)
+
+
+def check_edit_region(check):
+    """During a drag of a larger facade only the live region is drawn from changing
+    coordinates: the Planarized object's own nodes keep the positions they had when the
+    drag began (Coin keeps their caches) and take the result again at the release."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import numpy as np
+
+    import facet
+    import facetwb
+    from facetwb import edit_control
+
+    n = 24
+    faces = [[j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1,
+              (j + 1) * (n + 1) + i] for j in range(n) for i in range(n)]
+    i, j = np.meshgrid(np.arange(n + 1.0), np.arange(n + 1.0), indexing="xy")
+    x, y = i.ravel(), j.ravel()
+    z = 0.3 * np.sin(0.4 * x) * np.cos(0.3 * y)
+    mesh = facet.PolyMesh.from_faces(np.stack([x, y, z], axis=1) * 1000.0, faces)
+    doc = App.newDocument("EditRegion")
+    result = facetwb.make_planarized(facetwb.make_polymesh(mesh))
+    doc.recompute()
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    Gui.updateGui()
+    session = edit_control.start(result, threaded=False, panel=False)
+    proxy = result.ViewObject.Proxy
+    vertex = 12 * (n + 1) + 12
+
+    def points(field):
+        return np.array([tuple(p.getValue()) for p in field])
+
+    before = points(proxy.coords.point)
+    px, py = session.screen_position(vertex)
+    session._on_button(_mouse("button", (px, py), True))
+    for k in range(1, 6):
+        session._on_move(_mouse("move", (px, py + 5 * k)))
+        Gui.updateGui()
+    live = session.live.result.mesh.vertices
+    still = proxy.faces.coordIndex.getNum() // 4
+    region = session.region_faces.coordIndex.getNum() // 4
+    check(session.live.drag_vertex == vertex and still > region > 0,
+          f"a drag of a {n * n}-panel facade redraws {region} triangles from changing "
+          f"coordinates, {still} from still ones")
+    moved = np.linalg.norm(live - before, axis=1) > 0.05  # mm; Coin holds float32
+    outside = int(np.count_nonzero(moved & ~session.region_vertices))
+    print(f"  (edit region: {int(moved.sum())} moved, {outside} outside the region, object "
+          f"coordinates still: {np.array_equal(points(proxy.coords.point), before)}, "
+          f"iterations {session.live.result.iterations})")
+    check(moved.any() and np.array_equal(points(proxy.coords.point), before)
+          and np.allclose(points(session.region_coords.point), live, atol=1e-3)
+          and np.all(session.region_vertices[moved]),
+          f"the object's coordinates stay still during the drag; the {int(moved.sum())} "
+          "vertices that moved are all in the live region, drawn from its coordinates")
+    session._on_button(_mouse("button", (px, py + 25), False))
+    session.wait(60.0)
+    check(np.allclose(points(proxy.coords.point), session.live.result.mesh.vertices,
+                      atol=1e-3) and proxy.faces.coordIndex.getNum() == 4 * 2 * n * n,
+          "at the release the object's nodes draw the whole moved result again")
+    edit_control.finish(False)
     App.closeDocument(doc.Name)
 
 

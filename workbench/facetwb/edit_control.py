@@ -156,6 +156,7 @@ class EditSession:
         self.show_still_control = False  # the whole control mesh during a drag
         self.inline_frames = True  # live updates solved in the event handler (see below)
         self.inline_times = []
+        self.reconfigure_pending = False  # parameters changed during a drag
         self._build_scene()
         self._draw_triangles()
         self._previous_mode = self.vobj.DisplayMode
@@ -540,7 +541,9 @@ class EditSession:
         self._set_still_control(None)
         self._set_region(None)
         self._hide_navicube(False)
-        if not self.live.settled:
+        if self.reconfigure_pending:
+            self.reconfigure()  # parameters changed during the drag
+        elif not self.live.settled:
             self.request_settle()
 
     @property
@@ -666,7 +669,12 @@ class EditSession:
 
     def reconfigure(self):
         """Re-read the Planarized object's parameters and re-solve the edited control mesh
-        with them (live parameters during an edit)."""
+        with them (live parameters during an edit). During a drag it waits for the
+        release (the drag's solver keeps the picked vertex and its weights)."""
+        if self.plane is not None:
+            self.reconfigure_pending = True
+            return
+        self.reconfigure_pending = False
         self.wait()
         original = self.live.original
         control = self.live.control.copy()
