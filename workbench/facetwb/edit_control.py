@@ -569,7 +569,11 @@ class EditSession:
             # control drawn); a worker thread would compete with the software
             # rasterizer for the same cores and draw results a move late.
             t0 = time.perf_counter()
-            self._start(self.live.frame, inline=True)
+            try:
+                self._start(self.live.frame, inline=True)
+            except Exception as exc:  # noqa: BLE001 - one line, as from the worker
+                App.Console.PrintError(f"Facet: edit of {self.planarized.Label}: {exc}\n")
+                return
             self.inline_times.append(time.perf_counter() - t0)
             recent = self.inline_times[-5:]
             if len(recent) == 5 and sorted(recent)[2] > INLINE_SECONDS:
