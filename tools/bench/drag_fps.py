@@ -186,6 +186,49 @@ def run():
     session._on_button(_button((x, y + 2 * steps), False))
     session.wait(300.0)
     session.cancel()
+
+    # --- qt: real Qt mouse events to the 3D view's GL widget ---------------------------------
+    # Through FreeCAD's own event path (navigation style, SoEventManager, the scene's event
+    # callbacks), one move per rendered frame; the session as the workbench runs it.
+    from PySide import QtCore, QtGui
+
+    widgets = [w for w in Gui.getMainWindow().findChildren(QtGui.QWidget)
+               if type(w).__name__ == "QOpenGLWidget" and w.isVisible()]
+    if widgets:
+        widget = widgets[0]
+        ratio = float(widget.devicePixelRatioF())
+        height = view.getSize()[1]
+        session = edit_control.start(planarized, threaded=True, panel=False)
+        x, y = session.screen_position(vertex)
+
+        def send(kind, px, py, button, buttons):
+            pos = QtCore.QPoint(int(round(px / ratio)), int(round((height - 1 - py) / ratio)))
+            event = QtGui.QMouseEvent(kind, pos, widget.mapToGlobal(pos), button, buttons,
+                                      QtCore.Qt.NoModifier)
+            QtGui.QApplication.sendEvent(widget, event)
+
+        left = QtCore.Qt.LeftButton
+        send(QtCore.QEvent.MouseButtonPress, x, y, left, left)
+        picked = session.live.drag_vertex
+        frames, events, current = [], [], 0
+        for k in range(1, steps + 1):
+            t0 = time.perf_counter()
+            send(QtCore.QEvent.MouseMove, x, y + 2 * k, QtCore.Qt.NoButton, left)
+            t1 = time.perf_counter()
+            render()
+            frames.append(time.perf_counter() - t0)
+            events.append(t1 - t0)
+            current += bool(session.current)
+        send(QtCore.QEvent.MouseButtonRelease, x, y + 2 * steps, left, QtCore.Qt.NoButton)
+        session.wait(300.0)
+        out["qt"] = {"fps": 1.0 / statistics.median(frames), "frame_ms": _ms(frames),
+                     "event_ms": _ms(events), "render_ms": _ms([f - e for f, e in
+                                                                 zip(frames, events)]),
+                     "solve_ms": _ms(session.stats["solve"][-steps:]),
+                     "scene_ms": _ms(session.stats["scene"][-steps:]),
+                     "current_renders": current, "moves": session.stats["moves"],
+                     "picked": picked}
+        session.cancel()
     return out
 
 
@@ -212,6 +255,12 @@ def main():
           f"({t['current_renders']} current of "
           f"{t['renders']} renders, {t['results_shown']} results shown for {t['moves']} moves "
           f"at 60 Hz in {t['wall_seconds']:.2f} s)")
+    q = out.get("qt")
+    if q:
+        print(f"  qt events:  {q['fps']:.1f} fps (frame {q['frame_ms']:.1f} ms = event "
+              f"{q['event_ms']:.1f} (solve {q['solve_ms']:.1f} + scene {q['scene_ms']:.1f} + "
+              f"FreeCAD's event path) + render {q['render_ms']:.1f}; {q['current_renders']} "
+              f"current of {q['moves']} moves, picked vertex {q['picked']})")
     print(f"  release: {s['settle_seconds']:.2f} s, {s['settle_iterations']} iterations, "
           f"planarity {s['settled_max_rel']:.2g}")
     print(f"  written {path}")
