@@ -153,6 +153,7 @@ class EditSession:
         self._legend_key = None
         self._navicube = None  # the navigation cube's state while it is hidden for a drag
         self._rgb = None  # the colour of each panel drawn
+        self._highlight = None  # the selection root's highlightMode while a drag turns it off
         self.show_still_control = False  # the whole control mesh during a drag
         self.inline_frames = True  # live updates solved in the event handler (see below)
         self.inline_times = []
@@ -494,9 +495,10 @@ class EditSession:
         self._hide_navicube(True)
 
     def _hide_navicube(self, hide):
-        """Hide the navigation cube while the button is held (it cannot be used during a
-        drag, and drawing it is a sixth of a frame with software OpenGL); show it again
-        as it was."""
+        """Hide the navigation cube and turn preselection off while the button is held
+        (neither can be used during a drag; the cube is a sixth of a redraw with software
+        OpenGL, preselection a pick of the whole scene per move); restore them as they
+        were."""
         try:
             viewer = self.view.getViewer()
             if hide and self._navicube is None:
@@ -509,6 +511,21 @@ class EditSession:
                 self._navicube = None
         except Exception:  # noqa: BLE001 - a view without a cube (or closed)
             self._navicube = None
+        # Preselection: FreeCAD's selection root ray-picks the whole scene on every mouse
+        # move to highlight what is under the cursor (measured: about 10 ms per move over
+        # the 10k-panel facade); nothing can be preselected during a drag.
+        try:
+            field = self.view.getSceneGraph().getField("highlightMode")
+            if field is None:
+                return
+            if hide and self._highlight is None:
+                self._highlight = field.get()
+                field.set("OFF")
+            elif not hide and self._highlight is not None:
+                field.set(self._highlight)
+                self._highlight = None
+        except Exception:  # noqa: BLE001 - not FreeCAD's selection root (or closed)
+            self._highlight = None
 
     def drag_to_screen(self, position):
         """Move the dragged vertex under ``position`` (pixels), in its view plane."""
