@@ -495,6 +495,8 @@ def check_edit_control(check, out_dir):
           f"while editing the result is drawn as {n_tri} triangles (computed once)")
     viewer = view.getViewer()
     cube = viewer.isEnabledNaviCube()
+    highlight = view.getSceneGraph().getField("highlightMode")
+    preselection = highlight.get().getString()
     x, y = session.screen_position(vertex)
     press = _mouse("button", (x, y), True)
     session._on_button(press)
@@ -507,7 +509,8 @@ def check_edit_control(check, out_dir):
           and session.region_material.diffuseColor.getNum() == live_tri,
           f"during the drag the live region draws {live_tri} triangles, the object's nodes "
           f"the other {still}, each with its colour")
-    check(not viewer.isEnabledNaviCube(), "the navigation cube is hidden while dragging")
+    check(not viewer.isEnabledNaviCube() and highlight.get().getString() == "OFF",
+          "the navigation cube is hidden and preselection off while dragging")
     frames0 = len(session.stats["planarity"])
     current = 0
     for k in range(1, 16):
@@ -525,7 +528,9 @@ def check_edit_control(check, out_dir):
           "the live region draws the latest result")
     session._on_button(_mouse("button", (x, y + 60), False))
     check(session.wait(120.0), "the solves finish after the release")
-    check(viewer.isEnabledNaviCube() == cube, "the navigation cube is back after the release")
+    check(viewer.isEnabledNaviCube() == cube and highlight.get().getString() == preselection
+          and preselection != "OFF",
+          "the navigation cube and preselection are back after the release")
     check(proxy.faces.coordIndex.getNum() == 4 * n_tri
           and session.region_faces.coordIndex.getNum() == 0
           and proxy.planarity_material.diffuseColor.getNum() == n_tri,

@@ -519,7 +519,9 @@ class EditSession:
             if field is None:
                 return
             if hide and self._highlight is None:
-                self._highlight = field.get()
+                value = field.get()  # an SbString
+                self._highlight = value.getString() if hasattr(value, "getString") \
+                    else str(value)
                 field.set("OFF")
             elif not hide and self._highlight is not None:
                 field.set(self._highlight)
