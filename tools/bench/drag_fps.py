@@ -103,7 +103,8 @@ def run():
     view.fitAll()
     Gui.updateGui()
     vertex = (n // 2) * (n + 1) + n // 2
-    out = {"lp_num_threads": os.environ.get("LP_NUM_THREADS", ""), "mesh": grid.name, "faces": mesh.n_faces, "vertices": mesh.n_vertices,
+    out = {"lp_num_threads": os.environ.get("LP_NUM_THREADS", ""), "mesh": grid.name,
+           "faces": mesh.n_faces, "vertices": mesh.n_vertices,
            "steps": steps, "step_pixels": 2, "view_pixels": list(view.getSize()),
            "cold_recompute_seconds": cold, "planarized_max_rel": planarized.PlanarityMaxRel,
            "frame_threads": 1, "load_average": os.getloadavg()}
@@ -161,6 +162,7 @@ def run():
     renders = current = 0
     moves, period = 0, 1.0 / 60.0
     loop = []
+    last_loop = time.perf_counter()
     shown0 = session.stats["frames"]
     t0 = last_move = time.perf_counter()
     while moves < steps:
@@ -180,7 +182,8 @@ def run():
     shown = session.stats["frames"] - shown0
     session.wait()
     out["threaded"] = {"fps": current / wall,
-                       "median_fps": 1.0 / statistics.median(loop) if loop else 0.0, "renders": renders, "current_renders": current,
+                       "median_fps": 1.0 / statistics.median(loop) if loop else 0.0,
+                       "renders": renders, "current_renders": current,
                        "results_shown": shown, "moves": steps, "wall_seconds": wall,
                        "solve_ms": _ms(session.stats["solve"])}
     session._on_button(_button((x, y + 2 * steps), False))
