@@ -213,6 +213,8 @@ def run(out_dir):
     App.closeDocument(doc.Name)
     check_lifting(check, out_dir)
     check_panels(check, out_dir)
+    check_edit_control(check, out_dir)
+    check_edit_region(check)
     import ui_checks
 
     ui_checks.run(check, out_dir, sys.modules[__name__])
@@ -459,6 +461,243 @@ def accept_panel(check, command, fields=(), shot=None):
           and not Gui.Control.activeDialog(), f"{command}: OK applies and closes the panel")
     Gui.updateGui()
     return panel
+
+
+def _mouse(kind, position, down=True):
+    """A stand-in for the SoEventCallback node a 3D view hands to its callbacks."""
+    from pivy import coin
+
+    if kind == "button":
+        event = coin.SoMouseButtonEvent()
+        event.setButton(coin.SoMouseButtonEvent.BUTTON1)
+        event.setState(coin.SoButtonEvent.DOWN if down else coin.SoButtonEvent.UP)
+    else:
+        event = coin.SoLocation2Event()
+    event.setPosition(coin.SbVec2s(int(position[0]), int(position[1])))
+
+    class Node:
+        handled = False
+
+        def getEvent(self):  # noqa: N802 - Coin's name
+            return event
+
+        def setHandled(self):  # noqa: N802
+            Node.handled = True
+
+    return Node()
+
+
+def check_edit_control(check, out_dir):
+    """Facet_EditControlMesh: drag a control vertex with the mouse callbacks, the planar
+    result follows and stays planar; Done writes the control mesh in one undoable step,
+    Cancel leaves it alone."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import numpy as np
+
+    import facet
+    import facetwb
+    from facetwb import edit_control
+    from facetwb.objects.polymesh import get_mesh
+
+    check("Facet_EditControlMesh" in Gui.listCommands(), "command Facet_EditControlMesh is "
+          "registered")
+    doc = App.newDocument("EditControl")
+    mesh = facet.read_mesh(MESH)
+    control = facetwb.make_polymesh(mesh)
+    result = facetwb.make_planarized(control)
+    doc.recompute()
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    Gui.updateGui()
+    original = get_mesh(control).vertices.copy()
+    solved = get_mesh(result).vertices.copy()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(result)
+    Gui.runCommand("Facet_EditControlMesh")
+    session = edit_control.active_session()
+    if not check(session is not None and bool(Gui.Control.activeDialog()),
+                 "Edit control mesh starts a session with its task panel"):
+        App.closeDocument(doc.Name)
+        return
+    vertex = 40  # the middle of the 8 x 8 hypar
+    proxy = result.ViewObject.Proxy
+    n_tri = session.triangles.shape[0]
+    check(n_tri == 2 * mesh.n_faces and proxy.faces.coordIndex.getNum() == 4 * n_tri,
+          f"while editing the result is drawn as {n_tri} triangles (computed once)")
+    viewer = view.getViewer()
+    cube = viewer.isEnabledNaviCube()
+    highlight = view.getSceneGraph().getField("highlightMode")
+    preselection = highlight.get().getString()
+    x, y = session.screen_position(vertex)
+    press = _mouse("button", (x, y), True)
+    session._on_button(press)
+    check(press.handled and session.live.drag_vertex == vertex,
+          f"a press on vertex {vertex}'s marker picks it")
+    still, live_tri = proxy.faces.coordIndex.getNum() // 4, \
+        session.region_faces.coordIndex.getNum() // 4
+    check(live_tri > 0 and still + live_tri == n_tri
+          and proxy.planarity_material.diffuseColor.getNum() == still
+          and session.region_material.diffuseColor.getNum() == live_tri,
+          f"during the drag the live region draws {live_tri} triangles, the object's nodes "
+          f"the other {still}, each with its colour")
+    check(not viewer.isEnabledNaviCube() and highlight.get().getString() == "OFF",
+          "the navigation cube is hidden and preselection off while dragging")
+    frames0 = len(session.stats["planarity"])
+    current = 0
+    for k in range(1, 16):
+        session._on_move(_mouse("move", (x, y + 4 * k)))
+        session.poll()
+        Gui.updateGui()
+        current += bool(session.current)
+    check(current == 15, f"every redraw during the drag shows the result of the control "
+          f"drawn ({current} of 15)")
+    worst = max(session.stats["planarity"][frames0:] or [float("nan")])
+    check(len(session.stats["planarity"]) - frames0 >= 15 and worst <= result.Tolerance,
+          f"every frame of the drag is planar to the tolerance (worst {worst:.2g})")
+    region_xyz = np.array([tuple(p.getValue()) for p in session.region_coords.point])
+    check(np.allclose(region_xyz, session.live.result.mesh.vertices, atol=1e-3),
+          "the live region draws the latest result")
+    session._on_button(_mouse("button", (x, y + 60), False))
+    check(session.wait(120.0), "the solves finish after the release")
+    check(viewer.isEnabledNaviCube() == cube and highlight.get().getString() == preselection
+          and preselection != "OFF",
+          "the navigation cube and preselection are back after the release")
+    check(proxy.faces.coordIndex.getNum() == 4 * n_tri
+          and session.region_faces.coordIndex.getNum() == 0
+          and proxy.planarity_material.diffuseColor.getNum() == n_tri,
+          "after the release the object's nodes draw all the triangles again")
+    live = session.live.result
+    moved = np.linalg.norm(live.mesh.vertices[vertex] - solved[vertex])
+    check(moved > 0.2 * mesh.mean_edge_length(),
+          f"the planar result followed the dragged vertex ({moved:.3g} mm)")
+    check(live.planarity.max_rel_all <= result.Tolerance,
+          f"and stays planar after the release ({live.planarity.max_rel_all:.2g})")
+    drawn = np.array([tuple(p.getValue()) for p in result.ViewObject.Proxy.coords.point])
+    check(np.allclose(drawn, live.mesh.vertices, atol=1e-3),
+          "the 3D view draws the moved result")
+    check(np.array_equal(get_mesh(control).vertices, original),
+          "the control PolyMesh is untouched while editing")
+    path = os.path.join(out_dir, "edit_control.png")
+    save_view(view, path)
+    check_screenshot(check, path, "edit control", legend=True)
+    check(edit_control.finish(True), "Done writes the moved control vertices")
+    after = get_mesh(control).vertices
+    check(np.allclose(after, session.live.control) and not np.allclose(after, original),
+          "the control PolyMesh holds the moved vertices")
+    check(result.isValid() and result.PlanarityMaxRel <= result.Tolerance,
+          "the Planarized object is recomputed from them, planar")
+    check(edit_control.active_session() is None, "the session has ended")
+    check(proxy.faces.coordIndex.getNum() == len(mesh.face_vertices) + mesh.n_faces,
+          "after the edit the object draws its panels as polygons again")
+    doc.undo()
+    doc.recompute()
+    check(np.array_equal(get_mesh(control).vertices, original), "undo restores the control mesh")
+    # Cancel: nothing is written.
+    session = edit_control.start(result)
+    x, y = session.screen_position(vertex)
+    session._on_button(_mouse("button", (x, y), True))
+    session._on_move(_mouse("move", (x, y + 30)))
+    session._on_button(_mouse("button", (x, y + 30), False))
+    session.wait(120.0)
+    edit_control.finish(False)
+    check(np.array_equal(get_mesh(control).vertices, original)
+          and edit_control.active_session() is None, "Cancel leaves the control mesh alone")
+    check_live_parameters(check, result)
+    App.closeDocument(doc.Name)
+
+
+def check_edit_region(check):
+    """During a drag of a larger facade only the live region is drawn from changing
+    coordinates: the Planarized object's own nodes keep the positions they had when the
+    drag began (Coin keeps their caches) and take the result again at the release."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import numpy as np
+
+    import facet
+    import facetwb
+    from facetwb import edit_control
+
+    n = 24
+    faces = [[j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1,
+              (j + 1) * (n + 1) + i] for j in range(n) for i in range(n)]
+    i, j = np.meshgrid(np.arange(n + 1.0), np.arange(n + 1.0), indexing="xy")
+    x, y = i.ravel(), j.ravel()
+    z = 0.3 * np.sin(0.4 * x) * np.cos(0.3 * y)
+    mesh = facet.PolyMesh.from_faces(np.stack([x, y, z], axis=1) * 1000.0, faces)
+    doc = App.newDocument("EditRegion")
+    result = facetwb.make_planarized(facetwb.make_polymesh(mesh))
+    doc.recompute()
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    Gui.updateGui()
+    session = edit_control.start(result, threaded=False, panel=False)
+    proxy = result.ViewObject.Proxy
+    vertex = 12 * (n + 1) + 12
+
+    def points(field):
+        return np.array([tuple(p.getValue()) for p in field])
+
+    before = points(proxy.coords.point)
+    px, py = session.screen_position(vertex)
+    session._on_button(_mouse("button", (px, py), True))
+    for k in range(1, 6):
+        session._on_move(_mouse("move", (px, py + 5 * k)))
+        Gui.updateGui()
+    live = session.live.result.mesh.vertices
+    still = proxy.faces.coordIndex.getNum() // 4
+    region = session.region_faces.coordIndex.getNum() // 4
+    check(session.live.drag_vertex == vertex and still > region > 0,
+          f"a drag of a {n * n}-panel facade redraws {region} triangles from changing "
+          f"coordinates, {still} from still ones")
+    moved = np.linalg.norm(live - before, axis=1) > 0.05  # mm; Coin holds float32
+    outside = int(np.count_nonzero(moved & ~session.region_vertices))
+    print(f"  (edit region: {int(moved.sum())} moved, {outside} outside the region, object "
+          f"coordinates still: {np.array_equal(points(proxy.coords.point), before)}, "
+          f"iterations {session.live.result.iterations})")
+    check(moved.any() and np.array_equal(points(proxy.coords.point), before)
+          and np.allclose(points(session.region_coords.point), live, atol=1e-3)
+          and np.all(session.region_vertices[moved]),
+          f"the object's coordinates stay still during the drag; the {int(moved.sum())} "
+          "vertices that moved are all in the live region, drawn from its coordinates")
+    session._on_button(_mouse("button", (px, py + 25), False))
+    session.wait(60.0)
+    check(np.allclose(points(proxy.coords.point), session.live.result.mesh.vertices,
+                      atol=1e-3) and proxy.faces.coordIndex.getNum() == 4 * 2 * n * n,
+          "at the release the object's nodes draw the whole moved result again")
+    edit_control.finish(False)
+    App.closeDocument(doc.Name)
+
+
+def check_live_parameters(check, result):
+    """A solver parameter changed in the property editor re-solves the object by itself,
+    once for a burst of changes."""
+    import time
+
+    import FreeCADGui as Gui
+    import numpy as np
+
+    from facetwb import live_parameters
+    from facetwb.objects.polymesh import get_mesh
+
+    control = get_mesh(result.Source).vertices
+    corner = 0
+    before = get_mesh(result).vertices[corner].copy()
+    result.Tolerance = 1e-7
+    result.Boundary = "fixed"  # boundary vertices stay on the control mesh
+    check(live_parameters.pending() == 1, "two quick parameter changes schedule one re-solve")
+    end = time.monotonic() + 120.0
+    while ("Touched" in result.State or live_parameters.pending()) and time.monotonic() < end:
+        Gui.updateGui()
+        time.sleep(0.02)
+    after = get_mesh(result).vertices[corner]
+    check("Touched" not in result.State and result.isValid(),
+          "the Planarized object re-solved without a recompute command")
+    check(np.allclose(after, control[corner]) and not np.allclose(before, control[corner]),
+          "with the new parameter: its boundary corner sits on the control mesh")
 
 
 def check_import_command(check):

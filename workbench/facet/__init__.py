@@ -50,15 +50,18 @@ __all__ = [
     "panels",
     "PanelSet",
     "PanelError",
+    "LiveSolver",
+    "soft_weights",
     "__version__",
 ]
 
 _SOLVER_NAMES = ("planarize", "Planarizer", "PlanarizeResult", "planarity", "PlanarityReport",
                  "Surface", "quality", "QualityReport", "cleanup", "CleanupResult",
                  "lift", "Lifter", "LiftResult", "LiftingSpace", "lifting_space",
-                 "panels", "PanelSet", "PanelError")
+                 "panels", "PanelSet", "PanelError", "LiveSolver", "soft_weights")
 _SOLVER_MODULES = ("facet.planarity", "facet.planarize", "facet._core", "facet.surface",
-                   "facet.quality", "facet.cleanup", "facet.lift", "facet.panels")
+                   "facet.quality", "facet.cleanup", "facet.lift", "facet.panels",
+                   "facet.live")
 _solver_import_error = None
 
 try:
@@ -69,6 +72,7 @@ try:
     from facet.cleanup import CleanupResult, cleanup
     from facet.lift import Lifter, LiftingSpace, LiftResult, lift, lifting_space
     from facet.panels import PanelError, PanelSet, panels
+    from facet.live import LiveSolver, soft_weights
 except ImportError as exc:  # the compiled core is not built (yet)
     core_missing = exc.name == "facet" and "_core" in str(exc)
     if exc.name not in _SOLVER_MODULES and not core_missing:

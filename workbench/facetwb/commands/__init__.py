@@ -3,7 +3,7 @@
 
 #: Commands in toolbar and menu order.
 COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_SurfaceMesh",
-            "Facet_Planarize", "Facet_Cleanup",
+            "Facet_Planarize", "Facet_EditControlMesh", "Facet_Cleanup",
             "Facet_PlanGraph", "Facet_Lift", "Facet_LiftMix", "Facet_PanelSet",
             "Facet_CutSheets"]
 
@@ -13,6 +13,7 @@ def register():
     import FreeCADGui as Gui
 
     from facetwb.commands.cleanup import CommandCleanup
+    from facetwb.commands.edit_control import CommandEditControlMesh
     from facetwb.commands.import_mesh import CommandImportMesh
     from facetwb.commands.lift import CommandLift, CommandLiftMix, CommandPlanGraph
     from facetwb.commands.panels import CommandCutSheets, CommandPanelSet
@@ -25,6 +26,7 @@ def register():
                           ("Facet_ToPolyMesh", CommandToPolyMesh()),
                           ("Facet_SurfaceMesh", CommandSurfaceMesh()),
                           ("Facet_Planarize", CommandPlanarize()),
+                          ("Facet_EditControlMesh", CommandEditControlMesh()),
                           ("Facet_Cleanup", CommandCleanup()),
                           ("Facet_PlanGraph", CommandPlanGraph()),
                           ("Facet_Lift", CommandLift()),

@@ -44,6 +44,12 @@ class ViewProviderPlanarized(ViewProviderPolyMesh):
             vobj.ColorBy = list(COLOR_BY)
             vobj.ColorBy = "Planarity"
 
+    def updateData(self, obj, prop):
+        super().updateData(obj, prop)
+        from facetwb import live_parameters
+
+        live_parameters.parameter_changed(obj, prop)
+
     def onChanged(self, vobj, prop):
         super().onChanged(vobj, prop)
         if prop == "ColorBy" and hasattr(self, "coords"):
