@@ -434,6 +434,19 @@
     </message>
 </context>
 <context>
+    <name>Facet_EditControlMesh</name>
+    <message>
+        <location filename="../../workbench/facetwb/commands/edit_control.py" line="24"/>
+        <source>Edit control mesh</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/edit_control.py" line="25"/>
+        <source>Drag the control vertices of the selected Planarized object (or its control PolyMesh) in the 3D view; the planar result follows live. OK writes the moved vertices in one undoable step, Cancel drops them.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
     <name>Facet_ImportMesh</name>
     <message>
         <location filename="../../workbench/facetwb/commands/import_mesh.py" line="23"/>

@@ -5,6 +5,7 @@ import FreeCAD as App
 
 from facetwb import paths
 from facetwb.commands.macro import selected
+from facetwb.translation import QT_TRANSLATE_NOOP
 
 
 def _editable():
@@ -20,10 +21,12 @@ class CommandEditControlMesh:
     def GetResources(self):
         return {
             "Pixmap": paths.icon_path("Facet_EditControlMesh"),
-            "MenuText": "Edit control mesh",
-            "ToolTip": "Drag the control vertices of the selected Planarized object (or its "
-                       "control PolyMesh) in the 3D view; the planar result follows live. "
-                       "OK writes the moved vertices in one undoable step, Cancel drops them.",
+            "MenuText": QT_TRANSLATE_NOOP("Facet_EditControlMesh", "Edit control mesh"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "Facet_EditControlMesh",
+                "Drag the control vertices of the selected Planarized object (or its "
+                "control PolyMesh) in the 3D view; the planar result follows live. "
+                "OK writes the moved vertices in one undoable step, Cancel drops them."),
         }
 
     def IsActive(self):
