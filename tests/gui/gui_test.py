@@ -215,6 +215,7 @@ def run(out_dir):
     check_panels(check, out_dir)
     check_edit_control(check, out_dir)
     check_edit_region(check)
+    check_edit_planarized(check, out_dir)
     import ui_checks
 
     ui_checks.run(check, out_dir, sys.modules[__name__])
@@ -733,6 +734,80 @@ def bounding_box(node):
     box = action.getBoundingBox()
     return np.array(box.getMin().getValue()), np.array(box.getMax().getValue())
 
+def check_edit_planarized(check, out_dir):
+    """Double-click on a Planarized object: its Planarize panel; a changed field re-solves the
+    result live (no Recompute pressed); Cancel puts values and result back; OK is one undo
+    step."""
+    import time
+
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import numpy as np
+
+    import facet
+    import facetwb
+    from facetwb import live_parameters
+    from facetwb.objects.polymesh import get_mesh
+    from facetwb.taskpanels import edit_panels, forms
+
+    doc = App.newDocument("EditPlanarized")
+    control = facetwb.make_polymesh(facet.read_mesh(MESH))
+    result = facetwb.make_planarized(control, tolerance=1e-3)
+    doc.recompute()
+    Gui.ActiveDocument.ActiveView.fitAll()
+    before = get_mesh(result).vertices.copy()
+    loose = result.PlanarityMaxRel
+    vobj = result.ViewObject
+
+    def settle():
+        deadline = time.time() + 60
+        while (live_parameters.pending() or "Touched" in result.State) and time.time() < deadline:
+            Gui.updateGui()
+            time.sleep(0.05)
+
+    vobj.Proxy.doubleClicked(vobj)  # what a double-click in the tree calls
+    panel = edit_panels.active
+    if not check(panel is not None and bool(Gui.Control.activeDialog()),
+                 "a double-click on a Planarized opens its Planarize panel"):
+        App.closeDocument(doc.Name)
+        return
+    check(forms.get_value(panel.form, "Tolerance", None, True) == 1e-3
+          and forms.get_value(panel.form, "Method", ["lg", "ll"]) == "lg",
+          "the panel shows the object's parameters")
+    field = forms.widget(panel.form, "Tolerance")
+    field.setText("1e-09")
+    field.editingFinished.emit()
+    check(result.Tolerance == 1e-9, "a changed field is set on the object at once")
+    settle()
+    tight = result.PlanarityMaxRel
+    check(not np.array_equal(get_mesh(result).vertices, before) and tight <= 1e-9 < loose,
+          f"the result follows the panel without Recompute (planarity {loose:.2g} -> {tight:.2g})")
+    import ui_checks
+
+    shot = os.path.join(out_dir, "edit_planarized.png")
+    ui_checks.window_shot(shot)
+    check(os.path.getsize(shot) > 10000, f"edit panel screenshot {shot} written")
+    panel.reject()
+    settle()
+    check(edit_panels.active is None and not Gui.Control.activeDialog()
+          and result.Tolerance == 1e-3 and np.array_equal(get_mesh(result).vertices, before)
+          and result.PlanarityMaxRel == loose,
+          "Cancel puts the previous parameters and the previous result back")
+    vobj.Proxy.doubleClicked(vobj)
+    panel = edit_panels.active
+    forms.set_value(panel.form, "MaxIterations", 7)
+    field = forms.widget(panel.form, "Tolerance")
+    field.setText("1e-08")
+    check(panel.accept() and result.Tolerance == 1e-8 and result.MaxIterations == 7
+          and "Touched" not in result.State and f"Edit {result.Label}" in doc.UndoNames,
+          "OK keeps the changes, recomputed, as one undo step")
+    doc.undo()
+    settle()
+    check(result.Tolerance == 1e-3 and result.MaxIterations == 0,
+          "undo restores the parameters of before the panel")
+    App.closeDocument(doc.Name)
+
+
 
 def main():
     import FreeCAD as App
@@ -755,3 +830,4 @@ except BaseException:  # noqa: BLE001 - any breakage must give a nonzero exit st
 sys.stdout.flush()
 sys.stderr.flush()
 os._exit(status)
+

@@ -50,6 +50,25 @@ class ViewProviderPlanarized(ViewProviderPolyMesh):
 
         live_parameters.parameter_changed(obj, prop)
 
+    def setEdit(self, vobj, mode=0):  # noqa: N802 - FreeCAD's name
+        """Double-click: the Planarize panel of this object, its parameters applied live."""
+        if mode != 0:
+            return None  # FreeCAD's own modes (transform, ...)
+        from facetwb.taskpanels import edit_panels
+
+        return edit_panels.edit(vobj.Object)
+
+    def unsetEdit(self, vobj, mode=0):  # noqa: N802
+        if mode != 0:
+            return None
+        return True
+
+    def doubleClicked(self, vobj):  # noqa: N802
+        import FreeCADGui as Gui
+
+        Gui.ActiveDocument.setEdit(vobj.Object.Name, 0)
+        return True
+
     def onChanged(self, vobj, prop):
         super().onChanged(vobj, prop)
         if prop == "ColorBy" and hasattr(self, "coords"):

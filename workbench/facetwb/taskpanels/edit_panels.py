@@ -1,0 +1,124 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Task panel of an existing Planarized object (double-click it, or Edit in its context menu).
+
+The Planarize form, filled from the object's properties. Every change of a field is set on
+the object at once, and :mod:`facetwb.live_parameters` re-solves it shortly after (debounced),
+so the planar result follows while the designer types or spins a box. All of it is one
+transaction: OK keeps the changes as one undo step, Cancel puts the previous values and the
+previous result back. Wiring only.
+"""
+
+import FreeCAD as App
+import FreeCADGui as Gui
+
+from facetwb.taskpanels import forms
+from facetwb.translation import QT_TRANSLATE_NOOP, translate
+
+#: The open panel, if any (for scripts and the GUI test).
+active = None
+
+TITLE = QT_TRANSLATE_NOOP("Facet", "Planarize")
+
+#: (field of planarize.ui = property of the object, choices of a combo box)
+FIELDS = (("Method", ["lg", "ll"]), ("Tolerance", None), ("ToleranceAbs", None),
+          ("MaxIterations", None))
+
+
+def _property_value(obj, name):
+    value = getattr(obj, name)
+    return value.Value if hasattr(value, "Value") else value
+
+
+class PlanarizeEditPanel:
+    """The solver parameters of one Planarized object, applied live."""
+
+    def __init__(self, obj):
+        global active
+        self.obj = obj
+        self.doc = obj.Document
+        self.form = forms.load("planarize")
+        self.form.setWindowTitle(f"{translate('Facet', TITLE)}: {obj.Label}")
+        self.saved = {name: _property_value(obj, name) for name, _ in FIELDS}
+        for name, choices in FIELDS:
+            forms.set_value(self.form, name, self.saved[name], choices)
+        self.doc.openTransaction(f"Edit {obj.Label}")
+        self._connect()
+        active = self
+
+    def _connect(self):
+        for name, _choices in FIELDS:
+            w = forms.widget(self.form, name)
+            kind = w.metaObject().className()
+            if kind == "QComboBox":
+                w.currentIndexChanged.connect(self.changed)
+            elif kind == "QLineEdit":
+                w.editingFinished.connect(self.changed)
+            else:  # QSpinBox, Gui::QuantitySpinBox
+                w.valueChanged.connect(self.changed)
+
+    def read(self):
+        """{property: value} from the fields; a ValueError names a field that cannot work."""
+        values = {}
+        for name, choices in FIELDS:
+            values[name] = forms.get_value(self.form, name, choices, name == "Tolerance")
+        if not values["Tolerance"] > 0:
+            raise ValueError(f"Rel. tolerance is {values['Tolerance']!r}; it must be above 0")
+        if values["ToleranceAbs"] < 0 or values["MaxIterations"] < 0:
+            raise ValueError("Abs. tolerance and Max. iterations cannot be negative")
+        return values
+
+    def changed(self, *_args):
+        """Set the fields' values on the object (the object then re-solves by itself)."""
+        try:
+            values = self.read()
+        except ValueError as error:
+            self.show_message(str(error))
+            return False
+        self.show_message("")
+        for name, value in values.items():
+            if _property_value(self.obj, name) != value:
+                setattr(self.obj, name, value)
+        return True
+
+    def show_message(self, text):
+        forms.widget(self.form, "message").setText(text)
+
+    # --- Gui.Control ---------------------------------------------------------------------
+
+    def accept(self):
+        if not self.changed():
+            return False
+        if "Touched" in self.obj.State:
+            self.doc.recompute([self.obj])
+        self.doc.commitTransaction()
+        self._close()
+        return True
+
+    def reject(self):
+        self.doc.abortTransaction()  # the previous values, points and planarity
+        if "Touched" in self.obj.State:
+            self.doc.recompute([self.obj])
+        self._close()
+        return True
+
+    def _close(self):
+        global active
+        active = None
+        if Gui.ActiveDocument is not None:
+            Gui.ActiveDocument.resetEdit()
+        Gui.Control.closeDialog()
+
+    def getStandardButtons(self):
+        from facetwb.compat import qt_gui
+
+        buttons = qt_gui().QDialogButtonBox
+        return int(buttons.Ok | buttons.Cancel)
+
+
+def edit(obj):
+    """Open the panel of ``obj`` (a view provider's setEdit). True when it opened."""
+    if Gui.Control.activeDialog():
+        App.Console.PrintWarning(f"Facet: {obj.Label}: close the open task panel first\n")
+        return False
+    Gui.Control.showDialog(PlanarizeEditPanel(obj))
+    return True
