@@ -658,7 +658,7 @@ def check_edit_region(check):
     outside = int(np.count_nonzero(moved & ~session.region_vertices))
     print(f"  (edit region: {int(moved.sum())} moved, {outside} outside the region, object "
           f"coordinates still: {np.array_equal(points(proxy.coords.point), before)}, "
-          f"iterations {session.live.result.iterations})")
+          f"iterations {session.live.result.iterations})", file=sys.__stdout__)
     check(moved.any() and np.array_equal(points(proxy.coords.point), before)
           and np.allclose(points(session.region_coords.point), live, atol=1e-3)
           and np.all(session.region_vertices[moved]),
