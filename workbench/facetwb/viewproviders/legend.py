@@ -47,6 +47,14 @@ def tick_labels(vmax, count=TICKS, kind="length"):
         return ["0 mm"]
     _, factor, unit = App.Units.Quantity(vmax, App.Units.Length).getUserPreferred()
     top = vmax / factor
+    if top < 0.1:
+        # below the schema's smallest unit (nm): a planar mesh is often at picometres
+        for name, size in (("\u00b5m", 1e-3), ("nm", 1e-6), ("pm", 1e-9)):
+            if vmax / size >= 1.0:
+                unit, factor, top = name, size, vmax / size
+                break
+        else:
+            return [f"{vmax * i / (count - 1):.2e} mm" for i in range(count)]
     decimals = max(0, 2 - int(math.floor(math.log10(top))))
     return [f"{top * i / (count - 1):.{decimals}f} {unit}" for i in range(count)]
 
