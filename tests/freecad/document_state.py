@@ -44,3 +44,36 @@ def object_state(obj):
 def state(doc):
     """{object name: object_state} for the Facet objects of ``doc``."""
     return {o.Name: object_state(o) for o in doc.Objects if facet_type(o).startswith("Facet::")}
+
+
+def reopen_in_fresh_process(path, folder):
+    """Open ``path`` in a new ``freecadcmd`` (tests/freecad/reopen_child.py), as a designer
+    would, recompute it, and return (its JSON result: {"loaded": state, "recomputed": state}
+    or {"error": ...}, or None when the child wrote nothing; the child's output)."""
+    import json
+    import os
+    import subprocess
+
+    out = os.path.join(folder, os.path.basename(path) + ".reopened.json")
+    env = dict(os.environ, FACET_REOPEN_IN=path, FACET_REOPEN_OUT=out)
+    child = os.path.join(os.path.dirname(os.path.abspath(__file__)), "reopen_child.py")
+    done = subprocess.run(["freecadcmd", child], env=env, capture_output=True, text=True,
+                          timeout=600)
+    output = done.stdout + done.stderr
+    if not os.path.exists(out):
+        return None, output
+    with open(out, encoding="utf-8") as handle:
+        return json.load(handle), output
+
+
+def assert_entry_equal(test, got, want, context, shape_bits=True):
+    """Every key of the object state ``want`` equal in ``got``. A shape read back from BREP
+    text (``shape_bits`` False) keeps 17 digits, not always the last bit: equal to 1e-15 of
+    its largest coordinate."""
+    for key, value in want.items():
+        if key == "shape" and not shape_bits:
+            expected = unhex(value)
+            np.testing.assert_allclose(unhex(got[key]), expected, rtol=0,
+                                       atol=1e-15 * np.abs(expected).max(), err_msg=context)
+        else:
+            test.assertEqual(got[key], value, f"{context} {key}")

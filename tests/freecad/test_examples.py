@@ -6,10 +6,8 @@ The committed files are copied first: the test never changes them.
 """
 
 import importlib
-import json
 import os
 import shutil
-import subprocess
 import tempfile
 import unittest
 
@@ -17,7 +15,7 @@ import FreeCAD as App
 import numpy as np
 import Part
 
-from document_state import state, unhex
+from document_state import assert_entry_equal, reopen_in_fresh_process, state
 from facet_test_support import ROOT
 
 EXAMPLES = os.path.join(ROOT, "examples")
@@ -69,30 +67,17 @@ class ExampleChecks:
     def test_recomputes_to_what_the_file_holds(self):
         self.assertEqual(set(self.recomputed), set(self.stored))
         for name, entry in self.stored.items():
-            got = self.recomputed[name]
-            for key, value in entry.items():
-                if key == "shape":  # stored as BREP text: 17 digits, not always the last bit
-                    want = unhex(value)
-                    np.testing.assert_allclose(unhex(got[key]), want, rtol=0,
-                                               atol=1e-15 * np.abs(want).max(), err_msg=name)
-                else:
-                    self.assertEqual(got[key], value, f"{name} {key}")
-
+            # the file holds its shapes as BREP text
+            assert_entry_equal(self, self.recomputed[name], entry, name, shape_bits=False)
 
     def test_reopens_in_a_fresh_process(self):
         """As a designer opens it: a new freecadcmd with the workbench from Mod/Facet."""
         path = os.path.join(self.tmp.name, "fresh-" + self.NAME)
         shutil.copy(os.path.join(EXAMPLES, self.NAME), path)
-        out = os.path.join(self.tmp.name, "fresh.json")
-        env = dict(os.environ, FACET_REOPEN_IN=path, FACET_REOPEN_OUT=out)
-        child = os.path.join(ROOT, "tests", "freecad", "reopen_child.py")
-        done = subprocess.run(["freecadcmd", child], env=env, capture_output=True, text=True,
-                              timeout=600)
-        self.assertTrue(os.path.exists(out), done.stdout + done.stderr)
-        with open(out, encoding="utf-8") as handle:
-            result = json.load(handle)
+        result, output = reopen_in_fresh_process(path, self.tmp.name)
+        self.assertIsNotNone(result, output)
         self.assertNotIn("error", result, result.get("error"))
-        self.assertNotIn("blocked import", done.stdout + done.stderr)
+        self.assertNotIn("blocked import", output)
         self.assertEqual(set(result["recomputed"]), set(self.stored))
         for name, entry in result["recomputed"].items():
             self.assertTrue(entry["valid"], f"{name}: {entry['status']}")
