@@ -72,6 +72,40 @@ def facet_command():
     return run_facet
 
 
+def interrupt_facet(*args, after=3.0):
+    """Start ``python -m facet ARGS``, check it is still running ``after`` seconds later,
+    send it SIGINT (a real Ctrl+C) and wait for it.
+
+    Returns
+    -------
+    subprocess.CompletedProcess
+        With text ``stdout`` and ``stderr``.
+    """
+    import signal
+    import time
+
+    process = subprocess.Popen(
+        [sys.executable, "-m", "facet", *map(str, args)],
+        env=facet_environment(), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    try:
+        time.sleep(after)
+        assert process.poll() is None, process.communicate()
+        process.send_signal(signal.SIGINT)
+        out, err = process.communicate(timeout=60)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
+    return subprocess.CompletedProcess(process.args, process.returncode, out, err)
+
+
+@pytest.fixture
+def facet_interrupt():
+    """The function :func:`interrupt_facet`."""
+    return interrupt_facet
+
+
 @pytest.fixture
 def facet_env():
     """Environment for a child process running facet (see :func:`facet_environment`)."""

@@ -640,32 +640,17 @@ def test_step_job_without_a_worker_interpreter_runs_in_this_process(tmp_path, mo
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="SIGINT is POSIX")
-def test_ctrl_c_while_the_step_worker_runs_writes_nothing(tmp_path, facet_env):
-    import signal
-    import subprocess
-    import time
-
+def test_ctrl_c_while_the_step_worker_runs_writes_nothing(tmp_path, facet_interrupt):
     from facet import write_mesh
 
     _freecad_step()
     mesh_path = tmp_path / "m.obj"
     write_mesh(translational(nu=60, nv=60, step=400.0), mesh_path)  # 3,600 panels
-    process = subprocess.Popen(
-        [sys.executable, "-m", "facet", "panels", mesh_path, "--thickness", "18", "--edge",
-         "bisector", "--gap", "4", "--sheet", "2000x1000", "--step", tmp_path / "p.step",
-         "--dxf", tmp_path / "s.dxf"],
-        env=facet_env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    try:
-        time.sleep(3.0)  # nesting and the STEP worker both running
-        assert process.poll() is None, process.communicate()
-        process.send_signal(signal.SIGINT)
-        out, err = process.communicate(timeout=60)
-    finally:
-        if process.poll() is None:
-            process.kill()
-            process.communicate()
-    assert process.returncode == 130, err
+    # after 3 s nesting and the STEP worker are both running
+    done = facet_interrupt("panels", mesh_path, "--thickness", "18", "--edge", "bisector",
+                           "--gap", "4", "--sheet", "2000x1000", "--step", tmp_path / "p.step",
+                           "--dxf", tmp_path / "s.dxf")
+    assert done.returncode == 130, done.stderr
     assert sorted(os.listdir(tmp_path)) == ["m.obj"]  # no STEP, no part of one, no DXF
 
 
