@@ -48,3 +48,19 @@ class DocumentTestCase(unittest.TestCase):
         App.closeDocument(name)
         type(self).doc = App.openDocument(path)
         return type(self).doc
+
+
+def outward_faces(obj, centre=None):
+    """True for each face of ``obj``'s mesh whose polygon normal (Newell) points away from
+    ``centre`` (default: the mean of the mesh's vertices)."""
+    import facetwb
+
+    mesh = facetwb.get_mesh(obj)
+    if centre is None:
+        centre = mesh.vertices.mean(axis=0)
+    result = []
+    for face in mesh.faces():
+        corners = mesh.vertices[face]
+        normal = np.cross(corners, np.roll(corners, -1, axis=0)).sum(axis=0)
+        result.append(float(np.dot(normal, corners.mean(axis=0) - centre)) > 0.0)
+    return result

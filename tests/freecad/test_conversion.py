@@ -7,19 +7,7 @@ import Part
 
 import facet
 import facetwb
-from facet_test_support import DocumentTestCase, points_array
-
-
-def outward_faces(obj):
-    """True for each face whose polygon normal (Newell) points away from the mesh centre."""
-    mesh = facetwb.get_mesh(obj)
-    centre = mesh.vertices.mean(axis=0)
-    result = []
-    for face in mesh.faces():
-        corners = mesh.vertices[face]
-        normal = np.cross(corners, np.roll(corners, -1, axis=0)).sum(axis=0)
-        result.append(float(np.dot(normal, corners.mean(axis=0) - centre)) > 0.0)
-    return result
+from facet_test_support import DocumentTestCase, outward_faces, points_array
 
 
 class TestToPolyMesh(DocumentTestCase):

@@ -9,22 +9,12 @@ import Mesh
 import numpy as np
 
 import facetwb
-from facet_test_support import DocumentTestCase, points_array
+from facet_test_support import DocumentTestCase, outward_faces, points_array
 from facetwb import preferences, progress
 
 
 def face_sizes(obj):
     return sorted(set(np.diff(np.array(obj.FaceStart)).tolist()))
-
-
-def outward(obj, centre):
-    mesh = facetwb.get_mesh(obj)
-    result = []
-    for face in mesh.faces():
-        corners = mesh.vertices[face]
-        normal = np.cross(corners, np.roll(corners, -1, axis=0)).sum(axis=0)
-        result.append(float(np.dot(normal, corners.mean(axis=0) - centre)) > 0.0)
-    return result
 
 
 class TestSurfaceMesh(DocumentTestCase):
@@ -42,7 +32,7 @@ class TestSurfaceMesh(DocumentTestCase):
         self.assertEqual(face_sizes(obj), [4])
         mesh = facetwb.get_mesh(obj)
         mesh.validate()
-        self.assertTrue(all(outward(obj, np.array([0.0, 0.0, 1500.0]))))
+        self.assertTrue(all(outward_faces(obj, np.array([0.0, 0.0, 1500.0]))))
         self.assertTrue(np.allclose(np.hypot(mesh.vertices[:, 0], mesh.vertices[:, 1]), 2000.0))
         self.assertEqual(side.Shape.exportBrepToString(), shape_before)
 
@@ -63,7 +53,7 @@ class TestSurfaceMesh(DocumentTestCase):
                 key = (min(a, b), max(a, b))
                 count[key] = count.get(key, 0) + 1
         self.assertEqual(sum(1 for n in count.values() if n == 1), 2 * 24)  # two zigzag rims
-        self.assertTrue(all(outward(obj, np.array([0.0, 0.0, 1500.0]))))
+        self.assertTrue(all(outward_faces(obj, np.array([0.0, 0.0, 1500.0]))))
 
     def test_trimmed_face_keeps_cells_inside(self):
         cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
