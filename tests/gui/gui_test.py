@@ -673,12 +673,24 @@ def check_edit_region(check):
     App.closeDocument(doc.Name)
 
 
-def check_live_parameters(check, result):
-    """A solver parameter changed in the property editor re-solves the object by itself,
-    once for a burst of changes."""
+def wait_for_live_resolve(obj, seconds=120.0):
+    """Process events until the live re-solve of ``obj`` a parameter change scheduled
+    (facetwb.live_parameters) has run, or ``seconds`` passed."""
     import time
 
     import FreeCADGui as Gui
+
+    from facetwb import live_parameters
+
+    end = time.monotonic() + seconds
+    while ("Touched" in obj.State or live_parameters.pending()) and time.monotonic() < end:
+        Gui.updateGui()
+        time.sleep(0.02)
+
+
+def check_live_parameters(check, result):
+    """A solver parameter changed in the property editor re-solves the object by itself,
+    once for a burst of changes."""
     import numpy as np
 
     from facetwb import live_parameters
@@ -690,10 +702,7 @@ def check_live_parameters(check, result):
     result.Tolerance = 1e-7
     result.Boundary = "fixed"  # boundary vertices stay on the control mesh
     check(live_parameters.pending() == 1, "two quick parameter changes schedule one re-solve")
-    end = time.monotonic() + 120.0
-    while ("Touched" in result.State or live_parameters.pending()) and time.monotonic() < end:
-        Gui.updateGui()
-        time.sleep(0.02)
+    wait_for_live_resolve(result)
     after = get_mesh(result).vertices[corner]
     check("Touched" not in result.State and result.isValid(),
           "the Planarized object re-solved without a recompute command")
@@ -738,15 +747,12 @@ def check_edit_planarized(check, out_dir):
     """Double-click on a Planarized object: its Planarize panel; a changed field re-solves the
     result live (no Recompute pressed); Cancel puts values and result back; OK is one undo
     step."""
-    import time
-
     import FreeCAD as App
     import FreeCADGui as Gui
     import numpy as np
 
     import facet
     import facetwb
-    from facetwb import live_parameters
     from facetwb.objects.polymesh import get_mesh
     from facetwb.taskpanels import edit_panels, forms
 
@@ -758,12 +764,6 @@ def check_edit_planarized(check, out_dir):
     before = get_mesh(result).vertices.copy()
     loose = result.PlanarityMaxRel
     vobj = result.ViewObject
-
-    def settle():
-        deadline = time.time() + 60
-        while (live_parameters.pending() or "Touched" in result.State) and time.time() < deadline:
-            Gui.updateGui()
-            time.sleep(0.05)
 
     vobj.Proxy.doubleClicked(vobj)  # what a double-click in the tree calls
     panel = edit_panels.active
@@ -778,7 +778,7 @@ def check_edit_planarized(check, out_dir):
     field.setText("1e-09")
     field.editingFinished.emit()
     check(result.Tolerance == 1e-9, "a changed field is set on the object at once")
-    settle()
+    wait_for_live_resolve(result)
     tight = result.PlanarityMaxRel
     check(not np.array_equal(get_mesh(result).vertices, before) and tight <= 1e-9 < loose,
           f"the result follows the panel without Recompute (planarity {loose:.2g} -> {tight:.2g})")
@@ -788,7 +788,7 @@ def check_edit_planarized(check, out_dir):
     ui_checks.window_shot(shot)
     check(os.path.getsize(shot) > 10000, f"edit panel screenshot {shot} written")
     panel.reject()
-    settle()
+    wait_for_live_resolve(result)
     check(edit_panels.active is None and not Gui.Control.activeDialog()
           and result.Tolerance == 1e-3 and np.array_equal(get_mesh(result).vertices, before)
           and result.PlanarityMaxRel == loose,
@@ -802,7 +802,7 @@ def check_edit_planarized(check, out_dir):
           and "Touched" not in result.State and f"Edit {result.Label}" in doc.UndoNames,
           "OK keeps the changes, recomputed, as one undo step")
     doc.undo()
-    settle()
+    wait_for_live_resolve(result)
     check(result.Tolerance == 1e-3 and result.MaxIterations == 0,
           "undo restores the parameters of before the panel")
     App.closeDocument(doc.Name)

@@ -831,9 +831,9 @@ class EditPanel:
                             f"edge length, {result.iterations} iterations")
 
     def getStandardButtons(self):
-        from PySide import QtGui
+        from facetwb.taskpanels import forms
 
-        return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
+        return forms.ok_cancel_buttons()
 
     def accept(self):
         finish(True)

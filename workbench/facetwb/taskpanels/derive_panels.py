@@ -129,10 +129,7 @@ class DerivePanel:
         Gui.Control.closeDialog()
 
     def getStandardButtons(self):
-        from facetwb.compat import qt_gui
-
-        buttons = qt_gui().QDialogButtonBox
-        return int(buttons.Ok | buttons.Cancel)
+        return forms.ok_cancel_buttons()
 
 
 def _legend_max(doc, made):
@@ -182,6 +179,12 @@ class SurfaceMeshPanel(DerivePanel):
         _legend_max(doc, [o for o in doc.Objects if self.is_result(o)])
 
 
+def check_planarize(values):
+    """Raise ValueError naming a field of the Planarize form whose value cannot work."""
+    if not values["Tolerance"] > 0:
+        raise ValueError(f"Rel. tolerance is {values['Tolerance']!r}; it must be above 0")
+
+
 class PlanarizePanel(DerivePanel):
     UI = "planarize"
     TITLE = QT_TRANSLATE_NOOP("Facet", "Planarize")
@@ -191,9 +194,7 @@ class PlanarizePanel(DerivePanel):
               ("MaxIterations", "PlanarizeMaxIterations", None, None))
 
     def check(self):
-        if not self.values["Tolerance"] > 0:
-            raise ValueError(f"Rel. tolerance is {self.values['Tolerance']!r}; it must "
-                             "be above 0")
+        check_planarize(self.values)
 
     def lines(self):
         v = self.values

@@ -12,6 +12,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb.taskpanels import forms
+from facetwb.taskpanels.derive_panels import check_planarize
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
 
 #: The open panel, if any (for scripts and the GUI test).
@@ -38,33 +39,18 @@ class PlanarizeEditPanel:
         self.doc = obj.Document
         self.form = forms.load("planarize")
         self.form.setWindowTitle(f"{translate('Facet', TITLE)}: {obj.Label}")
-        self.saved = {name: _property_value(obj, name) for name, _ in FIELDS}
         for name, choices in FIELDS:
-            forms.set_value(self.form, name, self.saved[name], choices)
+            forms.set_value(self.form, name, _property_value(obj, name), choices)
         self.doc.openTransaction(f"Edit {obj.Label}")
-        self._connect()
-        active = self
-
-    def _connect(self):
         for name, _choices in FIELDS:
-            w = forms.widget(self.form, name)
-            kind = w.metaObject().className()
-            if kind == "QComboBox":
-                w.currentIndexChanged.connect(self.changed)
-            elif kind == "QLineEdit":
-                w.editingFinished.connect(self.changed)
-            else:  # QSpinBox, Gui::QuantitySpinBox
-                w.valueChanged.connect(self.changed)
+            forms.on_change(self.form, name, self.changed)
+        active = self
 
     def read(self):
         """{property: value} from the fields; a ValueError names a field that cannot work."""
-        values = {}
-        for name, choices in FIELDS:
-            values[name] = forms.get_value(self.form, name, choices, name == "Tolerance")
-        if not values["Tolerance"] > 0:
-            raise ValueError(f"Rel. tolerance is {values['Tolerance']!r}; it must be above 0")
-        if values["ToleranceAbs"] < 0 or values["MaxIterations"] < 0:
-            raise ValueError("Abs. tolerance and Max. iterations cannot be negative")
+        values = {name: forms.get_value(self.form, name, choices, name == "Tolerance")
+                  for name, choices in FIELDS}
+        check_planarize(values)
         return values
 
     def changed(self, *_args):
@@ -109,10 +95,7 @@ class PlanarizeEditPanel:
         Gui.Control.closeDialog()
 
     def getStandardButtons(self):
-        from facetwb.compat import qt_gui
-
-        buttons = qt_gui().QDialogButtonBox
-        return int(buttons.Ok | buttons.Cancel)
+        return forms.ok_cancel_buttons()
 
 
 def edit(obj):

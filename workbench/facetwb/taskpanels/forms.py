@@ -86,3 +86,26 @@ def label(form, name):
 
     found = form.findChild(qt_gui().QLabel, "label_" + name)
     return found.text() if found is not None else name
+
+
+def on_change(form, name, callback):
+    """Call ``callback`` when the user changes the field ``name`` (a line edit: when its
+    editing finishes, not at every key)."""
+    w = widget(form, name)
+    kind = _class(w)
+    if kind == "QComboBox":
+        w.currentIndexChanged.connect(callback)
+    elif kind == "QCheckBox":
+        w.toggled.connect(callback)
+    elif kind == "QLineEdit":
+        w.editingFinished.connect(callback)
+    else:  # QSpinBox, QDoubleSpinBox, Gui::QuantitySpinBox
+        w.valueChanged.connect(callback)
+
+
+def ok_cancel_buttons():
+    """``getStandardButtons`` of a task panel with OK and Cancel."""
+    from facetwb.compat import qt_gui
+
+    buttons = qt_gui().QDialogButtonBox
+    return int(buttons.Ok | buttons.Cancel)

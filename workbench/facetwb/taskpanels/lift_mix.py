@@ -11,6 +11,8 @@ OK keeps the mix (one undo step), Cancel restores the previous one.
 import FreeCAD as App
 import FreeCADGui as Gui
 
+from facetwb.taskpanels import forms
+
 #: Sliders shown (fewer when the plan has fewer non-planar liftings).
 MAX_SLIDERS = 8
 #: Slider positions each side of 0.
@@ -142,7 +144,4 @@ class LiftMixPanel:
         return True
 
     def getStandardButtons(self):
-        from facetwb.compat import qt_gui
-
-        buttons = qt_gui().QDialogButtonBox
-        return int(buttons.Ok | buttons.Cancel)
+        return forms.ok_cancel_buttons()
