@@ -247,10 +247,9 @@ def _csv_rows(path, error):
     nul = data.find(b"\0")
     if nul >= 0:
         raise error(f"{path}: not a text file: byte {nul + 1} is NUL (binary data?)")
-    if text.startswith("\ufeff"):
-        text = text[1:]
-    lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
-    for number, line in enumerate(lines, 1):
+    from facet.io.files import split_lines
+
+    for number, line in enumerate(split_lines(text), 1):
         try:
             row = next(csv.reader([line]), [])
         except csv.Error as exc:

@@ -14,6 +14,7 @@ from facet.errors import MeshError
 
 __all__ = [
     "read_lines",
+    "split_lines",
     "parse_float",
     "parse_int",
     "check_writable_mesh",
@@ -41,11 +42,16 @@ def read_lines(path):
     OSError
         When the file cannot be opened.
     """
-    with open(path, encoding="utf-8", errors="replace", newline=None) as stream:
-        text = stream.read()
+    with open(path, encoding="utf-8", errors="replace", newline="") as stream:
+        return split_lines(stream.read())  # line ends are split_lines' to translate
+
+
+def split_lines(text):
+    """The lines of decoded text, without their ends (Windows, old Mac or Unix) and without a
+    byte order mark; ``lines[k]`` is line ``k + 1``."""
     if text.startswith("\ufeff"):
         text = text[1:]
-    return text.split("\n")
+    return text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
 
 
 def _shown(token, limit=40):
