@@ -145,8 +145,8 @@ def _dxf_segments(path, arc_tolerance):
         raise PlanError(f"{path}: not a DXF file (no DXF header: binary DXF, DWG or "
                         "another format?)") from None
     except ezdxf.DXFStructureError as exc:
-        # one line: ezdxf quotes the offending tag, newline included
-        raise PlanError(f"{path}: not a valid DXF file ({' '.join(str(exc).split())})") from None
+        # ezdxf quotes the offending tag, newline included
+        raise PlanError(f"{path}: not a valid DXF file ({_one_line(exc)})") from None
     except MemoryError:
         raise
     except Exception as exc:  # noqa: BLE001 - see below
@@ -164,10 +164,14 @@ def _dxf_segments(path, arc_tolerance):
         raise PlanError(f"{path}: a malformed entity ({_exception_line(exc)})") from None
 
 
-def _exception_line(exc):
+def _one_line(exc):
+    """An exception's message on one line, at most 200 characters."""
     text = " ".join(str(exc).split())
-    if len(text) > 200:
-        text = text[:197] + "..."
+    return text[:197] + "..." if len(text) > 200 else text
+
+
+def _exception_line(exc):
+    text = _one_line(exc)
     return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
 
 
