@@ -210,6 +210,179 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
     return esum / (double)n;
 }
 
+/* ---- four quads in SIMD lanes ------------------------------------------------
+ * The arithmetic of fit_plane_indexed, the eigenvector solver (prepare,
+ * Newton, finish) and facet_face_measure, written once on vectors of four
+ * doubles (GCC/Clang vector extensions: every lane does the scalar code's
+ * operations in the scalar code's order, so the bits are the same; no fused
+ * multiply-adds, -ffp-contract=off). A lane whose matrix is zero or whose
+ * eigenvector falls to the scalar solver's degenerate branch is redone by
+ * the scalar solver. Newton runs until every lane has stopped; a stopped lane
+ * keeps its value. */
+typedef double v4d __attribute__((vector_size(32)));
+typedef int64_t v4i __attribute__((vector_size(32)));
+#if defined(__GNUC__) && !defined(__clang__)
+/* the helpers below are always inlined: no vector crosses a call */
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+static inline __attribute__((always_inline)) v4d v4_select(v4i mask, v4d yes, v4d no)
+{
+    return (v4d)((mask & (v4i)yes) | (~mask & (v4i)no));
+}
+
+static inline __attribute__((always_inline)) v4d v4_abs(v4d x)
+{
+    const v4i magnitude = {INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX};
+    return (v4d)((v4i)x & magnitude);
+}
+
+static inline __attribute__((always_inline)) int v4_any(v4i mask)
+{
+    return (mask[0] | mask[1] | mask[2] | mask[3]) != 0;
+}
+
+static inline __attribute__((always_inline)) v4d v4_sqrt(v4d x)
+{
+    v4d r;
+    for (int l = 0; l < 4; ++l)
+        r[l] = sqrt(x[l]);
+    return r;
+}
+
+static inline __attribute__((always_inline)) void quad_measure4_lanes(
+    const double *xyz, const int32_t idx[16], double normal[12], double offset[4],
+    double max_distance[4], double square_sum[4], double edge_mean[4])
+{
+    v4d x[4][3]; /* corner k, coordinate j, face in the lane */
+    for (int l = 0; l < 4; ++l)
+        for (int k = 0; k < 4; ++k) {
+            const double *p = xyz + 3 * (size_t)idx[4 * l + k];
+            x[k][0][l] = p[0], x[k][1][l] = p[1], x[k][2][l] = p[2];
+        }
+    const v4d zero = {0.0, 0.0, 0.0, 0.0};
+    v4d c0 = zero, c1 = zero, c2 = zero;
+    for (int k = 0; k < 4; ++k)
+        c0 += x[k][0], c1 += x[k][1], c2 += x[k][2];
+    const double inv = 1.0 / 4.0;
+    c0 *= inv, c1 *= inv, c2 *= inv;
+    v4d a[6] = {zero, zero, zero, zero, zero, zero};
+    for (int k = 0; k < 4; ++k) {
+        const v4d dx = x[k][0] - c0, dy = x[k][1] - c1, dz = x[k][2] - c2;
+        a[0] += dx * dx, a[1] += dx * dy, a[2] += dx * dz;
+        a[3] += dy * dy, a[4] += dy * dz, a[5] += dz * dz;
+    }
+    /* sym3_prepare */
+    v4d scale = zero;
+    for (int k = 0; k < 6; ++k) {
+        const v4d m = v4_abs(a[k]);
+        scale = v4_select(m > scale, m, scale);
+    }
+    const v4i ok = scale > 0.0;
+    const v4d sinv = 1.0 / scale;
+    const v4d b00 = a[0] * sinv, b01 = a[1] * sinv, b02 = a[2] * sinv;
+    const v4d b11 = a[3] * sinv, b12 = a[4] * sinv, b22 = a[5] * sinv;
+    const v4d q2 = b00 + b11 + b22;
+    const v4d q1 = b00 * b11 - b01 * b01 + b00 * b22 - b02 * b02 + b11 * b22 - b12 * b12;
+    const v4d q0 = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) +
+                   b02 * (b01 * b12 - b11 * b02);
+    /* sym3_newton_step, every lane until it stops */
+    v4d lambda = zero;
+    v4i run = ok;
+    for (int it = 0; it < 64 && v4_any(run); ++it) {
+        const v4d f = ((lambda - q2) * lambda + q1) * lambda - q0;
+        const v4d df = (3.0 * lambda - 2.0 * q2) * lambda + q1;
+        const v4d step = f / df;
+        const v4d next = lambda - step;
+        const v4i moved = run & (f < 0.0) & (df > 0.0) & (next > lambda);
+        lambda = v4_select(moved, next, lambda);
+        run = moved & ~(step > -1e-17 * (1.0 + next));
+    }
+    /* sym3_finish: the largest cross product of two rows of B - lambda I */
+    const v4d r0[3] = {b00 - lambda, b01, b02}, r1[3] = {b01, b11 - lambda, b12};
+    const v4d r2[3] = {b02, b12, b22 - lambda};
+    v4d best[3], nbest;
+    {
+        const v4d c01[3] = {r0[1] * r1[2] - r0[2] * r1[1], r0[2] * r1[0] - r0[0] * r1[2],
+                            r0[0] * r1[1] - r0[1] * r1[0]};
+        const v4d c02[3] = {r0[1] * r2[2] - r0[2] * r2[1], r0[2] * r2[0] - r0[0] * r2[2],
+                            r0[0] * r2[1] - r0[1] * r2[0]};
+        const v4d c12[3] = {r1[1] * r2[2] - r1[2] * r2[1], r1[2] * r2[0] - r1[0] * r2[2],
+                            r1[0] * r2[1] - r1[1] * r2[0]};
+        const v4d n01 = c01[0] * c01[0] + c01[1] * c01[1] + c01[2] * c01[2];
+        const v4d n02 = c02[0] * c02[0] + c02[1] * c02[1] + c02[2] * c02[2];
+        const v4d n12 = c12[0] * c12[0] + c12[1] * c12[1] + c12[2] * c12[2];
+        nbest = n01;
+        const v4i take02 = n02 > nbest;
+        nbest = v4_select(take02, n02, nbest);
+        const v4i take12 = n12 > nbest;
+        nbest = v4_select(take12, n12, nbest);
+        for (int j = 0; j < 3; ++j)
+            best[j] = v4_select(take12, c12[j], v4_select(take02, c02[j], c01[j]));
+    }
+    const v4i good = ok & (nbest > 1e-28);
+    const v4d s = 1.0 / v4_sqrt(nbest);
+    v4d n0 = best[0] * s, n1 = best[1] * s, n2 = best[2] * s;
+    if (!(good[0] && good[1] && good[2] && good[3]))
+        for (int l = 0; l < 4; ++l) {
+            if (good[l])
+                continue;
+            const double m[6] = {a[0][l], a[1][l], a[2][l], a[3][l], a[4][l], a[5][l]};
+            double v[3];
+            facet_sym3_smallest_eigenvector(m, v);
+            n0[l] = v[0], n1[l] = v[1], n2[l] = v[2];
+        }
+    /* facet_face_measure's distances and edges */
+    v4d dmax = zero, dsum = zero, esum = zero;
+    for (int k = 0; k < 4; ++k) {
+        const v4d *p = x[k], *q = x[(k + 1) & 3];
+        const v4d d = v4_abs(n0 * (p[0] - c0) + n1 * (p[1] - c1) + n2 * (p[2] - c2));
+        dmax = v4_select(d > dmax, d, dmax);
+        dsum += d * d;
+        const v4d e0 = q[0] - p[0], e1 = q[1] - p[1], e2 = q[2] - p[2];
+        esum += v4_sqrt(e0 * e0 + e1 * e1 + e2 * e2);
+    }
+    const v4d off = -(n0 * c0 + n1 * c1 + n2 * c2);
+    const v4d rms = v4_sqrt(dsum / 4.0);
+    const v4d sq = rms * rms * 4.0;
+    const v4d edge = esum / 4.0;
+    for (int l = 0; l < 4; ++l) {
+        normal[3 * l] = n0[l], normal[3 * l + 1] = n1[l], normal[3 * l + 2] = n2[l];
+        offset[l] = off[l];
+        max_distance[l] = dmax[l];
+        square_sum[l] = sq[l];
+        edge_mean[l] = edge[l];
+    }
+}
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+__attribute__((target("avx2"))) static void quad_measure4_avx2(
+    const double *xyz, const int32_t idx[16], double normal[12], double offset[4],
+    double max_distance[4], double square_sum[4], double edge_mean[4])
+{
+    quad_measure4_lanes(xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
+}
+#endif
+
+static void quad_measure4_base(const double *xyz, const int32_t idx[16], double normal[12],
+                               double offset[4], double max_distance[4], double square_sum[4],
+                               double edge_mean[4])
+{
+    quad_measure4_lanes(xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
+}
+
+void facet_quad_measure4(const double *xyz, const int32_t idx[16], double normal[12], double offset[4],
+                         double max_distance[4], double square_sum[4], double edge_mean[4])
+{
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+    if (__builtin_cpu_supports("avx2")) {
+        quad_measure4_avx2(xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
+        return;
+    }
+#endif
+    quad_measure4_base(xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
+}
+
 /* Distance between the diagonal lines of a quad over the mean diagonal length
  * (libigl's quad_planarity, made safe for parallel diagonals). */
 static double quad_diagonal_measure(const double *xyz, const int32_t *idx)

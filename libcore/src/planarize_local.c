@@ -500,46 +500,73 @@ static int fit_face_general(facet_planarizer *s, int32_t f, int floor_on)
  * whether some corner is below its floor. Faces go in pairs, so that their
  * eigenvectors' Newton steps overlap (facet_sym3_smallest_eigenvector2);
  * quads have their loops unrolled. Every face gets the same bits as alone. */
+/* Faces f and g = f + 1 (g may be past the last face): in a pair through the
+ * eigenvector solver when both have at most FIT_MAX_CORNERS corners. */
+static inline __attribute__((always_inline)) int fit_pair(facet_planarizer *s, int32_t f, int floor_on)
+{
+    const int32_t nf = s->nf, g = f + 1;
+    const int32_t *start = s->face_start, *fv = s->face_vertices;
+    const double *q = s->q;
+    const int32_t nf0 = start[f + 1] - start[f], ng = g < nf ? start[g + 1] - start[g] : 0;
+    int below_f = 0, below_g = 0;
+    if (nf0 == 4 && ng == 4) {
+        face_fit wf, wg;
+        double nnf[3], nng[3];
+        fit_face_begin(4, q, fv + start[f], &wf);
+        fit_face_begin(4, q, fv + start[g], &wg);
+        facet_sym3_smallest_eigenvector2(wf.a, wg.a, nnf, nng);
+        below_f = FIT_FACE_END(4, f, &wf, nnf);
+        below_g = FIT_FACE_END(4, g, &wg, nng);
+    } else if (nf0 <= FIT_MAX_CORNERS && ng >= 3 && ng <= FIT_MAX_CORNERS) {
+        face_fit wf, wg;
+        double nnf[3], nng[3];
+        fit_face_begin(nf0, q, fv + start[f], &wf);
+        fit_face_begin(ng, q, fv + start[g], &wg);
+        facet_sym3_smallest_eigenvector2(wf.a, wg.a, nnf, nng);
+        below_f = FIT_FACE_END(nf0, f, &wf, nnf);
+        below_g = FIT_FACE_END(ng, g, &wg, nng);
+    } else {
+        below_f = fit_face_general(s, f, floor_on);
+        if (g < nf)
+            below_g = fit_face_general(s, g, floor_on);
+    }
+    if (floor_on) {
+        s->face_guard[f] = (uint8_t)below_f;
+        if (g < nf)
+            s->face_guard[g] = (uint8_t)below_g;
+    }
+    return below_f || below_g;
+}
+
+/* The planes: best fit (the planarity measurement), then the regularised
+ * normals when the face-normal Laplacian is on. With the angle floor on, the
+ * same pass tests the corners against it (face_guard, corner_cos); returns
+ * whether some corner is below its floor. Faces go in fours: four quads
+ * (without the angle floor) in SIMD lanes (facet_quad_measure4), others in
+ * pairs, so that their eigenvectors' Newton steps overlap
+ * (facet_sym3_smallest_eigenvector2). Every face gets the same bits as
+ * alone, whatever its group. */
 static int fit_planes(facet_planarizer *s, double mu, int nthreads)
 {
     const int32_t nf = s->nf;
     const int32_t *start = s->face_start, *fv = s->face_vertices;
     const double *q = s->q;
     const int floor_on = s->o.angle_floor > 0.0;
-    const int32_t pairs = nf / 2 + nf % 2;
+    const int32_t groups = nf / 4 + (nf % 4 != 0);
     int guard = 0;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
-    for (int32_t pair = 0; pair < pairs; ++pair) {
-        const int32_t f = 2 * pair, g = f + 1;
-        const int32_t nf0 = start[f + 1] - start[f], ng = g < nf ? start[g + 1] - start[g] : 0;
-        int below_f = 0, below_g = 0;
-        if (nf0 == 4 && ng == 4) {
-            face_fit wf, wg;
-            double nnf[3], nng[3];
-            fit_face_begin(4, q, fv + start[f], &wf);
-            fit_face_begin(4, q, fv + start[g], &wg);
-            facet_sym3_smallest_eigenvector2(wf.a, wg.a, nnf, nng);
-            below_f = FIT_FACE_END(4, f, &wf, nnf);
-            below_g = FIT_FACE_END(4, g, &wg, nng);
-        } else if (nf0 <= FIT_MAX_CORNERS && ng >= 3 && ng <= FIT_MAX_CORNERS) {
-            face_fit wf, wg;
-            double nnf[3], nng[3];
-            fit_face_begin(nf0, q, fv + start[f], &wf);
-            fit_face_begin(ng, q, fv + start[g], &wg);
-            facet_sym3_smallest_eigenvector2(wf.a, wg.a, nnf, nng);
-            below_f = FIT_FACE_END(nf0, f, &wf, nnf);
-            below_g = FIT_FACE_END(ng, g, &wg, nng);
-        } else {
-            below_f = fit_face_general(s, f, floor_on);
-            if (g < nf)
-                below_g = fit_face_general(s, g, floor_on);
+    for (int32_t group = 0; group < groups; ++group) {
+        const int32_t f = 4 * group;
+        if (!floor_on && f + 4 <= nf && start[f + 4] - start[f] == 16 && start[f + 1] - start[f] == 4 &&
+            start[f + 2] - start[f + 1] == 4 && start[f + 3] - start[f + 2] == 4) {
+            facet_quad_measure4(q, fv + start[f], s->normal + 3 * (size_t)f, s->offset + f,
+                                s->face_dev + f, s->face_sq + f, s->face_edge + f);
+            continue;
         }
-        if (floor_on) {
-            s->face_guard[f] = (uint8_t)below_f;
-            if (g < nf)
-                s->face_guard[g] = (uint8_t)below_g;
-        }
-        guard = guard || below_f || below_g;
+        int below = fit_pair(s, f, floor_on);
+        if (f + 2 < nf)
+            below = fit_pair(s, f + 2, floor_on) || below;
+        guard = guard || below;
     }
     /* a regularizer: weighed by mu against the planarity's 1 - mu, so it
      * fades as the penalty hardens */

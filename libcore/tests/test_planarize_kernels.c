@@ -3,7 +3,10 @@
  * bit: the paired eigenvector solver against two single calls, and the
  * one-pass plane fit (faces in pairs, quads unrolled, the angle floor's test
  * on the edge vectors) against facet_face_measure and the exact corner
- * cosine, on a mesh with triangles, quads, hexagons and a 10-gon. */
+ * cosine, on a mesh with triangles, quads, hexagons and a 10-gon, with the
+ * angle floor on and off (off, runs of four quads take SIMD lanes); and four
+ * quads at once (facet_quad_measure4) against facet_face_measure on random,
+ * planar, collinear, coincident, zero, huge and tiny quads. */
 #include "check.h"
 #include "planarize_internal.h"
 #include "test_meshes.h"
@@ -130,7 +133,7 @@ static void build_mixed(mixed_mesh *m)
 #undef V
 }
 
-static void test_one_pass_fit(int threads)
+static void test_one_pass_fit(int threads, double angle_floor)
 {
     mixed_mesh m;
     build_mixed(&m);
@@ -146,7 +149,7 @@ static void test_one_pass_fit(int threads)
         o.iterations = 3;
         o.anderson = 0;
         o.mu0 = 0.5;
-        o.angle_floor = 50.0; /* so that some corners are below it */
+        o.angle_floor = angle_floor; /* 50: some corners are below it */
         o.threads = threads;
         facet_planarize_result r;
         facet_planarizer_solve(s, m.xyz, &o, out, &r, &e);
@@ -164,7 +167,7 @@ static void test_one_pass_fit(int threads)
             const double sq = rms * rms * (double)n;
             CHECK(same_bits(&sq, &s->face_sq[f], 1));
             int below = 0;
-            for (int32_t k = 0; k < n; ++k) {
+            for (int32_t k = 0; angle_floor > 0.0 && k < n; ++k) {
                 const double *pa = s->q + 3 * m.idx[b + (k + n - 1) % n], *pc = s->q + 3 * m.idx[b + k];
                 const double *pb = s->q + 3 * m.idx[b + (k + 1) % n];
                 const double u[3] = {pa[0] - pc[0], pa[1] - pc[1], pa[2] - pc[2]};
@@ -178,21 +181,66 @@ static void test_one_pass_fit(int threads)
                     CHECK(same_bits(&cosine, &s->corner_cos[b + k], 1));
                 below |= cosine > floor;
             }
-            CHECK(s->face_guard[f] == below);
+            if (angle_floor > 0.0)
+                CHECK(s->face_guard[f] == below);
             below_any |= below;
             ++checked;
         }
         CHECK(checked == m.nf);
-        CHECK(below_any); /* the test reached the floor's branch */
+        CHECK(below_any == (angle_floor > 0.0)); /* the test reached the floor's branch */
     }
     free(out);
     facet_planarizer_free(&s);
 }
 
+static void test_quad_measure4(void)
+{
+    /* per-axis scales of a quad's points, as in test_eigenvector_pairs, and
+     * quads with repeated or collinear corners */
+    const double shapes[][3] = {{1, 1, 1e-3}, {1, 1, 1e-9}, {1, 1, 0}, {1, 0, 0},
+                                {0, 0, 0},    {1, 1, 1},    {1e150, 1e150, 1e140}, {1e-150, 1e-150, 1e-155}};
+    const int n_shapes = (int)(sizeof shapes / sizeof shapes[0]);
+    double xyz[3 * 16];
+    int32_t idx[16];
+    int compared = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        for (int l = 0; l < 4; ++l) {
+            const double *sc = shapes[(trial * 4 + l * 3 + trial / 5) % n_shapes];
+            for (int k = 0; k < 4; ++k)
+                for (int j = 0; j < 3; ++j)
+                    xyz[3 * (4 * l + k) + j] = 100.0 + sc[j] * uniform();
+            if ((trial + l) % 9 == 0) /* a repeated corner */
+                memcpy(xyz + 3 * (4 * l + 2), xyz + 3 * (4 * l + 1), sizeof(double) * 3);
+            if ((trial + l) % 17 == 0) /* all at one point */
+                for (int k = 1; k < 4; ++k)
+                    memcpy(xyz + 3 * (4 * l + k), xyz + 3 * (4 * l), sizeof(double) * 3);
+        }
+        for (int k = 0; k < 16; ++k) /* lanes take their corners from anywhere */
+            idx[k] = (int32_t)((k * 7 + trial) % 16);
+        double normal[12], offset[4], dev[4], sq[4], edge[4];
+        facet_quad_measure4(xyz, idx, normal, offset, dev, sq, edge);
+        for (int l = 0; l < 4; ++l) {
+            double n1[3], o1, d1, rms;
+            const double e1 = facet_face_measure(4, xyz, idx + 4 * l, n1, &o1, &d1, &rms);
+            const double sq1 = rms * rms * 4.0;
+            CHECK(same_bits(n1, normal + 3 * l, 3));
+            CHECK(same_bits(&o1, offset + l, 1));
+            CHECK(same_bits(&d1, dev + l, 1));
+            CHECK(same_bits(&sq1, sq + l, 1));
+            CHECK(same_bits(&e1, edge + l, 1));
+            ++compared;
+        }
+    }
+    CHECK(compared == 12000);
+}
+
 int main(void)
 {
     test_eigenvector_pairs();
-    test_one_pass_fit(1);
-    test_one_pass_fit(2);
+    test_quad_measure4();
+    test_one_pass_fit(1, 50.0);
+    test_one_pass_fit(2, 50.0);
+    test_one_pass_fit(1, 0.0);
+    test_one_pass_fit(2, 0.0);
     return check_report("test_planarize_kernels");
 }
