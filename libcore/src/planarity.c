@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: LGPL-2.1-or-later */
 /* Least-squares planes and per-face planarity measures. */
 #include "internal.h"
+#include "simd.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -219,37 +220,6 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
  * eigenvector falls to the scalar solver's degenerate branch is redone by
  * the scalar solver. Newton runs until every lane has stopped; a stopped lane
  * keeps its value. */
-typedef double v4d __attribute__((vector_size(32)));
-typedef int64_t v4i __attribute__((vector_size(32)));
-#if defined(__GNUC__) && !defined(__clang__)
-/* the helpers below are always inlined: no vector crosses a call */
-#pragma GCC diagnostic ignored "-Wpsabi"
-#endif
-
-static inline __attribute__((always_inline)) v4d v4_select(v4i mask, v4d yes, v4d no)
-{
-    return (v4d)((mask & (v4i)yes) | (~mask & (v4i)no));
-}
-
-static inline __attribute__((always_inline)) v4d v4_abs(v4d x)
-{
-    const v4i magnitude = {INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX};
-    return (v4d)((v4i)x & magnitude);
-}
-
-static inline __attribute__((always_inline)) int v4_any(v4i mask)
-{
-    return (mask[0] | mask[1] | mask[2] | mask[3]) != 0;
-}
-
-static inline __attribute__((always_inline)) v4d v4_sqrt(v4d x)
-{
-    v4d r;
-    for (int l = 0; l < 4; ++l)
-        r[l] = sqrt(x[l]);
-    return r;
-}
-
 static inline __attribute__((always_inline)) void quad_measure4_lanes(
     const double *xyz, const int32_t idx[16], double normal[12], double offset[4],
     double max_distance[4], double square_sum[4], double edge_mean[4])
@@ -355,8 +325,8 @@ static inline __attribute__((always_inline)) void quad_measure4_lanes(
     }
 }
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-__attribute__((target("avx2"))) static void quad_measure4_avx2(
+#if FACET_HAVE_AVX2_CLONE
+FACET_TARGET_AVX2 static void quad_measure4_avx2(
     const double *xyz, const int32_t idx[16], double normal[12], double offset[4],
     double max_distance[4], double square_sum[4], double edge_mean[4])
 {
@@ -374,8 +344,8 @@ static void quad_measure4_base(const double *xyz, const int32_t idx[16], double 
 void facet_quad_measure4(const double *xyz, const int32_t idx[16], double normal[12], double offset[4],
                          double max_distance[4], double square_sum[4], double edge_mean[4])
 {
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-    if (__builtin_cpu_supports("avx2")) {
+#if FACET_HAVE_AVX2_CLONE
+    if (facet_cpu_has_avx2()) {
         quad_measure4_avx2(xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
         return;
     }

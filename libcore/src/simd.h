@@ -1,0 +1,58 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* Vectors of four doubles for the solvers' per-face and per-vertex kernels
+ * (GCC/Clang vector extensions). Code written on them does, in every lane,
+ * the scalar code's operations in the scalar code's order (the library is
+ * built with -ffp-contract=off), so a lane gets the scalar code's bits. A
+ * kernel is written once as an always-inline function and compiled twice:
+ * for the baseline (SSE2 on x86-64: two lanes per instruction) and, on
+ * x86-64, with AVX2 (four lanes), chosen at run time. */
+#ifndef FACET_SIMD_H
+#define FACET_SIMD_H
+
+#include <math.h>
+#include <stdint.h>
+
+typedef double v4d __attribute__((vector_size(32)));
+typedef int64_t v4i __attribute__((vector_size(32)));
+
+#if defined(__GNUC__) && !defined(__clang__)
+/* the helpers are always inlined: no vector crosses a call */
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define FACET_HAVE_AVX2_CLONE 1
+#define FACET_TARGET_AVX2 __attribute__((target("avx2")))
+static inline int facet_cpu_has_avx2(void)
+{
+    return __builtin_cpu_supports("avx2");
+}
+#else
+#define FACET_HAVE_AVX2_CLONE 0
+#endif
+
+static inline __attribute__((always_inline)) v4d v4_select(v4i mask, v4d yes, v4d no)
+{
+    return (v4d)((mask & (v4i)yes) | (~mask & (v4i)no));
+}
+
+static inline __attribute__((always_inline)) v4d v4_abs(v4d x)
+{
+    const v4i magnitude = {INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX};
+    return (v4d)((v4i)x & magnitude);
+}
+
+static inline __attribute__((always_inline)) int v4_any(v4i mask)
+{
+    return (mask[0] | mask[1] | mask[2] | mask[3]) != 0;
+}
+
+static inline __attribute__((always_inline)) v4d v4_sqrt(v4d x)
+{
+    v4d r;
+    for (int l = 0; l < 4; ++l)
+        r[l] = sqrt(x[l]);
+    return r;
+}
+
+#endif
