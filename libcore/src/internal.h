@@ -56,14 +56,16 @@ void facet_sym3_smallest_eigenvector2(const double a[6], const double b[6], doub
 double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, double normal[3],
                           double *offset, double *max_distance, double *rms_distance);
 
-/* Four quads at once (faces k = 0..3 are the points xyz[idx[4 k + j]],
- * j < 4): for each, what facet_face_measure gives, bit for bit (the same
- * arithmetic in the same order, in SIMD lanes: 4 faces per AVX2 instruction
- * where the processor has it, 2 per SSE2 instruction otherwise), with the
- * sum of squared distances (rms^2 * 4) in square_sum. Outputs are arrays of
- * four (normal: twelve). */
-void facet_quad_measure4(const double *xyz, const int32_t idx[16], double normal[12], double offset[4],
-                         double max_distance[4], double square_sum[4], double edge_mean[4]);
+/* Four faces of n corners each at once (3 <= n <= FACET_LANE_CORNERS_MAX;
+ * face l is the points xyz[idx[n l + k]], k < n): for each, what
+ * facet_face_measure gives, bit for bit (the same arithmetic in the same
+ * order, in SIMD lanes: 4 faces per AVX2 instruction where the processor has
+ * it, 2 per SSE2 instruction otherwise), with the sum of squared distances
+ * (rms^2 n) in square_sum. Outputs are arrays of four (normal: twelve). */
+enum { FACET_LANE_CORNERS_MAX = 8 };
+void facet_face_measure4(int32_t n, const double *xyz, const int32_t *idx, double normal[12],
+                         double offset[4], double max_distance[4], double square_sum[4],
+                         double edge_mean[4]);
 
 /* Sets the number of OpenMP threads for a parallel region: n <= 0 gives the
  * OpenMP default; n is clamped to max(64, 4 x processors, the default). */

@@ -211,7 +211,7 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
     return esum / (double)n;
 }
 
-/* ---- four quads in SIMD lanes ------------------------------------------------
+/* ---- four faces in SIMD lanes ------------------------------------------------
  * The arithmetic of fit_plane_indexed, the eigenvector solver (prepare,
  * Newton, finish) and facet_face_measure, written once on vectors of four
  * doubles (GCC/Clang vector extensions: every lane does the scalar code's
@@ -220,24 +220,24 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
  * eigenvector falls to the scalar solver's degenerate branch is redone by
  * the scalar solver. Newton runs until every lane has stopped; a stopped lane
  * keeps its value. */
-static inline __attribute__((always_inline)) void quad_measure4_lanes(
-    const double *xyz, const int32_t idx[16], double normal[12], double offset[4],
+static inline __attribute__((always_inline)) void face_measure4_lanes(
+    const int n, const double *xyz, const int32_t *idx, double normal[12], double offset[4],
     double max_distance[4], double square_sum[4], double edge_mean[4])
 {
-    v4d x[4][3]; /* corner k, coordinate j, face in the lane */
+    v4d x[FACET_LANE_CORNERS_MAX][3]; /* corner k, coordinate j, face in the lane */
     for (int l = 0; l < 4; ++l)
-        for (int k = 0; k < 4; ++k) {
-            const double *p = xyz + 3 * (size_t)idx[4 * l + k];
+        for (int k = 0; k < n; ++k) {
+            const double *p = xyz + 3 * (size_t)idx[n * l + k];
             x[k][0][l] = p[0], x[k][1][l] = p[1], x[k][2][l] = p[2];
         }
     const v4d zero = {0.0, 0.0, 0.0, 0.0};
     v4d c0 = zero, c1 = zero, c2 = zero;
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < n; ++k)
         c0 += x[k][0], c1 += x[k][1], c2 += x[k][2];
-    const double inv = 1.0 / 4.0;
+    const double inv = 1.0 / (double)n;
     c0 *= inv, c1 *= inv, c2 *= inv;
     v4d a[6] = {zero, zero, zero, zero, zero, zero};
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < n; ++k) {
         const v4d dx = x[k][0] - c0, dy = x[k][1] - c1, dz = x[k][2] - c2;
         a[0] += dx * dx, a[1] += dx * dy, a[2] += dx * dz;
         a[3] += dy * dy, a[4] += dy * dz, a[5] += dz * dz;
@@ -304,8 +304,8 @@ static inline __attribute__((always_inline)) void quad_measure4_lanes(
         }
     /* facet_face_measure's distances and edges */
     v4d dmax = zero, dsum = zero, esum = zero;
-    for (int k = 0; k < 4; ++k) {
-        const v4d *p = x[k], *q = x[(k + 1) & 3];
+    for (int k = 0; k < n; ++k) {
+        const v4d *p = x[k], *q = x[k + 1 < n ? k + 1 : 0];
         const v4d d = v4_abs(n0 * (p[0] - c0) + n1 * (p[1] - c1) + n2 * (p[2] - c2));
         dmax = v4_select(d > dmax, d, dmax);
         dsum += d * d;
@@ -313,9 +313,9 @@ static inline __attribute__((always_inline)) void quad_measure4_lanes(
         esum += v4_sqrt(e0 * e0 + e1 * e1 + e2 * e2);
     }
     const v4d off = -(n0 * c0 + n1 * c1 + n2 * c2);
-    const v4d rms = v4_sqrt(dsum / 4.0);
-    const v4d sq = rms * rms * 4.0;
-    const v4d edge = esum / 4.0;
+    const v4d rms = v4_sqrt(dsum / (double)n);
+    const v4d sq = rms * rms * (double)n;
+    const v4d edge = esum / (double)n;
     for (int l = 0; l < 4; ++l) {
         normal[3 * l] = n0[l], normal[3 * l + 1] = n1[l], normal[3 * l + 2] = n2[l];
         offset[l] = off[l];
@@ -325,32 +325,37 @@ static inline __attribute__((always_inline)) void quad_measure4_lanes(
     }
 }
 
+/* Quads get their own copy (n a constant: loops unrolled). */
+#define FACE_MEASURE4_ARGS                                                                         \
+    const double *xyz, const int32_t *idx, double normal[12], double offset[4],                    \
+        double max_distance[4], double square_sum[4], double edge_mean[4]
+#define FACE_MEASURE4_BODY                                                                         \
+    if (n == 4)                                                                                    \
+        face_measure4_lanes(4, xyz, idx, normal, offset, max_distance, square_sum, edge_mean);     \
+    else                                                                                           \
+        face_measure4_lanes(n, xyz, idx, normal, offset, max_distance, square_sum, edge_mean)
+
 #if FACET_HAVE_AVX2_CLONE
-FACET_TARGET_AVX2 static void quad_measure4_avx2(
-    const double *xyz, const int32_t idx[16], double normal[12], double offset[4],
-    double max_distance[4], double square_sum[4], double edge_mean[4])
+FACET_TARGET_AVX2 static void face_measure4_avx2(int n, FACE_MEASURE4_ARGS)
 {
-    quad_measure4_lanes(xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
+    FACE_MEASURE4_BODY;
 }
 #endif
 
-static void quad_measure4_base(const double *xyz, const int32_t idx[16], double normal[12],
-                               double offset[4], double max_distance[4], double square_sum[4],
-                               double edge_mean[4])
+static void face_measure4_base(int n, FACE_MEASURE4_ARGS)
 {
-    quad_measure4_lanes(xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
+    FACE_MEASURE4_BODY;
 }
 
-void facet_quad_measure4(const double *xyz, const int32_t idx[16], double normal[12], double offset[4],
-                         double max_distance[4], double square_sum[4], double edge_mean[4])
+void facet_face_measure4(int32_t n, FACE_MEASURE4_ARGS)
 {
 #if FACET_HAVE_AVX2_CLONE
     if (facet_cpu_has_avx2()) {
-        quad_measure4_avx2(xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
+        face_measure4_avx2((int)n, xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
         return;
     }
 #endif
-    quad_measure4_base(xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
+    face_measure4_base((int)n, xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
 }
 
 /* Distance between the diagonal lines of a quad over the mean diagonal length

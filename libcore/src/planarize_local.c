@@ -541,9 +541,9 @@ static inline __attribute__((always_inline)) int fit_pair(facet_planarizer *s, i
 /* The planes: best fit (the planarity measurement), then the regularised
  * normals when the face-normal Laplacian is on. With the angle floor on, the
  * same pass tests the corners against it (face_guard, corner_cos); returns
- * whether some corner is below its floor. Faces go in fours: four quads
- * (without the angle floor) in SIMD lanes (facet_quad_measure4), others in
- * pairs, so that their eigenvectors' Newton steps overlap
+ * whether some corner is below its floor. Faces go in fours: four faces
+ * of the same size (without the angle floor) in SIMD lanes
+ * (facet_face_measure4), others in pairs, so that their eigenvectors' Newton steps overlap
  * (facet_sym3_smallest_eigenvector2). Every face gets the same bits as
  * alone, whatever its group. */
 static int fit_planes(facet_planarizer *s, double mu, int nthreads)
@@ -557,9 +557,10 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads)
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
     for (int32_t group = 0; group < groups; ++group) {
         const int32_t f = 4 * group;
-        if (!floor_on && f + 4 <= nf && start[f + 4] - start[f] == 16 && start[f + 1] - start[f] == 4 &&
-            start[f + 2] - start[f + 1] == 4 && start[f + 3] - start[f + 2] == 4) {
-            facet_quad_measure4(q, fv + start[f], s->normal + 3 * (size_t)f, s->offset + f,
+        const int32_t n = f + 4 <= nf ? start[f + 1] - start[f] : 0;
+        if (!floor_on && n >= 3 && n <= FACET_LANE_CORNERS_MAX && start[f + 4] - start[f] == 4 * n &&
+            start[f + 2] - start[f + 1] == n && start[f + 3] - start[f + 2] == n) {
+            facet_face_measure4(n, q, fv + start[f], s->normal + 3 * (size_t)f, s->offset + f,
                                 s->face_dev + f, s->face_sq + f, s->face_edge + f);
             continue;
         }

@@ -4,9 +4,10 @@
  * one-pass plane fit (faces in pairs, quads unrolled, the angle floor's test
  * on the edge vectors) against facet_face_measure and the exact corner
  * cosine, on a mesh with triangles, quads, hexagons and a 10-gon, with the
- * angle floor on and off (off, runs of four quads take SIMD lanes); and four
- * quads at once (facet_quad_measure4) against facet_face_measure on random,
- * planar, collinear, coincident, zero, huge and tiny quads. */
+ * angle floor on and off (off, runs of four faces of one size take SIMD
+ * lanes); and four faces of 3 to 8 corners at once (facet_face_measure4)
+ * against facet_face_measure on random, planar, collinear, coincident,
+ * zero, huge and tiny faces. */
 #include "check.h"
 #include "planarize_internal.h"
 #include "test_meshes.h"
@@ -193,36 +194,38 @@ static void test_one_pass_fit(int threads, double angle_floor)
     facet_planarizer_free(&s);
 }
 
-static void test_quad_measure4(void)
+static void test_face_measure4(void)
 {
-    /* per-axis scales of a quad's points, as in test_eigenvector_pairs, and
-     * quads with repeated or collinear corners */
+    /* per-axis scales of a face's points, as in test_eigenvector_pairs, and
+     * faces with repeated or coincident corners */
     const double shapes[][3] = {{1, 1, 1e-3}, {1, 1, 1e-9}, {1, 1, 0}, {1, 0, 0},
                                 {0, 0, 0},    {1, 1, 1},    {1e150, 1e150, 1e140}, {1e-150, 1e-150, 1e-155}};
     const int n_shapes = (int)(sizeof shapes / sizeof shapes[0]);
-    double xyz[3 * 16];
-    int32_t idx[16];
+    enum { MAX = FACET_LANE_CORNERS_MAX };
+    double xyz[3 * 4 * MAX];
+    int32_t idx[4 * MAX];
     int compared = 0;
     for (int trial = 0; trial < 3000; ++trial) {
+        const int n = 3 + trial % (MAX - 2);
         for (int l = 0; l < 4; ++l) {
             const double *sc = shapes[(trial * 4 + l * 3 + trial / 5) % n_shapes];
-            for (int k = 0; k < 4; ++k)
+            for (int k = 0; k < n; ++k)
                 for (int j = 0; j < 3; ++j)
-                    xyz[3 * (4 * l + k) + j] = 100.0 + sc[j] * uniform();
+                    xyz[3 * (n * l + k) + j] = 100.0 + sc[j] * uniform();
             if ((trial + l) % 9 == 0) /* a repeated corner */
-                memcpy(xyz + 3 * (4 * l + 2), xyz + 3 * (4 * l + 1), sizeof(double) * 3);
+                memcpy(xyz + 3 * (n * l + 2), xyz + 3 * (n * l + 1), sizeof(double) * 3);
             if ((trial + l) % 17 == 0) /* all at one point */
-                for (int k = 1; k < 4; ++k)
-                    memcpy(xyz + 3 * (4 * l + k), xyz + 3 * (4 * l), sizeof(double) * 3);
+                for (int k = 1; k < n; ++k)
+                    memcpy(xyz + 3 * (n * l + k), xyz + 3 * (n * l), sizeof(double) * 3);
         }
-        for (int k = 0; k < 16; ++k) /* lanes take their corners from anywhere */
-            idx[k] = (int32_t)((k * 7 + trial) % 16);
+        for (int k = 0; k < 4 * n; ++k) /* lanes take their corners from anywhere */
+            idx[k] = (int32_t)((k * 7 + trial) % (4 * n));
         double normal[12], offset[4], dev[4], sq[4], edge[4];
-        facet_quad_measure4(xyz, idx, normal, offset, dev, sq, edge);
+        facet_face_measure4(n, xyz, idx, normal, offset, dev, sq, edge);
         for (int l = 0; l < 4; ++l) {
             double n1[3], o1, d1, rms;
-            const double e1 = facet_face_measure(4, xyz, idx + 4 * l, n1, &o1, &d1, &rms);
-            const double sq1 = rms * rms * 4.0;
+            const double e1 = facet_face_measure(n, xyz, idx + n * l, n1, &o1, &d1, &rms);
+            const double sq1 = rms * rms * (double)n;
             CHECK(same_bits(n1, normal + 3 * l, 3));
             CHECK(same_bits(&o1, offset + l, 1));
             CHECK(same_bits(&d1, dev + l, 1));
@@ -237,7 +240,7 @@ static void test_quad_measure4(void)
 int main(void)
 {
     test_eigenvector_pairs();
-    test_quad_measure4();
+    test_face_measure4();
     test_one_pass_fit(1, 50.0);
     test_one_pass_fit(2, 50.0);
     test_one_pass_fit(1, 0.0);
