@@ -224,12 +224,15 @@ static inline __attribute__((always_inline)) void face_measure4_lanes(
     const int n, const double *xyz, const int32_t *idx, double normal[12], double offset[4],
     double max_distance[4], double square_sum[4], double edge_mean[4])
 {
-    v4d x[FACET_LANE_CORNERS_MAX][3]; /* corner k, coordinate j, face in the lane */
-    for (int l = 0; l < 4; ++l)
-        for (int k = 0; k < n; ++k) {
-            const double *p = xyz + 3 * (size_t)idx[n * l + k];
-            x[k][0][l] = p[0], x[k][1][l] = p[1], x[k][2][l] = p[2];
-        }
+    /* corner k, coordinate j, face in the lane; built from scalars in
+     * registers (lane stores then a vector load would stall) */
+    v4d x[FACET_LANE_CORNERS_MAX][3];
+    for (int k = 0; k < n; ++k) {
+        const double *p0 = xyz + 3 * (size_t)idx[k], *p1 = xyz + 3 * (size_t)idx[n + k];
+        const double *p2 = xyz + 3 * (size_t)idx[2 * n + k], *p3 = xyz + 3 * (size_t)idx[3 * n + k];
+        for (int j = 0; j < 3; ++j)
+            x[k][j] = (v4d){p0[j], p1[j], p2[j], p3[j]};
+    }
     const v4d zero = {0.0, 0.0, 0.0, 0.0};
     v4d c0 = zero, c1 = zero, c2 = zero;
     for (int k = 0; k < n; ++k)

@@ -63,6 +63,7 @@ struct facet_planarizer {
     uint8_t *face_guard;
     double *guard_count, *guard_sum;
     int guard_on;                         /* some corner is below its floor now */
+    int scalar_kernels; /* tests: the plain per-face and per-vertex code, not the SIMD lanes */
     double *slide_target, *slide_tangent; /* per vertex (sliding boundary) */
     double *laplace_weight;               /* per vertex_adj entry: normalised weight */
     double *surface_point, *surface_normal; /* per vertex: closest reference point, its normal */

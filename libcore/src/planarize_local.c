@@ -12,6 +12,7 @@
  * Each loop writes only its own face or vertex and every sum runs in a fixed
  * order, so results do not depend on the thread count. */
 #include "planarize_internal.h"
+#include "simd.h"
 
 #include <math.h>
 #include <string.h>
@@ -558,7 +559,7 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads)
     for (int32_t group = 0; group < groups; ++group) {
         const int32_t f = 4 * group;
         const int32_t n = f + 4 <= nf ? start[f + 1] - start[f] : 0;
-        if (!floor_on && n >= 3 && n <= FACET_LANE_CORNERS_MAX && start[f + 4] - start[f] == 4 * n &&
+        if (!floor_on && !s->scalar_kernels && n >= 3 && n <= FACET_LANE_CORNERS_MAX && start[f + 4] - start[f] == 4 * n &&
             start[f + 2] - start[f + 1] == n && start[f + 3] - start[f + 2] == n) {
             facet_face_measure4(n, q, fv + start[f], s->normal + 3 * (size_t)f, s->offset + f,
                                 s->face_dev + f, s->face_sq + f, s->face_edge + f);
@@ -843,6 +844,126 @@ static void add_matvec(double b[3], const double a[6], const double x[3])
     b[2] += a[2] * x[0] + a[4] * x[1] + a[5] * x[2];
 }
 
+/* The vertex step of four vertices v0..v0+3 (those < nv) in SIMD lanes, when
+ * the only terms are the data term and the faces' planes (vertex_step_plain
+ * says when): the scalar loop's arithmetic in its order, every lane adding
+ * its own faces' terms (pw n n^T, pw d n, formed from the face's plane as
+ * the scalar loop's per-face pass forms them) in its own order; a lane with
+ * fewer faces than another keeps its sums (a select, not an addition). A
+ * fixed vertex keeps its control position. Returns 0 if some result was not
+ * finite (that vertex keeps its previous position). */
+static inline __attribute__((always_inline)) int vertex_step_plain4_lanes(const facet_planarizer *s,
+                                                                          int32_t v0, double mu,
+                                                                          double *q_new)
+{
+    const facet_planarize_options *o = &s->o;
+    const double w = 1.0 - mu, data_t = mu * o->data_tangent;
+    const double data_nt = mu * (o->data_normal - o->data_tangent);
+    const int32_t *vs = s->vertex_start, *vf = s->vertex_faces;
+    const double *normal = s->normal, *offset = s->offset, *fw = s->face_weight;
+    /* lanes past the last vertex repeat v0; vectors are built from scalars
+     * in registers (lane stores then a vector load would stall) */
+    const int32_t nv = s->nv;
+    const int32_t u1 = v0 + 1 < nv ? v0 + 1 : v0, u2 = v0 + 2 < nv ? v0 + 2 : v0;
+    const int32_t u3 = v0 + 3 < nv ? v0 + 3 : v0;
+    const double *vn = s->vertex_normal, *vp = s->p;
+#define LANES(array, c) ((v4d){(array)[3 * (size_t)v0 + (c)], (array)[3 * (size_t)u1 + (c)], \
+                              (array)[3 * (size_t)u2 + (c)], (array)[3 * (size_t)u3 + (c)]})
+    const v4d nu[3] = {LANES(vn, 0), LANES(vn, 1), LANES(vn, 2)};
+    const v4d p[3] = {LANES(vp, 0), LANES(vp, 1), LANES(vp, 2)};
+#undef LANES
+    const int32_t start[4] = {vs[v0], vs[u1], vs[u2], vs[u3]};
+    const int32_t degree[4] = {vs[v0 + 1] - start[0], vs[u1 + 1] - start[1], vs[u2 + 1] - start[2],
+                               vs[u3 + 1] - start[3]};
+    int32_t most = degree[0];
+    for (int l = 1; l < 4; ++l)
+        most = degree[l] > most ? degree[l] : most;
+    /* data: mu (a_t I + (a_n - a_t) nu nu^T) (q - p), as add_outer and
+     * add_matvec form it */
+    v4d a[6], b[3];
+    a[0] = data_t + data_nt * nu[0] * nu[0], a[1] = 0.0 + data_nt * nu[0] * nu[1];
+    a[2] = 0.0 + data_nt * nu[0] * nu[2], a[3] = data_t + data_nt * nu[1] * nu[1];
+    a[4] = 0.0 + data_nt * nu[1] * nu[2], a[5] = data_t + data_nt * nu[2] * nu[2];
+    b[0] = 0.0 + (a[0] * p[0] + a[1] * p[1] + a[2] * p[2]);
+    b[1] = 0.0 + (a[1] * p[0] + a[3] * p[1] + a[4] * p[2]);
+    b[2] = 0.0 + (a[2] * p[0] + a[4] * p[1] + a[5] * p[2]);
+    for (int32_t j = 0; j < most; ++j) {
+        const int32_t f0 = j < degree[0] ? vf[start[0] + j] : vf[start[0]];
+        const int32_t f1 = j < degree[1] ? vf[start[1] + j] : f0;
+        const int32_t f2 = j < degree[2] ? vf[start[2] + j] : f0;
+        const int32_t f3 = j < degree[3] ? vf[start[3] + j] : f0;
+        const v4i take = {-(int64_t)(j < degree[0]), -(int64_t)(j < degree[1]), -(int64_t)(j < degree[2]),
+                          -(int64_t)(j < degree[3])};
+#define LANES(array, k, c) ((v4d){(array)[(k) * (size_t)f0 + (c)], (array)[(k) * (size_t)f1 + (c)], \
+                                 (array)[(k) * (size_t)f2 + (c)], (array)[(k) * (size_t)f3 + (c)]})
+        const v4d n0 = LANES(normal, 3, 0), n1 = LANES(normal, 3, 1), n2 = LANES(normal, 3, 2);
+        const v4d d = LANES(offset, 1, 0);
+        const v4d pw = fw ? w * LANES(fw, 1, 0) : (v4d){w, w, w, w} * 1.0;
+#undef LANES
+        const v4d pn0 = pw * n0, pn1 = pw * n1, pn2 = pw * n2, pd = pw * d;
+        a[0] = v4_select(take, a[0] + pn0 * n0, a[0]);
+        a[1] = v4_select(take, a[1] + pn0 * n1, a[1]);
+        a[2] = v4_select(take, a[2] + pn0 * n2, a[2]);
+        a[3] = v4_select(take, a[3] + pn1 * n1, a[3]);
+        a[4] = v4_select(take, a[4] + pn1 * n2, a[4]);
+        a[5] = v4_select(take, a[5] + pn2 * n2, a[5]);
+        b[0] = v4_select(take, b[0] - pd * n0, b[0]);
+        b[1] = v4_select(take, b[1] - pd * n1, b[1]);
+        b[2] = v4_select(take, b[2] - pd * n2, b[2]);
+    }
+    /* 3x3 LDL^T, as the scalar loop */
+    const v4d i0 = 1.0 / a[0];
+    const v4d l10 = a[1] * i0, l20 = a[2] * i0;
+    const v4d d1 = a[3] - l10 * a[1];
+    const v4d i1 = 1.0 / d1;
+    const v4d l21 = (a[4] - l20 * a[1]) * i1;
+    const v4d i2 = 1.0 / (a[5] - l20 * a[2] - l21 * l21 * d1);
+    const v4d z1 = b[1] - l10 * b[0];
+    const v4d z2 = b[2] - l20 * b[0] - l21 * z1;
+    const v4d x2 = z2 * i2;
+    const v4d x1 = z1 * i1 - l21 * x2;
+    const v4d x0 = b[0] * i0 - l10 * x1 - l20 * x2;
+    int finite = 1;
+    for (int l = 0; l < 4 && v0 + l < s->nv; ++l) {
+        const int32_t v = v0 + l;
+        double *out = q_new + 3 * (size_t)v;
+        const double *from = NULL;
+        if (s->fixed[v])
+            from = s->p + 3 * (size_t)v;
+        else if (!(isfinite(x0[l]) && isfinite(x1[l]) && isfinite(x2[l])))
+            from = s->q + 3 * (size_t)v, finite = 0;
+        if (from)
+            out[0] = from[0], out[1] = from[1], out[2] = from[2];
+        else
+            out[0] = x0[l], out[1] = x1[l], out[2] = x2[l];
+    }
+    return finite;
+}
+
+static int vertex_step_plain4_base(const facet_planarizer *s, int32_t v0, double mu, double *q_new)
+{
+    return vertex_step_plain4_lanes(s, v0, mu, q_new);
+}
+
+#if FACET_HAVE_AVX2_CLONE
+FACET_TARGET_AVX2 static int vertex_step_plain4_avx2(const facet_planarizer *s, int32_t v0, double mu,
+                                                     double *q_new)
+{
+    return vertex_step_plain4_lanes(s, v0, mu, q_new);
+}
+#endif
+
+/* Whether the vertex step has only the data term (no surface) and the
+ * faces' planes. */
+static int vertex_step_plain(const facet_planarizer *s)
+{
+    const facet_planarize_options *o = &s->o;
+    return !(o->surface_weight > 0.0 && s->reference) &&
+           !(o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0) && !(o->circular > 0.0) &&
+           !(o->parallelogram > 0.0) && !(o->laplacian > 0.0) && !(o->boundary_fairness > 0.0) &&
+           o->boundary != FACET_BOUNDARY_SLIDING && !(o->angle_floor > 0.0);
+}
+
 /* Per vertex, with everything else fixed: minimise the vertex's own terms
  * (the paper's local forms, eq. 8), a 3x3 SPD system. Vertices are updated
  * Jacobi-style from the previous iterate, so the result does not depend on
@@ -857,6 +978,23 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
     const double *q_old = s->q;
     double *q_new = s->q_next;
     const int extra = shape || o->circular > 0.0 || o->parallelogram > 0.0; /* per-face terms */
+    if (!s->scalar_kernels && vertex_step_plain(s)) {
+        int (*step4)(const facet_planarizer *, int32_t, double, double *) = vertex_step_plain4_base;
+#if FACET_HAVE_AVX2_CLONE
+        if (facet_cpu_has_avx2())
+            step4 = vertex_step_plain4_avx2;
+#endif
+        const int32_t groups = nv / 4 + (nv % 4 != 0);
+        int finite = 1;
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(&& : finite)
+        for (int32_t g = 0; g < groups; ++g)
+            finite = step4(s, 4 * g, mu, q_new) && finite;
+        if (finite) { /* the new iterate becomes the current one */
+            s->q_next = s->q;
+            s->q = q_new;
+        }
+        return finite;
+    }
     /* Each face's planarity term once per face rather than once per corner:
      * pw n n^T and pw d n, the same products the vertices add up. */
     double *terms = s->face_plane_terms;

@@ -237,6 +237,60 @@ static void test_face_measure4(void)
     CHECK(compared == 12000);
 }
 
+/* Whole solves with the SIMD lanes (four faces of one size, four vertices
+ * of the plain vertex step) against the same solves on the scalar code,
+ * bit for bit: L/L and L/G, with and without fixed vertices, face weights
+ * (one face exempt) and point-to-plane data. */
+static void lanes_against_scalar(const facet_mesh *mesh, int threads)
+{
+    const int32_t nv = mesh->n_vertices, nf = mesh->n_faces;
+    double *weights = malloc(sizeof(double) * (size_t)nf);
+    const int32_t fixed[3] = {0, 7, nv - 1};
+    for (int32_t f = 0; f < nf; ++f)
+        weights[f] = f == 5 ? 0.0 : 0.5 + 0.25 * (f % 3);
+    double *a = malloc(sizeof(double) * 3 * (size_t)nv), *b = malloc(sizeof(double) * 3 * (size_t)nv);
+    for (int method = 0; method < 2; ++method)
+        for (int variant = 0; variant < 2; ++variant) {
+            double *out[2] = {a, b};
+            for (int scalar = 0; scalar < 2; ++scalar) {
+                facet_planarizer *s = NULL;
+                facet_error e;
+                CHECK_STATUS(facet_planarizer_create(mesh, &s, &e), FACET_OK);
+                s->scalar_kernels = scalar;
+                if (variant) {
+                    CHECK_STATUS(facet_planarizer_set_face_weights(s, weights, &e), FACET_OK);
+                    CHECK_STATUS(facet_planarizer_set_fixed(s, 3, fixed, &e), FACET_OK);
+                }
+                facet_planarize_options o;
+                facet_planarize_options_default((facet_method)method, &o);
+                o.iterations = 40;
+                o.threads = threads;
+                if (variant)
+                    o.data_tangent = 0.3; /* point-to-plane data */
+                facet_planarize_result r;
+                CHECK_STATUS(facet_planarizer_solve(s, mesh->xyz, &o, out[scalar], &r, &e), FACET_OK);
+                CHECK(r.iterations == 40);
+                facet_planarizer_free(&s);
+            }
+            CHECK(same_bits(a, b, 3 * nv));
+        }
+    free(a);
+    free(b);
+    free(weights);
+}
+
+static void test_lanes_against_scalar(int threads)
+{
+    mixed_mesh m; /* faces of 3 to 10 corners */
+    build_mixed(&m);
+    facet_mesh mixed = {m.nv, m.nf, m.xyz, m.start, m.idx};
+    lanes_against_scalar(&mixed, threads);
+    test_mesh grid = test_grid(8, 5, 1.0, 1.0, 0.0);
+    CHECK(grid.mesh.n_vertices % 4 != 0); /* a last group of vertices with idle lanes */
+    lanes_against_scalar(&grid.mesh, threads);
+    test_mesh_free(&grid);
+}
+
 int main(void)
 {
     test_eigenvector_pairs();
@@ -245,5 +299,7 @@ int main(void)
     test_one_pass_fit(2, 50.0);
     test_one_pass_fit(1, 0.0);
     test_one_pass_fit(2, 0.0);
+    test_lanes_against_scalar(1);
+    test_lanes_against_scalar(2);
     return check_report("test_planarize_kernels");
 }
