@@ -67,6 +67,14 @@ void facet_face_measure4(int32_t n, const double *xyz, const int32_t *idx, doubl
                          double offset[4], double max_distance[4], double square_sum[4],
                          double edge_mean[4]);
 
+/* Eight faces at once: four of na corners (the points xyz[idx_a[na l + k]])
+ * and four of nb (idx_b), their eigenvector solves side by side; outputs
+ * as facet_face_measure4's, arrays of eight (normal: 24), the first four
+ * for idx_a. */
+void facet_face_measure8(int32_t na, int32_t nb, const double *xyz, const int32_t *idx_a,
+                         const int32_t *idx_b, double normal[24], double offset[8],
+                         double max_distance[8], double square_sum[8], double edge_mean[8]);
+
 /* Sets the number of OpenMP threads for a parallel region: n <= 0 gives the
  * OpenMP default; n is clamped to max(64, 4 x processors, the default). */
 int facet_thread_count(int requested);

@@ -220,58 +220,80 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
  * eigenvector falls to the scalar solver's degenerate branch is redone by
  * the scalar solver. Newton runs until every lane has stopped; a stopped lane
  * keeps its value. */
-static inline __attribute__((always_inline)) void face_measure4_lanes(
-    const int n, const double *xyz, const int32_t *idx, double normal[12], double offset[4],
-    double max_distance[4], double square_sum[4], double edge_mean[4])
+typedef struct {
+    v4d x[FACET_LANE_CORNERS_MAX][3]; /* corner k, coordinate j, face in the lane */
+    v4d c0, c1, c2;                   /* centroids */
+    v4d a[6];                         /* scatter matrices */
+    v4d b00, b01, b02, b11, b12, b22; /* scaled */
+    v4d q0, q1, q2;                   /* characteristic polynomial */
+    v4d lambda;                       /* smallest root (Newton) */
+    v4i ok, run;
+} lanes4;
+
+/* fit_plane_indexed's centroid and scatter, sym3_prepare */
+static inline __attribute__((always_inline)) void lanes_begin(const int n, const double *xyz,
+                                                              const int32_t *idx, lanes4 *L)
 {
-    /* corner k, coordinate j, face in the lane; built from scalars in
-     * registers (lane stores then a vector load would stall) */
-    v4d x[FACET_LANE_CORNERS_MAX][3];
+    /* built from scalars in registers (lane stores then a vector load would
+     * stall) */
     for (int k = 0; k < n; ++k) {
         const double *p0 = xyz + 3 * (size_t)idx[k], *p1 = xyz + 3 * (size_t)idx[n + k];
         const double *p2 = xyz + 3 * (size_t)idx[2 * n + k], *p3 = xyz + 3 * (size_t)idx[3 * n + k];
         for (int j = 0; j < 3; ++j)
-            x[k][j] = (v4d){p0[j], p1[j], p2[j], p3[j]};
+            L->x[k][j] = (v4d){p0[j], p1[j], p2[j], p3[j]};
     }
     const v4d zero = {0.0, 0.0, 0.0, 0.0};
     v4d c0 = zero, c1 = zero, c2 = zero;
     for (int k = 0; k < n; ++k)
-        c0 += x[k][0], c1 += x[k][1], c2 += x[k][2];
+        c0 += L->x[k][0], c1 += L->x[k][1], c2 += L->x[k][2];
     const double inv = 1.0 / (double)n;
     c0 *= inv, c1 *= inv, c2 *= inv;
     v4d a[6] = {zero, zero, zero, zero, zero, zero};
     for (int k = 0; k < n; ++k) {
-        const v4d dx = x[k][0] - c0, dy = x[k][1] - c1, dz = x[k][2] - c2;
+        const v4d dx = L->x[k][0] - c0, dy = L->x[k][1] - c1, dz = L->x[k][2] - c2;
         a[0] += dx * dx, a[1] += dx * dy, a[2] += dx * dz;
         a[3] += dy * dy, a[4] += dy * dz, a[5] += dz * dz;
     }
-    /* sym3_prepare */
+    L->c0 = c0, L->c1 = c1, L->c2 = c2;
     v4d scale = zero;
     for (int k = 0; k < 6; ++k) {
+        L->a[k] = a[k];
         const v4d m = v4_abs(a[k]);
         scale = v4_select(m > scale, m, scale);
     }
-    const v4i ok = scale > 0.0;
+    L->ok = scale > 0.0;
     const v4d sinv = 1.0 / scale;
     const v4d b00 = a[0] * sinv, b01 = a[1] * sinv, b02 = a[2] * sinv;
     const v4d b11 = a[3] * sinv, b12 = a[4] * sinv, b22 = a[5] * sinv;
-    const v4d q2 = b00 + b11 + b22;
-    const v4d q1 = b00 * b11 - b01 * b01 + b00 * b22 - b02 * b02 + b11 * b22 - b12 * b12;
-    const v4d q0 = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) +
-                   b02 * (b01 * b12 - b11 * b02);
-    /* sym3_newton_step, every lane until it stops */
-    v4d lambda = zero;
-    v4i run = ok;
-    for (int it = 0; it < 64 && v4_any(run); ++it) {
-        const v4d f = ((lambda - q2) * lambda + q1) * lambda - q0;
-        const v4d df = (3.0 * lambda - 2.0 * q2) * lambda + q1;
-        const v4d step = f / df;
-        const v4d next = lambda - step;
-        const v4i moved = run & (f < 0.0) & (df > 0.0) & (next > lambda);
-        lambda = v4_select(moved, next, lambda);
-        run = moved & ~(step > -1e-17 * (1.0 + next));
-    }
-    /* sym3_finish: the largest cross product of two rows of B - lambda I */
+    L->b00 = b00, L->b01 = b01, L->b02 = b02, L->b11 = b11, L->b12 = b12, L->b22 = b22;
+    L->q2 = b00 + b11 + b22;
+    L->q1 = b00 * b11 - b01 * b01 + b00 * b22 - b02 * b02 + b11 * b22 - b12 * b12;
+    L->q0 = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02);
+    L->lambda = zero;
+    L->run = L->ok;
+}
+
+/* sym3_newton_step on every running lane */
+static inline __attribute__((always_inline)) void lanes_newton_step(lanes4 *L)
+{
+    const v4d x = L->lambda;
+    const v4d f = ((x - L->q2) * x + L->q1) * x - L->q0;
+    const v4d df = (3.0 * x - 2.0 * L->q2) * x + L->q1;
+    const v4d step = f / df;
+    const v4d next = x - step;
+    const v4i moved = L->run & (f < 0.0) & (df > 0.0) & (next > x);
+    L->lambda = v4_select(moved, next, x);
+    L->run = moved & ~(step > -1e-17 * (1.0 + next));
+}
+
+/* sym3_finish, then facet_face_measure's distances and edges */
+static inline __attribute__((always_inline)) void lanes_end(const int n, const lanes4 *L, double normal[12],
+                                                            double offset[4], double max_distance[4],
+                                                            double square_sum[4], double edge_mean[4])
+{
+    const v4d lambda = L->lambda, zero = {0.0, 0.0, 0.0, 0.0};
+    const v4d b00 = L->b00, b01 = L->b01, b02 = L->b02, b11 = L->b11, b12 = L->b12, b22 = L->b22;
+    /* the largest cross product of two rows of B - lambda I */
     const v4d r0[3] = {b00 - lambda, b01, b02}, r1[3] = {b01, b11 - lambda, b12};
     const v4d r2[3] = {b02, b12, b22 - lambda};
     v4d best[3], nbest;
@@ -293,22 +315,22 @@ static inline __attribute__((always_inline)) void face_measure4_lanes(
         for (int j = 0; j < 3; ++j)
             best[j] = v4_select(take12, c12[j], v4_select(take02, c02[j], c01[j]));
     }
-    const v4i good = ok & (nbest > 1e-28);
+    const v4i good = L->ok & (nbest > 1e-28);
     const v4d s = 1.0 / v4_sqrt(nbest);
     v4d n0 = best[0] * s, n1 = best[1] * s, n2 = best[2] * s;
     if (!(good[0] && good[1] && good[2] && good[3]))
         for (int l = 0; l < 4; ++l) {
             if (good[l])
                 continue;
-            const double m[6] = {a[0][l], a[1][l], a[2][l], a[3][l], a[4][l], a[5][l]};
+            const double m[6] = {L->a[0][l], L->a[1][l], L->a[2][l], L->a[3][l], L->a[4][l], L->a[5][l]};
             double v[3];
             facet_sym3_smallest_eigenvector(m, v);
             n0[l] = v[0], n1[l] = v[1], n2[l] = v[2];
         }
-    /* facet_face_measure's distances and edges */
+    const v4d c0 = L->c0, c1 = L->c1, c2 = L->c2;
     v4d dmax = zero, dsum = zero, esum = zero;
     for (int k = 0; k < n; ++k) {
-        const v4d *p = x[k], *q = x[k + 1 < n ? k + 1 : 0];
+        const v4d *p = L->x[k], *q = L->x[k + 1 < n ? k + 1 : 0];
         const v4d d = v4_abs(n0 * (p[0] - c0) + n1 * (p[1] - c1) + n2 * (p[2] - c2));
         dmax = v4_select(d > dmax, d, dmax);
         dsum += d * d;
@@ -326,6 +348,36 @@ static inline __attribute__((always_inline)) void face_measure4_lanes(
         square_sum[l] = sq[l];
         edge_mean[l] = edge[l];
     }
+}
+
+static inline __attribute__((always_inline)) void face_measure4_lanes(
+    const int n, const double *xyz, const int32_t *idx, double normal[12], double offset[4],
+    double max_distance[4], double square_sum[4], double edge_mean[4])
+{
+    lanes4 L;
+    lanes_begin(n, xyz, idx, &L);
+    for (int it = 0; it < 64 && v4_any(L.run); ++it)
+        lanes_newton_step(&L);
+    lanes_end(n, &L, normal, offset, max_distance, square_sum, edge_mean);
+}
+
+/* Two sets of four: their Newton steps (chains of dependent divisions)
+ * side by side, so that the processor overlaps them; each lane takes exactly
+ * the steps it takes alone. */
+static inline __attribute__((always_inline)) void face_measure8_lanes(
+    const int na, const int nb, const double *xyz, const int32_t *idx_a, const int32_t *idx_b,
+    double normal[24], double offset[8], double max_distance[8], double square_sum[8],
+    double edge_mean[8])
+{
+    lanes4 A, B;
+    lanes_begin(na, xyz, idx_a, &A);
+    lanes_begin(nb, xyz, idx_b, &B);
+    for (int it = 0; it < 64 && (v4_any(A.run) || v4_any(B.run)); ++it) {
+        lanes_newton_step(&A);
+        lanes_newton_step(&B);
+    }
+    lanes_end(na, &A, normal, offset, max_distance, square_sum, edge_mean);
+    lanes_end(nb, &B, normal + 12, offset + 4, max_distance + 4, square_sum + 4, edge_mean + 4);
 }
 
 /* Quads get their own copy (n a constant: loops unrolled). */
@@ -359,6 +411,42 @@ void facet_face_measure4(int32_t n, FACE_MEASURE4_ARGS)
     }
 #endif
     face_measure4_base((int)n, xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
+}
+
+#define FACE_MEASURE8_ARGS                                                                         \
+    const double *xyz, const int32_t *idx_a, const int32_t *idx_b, double normal[24], double offset[8], \
+        double max_distance[8], double square_sum[8], double edge_mean[8]
+#define FACE_MEASURE8_BODY                                                                         \
+    if (na == 4 && nb == 4)                                                                        \
+        face_measure8_lanes(4, 4, xyz, idx_a, idx_b, normal, offset, max_distance, square_sum,     \
+                            edge_mean);                                                            \
+    else                                                                                           \
+        face_measure8_lanes(na, nb, xyz, idx_a, idx_b, normal, offset, max_distance, square_sum,   \
+                            edge_mean)
+
+#if FACET_HAVE_AVX2_CLONE
+FACET_TARGET_AVX2 static void face_measure8_avx2(int na, int nb, FACE_MEASURE8_ARGS)
+{
+    FACE_MEASURE8_BODY;
+}
+#endif
+
+static void face_measure8_base(int na, int nb, FACE_MEASURE8_ARGS)
+{
+    FACE_MEASURE8_BODY;
+}
+
+void facet_face_measure8(int32_t na, int32_t nb, FACE_MEASURE8_ARGS)
+{
+#if FACET_HAVE_AVX2_CLONE
+    if (facet_cpu_has_avx2()) {
+        face_measure8_avx2((int)na, (int)nb, xyz, idx_a, idx_b, normal, offset, max_distance, square_sum,
+                           edge_mean);
+        return;
+    }
+#endif
+    face_measure8_base((int)na, (int)nb, xyz, idx_a, idx_b, normal, offset, max_distance, square_sum,
+                       edge_mean);
 }
 
 /* Distance between the diagonal lines of a quad over the mean diagonal length

@@ -542,32 +542,55 @@ static inline __attribute__((always_inline)) int fit_pair(facet_planarizer *s, i
 /* The planes: best fit (the planarity measurement), then the regularised
  * normals when the face-normal Laplacian is on. With the angle floor on, the
  * same pass tests the corners against it (face_guard, corner_cos); returns
- * whether some corner is below its floor. Faces go in fours: four faces
- * of the same size (without the angle floor) in SIMD lanes
- * (facet_face_measure4), others in pairs, so that their eigenvectors' Newton steps overlap
+ * whether some corner is below its floor. Faces go in eights: four faces
+ * of one size (without the angle floor) in SIMD lanes, two such fours side
+ * by side (facet_face_measure8, facet_face_measure4), others in pairs, so that their eigenvectors' Newton steps overlap
  * (facet_sym3_smallest_eigenvector2). Every face gets the same bits as
  * alone, whatever its group. */
+/* The corner count of faces f..f+3 when they exist, have one size that the
+ * SIMD lanes take, and sit one after another in face_vertices; else 0. */
+static inline int32_t same_size4(const int32_t *start, int32_t nf, int32_t f)
+{
+    if (f + 4 > nf)
+        return 0;
+    const int32_t n = start[f + 1] - start[f];
+    return n >= 3 && n <= FACET_LANE_CORNERS_MAX && start[f + 2] - start[f + 1] == n &&
+                   start[f + 3] - start[f + 2] == n && start[f + 4] - start[f + 3] == n
+               ? n
+               : 0;
+}
+
 static int fit_planes(facet_planarizer *s, double mu, int nthreads)
 {
     const int32_t nf = s->nf;
     const int32_t *start = s->face_start, *fv = s->face_vertices;
     const double *q = s->q;
     const int floor_on = s->o.angle_floor > 0.0;
-    const int32_t groups = nf / 4 + (nf % 4 != 0);
+    const int lanes = !floor_on && !s->scalar_kernels;
+    const int32_t groups = nf / 8 + (nf % 8 != 0);
     int guard = 0;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
     for (int32_t group = 0; group < groups; ++group) {
-        const int32_t f = 4 * group;
-        const int32_t n = f + 4 <= nf ? start[f + 1] - start[f] : 0;
-        if (!floor_on && !s->scalar_kernels && n >= 3 && n <= FACET_LANE_CORNERS_MAX && start[f + 4] - start[f] == 4 * n &&
-            start[f + 2] - start[f + 1] == n && start[f + 3] - start[f + 2] == n) {
-            facet_face_measure4(n, q, fv + start[f], s->normal + 3 * (size_t)f, s->offset + f,
-                                s->face_dev + f, s->face_sq + f, s->face_edge + f);
+        const int32_t f = 8 * group;
+        const int32_t na = lanes ? same_size4(start, nf, f) : 0;
+        const int32_t nb = lanes ? same_size4(start, nf, f + 4) : 0;
+        if (na && nb) {
+            facet_face_measure8(na, nb, q, fv + start[f], fv + start[f + 4], s->normal + 3 * (size_t)f,
+                                s->offset + f, s->face_dev + f, s->face_sq + f, s->face_edge + f);
             continue;
         }
-        int below = fit_pair(s, f, floor_on);
-        if (f + 2 < nf)
-            below = fit_pair(s, f + 2, floor_on) || below;
+        int below = 0;
+        for (int32_t h = f; h < f + 8 && h < nf; h += 4) {
+            const int32_t n = h == f ? na : nb;
+            if (n) {
+                facet_face_measure4(n, q, fv + start[h], s->normal + 3 * (size_t)h, s->offset + h,
+                                    s->face_dev + h, s->face_sq + h, s->face_edge + h);
+                continue;
+            }
+            below = fit_pair(s, h, floor_on) || below;
+            if (h + 2 < nf)
+                below = fit_pair(s, h + 2, floor_on) || below;
+        }
         guard = guard || below;
     }
     /* a regularizer: weighed by mu against the planarity's 1 - mu, so it

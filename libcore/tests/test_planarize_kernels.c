@@ -5,8 +5,8 @@
  * on the edge vectors) against facet_face_measure and the exact corner
  * cosine, on a mesh with triangles, quads, hexagons and a 10-gon, with the
  * angle floor on and off (off, runs of four faces of one size take SIMD
- * lanes); and four faces of 3 to 8 corners at once (facet_face_measure4)
- * against facet_face_measure on random, planar, collinear, coincident,
+ * lanes); and four faces of 3 to 8 corners at once (facet_face_measure4),
+ * and two such fours (facet_face_measure8), against facet_face_measure on random, planar, collinear, coincident,
  * zero, huge and tiny faces. */
 #include "check.h"
 #include "planarize_internal.h"
@@ -220,21 +220,33 @@ static void test_face_measure4(void)
         }
         for (int k = 0; k < 4 * n; ++k) /* lanes take their corners from anywhere */
             idx[k] = (int32_t)((k * 7 + trial) % (4 * n));
-        double normal[12], offset[4], dev[4], sq[4], edge[4];
-        facet_face_measure4(n, xyz, idx, normal, offset, dev, sq, edge);
-        for (int l = 0; l < 4; ++l) {
-            double n1[3], o1, d1, rms;
-            const double e1 = facet_face_measure(n, xyz, idx + n * l, n1, &o1, &d1, &rms);
-            const double sq1 = rms * rms * (double)n;
-            CHECK(same_bits(n1, normal + 3 * l, 3));
-            CHECK(same_bits(&o1, offset + l, 1));
-            CHECK(same_bits(&d1, dev + l, 1));
-            CHECK(same_bits(&sq1, sq + l, 1));
-            CHECK(same_bits(&e1, edge + l, 1));
-            ++compared;
+        /* and a second four of another size, from the same points */
+        const int nb = 3 + (trial / 3) % (MAX - 2);
+        int32_t idx_b[4 * MAX];
+        for (int k = 0; k < 4 * nb; ++k)
+            idx_b[k] = (int32_t)((k * 5 + trial / 2) % (4 * n));
+        double normal[24], offset[8], dev[8], sq[8], edge[8];
+        for (int eight = 0; eight < 2; ++eight) {
+            if (eight)
+                facet_face_measure8(n, nb, xyz, idx, idx_b, normal, offset, dev, sq, edge);
+            else
+                facet_face_measure4(n, xyz, idx, normal, offset, dev, sq, edge);
+            for (int l = 0; l < (eight ? 8 : 4); ++l) {
+                const int size = l < 4 ? n : nb;
+                const int32_t *corners = l < 4 ? idx + n * l : idx_b + nb * (l - 4);
+                double n1[3], o1, d1, rms;
+                const double e1 = facet_face_measure(size, xyz, corners, n1, &o1, &d1, &rms);
+                const double sq1 = rms * rms * (double)size;
+                CHECK(same_bits(n1, normal + 3 * l, 3));
+                CHECK(same_bits(&o1, offset + l, 1));
+                CHECK(same_bits(&d1, dev + l, 1));
+                CHECK(same_bits(&sq1, sq + l, 1));
+                CHECK(same_bits(&e1, edge + l, 1));
+                ++compared;
+            }
         }
     }
-    CHECK(compared == 12000);
+    CHECK(compared == 36000);
 }
 
 /* Whole solves with the SIMD lanes (four faces of one size, four vertices
