@@ -867,7 +867,7 @@ static void add_matvec(double b[3], const double a[6], const double x[3])
     b[2] += a[2] * x[0] + a[4] * x[1] + a[5] * x[2];
 }
 
-/* The vertex step of four vertices v0..v0+3 (those < nv) in SIMD lanes, when
+/* The vertex step of eight vertices v0..v0+7 (those < nv) in SIMD lanes, when
  * the only terms are the data term and the faces' planes (vertex_step_plain
  * says when): the scalar loop's arithmetic in its order, every lane adding
  * its own faces' terms (pw n n^T, pw d n, formed from the face's plane as
@@ -875,9 +875,8 @@ static void add_matvec(double b[3], const double a[6], const double x[3])
  * fewer faces than another keeps its sums (a select, not an addition). A
  * fixed vertex keeps its control position. Returns 0 if some result was not
  * finite (that vertex keeps its previous position). */
-static inline __attribute__((always_inline)) int vertex_step_plain4_lanes(const facet_planarizer *s,
-                                                                          int32_t v0, double mu,
-                                                                          double *q_new)
+static inline __attribute__((always_inline)) void plain4_system(const facet_planarizer *s, int32_t v0,
+                                                                 double mu, v4d a[6], v4d b[3])
 {
     const facet_planarize_options *o = &s->o;
     const double w = 1.0 - mu, data_t = mu * o->data_tangent;
@@ -903,7 +902,6 @@ static inline __attribute__((always_inline)) int vertex_step_plain4_lanes(const 
         most = degree[l] > most ? degree[l] : most;
     /* data: mu (a_t I + (a_n - a_t) nu nu^T) (q - p), as add_outer and
      * add_matvec form it */
-    v4d a[6], b[3];
     a[0] = data_t + data_nt * nu[0] * nu[0], a[1] = 0.0 + data_nt * nu[0] * nu[1];
     a[2] = 0.0 + data_nt * nu[0] * nu[2], a[3] = data_t + data_nt * nu[1] * nu[1];
     a[4] = 0.0 + data_nt * nu[1] * nu[2], a[5] = data_t + data_nt * nu[2] * nu[2];
@@ -934,6 +932,12 @@ static inline __attribute__((always_inline)) int vertex_step_plain4_lanes(const 
         b[1] = v4_select(take, b[1] - pd * n1, b[1]);
         b[2] = v4_select(take, b[2] - pd * n2, b[2]);
     }
+}
+
+/* 3x3 LDL^T, as the scalar loop, and the lanes' results written */
+static inline __attribute__((always_inline)) int plain4_solve(const facet_planarizer *s, int32_t v0,
+                                                              const v4d a[6], const v4d b[3], double *q_new)
+{
     /* 3x3 LDL^T, as the scalar loop */
     const v4d i0 = 1.0 / a[0];
     const v4d l10 = a[1] * i0, l20 = a[2] * i0;
@@ -961,6 +965,21 @@ static inline __attribute__((always_inline)) int vertex_step_plain4_lanes(const 
             out[0] = x0[l], out[1] = x1[l], out[2] = x2[l];
     }
     return finite;
+}
+
+static inline __attribute__((always_inline)) int vertex_step_plain4_lanes(const facet_planarizer *s,
+                                                                          int32_t v0, double mu,
+                                                                          double *q_new)
+{
+    /* two fours of vertices: the solves' chains of dependent divisions side
+     * by side */
+    v4d a[6], b[3], a2[6], b2[3];
+    plain4_system(s, v0, mu, a, b);
+    if (v0 + 4 >= s->nv)
+        return plain4_solve(s, v0, a, b, q_new);
+    plain4_system(s, v0 + 4, mu, a2, b2);
+    const int finite = plain4_solve(s, v0, a, b, q_new);
+    return plain4_solve(s, v0 + 4, a2, b2, q_new) && finite;
 }
 
 static int vertex_step_plain4_base(const facet_planarizer *s, int32_t v0, double mu, double *q_new)
@@ -1007,11 +1026,11 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
         if (facet_cpu_has_avx2())
             step4 = vertex_step_plain4_avx2;
 #endif
-        const int32_t groups = nv / 4 + (nv % 4 != 0);
+        const int32_t groups = nv / 8 + (nv % 8 != 0);
         int finite = 1;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(&& : finite)
         for (int32_t g = 0; g < groups; ++g)
-            finite = step4(s, 4 * g, mu, q_new) && finite;
+            finite = step4(s, 8 * g, mu, q_new) && finite;
         if (finite) { /* the new iterate becomes the current one */
             s->q_next = s->q;
             s->q = q_new;
