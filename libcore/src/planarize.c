@@ -758,9 +758,12 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         for (int32_t f = 0; f < nf; ++f) {
             if (s->face_weight && !(s->face_weight[f] > 0.0))
                 continue;
-            max_abs = facet_max(max_abs, s->face_dev[f]);
-            const double e = s->face_edge[f];
-            max_rel = facet_max(max_rel, e > 0.0 ? s->face_dev[f] / e : (s->face_dev[f] > 0.0 ? INFINITY : 0.0));
+            const double dev = s->face_dev[f], e = s->face_edge[f];
+            max_abs = facet_max(max_abs, dev);
+            /* divide only where the quotient may be a new largest (a
+             * multiplication with a margin of rounding says where) */
+            if (!(dev <= max_rel * e * (1.0 - 1e-12)))
+                max_rel = facet_max(max_rel, e > 0.0 ? dev / e : (dev > 0.0 ? INFINITY : 0.0));
         }
         /* the residuals are zero unless these terms are on (planarize_local.c) */
         if (options->circular > 0.0 || options->parallelogram > 0.0)
