@@ -517,58 +517,64 @@ typedef struct {
     double gram[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX]; /* dF^T dF by slot */
 } anderson_state;
 
-static double dot(const double *a, const double *b, size_t n)
-{
-    double sum = 0.0;
-    for (size_t k = 0; k < n; ++k)
-        sum += a[k] * b[k];
-    return sum;
-}
-
 /* Given the step x -> g (x in `x`, g in s->q), records the differences and
  * writes the accelerated iterate into s->q. Returns 1 if it accelerated. */
-static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x)
+static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x, int nthreads)
 {
     const size_t n = 3 * (size_t)s->nv;
     double *g = s->q;
-    if (a->have_previous) {
-        const int slot = a->head;
-        double *df = s->aa_df + (size_t)slot * n, *dg = s->aa_dg + (size_t)slot * n;
-        for (size_t k = 0; k < n; ++k) {
-            const double f = g[k] - x[k];
+    /* element-wise passes in parallel (the same bits for any thread count);
+     * the dot products in one serial pass, each summed in index order */
+    const int slot = a->head;
+    double *df = s->aa_df + (size_t)slot * n, *dg = s->aa_dg + (size_t)slot * n;
+    const int previous = a->have_previous;
+    double largest = 0.0;
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : largest)
+    for (size_t k = 0; k < n; ++k) {
+        const double f = g[k] - x[k];
+        if (previous) {
             df[k] = f - s->aa_f[k];
             dg[k] = g[k] - s->aa_g[k];
         }
+        s->aa_f[k] = f;
+        s->aa_g[k] = g[k];
+        largest = facet_max(largest, fabs(f));
+    }
+    if (previous) {
         a->head = (a->head + 1) % a->m;
         if (a->count < a->m)
             a->count++;
-        for (int j = 0; j < a->count; ++j) {
-            const double value = dot(df, s->aa_df + (size_t)j * n, n);
-            a->gram[slot][j] = a->gram[j][slot] = value;
-        }
-    }
-    double largest = 0.0;
-    for (size_t k = 0; k < n; ++k) {
-        s->aa_f[k] = g[k] - x[k];
-        s->aa_g[k] = g[k];
-        largest = facet_max(largest, fabs(s->aa_f[k]));
     }
     a->have_previous = 1;
+    const int m = a->count;
+    double gram_new[FACET_ANDERSON_MAX] = {0.0}, rhs[FACET_ANDERSON_MAX] = {0.0};
+    if (m > 0) {
+        const double *dfj[FACET_ANDERSON_MAX];
+        for (int j = 0; j < m; ++j)
+            dfj[j] = s->aa_df + (size_t)j * n;
+        for (size_t k = 0; k < n; ++k) {
+            const double f = s->aa_f[k], d = previous ? df[k] : 0.0;
+            for (int j = 0; j < m; ++j) {
+                gram_new[j] += d * dfj[j][k];
+                rhs[j] += dfj[j][k] * f;
+            }
+        }
+        if (previous)
+            for (int j = 0; j < m; ++j)
+                a->gram[slot][j] = a->gram[j][slot] = gram_new[j];
+    }
     /* at a fixed point to rounding there is nothing to extrapolate, and
      * differences of rounding errors would only add noise */
-    if (a->count == 0 || largest <= 1e-13)
+    if (m == 0 || largest <= 1e-13)
         return 0;
     /* theta = argmin |f - dF theta|: normal equations, Cholesky with a small
      * Tikhonov term; a failed factorisation means no acceleration this time */
-    const int m = a->count;
-    double l[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX], rhs[FACET_ANDERSON_MAX], theta[FACET_ANDERSON_MAX];
+    double l[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX], theta[FACET_ANDERSON_MAX];
     double trace = 0.0;
     for (int j = 0; j < m; ++j)
         trace += a->gram[j][j];
     if (!(trace > 0.0) || !isfinite(trace))
         return 0;
-    for (int j = 0; j < m; ++j)
-        rhs[j] = dot(s->aa_df + (size_t)j * n, s->aa_f, n);
     for (int i = 0; i < m; ++i)
         for (int j = 0; j <= i; ++j) {
             double sum = a->gram[i][j] + (i == j ? 1e-10 * trace : 0.0);
@@ -597,17 +603,20 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     for (int j = 0; j < m; ++j)
         if (!isfinite(theta[j]))
             return 0;
-    memcpy(s->aa_x_fallback, g, sizeof(double) * n);
-    for (int j = 0; j < m; ++j) {
-        const double *dg = s->aa_dg + (size_t)j * n;
-        for (size_t k = 0; k < n; ++k)
-            g[k] -= theta[j] * dg[k];
+    int finite = 1;
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(&& : finite)
+    for (size_t k = 0; k < n; ++k) {
+        double v = g[k];
+        s->aa_x_fallback[k] = v;
+        for (int j = 0; j < m; ++j)
+            v -= theta[j] * s->aa_dg[(size_t)j * n + k];
+        g[k] = v;
+        finite = finite && isfinite(v);
     }
-    for (size_t k = 0; k < n; ++k)
-        if (!isfinite(g[k])) {
-            memcpy(g, s->aa_x_fallback, sizeof(double) * n);
-            return 0;
-        }
+    if (!finite) {
+        memcpy(g, s->aa_x_fallback, sizeof(double) * n);
+        return 0;
+    }
     return 1;
 }
 
@@ -850,7 +859,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                                   (a[2] - b[2]) * (a[2] - b[2]);
                 move = facet_max(move, d2);
             }
-        accelerated = aa.m > 0 && mu < 1.0 ? anderson_step(s, &aa, x_before) : 0;
+        accelerated = aa.m > 0 && mu < 1.0 ? anderson_step(s, &aa, x_before, nthreads) : 0;
         ++it;
         ++level_steps;
         /* The staircase lowers mu only while the planarity is above the
