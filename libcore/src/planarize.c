@@ -764,6 +764,8 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         if (s->guard_on)
             guard_last = it;
         max_abs = 0.0, max_rel = 0.0, constraint = 0.0;
+        /* maxima: exact in any order, so in parallel */
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : max_abs, max_rel)
         for (int32_t f = 0; f < nf; ++f) {
             if (s->face_weight && !(s->face_weight[f] > 0.0))
                 continue;
@@ -853,6 +855,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             break;
         double move = 0.0; /* largest vertex move of the plain step, squared */
         if (staircase)
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : move)
             for (int32_t v = 0; v < nv; ++v) {
                 const double *a = x_before + 3 * (size_t)v, *b = s->q + 3 * (size_t)v;
                 const double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
