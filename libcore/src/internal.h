@@ -61,19 +61,26 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
  * facet_face_measure gives, bit for bit (the same arithmetic in the same
  * order, in SIMD lanes: 4 faces per AVX2 instruction where the processor has
  * it, 2 per SSE2 instruction otherwise), with the sum of squared distances
- * (rms^2 n) in square_sum. Outputs are arrays of four (normal: twelve). */
+ * (rms^2 n) in square_sum. Outputs are arrays of four (normal: twelve).
+ * With floor not NULL (the cosines of the faces' corners' floors, corner k
+ * of face l at n l + k), also the angle floor's corner test: the corners'
+ * cosines where they may be below their floors (-1 elsewhere, 1 at an edge
+ * without length) in corner_cos, and per face whether a corner is below
+ * its floor in guard; returns whether any is. */
 enum { FACET_LANE_CORNERS_MAX = 8 };
-void facet_face_measure4(int32_t n, const double *xyz, const int32_t *idx, double normal[12],
-                         double offset[4], double max_distance[4], double square_sum[4],
-                         double edge_mean[4]);
+int facet_face_measure4(int32_t n, const double *xyz, const int32_t *idx, double normal[12],
+                        double offset[4], double max_distance[4], double square_sum[4],
+                        double edge_mean[4], const double *floor, double *corner_cos, uint8_t *guard);
 
 /* Eight faces at once: four of na corners (the points xyz[idx_a[na l + k]])
  * and four of nb (idx_b), their eigenvector solves side by side; outputs
  * as facet_face_measure4's, arrays of eight (normal: 24), the first four
- * for idx_a. */
-void facet_face_measure8(int32_t na, int32_t nb, const double *xyz, const int32_t *idx_a,
-                         const int32_t *idx_b, double normal[24], double offset[8],
-                         double max_distance[8], double square_sum[8], double edge_mean[8]);
+ * for idx_a; floor, corner_cos: the first four faces' corners, then the
+ * second four's. */
+int facet_face_measure8(int32_t na, int32_t nb, const double *xyz, const int32_t *idx_a,
+                        const int32_t *idx_b, double normal[24], double offset[8], double max_distance[8],
+                        double square_sum[8], double edge_mean[8], const double *floor, double *corner_cos,
+                        uint8_t *guard);
 
 /* Sets the number of OpenMP threads for a parallel region: n <= 0 gives the
  * OpenMP default; n is clamped to max(64, 4 x processors, the default). */

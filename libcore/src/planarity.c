@@ -287,9 +287,11 @@ static inline __attribute__((always_inline)) void lanes_newton_step(lanes4 *L)
 }
 
 /* sym3_finish, then facet_face_measure's distances and edges */
-static inline __attribute__((always_inline)) void lanes_end(const int n, const lanes4 *L, double normal[12],
-                                                            double offset[4], double max_distance[4],
-                                                            double square_sum[4], double edge_mean[4])
+static inline __attribute__((always_inline)) int lanes_end(const int n, const lanes4 *L, double normal[12],
+                                                           double offset[4], double max_distance[4],
+                                                           double square_sum[4], double edge_mean[4],
+                                                           const double *floor, double *corner_cos,
+                                                           uint8_t *guard)
 {
     const v4d lambda = L->lambda, zero = {0.0, 0.0, 0.0, 0.0};
     const v4d b00 = L->b00, b01 = L->b01, b02 = L->b02, b11 = L->b11, b12 = L->b12, b22 = L->b22;
@@ -329,13 +331,41 @@ static inline __attribute__((always_inline)) void lanes_end(const int n, const l
         }
     const v4d c0 = L->c0, c1 = L->c1, c2 = L->c2;
     v4d dmax = zero, dsum = zero, esum = zero;
+    v4d e[FACET_LANE_CORNERS_MAX][3], ee[FACET_LANE_CORNERS_MAX];
     for (int k = 0; k < n; ++k) {
         const v4d *p = L->x[k], *q = L->x[k + 1 < n ? k + 1 : 0];
         const v4d d = v4_abs(n0 * (p[0] - c0) + n1 * (p[1] - c1) + n2 * (p[2] - c2));
         dmax = v4_select(d > dmax, d, dmax);
         dsum += d * d;
-        const v4d e0 = q[0] - p[0], e1 = q[1] - p[1], e2 = q[2] - p[2];
-        esum += v4_sqrt(e0 * e0 + e1 * e1 + e2 * e2);
+        e[k][0] = q[0] - p[0], e[k][1] = q[1] - p[1], e[k][2] = q[2] - p[2];
+        ee[k] = e[k][0] * e[k][0] + e[k][1] * e[k][1] + e[k][2] * e[k][2];
+        esum += v4_sqrt(ee[k]);
+    }
+    /* the angle floor's test of each corner, as the scalar one-pass fit
+     * (planarize_local.c) does it: at corner k, u = -e(k-1) and v = e(k); the
+     * exact cosine where a squared test with a margin says the corner may be
+     * below its floor, -1 where not, 1 where an edge has no length */
+    int any_below = 0;
+    if (floor) {
+        v4i below = {0, 0, 0, 0};
+        const v4d one = {1.0, 1.0, 1.0, 1.0};
+        for (int k = 0; k < n; ++k) {
+            const int before = k > 0 ? k - 1 : n - 1;
+            const v4d uv = -(e[before][0] * e[k][0] + e[before][1] * e[k][1] + e[before][2] * e[k][2]);
+            const v4d uu = ee[before], vv = ee[k];
+            const v4d fl = {floor[k], floor[n + k], floor[2 * n + k], floor[3 * n + k]};
+            const v4i no_edge = ~((uu > 0.0) & (vv > 0.0));
+            const v4i maybe = (uv > 0.0) & (uv * uv > (1.0 - 1e-9) * (fl * fl) * (uu * vv));
+            const v4d exact = uv / v4_sqrt(uu * vv);
+            const v4d cosine = v4_select(no_edge, one, v4_select(maybe, exact, -one));
+            for (int l = 0; l < 4; ++l)
+                corner_cos[n * l + k] = cosine[l];
+            below |= cosine > fl;
+        }
+        for (int l = 0; l < 4; ++l) {
+            guard[l] = below[l] != 0;
+            any_below |= below[l] != 0;
+        }
     }
     const v4d off = -(n0 * c0 + n1 * c1 + n2 * c2);
     const v4d rms = v4_sqrt(dsum / (double)n);
@@ -348,26 +378,28 @@ static inline __attribute__((always_inline)) void lanes_end(const int n, const l
         square_sum[l] = sq[l];
         edge_mean[l] = edge[l];
     }
+    return any_below;
 }
 
-static inline __attribute__((always_inline)) void face_measure4_lanes(
+static inline __attribute__((always_inline)) int face_measure4_lanes(
     const int n, const double *xyz, const int32_t *idx, double normal[12], double offset[4],
-    double max_distance[4], double square_sum[4], double edge_mean[4])
+    double max_distance[4], double square_sum[4], double edge_mean[4], const double *floor,
+    double *corner_cos, uint8_t *guard)
 {
     lanes4 L;
     lanes_begin(n, xyz, idx, &L);
     for (int it = 0; it < 64 && v4_any(L.run); ++it)
         lanes_newton_step(&L);
-    lanes_end(n, &L, normal, offset, max_distance, square_sum, edge_mean);
+    return lanes_end(n, &L, normal, offset, max_distance, square_sum, edge_mean, floor, corner_cos, guard);
 }
 
 /* Two sets of four: their Newton steps (chains of dependent divisions)
  * side by side, so that the processor overlaps them; each lane takes exactly
  * the steps it takes alone. */
-static inline __attribute__((always_inline)) void face_measure8_lanes(
+static inline __attribute__((always_inline)) int face_measure8_lanes(
     const int na, const int nb, const double *xyz, const int32_t *idx_a, const int32_t *idx_b,
     double normal[24], double offset[8], double max_distance[8], double square_sum[8],
-    double edge_mean[8])
+    double edge_mean[8], const double *floor, double *corner_cos, uint8_t *guard)
 {
     lanes4 A, B;
     lanes_begin(na, xyz, idx_a, &A);
@@ -376,77 +408,75 @@ static inline __attribute__((always_inline)) void face_measure8_lanes(
         lanes_newton_step(&A);
         lanes_newton_step(&B);
     }
-    lanes_end(na, &A, normal, offset, max_distance, square_sum, edge_mean);
-    lanes_end(nb, &B, normal + 12, offset + 4, max_distance + 4, square_sum + 4, edge_mean + 4);
+    const int below = lanes_end(na, &A, normal, offset, max_distance, square_sum, edge_mean, floor,
+                                corner_cos, guard);
+    return lanes_end(nb, &B, normal + 12, offset + 4, max_distance + 4, square_sum + 4, edge_mean + 4,
+                     floor ? floor + 4 * na : NULL, floor ? corner_cos + 4 * na : NULL,
+                     floor ? guard + 4 : NULL) ||
+           below;
 }
 
 /* Quads get their own copy (n a constant: loops unrolled). */
 #define FACE_MEASURE4_ARGS                                                                         \
     const double *xyz, const int32_t *idx, double normal[12], double offset[4],                    \
-        double max_distance[4], double square_sum[4], double edge_mean[4]
-#define FACE_MEASURE4_BODY                                                                         \
-    if (n == 4)                                                                                    \
-        face_measure4_lanes(4, xyz, idx, normal, offset, max_distance, square_sum, edge_mean);     \
-    else                                                                                           \
-        face_measure4_lanes(n, xyz, idx, normal, offset, max_distance, square_sum, edge_mean)
+        double max_distance[4], double square_sum[4], double edge_mean[4], const double *floor,    \
+        double *corner_cos, uint8_t *guard
+#define FACE_MEASURE4_CALL(n_)                                                                     \
+    face_measure4_lanes((n_), xyz, idx, normal, offset, max_distance, square_sum, edge_mean, floor, \
+                        corner_cos, guard)
 
 #if FACET_HAVE_AVX2_CLONE
-FACET_TARGET_AVX2 static void face_measure4_avx2(int n, FACE_MEASURE4_ARGS)
+FACET_TARGET_AVX2 static int face_measure4_avx2(int n, FACE_MEASURE4_ARGS)
 {
-    FACE_MEASURE4_BODY;
+    return n == 4 ? FACE_MEASURE4_CALL(4) : FACE_MEASURE4_CALL(n);
 }
 #endif
 
-static void face_measure4_base(int n, FACE_MEASURE4_ARGS)
+static int face_measure4_base(int n, FACE_MEASURE4_ARGS)
 {
-    FACE_MEASURE4_BODY;
+    return n == 4 ? FACE_MEASURE4_CALL(4) : FACE_MEASURE4_CALL(n);
 }
 
-void facet_face_measure4(int32_t n, FACE_MEASURE4_ARGS)
+int facet_face_measure4(int32_t n, FACE_MEASURE4_ARGS)
 {
 #if FACET_HAVE_AVX2_CLONE
-    if (facet_cpu_has_avx2()) {
-        face_measure4_avx2((int)n, xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
-        return;
-    }
+    if (facet_cpu_has_avx2())
+        return face_measure4_avx2((int)n, xyz, idx, normal, offset, max_distance, square_sum, edge_mean,
+                                  floor, corner_cos, guard);
 #endif
-    face_measure4_base((int)n, xyz, idx, normal, offset, max_distance, square_sum, edge_mean);
+    return face_measure4_base((int)n, xyz, idx, normal, offset, max_distance, square_sum, edge_mean, floor,
+                              corner_cos, guard);
 }
 
 #define FACE_MEASURE8_ARGS                                                                         \
     const double *xyz, const int32_t *idx_a, const int32_t *idx_b, double normal[24], double offset[8], \
-        double max_distance[8], double square_sum[8], double edge_mean[8]
-#define FACE_MEASURE8_BODY                                                                         \
-    if (na == 4 && nb == 4)                                                                        \
-        face_measure8_lanes(4, 4, xyz, idx_a, idx_b, normal, offset, max_distance, square_sum,     \
-                            edge_mean);                                                            \
-    else                                                                                           \
-        face_measure8_lanes(na, nb, xyz, idx_a, idx_b, normal, offset, max_distance, square_sum,   \
-                            edge_mean)
+        double max_distance[8], double square_sum[8], double edge_mean[8], const double *floor,    \
+        double *corner_cos, uint8_t *guard
+#define FACE_MEASURE8_CALL(na_, nb_)                                                               \
+    face_measure8_lanes((na_), (nb_), xyz, idx_a, idx_b, normal, offset, max_distance, square_sum,  \
+                        edge_mean, floor, corner_cos, guard)
 
 #if FACET_HAVE_AVX2_CLONE
-FACET_TARGET_AVX2 static void face_measure8_avx2(int na, int nb, FACE_MEASURE8_ARGS)
+FACET_TARGET_AVX2 static int face_measure8_avx2(int na, int nb, FACE_MEASURE8_ARGS)
 {
-    FACE_MEASURE8_BODY;
+    return na == 4 && nb == 4 ? FACE_MEASURE8_CALL(4, 4) : FACE_MEASURE8_CALL(na, nb);
 }
 #endif
 
-static void face_measure8_base(int na, int nb, FACE_MEASURE8_ARGS)
+static int face_measure8_base(int na, int nb, FACE_MEASURE8_ARGS)
 {
-    FACE_MEASURE8_BODY;
+    return na == 4 && nb == 4 ? FACE_MEASURE8_CALL(4, 4) : FACE_MEASURE8_CALL(na, nb);
 }
 
-void facet_face_measure8(int32_t na, int32_t nb, FACE_MEASURE8_ARGS)
+int facet_face_measure8(int32_t na, int32_t nb, FACE_MEASURE8_ARGS)
 {
 #if FACET_HAVE_AVX2_CLONE
-    if (facet_cpu_has_avx2()) {
-        face_measure8_avx2((int)na, (int)nb, xyz, idx_a, idx_b, normal, offset, max_distance, square_sum,
-                           edge_mean);
-        return;
-    }
+    if (facet_cpu_has_avx2())
+        return face_measure8_avx2((int)na, (int)nb, xyz, idx_a, idx_b, normal, offset, max_distance,
+                                  square_sum, edge_mean, floor, corner_cos, guard);
 #endif
-    face_measure8_base((int)na, (int)nb, xyz, idx_a, idx_b, normal, offset, max_distance, square_sum,
-                       edge_mean);
+    return face_measure8_base((int)na, (int)nb, xyz, idx_a, idx_b, normal, offset, max_distance, square_sum,
+                              edge_mean, floor, corner_cos, guard);
 }
 
 /* Distance between the diagonal lines of a quad over the mean diagonal length

@@ -543,7 +543,7 @@ static inline __attribute__((always_inline)) int fit_pair(facet_planarizer *s, i
  * normals when the face-normal Laplacian is on. With the angle floor on, the
  * same pass tests the corners against it (face_guard, corner_cos); returns
  * whether some corner is below its floor. Faces go in eights: four faces
- * of one size (without the angle floor) in SIMD lanes, two such fours side
+ * of one size in SIMD lanes, two such fours side
  * by side (facet_face_measure8, facet_face_measure4), others in pairs, so that their eigenvectors' Newton steps overlap
  * (facet_sym3_smallest_eigenvector2). Every face gets the same bits as
  * alone, whatever its group. */
@@ -566,7 +566,7 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads)
     const int32_t *start = s->face_start, *fv = s->face_vertices;
     const double *q = s->q;
     const int floor_on = s->o.angle_floor > 0.0;
-    const int lanes = !floor_on && !s->scalar_kernels;
+    const int lanes = !s->scalar_kernels;
     const int32_t groups = nf / 8 + (nf % 8 != 0);
     int guard = 0;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
@@ -575,16 +575,24 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads)
         const int32_t na = lanes ? same_size4(start, nf, f) : 0;
         const int32_t nb = lanes ? same_size4(start, nf, f + 4) : 0;
         if (na && nb) {
-            facet_face_measure8(na, nb, q, fv + start[f], fv + start[f + 4], s->normal + 3 * (size_t)f,
-                                s->offset + f, s->face_dev + f, s->face_sq + f, s->face_edge + f);
+            const int32_t b = start[f];
+            const int below = facet_face_measure8(
+                na, nb, q, fv + b, fv + start[f + 4], s->normal + 3 * (size_t)f, s->offset + f,
+                s->face_dev + f, s->face_sq + f, s->face_edge + f, floor_on ? s->corner_floor + b : NULL,
+                floor_on ? s->corner_cos + b : NULL, floor_on ? s->face_guard + f : NULL);
+            guard = guard || below;
             continue;
         }
         int below = 0;
         for (int32_t h = f; h < f + 8 && h < nf; h += 4) {
-            const int32_t n = h == f ? na : nb;
+            const int32_t n = h == f ? na : nb, b = start[h];
             if (n) {
-                facet_face_measure4(n, q, fv + start[h], s->normal + 3 * (size_t)h, s->offset + h,
-                                    s->face_dev + h, s->face_sq + h, s->face_edge + h);
+                below = facet_face_measure4(n, q, fv + b, s->normal + 3 * (size_t)h, s->offset + h,
+                                            s->face_dev + h, s->face_sq + h, s->face_edge + h,
+                                            floor_on ? s->corner_floor + b : NULL,
+                                            floor_on ? s->corner_cos + b : NULL,
+                                            floor_on ? s->face_guard + h : NULL) ||
+                        below;
                 continue;
             }
             below = fit_pair(s, h, floor_on) || below;
@@ -1003,7 +1011,7 @@ static int vertex_step_plain(const facet_planarizer *s)
     return !(o->surface_weight > 0.0 && s->reference) &&
            !(o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0) && !(o->circular > 0.0) &&
            !(o->parallelogram > 0.0) && !(o->laplacian > 0.0) && !(o->boundary_fairness > 0.0) &&
-           o->boundary != FACET_BOUNDARY_SLIDING && !(o->angle_floor > 0.0);
+           o->boundary != FACET_BOUNDARY_SLIDING && !(o->angle_floor > 0.0 && s->guard_on);
 }
 
 /* Per vertex, with everything else fixed: minimise the vertex's own terms

@@ -228,9 +228,9 @@ static void test_face_measure4(void)
         double normal[24], offset[8], dev[8], sq[8], edge[8];
         for (int eight = 0; eight < 2; ++eight) {
             if (eight)
-                facet_face_measure8(n, nb, xyz, idx, idx_b, normal, offset, dev, sq, edge);
+                facet_face_measure8(n, nb, xyz, idx, idx_b, normal, offset, dev, sq, edge, NULL, NULL, NULL);
             else
-                facet_face_measure4(n, xyz, idx, normal, offset, dev, sq, edge);
+                facet_face_measure4(n, xyz, idx, normal, offset, dev, sq, edge, NULL, NULL, NULL);
             for (int l = 0; l < (eight ? 8 : 4); ++l) {
                 const int size = l < 4 ? n : nb;
                 const int32_t *corners = l < 4 ? idx + n * l : idx_b + nb * (l - 4);
@@ -252,7 +252,8 @@ static void test_face_measure4(void)
 /* Whole solves with the SIMD lanes (four faces of one size, four vertices
  * of the plain vertex step) against the same solves on the scalar code,
  * bit for bit: L/L and L/G, with and without fixed vertices, face weights
- * (one face exempt) and point-to-plane data. */
+ * (one face exempt) and point-to-plane data, and with an angle floor that
+ * some corners are below. */
 static void lanes_against_scalar(const facet_mesh *mesh, int threads)
 {
     const int32_t nv = mesh->n_vertices, nf = mesh->n_faces;
@@ -262,14 +263,14 @@ static void lanes_against_scalar(const facet_mesh *mesh, int threads)
         weights[f] = f == 5 ? 0.0 : 0.5 + 0.25 * (f % 3);
     double *a = malloc(sizeof(double) * 3 * (size_t)nv), *b = malloc(sizeof(double) * 3 * (size_t)nv);
     for (int method = 0; method < 2; ++method)
-        for (int variant = 0; variant < 2; ++variant) {
+        for (int variant = 0; variant < 3; ++variant) {
             double *out[2] = {a, b};
             for (int scalar = 0; scalar < 2; ++scalar) {
                 facet_planarizer *s = NULL;
                 facet_error e;
                 CHECK_STATUS(facet_planarizer_create(mesh, &s, &e), FACET_OK);
                 s->scalar_kernels = scalar;
-                if (variant) {
+                if (variant == 1) {
                     CHECK_STATUS(facet_planarizer_set_face_weights(s, weights, &e), FACET_OK);
                     CHECK_STATUS(facet_planarizer_set_fixed(s, 3, fixed, &e), FACET_OK);
                 }
@@ -277,8 +278,9 @@ static void lanes_against_scalar(const facet_mesh *mesh, int threads)
                 facet_planarize_options_default((facet_method)method, &o);
                 o.iterations = 40;
                 o.threads = threads;
-                if (variant)
+                if (variant == 1)
                     o.data_tangent = 0.3; /* point-to-plane data */
+                o.angle_floor = variant == 2 ? 50.0 : 0.0; /* 50: some corners below it */
                 facet_planarize_result r;
                 CHECK_STATUS(facet_planarizer_solve(s, mesh->xyz, &o, out[scalar], &r, &e), FACET_OK);
                 CHECK(r.iterations == 40);
