@@ -220,6 +220,10 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
  * eigenvector falls to the scalar solver's degenerate branch is redone by
  * the scalar solver. Newton runs until every lane has stopped; a stopped lane
  * keeps its value. */
+#if FACET_HAVE_AVX2_CLONE
+int facet_simd_baseline_only = 0;
+#endif
+
 typedef struct {
     v4d x[FACET_LANE_CORNERS_MAX][3]; /* corner k, coordinate j, face in the lane */
     v4d c0, c1, c2;                   /* centroids */

@@ -25,9 +25,11 @@ typedef int64_t v4i __attribute__((vector_size(32)));
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define FACET_HAVE_AVX2_CLONE 1
 #define FACET_TARGET_AVX2 __attribute__((target("avx2")))
+/* Tests set it to run the baseline copies on a processor with AVX2. */
+extern int facet_simd_baseline_only;
 static inline int facet_cpu_has_avx2(void)
 {
-    return __builtin_cpu_supports("avx2");
+    return !facet_simd_baseline_only && __builtin_cpu_supports("avx2");
 }
 #else
 #define FACET_HAVE_AVX2_CLONE 0

@@ -10,6 +10,7 @@
  * zero, huge and tiny faces. */
 #include "check.h"
 #include "planarize_internal.h"
+#include "simd.h"
 #include "test_meshes.h"
 
 #include <math.h>
@@ -308,12 +309,22 @@ static void test_lanes_against_scalar(int threads)
 int main(void)
 {
     test_eigenvector_pairs();
-    test_face_measure4();
-    test_one_pass_fit(1, 50.0);
-    test_one_pass_fit(2, 50.0);
-    test_one_pass_fit(1, 0.0);
-    test_one_pass_fit(2, 0.0);
-    test_lanes_against_scalar(1);
-    test_lanes_against_scalar(2);
+    /* the AVX2 copies of the lanes (where the processor has AVX2), then the
+     * baseline ones */
+    for (int baseline = 0; baseline < 2; ++baseline) {
+#if FACET_HAVE_AVX2_CLONE
+        facet_simd_baseline_only = baseline;
+#else
+        if (baseline)
+            break;
+#endif
+        test_face_measure4();
+        test_one_pass_fit(1, 50.0);
+        test_one_pass_fit(2, 50.0);
+        test_one_pass_fit(1, 0.0);
+        test_one_pass_fit(2, 0.0);
+        test_lanes_against_scalar(1);
+        test_lanes_against_scalar(2);
+    }
     return check_report("test_planarize_kernels");
 }
