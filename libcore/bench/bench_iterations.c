@@ -3,7 +3,7 @@
  * measure of issue 3's iteration targets (no Python around the solve).
  *
  *   bench_iterations MESH [--method ll|lg] [--iterations N] [--threads T]
- *                    [--runs R] [--schedule paper|default] [--anderson M]
+ *                    [--runs R] [--schedule paper|default] [--anderson M] [--angle-floor DEG]
  *                    [--check FILE]
  *
  * MESH is an OBJ file (v and f lines; e.g. Level 5 written by
@@ -85,6 +85,7 @@ int main(int argc, char **argv)
 {
     const char *mesh_name = NULL, *check = NULL;
     int method = FACET_METHOD_LOCAL_LOCAL, iterations = 100, threads = 1, runs = 9, anderson = -1;
+    double angle_floor = -1.0;
     int paper = 1;
     for (int k = 1; k < argc; ++k) {
         if (!strcmp(argv[k], "--method") && k + 1 < argc) {
@@ -98,6 +99,8 @@ int main(int argc, char **argv)
             runs = atoi(argv[++k]);
         } else if (!strcmp(argv[k], "--anderson") && k + 1 < argc) {
             anderson = atoi(argv[++k]);
+        } else if (!strcmp(argv[k], "--angle-floor") && k + 1 < argc) {
+            angle_floor = atof(argv[++k]);
         } else if (!strcmp(argv[k], "--schedule") && k + 1 < argc) {
             paper = !strcmp(argv[++k], "paper");
         } else if (!strcmp(argv[k], "--check") && k + 1 < argc) {
@@ -107,7 +110,7 @@ int main(int argc, char **argv)
         } else {
             fprintf(stderr,
                     "usage: %s MESH [--method ll|lg] [--iterations N] [--threads T] [--runs R] "
-                    "[--schedule paper|default] [--anderson M] [--check FILE]\n",
+                    "[--schedule paper|default] [--anderson M] [--angle-floor DEG] [--check FILE]\n",
                     argv[0]);
             return 2;
         }
@@ -143,6 +146,8 @@ int main(int argc, char **argv)
     }
     if (anderson >= 0)
         o.anderson = anderson;
+    if (angle_floor >= 0.0)
+        o.angle_floor = angle_floor;
     facet_planarize_result r;
     double t0 = now();
     facet_status status = facet_planarizer_solve(s, t.xyz, &o, out, &r, &e);

@@ -65,8 +65,10 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
  * With floor not NULL (the cosines of the faces' corners' floors, corner k
  * of face l at n l + k), also the angle floor's corner test: the corners'
  * cosines where they may be below their floors (-1 elsewhere, 1 at an edge
- * without length) in corner_cos, and per face whether a corner is below
- * its floor in guard; returns whether any is. */
+ * without length) in corner_cos (written only when a corner of the four is
+ * below its floor: the floor's targets read them only for such faces), and
+ * per face whether a corner is below its floor in guard; returns whether
+ * any is. */
 enum { FACET_LANE_CORNERS_MAX = 8 };
 int facet_face_measure4(int32_t n, const double *xyz, const int32_t *idx, double normal[12],
                         double offset[4], double max_distance[4], double square_sum[4],

@@ -353,6 +353,7 @@ static inline __attribute__((always_inline)) int lanes_end(const int n, const la
     if (floor) {
         v4i below = {0, 0, 0, 0};
         const v4d one = {1.0, 1.0, 1.0, 1.0};
+        v4d cosines[FACET_LANE_CORNERS_MAX];
         for (int k = 0; k < n; ++k) {
             const int before = k > 0 ? k - 1 : n - 1;
             const v4d uv = -(e[before][0] * e[k][0] + e[before][1] * e[k][1] + e[before][2] * e[k][2]);
@@ -360,16 +361,20 @@ static inline __attribute__((always_inline)) int lanes_end(const int n, const la
             const v4d fl = {floor[k], floor[n + k], floor[2 * n + k], floor[3 * n + k]};
             const v4i no_edge = ~((uu > 0.0) & (vv > 0.0));
             const v4i maybe = (uv > 0.0) & (uv * uv > (1.0 - 1e-9) * (fl * fl) * (uu * vv));
-            const v4d exact = uv / v4_sqrt(uu * vv);
-            const v4d cosine = v4_select(no_edge, one, v4_select(maybe, exact, -one));
-            for (int l = 0; l < 4; ++l)
-                corner_cos[n * l + k] = cosine[l];
+            v4d cosine = v4_select(no_edge, one, -one);
+            if (v4_any(maybe)) /* rare: the exact cosine only then */
+                cosine = v4_select(no_edge, one, v4_select(maybe, uv / v4_sqrt(uu * vv), -one));
+            cosines[k] = cosine;
             below |= cosine > fl;
         }
         for (int l = 0; l < 4; ++l) {
             guard[l] = below[l] != 0;
             any_below |= below[l] != 0;
         }
+        if (any_below) /* read only for faces with a corner below its floor */
+            for (int k = 0; k < n; ++k)
+                for (int l = 0; l < 4; ++l)
+                    corner_cos[n * l + k] = cosines[k][l];
     }
     const v4d off = -(n0 * c0 + n1 * c1 + n2 * c2);
     const v4d rms = v4_sqrt(dsum / (double)n);

@@ -486,7 +486,7 @@ static int ensure_workspace(facet_planarizer *s)
         !(s->circle_target = malloc(sizeof(double) * 3 * (size_t)s->nc)))
         return 0;
     if (o->angle_floor > 0.0 && !s->guard_count) {
-        s->guard_count = malloc(sizeof(double) * (size_t)s->nv);
+        s->guard_count = calloc((size_t)s->nv, sizeof(double)); /* zero while no corner is held */
         s->guard_sum = malloc(sizeof(double) * 3 * (size_t)s->nv);
         s->corner_floor = malloc(sizeof(double) * (size_t)s->nc);
         s->corner_cos = malloc(sizeof(double) * (size_t)s->nc);

@@ -753,7 +753,7 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
     }
 
     if (o->angle_floor > 0.0) {
-        if (!guard)
+        if (!guard && s->guard_on) /* (all zero already unless the last step held a corner) */
             memset(s->guard_count, 0, sizeof(double) * (size_t)nv);
     }
     s->guard_on = guard;

@@ -178,9 +178,11 @@ static void test_one_pass_fit(int threads, double angle_floor)
                                       sqrt((u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) *
                                            (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
                 const double floor = s->corner_floor[b + k];
-                CHECK((cosine > floor) == (s->corner_cos[b + k] > floor));
-                if (cosine > floor)
-                    CHECK(same_bits(&cosine, &s->corner_cos[b + k], 1));
+                if (s->face_guard[f]) { /* corner_cos is read (and kept) only for such faces */
+                    CHECK((cosine > floor) == (s->corner_cos[b + k] > floor));
+                    if (cosine > floor)
+                        CHECK(same_bits(&cosine, &s->corner_cos[b + k], 1));
+                }
                 below |= cosine > floor;
             }
             if (angle_floor > 0.0)
