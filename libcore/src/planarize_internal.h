@@ -97,7 +97,10 @@ struct facet_planarizer {
     /* The matrix as CHOLMOD factorizes it, permuted once at the analysis:
      * triu(P A P^T), whose entry j is matrix->x[pmap[j]]; factor is its
      * factorization in the natural order, so no factorization transposes
-     * the matrix (planarize_global.c). perm: the fill-reducing order. */
+     * the matrix (planarize_global.c). perm: the fill-reducing order.
+     * Without vertex couplings the unknowns are numbered in a fill-reducing
+     * order from the start (face_col) and pmatrix, pmap and perm are NULL. */
+    int32_t *face_col; /* per face: the column of its offset (3 nv + its rank) */
     cholmod_sparse *pmatrix;
     int32_t *pmap, *perm;
     cholmod_dense *perm_b, *perm_x;
