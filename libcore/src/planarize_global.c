@@ -54,7 +54,17 @@ void facet_pl_global_free(facet_planarizer *s)
         cholmod_free_sparse(&s->pmatrix, &s->cm);
         cholmod_free_dense(&s->perm_b, &s->cm);
         cholmod_free_dense(&s->perm_x, &s->cm);
+        cholmod_free_sparse(&s->schur, &s->cm);
+        cholmod_free_dense(&s->schur_b, &s->cm);
+        cholmod_free_dense(&s->schur_x, &s->cm);
     }
+    free(s->schur_slot);
+    free(s->schur_start);
+    free(s->block);
+    free(s->face_coupling);
+    free(s->corner_col);
+    s->schur_slot = s->schur_start = s->corner_col = NULL;
+    s->block = s->face_coupling = NULL;
     free(s->pmap);
     free(s->perm);
     free(s->face_col);
@@ -308,6 +318,214 @@ done:
     return status;
 }
 
+/* ---- the offsets' system (no couplings) -------------------------------------- */
+
+static int compare_int(const void *x, const void *y)
+{
+    const int a = *(const int *)x, b = *(const int *)y;
+    return (a > b) - (a < b);
+}
+
+/* The pattern of the offsets' system after the vertices' elimination (two
+ * faces coupled when they share a vertex) and its slots, after order_faces. */
+static facet_status schur_setup(facet_planarizer *s, facet_error *error)
+{
+    cholmod_common *cm = &s->cm;
+    const int32_t nv = s->nv, nf = s->nf;
+    size_t pairs = 0;
+    for (int32_t v = 0; v < nv; ++v) {
+        const size_t k = (size_t)(s->vertex_start[v + 1] - s->vertex_start[v]);
+        pairs += k * (k + 1) / 2;
+    }
+    if (pairs > (size_t)INT32_MAX)
+        return facet_pl_fail(s, error, FACET_ERROR_TOO_LARGE, "mesh too large for the sparse system");
+    int *room = calloc((size_t)nf + 1, sizeof(int));
+    int *mark = malloc(sizeof(int) * (size_t)(nf ? nf : 1));
+    s->schur_start = malloc(sizeof(int32_t) * ((size_t)nv + 1));
+    s->schur_slot = malloc(sizeof(int32_t) * (pairs ? pairs : 1));
+    s->block = malloc(sizeof(double) * 6 * (size_t)(nv ? nv : 1));
+    s->face_coupling = malloc(sizeof(double) * 3 * (size_t)(nf ? nf : 1));
+    s->corner_col = malloc(sizeof(int32_t) * (size_t)(s->nc ? s->nc : 1));
+    s->schur_b = cholmod_allocate_dense((size_t)nf, 1, (size_t)nf, CHOLMOD_REAL, cm);
+    facet_status status = FACET_OK;
+    if (!room || !mark || !s->schur_start || !s->schur_slot || !s->block ||
+        !s->face_coupling || !s->corner_col || !s->schur_b) {
+        status = facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+        goto done;
+    }
+    const int32_t base = 3 * nv;
+    for (int32_t i = 0; i < s->nc; ++i)
+        s->corner_col[i] = s->face_col[s->vertex_faces[i]] - base;
+    /* room per column (in the offsets' order): one per pair with it the later */
+    for (int32_t v = 0; v < nv; ++v)
+        for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i)
+            for (int32_t j = s->vertex_start[v]; j <= i; ++j) {
+                const int32_t a = s->face_col[s->vertex_faces[i]] - base;
+                const int32_t b = s->face_col[s->vertex_faces[j]] - base;
+                room[(a > b ? a : b) + 1]++;
+            }
+    for (int32_t f = 0; f < nf; ++f)
+        room[f + 1] += room[f];
+    s->schur = cholmod_allocate_sparse((size_t)nf, (size_t)nf, (size_t)room[nf], 1, 1, 1, CHOLMOD_REAL, cm);
+    if (!s->schur) {
+        status = facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+        goto done;
+    }
+    /* the distinct rows of each column, ascending, packed */
+    int *sp = s->schur->p, *si = s->schur->i;
+    int *face_of = mark; /* face of each column, then the marks */
+    for (int32_t f = 0; f < nf; ++f)
+        face_of[s->face_col[f] - base] = f;
+    int *rows = malloc(sizeof(int) * (size_t)(room[nf] ? room[nf] : 1));
+    if (!rows) {
+        status = facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+        goto done;
+    }
+    size_t at = 0;
+    for (int32_t col = 0; col < nf; ++col) {
+        const int32_t f = face_of[col];
+        const size_t first = at;
+        for (int32_t c = s->face_start[f]; c < s->face_start[f + 1]; ++c) {
+            const int32_t v = s->face_vertices[c];
+            for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i) {
+                const int32_t row = s->face_col[s->vertex_faces[i]] - base;
+                int seen = row > col;
+                for (size_t k = first; k < at && !seen; ++k)
+                    seen = rows[k] == row;
+                if (!seen)
+                    rows[at++] = row;
+            }
+        }
+        qsort(rows + first, at - first, sizeof(int), compare_int);
+        sp[col] = (int)first;
+    }
+    sp[nf] = (int)at;
+    memcpy(si, rows, sizeof(int) * at);
+    free(rows);
+    /* slots: per vertex, per pair (i >= j) of its faces */
+    size_t slot = 0;
+    for (int32_t v = 0; v < nv; ++v) {
+        s->schur_start[v] = (int32_t)slot;
+        for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i) {
+            const int32_t f = s->vertex_faces[i];
+            for (int32_t j = s->vertex_start[v]; j <= i; ++j) {
+                const int32_t a = s->face_col[f] - base, b = s->face_col[s->vertex_faces[j]] - base;
+                const int32_t col = a > b ? a : b, row = a > b ? b : a;
+                int32_t k = sp[col];
+                while (si[k] != row)
+                    ++k;
+                s->schur_slot[slot++] = k;
+            }
+        }
+    }
+    s->schur_start[nv] = (int32_t)slot;
+done:
+    free(room);
+    free(mark);
+    return status;
+}
+
+/* Eliminates the vertices: the 3x3 blocks' LDL' into block, and the offsets'
+ * system D - C^T B^-1 C into schur. Returns 0 if a block is not positive
+ * definite. Serial: the faces' entries gather from several vertices. */
+static int schur_assemble(facet_planarizer *s)
+{
+    const int32_t nv = s->nv, nf = s->nf, base = 3 * nv;
+    const double *x = s->matrix->x;
+    const int *cp = s->matrix->p;
+    double *sx = s->schur->x;
+    const int *sp = s->schur->p;
+    memset(sx, 0, sizeof(double) * (size_t)sp[nf]);
+    for (int32_t f = 0; f < nf; ++f) { /* the diagonal is each column's last entry */
+        const int32_t col = s->face_col[f];
+        sx[sp[col - base + 1] - 1] = x[cp[col + 1] - 1];
+        /* every free corner couples by the same w_f n_f; a fixed one by 0 */
+        double *cf = s->face_coupling + 3 * (size_t)(col - base);
+        cf[0] = cf[1] = cf[2] = 0.0;
+        for (int32_t c = s->face_start[f]; c < s->face_start[f + 1]; ++c)
+            if (!s->fixed[s->face_vertices[c]]) {
+                memcpy(cf, x + s->corner_slot[c], 3 * sizeof(double));
+                break;
+            }
+    }
+    for (int32_t v = 0; v < nv; ++v) {
+        /* column 3v+a holds rows 3v..3v+a (no couplings) */
+        const double a00 = x[cp[3 * v]], a01 = x[cp[3 * v + 1]], a11 = x[cp[3 * v + 1] + 1];
+        const double a02 = x[cp[3 * v + 2]], a12 = x[cp[3 * v + 2] + 1], a22 = x[cp[3 * v + 2] + 2];
+        const double d0 = a00;
+        if (!(d0 > 0.0))
+            return 0;
+        const double l10 = a01 / d0, l20 = a02 / d0;
+        const double d1 = a11 - l10 * a01;
+        if (!(d1 > 0.0))
+            return 0;
+        const double l21 = (a12 - l20 * a01) / d1;
+        const double d2 = a22 - l20 * a02 - l21 * l21 * d1;
+        if (!(d2 > 0.0))
+            return 0;
+        double *bl = s->block + 6 * (size_t)v;
+        bl[0] = l10, bl[1] = l20, bl[2] = l21, bl[3] = 1.0 / d0, bl[4] = 1.0 / d1, bl[5] = 1.0 / d2;
+        if (s->fixed[v]) /* an identity block, no coupling */
+            continue;
+        const int32_t b = s->vertex_start[v], k = s->vertex_start[v + 1] - b;
+        const int32_t *slot = s->schur_slot + s->schur_start[v];
+        const int32_t *faces = s->corner_col + b;
+        const double *coupling = s->face_coupling;
+        for (int32_t i = 0; i < k; ++i) { /* w = B^-1 c_i; S_ij -= c_j . w */
+            const double *c = coupling + 3 * (size_t)faces[i];
+            const double y0 = c[0], y1 = c[1] - l10 * y0, y2 = c[2] - l20 * y0 - l21 * y1;
+            const double w2 = y2 * bl[5], w1 = y1 * bl[4] - l21 * w2, w0 = y0 * bl[3] - l10 * w1 - l20 * w2;
+            for (int32_t j = 0; j <= i; ++j) {
+                const double *cj = coupling + 3 * (size_t)faces[j];
+                sx[*slot++] -= cj[0] * w0 + cj[1] * w1 + cj[2] * w2;
+            }
+        }
+    }
+    return 1;
+}
+
+/* out = A^-1 in through the vertices' blocks and the offsets' factor. */
+static int schur_solve(facet_planarizer *s, const cholmod_dense *in, cholmod_dense **out)
+{
+    const int32_t nv = s->nv, nf = s->nf;
+    const size_t n = s->matrix->nrow, base = 3 * (size_t)nv;
+    const double *cf = s->face_coupling, *r = in->x;
+    const int32_t *vs = s->vertex_start, *col = s->corner_col;
+    if (!*out && !(*out = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm)))
+        return 0;
+    double *y = (*out)->x, *sb = s->schur_b->x;
+    memcpy(sb, r + base, sizeof(double) * (size_t)nf); /* the offsets are in schur's order */
+    for (int32_t v = 0; v < nv; ++v) { /* y_v = B^-1 r_v; offsets' right-hand side -= C^T y_v */
+        if (s->fixed[v])
+            continue;
+        const double *bl = s->block + 6 * (size_t)v, *rv = r + 3 * (size_t)v;
+        const double y0 = rv[0], y1 = rv[1] - bl[0] * y0, y2 = rv[2] - bl[1] * y0 - bl[2] * y1;
+        const double z2 = y2 * bl[5], z1 = y1 * bl[4] - bl[2] * z2, z0 = y0 * bl[3] - bl[0] * z1 - bl[1] * z2;
+        for (int32_t i = vs[v]; i < vs[v + 1]; ++i) {
+            const double *c = cf + 3 * (size_t)col[i];
+            sb[col[i]] -= c[0] * z0 + c[1] * z1 + c[2] * z2;
+        }
+    }
+    if (!cholmod_solve2(CHOLMOD_A, s->factor, s->schur_b, NULL, &s->schur_x, NULL, &s->pcg_y, &s->pcg_e,
+                        &s->cm))
+        return 0;
+    const double *sz = s->schur_x->x;
+    memcpy(y + base, sz, sizeof(double) * (size_t)nf);
+    for (int32_t v = 0; v < nv; ++v) { /* y_v = B^-1 (r_v - C z) */
+        const double *bl = s->block + 6 * (size_t)v, *rv = r + 3 * (size_t)v;
+        double t0 = rv[0], t1 = rv[1], t2 = rv[2];
+        if (!s->fixed[v])
+            for (int32_t i = vs[v]; i < vs[v + 1]; ++i) {
+                const double *c = cf + 3 * (size_t)col[i], z = sz[col[i]];
+                t0 -= c[0] * z, t1 -= c[1] * z, t2 -= c[2] * z;
+            }
+        const double y0 = t0, y1 = t1 - bl[0] * y0, y2 = t2 - bl[1] * y0 - bl[2] * y1;
+        const double z2 = y2 * bl[5], z1 = y1 * bl[4] - bl[2] * z2, z0 = y0 * bl[3] - bl[0] * z1 - bl[1] * z2;
+        y[3 * v] = z0, y[3 * v + 1] = z1, y[3 * v + 2] = z2;
+    }
+    return 1;
+}
+
 /* ---- pattern and analysis ------------------------------------------------- */
 
 facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
@@ -403,11 +621,14 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
     double *x = s->matrix->x;
     for (size_t k = 0; k < at; ++k)
         x[k] = 1.0;
-    if (natural) { /* already in order: factorize the matrix itself */
+    if (natural) { /* the offsets' system, already in order */
+        status = schur_setup(s, error);
+        if (status != FACET_OK)
+            return status;
         const int nmethods = s->cm.nmethods, postorder = s->cm.postorder;
         const int ordering = s->cm.method[0].ordering;
         s->cm.nmethods = 1, s->cm.method[0].ordering = CHOLMOD_NATURAL, s->cm.postorder = 0;
-        s->factor = cholmod_analyze(s->matrix, &s->cm);
+        s->factor = cholmod_analyze(s->schur, &s->cm);
         s->cm.nmethods = nmethods, s->cm.method[0].ordering = ordering, s->cm.postorder = postorder;
         if (!s->factor || s->cm.status < CHOLMOD_OK)
             return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "sparse analysis failed");
@@ -462,9 +683,8 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
 static int factor_solve(facet_planarizer *s, const cholmod_dense *in, cholmod_dense **out)
 {
     const size_t n = s->matrix->nrow;
-    if (!s->perm)
-        return cholmod_solve2(CHOLMOD_A, s->factor, (cholmod_dense *)in, NULL, out, NULL, &s->pcg_y,
-                              &s->pcg_e, &s->cm);
+    if (s->schur)
+        return schur_solve(s, in, out);
     const double *b = in->x;
     double *pb = s->perm_b->x;
     for (size_t k = 0; k < n; ++k)
@@ -739,8 +959,9 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
             for (size_t k = 0; k < nnz; ++k)
                 px[k] = ax[s->pmap[k]];
         }
-        if (!cholmod_factorize(s->pmatrix ? s->pmatrix : s->matrix, s->factor, &s->cm) ||
-            s->cm.status != CHOLMOD_OK) {
+        const int factorized = s->schur ? schur_assemble(s) && cholmod_factorize(s->schur, s->factor, &s->cm)
+                                        : cholmod_factorize(s->pmatrix, s->factor, &s->cm);
+        if (!factorized || s->cm.status != CHOLMOD_OK) {
             s->factor_ready = 0;
             return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
                                  "the sparse factorization failed (matrix not positive definite)");
