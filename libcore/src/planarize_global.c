@@ -732,28 +732,6 @@ static double dot_n(const double *a, const double *b, size_t n)
     return sum;
 }
 
-/* y += A x, or y -= A x, for the matrix's upper triangle (every column ends
- * with its diagonal). Serial, in a fixed order; cholmod_sdmult's general
- * path took 20 instructions per entry (a fifth of the default schedule's). */
-static void sym_matvec(const cholmod_sparse *a, const double *x, double *y, int subtract)
-{
-    const int *cp = a->p, *ri = a->i;
-    const double *ax = a->x;
-    const size_t n = a->ncol;
-    const double sign = subtract ? -1.0 : 1.0;
-    for (size_t j = 0; j < n; ++j) {
-        const double xj = sign * x[j];
-        const int end = cp[j + 1] - 1;
-        double sum = 0.0;
-        for (int p = cp[j]; p < end; ++p) {
-            const int i = ri[p];
-            y[i] += ax[p] * xj;
-            sum += ax[p] * x[i];
-        }
-        y[j] += sign * sum + ax[end] * xj;
-    }
-}
-
 /* Solves matrix * pcg_dx = rhs by conjugate gradients preconditioned with
  * the (older) factorization, to a residual PCG_TOL of the right-hand side's.
  * Returns the steps taken, or 0 if it did not get there (or failed). Serial
@@ -784,9 +762,10 @@ static int pcg_solve(facet_planarizer *s)
         return 0;
     memcpy(p, s->pcg_dx->x, sizeof(double) * n);
     double rz = dot_n(r, s->pcg_dx->x, n);
+    double zero[2] = {0.0, 0.0}, one[2] = {1.0, 0.0};
     for (int step = 1; step <= PCG_MAX; ++step) {
-        memset(ap, 0, sizeof(double) * n);
-        sym_matvec(s->matrix, p, ap, 0);
+        if (!cholmod_sdmult(s->matrix, 0, one, zero, s->pcg_p, s->pcg_ap, cm))
+            return 0;
         const double pap = dot_n(p, ap, n);
         if (!(pap > 0.0) || !isfinite(pap))
             return 0;
@@ -958,7 +937,9 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
     memcpy(cur, s->q, sizeof(double) * 3 * (size_t)nv);
     for (int32_t f = 0; f < nf; ++f)
         cur[s->face_col[f]] = s->offset[f];
-    sym_matvec(s->matrix, cur, b, 1);
+    double minus_one[2] = {-1.0, 0.0}, one[2] = {1.0, 0.0};
+    if (!cholmod_sdmult(s->matrix, 0, minus_one, one, s->current, s->rhs, &s->cm))
+        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse residual failed");
     /* Between the planes' steps only the normals turn (and mu stays within a
      * level of the schedule), so the last factorization stays a very good
      * preconditioner: conjugate gradients with it replace a refactorization
