@@ -98,7 +98,24 @@ struct facet_planarizer {
     /* The matrix as CHOLMOD factorizes it, permuted once at the analysis:
      * triu(P A P^T), whose entry j is matrix->x[pmap[j]]; factor is its
      * factorization in the natural order, so no factorization transposes
-     * the matrix (planarize_global.c). perm: the fill-reducing order. */
+     * the matrix (planarize_global.c). perm: the fill-reducing order.
+     * Without vertex couplings the unknowns are numbered in a fill-reducing
+     * order from the start (face_col) and pmatrix, pmap and perm are NULL. */
+    int32_t *face_col; /* per face: the column of its offset (3 nv + its rank) */
+    /* Without vertex couplings the vertices are eliminated by hand and
+     * CHOLMOD factorizes the offsets' system (planarize_global.c): schur is
+     * its upper triangle (nf x nf, faces in face_col's order), factor its
+     * factorization. schur_slot: per (vertex, pair i <= j of its faces, in
+     * vertex_faces' order) the index of that pair's entry in schur->x, from
+     * schur_start[v]; corner_col: per vertex_faces entry, that face's
+     * column in schur; block: per vertex, the LDL' of its 3x3 block
+     * (l10 l20 l21 1/d0 1/d1 1/d2); face_coupling: per column of schur, its corners'
+     * coupling w_f n_f when factorized (the preconditioner must not see the
+     * matrix's later values). NULL with couplings. */
+    cholmod_sparse *schur;
+    int32_t *schur_slot, *schur_start, *corner_col;
+    double *block, *face_coupling;
+    cholmod_dense *schur_b, *schur_x;
     cholmod_sparse *pmatrix;
     int32_t *pmap, *perm;
     cholmod_dense *perm_b, *perm_x;
