@@ -238,6 +238,19 @@ static facet_status build_coupling(facet_planarizer *s, facet_error *error)
 /* Fills face_col with 3 nv + the rank of each face in a nested dissection
  * order of the face graph (faces adjacent when they share a vertex), or in
  * AMD's order if METIS fails. Deterministic: METIS runs with its fixed seed. */
+/* The pairs of faces h <= f around one vertex, summed over the vertices:
+ * room for the faces' coupling pattern (a pair around two vertices counts
+ * twice). */
+static size_t face_pairs(const facet_planarizer *s)
+{
+    size_t pairs = 0;
+    for (int32_t v = 0; v < s->nv; ++v) {
+        const size_t k = (size_t)(s->vertex_start[v + 1] - s->vertex_start[v]);
+        pairs += k * (k + 1) / 2;
+    }
+    return pairs;
+}
+
 static facet_status order_faces(facet_planarizer *s, facet_error *error)
 {
     cholmod_common *cm = &s->cm;
@@ -245,11 +258,7 @@ static facet_status order_faces(facet_planarizer *s, facet_error *error)
     /* the upper triangle, unpacked: column f lists the faces h <= f that
      * share a vertex with f, once each; its room: one per (vertex of f, face
      * h <= f around it) */
-    size_t count = 0;
-    for (int32_t v = 0; v < nv; ++v) {
-        const size_t k = (size_t)(s->vertex_start[v + 1] - s->vertex_start[v]);
-        count += k * (k + 1) / 2;
-    }
+    const size_t count = face_pairs(s);
     int *col_count = calloc((size_t)nf + 1, sizeof(int));
     int *mark = malloc(sizeof(int) * (size_t)(nf ? nf : 1));
     cholmod_sparse *g = count <= (size_t)INT32_MAX
@@ -335,11 +344,7 @@ static facet_status schur_setup(facet_planarizer *s, facet_error *error)
 {
     cholmod_common *cm = &s->cm;
     const int32_t nv = s->nv, nf = s->nf;
-    size_t pairs = 0;
-    for (int32_t v = 0; v < nv; ++v) {
-        const size_t k = (size_t)(s->vertex_start[v + 1] - s->vertex_start[v]);
-        pairs += k * (k + 1) / 2;
-    }
+    const size_t pairs = face_pairs(s);
     if (pairs > (size_t)INT32_MAX)
         return facet_pl_fail(s, error, FACET_ERROR_TOO_LARGE, "mesh too large for the sparse system");
     int *room = calloc((size_t)nf + 1, sizeof(int));
@@ -531,6 +536,21 @@ static int schur_solve(facet_planarizer *s, const cholmod_dense *in, cholmod_den
 
 /* ---- pattern and analysis ------------------------------------------------- */
 
+/* The symbolic factorization of a matrix already in its fill-reducing
+ * order (factorized as it is), for the pattern of options key. */
+static facet_status analyze_natural(facet_planarizer *s, cholmod_sparse *a, int32_t key, facet_error *error)
+{
+    const int nmethods = s->cm.nmethods, postorder = s->cm.postorder;
+    const int ordering = s->cm.method[0].ordering;
+    s->cm.nmethods = 1, s->cm.method[0].ordering = CHOLMOD_NATURAL, s->cm.postorder = 0;
+    s->factor = cholmod_analyze(a, &s->cm);
+    s->cm.nmethods = nmethods, s->cm.method[0].ordering = ordering, s->cm.postorder = postorder;
+    if (!s->factor || s->cm.status < CHOLMOD_OK)
+        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "sparse analysis failed");
+    s->couple_key = key;
+    return FACET_OK;
+}
+
 facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
 {
     const int32_t key = facet_pl_couple_key(&s->o);
@@ -628,15 +648,7 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
         status = schur_setup(s, error);
         if (status != FACET_OK)
             return status;
-        const int nmethods = s->cm.nmethods, postorder = s->cm.postorder;
-        const int ordering = s->cm.method[0].ordering;
-        s->cm.nmethods = 1, s->cm.method[0].ordering = CHOLMOD_NATURAL, s->cm.postorder = 0;
-        s->factor = cholmod_analyze(s->schur, &s->cm);
-        s->cm.nmethods = nmethods, s->cm.method[0].ordering = ordering, s->cm.postorder = postorder;
-        if (!s->factor || s->cm.status < CHOLMOD_OK)
-            return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "sparse analysis failed");
-        s->couple_key = key;
-        return FACET_OK;
+        return analyze_natural(s, s->schur, key, error);
     }
     cholmod_factor *analysis = cholmod_analyze(s->matrix, &s->cm);
     if (!analysis || s->cm.status < CHOLMOD_OK) {
@@ -671,15 +683,7 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
     const double *px = s->pmatrix->x;
     for (size_t k = 0; k < at; ++k)
         s->pmap[k] = (int32_t)px[k];
-    const int nmethods = s->cm.nmethods, postorder = s->cm.postorder;
-    const int ordering = s->cm.method[0].ordering;
-    s->cm.nmethods = 1, s->cm.method[0].ordering = CHOLMOD_NATURAL, s->cm.postorder = 0;
-    s->factor = cholmod_analyze(s->pmatrix, &s->cm);
-    s->cm.nmethods = nmethods, s->cm.method[0].ordering = ordering, s->cm.postorder = postorder;
-    if (!s->factor || s->cm.status < CHOLMOD_OK)
-        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "sparse analysis failed");
-    s->couple_key = key;
-    return FACET_OK;
+    return analyze_natural(s, s->pmatrix, key, error);
 }
 
 /* out = A^-1 in by the factorization, in the unknowns' own order. */

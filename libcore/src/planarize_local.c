@@ -875,6 +875,25 @@ static void add_matvec(double b[3], const double a[6], const double x[3])
     b[2] += a[2] * x[0] + a[4] * x[1] + a[5] * x[2];
 }
 
+/* The 3x3 solve A x = b of the vertex step (A's upper triangle a[6]) by
+ * LDL^T: Cholesky's accuracy without its three square roots, and three
+ * reciprocals instead of six divisions. T is double, or v4d for four
+ * vertices in SIMD lanes (the same operations in the same order). */
+#define LDL3_SOLVE(T, a, b, x0, x1, x2)                                                            \
+    do {                                                                                           \
+        const T i0_ = 1.0 / (a)[0];                                                                \
+        const T l10_ = (a)[1] * i0_, l20_ = (a)[2] * i0_;                                          \
+        const T d1_ = (a)[3] - l10_ * (a)[1];                                                      \
+        const T i1_ = 1.0 / d1_;                                                                   \
+        const T l21_ = ((a)[4] - l20_ * (a)[1]) * i1_;                                             \
+        const T i2_ = 1.0 / ((a)[5] - l20_ * (a)[2] - l21_ * l21_ * d1_);                          \
+        const T z1_ = (b)[1] - l10_ * (b)[0];                                                      \
+        const T z2_ = (b)[2] - l20_ * (b)[0] - l21_ * z1_;                                         \
+        (x2) = z2_ * i2_;                                                                          \
+        (x1) = z1_ * i1_ - l21_ * (x2);                                                            \
+        (x0) = (b)[0] * i0_ - l10_ * (x1) - l20_ * (x2);                                           \
+    } while (0)
+
 /* The vertex step of eight vertices v0..v0+7 (those < nv) in SIMD lanes, when
  * the only terms are the data term and the faces' planes (vertex_step_plain
  * says when): the scalar loop's arithmetic in its order, every lane adding
@@ -946,18 +965,8 @@ static inline __attribute__((always_inline)) void plain4_system(const facet_plan
 static inline __attribute__((always_inline)) int plain4_solve(const facet_planarizer *s, int32_t v0,
                                                               const v4d a[6], const v4d b[3], double *q_new)
 {
-    /* 3x3 LDL^T, as the scalar loop */
-    const v4d i0 = 1.0 / a[0];
-    const v4d l10 = a[1] * i0, l20 = a[2] * i0;
-    const v4d d1 = a[3] - l10 * a[1];
-    const v4d i1 = 1.0 / d1;
-    const v4d l21 = (a[4] - l20 * a[1]) * i1;
-    const v4d i2 = 1.0 / (a[5] - l20 * a[2] - l21 * l21 * d1);
-    const v4d z1 = b[1] - l10 * b[0];
-    const v4d z2 = b[2] - l20 * b[0] - l21 * z1;
-    const v4d x2 = z2 * i2;
-    const v4d x1 = z1 * i1 - l21 * x2;
-    const v4d x0 = b[0] * i0 - l10 * x1 - l20 * x2;
+    v4d x0, x1, x2;
+    LDL3_SOLVE(v4d, a, b, x0, x1, x2);
     int finite = 1;
     for (int l = 0; l < 4 && v0 + l < s->nv; ++l) {
         const int32_t v = v0 + l;
@@ -1152,19 +1161,8 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
             b[0] += w * t[0], b[1] += w * t[1], b[2] += w * t[2];
             a[0] += g, a[3] += g, a[5] += g;
         }
-        /* 3x3 LDL^T: Cholesky's accuracy without its three square roots,
-         * and three reciprocals instead of six divisions */
-        const double i0 = 1.0 / a[0];
-        const double l10 = a[1] * i0, l20 = a[2] * i0;
-        const double d1 = a[3] - l10 * a[1];
-        const double i1 = 1.0 / d1;
-        const double l21 = (a[4] - l20 * a[1]) * i1;
-        const double i2 = 1.0 / (a[5] - l20 * a[2] - l21 * l21 * d1);
-        const double z1 = b[1] - l10 * b[0];
-        const double z2 = b[2] - l20 * b[0] - l21 * z1;
-        const double x2 = z2 * i2;
-        const double x1 = z1 * i1 - l21 * x2;
-        const double x0 = b[0] * i0 - l10 * x1 - l20 * x2;
+        double x0, x1, x2;
+        LDL3_SOLVE(double, a, b, x0, x1, x2);
         if (isfinite(x0) && isfinite(x1) && isfinite(x2)) {
             out[0] = x0, out[1] = x1, out[2] = x2;
         } else {
