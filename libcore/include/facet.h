@@ -161,8 +161,15 @@ double facet_fit_plane(int32_t n, const double *xyz, double normal[3], double *o
 
 typedef enum facet_method {
     FACET_METHOD_LOCAL_LOCAL = 0,  /* paper's Algorithm Planarize */
-    FACET_METHOD_LOCAL_GLOBAL = 1  /* normals local, (q, d) by one sparse solve */
+    FACET_METHOD_LOCAL_GLOBAL = 1, /* normals local, (q, d) by one sparse solve */
+    FACET_METHOD_AUTO = 2          /* L/G up to FACET_AUTO_LG_MAX_CORNERS face corners
+                                      (its factorization's memory), L/L above; see
+                                      facet_planarize_options_default */
 } facet_method;
+
+/* The largest mesh (in face corners: 4 per quad) that FACET_METHOD_AUTO
+ * solves by L/G. */
+#define FACET_AUTO_LG_MAX_CORNERS 200000
 
 typedef enum facet_stop_reason {
     FACET_STOP_NONE = 0,
@@ -273,6 +280,11 @@ typedef struct facet_planarize_options {
  * (L/G) or 0.9 (L/L). */
 void facet_planarize_options_default(facet_method method, facet_planarize_options *options);
 
+/* L/L's default floor on mu, also the least FACET_METHOD_AUTO uses when it
+ * chooses L/L (below it L/L's vertex step amplifies rounding, and its
+ * finish reaches the tolerance instead). */
+#define FACET_LL_MU_MIN 1e-6
+
 typedef struct facet_planarize_result {
     int32_t iterations;
     facet_stop_reason stop_reason;
@@ -297,6 +309,11 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
                                      facet_error *error);
 
 void facet_planarizer_free(facet_planarizer **planarizer);
+
+/* The method FACET_METHOD_AUTO chooses for this planarizer's mesh:
+ * FACET_METHOD_LOCAL_GLOBAL up to FACET_AUTO_LG_MAX_CORNERS face corners,
+ * FACET_METHOD_LOCAL_LOCAL above (NULL: L/G). */
+facet_method facet_planarizer_choose_method(const facet_planarizer *planarizer);
 
 /* Planarizes the control positions xyz_in[3*n_vertices] (same topology as at
  * create) into xyz_out[3*n_vertices] (may equal xyz_in). Coordinates are
