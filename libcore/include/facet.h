@@ -168,7 +168,9 @@ typedef enum facet_method {
 } facet_method;
 
 /* The largest mesh (in face corners: 4 per quad) that FACET_METHOD_AUTO
- * solves by L/G. */
+ * solves by L/G: 50,000 quads or 33,000 hexagons. Above it L/G's CHOLMOD
+ * factor takes 2-4 KB per face and a solve to 1e-6 minutes, L/L (with its
+ * finish) under 1 KB per face and seconds (docs/solver-notes.md). */
 #define FACET_AUTO_LG_MAX_CORNERS 200000
 
 typedef enum facet_stop_reason {
@@ -274,10 +276,16 @@ typedef struct facet_planarize_options {
 
 /* Defaults for a method: mu0 1; the staircase schedule (ratio 0.1, hold_tol
  * 0.01, hold_max 40) with Anderson acceleration of depth 5; mu_min 1e-6
- * (L/L) or 1e-12 (L/G); tol_rel 1e-6, tol_abs off; max_iter 3000 (L/L) or
- * 1000 (L/G); data 1 and 1 (point-to-point); no angle floor, no
- * regularizer, other constraint or time budget. The paper's schedule is hold_tol 0, anderson 0, ratio 0.7
- * (L/G) or 0.9 (L/L). */
+ * (L/L) or 1e-12 (L/G and AUTO); tol_rel 1e-6, tol_abs off; max_iter 3000
+ * (L/L) or 1000 (L/G and AUTO); data 1 and 1 (point-to-point); no angle
+ * floor, no regularizer, other constraint or time budget. The paper's
+ * schedule is hold_tol 0, anderson 0, ratio 0.7 (L/G) or 0.9 (L/L).
+ * AUTO solves by facet_planarizer_choose_method's choice with these
+ * options, except that when it picks L/L its floor is at least
+ * FACET_LL_MU_MIN. With the staircase (hold_tol > 0), L/L finishes: once mu
+ * is at its floor and the step has settled above the tolerance, the data
+ * terms pull towards the iterate itself instead of the control mesh, so the
+ * planarity no longer stalls near 10 mu_min (docs/solver-notes.md). */
 void facet_planarize_options_default(facet_method method, facet_planarize_options *options);
 
 /* L/L's default floor on mu, also the least FACET_METHOD_AUTO uses when it
@@ -296,6 +304,7 @@ typedef struct facet_planarize_result {
     double seconds;            /* wall time of the solve */
     int32_t anderson_accepted; /* accelerated steps kept */
     int32_t anderson_rejected; /* accelerated steps refused by the energy safeguard */
+    facet_method method;       /* the method that ran (what FACET_METHOD_AUTO chose) */
 } facet_planarize_result;
 
 /* A planarization solver for one mesh topology. It copies the topology and

@@ -74,12 +74,12 @@ void facet_planarize_options_default(facet_method method, facet_planarize_option
     o->hold_tol = 0.01;
     o->hold_max = 40;
     o->anderson = 5;
-    if (method == FACET_METHOD_LOCAL_GLOBAL) {
+    if (method == FACET_METHOD_LOCAL_LOCAL) {
+        o->mu_min = FACET_LL_MU_MIN;
+        o->max_iter = 3000;
+    } else { /* L/G, and AUTO (which raises the floor to L/L's when it picks L/L) */
         o->mu_min = 1e-12;
         o->max_iter = 1000;
-    } else {
-        o->mu_min = 1e-6;
-        o->max_iter = 3000;
     }
     o->tol_rel = 1e-6;
     o->data_tangent = 1.0;
@@ -1009,6 +1009,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         result->seconds = facet_now() - t0;
         result->anderson_accepted = accepted;
         result->anderson_rejected = rejected;
+        result->method = options->method;
     }
     if (status == FACET_ERROR_CANCELLED)
         return status;
