@@ -956,7 +956,10 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             (above && (move <= options->hold_tol * options->hold_tol * level_first_move ||
                        level_steps >= options->hold_max))) {
             const double next = facet_max(mu * options->ratio, options->mu_min);
-            const int start_finish = can_finish && !finish && above && next == mu;
+            /* at the floor: mu reached it as 1e-5 * 0.1, which may round
+             * a last bit above it (a level of up to hold_max steps lost) */
+            const int start_finish = can_finish && !finish && above &&
+                                     mu <= options->mu_min * (1.0 + 1e-9);
             if (staircase && (next != mu || start_finish)) { /* a new fixed-point map: restart the history */
                 aa.count = aa.head = 0;
                 aa.have_previous = 0;
