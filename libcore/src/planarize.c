@@ -784,7 +784,11 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
      * and constraint energy alone. The iterate then moves by about its
      * planarity residual: 1e-5 edge lengths from where the staircase left
      * it. */
-    const int can_finish = options->method == FACET_METHOD_LOCAL_LOCAL && staircase;
+    /* Not with the shape term: its targets combine the control positions
+     * with the control centroids (planarize_local.c), which an anchor at the
+     * iterate would mismatch. */
+    const int can_finish = options->method == FACET_METHOD_LOCAL_LOCAL && staircase &&
+                           !(options->shape != FACET_SHAPE_NONE && options->shape_weight > 0.0);
     int finish = 0;
     int32_t level_steps = 0;
     int32_t since = 0;       /* the stagnation window starts here */
