@@ -283,10 +283,10 @@ typedef struct facet_planarize_options {
  * AUTO solves by facet_planarizer_choose_method's choice with these
  * options, except that when it picks L/L its floor is at least
  * FACET_LL_MU_MIN. With the staircase (hold_tol > 0) and no shape term,
- * L/L finishes: once mu
- * is at its floor and the step has settled above the tolerance, the data
- * terms pull towards the iterate itself instead of the control mesh, so the
- * planarity no longer stalls near 10 mu_min (docs/solver-notes.md). */
+ * L/L finishes: once mu is at its floor and the step has settled above the
+ * tolerance, the data terms pull towards the iterate itself instead of the
+ * control mesh, so the planarity no longer stalls near 10 mu_min
+ * (docs/solver-notes.md, "Large meshes"). */
 void facet_planarize_options_default(facet_method method, facet_planarize_options *options);
 
 /* L/L's default floor on mu, also the least FACET_METHOD_AUTO uses when it
