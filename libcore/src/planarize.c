@@ -895,6 +895,14 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                  * of 1e-2, 1e-4 and 1e-6 the quickest to the tolerance) */
                 mu = facet_max(1e-6, options->mu_min);
                 level_steps = 0;
+            } else if (can_finish && !finish && measure > tol_rel) {
+                /* stalled at the floor before the level settled (hypar.obj:
+                 * 2.7e-6 for 36 steps): the finish, not a stop */
+                finish = 1;
+                aa.count = aa.head = 0;
+                aa.have_previous = 0;
+                since = it;
+                level_steps = 0;
             } else {
                 reason = FACET_STOP_STAGNATION;
                 break;
@@ -968,8 +976,10 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                 aa.count = aa.head = 0;
                 aa.have_previous = 0;
             }
-            if (start_finish)
+            if (start_finish) {
                 finish = 1;
+                since = it; /* the stagnation window starts with the finish */
+            }
             mu = next;
             level_steps = 0;
         }

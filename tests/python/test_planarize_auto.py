@@ -77,3 +77,12 @@ def test_command_line_auto(facet_command, data_dir, tmp_path):
                         "--method", "fast")
     assert bad.returncode == 2
     assert "'auto', 'll', 'lg'" in bad.stderr
+
+
+def test_ll_finish_after_a_stall_at_the_floor(data_dir):
+    # hypar.obj's last level sits 4e-16 above the floor and stalls at 2.7e-6
+    # before it settles: the finish must start there, not a stagnation stop
+    hypar = facet.read_mesh(data_dir / "hypar.obj")
+    result = facet.planarize(hypar, method="ll", threads=1)
+    assert result.stop_reason == "tolerance"
+    assert result.planarity.max_rel_all <= 1e-6
