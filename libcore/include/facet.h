@@ -161,8 +161,17 @@ double facet_fit_plane(int32_t n, const double *xyz, double normal[3], double *o
 
 typedef enum facet_method {
     FACET_METHOD_LOCAL_LOCAL = 0,  /* paper's Algorithm Planarize */
-    FACET_METHOD_LOCAL_GLOBAL = 1  /* normals local, (q, d) by one sparse solve */
+    FACET_METHOD_LOCAL_GLOBAL = 1, /* normals local, (q, d) by one sparse solve */
+    FACET_METHOD_AUTO = 2          /* L/G up to FACET_AUTO_LG_MAX_CORNERS face corners
+                                      (its factorization's memory), L/L above; see
+                                      facet_planarize_options_default */
 } facet_method;
+
+/* The largest mesh (in face corners: 4 per quad) that FACET_METHOD_AUTO
+ * solves by L/G: 50,000 quads or 33,000 hexagons. Above it L/G's CHOLMOD
+ * factor takes 2-4 KB per face and a solve to 1e-6 minutes, L/L (with its
+ * finish) under 1 KB per face and seconds (docs/solver-notes.md). */
+#define FACET_AUTO_LG_MAX_CORNERS 200000
 
 typedef enum facet_stop_reason {
     FACET_STOP_NONE = 0,
@@ -267,11 +276,23 @@ typedef struct facet_planarize_options {
 
 /* Defaults for a method: mu0 1; the staircase schedule (ratio 0.1, hold_tol
  * 0.01, hold_max 40) with Anderson acceleration of depth 5; mu_min 1e-6
- * (L/L) or 1e-12 (L/G); tol_rel 1e-6, tol_abs off; max_iter 3000 (L/L) or
- * 1000 (L/G); data 1 and 1 (point-to-point); no angle floor, no
- * regularizer, other constraint or time budget. The paper's schedule is hold_tol 0, anderson 0, ratio 0.7
- * (L/G) or 0.9 (L/L). */
+ * (L/L) or 1e-12 (L/G and AUTO); tol_rel 1e-6, tol_abs off; max_iter 3000
+ * (L/L) or 1000 (L/G and AUTO); data 1 and 1 (point-to-point); no angle
+ * floor, no regularizer, other constraint or time budget. The paper's
+ * schedule is hold_tol 0, anderson 0, ratio 0.7 (L/G) or 0.9 (L/L).
+ * AUTO solves by facet_planarizer_choose_method's choice with these
+ * options, except that when it picks L/L its floor is at least
+ * FACET_LL_MU_MIN. With the staircase (hold_tol > 0) and no shape term,
+ * L/L finishes: once mu is at its floor and the step has settled above the
+ * tolerance, the data terms pull towards the iterate itself instead of the
+ * control mesh, so the planarity no longer stalls near 10 mu_min
+ * (docs/solver-notes.md, "Large meshes"). */
 void facet_planarize_options_default(facet_method method, facet_planarize_options *options);
+
+/* L/L's default floor on mu, also the least FACET_METHOD_AUTO uses when it
+ * chooses L/L (below it L/L's vertex step amplifies rounding, and its
+ * finish reaches the tolerance instead). */
+#define FACET_LL_MU_MIN 1e-6
 
 typedef struct facet_planarize_result {
     int32_t iterations;
@@ -284,6 +305,7 @@ typedef struct facet_planarize_result {
     double seconds;            /* wall time of the solve */
     int32_t anderson_accepted; /* accelerated steps kept */
     int32_t anderson_rejected; /* accelerated steps refused by the energy safeguard */
+    facet_method method;       /* the method that ran (what FACET_METHOD_AUTO chose) */
 } facet_planarize_result;
 
 /* A planarization solver for one mesh topology. It copies the topology and
@@ -297,6 +319,11 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
                                      facet_error *error);
 
 void facet_planarizer_free(facet_planarizer **planarizer);
+
+/* The method FACET_METHOD_AUTO chooses for this planarizer's mesh:
+ * FACET_METHOD_LOCAL_GLOBAL up to FACET_AUTO_LG_MAX_CORNERS face corners,
+ * FACET_METHOD_LOCAL_LOCAL above (NULL: L/G). */
+facet_method facet_planarizer_choose_method(const facet_planarizer *planarizer);
 
 /* Planarizes the control positions xyz_in[3*n_vertices] (same topology as at
  * create) into xyz_out[3*n_vertices] (may equal xyz_in). Coordinates are

@@ -119,7 +119,7 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
                                "anderson", "time_budget", "hold_tol", "hold_max", "surface_weight",
                                "live", "rings", "angle_floor", NULL};
     PyObject *in_obj, *out_obj, *progress = Py_None;
-    const char *method = "lg", *lap_weights = NULL, *shape = NULL, *boundary = NULL;
+    const char *method = "auto", *lap_weights = NULL, *shape = NULL, *boundary = NULL;
     double mu0 = NAN, ratio = NAN, mu_min = NAN, tol_abs = NAN, tol_rel = NAN;
     double data_tangent = NAN, data_normal = NAN, laplacian = NAN, normal_laplacian = NAN;
     double fairness = NAN, shape_weight = NAN, circular = NAN, parallelogram = NAN;
@@ -148,8 +148,10 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
         m = FACET_METHOD_LOCAL_LOCAL;
     else if (strcmp(method, "lg") == 0)
         m = FACET_METHOD_LOCAL_GLOBAL;
+    else if (strcmp(method, "auto") == 0)
+        m = FACET_METHOD_AUTO;
     else {
-        PyErr_Format(PyExc_ValueError, "method must be 'll' or 'lg', not '%s'", method);
+        PyErr_Format(PyExc_ValueError, "method must be 'auto', 'll' or 'lg', not '%s'", method);
         return NULL;
     }
     if (progress != Py_None && !PyCallable_Check(progress)) {
@@ -256,13 +258,14 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
     }
     if (status < 0)
         return py_raise_status(st, status, &error);
-    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O}", "iterations",
+    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s}", "iterations",
                          (int)r.iterations, "stop_reason", stop_reason_name(r.stop_reason), "mu",
                          r.mu, "planarity_max_abs", r.planarity_max_abs, "planarity_max_rel",
                          r.planarity_max_rel, "constraint_max_rel", r.constraint_max_rel,
                          "seconds", r.seconds, "anderson_accepted", (int)r.anderson_accepted,
                          "anderson_rejected", (int)r.anderson_rejected, "converged",
-                         (r.stop_reason == FACET_STOP_TOLERANCE) ? Py_True : Py_False);
+                         (r.stop_reason == FACET_STOP_TOLERANCE) ? Py_True : Py_False, "method",
+                         r.method == FACET_METHOD_LOCAL_LOCAL ? "ll" : "lg");
 }
 
 /* The handle of a planarizer that may be configured now; NULL with an error set. */
@@ -347,7 +350,7 @@ static PyObject *planarizer_get_n_faces(PyObject *self, void *closure)
 
 static PyMethodDef planarizer_methods[] = {
     {"solve", (PyCFunction)(void (*)(void))planarizer_solve, METH_VARARGS | METH_KEYWORDS,
-     "solve(xyz_in, xyz_out, *, method='lg', mu0, ratio, mu_min, tol_abs, tol_rel, max_iter,\n"
+     "solve(xyz_in, xyz_out, *, method='auto', mu0, ratio, mu_min, tol_abs, tol_rel, max_iter,\n"
      "      iterations=0, threads=0, warm=False, progress=None, data_tangent, data_normal,\n"
      "      laplacian, laplacian_weights, normal_laplacian, boundary_fairness, shape,\n"
      "      shape_weight, boundary, circular, parallelogram, anderson, time_budget,\n"

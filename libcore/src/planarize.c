@@ -74,12 +74,12 @@ void facet_planarize_options_default(facet_method method, facet_planarize_option
     o->hold_tol = 0.01;
     o->hold_max = 40;
     o->anderson = 5;
-    if (method == FACET_METHOD_LOCAL_GLOBAL) {
+    if (method == FACET_METHOD_LOCAL_LOCAL) {
+        o->mu_min = FACET_LL_MU_MIN;
+        o->max_iter = 3000;
+    } else { /* L/G, and AUTO (which raises the floor to L/L's when it picks L/L) */
         o->mu_min = 1e-12;
         o->max_iter = 1000;
-    } else {
-        o->mu_min = 1e-6;
-        o->max_iter = 3000;
     }
     o->tol_rel = 1e-6;
     o->data_tangent = 1.0;
@@ -414,11 +414,18 @@ facet_status facet_planarizer_set_face_weights(facet_planarizer *s, const double
 
 /* ---- options ------------------------------------------------------------ */
 
+facet_method facet_planarizer_choose_method(const facet_planarizer *s)
+{
+    return s && s->nc > FACET_AUTO_LG_MAX_CORNERS ? FACET_METHOD_LOCAL_LOCAL
+                                                   : FACET_METHOD_LOCAL_GLOBAL;
+}
+
 static facet_status check_options(const facet_planarize_options *o, int has_reference, char *text,
                                   size_t size)
 {
 #define BAD(...) return snprintf(text, size, __VA_ARGS__), FACET_ERROR_INVALID_ARGUMENT
-    if (o->method != FACET_METHOD_LOCAL_LOCAL && o->method != FACET_METHOD_LOCAL_GLOBAL)
+    if (o->method != FACET_METHOD_LOCAL_LOCAL && o->method != FACET_METHOD_LOCAL_GLOBAL &&
+        o->method != FACET_METHOD_AUTO)
         BAD("unknown method %d", (int)o->method);
     if (!(o->mu0 > 0.0 && o->mu0 <= 1.0))
         BAD("mu0 must be in (0, 1], not %g", o->mu0);
@@ -497,12 +504,19 @@ static int ensure_workspace(facet_planarizer *s)
     if (o->method == FACET_METHOD_LOCAL_LOCAL && !s->face_plane_terms &&
         !(s->face_plane_terms = malloc(sizeof(double) * 9 * (size_t)s->nf)))
         return 0;
-    if (o->anderson > 0 && !s->aa_df) {
+    if (o->anderson > s->aa_capacity) {
+        /* the depth asked for, not FACET_ANDERSON_MAX: at depth 5 the history
+         * is 240 bytes per vertex, at 16 it would be 768 (issue 3's memory
+         * target is 1 KB per face) */
         const size_t v3 = 3 * (size_t)s->nv;
-        s->aa_df = malloc(sizeof(double) * v3 * FACET_ANDERSON_MAX);
-        s->aa_dg = malloc(sizeof(double) * v3 * FACET_ANDERSON_MAX);
-        s->aa_f = malloc(sizeof(double) * v3);
-        s->aa_g = malloc(sizeof(double) * v3);
+        free(s->aa_df), free(s->aa_dg);
+        s->aa_df = malloc(sizeof(double) * v3 * (size_t)o->anderson);
+        s->aa_dg = malloc(sizeof(double) * v3 * (size_t)o->anderson);
+        if (!s->aa_f)
+            s->aa_f = malloc(sizeof(double) * v3);
+        if (!s->aa_g)
+            s->aa_g = malloc(sizeof(double) * v3);
+        s->aa_capacity = s->aa_df && s->aa_dg ? o->anderson : 0;
         if (!s->aa_df || !s->aa_dg || !s->aa_f || !s->aa_g)
             return 0;
     }
@@ -514,55 +528,79 @@ static int ensure_workspace(facet_planarizer *s)
 typedef struct {
     int m, count, head;       /* depth, columns held, next slot */
     int have_previous;        /* aa_f / aa_g hold the previous step */
+    int nthreads;
     double gram[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX]; /* dF^T dF by slot */
+    double *partial;          /* per block: 2 m dot-product parts and the largest |f| */
 } anderson_state;
 
+/* Dot products are summed in blocks of ANDERSON_BLOCK entries, each block in
+ * index order, then the blocks' sums in block order: the bits do not depend
+ * on the thread count, and a mesh of up to ANDERSON_BLOCK / 3 vertices (one
+ * block) sums exactly as a plain serial loop. */
+enum { ANDERSON_BLOCK = 32768 };
+
+static size_t anderson_blocks(size_t n)
+{
+    return (n + ANDERSON_BLOCK - 1) / ANDERSON_BLOCK;
+}
+
 /* Given the step x -> g (x in `x`, g in s->q), records the differences and
- * writes the accelerated iterate into s->q. Returns 1 if it accelerated. */
-static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x, int nthreads)
+ * writes the accelerated iterate into s->q. Returns 1 if it accelerated.
+ * One pass over the history for the new Gram row and the right-hand side,
+ * one for the extrapolation, both in parallel over blocks: at a million
+ * faces the serial passes cost as much as the local steps. */
+static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x)
 {
     const size_t n = 3 * (size_t)s->nv;
     double *g = s->q;
-    /* element-wise passes in parallel (the same bits for any thread count);
-     * the dot products in one serial pass, each summed in index order */
+    const int have = a->have_previous;
     const int slot = a->head;
-    double *df = s->aa_df + (size_t)slot * n, *dg = s->aa_dg + (size_t)slot * n;
-    const int previous = a->have_previous;
-    double largest = 0.0;
-#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : largest)
-    for (size_t k = 0; k < n; ++k) {
-        const double f = g[k] - x[k];
-        if (previous) {
-            df[k] = f - s->aa_f[k];
-            dg[k] = g[k] - s->aa_g[k];
-        }
-        s->aa_f[k] = f;
-        s->aa_g[k] = g[k];
-        largest = facet_max(largest, fabs(f));
-    }
-    if (previous) {
+    if (have) {
         a->head = (a->head + 1) % a->m;
         if (a->count < a->m)
             a->count++;
     }
-    a->have_previous = 1;
-    const int m = a->count;
-    double gram_new[FACET_ANDERSON_MAX] = {0.0}, rhs[FACET_ANDERSON_MAX] = {0.0};
-    if (m > 0) {
-        const double *dfj[FACET_ANDERSON_MAX];
-        for (int j = 0; j < m; ++j)
-            dfj[j] = s->aa_df + (size_t)j * n;
-        for (size_t k = 0; k < n; ++k) {
-            const double f = s->aa_f[k], d = previous ? df[k] : 0.0;
-            for (int j = 0; j < m; ++j) {
-                gram_new[j] += d * dfj[j][k];
-                rhs[j] += dfj[j][k] * f;
+    const int m = have ? a->count : 0;
+    const size_t blocks = anderson_blocks(n), width = 2 * (size_t)FACET_ANDERSON_MAX + 1;
+    double *df_new = s->aa_df + (size_t)slot * n, *dg_new = s->aa_dg + (size_t)slot * n;
+    const double *df_all = s->aa_df;
+#pragma omp parallel for schedule(static) num_threads(a->nthreads)
+    for (size_t blk = 0; blk < blocks; ++blk) {
+        const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
+        double *part = a->partial + blk * width;
+        double largest = 0.0;
+        for (size_t k = k0; k < k1; ++k) {
+            const double f = g[k] - x[k];
+            if (have) {
+                df_new[k] = f - s->aa_f[k];
+                dg_new[k] = g[k] - s->aa_g[k];
             }
+            s->aa_f[k] = f;
+            s->aa_g[k] = g[k];
+            largest = facet_max(largest, fabs(f));
         }
-        if (previous)
-            for (int j = 0; j < m; ++j)
-                a->gram[slot][j] = a->gram[j][slot] = gram_new[j];
+        for (int j = 0; j < m; ++j) {
+            const double *dfj = df_all + (size_t)j * n;
+            double gsum = 0.0, rsum = 0.0;
+            for (size_t k = k0; k < k1; ++k) {
+                gsum += df_new[k] * dfj[k];
+                rsum += dfj[k] * s->aa_f[k];
+            }
+            part[2 * j] = gsum, part[2 * j + 1] = rsum;
+        }
+        part[width - 1] = largest;
     }
+    double rhs[FACET_ANDERSON_MAX], largest = 0.0;
+    for (int j = 0; j < m; ++j) {
+        double gsum = 0.0, rsum = 0.0;
+        for (size_t blk = 0; blk < blocks; ++blk)
+            gsum += a->partial[blk * width + 2 * (size_t)j], rsum += a->partial[blk * width + 2 * (size_t)j + 1];
+        a->gram[slot][j] = a->gram[j][slot] = gsum;
+        rhs[j] = rsum;
+    }
+    for (size_t blk = 0; blk < blocks; ++blk)
+        largest = facet_max(largest, a->partial[blk * width + width - 1]);
+    a->have_previous = 1;
     /* at a fixed point to rounding there is nothing to extrapolate, and
      * differences of rounding errors would only add noise */
     if (m == 0 || largest <= 1e-13)
@@ -603,18 +641,23 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     for (int j = 0; j < m; ++j)
         if (!isfinite(theta[j]))
             return 0;
+    const double *dg_all = s->aa_dg;
+    double *fallback = s->aa_x_fallback;
     int finite = 1;
-#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(&& : finite)
-    for (size_t k = 0; k < n; ++k) {
-        double v = g[k];
-        s->aa_x_fallback[k] = v;
-        for (int j = 0; j < m; ++j)
-            v -= theta[j] * s->aa_dg[(size_t)j * n + k];
-        g[k] = v;
-        finite = finite && isfinite(v);
+#pragma omp parallel for schedule(static) num_threads(a->nthreads) reduction(&& : finite)
+    for (size_t blk = 0; blk < blocks; ++blk) {
+        const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
+        for (size_t k = k0; k < k1; ++k) {
+            double value = g[k];
+            fallback[k] = value;
+            for (int j = 0; j < m; ++j)
+                value -= theta[j] * dg_all[(size_t)j * n + k];
+            g[k] = value;
+            finite = finite && isfinite(value);
+        }
     }
     if (!finite) {
-        memcpy(g, s->aa_x_fallback, sizeof(double) * n);
+        memcpy(g, fallback, sizeof(double) * n);
         return 0;
     }
     return 1;
@@ -636,6 +679,13 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     facet_status status = check_options(options, s->reference != NULL, text, sizeof text);
     if (status != FACET_OK)
         return facet_pl_fail(s, error, status, text);
+    facet_planarize_options chosen = *options;
+    if (options->method == FACET_METHOD_AUTO) {
+        chosen.method = facet_planarizer_choose_method(s);
+        if (chosen.method == FACET_METHOD_LOCAL_LOCAL)
+            chosen.mu_min = facet_max(chosen.mu_min, FACET_LL_MU_MIN);
+        options = &chosen;
+    }
     s->o = *options;
     if (!ensure_workspace(s))
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
@@ -720,11 +770,26 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     anderson_state aa;
     memset(&aa, 0, sizeof aa);
     aa.m = options->anderson;
+    aa.nthreads = nthreads;
     int accelerated = 0;
     int32_t accepted = 0, rejected = 0;
     double energy_mu = 0.0, energy_con = 0.0, last_mu = 0.0, last_con = 0.0;
     const int staircase = options->hold_tol > 0.0;
     int numerical_stop = 0;
+    /* L/L's finish (docs/solver-notes.md, "Large meshes"): once the staircase
+     * has settled at the floor above the tolerance, the vertex step's data
+     * terms are anchored at the iterate itself instead of the control mesh
+     * (a proximal step of weight mu_min), so they no longer hold the
+     * planarity at about 10 mu_min, and the safeguard watches the planarity
+     * and constraint energy alone. The iterate then moves by about its
+     * planarity residual: 1e-5 edge lengths from where the staircase left
+     * it. */
+    /* Not with the shape term: its targets combine the control positions
+     * with the control centroids (planarize_local.c), which an anchor at the
+     * iterate would mismatch. */
+    const int can_finish = options->method == FACET_METHOD_LOCAL_LOCAL && staircase &&
+                           !(options->shape != FACET_SHAPE_NONE && options->shape_weight > 0.0);
+    int finish = 0;
     int32_t level_steps = 0;
     int32_t since = 0;       /* the stagnation window starts here */
     int32_t guard_last = -1; /* last iteration with a corner below its angle floor */
@@ -732,6 +797,12 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     double *x_before = NULL;
     if ((aa.m > 0 || staircase) && !(x_before = malloc(sizeof(double) * 3 * (size_t)nv)))
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (aa.m > 0 &&
+        !(aa.partial = malloc(sizeof(double) * (2 * FACET_ANDERSON_MAX + 1) *
+                              anderson_blocks(3 * (size_t)nv)))) {
+        free(x_before);
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
+    }
     status = FACET_OK;
     for (;;) {
         status = facet_pl_local_step(s, mu, nthreads, error);
@@ -744,8 +815,8 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             if (accelerated) {
                 /* safeguard: the accelerated iterate must not have a higher
                  * energy than the iterate its step started from */
-                const double e_new = mu * energy_mu + (1.0 - mu) * energy_con;
-                const double e_old = mu * last_mu + (1.0 - mu) * last_con;
+                const double e_new = finish ? energy_con : mu * energy_mu + (1.0 - mu) * energy_con;
+                const double e_old = finish ? last_con : mu * last_mu + (1.0 - mu) * last_con;
                 if (e_new <= e_old && isfinite(e_new)) {
                     ++accepted;
                 } else {
@@ -764,17 +835,22 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         if (s->guard_on)
             guard_last = it;
         max_abs = 0.0, max_rel = 0.0, constraint = 0.0;
-        /* maxima: exact in any order, so in parallel */
-#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : max_abs, max_rel)
-        for (int32_t f = 0; f < nf; ++f) {
-            if (s->face_weight && !(s->face_weight[f] > 0.0))
-                continue;
-            const double dev = s->face_dev[f], e = s->face_edge[f];
-            max_abs = facet_max(max_abs, dev);
-            /* divide only where the quotient may be a new largest (a
-             * multiplication with a margin of rounding says where) */
-            if (!(dev <= max_rel * e * (1.0 - 1e-12)))
-                max_rel = facet_max(max_rel, e > 0.0 ? dev / e : (dev > 0.0 ? INFINITY : 0.0));
+        {
+            /* largest values: exact in any order, so parallel and still the same bits */
+            double m_abs = 0.0, m_rel = 0.0;
+            const double *weight = s->face_weight, *dev = s->face_dev, *edge = s->face_edge;
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : m_abs, m_rel)
+            for (int32_t f = 0; f < nf; ++f) {
+                if (weight && !(weight[f] > 0.0))
+                    continue;
+                const double d = dev[f], e = edge[f];
+                m_abs = facet_max(m_abs, d);
+                /* divide only where the quotient may be a new largest (a
+                 * multiplication with a margin of rounding says where) */
+                if (!(d <= m_rel * e * (1.0 - 1e-12)))
+                    m_rel = facet_max(m_rel, e > 0.0 ? d / e : (d > 0.0 ? INFINITY : 0.0));
+            }
+            max_abs = m_abs, max_rel = m_rel;
         }
         /* the residuals are zero unless these terms are on (planarize_local.c) */
         if (options->circular > 0.0 || options->parallelogram > 0.0)
@@ -822,19 +898,36 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                  * of 1e-2, 1e-4 and 1e-6 the quickest to the tolerance) */
                 mu = facet_max(1e-6, options->mu_min);
                 level_steps = 0;
+            } else if (can_finish && !finish && measure > tol_rel) {
+                /* stalled at the floor before the level settled (hypar.obj:
+                 * 2.7e-6 for 36 steps): the finish, not a stop */
+                finish = 1;
+                aa.count = aa.head = 0;
+                aa.have_previous = 0;
+                since = it;
+                level_steps = 0;
             } else {
                 reason = FACET_STOP_STAGNATION;
                 break;
             }
         }
         history[it % WINDOW] = measure;
-        if (x_before)
-            memcpy(x_before, s->q, sizeof(double) * 3 * (size_t)nv);
+        if (x_before) {
+            const double *q = s->q;
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+            for (int32_t v = 0; v < nv; ++v)
+                memcpy(x_before + 3 * (size_t)v, q + 3 * (size_t)v, 3 * sizeof(double));
+        }
         if (mu >= 1.0) {
             /* at mu = 1 the solution is the control mesh itself */
             memcpy(s->q, s->p, sizeof(double) * 3 * (size_t)nv);
         } else if (options->method == FACET_METHOD_LOCAL_LOCAL) {
-            if (!facet_pl_vertex_step(s, mu, nthreads)) {
+            double *control = s->p;
+            if (finish) /* anchored at the iterate (x_before is a copy of it) */
+                s->p = x_before;
+            const int finite = facet_pl_vertex_step(s, mu, nthreads);
+            s->p = control;
+            if (!finite) {
                 status = facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
                                        "a vertex update was not finite");
             }
@@ -854,15 +947,17 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         if (status != FACET_OK)
             break;
         double move = 0.0; /* largest vertex move of the plain step, squared */
-        if (staircase)
+        if (staircase) {
+            const double *q = s->q;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : move)
             for (int32_t v = 0; v < nv; ++v) {
-                const double *a = x_before + 3 * (size_t)v, *b = s->q + 3 * (size_t)v;
+                const double *a = x_before + 3 * (size_t)v, *b = q + 3 * (size_t)v;
                 const double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
                                   (a[2] - b[2]) * (a[2] - b[2]);
                 move = facet_max(move, d2);
             }
-        accelerated = aa.m > 0 && mu < 1.0 ? anderson_step(s, &aa, x_before, nthreads) : 0;
+        }
+        accelerated = aa.m > 0 && mu < 1.0 ? anderson_step(s, &aa, x_before) : 0;
         ++it;
         ++level_steps;
         /* The staircase lowers mu only while the planarity is above the
@@ -876,9 +971,17 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             (above && (move <= options->hold_tol * options->hold_tol * level_first_move ||
                        level_steps >= options->hold_max))) {
             const double next = facet_max(mu * options->ratio, options->mu_min);
-            if (staircase && next != mu) { /* a new fixed-point map: restart the history */
+            /* at the floor: mu reached it as 1e-5 * 0.1, which may round
+             * a last bit above it (a level of up to hold_max steps lost) */
+            const int start_finish = can_finish && !finish && above &&
+                                     mu <= options->mu_min * (1.0 + 1e-9);
+            if (staircase && (next != mu || start_finish)) { /* a new fixed-point map: restart the history */
                 aa.count = aa.head = 0;
                 aa.have_previous = 0;
+            }
+            if (start_finish) {
+                finish = 1;
+                since = it; /* the stagnation window starts with the finish */
             }
             mu = next;
             level_steps = 0;
@@ -891,6 +994,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         }
     }
     free(x_before);
+    free(aa.partial);
     if (status < 0 && status != FACET_ERROR_CANCELLED)
         return status;
     if (s->previous_control != xyz_in) /* before xyz_out, which may be xyz_in */
@@ -925,6 +1029,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         result->seconds = facet_now() - t0;
         result->anderson_accepted = accepted;
         result->anderson_rejected = rejected;
+        result->method = options->method;
     }
     if (status == FACET_ERROR_CANCELLED)
         return status;

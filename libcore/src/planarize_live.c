@@ -303,6 +303,9 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
         result->seconds = facet_now() - t0;
         result->anderson_accepted = sub_result.anderson_accepted;
         result->anderson_rejected = sub_result.anderson_rejected;
+        result->method = n_changed ? sub_result.method
+                         : options->method == FACET_METHOD_AUTO ? facet_planarizer_choose_method(s->live ? s->live : s)
+                                                                : options->method;
     }
     return status;
 }

@@ -263,7 +263,7 @@ static void test_planarizer_api(void)
     struct {
         int32_t *field;
         int32_t bad;
-    } ints[] = {{(int32_t *)&o.method, 2},    {(int32_t *)&o.method, -1},
+    } ints[] = {{(int32_t *)&o.method, 3},    {(int32_t *)&o.method, -1},
                 {&o.max_iter, -1},            {&o.iterations, -1},
                 {(int32_t *)&o.laplacian_weights, 9}, {(int32_t *)&o.shape, 3},
                 {(int32_t *)&o.shape, -1},     {(int32_t *)&o.boundary, 3},

@@ -186,7 +186,7 @@ def test_options_reach_the_solver():
 
 def test_bad_options():
     mesh = grid(4)
-    with pytest.raises(EditError, match="live_method must be one of lg, ll, not 'xx'"):
+    with pytest.raises(EditError, match="live_method must be one of auto, lg, ll, not 'xx'"):
         LiveSolver(mesh, live_method="xx")
     with pytest.raises(EditError, match="frame_seconds must be a positive time"):
         LiveSolver(mesh, frame_seconds=0)

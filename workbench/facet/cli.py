@@ -3,7 +3,7 @@
 
 ::
 
-    python3 -m facet planarize IN -o OUT.obj [--method ll|lg] [--tol T]
+    python3 -m facet planarize IN -o OUT.obj [--method auto|ll|lg] [--tol T]
         [--tol-abs T] [--max-iter N] [--iterations N] [--threads N]
         [--report R.json] [--strict]
     python3 -m facet check IN [--report R.json]
@@ -111,9 +111,10 @@ def build_parser():
     )
     planarize.add_argument(
         "--method",
-        choices=("ll", "lg"),
-        default="lg",
-        help="lg: local normals, global solve (default); ll: local-local, the paper's algorithm",
+        choices=("auto", "ll", "lg"),
+        default="auto",
+        help="auto (default): lg up to 50,000 quads (200,000 face corners), ll above; "
+        "lg: local normals, global solve; ll: local-local, the paper's algorithm",
     )
     planarize.add_argument(
         "--tol",

@@ -3,7 +3,7 @@
 
 ::
 
-    python3 -m facet cleanup IN -o OUT --min-edge L [--relative] [--method ll|lg]
+    python3 -m facet cleanup IN -o OUT --min-edge L [--relative] [--method auto|ll|lg]
         [--tol T] [--threads N] [--report R.json]
 
 ``--min-edge`` is in model units, or a fraction of the mean edge length with
@@ -35,8 +35,9 @@ def add_commands(commands):
                         "mean edge length with --relative)")
     parser.add_argument("--relative", action="store_true",
                         help="--min-edge is a fraction of the mean edge length")
-    parser.add_argument("--method", choices=("ll", "lg"), default="lg",
-                        help="planarization method (default lg)")
+    parser.add_argument("--method", choices=("auto", "ll", "lg"), default="auto",
+                        help="planarization method (default auto: lg up to 200,000 face "
+                        "corners, ll above)")
     parser.add_argument("--tol", type=_non_negative_float, default=1e-6, metavar="T",
                         help="planarity tolerance relative to each face's mean edge "
                         "(default 1e-6)")

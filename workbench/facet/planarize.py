@@ -2,9 +2,12 @@
 """Planarization: the nearest mesh whose faces are flat.
 
 The solver is the penalty method of Poranne, Ovreiu and Gotsman (2013) in the
-compiled core, as local/global (``"lg"``, the default: one sparse solve per
-iteration, reaches 1e-6 and below) or local/local (``"ll"``: the fastest
-iteration, for live previews; it stalls near 1e-5).
+compiled core, as local/global (``"lg"``: one sparse solve per iteration) or
+local/local (``"ll"``: the cheapest iteration, no sparse factorization; it
+finishes with its data term anchored at the iterate, so it also reaches
+1e-6). ``"auto"``, the default, picks L/G up to 50,000 quads (200,000 face
+corners) and L/L above, where L/G's factorization would take 2-4 KB per face
+and minutes per solve.
 
 >>> result = planarize(mesh)                   # doctest: +SKIP
 >>> result.planarity.max_rel_all <= 1e-6       # doctest: +SKIP
@@ -22,7 +25,8 @@ from facet.planarity import PlanarityReport, planarity
 __all__ = ["METHODS", "Planarizer", "PlanarizeResult", "planarize"]
 
 #: Solver schemes by name: what the command line and the workbench offer.
-METHODS = {"lg": "local/global", "ll": "local/local"}
+METHODS = {"auto": "automatic (local/global up to 50,000 quads, local/local above)",
+           "lg": "local/global", "ll": "local/local"}
 
 #: Data-term presets: how strongly a vertex is held to its control position
 #: along the control surface (tangent) and across it (normal), and to the
@@ -65,7 +69,7 @@ TERMS = {
 
 #: First penalty weight of a warm re-solve: small, so the previous (planar)
 #: result is not pulled back to the edited control mesh first.
-_WARM_MU0 = {"lg": 1e-5, "ll": 1e-5}
+_WARM_MU0 = {"auto": 1e-5, "lg": 1e-5, "ll": 1e-5}
 
 #: Schedule of a live update: its region's control (the previous result moved
 #: by the edit) is nearly planar already, so it starts at a small penalty
@@ -83,7 +87,7 @@ class PlanarizeResult:
     mesh : facet.PolyMesh
         The planarized mesh: same faces, new vertex positions.
     method : str
-        ``"lg"`` or ``"ll"``.
+        The method that ran: ``"lg"`` or ``"ll"`` (what ``"auto"`` chose).
     iterations : int
         Iterations run.
     stop_reason : str
@@ -205,7 +209,7 @@ class Planarizer:
         self,
         vertices=None,
         *,
-        method="lg",
+        method="auto",
         tol=1e-6,
         tol_abs=None,
         max_iter=None,
@@ -230,8 +234,9 @@ class Planarizer:
         ----------
         vertices : array_like (n, 3) or PolyMesh, optional
             Control positions (default: the mesh given at construction).
-        method : {"lg", "ll"}
-            Local/global (default) or local/local.
+        method : {"auto", "lg", "ll"}
+            Automatic (default: local/global up to 200,000 face corners,
+            local/local above), local/global or local/local.
         tol : float or None
             Stop when every face's largest distance from its plane, divided by
             its mean edge length, is at most `tol` (default 1e-6). None or 0
@@ -240,7 +245,7 @@ class Planarizer:
             Stop when every face's largest distance from its plane is at most
             this, in model units. With `tol` as well, both must hold.
         max_iter : int, optional
-            Iteration limit (default 1000 for lg, 3000 for ll).
+            Iteration limit (default 1000 for auto and lg, 3000 for ll).
         iterations : int, optional
             Run exactly this many iterations with no early stop (benchmarks).
         threads : int, optional
@@ -379,7 +384,7 @@ class Planarizer:
         displacement = np.linalg.norm(xyz_out - xyz_in, axis=1)
         return PlanarizeResult(
             mesh=result_mesh,
-            method=method,
+            method=stats["method"],
             iterations=stats["iterations"],
             stop_reason=stats["stop_reason"],
             converged=stats["converged"],
@@ -395,7 +400,7 @@ class Planarizer:
         )
 
 
-def planarize(mesh, method="lg", tol=1e-6, tol_abs=None, max_iter=None, iterations=None,
+def planarize(mesh, method="auto", tol=1e-6, tol_abs=None, max_iter=None, iterations=None,
               threads=None, progress=None, **options):
     """Find the nearest mesh whose faces are flat.
 

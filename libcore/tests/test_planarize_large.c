@@ -1,0 +1,128 @@
+/* SPDX-License-Identifier: LGPL-2.1-or-later */
+/* The large-mesh default (issue 3): FACET_METHOD_AUTO's choice, and L/L's
+ * finish, which takes the staircase from its stall near 10 mu_min to the
+ * tolerance. */
+#include "check.h"
+#include "facet.h"
+#include "test_meshes.h"
+
+#include <string.h>
+
+static double max_abs_diff(const double *a, const double *b, size_t n)
+{
+    double d = 0.0;
+    for (size_t k = 0; k < n; ++k)
+        d = fabs(a[k] - b[k]) > d ? fabs(a[k] - b[k]) : d;
+    return d;
+}
+
+/* AUTO picks L/G up to FACET_AUTO_LG_MAX_CORNERS corners and L/L above. */
+static void test_auto_choice(void)
+{
+    facet_error e;
+    /* 100 x 100 quads: 40,000 corners; 230 x 230: 211,600 > 200,000 */
+    const int sides[2] = {100, 230};
+    const facet_method expect[2] = {FACET_METHOD_LOCAL_GLOBAL, FACET_METHOD_LOCAL_LOCAL};
+    CHECK(4 * 100 * 100 <= FACET_AUTO_LG_MAX_CORNERS && 4 * 230 * 230 > FACET_AUTO_LG_MAX_CORNERS);
+    for (int k = 0; k < 2; ++k) {
+        test_mesh t = test_grid(sides[k], sides[k], 0.6, 1.0, 0.0);
+        facet_planarizer *p = NULL;
+        CHECK_STATUS(facet_planarizer_create(&t.mesh, &p, &e), FACET_OK);
+        CHECK(facet_planarizer_choose_method(p) == expect[k]);
+        facet_planarize_options o;
+        facet_planarize_options_default(FACET_METHOD_AUTO, &o);
+        CHECK(o.method == FACET_METHOD_AUTO && o.mu_min == 1e-12 && o.max_iter == 1000);
+        o.iterations = 3;
+        facet_planarize_result r;
+        memset(&r, 0xff, sizeof r);
+        double *out = malloc(sizeof(double) * 3 * (size_t)t.mesh.n_vertices);
+        CHECK_STATUS(facet_planarizer_solve(p, t.xyz, &o, out, &r, &e), FACET_OK);
+        CHECK(r.method == expect[k]);
+        CHECK(r.iterations == 3);
+        free(out);
+        facet_planarizer_free(&p);
+        test_mesh_free(&t);
+    }
+    CHECK(facet_planarizer_choose_method(NULL) == FACET_METHOD_LOCAL_GLOBAL);
+}
+
+/* L/L with the default schedule reaches 1e-6 (before the finish it stalled
+ * near 1e-5 and returned FACET_WARNING_NOT_CONVERGED), moves the vertices
+ * about as far as L/G, and gives the same bits on 1 and 2 threads on a mesh
+ * whose Anderson sums span several blocks (> 10,923 vertices). */
+static void test_ll_finish(void)
+{
+    facet_error e;
+    test_mesh t = test_grid(110, 110, 0.6, 1.0, 0.0);
+    const int32_t nv = t.mesh.n_vertices;
+    facet_planarizer *p = NULL;
+    CHECK_STATUS(facet_planarizer_create(&t.mesh, &p, &e), FACET_OK);
+    double *out1 = malloc(sizeof(double) * 3 * (size_t)nv), *out2 = malloc(sizeof(double) * 3 * (size_t)nv);
+    facet_planarize_options o;
+    facet_planarize_options_default(FACET_METHOD_LOCAL_LOCAL, &o);
+    facet_planarize_result r1, r2;
+    o.threads = 1;
+    CHECK_STATUS(facet_planarizer_solve(p, t.xyz, &o, out1, &r1, &e), FACET_OK);
+    CHECK(r1.stop_reason == FACET_STOP_TOLERANCE);
+    CHECK(r1.planarity_max_rel <= 1e-6);
+    CHECK(r1.method == FACET_METHOD_LOCAL_LOCAL);
+    CHECK(r1.mu == o.mu_min); /* it finished at the floor, the data anchored at the iterate */
+    o.threads = 2;
+    CHECK_STATUS(facet_planarizer_solve(p, t.xyz, &o, out2, &r2, &e), FACET_OK);
+    CHECK(r2.iterations == r1.iterations);
+    CHECK(memcmp(out1, out2, sizeof(double) * 3 * (size_t)nv) == 0);
+    /* the finish keeps the staircase's result: stopping it at 1e-4 instead
+     * gives nearly the same mesh (the finish moves by about the residual) */
+    facet_planarize_options coarse = o;
+    coarse.tol_rel = 1e-4;
+    CHECK_STATUS(facet_planarizer_solve(p, t.xyz, &coarse, out2, &r2, &e), FACET_OK);
+    CHECK(r2.iterations < r1.iterations);
+    CHECK(max_abs_diff(out1, out2, 3 * (size_t)nv) < 0.05);
+    /* and without the staircase (the paper's schedule) there is no finish:
+     * it stalls at its floor as before */
+    facet_planarize_options paper = o;
+    paper.hold_tol = 0.0;
+    paper.anderson = 0;
+    paper.ratio = 0.9;
+    paper.max_iter = 400;
+    const facet_status status = facet_planarizer_solve(p, t.xyz, &paper, out2, &r2, &e);
+    CHECK(status == FACET_WARNING_NOT_CONVERGED);
+    CHECK(r2.planarity_max_rel > 1e-6);
+    free(out1), free(out2);
+    facet_planarizer_free(&p);
+    test_mesh_free(&t);
+}
+
+/* AUTO on the large side keeps L/L's floor: mu never goes below 1e-6. */
+static void test_auto_floor(void)
+{
+    facet_error e;
+    test_mesh t = test_grid(230, 230, 0.6, 1.0, 0.0);
+    facet_planarizer *p = NULL;
+    CHECK_STATUS(facet_planarizer_create(&t.mesh, &p, &e), FACET_OK);
+    double *out = malloc(sizeof(double) * 3 * (size_t)t.mesh.n_vertices);
+    facet_planarize_options o;
+    facet_planarize_options_default(FACET_METHOD_AUTO, &o);
+    facet_planarize_result r;
+    CHECK_STATUS(facet_planarizer_solve(p, t.xyz, &o, out, &r, &e), FACET_OK);
+    CHECK(r.method == FACET_METHOD_LOCAL_LOCAL);
+    CHECK(r.stop_reason == FACET_STOP_TOLERANCE && r.planarity_max_rel <= 1e-6);
+    CHECK(r.mu >= FACET_LL_MU_MIN);
+    for (size_t k = 0; k < 3 * (size_t)t.mesh.n_vertices; ++k)
+        if (!isfinite(out[k])) {
+            CHECK(isfinite(out[k]));
+            break;
+        }
+    free(out);
+    facet_planarizer_free(&p);
+    test_mesh_free(&t);
+}
+
+int main(void)
+{
+    test_auto_choice();
+    test_ll_finish();
+    test_auto_floor();
+    printf("test_planarize_large: %d checks, %d failed\n", check_count, check_failures);
+    return check_failures != 0;
+}
