@@ -267,7 +267,7 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     s->vertex_energy_mu = malloc((size_t)nv * sizeof(double));
     s->vertex_energy_con = malloc((size_t)nv * sizeof(double));
     s->vertex_residual = malloc((size_t)nv * sizeof(double));
-    s->aa_x_fallback = malloc(v3), s->q_next = malloc(v3);
+    s->q_next = malloc(v3);
     s->normal = malloc(3 * fd), s->normal_fit = malloc(3 * fd), s->offset = malloc(fd);
     s->face_dev = malloc(fd), s->face_edge = malloc(fd), s->face_sq = malloc(fd);
     s->face_energy_mu = malloc(fd), s->face_energy_con = malloc(fd), s->face_residual = malloc(fd);
@@ -275,7 +275,7 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     if (!s->face_start || !s->face_vertices || !s->vertex_start || !s->vertex_faces || !s->fixed ||
         !s->p || !s->q || !s->previous || !s->previous_control || !s->vertex_normal || !s->slide_target ||
         !s->slide_tangent || !s->vertex_energy_mu || !s->vertex_energy_con ||
-        !s->vertex_residual || !s->aa_x_fallback || !s->q_next || !s->normal || !s->normal_fit || !s->offset ||
+        !s->vertex_residual || !s->q_next || !s->normal || !s->normal_fit || !s->offset ||
         !s->face_dev || !s->face_edge || !s->face_sq || !s->face_energy_mu ||
         !s->face_energy_con || !s->face_residual || !s->control_centroid) {
         facet_planarizer_free(&s);
@@ -326,7 +326,7 @@ void facet_planarizer_free(facet_planarizer **handle)
                       s->face_residual, s->vertex_residual, s->normal_fit,
                       s->control_centroid, s->shape, s->circle_target, s->slide_target,
                       s->slide_tangent, s->laplace_weight, s->previous, s->aa_df, s->aa_dg,
-                      s->aa_f, s->aa_g, s->aa_x_fallback, s->q_next, s->surface_point,
+                      s->aa_f, s->aa_g, s->q_next, s->surface_point,
                       s->surface_normal, s->surface_query, s->previous_control,
                       s->live_vertex, s->live_changed, s->live_mark, s->live_xyz, s->live_face_dev,
                       s->guard_count, s->guard_sum, s->corner_floor, s->corner_cos, s->face_guard,
@@ -642,22 +642,20 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
         if (!isfinite(theta[j]))
             return 0;
     const double *dg_all = s->aa_dg;
-    double *fallback = s->aa_x_fallback;
     int finite = 1;
 #pragma omp parallel for schedule(static) num_threads(a->nthreads) reduction(&& : finite)
     for (size_t blk = 0; blk < blocks; ++blk) {
         const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
         for (size_t k = k0; k < k1; ++k) {
             double value = g[k];
-            fallback[k] = value;
             for (int j = 0; j < m; ++j)
                 value -= theta[j] * dg_all[(size_t)j * n + k];
             g[k] = value;
             finite = finite && isfinite(value);
         }
     }
-    if (!finite) {
-        memcpy(g, fallback, sizeof(double) * n);
+    if (!finite) { /* back to the plain step's iterate, kept in aa_g */
+        memcpy(g, s->aa_g, sizeof(double) * n);
         return 0;
     }
     return 1;
@@ -821,7 +819,8 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                     ++accepted;
                 } else {
                     ++rejected;
-                    memcpy(s->q, s->aa_x_fallback, sizeof(double) * 3 * (size_t)nv);
+                    /* the plain step's iterate, kept in aa_g (anderson_step) */
+                    memcpy(s->q, s->aa_g, sizeof(double) * 3 * (size_t)nv);
                     aa.count = aa.head = 0;
                     aa.have_previous = 0;
                     status = facet_pl_local_step(s, mu, nthreads, error);
@@ -912,7 +911,12 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             }
         }
         history[it % WINDOW] = measure;
-        if (x_before) {
+        /* the iterate this step starts from: an L/L step writes the new one
+         * beside it and swaps (q_next is then the old one), other steps
+         * overwrite it, so it is copied */
+        const int ll_step = mu < 1.0 && options->method == FACET_METHOD_LOCAL_LOCAL;
+        const double *before = x_before;
+        if (x_before && !ll_step) {
             const double *q = s->q;
 #pragma omp parallel for schedule(static) num_threads(nthreads)
             for (int32_t v = 0; v < nv; ++v)
@@ -923,10 +927,11 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             memcpy(s->q, s->p, sizeof(double) * 3 * (size_t)nv);
         } else if (options->method == FACET_METHOD_LOCAL_LOCAL) {
             double *control = s->p;
-            if (finish) /* anchored at the iterate (x_before is a copy of it) */
-                s->p = x_before;
+            if (finish) /* anchored at the iterate (the step only reads it) */
+                s->p = s->q;
             const int finite = facet_pl_vertex_step(s, mu, nthreads);
             s->p = control;
+            before = s->q_next; /* swapped: the iterate the step started from */
             if (!finite) {
                 status = facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
                                        "a vertex update was not finite");
@@ -951,13 +956,13 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             const double *q = s->q;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : move)
             for (int32_t v = 0; v < nv; ++v) {
-                const double *a = x_before + 3 * (size_t)v, *b = q + 3 * (size_t)v;
+                const double *a = before + 3 * (size_t)v, *b = q + 3 * (size_t)v;
                 const double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
                                   (a[2] - b[2]) * (a[2] - b[2]);
                 move = facet_max(move, d2);
             }
         }
-        accelerated = aa.m > 0 && mu < 1.0 ? anderson_step(s, &aa, x_before) : 0;
+        accelerated = aa.m > 0 && mu < 1.0 ? anderson_step(s, &aa, before) : 0;
         ++it;
         ++level_steps;
         /* The staircase lowers mu only while the planarity is above the

@@ -134,7 +134,6 @@ struct facet_planarizer {
     /* Anderson acceleration */
     double *aa_df, *aa_dg;                /* m columns of 3 nv */
     double *aa_f, *aa_g;                  /* last f = g - x and g */
-    double *aa_x_fallback;                /* un-accelerated iterate */
     int32_t aa_capacity;                  /* columns aa_df and aa_dg hold */
 
     char message[512];
