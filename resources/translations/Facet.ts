@@ -97,27 +97,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="149"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="147"/>
         <source>Surface to control mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="187"/>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="22"/>
         <source>Planarize</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="220"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="222"/>
         <source>Panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="251"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="253"/>
         <source>Cut sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="318"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="320"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
@@ -137,273 +137,278 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="22"/>
-        <source>Local/global: a few large linear solves, fast on big meshes (the default). Local/local: many cheap per-face steps.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/preferences.ui" line="23"/>
+        <location filename="../ui/preferences.ui" line="24"/>
         <source>Local/global</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="24"/>
+        <location filename="../ui/preferences.ui" line="25"/>
         <source>Local/local</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="29"/>
+        <location filename="../ui/preferences.ui" line="30"/>
         <source>Planarity tolerance (relative)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="35"/>
+        <location filename="../ui/preferences.ui" line="36"/>
         <source>Stop when every vertex is within this fraction of its face&apos;s mean edge length from the face&apos;s plane (1e-6: 2 micrometres on a 2 m panel)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="40"/>
+        <location filename="../ui/preferences.ui" line="41"/>
         <source>Planarity tolerance (absolute)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="46"/>
+        <location filename="../ui/preferences.ui" line="47"/>
         <source>Stop when every vertex is within this distance of its face&apos;s plane (0: only the relative tolerance)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="54"/>
+        <location filename="../ui/preferences.ui" line="55"/>
         <source>Max. iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="60"/>
+        <location filename="../ui/preferences.ui" line="61"/>
         <source>Give up after this many iterations (0: the solver&apos;s default)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="67"/>
+        <location filename="../ui/preferences.ui" line="68"/>
         <source>Surface mesh pattern</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="73"/>
+        <location filename="../ui/preferences.ui" line="74"/>
         <source>Default pattern of Surface to control mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="74"/>
+        <location filename="../ui/preferences.ui" line="75"/>
         <source>Quad grid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="75"/>
+        <location filename="../ui/preferences.ui" line="76"/>
         <source>Hex grid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="76"/>
+        <location filename="../ui/preferences.ui" line="77"/>
         <source>Paired triangles</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="81"/>
+        <location filename="../ui/preferences.ui" line="82"/>
         <source>Panels along u</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="87"/>
+        <location filename="../ui/preferences.ui" line="88"/>
         <source>Default panel count along u</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="94"/>
+        <location filename="../ui/preferences.ui" line="95"/>
         <source>Panels along v</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="100"/>
+        <location filename="../ui/preferences.ui" line="101"/>
         <source>Default panel count along v</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="107"/>
+        <location filename="../ui/preferences.ui" line="108"/>
         <source>Panel size</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="113"/>
+        <location filename="../ui/preferences.ui" line="114"/>
         <source>Default target panel size (0: use the counts)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="121"/>
+        <location filename="../ui/preferences.ui" line="122"/>
         <source>Panel thickness</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="127"/>
+        <location filename="../ui/preferences.ui" line="128"/>
         <source>Default panel thickness</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="135"/>
+        <location filename="../ui/preferences.ui" line="136"/>
         <source>Panel offset</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="141"/>
+        <location filename="../ui/preferences.ui" line="142"/>
         <source>Default side of the surface the panels lie on</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="142"/>
+        <location filename="../ui/preferences.ui" line="143"/>
         <source>Outer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="143"/>
+        <location filename="../ui/preferences.ui" line="144"/>
         <source>Inner</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="144"/>
+        <location filename="../ui/preferences.ui" line="145"/>
         <source>Centre</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="149"/>
+        <location filename="../ui/preferences.ui" line="150"/>
         <source>Joint gap</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="155"/>
+        <location filename="../ui/preferences.ui" line="156"/>
         <source>Default joint gap between panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="163"/>
+        <location filename="../ui/preferences.ui" line="164"/>
         <source>Edge cut</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="169"/>
+        <location filename="../ui/preferences.ui" line="170"/>
         <source>Default edge cut</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="170"/>
+        <location filename="../ui/preferences.ui" line="171"/>
         <source>Square</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="171"/>
+        <location filename="../ui/preferences.ui" line="172"/>
         <source>Bisector</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="176"/>
+        <location filename="../ui/preferences.ui" line="177"/>
         <source>Part ID prefix</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="182"/>
+        <location filename="../ui/preferences.ui" line="183"/>
         <source>Default part ID prefix</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="187"/>
+        <location filename="../ui/preferences.ui" line="188"/>
         <source>Sheet width</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="193"/>
+        <location filename="../ui/preferences.ui" line="194"/>
         <source>Default stock sheet width</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="201"/>
+        <location filename="../ui/preferences.ui" line="202"/>
         <source>Sheet height</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="207"/>
+        <location filename="../ui/preferences.ui" line="208"/>
         <source>Default stock sheet height</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="215"/>
+        <location filename="../ui/preferences.ui" line="216"/>
         <source>Sheet margin</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="221"/>
+        <location filename="../ui/preferences.ui" line="222"/>
         <source>Default sheet margin</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="229"/>
+        <location filename="../ui/preferences.ui" line="230"/>
         <source>Part spacing</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="235"/>
+        <location filename="../ui/preferences.ui" line="236"/>
         <source>Default space between parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="243"/>
+        <location filename="../ui/preferences.ui" line="244"/>
         <source>Rotations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="249"/>
+        <location filename="../ui/preferences.ui" line="250"/>
         <source>Default rotations of the nester</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="250"/>
+        <location filename="../ui/preferences.ui" line="251"/>
         <source>90 degree steps</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="251"/>
+        <location filename="../ui/preferences.ui" line="252"/>
         <source>None</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="252"/>
+        <location filename="../ui/preferences.ui" line="253"/>
         <source>Free</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="257"/>
+        <location filename="../ui/preferences.ui" line="258"/>
         <source>Output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="263"/>
+        <location filename="../ui/preferences.ui" line="264"/>
         <source>Default folder for cut files (empty: none written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="268"/>
+        <location filename="../ui/preferences.ui" line="269"/>
         <source>Colour map top</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="274"/>
+        <location filename="../ui/preferences.ui" line="275"/>
         <source>Planarity shown in the top colour (red) of new meshes&apos; colour maps (0: the largest face value)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="275"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="277"/>
         <source>Choose the output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="284"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="286"/>
         <source>Folder for the cut files</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="22"/>
+        <source>Automatic (the default): local/global up to about 50,000 quads, local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="23"/>
+        <source>Automatic</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -689,48 +694,53 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/planarize.ui" line="22"/>
-        <source>Local/global: a few large linear solves, fast on big meshes (the default). Local/local: many cheap per-face steps.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/planarize.ui" line="23"/>
+        <location filename="../ui/planarize.ui" line="24"/>
         <source>Local/global</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/planarize.ui" line="24"/>
+        <location filename="../ui/planarize.ui" line="25"/>
         <source>Local/local</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/planarize.ui" line="35"/>
+        <location filename="../ui/planarize.ui" line="36"/>
         <source>Stop when every vertex is within this fraction of its face&apos;s mean edge length from the face&apos;s plane (1e-6: 2 micrometres on a 2 m panel)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/planarize.ui" line="46"/>
+        <location filename="../ui/planarize.ui" line="47"/>
         <source>Stop when every vertex is within this distance of its face&apos;s plane (0: only the relative tolerance)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/planarize.ui" line="54"/>
+        <location filename="../ui/planarize.ui" line="55"/>
         <source>Max. iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/planarize.ui" line="60"/>
+        <location filename="../ui/planarize.ui" line="61"/>
         <source>Give up after this many iterations (0: the solver&apos;s default)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/planarize.ui" line="29"/>
+        <location filename="../ui/planarize.ui" line="30"/>
         <source>Rel. tolerance</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/planarize.ui" line="40"/>
+        <location filename="../ui/planarize.ui" line="41"/>
         <source>Abs. tolerance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="22"/>
+        <source>Automatic (the default): local/global up to about 50,000 quads, local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/planarize.ui" line="23"/>
+        <source>Automatic</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -88,6 +88,31 @@ class TestPlanarized(DocumentTestCase):
         np.testing.assert_array_equal(bits(points_array(source)), bits(before["source"]))
 
 
+class TestPlanarizedMethod(DocumentTestCase):
+    def test_auto_is_the_default_and_solves_like_lg_on_a_small_mesh(self):
+        from facetwb.objects.planarized import METHODS
+        source = importer.import_mesh(data_path("hypar.obj"), self.doc)
+        auto = facetwb.make_planarized(source, tolerance=TOLERANCE)
+        lg = facetwb.make_planarized(source, method="lg", tolerance=TOLERANCE)
+        self.doc.recompute()
+        self.assertEqual(auto.Method, "auto")
+        self.assertEqual(list(auto.getEnumerationsOfProperty("Method")), METHODS)
+        # 64 quads are far below auto's threshold: the same local/global solve, bit for bit
+        np.testing.assert_array_equal(bits(points_array(auto)), bits(points_array(lg)))
+        from facetwb.objects.planarized import planarize_summary
+        self.assertIn("automatic: local/global,", planarize_summary(auto))
+
+    def test_a_document_from_before_auto_keeps_its_method(self):
+        from facetwb.objects.planarized import METHODS
+        source = importer.import_mesh(data_path("hypar.obj"), self.doc)
+        old = facetwb.make_planarized(source, tolerance=TOLERANCE)
+        old.Method = ["lg", "ll"]  # the enumeration as it was saved before "auto"
+        old.Method = "ll"
+        old.Proxy.onDocumentRestored(old)
+        self.assertEqual(list(old.getEnumerationsOfProperty("Method")), METHODS)
+        self.assertEqual(old.Method, "ll")
+
+
 class TestPlanarizedMixedPolygons(DocumentTestCase):
     def test_hexagons_pentagon_triangles(self):
         source = importer.import_mesh(data_path("panels.off"), self.doc)

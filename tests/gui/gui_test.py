@@ -754,6 +754,7 @@ def check_edit_planarized(check, out_dir):
     import facet
     import facetwb
     from facetwb.objects.polymesh import get_mesh
+    from facetwb.objects.planarized import METHODS
     from facetwb.taskpanels import edit_panels, forms
 
     doc = App.newDocument("EditPlanarized")
@@ -772,7 +773,7 @@ def check_edit_planarized(check, out_dir):
         App.closeDocument(doc.Name)
         return
     check(forms.get_value(panel.form, "Tolerance", None, True) == 1e-3
-          and forms.get_value(panel.form, "Method", ["lg", "ll"]) == "lg",
+          and forms.get_value(panel.form, "Method", METHODS) == result.Method == "auto",
           "the panel shows the object's parameters")
     field = forms.widget(panel.form, "Tolerance")
     field.setText("1e-09")

@@ -13,7 +13,7 @@ PATH = "User parameter:BaseApp/Preferences/Mod/Facet"
 #: name -> (kind, default). Kinds: "float", "int", "bool", "string".
 DEFAULTS = {
     # planarize
-    "PlanarizeMethod": ("string", "lg"),
+    "PlanarizeMethod": ("string", "auto"),
     "PlanarizeTolerance": ("float", 1e-6),
     "PlanarizeToleranceAbs": ("float", 0.0),
     "PlanarizeMaxIterations": ("int", 0),
@@ -41,7 +41,7 @@ DEFAULTS = {
 
 #: Choices of the string preferences that are enumerations (first: default).
 CHOICES = {
-    "PlanarizeMethod": ["lg", "ll"],
+    "PlanarizeMethod": ["auto", "lg", "ll"],
     "SurfacePattern": ["quad", "hex", "tri-quad"],
     "PanelOffset": ["outer", "inner", "center"],
     "PanelEdge": ["square", "bisector"],

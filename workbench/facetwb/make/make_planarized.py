@@ -6,7 +6,7 @@ import FreeCAD as App
 from facetwb.objects.planarized import METHODS, Planarized
 
 
-def make_planarized(source, method="lg", tolerance=1e-6, tolerance_abs=0.0, max_iterations=0,
+def make_planarized(source, method="auto", tolerance=1e-6, tolerance_abs=0.0, max_iterations=0,
                     threads=0, name="Planarized"):
     """Add a Planarized object that planarizes ``source`` on recompute.
 
@@ -15,8 +15,9 @@ def make_planarized(source, method="lg", tolerance=1e-6, tolerance_abs=0.0, max_
     source : App.DocumentObject
         A PolyMesh, Planarized, FreeCAD Mesh or Part object. Never modified; in the GUI it is
         hidden (the result takes its place in the view).
-    method : {"lg", "ll"}
-        Local/global or local/local iterations (see facet.planarize).
+    method : {"auto", "lg", "ll"}
+        Local/global or local/local iterations, or auto: local/global up to 200,000 face
+        corners, local/local above (see facet.planarize).
     tolerance : float
         Target planarity relative to each face's mean edge length.
     tolerance_abs : float

@@ -18,8 +18,8 @@ from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
 TYPE_PLANARIZED = "Facet::Planarized"
 
 #: Method enumeration: values passed to facet.planarize, and what the designer reads.
-METHODS = ["lg", "ll"]
-METHOD_NAMES = {"lg": "local/global", "ll": "local/local"}
+METHODS = ["auto", "lg", "ll"]
+METHOD_NAMES = {"auto": "automatic", "lg": "local/global", "ll": "local/local"}
 
 #: facet.planarize stop reasons in the designer's words.
 STOP_REASONS = {
@@ -60,10 +60,16 @@ class Planarized(PolyMesh):
         output = compat.PROP_OUTPUT
         if compat.add_property(
                 obj, "App::PropertyEnumeration", "Method", "Planarize",
-                "lg: local/global (one sparse solve per iteration, converges in few "
-                "iterations); ll: local/local (cheap iterations, many of them)"):
+                "auto: local/global up to about 50,000 quads (200,000 corners), local/local "
+                "above; lg: local/global (one sparse solve per iteration, converges in few "
+                "iterations); ll: local/local (cheap iterations, many of them, little memory)"):
             obj.Method = METHODS
-            obj.Method = "lg"
+            obj.Method = "auto"
+        elif list(obj.getEnumerationsOfProperty("Method")) != METHODS:
+            # a document from before "auto": the same method, the new choices
+            method = obj.Method
+            obj.Method = METHODS
+            obj.Method = method
         compat.add_property(
             obj, "App::PropertyFloat", "Tolerance", "Planarize",
             "Stop when every face's vertices are within this fraction of the face's mean edge "
@@ -151,6 +157,7 @@ class Planarized(PolyMesh):
         )
         set_mesh(obj, result.mesh)
         set_planarity(obj, result.planarity)
+        self.method_ran = result.method  # what "auto" chose; for the report, not saved
         obj.Iterations = int(result.iterations)
         obj.StopReason = str(result.stop_reason)
         obj.Converged = bool(result.converged)
@@ -204,6 +211,16 @@ def format_length(value):
     return App.Units.Quantity(float(value), App.Units.Length).UserString
 
 
+def method_text(obj):
+    """The Method as the designer reads it; for auto, with what it chose (e.g. 'automatic:
+    local/global') once the object was solved in this session."""
+    text = METHOD_NAMES.get(obj.Method, obj.Method)
+    ran = getattr(getattr(obj, "Proxy", None), "method_ran", None)
+    if obj.Method == "auto" and ran in METHOD_NAMES:
+        text += f": {METHOD_NAMES[ran]}"
+    return text
+
+
 def planarize_summary(obj):
     """A few lines for the report view about a recomputed Planarized object."""
     if not obj.isValid():
@@ -211,7 +228,7 @@ def planarize_summary(obj):
     source = obj.Source
     lines = [
         f"{obj.Label}: {obj.FaceCount} panels, {obj.VertexCount} vertices, "
-        f"{METHOD_NAMES.get(obj.Method, obj.Method)}, {obj.Iterations} iterations, "
+        f"{method_text(obj)}, {obj.Iterations} iterations, "
         f"stopped: {STOP_REASONS.get(obj.StopReason, obj.StopReason)}",
         f"  planarity max {format_length(obj.PlanarityMaxAbs.Value)} "
         f"({obj.PlanarityMaxRel:.2g} of the edge length)"

@@ -14,6 +14,7 @@ import FreeCADGui as Gui
 
 from facetwb import preferences, progress
 from facetwb.commands.macro import object_expression
+from facetwb.objects.planarized import METHODS
 from facetwb.taskpanels import forms
 from facetwb.translation import QT_TRANSLATE_NOOP
 
@@ -188,7 +189,7 @@ def check_planarize(values):
 class PlanarizePanel(DerivePanel):
     UI = "planarize"
     TITLE = QT_TRANSLATE_NOOP("Facet", "Planarize")
-    FIELDS = (("Method", "PlanarizeMethod", ["lg", "ll"], None),
+    FIELDS = (("Method", "PlanarizeMethod", METHODS, None),
               ("Tolerance", "PlanarizeTolerance", None, None),
               ("ToleranceAbs", "PlanarizeToleranceAbs", None, None),
               ("MaxIterations", "PlanarizeMaxIterations", None, None))

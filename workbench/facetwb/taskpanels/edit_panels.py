@@ -12,6 +12,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb.taskpanels import forms
+from facetwb.objects.planarized import METHODS
 from facetwb.taskpanels.derive_panels import check_planarize
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
 
@@ -21,7 +22,7 @@ active = None
 TITLE = QT_TRANSLATE_NOOP("Facet", "Planarize")
 
 #: (field of planarize.ui = property of the object, choices of a combo box)
-FIELDS = (("Method", ["lg", "ll"]), ("Tolerance", None), ("ToleranceAbs", None),
+FIELDS = (("Method", METHODS), ("Tolerance", None), ("ToleranceAbs", None),
           ("MaxIterations", None))
 
 
