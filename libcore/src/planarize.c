@@ -579,15 +579,19 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
             s->aa_g[k] = g[k];
             largest = facet_max(largest, fabs(f));
         }
-        for (int j = 0; j < m; ++j) {
-            const double *dfj = df_all + (size_t)j * n;
-            double gsum = 0.0, rsum = 0.0;
-            for (size_t k = k0; k < k1; ++k) {
-                gsum += df_new[k] * dfj[k];
-                rsum += dfj[k] * s->aa_f[k];
+        /* the 2m sums side by side (each still in index order): one chain of
+         * dependent additions per sum, 2m chains in flight instead of 2 */
+        double gsum[FACET_ANDERSON_MAX] = {0.0}, rsum[FACET_ANDERSON_MAX] = {0.0};
+        for (size_t k = k0; k < k1; ++k) {
+            const double d = df_new[k], f = s->aa_f[k];
+            for (int j = 0; j < m; ++j) {
+                const double dfjk = df_all[(size_t)j * n + k];
+                gsum[j] += d * dfjk;
+                rsum[j] += dfjk * f;
             }
-            part[2 * j] = gsum, part[2 * j + 1] = rsum;
         }
+        for (int j = 0; j < m; ++j)
+            part[2 * j] = gsum[j], part[2 * j + 1] = rsum[j];
         part[width - 1] = largest;
     }
     double rhs[FACET_ANDERSON_MAX], largest = 0.0;
