@@ -1,11 +1,20 @@
 /* SPDX-License-Identifier: LGPL-2.1-or-later */
-/* Timing helpers shared by the benchmark drivers: wall and process CPU
- * clocks, and the median of a sample (sorted in place). */
+/* Helpers shared by the benchmark drivers: wall and process CPU clocks, the
+ * peak resident set, and the median of a sample (sorted in place). */
 #ifndef FACET_BENCH_COMMON_H
 #define FACET_BENCH_COMMON_H
 
 #include <stdlib.h>
+#include <sys/resource.h>
 #include <time.h>
+
+/* The process's peak resident set so far, in KiB. */
+static inline long peak_rss_kb(void)
+{
+    struct rusage u;
+    getrusage(RUSAGE_SELF, &u);
+    return u.ru_maxrss;
+}
 
 static inline double now(void)
 {

@@ -22,15 +22,7 @@
 
 #include <stdio.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <time.h>
-
-static long peak_rss_kb(void)
-{
-    struct rusage u;
-    getrusage(RUSAGE_SELF, &u);
-    return u.ru_maxrss;
-}
 
 /* A minimal OBJ reader: "v x y z" and "f a b c ..." (1-based, a/b/c forms). */
 static int read_obj(const char *path, test_mesh *t)
