@@ -9,6 +9,7 @@
 #include "check.h"
 #include "facet.h"
 #include "test_meshes.h"
+#include "test_panel_output.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -26,14 +27,6 @@
     } while (0)
 
 static facet_error e;
-
-static int all_finite(const double *x, size_t n)
-{
-    for (size_t i = 0; i < n; ++i)
-        if (!isfinite(x[i]))
-            return 0;
-    return 1;
-}
 
 static void fill(double *x, size_t n)
 {
@@ -748,17 +741,11 @@ static void test_panels_api(void)
     facet_panel_options o;
     facet_panel_options_default(NULL); /* no crash */
     facet_panel_options_default(&o);
-    double *plane = malloc(sizeof(double) * 4 * nf), *top = malloc(sizeof(double) * 3 * nc);
-    double *bottom = malloc(sizeof(double) * 3 * nc), *frame = malloc(sizeof(double) * 12 * nf);
-    double *dih = malloc(sizeof(double) * nc), *bev = malloc(sizeof(double) * nc);
-    double *node = malloc(sizeof(double) * nv), *pl = malloc(sizeof(double) * nf);
-    int32_t *rev = malloc(sizeof(int32_t) * nf), *nb = malloc(sizeof(int32_t) * nc);
-    int32_t *np = malloc(sizeof(int32_t) * nf);
-    facet_panel_output out = {plane, top, bottom, frame, rev, nb, dih, bev, node, pl, np};
+    facet_panel_output out = test_panel_output(nv, nf, nc);
     facet_panel_output none;
     memset(&none, 0, sizeof none);
     facet_panel_result r;
-    fill(top, 3 * nc);
+    fill(out.top, 3 * nc);
     CHECK_FAILS(facet_panels(NULL, &o, &out, &r, &e), FACET_ERROR_INVALID_ARGUMENT);
     CHECK_FAILS(facet_panels(&m, NULL, &out, &r, &e), FACET_ERROR_INVALID_ARGUMENT);
     CHECK_FAILS(facet_panels(&m, &o, NULL, &r, &e), FACET_ERROR_INVALID_ARGUMENT);
@@ -771,7 +758,7 @@ static void test_panels_api(void)
     CHECK_FAILS(facet_panels(&bm, &o, &out, &r, &e), FACET_ERROR_EMPTY_MESH);
     bm = m, bm.n_vertices = 4;
     CHECK_FAILS(facet_panels(&bm, &o, &out, &r, &e), FACET_ERROR_INDEX_OUT_OF_RANGE);
-    CHECK(untouched(top, 3 * nc));
+    CHECK(untouched(out.top, 3 * nc));
     struct {
         double *field;
         double bad[4];
@@ -793,7 +780,7 @@ static void test_panels_api(void)
     facet_panel_options_default(&o);
     o.edge = (facet_panel_edge)2;
     CHECK_FAILS(facet_panels(&m, &o, &out, &r, &e), FACET_ERROR_INVALID_ARGUMENT);
-    CHECK(untouched(top, 3 * nc));
+    CHECK(untouched(out.top, 3 * nc));
     facet_panel_options_default(&o);
     /* non-finite coordinates */
     t.xyz[3 * 6 + 2] = NAN;
@@ -821,18 +808,14 @@ static void test_panels_api(void)
         for (int off = 0; off < 3; ++off) {
             o.edge = (facet_panel_edge)edge, o.offset = (facet_panel_offset)off;
             CHECK_STATUS(facet_panels(&m, &o, &out, &r, &e), FACET_OK);
-            CHECK(all_finite(plane, 4 * nf) && all_finite(top, 3 * nc) &&
-                  all_finite(bottom, 3 * nc) && all_finite(frame, 12 * nf) &&
-                  all_finite(dih, nc) && all_finite(bev, nc) && all_finite(node, nv) &&
-                  all_finite(pl, nf));
+            CHECK(test_panel_output_finite(&out, nv, nf, nc));
         }
     /* a gap wider than the panels: refused with a status, not garbage */
     facet_panel_options_default(&o);
     o.gap = 5.0;
     CHECK(facet_panels(&m, &o, &out, &r, &e) == FACET_ERROR_PANEL_GEOMETRY);
     CHECK(e.message[0] != '\0');
-    free(plane), free(top), free(bottom), free(frame), free(dih), free(bev), free(node), free(pl);
-    free(rev), free(nb), free(np);
+    test_panel_output_free(&out);
     test_mesh_free(&t);
 }
 

@@ -11,6 +11,7 @@
 #include "check.h"
 #include "facet.h"
 #include "test_meshes.h"
+#include "test_panel_output.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -19,14 +20,6 @@
 /* small meshes and few iterations: the point is the arithmetic's range, not
  * convergence, and the term matrix makes some 1500 solves */
 enum { GRID_U = 4, GRID_V = 3, MAX_ITER = 60 };
-
-static int all_finite(const double *x, size_t n)
-{
-    for (size_t i = 0; i < n; ++i)
-        if (!isfinite(x[i]))
-            return 0;
-    return 1;
-}
 
 #ifdef FACET_SANITIZED
 static const double SCALES[] = {1e-6, 1.0, 1e7};
@@ -420,13 +413,7 @@ static void test_panels_extremes(void)
                 const int nv = t.mesh.n_vertices, nf = t.mesh.n_faces, nc = 4 * nf;
                 for (int v = 0; v < nv; ++v)
                     t.xyz[3 * v + 2] = 0.25 * t.xyz[3 * v] - 0.5 * t.xyz[3 * v + 1];
-                double *plane = malloc(sizeof(double) * 4 * nf), *top = malloc(sizeof(double) * 3 * nc);
-                double *bottom = malloc(sizeof(double) * 3 * nc), *frame = malloc(sizeof(double) * 12 * nf);
-                double *dih = malloc(sizeof(double) * nc), *bev = malloc(sizeof(double) * nc);
-                double *node = malloc(sizeof(double) * nv), *pl = malloc(sizeof(double) * nf);
-                int32_t *rev = malloc(sizeof(int32_t) * nf), *nb = malloc(sizeof(int32_t) * nc);
-                int32_t *np = malloc(sizeof(int32_t) * nf);
-                facet_panel_output out = {plane, top, bottom, frame, rev, nb, dih, bev, node, pl, np};
+                facet_panel_output out = test_panel_output(nv, nf, nc);
                 const double thick[] = {1e-9, 0.05, 1e3};
                 for (int k = 0; k < 3; ++k)
                     for (int edge = 0; edge < 2; ++edge) {
@@ -440,10 +427,7 @@ static void test_panels_extremes(void)
                         facet_error e;
                         facet_status s = facet_panels(&t.mesh, &o, &out, &r, &e);
                         if (s >= 0) {
-                            CHECK(all_finite(plane, 4 * nf) && all_finite(top, 3 * nc) &&
-                                  all_finite(bottom, 3 * nc) && all_finite(frame, 12 * nf) &&
-                                  all_finite(dih, nc) && all_finite(bev, nc) &&
-                                  all_finite(node, nv) && all_finite(pl, nf));
+                            CHECK(test_panel_output_finite(&out, nv, nf, nc));
                             CHECK(isfinite(r.max_node_deviation) && isfinite(r.max_planarity));
                             ++n_solves;
                         } else {
@@ -456,8 +440,7 @@ static void test_panels_extremes(void)
                                         e.message, scale, offset, o.thickness);
                         }
                     }
-                free(plane), free(top), free(bottom), free(frame), free(dih), free(bev);
-                free(node), free(pl), free(rev), free(nb), free(np);
+                test_panel_output_free(&out);
                 test_mesh_free(&t);
             }
 }
