@@ -20,6 +20,22 @@ class SourceError(ValueError):
     """An object that Facet cannot read a polygon mesh from."""
 
 
+def has_surface(obj):
+    """True if ``obj`` is a FreeCAD Mesh or a shape with faces, not a Facet polygon mesh:
+    a surface to sample or to convert (mesh_from_object's other two cases)."""
+    from facetwb.objects.polymesh import is_polymesh
+
+    if is_polymesh(obj):
+        return False
+    if obj.isDerivedFrom("Mesh::Feature"):
+        return True
+    shape = getattr(obj, "Shape", None)
+    try:
+        return shape is not None and not shape.isNull() and bool(shape.Faces)
+    except Exception:  # noqa: BLE001 - a broken shape is just not a surface
+        return False
+
+
 def mesh_from_object(obj, tessellation_tolerance=0.0):
     """A ``facet.PolyMesh`` read from ``obj`` (see the module docstring)."""
     from facetwb.objects.polymesh import get_mesh, is_polymesh

@@ -11,9 +11,9 @@ from facetwb.translation import QT_TRANSLATE_NOOP
 
 
 def _sources():
-    from facetwb.objects.surfacemesh import can_panelize
+    from facetwb.conversion import has_surface
 
-    return selected(can_panelize)
+    return selected(has_surface)
 
 
 class CommandSurfaceMesh:

@@ -9,19 +9,6 @@ from facetwb.translation import QT_TRANSLATE_NOOP
 from facetwb.commands.macro import object_expression, run_as_macro
 
 
-def _convertible(obj):
-    from facetwb.objects.polymesh import is_polymesh
-
-    if is_polymesh(obj):
-        return False
-    if obj.isDerivedFrom("Mesh::Feature"):
-        return True
-    shape = getattr(obj, "Shape", None)
-    try:
-        return shape is not None and not shape.isNull() and bool(shape.Faces)
-    except Exception:  # noqa: BLE001 - a broken shape is just not convertible
-        return False
-
 
 class CommandToPolyMesh:
     """Add a PolyMesh linked to each selected Mesh or Part object."""
@@ -38,11 +25,15 @@ class CommandToPolyMesh:
         }
 
     def IsActive(self):
+        from facetwb.conversion import has_surface
+
         return App.ActiveDocument is not None and any(
-            _convertible(obj) for obj in Gui.Selection.getSelection())
+            has_surface(obj) for obj in Gui.Selection.getSelection())
 
     def Activated(self):
-        sources = [obj for obj in Gui.Selection.getSelection() if _convertible(obj)]
+        from facetwb.conversion import has_surface
+
+        sources = [obj for obj in Gui.Selection.getSelection() if has_surface(obj)]
         if not sources:
             return
         doc = sources[0].Document

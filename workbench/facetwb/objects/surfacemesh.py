@@ -168,21 +168,6 @@ def is_surface_mesh(obj):
     return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE_SURFACEMESH
 
 
-def can_panelize(obj):
-    """True if ``obj`` can be the Source of a SurfaceMesh (faces or a Mesh)."""
-    from facetwb.objects.polymesh import is_polymesh
-
-    if is_polymesh(obj):
-        return False
-    if obj.isDerivedFrom("Mesh::Feature"):
-        return True
-    shape = getattr(obj, "Shape", None)
-    try:
-        return shape is not None and not shape.isNull() and bool(shape.Faces)
-    except Exception:  # noqa: BLE001 - a broken shape is just not a surface
-        return False
-
-
 def make_surface_mesh(source, pattern="quad", count_u=10, count_v=10, panel_size=0.0,
                       name="SurfaceMesh"):
     """Add a SurfaceMesh sampling ``source`` (scripting API, runs headless); recompute to

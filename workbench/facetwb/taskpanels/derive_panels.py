@@ -321,13 +321,13 @@ class LiftPanel(DerivePanel):
     FIELDS = (("Snap", None, None, 0.0),)
 
     def setup(self):
-        from facetwb.objects.surfacemesh import can_panelize
+        from facetwb.conversion import has_surface
         from facetwb.objects.polymesh import is_polymesh
 
         self.plan = self.sources[0]
         wanted = self.sources[1] if len(self.sources) > 1 else None
         self.targets = [o for o in self.doc.Objects
-                        if o is not self.plan and (can_panelize(o) or (
+                        if o is not self.plan and (has_surface(o) or (
                             is_polymesh(o) and o is not self.plan))]
         combo = forms.widget(self.form, "Target")
         for obj in self.targets:
