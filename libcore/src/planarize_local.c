@@ -495,14 +495,9 @@ static int fit_face_general(facet_planarizer *s, int32_t f, int floor_on)
                  &s->face_sq[f_], &s->face_edge[f_], floor_on ? s->corner_floor + start[f_] : NULL, \
                  floor_on ? s->corner_cos + start[f_] : NULL)
 
-/* The planes: best fit (the planarity measurement), then the regularised
- * normals when the face-normal Laplacian is on. With the angle floor on, the
- * same pass tests the corners against it (face_guard, corner_cos); returns
- * whether some corner is below its floor. Faces go in pairs, so that their
- * eigenvectors' Newton steps overlap (facet_sym3_smallest_eigenvector2);
- * quads have their loops unrolled. Every face gets the same bits as alone. */
 /* Faces f and g = f + 1 (g may be past the last face): in a pair through the
- * eigenvector solver when both have at most FIT_MAX_CORNERS corners. */
+ * eigenvector solver (facet_sym3_smallest_eigenvector2) when both have at
+ * most FIT_MAX_CORNERS corners, quads with their loops unrolled. */
 static inline __attribute__((always_inline)) int fit_pair(facet_planarizer *s, int32_t f, int floor_on)
 {
     const int32_t nf = s->nf, g = f + 1;
@@ -539,14 +534,6 @@ static inline __attribute__((always_inline)) int fit_pair(facet_planarizer *s, i
     return below_f || below_g;
 }
 
-/* The planes: best fit (the planarity measurement), then the regularised
- * normals when the face-normal Laplacian is on. With the angle floor on, the
- * same pass tests the corners against it (face_guard, corner_cos); returns
- * whether some corner is below its floor. Faces go in eights: four faces
- * of one size in SIMD lanes, two such fours side
- * by side (facet_face_measure8, facet_face_measure4), others in pairs, so that their eigenvectors' Newton steps overlap
- * (facet_sym3_smallest_eigenvector2). Every face gets the same bits as
- * alone, whatever its group. */
 /* The corner count of faces f..f+3 when they exist, have one size that the
  * SIMD lanes take, and sit one after another in face_vertices; else 0. */
 static inline int32_t same_size4(const int32_t *start, int32_t nf, int32_t f)
@@ -560,6 +547,14 @@ static inline int32_t same_size4(const int32_t *start, int32_t nf, int32_t f)
                : 0;
 }
 
+/* The planes: best fit (the planarity measurement), then the regularised
+ * normals when the face-normal Laplacian is on. With the angle floor on, the
+ * same pass tests the corners against it (face_guard, corner_cos); returns
+ * whether some corner is below its floor. Faces go in eights: four faces of
+ * one size in SIMD lanes, two such fours side by side (facet_face_measure8,
+ * facet_face_measure4); others in pairs (fit_pair), so that their
+ * eigenvectors' Newton steps overlap. Every face gets the same bits as
+ * alone, whatever its group. */
 static int fit_planes(facet_planarizer *s, double mu, int nthreads)
 {
     const int32_t nf = s->nf;
@@ -894,14 +889,12 @@ static void add_matvec(double b[3], const double a[6], const double x[3])
         (x0) = (b)[0] * i0_ - l10_ * (x1) - l20_ * (x2);                                           \
     } while (0)
 
-/* The vertex step of eight vertices v0..v0+7 (those < nv) in SIMD lanes, when
- * the only terms are the data term and the faces' planes (vertex_step_plain
- * says when): the scalar loop's arithmetic in its order, every lane adding
- * its own faces' terms (pw n n^T, pw d n, formed from the face's plane as
- * the scalar loop's per-face pass forms them) in its own order; a lane with
- * fewer faces than another keeps its sums (a select, not an addition). A
- * fixed vertex keeps its control position. Returns 0 if some result was not
- * finite (that vertex keeps its previous position). */
+/* The 3x3 systems of vertices v0..v0+3 in SIMD lanes (lanes past the last
+ * vertex repeat v0), when the only terms are the data term and the faces'
+ * planes: the scalar loop's arithmetic in its order, every lane adding its
+ * own faces' terms (pw n n^T, pw d n, formed from the face's plane as the
+ * scalar loop's per-face pass forms them) in its own order; a lane with
+ * fewer faces than another keeps its sums (a select, not an addition). */
 static inline __attribute__((always_inline)) void plain4_system(const facet_planarizer *s, int32_t v0,
                                                                  double mu, v4d a[6], v4d b[3])
 {
@@ -910,8 +903,8 @@ static inline __attribute__((always_inline)) void plain4_system(const facet_plan
     const double data_nt = mu * (o->data_normal - o->data_tangent);
     const int32_t *vs = s->vertex_start, *vf = s->vertex_faces;
     const double *normal = s->normal, *offset = s->offset, *fw = s->face_weight;
-    /* lanes past the last vertex repeat v0; vectors are built from scalars
-     * in registers (lane stores then a vector load would stall) */
+    /* vectors built from scalars in registers (lane stores then a vector
+     * load would stall) */
     const int32_t nv = s->nv;
     const int32_t u1 = v0 + 1 < nv ? v0 + 1 : v0, u2 = v0 + 2 < nv ? v0 + 2 : v0;
     const int32_t u3 = v0 + 3 < nv ? v0 + 3 : v0;
@@ -984,6 +977,10 @@ static inline __attribute__((always_inline)) int plain4_solve(const facet_planar
     return finite;
 }
 
+/* The vertex step of vertices v0..v0+7 (those < nv), when vertex_step_plain
+ * says it may take the lanes. A fixed vertex keeps its control position.
+ * Returns 0 if some result was not finite (that vertex keeps its previous
+ * position). */
 static inline __attribute__((always_inline)) int vertex_step_plain4_lanes(const facet_planarizer *s,
                                                                           int32_t v0, double mu,
                                                                           double *q_new)
