@@ -533,6 +533,14 @@ typedef struct {
     double *partial;          /* per block: 2 m dot-product parts and the largest |f| */
 } anderson_state;
 
+/* Forgets the history: the map changed (a new mu, the floor let go, the
+ * finish) or an accelerated step was refused. */
+static void anderson_restart(anderson_state *a)
+{
+    a->count = a->head = 0;
+    a->have_previous = 0;
+}
+
 /* Dot products are summed in blocks of ANDERSON_BLOCK entries, each block in
  * index order, then the blocks' sums in block order: the bits do not depend
  * on the thread count, and a mesh of up to ANDERSON_BLOCK / 3 vertices (one
@@ -825,8 +833,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                     ++rejected;
                     /* the plain step's iterate, kept in aa_g (anderson_step) */
                     memcpy(s->q, s->aa_g, sizeof(double) * 3 * (size_t)nv);
-                    aa.count = aa.head = 0;
-                    aa.have_previous = 0;
+                    anderson_restart(&aa);
                     status = facet_pl_local_step(s, mu, nthreads, error);
                     if (status < 0)
                         break;
@@ -894,8 +901,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                  * so the floor lets go and the solve goes on. */
                 s->o.angle_floor = 0.0;
                 memset(s->guard_count, 0, sizeof(double) * (size_t)nv);
-                aa.count = aa.head = 0;
-                aa.have_previous = 0;
+                anderson_restart(&aa);
                 since = it;
                 /* and the penalty path resumes from 1e-6 (L/L's floor;
                  * of 1e-2, 1e-4 and 1e-6 the quickest to the tolerance) */
@@ -905,8 +911,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                 /* stalled at the floor before the level settled (hypar.obj:
                  * 2.7e-6 for 36 steps): the finish, not a stop */
                 finish = 1;
-                aa.count = aa.head = 0;
-                aa.have_previous = 0;
+                anderson_restart(&aa);
                 since = it;
                 level_steps = 0;
             } else {
@@ -985,8 +990,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             const int start_finish = can_finish && !finish && above &&
                                      mu <= options->mu_min * (1.0 + 1e-9);
             if (staircase && (next != mu || start_finish)) { /* a new fixed-point map: restart the history */
-                aa.count = aa.head = 0;
-                aa.have_previous = 0;
+                anderson_restart(&aa);
             }
             if (start_finish) {
                 finish = 1;
