@@ -18,12 +18,18 @@ def face_sizes(obj):
 
 
 class TestSurfaceMesh(DocumentTestCase):
-    def test_cylinder_quad_grid_closed_and_outward(self):
+    def cylinder_face(self, name, wanted):
+        """A Part::Feature holding the first face that ``wanted`` accepts of a cylinder of
+        radius 2000 and height 3000 on the z axis."""
         cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
         cyl.Radius, cyl.Height = 2000, 3000
         self.doc.recompute()
-        side = self.doc.addObject("Part::Feature", "Side")
-        side.Shape = cyl.Shape.Faces[0]
+        face = self.doc.addObject("Part::Feature", name)
+        face.Shape = [f for f in cyl.Shape.Faces if wanted(f)][0]
+        return face
+
+    def test_cylinder_quad_grid_closed_and_outward(self):
+        side = self.cylinder_face("Side", lambda f: f.Surface.__class__.__name__ == "Cylinder")
         shape_before = side.Shape.exportBrepToString()
         obj = facetwb.make_surface_mesh(side, "quad", 12, 4)
         self.doc.recompute()
@@ -37,11 +43,7 @@ class TestSurfaceMesh(DocumentTestCase):
         self.assertEqual(side.Shape.exportBrepToString(), shape_before)
 
     def test_hex_grid_closes_around_a_cylinder(self):
-        cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
-        cyl.Radius, cyl.Height = 2000, 3000
-        self.doc.recompute()
-        side = self.doc.addObject("Part::Feature", "Side")
-        side.Shape = cyl.Shape.Faces[0]
+        side = self.cylinder_face("Side", lambda f: f.Surface.__class__.__name__ == "Cylinder")
         obj = facetwb.make_surface_mesh(side, "hex", 12, 5)
         self.doc.recompute()
         self.assertTrue(obj.isValid(), obj.getStatusString())
@@ -56,11 +58,7 @@ class TestSurfaceMesh(DocumentTestCase):
         self.assertTrue(all(outward_faces(obj, np.array([0.0, 0.0, 1500.0]))))
 
     def test_trimmed_face_keeps_cells_inside(self):
-        cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
-        cyl.Radius, cyl.Height = 2000, 3000
-        self.doc.recompute()
-        disc = self.doc.addObject("Part::Feature", "Disc")
-        disc.Shape = [f for f in cyl.Shape.Faces if f.Surface.__class__.__name__ == "Plane"][0]
+        disc = self.cylinder_face("Disc", lambda f: f.Surface.__class__.__name__ == "Plane")
         obj = facetwb.make_surface_mesh(disc, "quad", 8, 8)
         self.doc.recompute()
         self.assertTrue(obj.isValid(), obj.getStatusString())
