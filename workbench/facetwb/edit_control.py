@@ -638,7 +638,9 @@ class EditSession:
             error = None
         if error is not None:
             App.Console.PrintError(f"Facet: edit of {self.planarized.Label}: {error}\n")
-        elif result is not None and not self.closed:
+        elif result is not None and not (self.closed or self.closing):
+            # a closing session draws nothing more and tells its panel nothing: Done
+            # writes the control mesh, and the panel's widgets may be deleted already
             self.show_result(result)
         if self.closed or self.closing:
             self.pending = False
