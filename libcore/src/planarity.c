@@ -221,7 +221,7 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
  * the scalar solver. Newton runs until every lane has stopped; a stopped lane
  * keeps its value. */
 #if FACET_HAVE_AVX2_CLONE
-int facet_simd_baseline_only = 0;
+int facet_simd_max_level = 2;
 #endif
 
 typedef struct {
@@ -439,6 +439,11 @@ FACET_TARGET_AVX2 static int face_measure4_avx2(int n, FACE_MEASURE4_ARGS)
 {
     return n == 4 ? FACE_MEASURE4_CALL(4) : FACE_MEASURE4_CALL(n);
 }
+
+FACET_TARGET_AVX512 static int face_measure4_avx512(int n, FACE_MEASURE4_ARGS)
+{
+    return n == 4 ? FACE_MEASURE4_CALL(4) : FACE_MEASURE4_CALL(n);
+}
 #endif
 
 static int face_measure4_base(int n, FACE_MEASURE4_ARGS)
@@ -449,7 +454,11 @@ static int face_measure4_base(int n, FACE_MEASURE4_ARGS)
 int facet_face_measure4(int32_t n, FACE_MEASURE4_ARGS)
 {
 #if FACET_HAVE_AVX2_CLONE
-    if (facet_cpu_has_avx2())
+    const int level = facet_simd_level();
+    if (level == 2)
+        return face_measure4_avx512((int)n, xyz, idx, normal, offset, max_distance, square_sum, edge_mean,
+                                    floor, corner_cos, guard);
+    if (level == 1)
         return face_measure4_avx2((int)n, xyz, idx, normal, offset, max_distance, square_sum, edge_mean,
                                   floor, corner_cos, guard);
 #endif
@@ -470,6 +479,11 @@ FACET_TARGET_AVX2 static int face_measure8_avx2(int na, int nb, FACE_MEASURE8_AR
 {
     return na == 4 && nb == 4 ? FACE_MEASURE8_CALL(4, 4) : FACE_MEASURE8_CALL(na, nb);
 }
+
+FACET_TARGET_AVX512 static int face_measure8_avx512(int na, int nb, FACE_MEASURE8_ARGS)
+{
+    return na == 4 && nb == 4 ? FACE_MEASURE8_CALL(4, 4) : FACE_MEASURE8_CALL(na, nb);
+}
 #endif
 
 static int face_measure8_base(int na, int nb, FACE_MEASURE8_ARGS)
@@ -480,7 +494,11 @@ static int face_measure8_base(int na, int nb, FACE_MEASURE8_ARGS)
 int facet_face_measure8(int32_t na, int32_t nb, FACE_MEASURE8_ARGS)
 {
 #if FACET_HAVE_AVX2_CLONE
-    if (facet_cpu_has_avx2())
+    const int level = facet_simd_level();
+    if (level == 2)
+        return face_measure8_avx512((int)na, (int)nb, xyz, idx_a, idx_b, normal, offset, max_distance,
+                                    square_sum, edge_mean, floor, corner_cos, guard);
+    if (level == 1)
         return face_measure8_avx2((int)na, (int)nb, xyz, idx_a, idx_b, normal, offset, max_distance,
                                   square_sum, edge_mean, floor, corner_cos, guard);
 #endif

@@ -1007,6 +1007,12 @@ FACET_TARGET_AVX2 static int vertex_step_plain4_avx2(const facet_planarizer *s, 
 {
     return vertex_step_plain4_lanes(s, v0, mu, q_new);
 }
+
+FACET_TARGET_AVX512 static int vertex_step_plain4_avx512(const facet_planarizer *s, int32_t v0, double mu,
+                                                         double *q_new)
+{
+    return vertex_step_plain4_lanes(s, v0, mu, q_new);
+}
 #endif
 
 /* Whether the vertex step has only the data term (no surface) and the
@@ -1037,8 +1043,9 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
     if (!s->scalar_kernels && vertex_step_plain(s)) {
         int (*step4)(const facet_planarizer *, int32_t, double, double *) = vertex_step_plain4_base;
 #if FACET_HAVE_AVX2_CLONE
-        if (facet_cpu_has_avx2())
-            step4 = vertex_step_plain4_avx2;
+        const int level = facet_simd_level();
+        if (level > 0)
+            step4 = level == 2 ? vertex_step_plain4_avx512 : vertex_step_plain4_avx2;
 #endif
         const int32_t groups = nv / 8 + (nv % 8 != 0);
         int finite = 1;

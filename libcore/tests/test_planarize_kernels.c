@@ -311,14 +311,14 @@ static void test_lanes_against_scalar(int threads)
 int main(void)
 {
     test_eigenvector_pairs();
-    /* the AVX2 copies of the lanes (where the processor has AVX2), then the
-     * baseline ones */
-    for (int baseline = 0; baseline < 2; ++baseline) {
+    /* the AVX-512 and AVX2 copies of the lanes (where the processor has
+     * them), then the baseline ones */
+    for (int level = 2; level >= 0; --level) {
 #if FACET_HAVE_AVX2_CLONE
-        facet_simd_baseline_only = baseline;
+        facet_simd_max_level = level;
 #else
-        if (baseline)
-            break;
+        if (level > 0)
+            continue;
 #endif
         test_face_measure4();
         test_one_pass_fit(1, 50.0);
