@@ -49,7 +49,9 @@ static inline int sym3_prepare(const double a[6], sym3_problem *p)
 }
 
 /* One Newton step on f(x) = x^3 - c2 x^2 + c1 x - c0 from *x (updated);
- * returns 0 when Newton is done. */
+ * returns 0 when Newton is done: after a step below 1e-9 (of the scaled
+ * matrix's largest entry), since Newton converges quadratically, the error
+ * left is of the order of that step's square, below the rounding. */
 static inline int sym3_newton_step(const sym3_problem *p, double *x_io)
 {
     const double x = *x_io, c0 = p->c0, c1 = p->c1, c2 = p->c2;
@@ -62,7 +64,7 @@ static inline int sym3_newton_step(const sym3_problem *p, double *x_io)
     if (!(next > x))
         return 0;
     *x_io = next;
-    return !(step > -1e-17 * (1.0 + next));
+    return !(step > -1e-9 * (1.0 + next));
 }
 
 /* The eigenvector for the eigenvalue x (scaled); returns the eigenvalue. */
@@ -287,7 +289,7 @@ static inline __attribute__((always_inline)) void lanes_newton_step(lanes4 *L)
     const v4d next = x - step;
     const v4i moved = L->run & (f < 0.0) & (df > 0.0) & (next > x);
     L->lambda = v4_select(moved, next, x);
-    L->run = moved & ~(step > -1e-17 * (1.0 + next));
+    L->run = moved & ~(step > -1e-9 * (1.0 + next));
 }
 
 /* sym3_finish, then facet_face_measure's distances and edges */
