@@ -213,196 +213,62 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
     return esum / (double)n;
 }
 
-/* ---- four faces in SIMD lanes ------------------------------------------------
- * The arithmetic of fit_plane_indexed, the eigenvector solver (prepare,
- * Newton, finish) and facet_face_measure, written once on vectors of four
- * doubles (GCC/Clang vector extensions: every lane does the scalar code's
- * operations in the scalar code's order, so the bits are the same; no fused
- * multiply-adds, -ffp-contract=off). A lane whose matrix is zero or whose
- * eigenvector falls to the scalar solver's degenerate branch is redone by
- * the scalar solver. Newton runs until every lane has stopped; a stopped lane
- * keeps its value. */
+/* ---- faces in SIMD lanes ---------------------------------------------------
+ * fit_lanes.inc, once on vectors of four doubles (every copy: baseline,
+ * AVX2, AVX-512) and once on vectors of eight (the AVX-512 copy). */
 #if FACET_HAVE_AVX2_CLONE
 int facet_simd_max_level = 2;
 #endif
 
-typedef struct {
-    v4d x[FACET_LANE_CORNERS_MAX][3]; /* corner k, coordinate j, face in the lane */
-    v4d c0, c1, c2;                   /* centroids */
-    v4d a[6];                         /* scatter matrices */
-    v4d b00, b01, b02, b11, b12, b22; /* scaled */
-    v4d q0, q1, q2;                   /* characteristic polynomial */
-    v4d lambda;                       /* smallest root (Newton) */
-    v4i ok, run;
-} lanes4;
+#define VD v4d
+#define VI v4i
+#define VW 4
+#define VLANES(e) {e(0), e(1), e(2), e(3)}
+#define VSEL v4_select
+#define VABS v4_abs
+#define VANY v4_any
+#define VSQRT v4_sqrt
+#define F(name) name##_w4
+#define LANES_T lanes_w4
+#define LANES_TARGET
+#include "fit_lanes.inc"
+#undef VD
+#undef VI
+#undef VW
+#undef VLANES
+#undef VSEL
+#undef VABS
+#undef VANY
+#undef VSQRT
+#undef F
+#undef LANES_T
+#undef LANES_TARGET
 
-/* fit_plane_indexed's centroid and scatter, sym3_prepare */
-static inline __attribute__((always_inline)) void lanes_begin(const int n, const double *xyz,
-                                                              const int32_t *idx, lanes4 *L)
-{
-    /* built from scalars in registers (lane stores then a vector load would
-     * stall) */
-    for (int k = 0; k < n; ++k) {
-        const double *p0 = xyz + 3 * (size_t)idx[k], *p1 = xyz + 3 * (size_t)idx[n + k];
-        const double *p2 = xyz + 3 * (size_t)idx[2 * n + k], *p3 = xyz + 3 * (size_t)idx[3 * n + k];
-        for (int j = 0; j < 3; ++j)
-            L->x[k][j] = (v4d){p0[j], p1[j], p2[j], p3[j]};
-    }
-    const v4d zero = {0.0, 0.0, 0.0, 0.0};
-    v4d c0 = zero, c1 = zero, c2 = zero;
-    for (int k = 0; k < n; ++k)
-        c0 += L->x[k][0], c1 += L->x[k][1], c2 += L->x[k][2];
-    const double inv = 1.0 / (double)n;
-    c0 *= inv, c1 *= inv, c2 *= inv;
-    v4d a[6] = {zero, zero, zero, zero, zero, zero};
-    for (int k = 0; k < n; ++k) {
-        const v4d dx = L->x[k][0] - c0, dy = L->x[k][1] - c1, dz = L->x[k][2] - c2;
-        a[0] += dx * dx, a[1] += dx * dy, a[2] += dx * dz;
-        a[3] += dy * dy, a[4] += dy * dz, a[5] += dz * dz;
-    }
-    L->c0 = c0, L->c1 = c1, L->c2 = c2;
-    v4d scale = zero;
-    for (int k = 0; k < 6; ++k) {
-        L->a[k] = a[k];
-        const v4d m = v4_abs(a[k]);
-        scale = v4_select(m > scale, m, scale);
-    }
-    L->ok = scale > 0.0;
-    const v4d sinv = 1.0 / scale;
-    const v4d b00 = a[0] * sinv, b01 = a[1] * sinv, b02 = a[2] * sinv;
-    const v4d b11 = a[3] * sinv, b12 = a[4] * sinv, b22 = a[5] * sinv;
-    L->b00 = b00, L->b01 = b01, L->b02 = b02, L->b11 = b11, L->b12 = b12, L->b22 = b22;
-    L->q2 = b00 + b11 + b22;
-    L->q1 = b00 * b11 - b01 * b01 + b00 * b22 - b02 * b02 + b11 * b22 - b12 * b12;
-    L->q0 = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02);
-    L->lambda = zero;
-    L->run = L->ok;
-}
-
-/* sym3_newton_step on every running lane */
-static inline __attribute__((always_inline)) void lanes_newton_step(lanes4 *L)
-{
-    const v4d x = L->lambda;
-    const v4d f = ((x - L->q2) * x + L->q1) * x - L->q0;
-    const v4d df = (3.0 * x - 2.0 * L->q2) * x + L->q1;
-    const v4d step = f / df;
-    const v4d next = x - step;
-    const v4i moved = L->run & (f < 0.0) & (df > 0.0) & (next > x);
-    L->lambda = v4_select(moved, next, x);
-    L->run = moved & ~(step > -1e-9 * (1.0 + next));
-}
-
-/* sym3_finish, then facet_face_measure's distances and edges */
-static inline __attribute__((always_inline)) int lanes_end(const int n, const lanes4 *L, double normal[12],
-                                                           double offset[4], double max_distance[4],
-                                                           double square_sum[4], double edge_mean[4],
-                                                           const double *floor, double *corner_cos,
-                                                           uint8_t *guard)
-{
-    const v4d lambda = L->lambda, zero = {0.0, 0.0, 0.0, 0.0};
-    const v4d b00 = L->b00, b01 = L->b01, b02 = L->b02, b11 = L->b11, b12 = L->b12, b22 = L->b22;
-    /* the largest cross product of two rows of B - lambda I */
-    const v4d r0[3] = {b00 - lambda, b01, b02}, r1[3] = {b01, b11 - lambda, b12};
-    const v4d r2[3] = {b02, b12, b22 - lambda};
-    v4d best[3], nbest;
-    {
-        const v4d c01[3] = {r0[1] * r1[2] - r0[2] * r1[1], r0[2] * r1[0] - r0[0] * r1[2],
-                            r0[0] * r1[1] - r0[1] * r1[0]};
-        const v4d c02[3] = {r0[1] * r2[2] - r0[2] * r2[1], r0[2] * r2[0] - r0[0] * r2[2],
-                            r0[0] * r2[1] - r0[1] * r2[0]};
-        const v4d c12[3] = {r1[1] * r2[2] - r1[2] * r2[1], r1[2] * r2[0] - r1[0] * r2[2],
-                            r1[0] * r2[1] - r1[1] * r2[0]};
-        const v4d n01 = c01[0] * c01[0] + c01[1] * c01[1] + c01[2] * c01[2];
-        const v4d n02 = c02[0] * c02[0] + c02[1] * c02[1] + c02[2] * c02[2];
-        const v4d n12 = c12[0] * c12[0] + c12[1] * c12[1] + c12[2] * c12[2];
-        nbest = n01;
-        const v4i take02 = n02 > nbest;
-        nbest = v4_select(take02, n02, nbest);
-        const v4i take12 = n12 > nbest;
-        nbest = v4_select(take12, n12, nbest);
-        for (int j = 0; j < 3; ++j)
-            best[j] = v4_select(take12, c12[j], v4_select(take02, c02[j], c01[j]));
-    }
-    const v4i good = L->ok & (nbest > 1e-28);
-    const v4d s = 1.0 / v4_sqrt(nbest);
-    v4d n0 = best[0] * s, n1 = best[1] * s, n2 = best[2] * s;
-    if (!(good[0] && good[1] && good[2] && good[3]))
-        for (int l = 0; l < 4; ++l) {
-            if (good[l])
-                continue;
-            const double m[6] = {L->a[0][l], L->a[1][l], L->a[2][l], L->a[3][l], L->a[4][l], L->a[5][l]};
-            double v[3];
-            facet_sym3_smallest_eigenvector(m, v);
-            n0[l] = v[0], n1[l] = v[1], n2[l] = v[2];
-        }
-    const v4d c0 = L->c0, c1 = L->c1, c2 = L->c2;
-    v4d dmax = zero, dsum = zero, esum = zero;
-    v4d e[FACET_LANE_CORNERS_MAX][3], ee[FACET_LANE_CORNERS_MAX];
-    for (int k = 0; k < n; ++k) {
-        const v4d *p = L->x[k], *q = L->x[k + 1 < n ? k + 1 : 0];
-        const v4d d = v4_abs(n0 * (p[0] - c0) + n1 * (p[1] - c1) + n2 * (p[2] - c2));
-        dmax = v4_select(d > dmax, d, dmax);
-        dsum += d * d;
-        e[k][0] = q[0] - p[0], e[k][1] = q[1] - p[1], e[k][2] = q[2] - p[2];
-        ee[k] = e[k][0] * e[k][0] + e[k][1] * e[k][1] + e[k][2] * e[k][2];
-        esum += v4_sqrt(ee[k]);
-    }
-    /* the angle floor's test of each corner, as the scalar one-pass fit
-     * (planarize_local.c) does it: at corner k, u = -e(k-1) and v = e(k); the
-     * exact cosine where a squared test with a margin says the corner may be
-     * below its floor, -1 where not, 1 where an edge has no length */
-    int any_below = 0;
-    if (floor) {
-        v4i below = {0, 0, 0, 0};
-        const v4d one = {1.0, 1.0, 1.0, 1.0};
-        v4d cosines[FACET_LANE_CORNERS_MAX];
-        for (int k = 0; k < n; ++k) {
-            const int before = k > 0 ? k - 1 : n - 1;
-            const v4d uv = -(e[before][0] * e[k][0] + e[before][1] * e[k][1] + e[before][2] * e[k][2]);
-            const v4d uu = ee[before], vv = ee[k];
-            const v4d fl = {floor[k], floor[n + k], floor[2 * n + k], floor[3 * n + k]};
-            const v4i no_edge = ~((uu > 0.0) & (vv > 0.0));
-            const v4i maybe = (uv > 0.0) & (uv * uv > (1.0 - 1e-9) * (fl * fl) * (uu * vv));
-            v4d cosine = v4_select(no_edge, one, -one);
-            if (v4_any(maybe)) /* rare: the exact cosine only then */
-                cosine = v4_select(no_edge, one, v4_select(maybe, uv / v4_sqrt(uu * vv), -one));
-            cosines[k] = cosine;
-            below |= cosine > fl;
-        }
-        for (int l = 0; l < 4; ++l) {
-            guard[l] = below[l] != 0;
-            any_below |= below[l] != 0;
-        }
-        if (any_below) /* read only for faces with a corner below its floor */
-            for (int k = 0; k < n; ++k)
-                for (int l = 0; l < 4; ++l)
-                    corner_cos[n * l + k] = cosines[k][l];
-    }
-    const v4d off = -(n0 * c0 + n1 * c1 + n2 * c2);
-    const v4d rms = v4_sqrt(dsum / (double)n);
-    const v4d sq = rms * rms * (double)n;
-    const v4d edge = esum / (double)n;
-    for (int l = 0; l < 4; ++l) {
-        normal[3 * l] = n0[l], normal[3 * l + 1] = n1[l], normal[3 * l + 2] = n2[l];
-        offset[l] = off[l];
-        max_distance[l] = dmax[l];
-        square_sum[l] = sq[l];
-        edge_mean[l] = edge[l];
-    }
-    return any_below;
-}
-
-static inline __attribute__((always_inline)) int face_measure4_lanes(
-    const int n, const double *xyz, const int32_t *idx, double normal[12], double offset[4],
-    double max_distance[4], double square_sum[4], double edge_mean[4], const double *floor,
-    double *corner_cos, uint8_t *guard)
-{
-    lanes4 L;
-    lanes_begin(n, xyz, idx, &L);
-    for (int it = 0; it < 64 && v4_any(L.run); ++it)
-        lanes_newton_step(&L);
-    return lanes_end(n, &L, normal, offset, max_distance, square_sum, edge_mean, floor, corner_cos, guard);
-}
+#if FACET_HAVE_AVX2_CLONE
+#define VD v8d
+#define VI v8i
+#define VW 8
+#define VLANES(e) {e(0), e(1), e(2), e(3), e(4), e(5), e(6), e(7)}
+#define VSEL v8_select
+#define VABS v8_abs
+#define VANY v8_any
+#define VSQRT v8_sqrt
+#define F(name) name##_w8
+#define LANES_T lanes_w8
+#define LANES_TARGET FACET_TARGET_AVX512 /* lowered for the target before they are inlined */
+#include "fit_lanes.inc"
+#undef VD
+#undef VI
+#undef VW
+#undef VLANES
+#undef VSEL
+#undef VABS
+#undef VANY
+#undef VSQRT
+#undef F
+#undef LANES_T
+#undef LANES_TARGET
+#endif
 
 /* Two sets of four: their Newton steps (chains of dependent divisions)
  * side by side, so that the processor overlaps them; each lane takes exactly
@@ -412,16 +278,16 @@ static inline __attribute__((always_inline)) int face_measure8_lanes(
     double normal[24], double offset[8], double max_distance[8], double square_sum[8],
     double edge_mean[8], const double *floor, double *corner_cos, uint8_t *guard)
 {
-    lanes4 A, B;
-    lanes_begin(na, xyz, idx_a, &A);
-    lanes_begin(nb, xyz, idx_b, &B);
+    lanes_w4 A, B;
+    lanes_begin_w4(na, xyz, idx_a, &A);
+    lanes_begin_w4(nb, xyz, idx_b, &B);
     for (int it = 0; it < 64 && (v4_any(A.run) || v4_any(B.run)); ++it) {
-        lanes_newton_step(&A);
-        lanes_newton_step(&B);
+        lanes_newton_step_w4(&A);
+        lanes_newton_step_w4(&B);
     }
-    const int below = lanes_end(na, &A, normal, offset, max_distance, square_sum, edge_mean, floor,
+    const int below = lanes_end_w4(na, &A, normal, offset, max_distance, square_sum, edge_mean, floor,
                                 corner_cos, guard);
-    return lanes_end(nb, &B, normal + 12, offset + 4, max_distance + 4, square_sum + 4, edge_mean + 4,
+    return lanes_end_w4(nb, &B, normal + 12, offset + 4, max_distance + 4, square_sum + 4, edge_mean + 4,
                      floor ? floor + 4 * na : NULL, floor ? corner_cos + 4 * na : NULL,
                      floor ? guard + 4 : NULL) ||
            below;
@@ -433,7 +299,7 @@ static inline __attribute__((always_inline)) int face_measure8_lanes(
         double max_distance[4], double square_sum[4], double edge_mean[4], const double *floor,    \
         double *corner_cos, uint8_t *guard
 #define FACE_MEASURE4_CALL(n_)                                                                     \
-    face_measure4_lanes((n_), xyz, idx, normal, offset, max_distance, square_sum, edge_mean, floor, \
+    face_measure_lanes_w4((n_), xyz, idx, normal, offset, max_distance, square_sum, edge_mean, floor, \
                         corner_cos, guard)
 
 #if FACET_HAVE_AVX2_CLONE
@@ -482,8 +348,16 @@ FACET_TARGET_AVX2 static int face_measure8_avx2(int na, int nb, FACE_MEASURE8_AR
     return na == 4 && nb == 4 ? FACE_MEASURE8_CALL(4, 4) : FACE_MEASURE8_CALL(na, nb);
 }
 
+/* Eight faces of one size, one after another in idx: in one vector of
+ * eight lanes (half the instructions of two fours, and no spills). */
+#define FACE_MEASURE_W8_CALL(n_)                                                                   \
+    face_measure_lanes_w8((n_), xyz, idx_a, normal, offset, max_distance, square_sum, edge_mean,    \
+                          floor, corner_cos, guard)
+
 FACET_TARGET_AVX512 static int face_measure8_avx512(int na, int nb, FACE_MEASURE8_ARGS)
 {
+    if (na == nb && idx_b == idx_a + 4 * na)
+        return na == 4 ? FACE_MEASURE_W8_CALL(4) : FACE_MEASURE_W8_CALL(na);
     return na == 4 && nb == 4 ? FACE_MEASURE8_CALL(4, 4) : FACE_MEASURE8_CALL(na, nb);
 }
 #endif

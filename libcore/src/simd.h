@@ -72,4 +72,33 @@ static inline __attribute__((always_inline)) v4d v4_sqrt(v4d x)
     return r;
 }
 
+/* Vectors of eight doubles, for the AVX-512 copy only. */
+typedef double v8d __attribute__((vector_size(64)));
+typedef int64_t v8i __attribute__((vector_size(64)));
+
+static inline __attribute__((always_inline)) v8d v8_select(v8i mask, v8d yes, v8d no)
+{
+    return (v8d)((mask & (v8i)yes) | (~mask & (v8i)no));
+}
+
+static inline __attribute__((always_inline)) v8d v8_abs(v8d x)
+{
+    const v8i magnitude = {INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX,
+                           INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX};
+    return (v8d)((v8i)x & magnitude);
+}
+
+static inline __attribute__((always_inline)) int v8_any(v8i mask)
+{
+    return ((mask[0] | mask[1]) | (mask[2] | mask[3]) | (mask[4] | mask[5]) | (mask[6] | mask[7])) != 0;
+}
+
+static inline __attribute__((always_inline)) v8d v8_sqrt(v8d x)
+{
+    v8d r;
+    for (int l = 0; l < 8; ++l)
+        r[l] = sqrt(x[l]);
+    return r;
+}
+
 #endif

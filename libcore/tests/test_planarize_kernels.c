@@ -228,15 +228,24 @@ static void test_face_measure4(void)
         int32_t idx_b[4 * MAX];
         for (int k = 0; k < 4 * nb; ++k)
             idx_b[k] = (int32_t)((k * 5 + trial / 2) % (4 * n));
+        /* and eight of one size one after another (one vector of eight
+         * lanes in the AVX-512 copy) */
+        int32_t idx8[8 * MAX];
+        memcpy(idx8, idx, sizeof(int32_t) * 4 * (size_t)n);
+        for (int k = 0; k < 4 * n; ++k)
+            idx8[4 * n + k] = (int32_t)((k * 5 + trial / 2) % (4 * n));
         double normal[24], offset[8], dev[8], sq[8], edge[8];
-        for (int eight = 0; eight < 2; ++eight) {
-            if (eight)
-                facet_face_measure8(n, nb, xyz, idx, idx_b, normal, offset, dev, sq, edge, NULL, NULL, NULL);
+        for (int mode = 0; mode < 3; ++mode) {
+            const int32_t *first = mode == 2 ? idx8 : idx, *second = mode == 2 ? idx8 + 4 * n : idx_b;
+            const int size_b = mode == 2 ? n : nb;
+            if (mode)
+                facet_face_measure8(n, size_b, xyz, first, second, normal, offset, dev, sq, edge, NULL, NULL,
+                                    NULL);
             else
                 facet_face_measure4(n, xyz, idx, normal, offset, dev, sq, edge, NULL, NULL, NULL);
-            for (int l = 0; l < (eight ? 8 : 4); ++l) {
-                const int size = l < 4 ? n : nb;
-                const int32_t *corners = l < 4 ? idx + n * l : idx_b + nb * (l - 4);
+            for (int l = 0; l < (mode ? 8 : 4); ++l) {
+                const int size = l < 4 ? n : size_b;
+                const int32_t *corners = l < 4 ? first + n * l : second + size_b * (l - 4);
                 double n1[3], o1, d1, rms;
                 const double e1 = facet_face_measure(size, xyz, corners, n1, &o1, &d1, &rms);
                 const double sq1 = rms * rms * (double)size;
@@ -249,7 +258,7 @@ static void test_face_measure4(void)
             }
         }
     }
-    CHECK(compared == 36000);
+    CHECK(compared == 60000);
 }
 
 /* Whole solves with the SIMD lanes (four faces of one size, four vertices
