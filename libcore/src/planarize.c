@@ -264,20 +264,16 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     s->vertex_normal = malloc(v3);
     s->slide_target = calloc(3 * (size_t)nv, sizeof(double));
     s->slide_tangent = calloc(3 * (size_t)nv, sizeof(double));
-    s->vertex_energy_mu = malloc((size_t)nv * sizeof(double));
-    s->vertex_energy_con = malloc((size_t)nv * sizeof(double));
     s->vertex_residual = malloc((size_t)nv * sizeof(double));
     s->q_next = malloc(v3);
     s->normal = malloc(3 * fd), s->normal_fit = malloc(3 * fd), s->offset = malloc(fd);
     s->face_dev = malloc(fd), s->face_edge = malloc(fd), s->face_sq = malloc(fd);
-    s->face_energy_mu = malloc(fd), s->face_energy_con = malloc(fd), s->face_residual = malloc(fd);
+    s->face_residual = malloc(fd);
     s->control_centroid = malloc(3 * fd);
     if (!s->face_start || !s->face_vertices || !s->vertex_start || !s->vertex_faces || !s->fixed ||
         !s->p || !s->q || !s->previous || !s->previous_control || !s->vertex_normal || !s->slide_target ||
-        !s->slide_tangent || !s->vertex_energy_mu || !s->vertex_energy_con ||
-        !s->vertex_residual || !s->q_next || !s->normal || !s->normal_fit || !s->offset ||
-        !s->face_dev || !s->face_edge || !s->face_sq || !s->face_energy_mu ||
-        !s->face_energy_con || !s->face_residual || !s->control_centroid) {
+        !s->slide_tangent || !s->vertex_residual || !s->q_next || !s->normal || !s->normal_fit || !s->offset ||
+        !s->face_dev || !s->face_edge || !s->face_sq || !s->face_residual || !s->control_centroid) {
         facet_planarizer_free(&s);
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
     }
@@ -321,9 +317,7 @@ void facet_planarizer_free(facet_planarizer **handle)
                       s->vertex_adj_start, s->vertex_adj, s->face_adj_start, s->face_adj,
                       s->boundary_prev, s->boundary_next, s->on_boundary, s->user_fixed,
                       s->face_weight, s->fixed, s->p, s->q, s->vertex_normal, s->normal,
-                      s->offset, s->face_dev, s->face_edge, s->face_sq, s->face_energy_mu,
-                      s->face_energy_con, s->vertex_energy_mu, s->vertex_energy_con,
-                      s->face_residual, s->vertex_residual, s->normal_fit,
+                      s->offset, s->face_dev, s->face_edge, s->face_sq, s->face_residual, s->vertex_residual, s->normal_fit,
                       s->control_centroid, s->shape, s->circle_target, s->slide_target,
                       s->slide_tangent, s->laplace_weight, s->previous, s->aa_df, s->aa_dg,
                       s->aa_f, s->aa_g, s->q_next, s->surface_point,

@@ -24,6 +24,12 @@ enum {
     COUPLE_PARALLELOGRAM = 8
 };
 
+/* Sums over faces and over vertices go in at most this many blocks of
+ * consecutive elements (at least 4096 each), summed in order within a block
+ * and across blocks: the same bits for any thread count, without a serial
+ * pass over every element. */
+enum { FACET_ENERGY_BLOCKS = 256, FACET_ENERGY_BLOCK_MIN = 4096 };
+
 struct facet_planarizer {
     int32_t nv, nf, nc;
     int32_t *face_start, *face_vertices;
@@ -48,8 +54,10 @@ struct facet_planarizer {
     double *normal, *offset;              /* per face plane of the step */
     double *face_dev, *face_edge;         /* per face: max distance, mean edge length */
     double *face_sq;                      /* per face: sum of squared distances */
-    double *face_energy_mu, *face_energy_con; /* per-face parts of the energy */
-    double *vertex_energy_mu, *vertex_energy_con;
+    /* the energy's parts (mu's and the constraints'), summed per block of
+     * faces and of vertices (facet_pl_energy adds the blocks in order) */
+    double energy_block[2][2][FACET_ENERGY_BLOCKS];
+    int32_t energy_blocks[2];
     double *face_residual;                /* per face: constraint residual (circle, parallelogram) */
     double *vertex_residual;              /* per vertex: sliding residual */
     double *normal_fit;                   /* per face: best-fit normal (normal-Laplacian input) */

@@ -650,6 +650,13 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads)
     return guard;
 }
 
+/* Elements per block of the energy's sums (FACET_ENERGY_BLOCKS). */
+static int32_t energy_block_size(int32_t n)
+{
+    const int32_t even = n / FACET_ENERGY_BLOCKS + (n % FACET_ENERGY_BLOCKS != 0);
+    return even > FACET_ENERGY_BLOCK_MIN ? even : FACET_ENERGY_BLOCK_MIN;
+}
+
 facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
 {
     const int32_t nv = s->nv, nf = s->nf;
@@ -673,78 +680,85 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
     const int circular = o->circular > 0.0, parallel = o->parallelogram > 0.0;
     const int energies = o->anderson > 0; /* only the safeguard reads them */
     const int sliding = o->boundary == FACET_BOUNDARY_SLIDING;
-    if (!energies && !shape && !circular && !parallel) {
-        memset(s->face_residual, 0, sizeof(double) * (size_t)nf);
-    } else {
+    /* the residuals are read only while their terms are on (planarize.c) */
+    const int face_residuals = circular || parallel;
+    if (energies || shape || circular || parallel) {
+        const int32_t size = energy_block_size(nf), blocks = nf / size + (nf % size != 0);
+        s->energy_blocks[0] = blocks;
 #pragma omp parallel for schedule(static) num_threads(nthreads)
-    for (int32_t f = 0; f < nf; ++f) {
-        const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
-        const int32_t *idx = s->face_vertices + b;
-        double e_mu = 0.0, e_con = face_weight(s, f) * s->face_sq[f], residual = 0.0;
-        if (shape) {
-            const double *cp = s->control_centroid + 3 * (size_t)f;
-            double cq[3] = {0.0, 0.0, 0.0};
-            for (int32_t k = 0; k < n; ++k)
-                for (int a = 0; a < 3; ++a)
-                    cq[a] += q[3 * (size_t)idx[k] + a];
-            for (int a = 0; a < 3; ++a)
-                cq[a] /= (double)n;
-            double c[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, xx = 0.0;
-            for (int32_t k = 0; k < n; ++k) {
-                const double *x = p + 3 * (size_t)idx[k], *y = q + 3 * (size_t)idx[k];
-                const double dx[3] = {x[0] - cp[0], x[1] - cp[1], x[2] - cp[2]};
-                const double dy[3] = {y[0] - cq[0], y[1] - cq[1], y[2] - cq[2]};
-                for (int i = 0; i < 3; ++i)
-                    for (int j = 0; j < 3; ++j)
-                        c[3 * i + j] += dy[i] * dx[j];
-                xx += dot3(dx, dx);
-            }
-            double *sr = s->shape + 9 * (size_t)f;
-            facet_pl_procrustes(c, o->shape == FACET_SHAPE_ASAP, sr);
-            if (o->shape == FACET_SHAPE_ASAP) {
-                const double inv = xx > 0.0 ? 1.0 / xx : 0.0;
-                for (int k = 0; k < 9; ++k)
-                    sr[k] *= inv;
-            }
-            double e = 0.0;
-            for (int32_t k = 0; k < n; ++k) {
-                const double *x = p + 3 * (size_t)idx[k], *y = q + 3 * (size_t)idx[k];
-                const double dx[3] = {x[0] - cp[0], x[1] - cp[1], x[2] - cp[2]};
-                for (int i = 0; i < 3; ++i) {
-                    const double t = sr[3 * i] * dx[0] + sr[3 * i + 1] * dx[1] + sr[3 * i + 2] * dx[2];
-                    const double r = y[i] - cq[i] - t;
-                    e += r * r;
+        for (int32_t block = 0; block < blocks; ++block) {
+            double sum_mu = 0.0, sum_con = 0.0;
+            const int32_t last = nf - block * size < size ? nf : (block + 1) * size;
+            for (int32_t f = block * size; f < last; ++f) {
+                const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
+                const int32_t *idx = s->face_vertices + b;
+                double e_mu = 0.0, e_con = face_weight(s, f) * s->face_sq[f], residual = 0.0;
+                if (shape) {
+                    const double *cp = s->control_centroid + 3 * (size_t)f;
+                    double cq[3] = {0.0, 0.0, 0.0};
+                    for (int32_t k = 0; k < n; ++k)
+                        for (int a = 0; a < 3; ++a)
+                            cq[a] += q[3 * (size_t)idx[k] + a];
+                    for (int a = 0; a < 3; ++a)
+                        cq[a] /= (double)n;
+                    double c[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, xx = 0.0;
+                    for (int32_t k = 0; k < n; ++k) {
+                        const double *x = p + 3 * (size_t)idx[k], *y = q + 3 * (size_t)idx[k];
+                        const double dx[3] = {x[0] - cp[0], x[1] - cp[1], x[2] - cp[2]};
+                        const double dy[3] = {y[0] - cq[0], y[1] - cq[1], y[2] - cq[2]};
+                        for (int i = 0; i < 3; ++i)
+                            for (int j = 0; j < 3; ++j)
+                                c[3 * i + j] += dy[i] * dx[j];
+                        xx += dot3(dx, dx);
+                    }
+                    double *sr = s->shape + 9 * (size_t)f;
+                    facet_pl_procrustes(c, o->shape == FACET_SHAPE_ASAP, sr);
+                    if (o->shape == FACET_SHAPE_ASAP) {
+                        const double inv = xx > 0.0 ? 1.0 / xx : 0.0;
+                        for (int k = 0; k < 9; ++k)
+                            sr[k] *= inv;
+                    }
+                    double e = 0.0;
+                    for (int32_t k = 0; k < n; ++k) {
+                        const double *x = p + 3 * (size_t)idx[k], *y = q + 3 * (size_t)idx[k];
+                        const double dx[3] = {x[0] - cp[0], x[1] - cp[1], x[2] - cp[2]};
+                        for (int i = 0; i < 3; ++i) {
+                            const double t = sr[3 * i] * dx[0] + sr[3 * i + 1] * dx[1] + sr[3 * i + 2] * dx[2];
+                            const double r = y[i] - cq[i] - t;
+                            e += r * r;
+                        }
+                    }
+                    e_mu += o->shape_weight * e;
                 }
+                if (circular) {
+                    double *t = s->circle_target + 3 * (size_t)b;
+                    facet_pl_circle_targets(n, q, idx, s->normal + 3 * (size_t)f, t);
+                    double e = 0.0, worst = 0.0;
+                    for (int32_t k = 0; k < n; ++k) {
+                        const double *y = q + 3 * (size_t)idx[k];
+                        const double d[3] = {y[0] - t[3 * k], y[1] - t[3 * k + 1], y[2] - t[3 * k + 2]};
+                        const double d2 = dot3(d, d);
+                        e += d2;
+                        worst = facet_max(worst, d2);
+                    }
+                    e_con += o->circular * e;
+                    residual = facet_max(residual, sqrt(worst) / facet_max(s->face_edge[f], 1e-300));
+                }
+                if (parallel && n == 4) {
+                    const double *y0 = q + 3 * (size_t)idx[0], *y1 = q + 3 * (size_t)idx[1];
+                    const double *y2 = q + 3 * (size_t)idx[2], *y3 = q + 3 * (size_t)idx[3];
+                    const double r[3] = {y0[0] - y1[0] + y2[0] - y3[0], y0[1] - y1[1] + y2[1] - y3[1],
+                                         y0[2] - y1[2] + y2[2] - y3[2]};
+                    const double r2 = dot3(r, r);
+                    e_con += o->parallelogram * r2;
+                    residual = facet_max(residual, sqrt(r2) / facet_max(s->face_edge[f], 1e-300));
+                }
+                sum_mu += e_mu, sum_con += e_con;
+                if (face_residuals)
+                    s->face_residual[f] = residual;
             }
-            e_mu += o->shape_weight * e;
+            s->energy_block[0][0][block] = sum_mu, s->energy_block[0][1][block] = sum_con;
         }
-        if (circular) {
-            double *t = s->circle_target + 3 * (size_t)b;
-            facet_pl_circle_targets(n, q, idx, s->normal + 3 * (size_t)f, t);
-            double e = 0.0, worst = 0.0;
-            for (int32_t k = 0; k < n; ++k) {
-                const double *y = q + 3 * (size_t)idx[k];
-                const double d[3] = {y[0] - t[3 * k], y[1] - t[3 * k + 1], y[2] - t[3 * k + 2]};
-                const double d2 = dot3(d, d);
-                e += d2;
-                worst = facet_max(worst, d2);
-            }
-            e_con += o->circular * e;
-            residual = facet_max(residual, sqrt(worst) / facet_max(s->face_edge[f], 1e-300));
-        }
-        if (parallel && n == 4) {
-            const double *y0 = q + 3 * (size_t)idx[0], *y1 = q + 3 * (size_t)idx[1];
-            const double *y2 = q + 3 * (size_t)idx[2], *y3 = q + 3 * (size_t)idx[3];
-            const double r[3] = {y0[0] - y1[0] + y2[0] - y3[0], y0[1] - y1[1] + y2[1] - y3[1],
-                                 y0[2] - y1[2] + y2[2] - y3[2]};
-            const double r2 = dot3(r, r);
-            e_con += o->parallelogram * r2;
-            residual = facet_max(residual, sqrt(r2) / facet_max(s->face_edge[f], 1e-300));
-        }
-        s->face_energy_mu[f] = e_mu;
-        s->face_energy_con[f] = e_con;
-        s->face_residual[f] = residual;
-    }
     }
 
     if (o->angle_floor > 0.0) {
@@ -752,104 +766,108 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
             memset(s->guard_count, 0, sizeof(double) * (size_t)nv);
     }
     s->guard_on = guard;
-    if (!energies && !sliding && !guard) {
-        memset(s->vertex_residual, 0, sizeof(double) * (size_t)nv);
+    if (!energies && !sliding && !guard)
         return FACET_OK;
-    }
+    const int32_t size = energy_block_size(nv), blocks = nv / size + (nv % size != 0);
+    s->energy_blocks[1] = blocks;
 #pragma omp parallel for schedule(static) num_threads(nthreads)
-    for (int32_t v = 0; v < nv; ++v) {
-        const double *x = q + 3 * (size_t)v, *pv = p + 3 * (size_t)v, *nu = s->vertex_normal + 3 * (size_t)v;
-        double e_mu = 0.0, e_con = 0.0, residual = 0.0;
-        if (!s->fixed[v]) {
-            const double d[3] = {x[0] - pv[0], x[1] - pv[1], x[2] - pv[2]};
-            const double dn = dot3(d, nu), dd = dot3(d, d);
-            e_mu += o->data_tangent * (dd - dn * dn) + o->data_normal * dn * dn;
-            if (surface) {
-                const double *sp = s->surface_point + 3 * (size_t)v, *sn = s->surface_normal + 3 * (size_t)v;
-                const double ds = (x[0] - sp[0]) * sn[0] + (x[1] - sp[1]) * sn[1] + (x[2] - sp[2]) * sn[2];
-                e_mu += o->surface_weight * ds * ds;
-            }
-        }
-        if (o->laplacian > 0.0 && !s->on_boundary[v]) {
-            double r[3] = {x[0], x[1], x[2]};
-            for (int32_t k = s->vertex_adj_start[v]; k < s->vertex_adj_start[v + 1]; ++k) {
-                const double *y = q + 3 * (size_t)s->vertex_adj[k];
-                for (int a = 0; a < 3; ++a)
-                    r[a] -= s->laplace_weight[k] * y[a];
-            }
-            e_mu += o->laplacian * dot3(r, r);
-        }
-        if (o->boundary_fairness > 0.0 && s->boundary_prev[v] >= 0) {
-            const double *a = q + 3 * (size_t)s->boundary_prev[v], *c = q + 3 * (size_t)s->boundary_next[v];
-            const double r[3] = {a[0] - 2.0 * x[0] + c[0], a[1] - 2.0 * x[1] + c[1], a[2] - 2.0 * x[2] + c[2]};
-            e_mu += o->boundary_fairness * dot3(r, r);
-        }
-        if (sliding && s->boundary_prev[v] >= 0 && !s->fixed[v]) {
-            /* closest point on the control boundary within two segments either side */
-            int32_t chain[5];
-            chain[2] = v;
-            chain[1] = s->boundary_prev[v], chain[0] = s->boundary_prev[chain[1]];
-            chain[3] = s->boundary_next[v], chain[4] = s->boundary_next[chain[3]];
-            double best = INFINITY, point[3], tangent[3];
-            for (int k = 0; k < 4; ++k) {
-                if (chain[k] < 0 || chain[k + 1] < 0)
-                    continue;
-                double pt[3], tg[3];
-                const double d2 = closest_on_segment(x, p + 3 * (size_t)chain[k],
-                                                     p + 3 * (size_t)chain[k + 1], pt, tg);
-                if (d2 < best) {
-                    best = d2;
-                    memcpy(point, pt, sizeof point);
-                    memcpy(tangent, tg, sizeof tangent);
+    for (int32_t block = 0; block < blocks; ++block) {
+        double sum_mu = 0.0, sum_con = 0.0;
+        const int32_t last = nv - block * size < size ? nv : (block + 1) * size;
+        for (int32_t v = block * size; v < last; ++v) {
+            const double *x = q + 3 * (size_t)v, *pv = p + 3 * (size_t)v, *nu = s->vertex_normal + 3 * (size_t)v;
+            double e_mu = 0.0, e_con = 0.0, residual = 0.0;
+            if (!s->fixed[v]) {
+                const double d[3] = {x[0] - pv[0], x[1] - pv[1], x[2] - pv[2]};
+                const double dn = dot3(d, nu), dd = dot3(d, d);
+                e_mu += o->data_tangent * (dd - dn * dn) + o->data_normal * dn * dn;
+                if (surface) {
+                    const double *sp = s->surface_point + 3 * (size_t)v, *sn = s->surface_normal + 3 * (size_t)v;
+                    const double ds = (x[0] - sp[0]) * sn[0] + (x[1] - sp[1]) * sn[1] + (x[2] - sp[2]) * sn[2];
+                    e_mu += o->surface_weight * ds * ds;
                 }
             }
-            memcpy(s->slide_target + 3 * (size_t)v, point, sizeof point);
-            memcpy(s->slide_tangent + 3 * (size_t)v, tangent, sizeof tangent);
-            e_con += best;
-            residual = sqrt(best);
-        }
-        if (guard) { /* the corners below their floor that v belongs to */
-            double count = 0.0, sum[3] = {0.0, 0.0, 0.0};
-            for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
-                const int32_t f = s->vertex_faces[k];
-                if (!s->face_guard[f])
-                    continue;
-                const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
-                int32_t at = 0;
-                while (s->face_vertices[b + at] != v)
-                    ++at;
-                for (int role = 0; role < 3; ++role) { /* v as a, c or b of a corner */
-                    const int32_t corner = (at + 1 - role + n) % n;
-                    if (!(s->corner_cos[b + corner] > s->corner_floor[b + corner]))
+            if (o->laplacian > 0.0 && !s->on_boundary[v]) {
+                double r[3] = {x[0], x[1], x[2]};
+                for (int32_t k = s->vertex_adj_start[v]; k < s->vertex_adj_start[v + 1]; ++k) {
+                    const double *y = q + 3 * (size_t)s->vertex_adj[k];
+                    for (int a = 0; a < 3; ++a)
+                        r[a] -= s->laplace_weight[k] * y[a];
+                }
+                e_mu += o->laplacian * dot3(r, r);
+            }
+            if (o->boundary_fairness > 0.0 && s->boundary_prev[v] >= 0) {
+                const double *a = q + 3 * (size_t)s->boundary_prev[v], *c = q + 3 * (size_t)s->boundary_next[v];
+                const double r[3] = {a[0] - 2.0 * x[0] + c[0], a[1] - 2.0 * x[1] + c[1], a[2] - 2.0 * x[2] + c[2]};
+                e_mu += o->boundary_fairness * dot3(r, r);
+            }
+            if (sliding && s->boundary_prev[v] >= 0 && !s->fixed[v]) {
+                /* closest point on the control boundary within two segments either side */
+                int32_t chain[5];
+                chain[2] = v;
+                chain[1] = s->boundary_prev[v], chain[0] = s->boundary_prev[chain[1]];
+                chain[3] = s->boundary_next[v], chain[4] = s->boundary_next[chain[3]];
+                double best = INFINITY, point[3], tangent[3];
+                for (int k = 0; k < 4; ++k) {
+                    if (chain[k] < 0 || chain[k + 1] < 0)
                         continue;
-                    double t[3];
-                    corner_target(q, s->face_vertices[b + (corner + n - 1) % n], s->face_vertices[b + corner],
-                                  s->face_vertices[b + (corner + 1) % n], s->normal + 3 * (size_t)f,
-                                  s->corner_cos[b + corner], s->corner_floor[b + corner], role, t);
-                    const double d[3] = {x[0] - t[0], x[1] - t[1], x[2] - t[2]};
-                    e_con += dot3(d, d);
-                    sum[0] += t[0], sum[1] += t[1], sum[2] += t[2];
-                    count += 1.0;
+                    double pt[3], tg[3];
+                    const double d2 = closest_on_segment(x, p + 3 * (size_t)chain[k],
+                                                         p + 3 * (size_t)chain[k + 1], pt, tg);
+                    if (d2 < best) {
+                        best = d2;
+                        memcpy(point, pt, sizeof point);
+                        memcpy(tangent, tg, sizeof tangent);
+                    }
                 }
+                memcpy(s->slide_target + 3 * (size_t)v, point, sizeof point);
+                memcpy(s->slide_tangent + 3 * (size_t)v, tangent, sizeof tangent);
+                e_con += best;
+                residual = sqrt(best);
             }
-            s->guard_count[v] = count;
-            memcpy(s->guard_sum + 3 * (size_t)v, sum, sizeof sum);
+            if (guard) { /* the corners below their floor that v belongs to */
+                double count = 0.0, sum[3] = {0.0, 0.0, 0.0};
+                for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
+                    const int32_t f = s->vertex_faces[k];
+                    if (!s->face_guard[f])
+                        continue;
+                    const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
+                    int32_t at = 0;
+                    while (s->face_vertices[b + at] != v)
+                        ++at;
+                    for (int role = 0; role < 3; ++role) { /* v as a, c or b of a corner */
+                        const int32_t corner = (at + 1 - role + n) % n;
+                        if (!(s->corner_cos[b + corner] > s->corner_floor[b + corner]))
+                            continue;
+                        double t[3];
+                        corner_target(q, s->face_vertices[b + (corner + n - 1) % n], s->face_vertices[b + corner],
+                                      s->face_vertices[b + (corner + 1) % n], s->normal + 3 * (size_t)f,
+                                      s->corner_cos[b + corner], s->corner_floor[b + corner], role, t);
+                        const double d[3] = {x[0] - t[0], x[1] - t[1], x[2] - t[2]};
+                        e_con += dot3(d, d);
+                        sum[0] += t[0], sum[1] += t[1], sum[2] += t[2];
+                        count += 1.0;
+                    }
+                }
+                s->guard_count[v] = count;
+                memcpy(s->guard_sum + 3 * (size_t)v, sum, sizeof sum);
+            }
+            sum_mu += e_mu, sum_con += e_con;
+            if (sliding)
+                s->vertex_residual[v] = residual;
         }
-        s->vertex_energy_mu[v] = e_mu;
-        s->vertex_energy_con[v] = e_con;
-        s->vertex_residual[v] = residual;
+        s->energy_block[1][0][block] = sum_mu, s->energy_block[1][1][block] = sum_con;
     }
     return FACET_OK;
 }
 
-/* Sums of the per-element energies, in a fixed order. */
+/* The energy: the blocks' sums (facet_pl_local_step) added in a fixed order. */
 void facet_pl_energy(const facet_planarizer *s, double *energy_mu, double *energy_con)
 {
     double mu = 0.0, con = 0.0;
-    for (int32_t f = 0; f < s->nf; ++f)
-        mu += s->face_energy_mu[f], con += s->face_energy_con[f];
-    for (int32_t v = 0; v < s->nv; ++v)
-        mu += s->vertex_energy_mu[v], con += s->vertex_energy_con[v];
+    for (int part = 0; part < 2; ++part) /* faces, then vertices */
+        for (int32_t block = 0; block < s->energy_blocks[part]; ++block)
+            mu += s->energy_block[part][0][block], con += s->energy_block[part][1][block];
     *energy_mu = mu;
     *energy_con = con;
 }
