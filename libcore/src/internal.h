@@ -59,8 +59,9 @@ double facet_face_measure(int32_t n, const double *xyz, const int32_t *idx, doub
 /* Four faces of n corners each at once (3 <= n <= FACET_LANE_CORNERS_MAX;
  * face l is the points xyz[idx[n l + k]], k < n): for each, what
  * facet_face_measure gives, bit for bit (the same arithmetic in the same
- * order, in SIMD lanes: 4 faces per AVX2 instruction where the processor has
- * it, 2 per SSE2 instruction otherwise), with the sum of squared distances
+ * order, in SIMD lanes: 4 faces per AVX2 or AVX-512 instruction where the
+ * processor has it, 2 per SSE2 instruction otherwise), with the sum of
+ * squared distances
  * (rms^2 n) in square_sum. Outputs are arrays of four (normal: twelve).
  * With floor not NULL (the cosines of the faces' corners' floors, corner k
  * of face l at n l + k), also the angle floor's corner test: the corners'
@@ -75,10 +76,11 @@ int facet_face_measure4(int32_t n, const double *xyz, const int32_t *idx, double
                         double edge_mean[4], const double *floor, double *corner_cos, uint8_t *guard);
 
 /* Eight faces at once: four of na corners (the points xyz[idx_a[na l + k]])
- * and four of nb (idx_b), their eigenvector solves side by side; outputs
- * as facet_face_measure4's, arrays of eight (normal: 24), the first four
- * for idx_a; floor, corner_cos: the first four faces' corners, then the
- * second four's. */
+ * and four of nb (idx_b), their eigenvector solves side by side (in one
+ * vector of eight lanes in the AVX-512 copy when na == nb and idx_b follows
+ * idx_a); outputs as facet_face_measure4's, arrays of eight (normal: 24),
+ * the first four for idx_a; floor, corner_cos: the first four faces'
+ * corners, then the second four's. */
 int facet_face_measure8(int32_t na, int32_t nb, const double *xyz, const int32_t *idx_a,
                         const int32_t *idx_b, double normal[24], double offset[8], double max_distance[8],
                         double square_sum[8], double edge_mean[8], const double *floor, double *corner_cos,
