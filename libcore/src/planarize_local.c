@@ -534,6 +534,15 @@ static inline __attribute__((always_inline)) int fit_pair(facet_planarizer *s, i
     return below_f || below_g;
 }
 
+/* Elements per block of the energy's sums (FACET_ENERGY_BLOCKS): a multiple
+ * of 8, so that the plane fit's groups of eight faces fall in one block. */
+static int32_t energy_block_size(int32_t n)
+{
+    int32_t size = n / FACET_ENERGY_BLOCKS + (n % FACET_ENERGY_BLOCKS != 0);
+    size = size > FACET_ENERGY_BLOCK_MIN ? size : FACET_ENERGY_BLOCK_MIN;
+    return (size + 7) / 8 * 8;
+}
+
 /* The corner count of faces f..f+3 when they exist, have one size that the
  * SIMD lanes take, and sit one after another in face_vertices; else 0. */
 static inline int32_t same_size4(const int32_t *start, int32_t nf, int32_t f)
@@ -555,7 +564,42 @@ static inline int32_t same_size4(const int32_t *start, int32_t nf, int32_t f)
  * facet_face_measure4); others in pairs (fit_pair), so that their
  * eigenvectors' Newton steps overlap. Every face gets the same bits as
  * alone, whatever its group. */
-static int fit_planes(facet_planarizer *s, double mu, int nthreads)
+/* Faces f..f+7 (those < nf), as fit_planes says; returns whether some
+ * corner is below its floor. */
+static inline int fit_group(facet_planarizer *s, int32_t f, int lanes, int floor_on)
+{
+    const int32_t nf = s->nf;
+    const int32_t *start = s->face_start, *fv = s->face_vertices;
+    const double *q = s->q;
+    const int32_t na = lanes ? same_size4(start, nf, f) : 0;
+    const int32_t nb = lanes ? same_size4(start, nf, f + 4) : 0;
+    if (na && nb) {
+        const int32_t b = start[f];
+        return facet_face_measure8(na, nb, q, fv + b, fv + start[f + 4], s->normal + 3 * (size_t)f,
+                                   s->offset + f, s->face_dev + f, s->face_sq + f, s->face_edge + f,
+                                   floor_on ? s->corner_floor + b : NULL, floor_on ? s->corner_cos + b : NULL,
+                                   floor_on ? s->face_guard + f : NULL);
+    }
+    int below = 0;
+    for (int32_t h = f; h < f + 8 && h < nf; h += 4) {
+        const int32_t n = h == f ? na : nb, b = start[h];
+        if (n) {
+            below = facet_face_measure4(n, q, fv + b, s->normal + 3 * (size_t)h, s->offset + h,
+                                        s->face_dev + h, s->face_sq + h, s->face_edge + h,
+                                        floor_on ? s->corner_floor + b : NULL,
+                                        floor_on ? s->corner_cos + b : NULL,
+                                        floor_on ? s->face_guard + h : NULL) ||
+                    below;
+            continue;
+        }
+        below = fit_pair(s, h, floor_on) || below;
+        if (h + 2 < nf)
+            below = fit_pair(s, h + 2, floor_on) || below;
+    }
+    return below;
+}
+
+static int fit_planes(facet_planarizer *s, double mu, int nthreads, int energy)
 {
     const int32_t nf = s->nf;
     const int32_t *start = s->face_start, *fv = s->face_vertices;
@@ -563,38 +607,26 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads)
     const int floor_on = s->o.angle_floor > 0.0;
     const int lanes = !s->scalar_kernels;
     const int32_t groups = nf / 8 + (nf % 8 != 0);
+    /* The groups go to the threads in the energy's blocks; with energy, the
+     * faces' planarity energies (the face pass's e_con when no other term
+     * is on) are summed per block as they are fitted. */
+    const int32_t size = energy_block_size(nf), blocks = nf / size + (nf % size != 0);
+    const int32_t per_block = size / 8;
+    if (energy)
+        s->energy_blocks[0] = blocks;
     int guard = 0;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
-    for (int32_t group = 0; group < groups; ++group) {
-        const int32_t f = 8 * group;
-        const int32_t na = lanes ? same_size4(start, nf, f) : 0;
-        const int32_t nb = lanes ? same_size4(start, nf, f + 4) : 0;
-        if (na && nb) {
-            const int32_t b = start[f];
-            const int below = facet_face_measure8(
-                na, nb, q, fv + b, fv + start[f + 4], s->normal + 3 * (size_t)f, s->offset + f,
-                s->face_dev + f, s->face_sq + f, s->face_edge + f, floor_on ? s->corner_floor + b : NULL,
-                floor_on ? s->corner_cos + b : NULL, floor_on ? s->face_guard + f : NULL);
-            guard = guard || below;
-            continue;
+    for (int32_t block = 0; block < blocks; ++block) {
+        double sum = 0.0;
+        const int32_t last = groups - block * per_block < per_block ? groups : (block + 1) * per_block;
+        for (int32_t group = block * per_block; group < last; ++group) {
+            const int32_t f = 8 * group;
+            guard = fit_group(s, f, lanes, floor_on) || guard;
+            for (int32_t h = f; energy && h < f + 8 && h < nf; ++h)
+                sum += face_weight(s, h) * s->face_sq[h];
         }
-        int below = 0;
-        for (int32_t h = f; h < f + 8 && h < nf; h += 4) {
-            const int32_t n = h == f ? na : nb, b = start[h];
-            if (n) {
-                below = facet_face_measure4(n, q, fv + b, s->normal + 3 * (size_t)h, s->offset + h,
-                                            s->face_dev + h, s->face_sq + h, s->face_edge + h,
-                                            floor_on ? s->corner_floor + b : NULL,
-                                            floor_on ? s->corner_cos + b : NULL,
-                                            floor_on ? s->face_guard + h : NULL) ||
-                        below;
-                continue;
-            }
-            below = fit_pair(s, h, floor_on) || below;
-            if (h + 2 < nf)
-                below = fit_pair(s, h + 2, floor_on) || below;
-        }
-        guard = guard || below;
+        if (energy)
+            s->energy_block[0][0][block] = 0.0, s->energy_block[0][1][block] = sum;
     }
     /* a regularizer: weighed by mu against the planarity's 1 - mu, so it
      * fades as the penalty hardens */
@@ -650,19 +682,17 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads)
     return guard;
 }
 
-/* Elements per block of the energy's sums (FACET_ENERGY_BLOCKS). */
-static int32_t energy_block_size(int32_t n)
-{
-    const int32_t even = n / FACET_ENERGY_BLOCKS + (n % FACET_ENERGY_BLOCKS != 0);
-    return even > FACET_ENERGY_BLOCK_MIN ? even : FACET_ENERGY_BLOCK_MIN;
-}
-
 facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
 {
     const int32_t nv = s->nv, nf = s->nf;
     const facet_planarize_options *o = &s->o;
     const double *p = s->p, *q = s->q;
-    const int guard = fit_planes(s, mu, nthreads); /* some corner below its angle floor */
+    const int shape = o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0;
+    const int circular = o->circular > 0.0, parallel = o->parallelogram > 0.0;
+    const int energies = o->anderson > 0; /* only the safeguard reads them */
+    /* some corner below its angle floor; the faces' energies summed by the
+     * fit unless another face term is on (the face pass below then) */
+    const int guard = fit_planes(s, mu, nthreads, energies && !shape && !circular && !parallel);
     const int surface = o->surface_weight > 0.0 && s->reference;
     if (surface) { /* closest points of the reference surface, in model units */
         for (size_t k = 0; k < 3 * (size_t)nv; ++k)
@@ -676,13 +706,10 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
         for (size_t k = 0; k < 3 * (size_t)nv; ++k)
             s->surface_point[k] = (s->surface_point[k] - s->centre[k % 3]) * inv;
     }
-    const int shape = o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0;
-    const int circular = o->circular > 0.0, parallel = o->parallelogram > 0.0;
-    const int energies = o->anderson > 0; /* only the safeguard reads them */
     const int sliding = o->boundary == FACET_BOUNDARY_SLIDING;
     /* the residuals are read only while their terms are on (planarize.c) */
     const int face_residuals = circular || parallel;
-    if (energies || shape || circular || parallel) {
+    if (shape || circular || parallel) {
         const int32_t size = energy_block_size(nf), blocks = nf / size + (nf % size != 0);
         s->energy_blocks[0] = blocks;
 #pragma omp parallel for schedule(static) num_threads(nthreads)
