@@ -1,7 +1,12 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""The opt-in angle floor (``angle_floor``): on a 64 x 64 hypar grid the
+"""The opt-in angle floor (``angle_floor``): on a 32 x 32 hypar grid the
 default solve lets panels collapse; with the floor (and the finer hold it is
-meant for) no corner ends below it, and the mesh is still planar."""
+meant for) no corner ends below it, and the mesh is still planar.
+
+Whether the default collapses a panel of a hypar grid depends on the last
+bits of the solve (by size, last measured: 32, 40, 60, 63 and 72 do; 48, 56,
+64 and 65 do not), hence the first test: if it stops failing, pick another
+size."""
 
 import os
 import sys
@@ -16,23 +21,25 @@ import families  # noqa: E402
 
 
 @pytest.fixture(scope="module")
-def hypar64():
-    b = families.hypar(64)
+def hypar32():
+    b = families.hypar(32)
     return facet.PolyMesh(b.vertices, b.face_start, b.face_vertices)
 
 
-def test_default_lets_a_panel_collapse_on_the_hypar(hypar64):
+def test_default_lets_a_panel_collapse_on_the_hypar(hypar32):
     # the case the floor exists for: if this stops failing, the floor's test
     # below proves nothing about it
-    r = facet.planarize(hypar64, threads=1)
+    r = facet.planarize(hypar32, threads=1)
     assert r.converged
     assert np.min(r.quality.min_angle) < 5.0
 
 
-def test_angle_floor_keeps_every_corner_above_it(hypar64):
-    r = facet.planarize(hypar64, angle_floor=5.0, hold_tol=0.003, threads=1)
+def test_angle_floor_keeps_every_corner_above_it(hypar32):
+    r = facet.planarize(hypar32, angle_floor=5.0, hold_tol=0.003, threads=1)
     assert r.converged and np.max(r.planarity.max_rel) <= 1e-6
-    assert np.min(r.quality.min_angle) > 5.0
+    # a corner the floor holds ends at its floor to the solve's tolerance
+    # (4.99998 degrees on the 60 x 60 hypar), not above it
+    assert np.min(r.quality.min_angle) > 5.0 - 1e-3
     assert np.min(r.quality.input_min_angle) > 5.0  # the input had none below
 
 
