@@ -25,10 +25,10 @@ enum {
 };
 
 /* Sums over faces and over vertices go in at most this many blocks of
- * consecutive elements (at least 4096 each), summed in order within a block
+ * consecutive elements (at least 512 each), summed in order within a block
  * and across blocks: the same bits for any thread count, without a serial
  * pass over every element. */
-enum { FACET_ENERGY_BLOCKS = 256, FACET_ENERGY_BLOCK_MIN = 4096 };
+enum { FACET_ENERGY_BLOCKS = 256, FACET_ENERGY_BLOCK_MIN = 512 };
 
 struct facet_planarizer {
     int32_t nv, nf, nc;
