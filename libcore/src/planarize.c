@@ -230,6 +230,11 @@ static int build_topology(facet_planarizer *s)
     free(h), free(vfill), free(ffill);
     csr_sort_unique(nv, s->vertex_adj_start, s->vertex_adj);
     csr_sort_unique(nf, s->face_adj_start, s->face_adj);
+    /* room for every corner twice, used about once (each edge twice): give
+     * the rest back (a shrinking realloc keeps the contents) */
+    int32_t *adj = realloc(s->vertex_adj, sizeof(int32_t) * (size_t)(s->vertex_adj_start[nv] ? s->vertex_adj_start[nv] : 1));
+    if (adj)
+        s->vertex_adj = adj;
     return 1;
 }
 
@@ -262,20 +267,16 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     s->fixed = malloc((size_t)nv);
     s->p = malloc(v3), s->q = malloc(v3), s->previous = malloc(v3), s->previous_control = malloc(v3);
     s->vertex_normal = malloc(v3);
-    s->slide_target = calloc(3 * (size_t)nv, sizeof(double));
-    s->slide_tangent = calloc(3 * (size_t)nv, sizeof(double));
     s->vertex_energy_mu = malloc((size_t)nv * sizeof(double));
     s->vertex_energy_con = malloc((size_t)nv * sizeof(double));
     s->vertex_residual = malloc((size_t)nv * sizeof(double));
-    s->q_next = malloc(v3);
-    s->normal = malloc(3 * fd), s->normal_fit = malloc(3 * fd), s->offset = malloc(fd);
+    s->normal = malloc(3 * fd), s->offset = malloc(fd);
     s->face_dev = malloc(fd), s->face_edge = malloc(fd), s->face_sq = malloc(fd);
     s->face_energy_mu = malloc(fd), s->face_energy_con = malloc(fd), s->face_residual = malloc(fd);
     s->control_centroid = malloc(3 * fd);
     if (!s->face_start || !s->face_vertices || !s->vertex_start || !s->vertex_faces || !s->fixed ||
-        !s->p || !s->q || !s->previous || !s->previous_control || !s->vertex_normal || !s->slide_target ||
-        !s->slide_tangent || !s->vertex_energy_mu || !s->vertex_energy_con ||
-        !s->vertex_residual || !s->q_next || !s->normal || !s->normal_fit || !s->offset ||
+        !s->p || !s->q || !s->previous || !s->previous_control || !s->vertex_normal ||
+        !s->vertex_energy_mu || !s->vertex_energy_con || !s->vertex_residual || !s->normal || !s->offset ||
         !s->face_dev || !s->face_edge || !s->face_sq || !s->face_energy_mu ||
         !s->face_energy_con || !s->face_residual || !s->control_centroid) {
         facet_planarizer_free(&s);
@@ -503,6 +504,20 @@ static int ensure_workspace(facet_planarizer *s)
     }
     if (o->method == FACET_METHOD_LOCAL_LOCAL && !s->face_plane_terms &&
         !(s->face_plane_terms = malloc(sizeof(double) * 9 * (size_t)s->nf)))
+        return 0;
+    /* what only some terms or one method read: allocated when first asked
+     * for (issue 3's memory target), kept for later solves */
+    if (o->method == FACET_METHOD_LOCAL_LOCAL && !s->q_next &&
+        !(s->q_next = malloc(sizeof(double) * 3 * (size_t)s->nv)))
+        return 0;
+    if (o->boundary == FACET_BOUNDARY_SLIDING && !s->slide_target) {
+        s->slide_target = calloc(3 * (size_t)s->nv, sizeof(double));
+        s->slide_tangent = calloc(3 * (size_t)s->nv, sizeof(double));
+        if (!s->slide_target || !s->slide_tangent)
+            return 0;
+    }
+    if (o->normal_laplacian > 0.0 && !s->normal_fit &&
+        !(s->normal_fit = malloc(sizeof(double) * 3 * (size_t)s->nf)))
         return 0;
     if (o->anderson > s->aa_capacity) {
         /* the depth asked for, not FACET_ANDERSON_MAX: at depth 5 the history
@@ -804,8 +819,12 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     int32_t since = 0;       /* the stagnation window starts here */
     int32_t guard_last = -1; /* last iteration with a corner below its angle floor */
     double level_first_move = 0.0; /* squared */
+    /* the iterate a step starts from, for the staircase's move and Anderson:
+     * L/L keeps it in q_next (below), L/G in a copy */
+    const int need_before = aa.m > 0 || staircase;
     double *x_before = NULL;
-    if ((aa.m > 0 || staircase) && !(x_before = malloc(sizeof(double) * 3 * (size_t)nv)))
+    if (need_before && options->method != FACET_METHOD_LOCAL_LOCAL &&
+        !(x_before = malloc(sizeof(double) * 3 * (size_t)nv)))
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     if (aa.m > 0 &&
         !(aa.partial = malloc(sizeof(double) * (2 * FACET_ANDERSON_MAX + 1) *
@@ -922,14 +941,16 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         history[it % WINDOW] = measure;
         /* the iterate this step starts from: an L/L step writes the new one
          * beside it and swaps (q_next is then the old one), other steps
-         * overwrite it, so it is copied */
+         * overwrite it, so it is copied: L/L's other steps (mu = 1) into
+         * q_next, which its next step overwrites, L/G's into x_before */
         const int ll_step = mu < 1.0 && options->method == FACET_METHOD_LOCAL_LOCAL;
-        const double *before = x_before;
-        if (x_before && !ll_step) {
+        double *copy = options->method == FACET_METHOD_LOCAL_LOCAL ? s->q_next : x_before;
+        const double *before = copy;
+        if (need_before && !ll_step) {
             const double *q = s->q;
 #pragma omp parallel for schedule(static) num_threads(nthreads)
             for (int32_t v = 0; v < nv; ++v)
-                memcpy(x_before + 3 * (size_t)v, q + 3 * (size_t)v, 3 * sizeof(double));
+                memcpy(copy + 3 * (size_t)v, q + 3 * (size_t)v, 3 * sizeof(double));
         }
         if (mu >= 1.0) {
             /* at mu = 1 the solution is the control mesh itself */

@@ -46,12 +46,10 @@ void facet_pl_global_free(facet_planarizer *s)
         cholmod_free_sparse(&s->matrix, &s->cm);
         cholmod_free_factor(&s->factor, &s->cm);
         cholmod_free_dense(&s->rhs, &s->cm);
-        cholmod_free_dense(&s->current, &s->cm);
         cholmod_free_dense(&s->pcg_p, &s->cm);
         cholmod_free_dense(&s->pcg_ap, &s->cm);
         cholmod_free_dense(&s->pcg_r, &s->cm);
         cholmod_free_dense(&s->pcg_x, &s->cm);
-        cholmod_free_dense(&s->pcg_dx, &s->cm);
         cholmod_free_dense(&s->pcg_y, &s->cm);
         cholmod_free_dense(&s->pcg_e, &s->cm);
         cholmod_free_sparse(&s->pmatrix, &s->cm);
@@ -374,14 +372,10 @@ static facet_status schur_setup(facet_planarizer *s, facet_error *error)
             }
     for (int32_t f = 0; f < nf; ++f)
         room[f + 1] += room[f];
-    s->schur = cholmod_allocate_sparse((size_t)nf, (size_t)nf, (size_t)room[nf], 1, 1, 1, CHOLMOD_REAL, cm);
-    if (!s->schur) {
-        status = facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
-        goto done;
-    }
-    /* the distinct rows of each column, ascending, packed */
-    int *sp = s->schur->p, *si = s->schur->i;
-    int *face_of = mark; /* face of each column, then the marks */
+    /* the distinct rows of each column, ascending, packed: in a scratch
+     * array as large as the pairs, then into a matrix of their own size (a
+     * pair around two vertices counts twice: quads, half the room) */
+    int *face_of = mark; /* face of each column */
     for (int32_t f = 0; f < nf; ++f)
         face_of[s->face_col[f] - base] = f;
     int *rows = malloc(sizeof(int) * (size_t)(room[nf] ? room[nf] : 1));
@@ -405,9 +399,17 @@ static facet_status schur_setup(facet_planarizer *s, facet_error *error)
             }
         }
         qsort(rows + first, at - first, sizeof(int), compare_int);
-        sp[col] = (int)first;
+        room[col] = (int)first; /* room[col] is no longer needed */
     }
-    sp[nf] = (int)at;
+    room[nf] = (int)at;
+    s->schur = cholmod_allocate_sparse((size_t)nf, (size_t)nf, at, 1, 1, 1, CHOLMOD_REAL, cm);
+    if (!s->schur) {
+        free(rows);
+        status = facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+        goto done;
+    }
+    int *sp = s->schur->p, *si = s->schur->i;
+    memcpy(sp, room, sizeof(int) * ((size_t)nf + 1));
     memcpy(si, rows, sizeof(int) * at);
     free(rows);
     /* slots: per vertex, per pair (i >= j) of its faces */
@@ -493,15 +495,13 @@ static int schur_assemble(facet_planarizer *s)
 }
 
 /* out = A^-1 in through the vertices' blocks and the offsets' factor. */
-static int schur_solve(facet_planarizer *s, const cholmod_dense *in, cholmod_dense **out)
+static int schur_solve(facet_planarizer *s, const double *r, double *y)
 {
     const int32_t nv = s->nv, nf = s->nf;
-    const size_t n = s->matrix->nrow, base = 3 * (size_t)nv;
-    const double *cf = s->face_coupling, *r = in->x;
+    const size_t base = 3 * (size_t)nv;
+    const double *cf = s->face_coupling;
     const int32_t *vs = s->vertex_start, *col = s->corner_col;
-    if (!*out && !(*out = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm)))
-        return 0;
-    double *y = (*out)->x, *sb = s->schur_b->x;
+    double *sb = s->schur_b->x;
     memcpy(sb, r + base, sizeof(double) * (size_t)nf); /* the offsets are in schur's order */
     for (int32_t v = 0; v < nv; ++v) { /* y_v = B^-1 r_v; offsets' right-hand side -= C^T y_v */
         if (s->fixed[v])
@@ -578,9 +578,12 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
         return facet_pl_fail(s, error, FACET_ERROR_TOO_LARGE, "mesh too large for the sparse system");
     s->matrix = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &s->cm);
     s->rhs = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
-    s->current = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->pcg_p = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->pcg_ap = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->pcg_r = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->pcg_x = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
     s->corner_slot = malloc(sizeof(int32_t) * (size_t)nc);
-    if (!s->matrix || !s->rhs || !s->current || !s->corner_slot)
+    if (!s->matrix || !s->rhs || !s->pcg_p || !s->pcg_ap || !s->pcg_r || !s->pcg_x || !s->corner_slot)
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
     /* no couplings: the offsets in the faces' nested dissection order, after
      * every vertex; else in face order, and the analysis finds the order */
@@ -686,23 +689,20 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
     return analyze_natural(s, s->pmatrix, key, error);
 }
 
-/* out = A^-1 in by the factorization, in the unknowns' own order. */
-static int factor_solve(facet_planarizer *s, const cholmod_dense *in, cholmod_dense **out)
+/* y = A^-1 b by the factorization, in the unknowns' own order (y and b
+ * distinct). */
+static int factor_solve(facet_planarizer *s, const double *b, double *y)
 {
     const size_t n = s->matrix->nrow;
     if (s->schur)
-        return schur_solve(s, in, out);
-    const double *b = in->x;
+        return schur_solve(s, b, y);
     double *pb = s->perm_b->x;
     for (size_t k = 0; k < n; ++k)
         pb[k] = b[s->perm[k]];
     if (!cholmod_solve2(CHOLMOD_A, s->factor, s->perm_b, NULL, &s->perm_x, NULL, &s->pcg_y, &s->pcg_e,
                         &s->cm))
         return 0;
-    if (!*out && !(*out = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm)))
-        return 0;
     const double *px = s->perm_x->x;
-    double *y = (*out)->x;
     for (size_t k = 0; k < n; ++k)
         y[s->perm[k]] = px[k];
     return 1;
@@ -762,36 +762,27 @@ static void sym_matvec(const cholmod_sparse *a, double alpha, int beta, const do
     }
 }
 
-/* Solves matrix * pcg_dx = rhs by conjugate gradients preconditioned with
+/* Solves matrix * pcg_x = rhs by conjugate gradients preconditioned with
  * the (older) factorization, to a residual PCG_TOL of the right-hand side's.
- * Returns the steps taken, or 0 if it did not get there (or failed). Serial
- * and in a fixed order: the same bits for any thread count. */
+ * Returns the steps taken, or 0 if it did not get there (or failed); rhs is
+ * left as it was (a failure falls back to a factorization of it). Serial
+ * and in a fixed order: the same bits for any thread count. Four vectors of
+ * the system's size: r, p, x, and one for A p that then takes z = M^-1 r
+ * (A p is dead once r is updated). */
 static int pcg_solve(facet_planarizer *s)
 {
-    cholmod_common *cm = &s->cm;
     const size_t n = s->matrix->nrow;
-    if (!s->pcg_p) {
-        s->pcg_p = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, cm);
-        s->pcg_ap = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, cm);
-        s->pcg_r = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, cm);
-        s->pcg_x = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, cm);
-        if (!s->pcg_p || !s->pcg_ap || !s->pcg_r || !s->pcg_x)
-            return 0;
-    }
     double *r = s->pcg_r->x, *p = s->pcg_p->x, *ap = s->pcg_ap->x, *x = s->pcg_x->x;
     memcpy(r, s->rhs->x, sizeof(double) * n);
     memset(x, 0, sizeof(double) * n);
     const double r0 = sqrt(dot_n(r, r, n));
-    if (!(r0 > 0.0)) {
-        if (!factor_solve(s, s->pcg_r, &s->pcg_dx))
-            return 0;
-        memset(s->pcg_dx->x, 0, sizeof(double) * n);
-        return 1;
-    }
-    if (!factor_solve(s, s->pcg_r, &s->pcg_dx))
+    if (!(r0 > 0.0))
+        return 1; /* x = 0 */
+    double *z = ap;
+    if (!factor_solve(s, r, z))
         return 0;
-    memcpy(p, s->pcg_dx->x, sizeof(double) * n);
-    double rz = dot_n(r, s->pcg_dx->x, n);
+    memcpy(p, z, sizeof(double) * n);
+    double rz = dot_n(r, z, n);
     for (int step = 1; step <= PCG_MAX; ++step) {
         sym_matvec(s->matrix, 1.0, 0, p, ap);
         const double pap = dot_n(p, ap, n);
@@ -802,13 +793,10 @@ static int pcg_solve(facet_planarizer *s)
             x[k] += alpha * p[k];
             r[k] -= alpha * ap[k];
         }
-        if (sqrt(dot_n(r, r, n)) <= PCG_TOL * r0) {
-            memcpy(s->pcg_dx->x, x, sizeof(double) * n);
+        if (sqrt(dot_n(r, r, n)) <= PCG_TOL * r0)
             return step;
-        }
-        if (!factor_solve(s, s->pcg_r, &s->pcg_dx))
+        if (!factor_solve(s, r, z))
             return 0;
-        const double *z = s->pcg_dx->x;
         const double rz_next = dot_n(r, z, n), beta = rz_next / rz;
         rz = rz_next;
         for (size_t k = 0; k < n; ++k)
@@ -961,7 +949,7 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
      * along its planes almost freely), and the rounding error of a solve is
      * relative to what it solves for: the increment, which vanishes as the
      * iteration converges, rather than the positions. */
-    double *cur = s->current->x;
+    double *cur = s->pcg_p->x; /* [q; d] of the iterate (the solve overwrites it) */
     memcpy(cur, s->q, sizeof(double) * 3 * (size_t)nv);
     for (int32_t f = 0; f < nf; ++f)
         cur[s->face_col[f]] = s->offset[f];
@@ -977,7 +965,7 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
         const int steps = pcg_solve(s);
         if (steps > 0) {
             s->factor_age += steps > PCG_SLOW ? FACTOR_AGE : 1;
-            y = s->pcg_dx->x;
+            y = s->pcg_x->x;
         }
     }
     if (!y) {
@@ -996,9 +984,9 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
                                  "the sparse factorization failed (matrix not positive definite)");
         }
         s->factor_ready = 1, s->factor_mu = mu, s->factor_age = 0;
-        if (!factor_solve(s, s->rhs, &s->pcg_dx))
+        if (!factor_solve(s, s->rhs->x, s->pcg_x->x))
             return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse solve failed");
-        y = s->pcg_dx->x;
+        y = s->pcg_x->x;
     }
     int finite = 1;
     for (size_t k = 0; k < 3 * (size_t)nv; ++k)

@@ -94,7 +94,6 @@ struct facet_planarizer {
     cholmod_sparse *matrix;
     cholmod_factor *factor;
     cholmod_dense *rhs;
-    cholmod_dense *current; /* [q; d] of the iterate: the step solves for the increment */
     /* The matrix as CHOLMOD factorizes it, permuted once at the analysis:
      * triu(P A P^T), whose entry j is matrix->x[pmap[j]]; factor is its
      * factorization in the natural order, so no factorization transposes
@@ -122,7 +121,9 @@ struct facet_planarizer {
     /* the factorization as a preconditioner (planarize_global.c, pcg_solve) */
     int factor_ready, factor_age;
     double factor_mu;
-    cholmod_dense *pcg_p, *pcg_ap, *pcg_r, *pcg_x, *pcg_dx, *pcg_y, *pcg_e;
+    /* pcg_p also holds [q; d] of the iterate (the step solves for the
+     * increment), pcg_x the increment; pcg_y, pcg_e: cholmod_solve2's */
+    cholmod_dense *pcg_p, *pcg_ap, *pcg_r, *pcg_x, *pcg_y, *pcg_e;
     int32_t *corner_slot;   /* per corner: index in matrix->x of its first coupling entry */
     int32_t couple_key;     /* COUPLE_* flags the matrix pattern was built for; -1 none */
     /* the scalar coupling matrix K (vertex x vertex, symmetric): per vertex v,
