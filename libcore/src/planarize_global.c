@@ -72,6 +72,12 @@ void facet_pl_global_free(facet_planarizer *s)
     s->pmap = s->perm = s->face_col = NULL;
     s->factor_ready = 0;
     free(s->corner_slot);
+    free(s->mat_block);
+    free(s->mat_coupling);
+    free(s->mat_diag);
+    free(s->face_of_col);
+    s->mat_block = s->mat_coupling = s->mat_diag = NULL;
+    s->face_of_col = NULL;
     free(s->couple_start);
     free(s->couple_vertex);
     free(s->couple_mu);
@@ -441,27 +447,24 @@ done:
 static int schur_assemble(facet_planarizer *s)
 {
     const int32_t nv = s->nv, nf = s->nf, base = 3 * nv;
-    const double *x = s->matrix->x;
-    const int *cp = s->matrix->p;
     double *sx = s->schur->x;
     const int *sp = s->schur->p;
     memset(sx, 0, sizeof(double) * (size_t)sp[nf]);
     for (int32_t f = 0; f < nf; ++f) { /* the diagonal is each column's last entry */
         const int32_t col = s->face_col[f];
-        sx[sp[col - base + 1] - 1] = x[cp[col + 1] - 1];
+        sx[sp[col - base + 1] - 1] = s->mat_diag[f];
         /* every free corner couples by the same w_f n_f; a fixed one by 0 */
         double *cf = s->face_coupling + 3 * (size_t)(col - base);
         cf[0] = cf[1] = cf[2] = 0.0;
         for (int32_t c = s->face_start[f]; c < s->face_start[f + 1]; ++c)
             if (!s->fixed[s->face_vertices[c]]) {
-                memcpy(cf, x + s->corner_slot[c], 3 * sizeof(double));
+                memcpy(cf, s->mat_coupling + 3 * (size_t)f, 3 * sizeof(double));
                 break;
             }
     }
     for (int32_t v = 0; v < nv; ++v) {
-        /* column 3v+a holds rows 3v..3v+a (no couplings) */
-        const double a00 = x[cp[3 * v]], a01 = x[cp[3 * v + 1]], a11 = x[cp[3 * v + 1] + 1];
-        const double a02 = x[cp[3 * v + 2]], a12 = x[cp[3 * v + 2] + 1], a22 = x[cp[3 * v + 2] + 2];
+        const double *av = s->mat_block + 6 * (size_t)v;
+        const double a00 = av[0], a01 = av[1], a11 = av[2], a02 = av[3], a12 = av[4], a22 = av[5];
         const double d0 = a00;
         if (!(d0 > 0.0))
             return 0;
@@ -576,29 +579,44 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
     const size_t nnz = 6 * (size_t)nv + 3 * n_couple + 3 * (size_t)nc + (size_t)nf;
     if (nnz > (size_t)INT32_MAX)
         return facet_pl_fail(s, error, FACET_ERROR_TOO_LARGE, "mesh too large for the sparse system");
-    s->matrix = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &s->cm);
+    /* no couplings: the offsets in the faces' nested dissection order, after
+     * every vertex; else in face order, and the analysis finds the order */
+    const int natural = n_couple == 0;
     s->rhs = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
     s->pcg_p = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
     s->pcg_ap = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
     s->pcg_r = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
     s->pcg_x = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
-    s->corner_slot = malloc(sizeof(int32_t) * (size_t)nc);
-    if (!s->matrix || !s->rhs || !s->pcg_p || !s->pcg_ap || !s->pcg_r || !s->pcg_x || !s->corner_slot)
+    if (!s->rhs || !s->pcg_p || !s->pcg_ap || !s->pcg_r || !s->pcg_x)
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
-    /* no couplings: the offsets in the faces' nested dissection order, after
-     * every vertex; else in face order, and the analysis finds the order */
-    const int natural = n_couple == 0;
     if (natural) {
+        /* The matrix is not stored: its values are the vertices' 3x3 blocks
+         * and per face one coupling and one diagonal (mat_*; natural_matvec) */
+        s->mat_block = malloc(sizeof(double) * 6 * (size_t)(nv ? nv : 1));
+        s->mat_coupling = malloc(sizeof(double) * 3 * (size_t)(nf ? nf : 1));
+        s->mat_diag = malloc(sizeof(double) * (size_t)(nf ? nf : 1));
+        s->face_of_col = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
+        if (!s->mat_block || !s->mat_coupling || !s->mat_diag || !s->face_of_col)
+            return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
         status = order_faces(s, error);
         if (status != FACET_OK)
             return status;
-    } else {
-        s->face_col = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
-        if (!s->face_col)
-            return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
         for (int32_t f = 0; f < nf; ++f)
-            s->face_col[f] = 3 * nv + f;
+            s->face_of_col[s->face_col[f] - 3 * nv] = f;
+        status = schur_setup(s, error); /* the offsets' system, already in order */
+        if (status != FACET_OK)
+            return status;
+        return analyze_natural(s, s->schur, key, error);
     }
+    s->matrix = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &s->cm);
+    s->corner_slot = malloc(sizeof(int32_t) * (size_t)nc);
+    if (!s->matrix || !s->corner_slot)
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+    s->face_col = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
+    if (!s->face_col)
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+    for (int32_t f = 0; f < nf; ++f)
+        s->face_col[f] = 3 * nv + f;
     int32_t *face_of_col = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
     if (!face_of_col)
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
@@ -647,12 +665,6 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
     double *x = s->matrix->x;
     for (size_t k = 0; k < at; ++k)
         x[k] = 1.0;
-    if (natural) { /* the offsets' system, already in order */
-        status = schur_setup(s, error);
-        if (status != FACET_OK)
-            return status;
-        return analyze_natural(s, s->schur, key, error);
-    }
     cholmod_factor *analysis = cholmod_analyze(s->matrix, &s->cm);
     if (!analysis || s->cm.status < CHOLMOD_OK) {
         cholmod_free_factor(&analysis, &s->cm);
@@ -693,7 +705,7 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
  * distinct). */
 static int factor_solve(facet_planarizer *s, const double *b, double *y)
 {
-    const size_t n = s->matrix->nrow;
+    const size_t n = 3 * (size_t)s->nv + (size_t)s->nf;
     if (s->schur)
         return schur_solve(s, b, y);
     double *pb = s->perm_b->x;
@@ -762,6 +774,104 @@ static void sym_matvec(const cholmod_sparse *a, double alpha, int beta, const do
     }
 }
 
+/* The corners of face f by ascending vertex, as the stored matrix's offset
+ * columns hold them: sorted into ord if there are at most 64 (the count is
+ * returned), else corner_vertex finds each in turn. */
+static int32_t sorted_corners(const facet_planarizer *s, int32_t f, int32_t *ord)
+{
+    const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
+    if (n > 64)
+        return n;
+    for (int32_t k = 0; k < n; ++k) { /* insertion sort of corners by vertex */
+        int32_t m = k;
+        while (m > 0 && s->face_vertices[b + ord[m - 1]] > s->face_vertices[b + k]) {
+            ord[m] = ord[m - 1];
+            --m;
+        }
+        ord[m] = k;
+    }
+    return n;
+}
+
+/* The vertex of the c-th corner of face f (n corners from b) by ascending
+ * vertex; prev: that of the (c-1)-th (a face's vertices are distinct). */
+static int32_t corner_vertex(const facet_planarizer *s, int32_t b, int32_t n, const int32_t *ord,
+                             int32_t c, int32_t prev)
+{
+    if (n <= 64)
+        return s->face_vertices[b + ord[c]];
+    int32_t best = INT32_MAX;
+    for (int32_t k = 0; k < n; ++k) {
+        const int32_t u = s->face_vertices[b + k];
+        if (u > prev && u < best)
+            best = u;
+    }
+    return best;
+}
+
+/* sym_matvec for the matrix without couplings, which is not stored: its
+ * columns are those sym_matvec would read (vertex columns 3v+a with rows
+ * 3v..3v+a, then the offsets' columns in face_col's order with their
+ * corners' rows by ascending vertex and the diagonal last), taken from the
+ * vertices' blocks (mat_block), the faces' couplings (mat_coupling, 0 at a
+ * fixed corner) and diagonals (mat_diag), operation for operation in
+ * sym_matvec's order: the same bits as the stored matrix gave. */
+static void natural_matvec(const facet_planarizer *s, double alpha, int beta, const double *x, double *y)
+{
+    const int32_t nv = s->nv, nf = s->nf;
+    const size_t base = 3 * (size_t)nv;
+    if (!beta)
+        memset(y, 0, sizeof(double) * (base + (size_t)nf));
+    for (int32_t v = 0; v < nv; ++v) {
+        const double *av = s->mat_block + 6 * (size_t)v, *xv = x + 3 * (size_t)v;
+        double *yv = y + 3 * (size_t)v;
+        double xj = alpha * xv[0], yj = 0.0; /* column 3v: the diagonal only */
+        yv[0] += av[0] * xj;
+        yv[0] += alpha * yj;
+        xj = alpha * xv[1], yj = 0.0; /* column 3v+1: rows 3v, 3v+1 */
+        yv[0] += av[1] * xj;
+        yj += av[1] * xv[0];
+        yv[1] += av[2] * xj;
+        yv[1] += alpha * yj;
+        xj = alpha * xv[2], yj = 0.0; /* column 3v+2: rows 3v .. 3v+2 */
+        yv[0] += av[3] * xj;
+        yj += av[3] * xv[0];
+        yv[1] += av[4] * xj;
+        yj += av[4] * xv[1];
+        yv[2] += av[5] * xj;
+        yv[2] += alpha * yj;
+    }
+    int32_t ord[64];
+    static const double zero[3] = {0.0, 0.0, 0.0};
+    for (int32_t k = 0; k < nf; ++k) {
+        const int32_t f = s->face_of_col[k], b = s->face_start[f];
+        const int32_t n = sorted_corners(s, f, ord);
+        const double *cf = s->mat_coupling + 3 * (size_t)f;
+        const size_t j = base + (size_t)k;
+        const double xj = alpha * x[j];
+        double yj = 0.0;
+        for (int32_t c = 0, u = -1; c < n; ++c) {
+            u = corner_vertex(s, b, n, ord, c, u);
+            const double *cu = s->fixed[u] ? zero : cf;
+            for (int a = 0; a < 3; ++a) {
+                y[3 * (size_t)u + a] += cu[a] * xj;
+                yj += cu[a] * x[3 * (size_t)u + a];
+            }
+        }
+        y[j] += s->mat_diag[f] * xj;
+        y[j] += alpha * yj;
+    }
+}
+
+/* y = beta y + alpha A x, the matrix stored or not */
+static void matvec(const facet_planarizer *s, double alpha, int beta, const double *x, double *y)
+{
+    if (s->matrix)
+        sym_matvec(s->matrix, alpha, beta, x, y);
+    else
+        natural_matvec(s, alpha, beta, x, y);
+}
+
 /* Solves matrix * pcg_x = rhs by conjugate gradients preconditioned with
  * the (older) factorization, to a residual PCG_TOL of the right-hand side's.
  * Returns the steps taken, or 0 if it did not get there (or failed); rhs is
@@ -771,7 +881,7 @@ static void sym_matvec(const cholmod_sparse *a, double alpha, int beta, const do
  * (A p is dead once r is updated). */
 static int pcg_solve(facet_planarizer *s)
 {
-    const size_t n = s->matrix->nrow;
+    const size_t n = 3 * (size_t)s->nv + (size_t)s->nf;
     double *r = s->pcg_r->x, *p = s->pcg_p->x, *ap = s->pcg_ap->x, *x = s->pcg_x->x;
     memcpy(r, s->rhs->x, sizeof(double) * n);
     memset(x, 0, sizeof(double) * n);
@@ -784,7 +894,7 @@ static int pcg_solve(facet_planarizer *s)
     memcpy(p, z, sizeof(double) * n);
     double rz = dot_n(r, z, n);
     for (int step = 1; step <= PCG_MAX; ++step) {
-        sym_matvec(s->matrix, 1.0, 0, p, ap);
+        matvec(s, 1.0, 0, p, ap);
         const double pap = dot_n(p, ap, n);
         if (!(pap > 0.0) || !isfinite(pap))
             return 0;
@@ -815,9 +925,10 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
     const int32_t nv = s->nv, nf = s->nf;
     const facet_planarize_options *o = &s->o;
     const double w = 1.0 - mu;
-    double *x = s->matrix->x;
-    const int *cp = s->matrix->p;
-    const int *ri = s->matrix->i;
+    /* the stored matrix (with couplings), or NULL: mat_* (natural_matvec) */
+    double *x = s->matrix ? s->matrix->x : NULL;
+    const int *cp = s->matrix ? s->matrix->p : NULL;
+    const int *ri = s->matrix ? s->matrix->i : NULL;
     double *b = s->rhs->x;
     const int shape = o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0;
     const int sliding = o->boundary == FACET_BOUNDARY_SLIDING;
@@ -885,17 +996,22 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
             b0 += w * t[0], b1 += w * t[1], b2 += w * t[2];
             a00 += g, a11 += g, a22 += g;
         }
-        const int32_t nk = s->couple_start[v + 1] - s->couple_start[v];
-        for (int a = 0; a < 3; ++a) {
-            double *col = x + cp[3 * v + a];
-            for (int32_t k = 0; k < nk; ++k) {
-                const int32_t e2 = s->couple_start[v] + k;
-                col[k] = mu * s->couple_mu[e2] + w * s->couple_con[e2];
+        if (!x) {
+            double *av = s->mat_block + 6 * (size_t)v;
+            av[0] = a00, av[1] = a01, av[2] = a11, av[3] = a02, av[4] = a12, av[5] = a22;
+        } else {
+            const int32_t nk = s->couple_start[v + 1] - s->couple_start[v];
+            for (int a = 0; a < 3; ++a) {
+                double *col = x + cp[3 * v + a];
+                for (int32_t k = 0; k < nk; ++k) {
+                    const int32_t e2 = s->couple_start[v] + k;
+                    col[k] = mu * s->couple_mu[e2] + w * s->couple_con[e2];
+                }
             }
+            x[cp[3 * v] + nk] = a00;
+            x[cp[3 * v + 1] + nk] = a01, x[cp[3 * v + 1] + nk + 1] = a11;
+            x[cp[3 * v + 2] + nk] = a02, x[cp[3 * v + 2] + nk + 1] = a12, x[cp[3 * v + 2] + nk + 2] = a22;
         }
-        x[cp[3 * v] + nk] = a00;
-        x[cp[3 * v + 1] + nk] = a01, x[cp[3 * v + 1] + nk + 1] = a11;
-        x[cp[3 * v + 2] + nk] = a02, x[cp[3 * v + 2] + nk + 1] = a12, x[cp[3 * v + 2] + nk + 2] = a22;
         b[3 * v] = b0, b[3 * v + 1] = b1, b[3 * v + 2] = b2;
     }
     /* offset columns */
@@ -904,13 +1020,20 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
         const double *n = s->normal + 3 * (size_t)f;
         const double pw = w * face_weight(s, f);
         const int32_t b0 = s->face_start[f], b1 = s->face_start[f + 1];
-        for (int32_t k = b0; k < b1; ++k) {
-            const int32_t at = s->corner_slot[k];
-            x[at] = pw * n[0], x[at + 1] = pw * n[1], x[at + 2] = pw * n[2];
-        }
         /* an exempt face's offset is decoupled: identity row */
+        const double diag = pw > 0.0 ? pw * (double)(b1 - b0) : 1.0;
         const int32_t col = s->face_col[f];
-        x[cp[col + 1] - 1] = pw > 0.0 ? pw * (double)(b1 - b0) : 1.0;
+        if (!x) {
+            double *cf = s->mat_coupling + 3 * (size_t)f;
+            cf[0] = pw * n[0], cf[1] = pw * n[1], cf[2] = pw * n[2];
+            s->mat_diag[f] = diag;
+        } else {
+            for (int32_t k = b0; k < b1; ++k) {
+                const int32_t at = s->corner_slot[k];
+                x[at] = pw * n[0], x[at + 1] = pw * n[1], x[at + 2] = pw * n[2];
+            }
+            x[cp[col + 1] - 1] = diag;
+        }
         b[col] = 0.0;
     }
     /* fixed vertices: identity rows, couplings moved to the right-hand side
@@ -918,7 +1041,32 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
     int any_fixed = 0;
     for (int32_t v = 0; v < nv && !any_fixed; ++v)
         any_fixed = s->fixed[v];
-    if (any_fixed) {
+    if (any_fixed && !x) {
+        /* the stored matrix's pass below, entry for entry: a fixed vertex's
+         * block becomes the identity, and its corners' couplings (entries of
+         * the offsets' columns, by ascending vertex) move to those columns'
+         * right-hand side; natural_matvec takes them as 0 */
+        int32_t ord[64];
+        for (int32_t k = 0; k < nf; ++k) {
+            const int32_t f = s->face_of_col[k], fb = s->face_start[f];
+            const int32_t n = sorted_corners(s, f, ord);
+            const double *cf = s->mat_coupling + 3 * (size_t)f;
+            double *bj = b + 3 * (size_t)nv + k;
+            for (int32_t c = 0, u = -1; c < n; ++c) {
+                u = corner_vertex(s, fb, n, ord, c, u);
+                if (s->fixed[u])
+                    for (int a = 0; a < 3; ++a)
+                        *bj -= cf[a] * p[3 * (size_t)u + a];
+            }
+        }
+        for (int32_t v = 0; v < nv; ++v)
+            if (s->fixed[v]) {
+                double *av = s->mat_block + 6 * (size_t)v;
+                av[0] = 1.0, av[1] = 0.0, av[2] = 1.0, av[3] = 0.0, av[4] = 0.0, av[5] = 1.0;
+                for (int a = 0; a < 3; ++a)
+                    b[3 * v + a] = p[3 * (size_t)v + a];
+            }
+    } else if (any_fixed) {
         const int32_t n = 3 * nv + nf;
         for (int32_t c = 0; c < n; ++c) {
             const int fc = c < 3 * nv && s->fixed[c / 3];
@@ -953,7 +1101,7 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
     memcpy(cur, s->q, sizeof(double) * 3 * (size_t)nv);
     for (int32_t f = 0; f < nf; ++f)
         cur[s->face_col[f]] = s->offset[f];
-    sym_matvec(s->matrix, -1.0, 1, cur, b);
+    matvec(s, -1.0, 1, cur, b);
     /* Between the planes' steps only the normals turn (and mu stays within a
      * level of the schedule), so the last factorization stays a very good
      * preconditioner: conjugate gradients with it replace a refactorization

@@ -115,6 +115,14 @@ struct facet_planarizer {
     int32_t *schur_slot, *schur_start, *corner_col;
     double *block, *face_coupling;
     cholmod_dense *schur_b, *schur_x;
+    /* Without couplings the (3 nv + nf) matrix is not stored (matrix and
+     * corner_slot NULL): its values are per vertex the 3x3 block (a00 a01
+     * a11 a02 a12 a22: its three columns' entries), per face its corners'
+     * coupling w_f n_f and its offset's diagonal; face_of_col: the face of
+     * each offset column (planarize_global.c, natural_matvec). NULL with
+     * couplings. */
+    double *mat_block, *mat_coupling, *mat_diag;
+    int32_t *face_of_col;
     cholmod_sparse *pmatrix;
     int32_t *pmap, *perm;
     cholmod_dense *perm_b, *perm_x;
