@@ -521,12 +521,12 @@ static int ensure_workspace(facet_planarizer *s)
         return 0;
     if (o->anderson > s->aa_capacity) {
         /* the depth asked for, not FACET_ANDERSON_MAX: at depth 5 the history
-         * is 120 bytes per vertex, at 16 it would be 384 (issue 3's memory
+         * is 240 bytes per vertex, at 16 it would be 768 (issue 3's memory
          * target is 1 KB per face) */
         const size_t v3 = 3 * (size_t)s->nv;
         free(s->aa_df), free(s->aa_dg);
-        s->aa_df = malloc(sizeof(float) * v3 * (size_t)o->anderson);
-        s->aa_dg = malloc(sizeof(float) * v3 * (size_t)o->anderson);
+        s->aa_df = malloc(sizeof(double) * v3 * (size_t)o->anderson);
+        s->aa_dg = malloc(sizeof(double) * v3 * (size_t)o->anderson);
         if (!s->aa_f)
             s->aa_f = malloc(sizeof(double) * v3);
         if (!s->aa_g)
@@ -585,8 +585,8 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     }
     const int m = have ? a->count : 0;
     const size_t blocks = anderson_blocks(n), width = 2 * (size_t)FACET_ANDERSON_MAX + 1;
-    float *df_new = s->aa_df + (size_t)slot * n, *dg_new = s->aa_dg + (size_t)slot * n;
-    const float *df_all = s->aa_df;
+    double *df_new = s->aa_df + (size_t)slot * n, *dg_new = s->aa_dg + (size_t)slot * n;
+    const double *df_all = s->aa_df;
 #pragma omp parallel for schedule(static) num_threads(a->nthreads)
     for (size_t blk = 0; blk < blocks; ++blk) {
         const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
@@ -595,8 +595,8 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
         for (size_t k = k0; k < k1; ++k) {
             const double f = g[k] - x[k];
             if (have) {
-                df_new[k] = (float)(f - s->aa_f[k]);
-                dg_new[k] = (float)(g[k] - s->aa_g[k]);
+                df_new[k] = f - s->aa_f[k];
+                dg_new[k] = g[k] - s->aa_g[k];
             }
             s->aa_f[k] = f;
             s->aa_g[k] = g[k];
@@ -606,9 +606,9 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
          * dependent additions per sum, 2m chains in flight instead of 2 */
         double gsum[FACET_ANDERSON_MAX] = {0.0}, rsum[FACET_ANDERSON_MAX] = {0.0};
         for (size_t k = k0; k < k1; ++k) {
-            const double d = (double)df_new[k], f = s->aa_f[k];
+            const double d = df_new[k], f = s->aa_f[k];
             for (int j = 0; j < m; ++j) {
-                const double dfjk = (double)df_all[(size_t)j * n + k];
+                const double dfjk = df_all[(size_t)j * n + k];
                 gsum[j] += d * dfjk;
                 rsum[j] += dfjk * f;
             }
@@ -668,7 +668,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     for (int j = 0; j < m; ++j)
         if (!isfinite(theta[j]))
             return 0;
-    const float *dg_all = s->aa_dg;
+    const double *dg_all = s->aa_dg;
     int finite = 1;
 #pragma omp parallel for schedule(static) num_threads(a->nthreads) reduction(&& : finite)
     for (size_t blk = 0; blk < blocks; ++blk) {
@@ -676,7 +676,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
         for (size_t k = k0; k < k1; ++k) {
             double value = g[k];
             for (int j = 0; j < m; ++j)
-                value -= theta[j] * (double)dg_all[(size_t)j * n + k];
+                value -= theta[j] * dg_all[(size_t)j * n + k];
             g[k] = value;
             finite = finite && isfinite(value);
         }

@@ -141,7 +141,7 @@ struct facet_planarizer {
     double *couple_diag_mu, *couple_diag_con;
 
     /* Anderson acceleration */
-    float *aa_df, *aa_dg;                 /* m columns of 3 nv, single precision */
+    double *aa_df, *aa_dg;                /* m columns of 3 nv */
     double *aa_f, *aa_g;                  /* last f = g - x and g */
     int32_t aa_capacity;                  /* columns aa_df and aa_dg hold */
 
