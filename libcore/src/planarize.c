@@ -327,7 +327,7 @@ void facet_planarizer_free(facet_planarizer **handle)
                       s->face_residual, s->vertex_residual, s->normal_fit,
                       s->control_centroid, s->shape, s->circle_target, s->slide_target,
                       s->slide_tangent, s->laplace_weight, s->previous, s->aa_df, s->aa_dg,
-                      s->aa_f, s->aa_g, s->q_next, s->surface_point,
+                      s->q_next, s->surface_point,
                       s->surface_normal, s->surface_query, s->previous_control,
                       s->live_vertex, s->live_changed, s->live_mark, s->live_xyz, s->live_face_dev,
                       s->guard_count, s->guard_sum, s->corner_floor, s->corner_cos, s->face_guard,
@@ -522,17 +522,14 @@ static int ensure_workspace(facet_planarizer *s)
     if (o->anderson > s->aa_capacity) {
         /* the depth asked for, not FACET_ANDERSON_MAX: at depth 5 the history
          * is 240 bytes per vertex, at 16 it would be 768 (issue 3's memory
-         * target is 1 KB per face) */
-        const size_t v3 = 3 * (size_t)s->nv;
+         * target is 1 KB per face); the last step's f and g live in the
+         * ring's next slot (anderson_prev_col), a column beside it at depth 1 */
+        const size_t v3 = 3 * (size_t)s->nv, columns = o->anderson == 1 ? 2 : (size_t)o->anderson;
         free(s->aa_df), free(s->aa_dg);
-        s->aa_df = malloc(sizeof(double) * v3 * (size_t)o->anderson);
-        s->aa_dg = malloc(sizeof(double) * v3 * (size_t)o->anderson);
-        if (!s->aa_f)
-            s->aa_f = malloc(sizeof(double) * v3);
-        if (!s->aa_g)
-            s->aa_g = malloc(sizeof(double) * v3);
+        s->aa_df = malloc(sizeof(double) * v3 * columns);
+        s->aa_dg = malloc(sizeof(double) * v3 * columns);
         s->aa_capacity = s->aa_df && s->aa_dg ? o->anderson : 0;
-        if (!s->aa_df || !s->aa_dg || !s->aa_f || !s->aa_g)
+        if (!s->aa_df || !s->aa_dg)
             return 0;
     }
     return 1;
@@ -542,7 +539,8 @@ static int ensure_workspace(facet_planarizer *s)
 
 typedef struct {
     int m, count, head;       /* depth, columns held, next slot */
-    int have_previous;        /* aa_f / aa_g hold the previous step */
+    int have_previous;        /* the previous step's f and g are held (anderson_prev_col) */
+    int plain_col;            /* the column where the last step left its g (kept by a restart) */
     int nthreads;
     double gram[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX]; /* dF^T dF by slot */
     double *partial;          /* per block: 2 m dot-product parts and the largest |f| */
@@ -556,6 +554,23 @@ static void anderson_restart(anderson_state *a)
     a->have_previous = 0;
 }
 
+/* The column of aa_df and aa_dg that holds the last step's f = g - x and g
+ * (its plain iterate): the ring's next slot, whose difference the next step
+ * writes there in place, reading them; once the ring is full that is its
+ * oldest column, which the step that stores them still reads first. At
+ * depth 1 the ring's one column is the next slot too: a column beside it. */
+static int anderson_prev_col(const anderson_state *a)
+{
+    return a->m == 1 ? 1 : a->head;
+}
+
+/* The last step's plain iterate g (valid after an anderson_step, until the
+ * next one; a restart in between, as when mu changes, does not move it). */
+static const double *anderson_plain(const facet_planarizer *s, const anderson_state *a)
+{
+    return s->aa_dg + (size_t)a->plain_col * 3 * (size_t)s->nv;
+}
+
 /* Dot products are summed in blocks of ANDERSON_BLOCK entries, each block in
  * index order, then the blocks' sums in block order: the bits do not depend
  * on the thread count, and a mesh of up to ANDERSON_BLOCK / 3 vertices (one
@@ -565,6 +580,18 @@ enum { ANDERSON_BLOCK = 32768 };
 static size_t anderson_blocks(size_t n)
 {
     return (n + ANDERSON_BLOCK - 1) / ANDERSON_BLOCK;
+}
+
+/* Keeps the plain iterate g as the last step's (anderson_prev_col) when no
+ * extrapolation reads the history. Returns 0 (not accelerated). */
+static int anderson_keep_plain(double *g_to, const double *g, size_t n, int nthreads)
+{
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (size_t blk = 0; blk < anderson_blocks(n); ++blk) {
+        const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
+        memcpy(g_to + k0, g + k0, sizeof(double) * (k1 - k0));
+    }
+    return 0;
 }
 
 /* Given the step x -> g (x in `x`, g in s->q), records the differences and
@@ -578,14 +605,19 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     double *g = s->q;
     const int have = a->have_previous;
     const int slot = a->head;
+    const int from = anderson_prev_col(a); /* the previous f and g (if have): slot itself unless m = 1 */
     if (have) {
         a->head = (a->head + 1) % a->m;
         if (a->count < a->m)
             a->count++;
     }
+    const int to = anderson_prev_col(a); /* this step's f and g: never slot */
+    a->plain_col = to;
     const int m = have ? a->count : 0;
     const size_t blocks = anderson_blocks(n), width = 2 * (size_t)FACET_ANDERSON_MAX + 1;
     double *df_new = s->aa_df + (size_t)slot * n, *dg_new = s->aa_dg + (size_t)slot * n;
+    const double *f_prev = s->aa_df + (size_t)from * n, *g_prev = s->aa_dg + (size_t)from * n;
+    double *f_to = s->aa_df + (size_t)to * n, *g_to = s->aa_dg + (size_t)to * n;
     const double *df_all = s->aa_df;
 #pragma omp parallel for schedule(static) num_threads(a->nthreads)
     for (size_t blk = 0; blk < blocks; ++blk) {
@@ -594,24 +626,24 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
         double largest = 0.0;
         for (size_t k = k0; k < k1; ++k) {
             const double f = g[k] - x[k];
-            if (have) {
-                df_new[k] = f - s->aa_f[k];
-                dg_new[k] = g[k] - s->aa_g[k];
+            if (have) { /* in place: each entry is read, then written */
+                df_new[k] = f - f_prev[k];
+                dg_new[k] = g[k] - g_prev[k];
             }
-            s->aa_f[k] = f;
-            s->aa_g[k] = g[k];
             largest = facet_max(largest, fabs(f));
         }
         /* the 2m sums side by side (each still in index order): one chain of
-         * dependent additions per sum, 2m chains in flight instead of 2 */
+         * dependent additions per sum, 2m chains in flight instead of 2; then
+         * f into its column, which (the ring full) the sums have just read */
         double gsum[FACET_ANDERSON_MAX] = {0.0}, rsum[FACET_ANDERSON_MAX] = {0.0};
         for (size_t k = k0; k < k1; ++k) {
-            const double d = df_new[k], f = s->aa_f[k];
+            const double d = m > 0 ? df_new[k] : 0.0, f = g[k] - x[k];
             for (int j = 0; j < m; ++j) {
                 const double dfjk = df_all[(size_t)j * n + k];
                 gsum[j] += d * dfjk;
                 rsum[j] += dfjk * f;
             }
+            f_to[k] = f;
         }
         for (int j = 0; j < m; ++j)
             part[2 * j] = gsum[j], part[2 * j + 1] = rsum[j];
@@ -631,7 +663,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     /* at a fixed point to rounding there is nothing to extrapolate, and
      * differences of rounding errors would only add noise */
     if (m == 0 || largest <= 1e-13)
-        return 0;
+        return anderson_keep_plain(g_to, g, n, a->nthreads);
     /* theta = argmin |f - dF theta|: normal equations, Cholesky with a small
      * Tikhonov term; a failed factorisation means no acceleration this time */
     double l[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX], theta[FACET_ANDERSON_MAX];
@@ -639,7 +671,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     for (int j = 0; j < m; ++j)
         trace += a->gram[j][j];
     if (!(trace > 0.0) || !isfinite(trace))
-        return 0;
+        return anderson_keep_plain(g_to, g, n, a->nthreads);
     for (int i = 0; i < m; ++i)
         for (int j = 0; j <= i; ++j) {
             double sum = a->gram[i][j] + (i == j ? 1e-10 * trace : 0.0);
@@ -647,7 +679,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
                 sum -= l[i][k] * l[j][k];
             if (i == j) {
                 if (!(sum > 0.0))
-                    return 0;
+                    return anderson_keep_plain(g_to, g, n, a->nthreads);
                 l[i][i] = sqrt(sum);
             } else {
                 l[i][j] = sum / l[j][j];
@@ -667,7 +699,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     }
     for (int j = 0; j < m; ++j)
         if (!isfinite(theta[j]))
-            return 0;
+            return anderson_keep_plain(g_to, g, n, a->nthreads);
     const double *dg_all = s->aa_dg;
     int finite = 1;
 #pragma omp parallel for schedule(static) num_threads(a->nthreads) reduction(&& : finite)
@@ -677,12 +709,13 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
             double value = g[k];
             for (int j = 0; j < m; ++j)
                 value -= theta[j] * dg_all[(size_t)j * n + k];
+            g_to[k] = g[k]; /* the plain iterate, after the sum read its column */
             g[k] = value;
             finite = finite && isfinite(value);
         }
     }
-    if (!finite) { /* back to the plain step's iterate, kept in aa_g */
-        memcpy(g, s->aa_g, sizeof(double) * n);
+    if (!finite) { /* back to the plain step's iterate */
+        memcpy(g, g_to, sizeof(double) * n);
         return 0;
     }
     return 1;
@@ -850,8 +883,8 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                     ++accepted;
                 } else {
                     ++rejected;
-                    /* the plain step's iterate, kept in aa_g (anderson_step) */
-                    memcpy(s->q, s->aa_g, sizeof(double) * 3 * (size_t)nv);
+                    /* the plain step's iterate, kept by anderson_step */
+                    memcpy(s->q, anderson_plain(s, &aa), sizeof(double) * 3 * (size_t)nv);
                     anderson_restart(&aa);
                     status = facet_pl_local_step(s, mu, nthreads, error);
                     if (status < 0)

@@ -141,8 +141,8 @@ struct facet_planarizer {
     double *couple_diag_mu, *couple_diag_con;
 
     /* Anderson acceleration */
-    double *aa_df, *aa_dg;                /* m columns of 3 nv */
-    double *aa_f, *aa_g;                  /* last f = g - x and g */
+    double *aa_df, *aa_dg;                /* m columns of 3 nv (2 if m = 1); the ring's
+                                             next slot holds the last f = g - x and g */
     int32_t aa_capacity;                  /* columns aa_df and aa_dg hold */
 
     char message[512];
