@@ -128,30 +128,91 @@ static void csr_sort_unique(int32_t n, int32_t *start, int32_t *items)
     start[n] = out;
 }
 
-/* Vertex and face adjacency through edges, and the boundary loops. */
-static int build_topology(facet_planarizer *s)
+/* The half-edges, sorted by edge (lo, hi) then face; NULL if out of memory. */
+static half_edge *sorted_half_edges(const facet_planarizer *s)
 {
-    const int32_t nv = s->nv, nf = s->nf, nc = s->nc;
-    half_edge *h = malloc(sizeof *h * (size_t)nc);
-    s->vertex_adj_start = calloc((size_t)nv + 1, sizeof(int32_t));
-    s->vertex_adj = malloc(sizeof(int32_t) * 2 * (size_t)nc);
-    s->face_adj_start = calloc((size_t)nf + 1, sizeof(int32_t));
-    s->boundary_prev = malloc(sizeof(int32_t) * (size_t)nv);
-    s->boundary_next = malloc(sizeof(int32_t) * (size_t)nv);
-    s->on_boundary = calloc((size_t)nv, 1);
-    if (!h || !s->vertex_adj_start || !s->vertex_adj || !s->face_adj_start || !s->boundary_prev ||
-        !s->boundary_next || !s->on_boundary) {
-        free(h);
-        return 0;
-    }
-    for (int32_t f = 0; f < nf; ++f) {
+    half_edge *h = malloc(sizeof *h * (size_t)(s->nc ? s->nc : 1));
+    if (!h)
+        return NULL;
+    for (int32_t f = 0; f < s->nf; ++f) {
         const int32_t b = s->face_start[f], e = s->face_start[f + 1];
         for (int32_t k = b; k < e; ++k) {
             const int32_t u = s->face_vertices[k], v = s->face_vertices[k + 1 < e ? k + 1 : b];
             h[k].lo = u < v ? u : v, h[k].hi = u < v ? v : u, h[k].from = u, h[k].face = f;
         }
     }
-    qsort(h, (size_t)nc, sizeof *h, compare_half_edge);
+    qsort(h, (size_t)s->nc, sizeof *h, compare_half_edge);
+    return h;
+}
+
+/* The faces sharing an edge with each face (face_adj), ascending: only the
+ * face-normal Laplacian reads them, so they are built when it is first on. */
+static int build_face_adjacency(facet_planarizer *s)
+{
+    const int32_t nf = s->nf, nc = s->nc;
+    half_edge *h = sorted_half_edges(s);
+    free(s->face_adj_start), free(s->face_adj); /* (left by a failed call) */
+    s->face_adj = NULL;
+    s->face_adj_start = calloc((size_t)nf + 1, sizeof(int32_t));
+    if (!h || !s->face_adj_start) {
+        free(h);
+        return 0;
+    }
+    int64_t n_pairs = 0;
+    for (int32_t k = 0; k < nc;) {
+        int32_t e = k + 1;
+        while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
+            ++e;
+        for (int32_t a = k; a < e; ++a)
+            for (int32_t b = a + 1; b < e; ++b)
+                if (h[a].face != h[b].face) {
+                    s->face_adj_start[h[a].face + 1]++;
+                    s->face_adj_start[h[b].face + 1]++;
+                    n_pairs += 2;
+                }
+        k = e;
+    }
+    for (int32_t f = 0; f < nf; ++f)
+        s->face_adj_start[f + 1] += s->face_adj_start[f];
+    s->face_adj = malloc(sizeof(int32_t) * (size_t)(n_pairs ? n_pairs : 1));
+    int32_t *ffill = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
+    if (!s->face_adj || !ffill) {
+        free(h), free(ffill);
+        return 0;
+    }
+    memcpy(ffill, s->face_adj_start, sizeof(int32_t) * (size_t)nf);
+    for (int32_t k = 0; k < nc;) {
+        int32_t e = k + 1;
+        while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
+            ++e;
+        for (int32_t a = k; a < e; ++a)
+            for (int32_t b = a + 1; b < e; ++b)
+                if (h[a].face != h[b].face) {
+                    s->face_adj[ffill[h[a].face]++] = h[b].face;
+                    s->face_adj[ffill[h[b].face]++] = h[a].face;
+                }
+        k = e;
+    }
+    free(h), free(ffill);
+    csr_sort_unique(nf, s->face_adj_start, s->face_adj);
+    return 1;
+}
+
+/* Vertex adjacency through edges, and the boundary loops. */
+static int build_topology(facet_planarizer *s)
+{
+    const int32_t nv = s->nv, nc = s->nc;
+    half_edge *h = sorted_half_edges(s);
+    s->vertex_adj_start = calloc((size_t)nv + 1, sizeof(int32_t));
+    s->vertex_adj = malloc(sizeof(int32_t) * 2 * (size_t)nc);
+    s->boundary_prev = malloc(sizeof(int32_t) * (size_t)nv);
+    s->boundary_next = malloc(sizeof(int32_t) * (size_t)nv);
+    s->on_boundary = calloc((size_t)nv, 1);
+    if (!h || !s->vertex_adj_start || !s->vertex_adj || !s->boundary_prev ||
+        !s->boundary_next || !s->on_boundary) {
+        free(h);
+        return 0;
+    }
     for (int32_t v = 0; v < nv; ++v)
         s->boundary_prev[v] = s->boundary_next[v] = -1;
     uint8_t *pinch = calloc((size_t)nv, 1);
@@ -160,7 +221,6 @@ static int build_topology(facet_planarizer *s)
         return 0;
     }
     /* counts */
-    int64_t n_pairs = 0;
     for (int32_t k = 0; k < nc;) {
         int32_t e = k + 1;
         while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
@@ -177,14 +237,6 @@ static int build_topology(facet_planarizer *s)
                 pinch[to] = 1;
             s->boundary_next[from] = to;
             s->boundary_prev[to] = from;
-        } else {
-            for (int32_t a = k; a < e; ++a)
-                for (int32_t b = a + 1; b < e; ++b)
-                    if (h[a].face != h[b].face) {
-                        s->face_adj_start[h[a].face + 1]++;
-                        s->face_adj_start[h[b].face + 1]++;
-                        n_pairs += 2;
-                    }
         }
         k = e;
     }
@@ -202,34 +254,22 @@ static int build_topology(facet_planarizer *s)
             s->boundary_prev[v] = s->boundary_next[v] = -1;
     }
     free(pinch);
-    for (int32_t f = 0; f < nf; ++f)
-        s->face_adj_start[f + 1] += s->face_adj_start[f];
-    s->face_adj = malloc(sizeof(int32_t) * (size_t)(n_pairs ? n_pairs : 1));
-    int32_t *vfill = malloc(sizeof(int32_t) * (size_t)nv);
-    int32_t *ffill = malloc(sizeof(int32_t) * (size_t)nf);
-    if (!s->face_adj || !vfill || !ffill) {
-        free(h), free(vfill), free(ffill);
+    int32_t *vfill = malloc(sizeof(int32_t) * (size_t)(nv ? nv : 1));
+    if (!vfill) {
+        free(h);
         return 0;
     }
     memcpy(vfill, s->vertex_adj_start, sizeof(int32_t) * (size_t)nv);
-    memcpy(ffill, s->face_adj_start, sizeof(int32_t) * (size_t)nf);
     for (int32_t k = 0; k < nc;) {
         int32_t e = k + 1;
         while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
             ++e;
         s->vertex_adj[vfill[h[k].lo]++] = h[k].hi;
         s->vertex_adj[vfill[h[k].hi]++] = h[k].lo;
-        for (int32_t a = k; a < e; ++a)
-            for (int32_t b = a + 1; b < e; ++b)
-                if (h[a].face != h[b].face) {
-                    s->face_adj[ffill[h[a].face]++] = h[b].face;
-                    s->face_adj[ffill[h[b].face]++] = h[a].face;
-                }
         k = e;
     }
-    free(h), free(vfill), free(ffill);
+    free(h), free(vfill);
     csr_sort_unique(nv, s->vertex_adj_start, s->vertex_adj);
-    csr_sort_unique(nf, s->face_adj_start, s->face_adj);
     /* room for every corner twice, used about once (each edge twice): give
      * the rest back (a shrinking realloc keeps the contents) */
     int32_t *adj = realloc(s->vertex_adj, sizeof(int32_t) * (size_t)(s->vertex_adj_start[nv] ? s->vertex_adj_start[nv] : 1));
@@ -518,6 +558,8 @@ static int ensure_workspace(facet_planarizer *s)
     }
     if (o->normal_laplacian > 0.0 && !s->normal_fit &&
         !(s->normal_fit = malloc(sizeof(double) * 3 * (size_t)s->nf)))
+        return 0;
+    if (o->normal_laplacian > 0.0 && !s->face_adj && !build_face_adjacency(s))
         return 0;
     if (o->anderson > s->aa_capacity) {
         /* the depth asked for, not FACET_ANDERSON_MAX: at depth 5 the history
