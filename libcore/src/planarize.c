@@ -305,7 +305,7 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     s->vertex_start = calloc((size_t)nv + 1, sizeof(int32_t));
     s->vertex_faces = malloc(sizeof(int32_t) * (size_t)nc);
     s->fixed = malloc((size_t)nv);
-    s->p = malloc(v3), s->q = malloc(v3), s->previous = malloc(v3), s->previous_control = malloc(v3);
+    s->p = malloc(v3), s->q = malloc(v3); /* previous, previous_control: previous_storage */
     s->vertex_normal = malloc(v3);
     s->vertex_energy_mu = malloc((size_t)nv * sizeof(double));
     s->vertex_energy_con = malloc((size_t)nv * sizeof(double));
@@ -315,7 +315,7 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     s->face_energy_mu = malloc(fd), s->face_energy_con = malloc(fd), s->face_residual = malloc(fd);
     s->control_centroid = malloc(3 * fd);
     if (!s->face_start || !s->face_vertices || !s->vertex_start || !s->vertex_faces || !s->fixed ||
-        !s->p || !s->q || !s->previous || !s->previous_control || !s->vertex_normal ||
+        !s->p || !s->q || !s->vertex_normal ||
         !s->vertex_energy_mu || !s->vertex_energy_con || !s->vertex_residual || !s->normal || !s->offset ||
         !s->face_dev || !s->face_edge || !s->face_sq || !s->face_energy_mu ||
         !s->face_energy_con || !s->face_residual || !s->control_centroid) {
@@ -354,6 +354,8 @@ void facet_planarizer_free(facet_planarizer **handle)
     if (!handle || !*handle)
         return;
     facet_planarizer *s = *handle;
+    if (s->previous_in_history) /* freed with aa_df */
+        s->previous = s->previous_control = NULL;
     facet_pl_global_free(s);
     facet_planarizer_free(&s->live);
     if (s->cholmod_started)
@@ -567,14 +569,49 @@ static int ensure_workspace(facet_planarizer *s)
          * target is 1 KB per face); the last step's f and g live in the
          * ring's next slot (anderson_prev_col), a column beside it at depth 1 */
         const size_t v3 = 3 * (size_t)s->nv, columns = o->anderson == 1 ? 2 : (size_t)o->anderson;
-        free(s->aa_df), free(s->aa_dg);
+        double *old = s->aa_df;
+        free(s->aa_dg);
         s->aa_df = malloc(sizeof(double) * v3 * columns);
         s->aa_dg = malloc(sizeof(double) * v3 * columns);
+        if (s->previous_in_history) { /* the last result moves with the history's memory */
+            if (s->aa_df)
+                memcpy(s->aa_df, old, sizeof(double) * 2 * v3);
+            s->previous = s->aa_df, s->previous_control = s->aa_df ? s->aa_df + v3 : NULL;
+            if (!s->aa_df)
+                s->has_previous = 0, s->previous_in_history = 0;
+        }
+        free(old);
         s->aa_capacity = s->aa_df && s->aa_dg ? o->anderson : 0;
         if (!s->aa_df || !s->aa_dg)
             return 0;
     }
     return 1;
+}
+
+/* Where the last result and its control positions are kept between solves:
+ * the first two columns of the Anderson history (at least two when it is
+ * allocated), which a solve needs only from its first step to its end,
+ * while the last result is read only before (the warm start) and both are
+ * written only after: so they add nothing to a solve's peak memory (issue 3:
+ * 48 bytes per vertex). Without a history, arrays of their own. Returns 0 if
+ * out of memory. */
+static int previous_storage(facet_planarizer *s)
+{
+    if (s->previous)
+        return 1;
+    const size_t v3 = 3 * (size_t)s->nv;
+    if (s->aa_df) {
+        s->previous = s->aa_df, s->previous_control = s->aa_df + v3;
+        s->previous_in_history = 1;
+        return 1;
+    }
+    s->previous = malloc(sizeof(double) * v3);
+    s->previous_control = malloc(sizeof(double) * v3);
+    if (s->previous && s->previous_control)
+        return 1;
+    free(s->previous), free(s->previous_control);
+    s->previous = s->previous_control = NULL;
+    return 0;
 }
 
 /* ---- Anderson acceleration ------------------------------------------------ */
@@ -845,6 +882,12 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             s->p[3 * (size_t)v + a] = (xyz_in[3 * (size_t)v + a] - centre[a]) * inv;
             s->q[3 * (size_t)v + a] = (start_xyz[3 * (size_t)v + a] - centre[a]) * inv;
         }
+    /* the history is about to overwrite the last result (previous_storage):
+     * a solve that fails keeps none (a warm start then starts cold, a live
+     * update asks for a solve); one that stops at iteration 0 has not
+     * touched it (start_xyz, below) */
+    if (s->previous_in_history && options->anderson > 0)
+        s->has_previous = 0;
     facet_pl_prepare_solve(s);
     for (int32_t v = 0; v < nv; ++v) /* a fixed vertex starts (and stays) at its control point */
         if (s->fixed[v])
@@ -1106,6 +1149,8 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     free(aa.partial);
     if (status < 0 && status != FACET_ERROR_CANCELLED)
         return status;
+    if (!previous_storage(s))
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     if (s->previous_control != xyz_in) /* before xyz_out, which may be xyz_in */
         memmove(s->previous_control, xyz_in, sizeof(double) * 3 * (size_t)nv);
 

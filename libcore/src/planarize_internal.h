@@ -74,6 +74,8 @@ struct facet_planarizer {
     double *previous;                     /* last result, model units (warm start) */
     double *previous_control;             /* the control positions it was solved from */
     int has_previous;
+    int previous_in_history;              /* both in aa_df's first two columns
+                                             (planarize.c, previous_storage) */
 
     /* live updates (planarize_live.c): the region around the edited vertices */
     struct facet_planarizer *live;        /* handle of the region's submesh; NULL: none */
