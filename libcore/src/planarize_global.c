@@ -76,8 +76,10 @@ void facet_pl_global_free(facet_planarizer *s)
     free(s->mat_coupling);
     free(s->mat_diag);
     free(s->face_of_col);
+    free(s->corner_order);
     s->mat_block = s->mat_coupling = s->mat_diag = NULL;
     s->face_of_col = NULL;
+    s->corner_order = NULL;
     free(s->couple_start);
     free(s->couple_vertex);
     free(s->couple_mu);
@@ -596,8 +598,21 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
         s->mat_coupling = malloc(sizeof(double) * 3 * (size_t)(nf ? nf : 1));
         s->mat_diag = malloc(sizeof(double) * (size_t)(nf ? nf : 1));
         s->face_of_col = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
-        if (!s->mat_block || !s->mat_coupling || !s->mat_diag || !s->face_of_col)
+        s->corner_order = malloc((size_t)(nc ? nc : 1));
+        if (!s->mat_block || !s->mat_coupling || !s->mat_diag || !s->face_of_col || !s->corner_order)
             return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+        for (int32_t f = 0; f < nf; ++f) { /* insertion sort of each face's corners by vertex */
+            const int32_t b = s->face_start[f], n_f = s->face_start[f + 1] - b;
+            uint8_t *ord = s->corner_order + b;
+            for (int32_t k = 0; k < n_f && n_f <= 255; ++k) {
+                int32_t m = k;
+                while (m > 0 && s->face_vertices[b + ord[m - 1]] > s->face_vertices[b + k]) {
+                    ord[m] = ord[m - 1];
+                    --m;
+                }
+                ord[m] = (uint8_t)k;
+            }
+        }
         status = order_faces(s, error);
         if (status != FACET_OK)
             return status;
@@ -774,32 +789,15 @@ static void sym_matvec(const cholmod_sparse *a, double alpha, int beta, const do
     }
 }
 
-/* The corners of face f by ascending vertex, as the stored matrix's offset
- * columns hold them: sorted into ord if there are at most 64 (the count is
- * returned), else corner_vertex finds each in turn. */
-static int32_t sorted_corners(const facet_planarizer *s, int32_t f, int32_t *ord)
-{
-    const int32_t b = s->face_start[f], n = s->face_start[f + 1] - b;
-    if (n > 64)
-        return n;
-    for (int32_t k = 0; k < n; ++k) { /* insertion sort of corners by vertex */
-        int32_t m = k;
-        while (m > 0 && s->face_vertices[b + ord[m - 1]] > s->face_vertices[b + k]) {
-            ord[m] = ord[m - 1];
-            --m;
-        }
-        ord[m] = k;
-    }
-    return n;
-}
-
 /* The vertex of the c-th corner of face f (n corners from b) by ascending
- * vertex; prev: that of the (c-1)-th (a face's vertices are distinct). */
-static int32_t corner_vertex(const facet_planarizer *s, int32_t b, int32_t n, const int32_t *ord,
-                             int32_t c, int32_t prev)
+ * vertex, as the stored matrix's offset columns hold them: from
+ * corner_order for faces of up to 255 corners, else found in turn (prev:
+ * the (c-1)-th's vertex; a face's vertices are distinct). */
+static inline int32_t corner_vertex(const facet_planarizer *s, int32_t b, int32_t n, int32_t c,
+                                    int32_t prev)
 {
-    if (n <= 64)
-        return s->face_vertices[b + ord[c]];
+    if (n <= 255)
+        return s->face_vertices[b + s->corner_order[b + c]];
     int32_t best = INT32_MAX;
     for (int32_t k = 0; k < n; ++k) {
         const int32_t u = s->face_vertices[b + k];
@@ -841,18 +839,17 @@ static void natural_matvec(const facet_planarizer *s, double alpha, int beta, co
         yv[2] += av[5] * xj;
         yv[2] += alpha * yj;
     }
-    int32_t ord[64];
     static const double zero[3] = {0.0, 0.0, 0.0};
+    const uint8_t *fixed = s->mat_any_fixed ? s->fixed : NULL;
     for (int32_t k = 0; k < nf; ++k) {
-        const int32_t f = s->face_of_col[k], b = s->face_start[f];
-        const int32_t n = sorted_corners(s, f, ord);
+        const int32_t f = s->face_of_col[k], b = s->face_start[f], n = s->face_start[f + 1] - b;
         const double *cf = s->mat_coupling + 3 * (size_t)f;
         const size_t j = base + (size_t)k;
         const double xj = alpha * x[j];
         double yj = 0.0;
         for (int32_t c = 0, u = -1; c < n; ++c) {
-            u = corner_vertex(s, b, n, ord, c, u);
-            const double *cu = s->fixed[u] ? zero : cf;
+            u = corner_vertex(s, b, n, c, u);
+            const double *cu = fixed && fixed[u] ? zero : cf;
             for (int a = 0; a < 3; ++a) {
                 y[3 * (size_t)u + a] += cu[a] * xj;
                 yj += cu[a] * x[3 * (size_t)u + a];
@@ -1041,19 +1038,18 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
     int any_fixed = 0;
     for (int32_t v = 0; v < nv && !any_fixed; ++v)
         any_fixed = s->fixed[v];
+    s->mat_any_fixed = any_fixed;
     if (any_fixed && !x) {
         /* the stored matrix's pass below, entry for entry: a fixed vertex's
          * block becomes the identity, and its corners' couplings (entries of
          * the offsets' columns, by ascending vertex) move to those columns'
          * right-hand side; natural_matvec takes them as 0 */
-        int32_t ord[64];
         for (int32_t k = 0; k < nf; ++k) {
-            const int32_t f = s->face_of_col[k], fb = s->face_start[f];
-            const int32_t n = sorted_corners(s, f, ord);
+            const int32_t f = s->face_of_col[k], fb = s->face_start[f], n = s->face_start[f + 1] - fb;
             const double *cf = s->mat_coupling + 3 * (size_t)f;
             double *bj = b + 3 * (size_t)nv + k;
             for (int32_t c = 0, u = -1; c < n; ++c) {
-                u = corner_vertex(s, fb, n, ord, c, u);
+                u = corner_vertex(s, fb, n, c, u);
                 if (s->fixed[u])
                     for (int a = 0; a < 3; ++a)
                         *bj -= cf[a] * p[3 * (size_t)u + a];

@@ -121,10 +121,14 @@ struct facet_planarizer {
      * corner_slot NULL): its values are per vertex the 3x3 block (a00 a01
      * a11 a02 a12 a22: its three columns' entries), per face its corners'
      * coupling w_f n_f and its offset's diagonal; face_of_col: the face of
-     * each offset column (planarize_global.c, natural_matvec). NULL with
-     * couplings. */
+     * each offset column (planarize_global.c, natural_matvec); corner_order:
+     * per corner, the local index of each face's corners by ascending
+     * vertex (faces of up to 255 corners); mat_any_fixed: some vertex is
+     * held. NULL with couplings. */
     double *mat_block, *mat_coupling, *mat_diag;
     int32_t *face_of_col;
+    uint8_t *corner_order;
+    int mat_any_fixed;
     cholmod_sparse *pmatrix;
     int32_t *pmap, *perm;
     cholmod_dense *perm_b, *perm_x;
