@@ -712,18 +712,19 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
             largest = facet_max(largest, fabs(f));
         }
         /* the 2m sums side by side (each still in index order): one chain of
-         * dependent additions per sum, 2m chains in flight instead of 2; then
-         * f into its column, which (the ring full) the sums have just read */
+         * dependent additions per sum, 2m chains in flight instead of 2 */
         double gsum[FACET_ANDERSON_MAX] = {0.0}, rsum[FACET_ANDERSON_MAX] = {0.0};
-        for (size_t k = k0; k < k1; ++k) {
-            const double d = m > 0 ? df_new[k] : 0.0, f = g[k] - x[k];
+        for (size_t k = k0; k < k1 && m > 0; ++k) {
+            const double d = df_new[k], f = g[k] - x[k];
             for (int j = 0; j < m; ++j) {
                 const double dfjk = df_all[(size_t)j * n + k];
                 gsum[j] += d * dfjk;
                 rsum[j] += dfjk * f;
             }
-            f_to[k] = f;
         }
+        /* then f into its column, which (the ring full) the sums have read */
+        for (size_t k = k0; k < k1; ++k)
+            f_to[k] = g[k] - x[k];
         for (int j = 0; j < m; ++j)
             part[2 * j] = gsum[j], part[2 * j + 1] = rsum[j];
         part[width - 1] = largest;
