@@ -128,30 +128,91 @@ static void csr_sort_unique(int32_t n, int32_t *start, int32_t *items)
     start[n] = out;
 }
 
-/* Vertex and face adjacency through edges, and the boundary loops. */
-static int build_topology(facet_planarizer *s)
+/* The half-edges, sorted by edge (lo, hi) then face; NULL if out of memory. */
+static half_edge *sorted_half_edges(const facet_planarizer *s)
 {
-    const int32_t nv = s->nv, nf = s->nf, nc = s->nc;
-    half_edge *h = malloc(sizeof *h * (size_t)nc);
-    s->vertex_adj_start = calloc((size_t)nv + 1, sizeof(int32_t));
-    s->vertex_adj = malloc(sizeof(int32_t) * 2 * (size_t)nc);
-    s->face_adj_start = calloc((size_t)nf + 1, sizeof(int32_t));
-    s->boundary_prev = malloc(sizeof(int32_t) * (size_t)nv);
-    s->boundary_next = malloc(sizeof(int32_t) * (size_t)nv);
-    s->on_boundary = calloc((size_t)nv, 1);
-    if (!h || !s->vertex_adj_start || !s->vertex_adj || !s->face_adj_start || !s->boundary_prev ||
-        !s->boundary_next || !s->on_boundary) {
-        free(h);
-        return 0;
-    }
-    for (int32_t f = 0; f < nf; ++f) {
+    half_edge *h = malloc(sizeof *h * (size_t)(s->nc ? s->nc : 1));
+    if (!h)
+        return NULL;
+    for (int32_t f = 0; f < s->nf; ++f) {
         const int32_t b = s->face_start[f], e = s->face_start[f + 1];
         for (int32_t k = b; k < e; ++k) {
             const int32_t u = s->face_vertices[k], v = s->face_vertices[k + 1 < e ? k + 1 : b];
             h[k].lo = u < v ? u : v, h[k].hi = u < v ? v : u, h[k].from = u, h[k].face = f;
         }
     }
-    qsort(h, (size_t)nc, sizeof *h, compare_half_edge);
+    qsort(h, (size_t)s->nc, sizeof *h, compare_half_edge);
+    return h;
+}
+
+/* The faces sharing an edge with each face (face_adj), ascending: only the
+ * face-normal Laplacian reads them, so they are built when it is first on. */
+static int build_face_adjacency(facet_planarizer *s)
+{
+    const int32_t nf = s->nf, nc = s->nc;
+    half_edge *h = sorted_half_edges(s);
+    free(s->face_adj_start), free(s->face_adj); /* (left by a failed call) */
+    s->face_adj = NULL;
+    s->face_adj_start = calloc((size_t)nf + 1, sizeof(int32_t));
+    if (!h || !s->face_adj_start) {
+        free(h);
+        return 0;
+    }
+    int64_t n_pairs = 0;
+    for (int32_t k = 0; k < nc;) {
+        int32_t e = k + 1;
+        while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
+            ++e;
+        for (int32_t a = k; a < e; ++a)
+            for (int32_t b = a + 1; b < e; ++b)
+                if (h[a].face != h[b].face) {
+                    s->face_adj_start[h[a].face + 1]++;
+                    s->face_adj_start[h[b].face + 1]++;
+                    n_pairs += 2;
+                }
+        k = e;
+    }
+    for (int32_t f = 0; f < nf; ++f)
+        s->face_adj_start[f + 1] += s->face_adj_start[f];
+    s->face_adj = malloc(sizeof(int32_t) * (size_t)(n_pairs ? n_pairs : 1));
+    int32_t *ffill = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
+    if (!s->face_adj || !ffill) {
+        free(h), free(ffill);
+        return 0;
+    }
+    memcpy(ffill, s->face_adj_start, sizeof(int32_t) * (size_t)nf);
+    for (int32_t k = 0; k < nc;) {
+        int32_t e = k + 1;
+        while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
+            ++e;
+        for (int32_t a = k; a < e; ++a)
+            for (int32_t b = a + 1; b < e; ++b)
+                if (h[a].face != h[b].face) {
+                    s->face_adj[ffill[h[a].face]++] = h[b].face;
+                    s->face_adj[ffill[h[b].face]++] = h[a].face;
+                }
+        k = e;
+    }
+    free(h), free(ffill);
+    csr_sort_unique(nf, s->face_adj_start, s->face_adj);
+    return 1;
+}
+
+/* Vertex adjacency through edges, and the boundary loops. */
+static int build_topology(facet_planarizer *s)
+{
+    const int32_t nv = s->nv, nc = s->nc;
+    half_edge *h = sorted_half_edges(s);
+    s->vertex_adj_start = calloc((size_t)nv + 1, sizeof(int32_t));
+    s->vertex_adj = malloc(sizeof(int32_t) * 2 * (size_t)nc);
+    s->boundary_prev = malloc(sizeof(int32_t) * (size_t)nv);
+    s->boundary_next = malloc(sizeof(int32_t) * (size_t)nv);
+    s->on_boundary = calloc((size_t)nv, 1);
+    if (!h || !s->vertex_adj_start || !s->vertex_adj || !s->boundary_prev ||
+        !s->boundary_next || !s->on_boundary) {
+        free(h);
+        return 0;
+    }
     for (int32_t v = 0; v < nv; ++v)
         s->boundary_prev[v] = s->boundary_next[v] = -1;
     uint8_t *pinch = calloc((size_t)nv, 1);
@@ -160,7 +221,6 @@ static int build_topology(facet_planarizer *s)
         return 0;
     }
     /* counts */
-    int64_t n_pairs = 0;
     for (int32_t k = 0; k < nc;) {
         int32_t e = k + 1;
         while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
@@ -177,14 +237,6 @@ static int build_topology(facet_planarizer *s)
                 pinch[to] = 1;
             s->boundary_next[from] = to;
             s->boundary_prev[to] = from;
-        } else {
-            for (int32_t a = k; a < e; ++a)
-                for (int32_t b = a + 1; b < e; ++b)
-                    if (h[a].face != h[b].face) {
-                        s->face_adj_start[h[a].face + 1]++;
-                        s->face_adj_start[h[b].face + 1]++;
-                        n_pairs += 2;
-                    }
         }
         k = e;
     }
@@ -202,34 +254,27 @@ static int build_topology(facet_planarizer *s)
             s->boundary_prev[v] = s->boundary_next[v] = -1;
     }
     free(pinch);
-    for (int32_t f = 0; f < nf; ++f)
-        s->face_adj_start[f + 1] += s->face_adj_start[f];
-    s->face_adj = malloc(sizeof(int32_t) * (size_t)(n_pairs ? n_pairs : 1));
-    int32_t *vfill = malloc(sizeof(int32_t) * (size_t)nv);
-    int32_t *ffill = malloc(sizeof(int32_t) * (size_t)nf);
-    if (!s->face_adj || !vfill || !ffill) {
-        free(h), free(vfill), free(ffill);
+    int32_t *vfill = malloc(sizeof(int32_t) * (size_t)(nv ? nv : 1));
+    if (!vfill) {
+        free(h);
         return 0;
     }
     memcpy(vfill, s->vertex_adj_start, sizeof(int32_t) * (size_t)nv);
-    memcpy(ffill, s->face_adj_start, sizeof(int32_t) * (size_t)nf);
     for (int32_t k = 0; k < nc;) {
         int32_t e = k + 1;
         while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
             ++e;
         s->vertex_adj[vfill[h[k].lo]++] = h[k].hi;
         s->vertex_adj[vfill[h[k].hi]++] = h[k].lo;
-        for (int32_t a = k; a < e; ++a)
-            for (int32_t b = a + 1; b < e; ++b)
-                if (h[a].face != h[b].face) {
-                    s->face_adj[ffill[h[a].face]++] = h[b].face;
-                    s->face_adj[ffill[h[b].face]++] = h[a].face;
-                }
         k = e;
     }
-    free(h), free(vfill), free(ffill);
+    free(h), free(vfill);
     csr_sort_unique(nv, s->vertex_adj_start, s->vertex_adj);
-    csr_sort_unique(nf, s->face_adj_start, s->face_adj);
+    /* room for every corner twice, used about once (each edge twice): give
+     * the rest back (a shrinking realloc keeps the contents) */
+    int32_t *adj = realloc(s->vertex_adj, sizeof(int32_t) * (size_t)(s->vertex_adj_start[nv] ? s->vertex_adj_start[nv] : 1));
+    if (adj)
+        s->vertex_adj = adj;
     return 1;
 }
 
@@ -260,19 +305,15 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     s->vertex_start = calloc((size_t)nv + 1, sizeof(int32_t));
     s->vertex_faces = malloc(sizeof(int32_t) * (size_t)nc);
     s->fixed = malloc((size_t)nv);
-    s->p = malloc(v3), s->q = malloc(v3), s->previous = malloc(v3), s->previous_control = malloc(v3);
+    s->p = malloc(v3), s->q = malloc(v3); /* previous, previous_control: previous_storage */
     s->vertex_normal = malloc(v3);
-    s->slide_target = calloc(3 * (size_t)nv, sizeof(double));
-    s->slide_tangent = calloc(3 * (size_t)nv, sizeof(double));
     s->vertex_residual = malloc((size_t)nv * sizeof(double));
-    s->q_next = malloc(v3);
-    s->normal = malloc(3 * fd), s->normal_fit = malloc(3 * fd), s->offset = malloc(fd);
+    s->normal = malloc(3 * fd), s->offset = malloc(fd);
     s->face_dev = malloc(fd), s->face_edge = malloc(fd), s->face_sq = malloc(fd);
     s->face_residual = malloc(fd);
     s->control_centroid = malloc(3 * fd);
     if (!s->face_start || !s->face_vertices || !s->vertex_start || !s->vertex_faces || !s->fixed ||
-        !s->p || !s->q || !s->previous || !s->previous_control || !s->vertex_normal || !s->slide_target ||
-        !s->slide_tangent || !s->vertex_residual || !s->q_next || !s->normal || !s->normal_fit || !s->offset ||
+        !s->p || !s->q || !s->vertex_normal || !s->vertex_residual || !s->normal || !s->offset ||
         !s->face_dev || !s->face_edge || !s->face_sq || !s->face_residual || !s->control_centroid) {
         facet_planarizer_free(&s);
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
@@ -309,6 +350,8 @@ void facet_planarizer_free(facet_planarizer **handle)
     if (!handle || !*handle)
         return;
     facet_planarizer *s = *handle;
+    if (s->previous_in_history) /* freed with aa_df */
+        s->previous = s->previous_control = NULL;
     facet_pl_global_free(s);
     facet_planarizer_free(&s->live);
     if (s->cholmod_started)
@@ -320,7 +363,7 @@ void facet_planarizer_free(facet_planarizer **handle)
                       s->offset, s->face_dev, s->face_edge, s->face_sq, s->face_residual, s->vertex_residual, s->normal_fit,
                       s->control_centroid, s->shape, s->circle_target, s->slide_target,
                       s->slide_tangent, s->laplace_weight, s->previous, s->aa_df, s->aa_dg,
-                      s->aa_f, s->aa_g, s->q_next, s->surface_point,
+                      s->q_next, s->surface_point,
                       s->surface_normal, s->surface_query, s->previous_control,
                       s->live_vertex, s->live_changed, s->live_mark, s->live_xyz, s->live_face_dev,
                       s->guard_count, s->guard_sum, s->corner_floor, s->corner_cos, s->face_guard,
@@ -498,30 +541,79 @@ static int ensure_workspace(facet_planarizer *s)
     if (o->method == FACET_METHOD_LOCAL_LOCAL && !s->face_plane_terms &&
         !(s->face_plane_terms = malloc(sizeof(double) * 9 * (size_t)s->nf)))
         return 0;
+    /* what only some terms or one method read: allocated when first asked
+     * for (issue 3's memory target), kept for later solves */
+    if (o->method == FACET_METHOD_LOCAL_LOCAL && !s->q_next &&
+        !(s->q_next = malloc(sizeof(double) * 3 * (size_t)s->nv)))
+        return 0;
+    if (o->boundary == FACET_BOUNDARY_SLIDING && !s->slide_target) {
+        s->slide_target = calloc(3 * (size_t)s->nv, sizeof(double));
+        s->slide_tangent = calloc(3 * (size_t)s->nv, sizeof(double));
+        if (!s->slide_target || !s->slide_tangent)
+            return 0;
+    }
+    if (o->normal_laplacian > 0.0 && !s->normal_fit &&
+        !(s->normal_fit = malloc(sizeof(double) * 3 * (size_t)s->nf)))
+        return 0;
+    if (o->normal_laplacian > 0.0 && !s->face_adj && !build_face_adjacency(s))
+        return 0;
     if (o->anderson > s->aa_capacity) {
         /* the depth asked for, not FACET_ANDERSON_MAX: at depth 5 the history
          * is 240 bytes per vertex, at 16 it would be 768 (issue 3's memory
-         * target is 1 KB per face) */
-        const size_t v3 = 3 * (size_t)s->nv;
-        free(s->aa_df), free(s->aa_dg);
-        s->aa_df = malloc(sizeof(double) * v3 * (size_t)o->anderson);
-        s->aa_dg = malloc(sizeof(double) * v3 * (size_t)o->anderson);
-        if (!s->aa_f)
-            s->aa_f = malloc(sizeof(double) * v3);
-        if (!s->aa_g)
-            s->aa_g = malloc(sizeof(double) * v3);
+         * target is 1 KB per face); the last step's f and g live in the
+         * ring's next slot (anderson_prev_col), a column beside it at depth 1 */
+        const size_t v3 = 3 * (size_t)s->nv, columns = o->anderson == 1 ? 2 : (size_t)o->anderson;
+        double *old = s->aa_df;
+        free(s->aa_dg);
+        s->aa_df = malloc(sizeof(double) * v3 * columns);
+        s->aa_dg = malloc(sizeof(double) * v3 * columns);
+        if (s->previous_in_history) { /* the last result moves with the history's memory */
+            if (s->aa_df)
+                memcpy(s->aa_df, old, sizeof(double) * 2 * v3);
+            s->previous = s->aa_df, s->previous_control = s->aa_df ? s->aa_df + v3 : NULL;
+            if (!s->aa_df)
+                s->has_previous = 0, s->previous_in_history = 0;
+        }
+        free(old);
         s->aa_capacity = s->aa_df && s->aa_dg ? o->anderson : 0;
-        if (!s->aa_df || !s->aa_dg || !s->aa_f || !s->aa_g)
+        if (!s->aa_df || !s->aa_dg)
             return 0;
     }
     return 1;
+}
+
+/* Where the last result and its control positions are kept between solves:
+ * the first two columns of the Anderson history (at least two when it is
+ * allocated), which a solve needs only from its first step to its end,
+ * while the last result is read only before (the warm start) and both are
+ * written only after: so they add nothing to a solve's peak memory (issue 3:
+ * 48 bytes per vertex). Without a history, arrays of their own. Returns 0 if
+ * out of memory. */
+static int previous_storage(facet_planarizer *s)
+{
+    if (s->previous)
+        return 1;
+    const size_t v3 = 3 * (size_t)s->nv;
+    if (s->aa_df) {
+        s->previous = s->aa_df, s->previous_control = s->aa_df + v3;
+        s->previous_in_history = 1;
+        return 1;
+    }
+    s->previous = malloc(sizeof(double) * v3);
+    s->previous_control = malloc(sizeof(double) * v3);
+    if (s->previous && s->previous_control)
+        return 1;
+    free(s->previous), free(s->previous_control);
+    s->previous = s->previous_control = NULL;
+    return 0;
 }
 
 /* ---- Anderson acceleration ------------------------------------------------ */
 
 typedef struct {
     int m, count, head;       /* depth, columns held, next slot */
-    int have_previous;        /* aa_f / aa_g hold the previous step */
+    int have_previous;        /* the previous step's f and g are held (anderson_prev_col) */
+    int plain_col;            /* the column where the last step left its g (kept by a restart) */
     int nthreads;
     double gram[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX]; /* dF^T dF by slot */
     double *partial;          /* per block: 2 m dot-product parts and the largest |f| */
@@ -535,6 +627,23 @@ static void anderson_restart(anderson_state *a)
     a->have_previous = 0;
 }
 
+/* The column of aa_df and aa_dg that holds the last step's f = g - x and g
+ * (its plain iterate): the ring's next slot, whose difference the next step
+ * writes there in place, reading them; once the ring is full that is its
+ * oldest column, which the step that stores them still reads first. At
+ * depth 1 the ring's one column is the next slot too: a column beside it. */
+static int anderson_prev_col(const anderson_state *a)
+{
+    return a->m == 1 ? 1 : a->head;
+}
+
+/* The last step's plain iterate g (valid after an anderson_step, until the
+ * next one; a restart in between, as when mu changes, does not move it). */
+static const double *anderson_plain(const facet_planarizer *s, const anderson_state *a)
+{
+    return s->aa_dg + (size_t)a->plain_col * 3 * (size_t)s->nv;
+}
+
 /* Dot products are summed in blocks of ANDERSON_BLOCK entries, each block in
  * index order, then the blocks' sums in block order: the bits do not depend
  * on the thread count, and a mesh of up to ANDERSON_BLOCK / 3 vertices (one
@@ -544,6 +653,18 @@ enum { ANDERSON_BLOCK = 32768 };
 static size_t anderson_blocks(size_t n)
 {
     return (n + ANDERSON_BLOCK - 1) / ANDERSON_BLOCK;
+}
+
+/* Keeps the plain iterate g as the last step's (anderson_prev_col) when no
+ * extrapolation reads the history. Returns 0 (not accelerated). */
+static int anderson_keep_plain(double *g_to, const double *g, size_t n, int nthreads)
+{
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (size_t blk = 0; blk < anderson_blocks(n); ++blk) {
+        const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
+        memcpy(g_to + k0, g + k0, sizeof(double) * (k1 - k0));
+    }
+    return 0;
 }
 
 /* Given the step x -> g (x in `x`, g in s->q), records the differences and
@@ -557,14 +678,19 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     double *g = s->q;
     const int have = a->have_previous;
     const int slot = a->head;
+    const int from = anderson_prev_col(a); /* the previous f and g (if have): slot itself unless m = 1 */
     if (have) {
         a->head = (a->head + 1) % a->m;
         if (a->count < a->m)
             a->count++;
     }
+    const int to = anderson_prev_col(a); /* this step's f and g: never slot */
+    a->plain_col = to;
     const int m = have ? a->count : 0;
     const size_t blocks = anderson_blocks(n), width = 2 * (size_t)FACET_ANDERSON_MAX + 1;
     double *df_new = s->aa_df + (size_t)slot * n, *dg_new = s->aa_dg + (size_t)slot * n;
+    const double *f_prev = s->aa_df + (size_t)from * n, *g_prev = s->aa_dg + (size_t)from * n;
+    double *f_to = s->aa_df + (size_t)to * n, *g_to = s->aa_dg + (size_t)to * n;
     const double *df_all = s->aa_df;
 #pragma omp parallel for schedule(static) num_threads(a->nthreads)
     for (size_t blk = 0; blk < blocks; ++blk) {
@@ -573,25 +699,26 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
         double largest = 0.0;
         for (size_t k = k0; k < k1; ++k) {
             const double f = g[k] - x[k];
-            if (have) {
-                df_new[k] = f - s->aa_f[k];
-                dg_new[k] = g[k] - s->aa_g[k];
+            if (have) { /* in place: each entry is read, then written */
+                df_new[k] = f - f_prev[k];
+                dg_new[k] = g[k] - g_prev[k];
             }
-            s->aa_f[k] = f;
-            s->aa_g[k] = g[k];
             largest = facet_max(largest, fabs(f));
         }
         /* the 2m sums side by side (each still in index order): one chain of
          * dependent additions per sum, 2m chains in flight instead of 2 */
         double gsum[FACET_ANDERSON_MAX] = {0.0}, rsum[FACET_ANDERSON_MAX] = {0.0};
-        for (size_t k = k0; k < k1; ++k) {
-            const double d = df_new[k], f = s->aa_f[k];
+        for (size_t k = k0; k < k1 && m > 0; ++k) {
+            const double d = df_new[k], f = g[k] - x[k];
             for (int j = 0; j < m; ++j) {
                 const double dfjk = df_all[(size_t)j * n + k];
                 gsum[j] += d * dfjk;
                 rsum[j] += dfjk * f;
             }
         }
+        /* then f into its column, which (the ring full) the sums have read */
+        for (size_t k = k0; k < k1; ++k)
+            f_to[k] = g[k] - x[k];
         for (int j = 0; j < m; ++j)
             part[2 * j] = gsum[j], part[2 * j + 1] = rsum[j];
         part[width - 1] = largest;
@@ -610,7 +737,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     /* at a fixed point to rounding there is nothing to extrapolate, and
      * differences of rounding errors would only add noise */
     if (m == 0 || largest <= 1e-13)
-        return 0;
+        return anderson_keep_plain(g_to, g, n, a->nthreads);
     /* theta = argmin |f - dF theta|: normal equations, Cholesky with a small
      * Tikhonov term; a failed factorisation means no acceleration this time */
     double l[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX], theta[FACET_ANDERSON_MAX];
@@ -618,7 +745,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     for (int j = 0; j < m; ++j)
         trace += a->gram[j][j];
     if (!(trace > 0.0) || !isfinite(trace))
-        return 0;
+        return anderson_keep_plain(g_to, g, n, a->nthreads);
     for (int i = 0; i < m; ++i)
         for (int j = 0; j <= i; ++j) {
             double sum = a->gram[i][j] + (i == j ? 1e-10 * trace : 0.0);
@@ -626,7 +753,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
                 sum -= l[i][k] * l[j][k];
             if (i == j) {
                 if (!(sum > 0.0))
-                    return 0;
+                    return anderson_keep_plain(g_to, g, n, a->nthreads);
                 l[i][i] = sqrt(sum);
             } else {
                 l[i][j] = sum / l[j][j];
@@ -646,7 +773,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     }
     for (int j = 0; j < m; ++j)
         if (!isfinite(theta[j]))
-            return 0;
+            return anderson_keep_plain(g_to, g, n, a->nthreads);
     const double *dg_all = s->aa_dg;
     int finite = 1;
 #pragma omp parallel for schedule(static) num_threads(a->nthreads) reduction(&& : finite)
@@ -656,12 +783,13 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
             double value = g[k];
             for (int j = 0; j < m; ++j)
                 value -= theta[j] * dg_all[(size_t)j * n + k];
+            g_to[k] = g[k]; /* the plain iterate, after the sum read its column */
             g[k] = value;
             finite = finite && isfinite(value);
         }
     }
-    if (!finite) { /* back to the plain step's iterate, kept in aa_g */
-        memcpy(g, s->aa_g, sizeof(double) * n);
+    if (!finite) { /* back to the plain step's iterate */
+        memcpy(g, g_to, sizeof(double) * n);
         return 0;
     }
     return 1;
@@ -749,6 +877,12 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             s->p[3 * (size_t)v + a] = (xyz_in[3 * (size_t)v + a] - centre[a]) * inv;
             s->q[3 * (size_t)v + a] = (start_xyz[3 * (size_t)v + a] - centre[a]) * inv;
         }
+    /* the history is about to overwrite the last result (previous_storage):
+     * a solve that fails keeps none (a warm start then starts cold, a live
+     * update asks for a solve); one that stops at iteration 0 has not
+     * touched it (start_xyz, below) */
+    if (s->previous_in_history && options->anderson > 0)
+        s->has_previous = 0;
     facet_pl_prepare_solve(s);
     for (int32_t v = 0; v < nv; ++v) /* a fixed vertex starts (and stays) at its control point */
         if (s->fixed[v])
@@ -798,8 +932,12 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     int32_t since = 0;       /* the stagnation window starts here */
     int32_t guard_last = -1; /* last iteration with a corner below its angle floor */
     double level_first_move = 0.0; /* squared */
+    /* the iterate a step starts from, for the staircase's move and Anderson:
+     * L/L keeps it in q_next (below), L/G in a copy */
+    const int need_before = aa.m > 0 || staircase;
     double *x_before = NULL;
-    if ((aa.m > 0 || staircase) && !(x_before = malloc(sizeof(double) * 3 * (size_t)nv)))
+    if (need_before && options->method != FACET_METHOD_LOCAL_LOCAL &&
+        !(x_before = malloc(sizeof(double) * 3 * (size_t)nv)))
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     if (aa.m > 0 &&
         !(aa.partial = malloc(sizeof(double) * (2 * FACET_ANDERSON_MAX + 1) *
@@ -825,8 +963,8 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                     ++accepted;
                 } else {
                     ++rejected;
-                    /* the plain step's iterate, kept in aa_g (anderson_step) */
-                    memcpy(s->q, s->aa_g, sizeof(double) * 3 * (size_t)nv);
+                    /* the plain step's iterate, kept by anderson_step */
+                    memcpy(s->q, anderson_plain(s, &aa), sizeof(double) * 3 * (size_t)nv);
                     anderson_restart(&aa);
                     status = facet_pl_local_step(s, mu, nthreads, error);
                     if (status < 0)
@@ -916,14 +1054,16 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         history[it % WINDOW] = measure;
         /* the iterate this step starts from: an L/L step writes the new one
          * beside it and swaps (q_next is then the old one), other steps
-         * overwrite it, so it is copied */
+         * overwrite it, so it is copied: L/L's other steps (mu = 1) into
+         * q_next, which its next step overwrites, L/G's into x_before */
         const int ll_step = mu < 1.0 && options->method == FACET_METHOD_LOCAL_LOCAL;
-        const double *before = x_before;
-        if (x_before && !ll_step) {
+        double *copy = options->method == FACET_METHOD_LOCAL_LOCAL ? s->q_next : x_before;
+        const double *before = copy;
+        if (need_before && !ll_step) {
             const double *q = s->q;
 #pragma omp parallel for schedule(static) num_threads(nthreads)
             for (int32_t v = 0; v < nv; ++v)
-                memcpy(x_before + 3 * (size_t)v, q + 3 * (size_t)v, 3 * sizeof(double));
+                memcpy(copy + 3 * (size_t)v, q + 3 * (size_t)v, 3 * sizeof(double));
         }
         if (mu >= 1.0) {
             /* at mu = 1 the solution is the control mesh itself */
@@ -1004,6 +1144,8 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     free(aa.partial);
     if (status < 0 && status != FACET_ERROR_CANCELLED)
         return status;
+    if (!previous_storage(s))
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     if (s->previous_control != xyz_in) /* before xyz_out, which may be xyz_in */
         memmove(s->previous_control, xyz_in, sizeof(double) * 3 * (size_t)nv);
 

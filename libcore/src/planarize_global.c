@@ -46,12 +46,10 @@ void facet_pl_global_free(facet_planarizer *s)
         cholmod_free_sparse(&s->matrix, &s->cm);
         cholmod_free_factor(&s->factor, &s->cm);
         cholmod_free_dense(&s->rhs, &s->cm);
-        cholmod_free_dense(&s->current, &s->cm);
         cholmod_free_dense(&s->pcg_p, &s->cm);
         cholmod_free_dense(&s->pcg_ap, &s->cm);
         cholmod_free_dense(&s->pcg_r, &s->cm);
         cholmod_free_dense(&s->pcg_x, &s->cm);
-        cholmod_free_dense(&s->pcg_dx, &s->cm);
         cholmod_free_dense(&s->pcg_y, &s->cm);
         cholmod_free_dense(&s->pcg_e, &s->cm);
         cholmod_free_sparse(&s->pmatrix, &s->cm);
@@ -74,6 +72,14 @@ void facet_pl_global_free(facet_planarizer *s)
     s->pmap = s->perm = s->face_col = NULL;
     s->factor_ready = 0;
     free(s->corner_slot);
+    free(s->mat_block);
+    free(s->mat_coupling);
+    free(s->mat_diag);
+    free(s->face_of_col);
+    free(s->corner_order);
+    s->mat_block = s->mat_coupling = s->mat_diag = NULL;
+    s->face_of_col = NULL;
+    s->corner_order = NULL;
     free(s->couple_start);
     free(s->couple_vertex);
     free(s->couple_mu);
@@ -374,14 +380,10 @@ static facet_status schur_setup(facet_planarizer *s, facet_error *error)
             }
     for (int32_t f = 0; f < nf; ++f)
         room[f + 1] += room[f];
-    s->schur = cholmod_allocate_sparse((size_t)nf, (size_t)nf, (size_t)room[nf], 1, 1, 1, CHOLMOD_REAL, cm);
-    if (!s->schur) {
-        status = facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
-        goto done;
-    }
-    /* the distinct rows of each column, ascending, packed */
-    int *sp = s->schur->p, *si = s->schur->i;
-    int *face_of = mark; /* face of each column, then the marks */
+    /* the distinct rows of each column, ascending, packed: in a scratch
+     * array as large as the pairs, then into a matrix of their own size (a
+     * pair around two vertices counts twice: quads, half the room) */
+    int *face_of = mark; /* face of each column */
     for (int32_t f = 0; f < nf; ++f)
         face_of[s->face_col[f] - base] = f;
     int *rows = malloc(sizeof(int) * (size_t)(room[nf] ? room[nf] : 1));
@@ -405,9 +407,17 @@ static facet_status schur_setup(facet_planarizer *s, facet_error *error)
             }
         }
         qsort(rows + first, at - first, sizeof(int), compare_int);
-        sp[col] = (int)first;
+        room[col] = (int)first; /* room[col] is no longer needed */
     }
-    sp[nf] = (int)at;
+    room[nf] = (int)at;
+    s->schur = cholmod_allocate_sparse((size_t)nf, (size_t)nf, at, 1, 1, 1, CHOLMOD_REAL, cm);
+    if (!s->schur) {
+        free(rows);
+        status = facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+        goto done;
+    }
+    int *sp = s->schur->p, *si = s->schur->i;
+    memcpy(sp, room, sizeof(int) * ((size_t)nf + 1));
     memcpy(si, rows, sizeof(int) * at);
     free(rows);
     /* slots: per vertex, per pair (i >= j) of its faces */
@@ -439,27 +449,24 @@ done:
 static int schur_assemble(facet_planarizer *s)
 {
     const int32_t nv = s->nv, nf = s->nf, base = 3 * nv;
-    const double *x = s->matrix->x;
-    const int *cp = s->matrix->p;
     double *sx = s->schur->x;
     const int *sp = s->schur->p;
     memset(sx, 0, sizeof(double) * (size_t)sp[nf]);
     for (int32_t f = 0; f < nf; ++f) { /* the diagonal is each column's last entry */
         const int32_t col = s->face_col[f];
-        sx[sp[col - base + 1] - 1] = x[cp[col + 1] - 1];
+        sx[sp[col - base + 1] - 1] = s->mat_diag[f];
         /* every free corner couples by the same w_f n_f; a fixed one by 0 */
         double *cf = s->face_coupling + 3 * (size_t)(col - base);
         cf[0] = cf[1] = cf[2] = 0.0;
         for (int32_t c = s->face_start[f]; c < s->face_start[f + 1]; ++c)
             if (!s->fixed[s->face_vertices[c]]) {
-                memcpy(cf, x + s->corner_slot[c], 3 * sizeof(double));
+                memcpy(cf, s->mat_coupling + 3 * (size_t)f, 3 * sizeof(double));
                 break;
             }
     }
     for (int32_t v = 0; v < nv; ++v) {
-        /* column 3v+a holds rows 3v..3v+a (no couplings) */
-        const double a00 = x[cp[3 * v]], a01 = x[cp[3 * v + 1]], a11 = x[cp[3 * v + 1] + 1];
-        const double a02 = x[cp[3 * v + 2]], a12 = x[cp[3 * v + 2] + 1], a22 = x[cp[3 * v + 2] + 2];
+        const double *av = s->mat_block + 6 * (size_t)v;
+        const double a00 = av[0], a01 = av[1], a11 = av[2], a02 = av[3], a12 = av[4], a22 = av[5];
         const double d0 = a00;
         if (!(d0 > 0.0))
             return 0;
@@ -493,15 +500,13 @@ static int schur_assemble(facet_planarizer *s)
 }
 
 /* out = A^-1 in through the vertices' blocks and the offsets' factor. */
-static int schur_solve(facet_planarizer *s, const cholmod_dense *in, cholmod_dense **out)
+static int schur_solve(facet_planarizer *s, const double *r, double *y)
 {
     const int32_t nv = s->nv, nf = s->nf;
-    const size_t n = s->matrix->nrow, base = 3 * (size_t)nv;
-    const double *cf = s->face_coupling, *r = in->x;
+    const size_t base = 3 * (size_t)nv;
+    const double *cf = s->face_coupling;
     const int32_t *vs = s->vertex_start, *col = s->corner_col;
-    if (!*out && !(*out = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm)))
-        return 0;
-    double *y = (*out)->x, *sb = s->schur_b->x;
+    double *sb = s->schur_b->x;
     memcpy(sb, r + base, sizeof(double) * (size_t)nf); /* the offsets are in schur's order */
     for (int32_t v = 0; v < nv; ++v) { /* y_v = B^-1 r_v; offsets' right-hand side -= C^T y_v */
         if (s->fixed[v])
@@ -576,26 +581,57 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
     const size_t nnz = 6 * (size_t)nv + 3 * n_couple + 3 * (size_t)nc + (size_t)nf;
     if (nnz > (size_t)INT32_MAX)
         return facet_pl_fail(s, error, FACET_ERROR_TOO_LARGE, "mesh too large for the sparse system");
-    s->matrix = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &s->cm);
-    s->rhs = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
-    s->current = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
-    s->corner_slot = malloc(sizeof(int32_t) * (size_t)nc);
-    if (!s->matrix || !s->rhs || !s->current || !s->corner_slot)
-        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
     /* no couplings: the offsets in the faces' nested dissection order, after
      * every vertex; else in face order, and the analysis finds the order */
     const int natural = n_couple == 0;
+    s->rhs = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->pcg_p = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->pcg_ap = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->pcg_r = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->pcg_x = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    if (!s->rhs || !s->pcg_p || !s->pcg_ap || !s->pcg_r || !s->pcg_x)
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
     if (natural) {
+        /* The matrix is not stored: its values are the vertices' 3x3 blocks
+         * and per face one coupling and one diagonal (mat_*; natural_matvec) */
+        s->mat_block = malloc(sizeof(double) * 6 * (size_t)(nv ? nv : 1));
+        s->mat_coupling = malloc(sizeof(double) * 3 * (size_t)(nf ? nf : 1));
+        s->mat_diag = malloc(sizeof(double) * (size_t)(nf ? nf : 1));
+        s->face_of_col = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
+        s->corner_order = malloc((size_t)(nc ? nc : 1));
+        if (!s->mat_block || !s->mat_coupling || !s->mat_diag || !s->face_of_col || !s->corner_order)
+            return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+        for (int32_t f = 0; f < nf; ++f) { /* insertion sort of each face's corners by vertex */
+            const int32_t b = s->face_start[f], n_f = s->face_start[f + 1] - b;
+            uint8_t *ord = s->corner_order + b;
+            for (int32_t k = 0; k < n_f && n_f <= 255; ++k) {
+                int32_t m = k;
+                while (m > 0 && s->face_vertices[b + ord[m - 1]] > s->face_vertices[b + k]) {
+                    ord[m] = ord[m - 1];
+                    --m;
+                }
+                ord[m] = (uint8_t)k;
+            }
+        }
         status = order_faces(s, error);
         if (status != FACET_OK)
             return status;
-    } else {
-        s->face_col = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
-        if (!s->face_col)
-            return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
         for (int32_t f = 0; f < nf; ++f)
-            s->face_col[f] = 3 * nv + f;
+            s->face_of_col[s->face_col[f] - 3 * nv] = f;
+        status = schur_setup(s, error); /* the offsets' system, already in order */
+        if (status != FACET_OK)
+            return status;
+        return analyze_natural(s, s->schur, key, error);
     }
+    s->matrix = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &s->cm);
+    s->corner_slot = malloc(sizeof(int32_t) * (size_t)nc);
+    if (!s->matrix || !s->corner_slot)
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+    s->face_col = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
+    if (!s->face_col)
+        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
+    for (int32_t f = 0; f < nf; ++f)
+        s->face_col[f] = 3 * nv + f;
     int32_t *face_of_col = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
     if (!face_of_col)
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
@@ -644,12 +680,6 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
     double *x = s->matrix->x;
     for (size_t k = 0; k < at; ++k)
         x[k] = 1.0;
-    if (natural) { /* the offsets' system, already in order */
-        status = schur_setup(s, error);
-        if (status != FACET_OK)
-            return status;
-        return analyze_natural(s, s->schur, key, error);
-    }
     cholmod_factor *analysis = cholmod_analyze(s->matrix, &s->cm);
     if (!analysis || s->cm.status < CHOLMOD_OK) {
         cholmod_free_factor(&analysis, &s->cm);
@@ -686,23 +716,20 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
     return analyze_natural(s, s->pmatrix, key, error);
 }
 
-/* out = A^-1 in by the factorization, in the unknowns' own order. */
-static int factor_solve(facet_planarizer *s, const cholmod_dense *in, cholmod_dense **out)
+/* y = A^-1 b by the factorization, in the unknowns' own order (y and b
+ * distinct). */
+static int factor_solve(facet_planarizer *s, const double *b, double *y)
 {
-    const size_t n = s->matrix->nrow;
+    const size_t n = 3 * (size_t)s->nv + (size_t)s->nf;
     if (s->schur)
-        return schur_solve(s, in, out);
-    const double *b = in->x;
+        return schur_solve(s, b, y);
     double *pb = s->perm_b->x;
     for (size_t k = 0; k < n; ++k)
         pb[k] = b[s->perm[k]];
     if (!cholmod_solve2(CHOLMOD_A, s->factor, s->perm_b, NULL, &s->perm_x, NULL, &s->pcg_y, &s->pcg_e,
                         &s->cm))
         return 0;
-    if (!*out && !(*out = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm)))
-        return 0;
     const double *px = s->perm_x->x;
-    double *y = (*out)->x;
     for (size_t k = 0; k < n; ++k)
         y[s->perm[k]] = px[k];
     return 1;
@@ -762,38 +789,109 @@ static void sym_matvec(const cholmod_sparse *a, double alpha, int beta, const do
     }
 }
 
-/* Solves matrix * pcg_dx = rhs by conjugate gradients preconditioned with
+/* The vertex of the c-th corner of face f (n corners from b) by ascending
+ * vertex, as the stored matrix's offset columns hold them: from
+ * corner_order for faces of up to 255 corners, else found in turn (prev:
+ * the (c-1)-th's vertex; a face's vertices are distinct). */
+static inline int32_t corner_vertex(const facet_planarizer *s, int32_t b, int32_t n, int32_t c,
+                                    int32_t prev)
+{
+    if (n <= 255)
+        return s->face_vertices[b + s->corner_order[b + c]];
+    int32_t best = INT32_MAX;
+    for (int32_t k = 0; k < n; ++k) {
+        const int32_t u = s->face_vertices[b + k];
+        if (u > prev && u < best)
+            best = u;
+    }
+    return best;
+}
+
+/* sym_matvec for the matrix without couplings, which is not stored: its
+ * columns are those sym_matvec would read (vertex columns 3v+a with rows
+ * 3v..3v+a, then the offsets' columns in face_col's order with their
+ * corners' rows by ascending vertex and the diagonal last), taken from the
+ * vertices' blocks (mat_block), the faces' couplings (mat_coupling, 0 at a
+ * fixed corner) and diagonals (mat_diag), operation for operation in
+ * sym_matvec's order: the same bits as the stored matrix gave. */
+static void natural_matvec(const facet_planarizer *s, double alpha, int beta, const double *x, double *y)
+{
+    const int32_t nv = s->nv, nf = s->nf;
+    const size_t base = 3 * (size_t)nv;
+    if (!beta)
+        memset(y, 0, sizeof(double) * (base + (size_t)nf));
+    for (int32_t v = 0; v < nv; ++v) {
+        const double *av = s->mat_block + 6 * (size_t)v, *xv = x + 3 * (size_t)v;
+        double *yv = y + 3 * (size_t)v;
+        double xj = alpha * xv[0], yj = 0.0; /* column 3v: the diagonal only */
+        yv[0] += av[0] * xj;
+        yv[0] += alpha * yj;
+        xj = alpha * xv[1], yj = 0.0; /* column 3v+1: rows 3v, 3v+1 */
+        yv[0] += av[1] * xj;
+        yj += av[1] * xv[0];
+        yv[1] += av[2] * xj;
+        yv[1] += alpha * yj;
+        xj = alpha * xv[2], yj = 0.0; /* column 3v+2: rows 3v .. 3v+2 */
+        yv[0] += av[3] * xj;
+        yj += av[3] * xv[0];
+        yv[1] += av[4] * xj;
+        yj += av[4] * xv[1];
+        yv[2] += av[5] * xj;
+        yv[2] += alpha * yj;
+    }
+    static const double zero[3] = {0.0, 0.0, 0.0};
+    const uint8_t *fixed = s->mat_any_fixed ? s->fixed : NULL;
+    for (int32_t k = 0; k < nf; ++k) {
+        const int32_t f = s->face_of_col[k], b = s->face_start[f], n = s->face_start[f + 1] - b;
+        const double *cf = s->mat_coupling + 3 * (size_t)f;
+        const size_t j = base + (size_t)k;
+        const double xj = alpha * x[j];
+        double yj = 0.0;
+        for (int32_t c = 0, u = -1; c < n; ++c) {
+            u = corner_vertex(s, b, n, c, u);
+            const double *cu = fixed && fixed[u] ? zero : cf;
+            for (int a = 0; a < 3; ++a) {
+                y[3 * (size_t)u + a] += cu[a] * xj;
+                yj += cu[a] * x[3 * (size_t)u + a];
+            }
+        }
+        y[j] += s->mat_diag[f] * xj;
+        y[j] += alpha * yj;
+    }
+}
+
+/* y = beta y + alpha A x, the matrix stored or not */
+static void matvec(const facet_planarizer *s, double alpha, int beta, const double *x, double *y)
+{
+    if (s->matrix)
+        sym_matvec(s->matrix, alpha, beta, x, y);
+    else
+        natural_matvec(s, alpha, beta, x, y);
+}
+
+/* Solves matrix * pcg_x = rhs by conjugate gradients preconditioned with
  * the (older) factorization, to a residual PCG_TOL of the right-hand side's.
- * Returns the steps taken, or 0 if it did not get there (or failed). Serial
- * and in a fixed order: the same bits for any thread count. */
+ * Returns the steps taken, or 0 if it did not get there (or failed); rhs is
+ * left as it was (a failure falls back to a factorization of it). Serial
+ * and in a fixed order: the same bits for any thread count. Four vectors of
+ * the system's size: r, p, x, and one for A p that then takes z = M^-1 r
+ * (A p is dead once r is updated). */
 static int pcg_solve(facet_planarizer *s)
 {
-    cholmod_common *cm = &s->cm;
-    const size_t n = s->matrix->nrow;
-    if (!s->pcg_p) {
-        s->pcg_p = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, cm);
-        s->pcg_ap = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, cm);
-        s->pcg_r = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, cm);
-        s->pcg_x = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, cm);
-        if (!s->pcg_p || !s->pcg_ap || !s->pcg_r || !s->pcg_x)
-            return 0;
-    }
+    const size_t n = 3 * (size_t)s->nv + (size_t)s->nf;
     double *r = s->pcg_r->x, *p = s->pcg_p->x, *ap = s->pcg_ap->x, *x = s->pcg_x->x;
     memcpy(r, s->rhs->x, sizeof(double) * n);
     memset(x, 0, sizeof(double) * n);
     const double r0 = sqrt(dot_n(r, r, n));
-    if (!(r0 > 0.0)) {
-        if (!factor_solve(s, s->pcg_r, &s->pcg_dx))
-            return 0;
-        memset(s->pcg_dx->x, 0, sizeof(double) * n);
-        return 1;
-    }
-    if (!factor_solve(s, s->pcg_r, &s->pcg_dx))
+    if (!(r0 > 0.0))
+        return 1; /* x = 0 */
+    double *z = ap;
+    if (!factor_solve(s, r, z))
         return 0;
-    memcpy(p, s->pcg_dx->x, sizeof(double) * n);
-    double rz = dot_n(r, s->pcg_dx->x, n);
+    memcpy(p, z, sizeof(double) * n);
+    double rz = dot_n(r, z, n);
     for (int step = 1; step <= PCG_MAX; ++step) {
-        sym_matvec(s->matrix, 1.0, 0, p, ap);
+        matvec(s, 1.0, 0, p, ap);
         const double pap = dot_n(p, ap, n);
         if (!(pap > 0.0) || !isfinite(pap))
             return 0;
@@ -802,13 +900,10 @@ static int pcg_solve(facet_planarizer *s)
             x[k] += alpha * p[k];
             r[k] -= alpha * ap[k];
         }
-        if (sqrt(dot_n(r, r, n)) <= PCG_TOL * r0) {
-            memcpy(s->pcg_dx->x, x, sizeof(double) * n);
+        if (sqrt(dot_n(r, r, n)) <= PCG_TOL * r0)
             return step;
-        }
-        if (!factor_solve(s, s->pcg_r, &s->pcg_dx))
+        if (!factor_solve(s, r, z))
             return 0;
-        const double *z = s->pcg_dx->x;
         const double rz_next = dot_n(r, z, n), beta = rz_next / rz;
         rz = rz_next;
         for (size_t k = 0; k < n; ++k)
@@ -827,9 +922,10 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
     const int32_t nv = s->nv, nf = s->nf;
     const facet_planarize_options *o = &s->o;
     const double w = 1.0 - mu;
-    double *x = s->matrix->x;
-    const int *cp = s->matrix->p;
-    const int *ri = s->matrix->i;
+    /* the stored matrix (with couplings), or NULL: mat_* (natural_matvec) */
+    double *x = s->matrix ? s->matrix->x : NULL;
+    const int *cp = s->matrix ? s->matrix->p : NULL;
+    const int *ri = s->matrix ? s->matrix->i : NULL;
     double *b = s->rhs->x;
     const int shape = o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0;
     const int sliding = o->boundary == FACET_BOUNDARY_SLIDING;
@@ -897,17 +993,22 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
             b0 += w * t[0], b1 += w * t[1], b2 += w * t[2];
             a00 += g, a11 += g, a22 += g;
         }
-        const int32_t nk = s->couple_start[v + 1] - s->couple_start[v];
-        for (int a = 0; a < 3; ++a) {
-            double *col = x + cp[3 * v + a];
-            for (int32_t k = 0; k < nk; ++k) {
-                const int32_t e2 = s->couple_start[v] + k;
-                col[k] = mu * s->couple_mu[e2] + w * s->couple_con[e2];
+        if (!x) {
+            double *av = s->mat_block + 6 * (size_t)v;
+            av[0] = a00, av[1] = a01, av[2] = a11, av[3] = a02, av[4] = a12, av[5] = a22;
+        } else {
+            const int32_t nk = s->couple_start[v + 1] - s->couple_start[v];
+            for (int a = 0; a < 3; ++a) {
+                double *col = x + cp[3 * v + a];
+                for (int32_t k = 0; k < nk; ++k) {
+                    const int32_t e2 = s->couple_start[v] + k;
+                    col[k] = mu * s->couple_mu[e2] + w * s->couple_con[e2];
+                }
             }
+            x[cp[3 * v] + nk] = a00;
+            x[cp[3 * v + 1] + nk] = a01, x[cp[3 * v + 1] + nk + 1] = a11;
+            x[cp[3 * v + 2] + nk] = a02, x[cp[3 * v + 2] + nk + 1] = a12, x[cp[3 * v + 2] + nk + 2] = a22;
         }
-        x[cp[3 * v] + nk] = a00;
-        x[cp[3 * v + 1] + nk] = a01, x[cp[3 * v + 1] + nk + 1] = a11;
-        x[cp[3 * v + 2] + nk] = a02, x[cp[3 * v + 2] + nk + 1] = a12, x[cp[3 * v + 2] + nk + 2] = a22;
         b[3 * v] = b0, b[3 * v + 1] = b1, b[3 * v + 2] = b2;
     }
     /* offset columns */
@@ -916,13 +1017,20 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
         const double *n = s->normal + 3 * (size_t)f;
         const double pw = w * face_weight(s, f);
         const int32_t b0 = s->face_start[f], b1 = s->face_start[f + 1];
-        for (int32_t k = b0; k < b1; ++k) {
-            const int32_t at = s->corner_slot[k];
-            x[at] = pw * n[0], x[at + 1] = pw * n[1], x[at + 2] = pw * n[2];
-        }
         /* an exempt face's offset is decoupled: identity row */
+        const double diag = pw > 0.0 ? pw * (double)(b1 - b0) : 1.0;
         const int32_t col = s->face_col[f];
-        x[cp[col + 1] - 1] = pw > 0.0 ? pw * (double)(b1 - b0) : 1.0;
+        if (!x) {
+            double *cf = s->mat_coupling + 3 * (size_t)f;
+            cf[0] = pw * n[0], cf[1] = pw * n[1], cf[2] = pw * n[2];
+            s->mat_diag[f] = diag;
+        } else {
+            for (int32_t k = b0; k < b1; ++k) {
+                const int32_t at = s->corner_slot[k];
+                x[at] = pw * n[0], x[at + 1] = pw * n[1], x[at + 2] = pw * n[2];
+            }
+            x[cp[col + 1] - 1] = diag;
+        }
         b[col] = 0.0;
     }
     /* fixed vertices: identity rows, couplings moved to the right-hand side
@@ -930,7 +1038,31 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
     int any_fixed = 0;
     for (int32_t v = 0; v < nv && !any_fixed; ++v)
         any_fixed = s->fixed[v];
-    if (any_fixed) {
+    s->mat_any_fixed = any_fixed;
+    if (any_fixed && !x) {
+        /* the stored matrix's pass below, entry for entry: a fixed vertex's
+         * block becomes the identity, and its corners' couplings (entries of
+         * the offsets' columns, by ascending vertex) move to those columns'
+         * right-hand side; natural_matvec takes them as 0 */
+        for (int32_t k = 0; k < nf; ++k) {
+            const int32_t f = s->face_of_col[k], fb = s->face_start[f], n = s->face_start[f + 1] - fb;
+            const double *cf = s->mat_coupling + 3 * (size_t)f;
+            double *bj = b + 3 * (size_t)nv + k;
+            for (int32_t c = 0, u = -1; c < n; ++c) {
+                u = corner_vertex(s, fb, n, c, u);
+                if (s->fixed[u])
+                    for (int a = 0; a < 3; ++a)
+                        *bj -= cf[a] * p[3 * (size_t)u + a];
+            }
+        }
+        for (int32_t v = 0; v < nv; ++v)
+            if (s->fixed[v]) {
+                double *av = s->mat_block + 6 * (size_t)v;
+                av[0] = 1.0, av[1] = 0.0, av[2] = 1.0, av[3] = 0.0, av[4] = 0.0, av[5] = 1.0;
+                for (int a = 0; a < 3; ++a)
+                    b[3 * v + a] = p[3 * (size_t)v + a];
+            }
+    } else if (any_fixed) {
         const int32_t n = 3 * nv + nf;
         for (int32_t c = 0; c < n; ++c) {
             const int fc = c < 3 * nv && s->fixed[c / 3];
@@ -961,11 +1093,11 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
      * along its planes almost freely), and the rounding error of a solve is
      * relative to what it solves for: the increment, which vanishes as the
      * iteration converges, rather than the positions. */
-    double *cur = s->current->x;
+    double *cur = s->pcg_p->x; /* [q; d] of the iterate (the solve overwrites it) */
     memcpy(cur, s->q, sizeof(double) * 3 * (size_t)nv);
     for (int32_t f = 0; f < nf; ++f)
         cur[s->face_col[f]] = s->offset[f];
-    sym_matvec(s->matrix, -1.0, 1, cur, b);
+    matvec(s, -1.0, 1, cur, b);
     /* Between the planes' steps only the normals turn (and mu stays within a
      * level of the schedule), so the last factorization stays a very good
      * preconditioner: conjugate gradients with it replace a refactorization
@@ -977,7 +1109,7 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
         const int steps = pcg_solve(s);
         if (steps > 0) {
             s->factor_age += steps > PCG_SLOW ? FACTOR_AGE : 1;
-            y = s->pcg_dx->x;
+            y = s->pcg_x->x;
         }
     }
     if (!y) {
@@ -996,9 +1128,9 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
                                  "the sparse factorization failed (matrix not positive definite)");
         }
         s->factor_ready = 1, s->factor_mu = mu, s->factor_age = 0;
-        if (!factor_solve(s, s->rhs, &s->pcg_dx))
+        if (!factor_solve(s, s->rhs->x, s->pcg_x->x))
             return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse solve failed");
-        y = s->pcg_dx->x;
+        y = s->pcg_x->x;
     }
     int finite = 1;
     for (size_t k = 0; k < 3 * (size_t)nv; ++k)

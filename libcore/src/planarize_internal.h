@@ -82,6 +82,8 @@ struct facet_planarizer {
     double *previous;                     /* last result, model units (warm start) */
     double *previous_control;             /* the control positions it was solved from */
     int has_previous;
+    int previous_in_history;              /* both in aa_df's first two columns
+                                             (planarize.c, previous_storage) */
 
     /* live updates (planarize_live.c): the region around the edited vertices */
     struct facet_planarizer *live;        /* handle of the region's submesh; NULL: none */
@@ -102,7 +104,6 @@ struct facet_planarizer {
     cholmod_sparse *matrix;
     cholmod_factor *factor;
     cholmod_dense *rhs;
-    cholmod_dense *current; /* [q; d] of the iterate: the step solves for the increment */
     /* The matrix as CHOLMOD factorizes it, permuted once at the analysis:
      * triu(P A P^T), whose entry j is matrix->x[pmap[j]]; factor is its
      * factorization in the natural order, so no factorization transposes
@@ -124,13 +125,27 @@ struct facet_planarizer {
     int32_t *schur_slot, *schur_start, *corner_col;
     double *block, *face_coupling;
     cholmod_dense *schur_b, *schur_x;
+    /* Without couplings the (3 nv + nf) matrix is not stored (matrix and
+     * corner_slot NULL): its values are per vertex the 3x3 block (a00 a01
+     * a11 a02 a12 a22: its three columns' entries), per face its corners'
+     * coupling w_f n_f and its offset's diagonal; face_of_col: the face of
+     * each offset column (planarize_global.c, natural_matvec); corner_order:
+     * per corner, the local index of each face's corners by ascending
+     * vertex (faces of up to 255 corners); mat_any_fixed: some vertex is
+     * held. NULL with couplings. */
+    double *mat_block, *mat_coupling, *mat_diag;
+    int32_t *face_of_col;
+    uint8_t *corner_order;
+    int mat_any_fixed;
     cholmod_sparse *pmatrix;
     int32_t *pmap, *perm;
     cholmod_dense *perm_b, *perm_x;
     /* the factorization as a preconditioner (planarize_global.c, pcg_solve) */
     int factor_ready, factor_age;
     double factor_mu;
-    cholmod_dense *pcg_p, *pcg_ap, *pcg_r, *pcg_x, *pcg_dx, *pcg_y, *pcg_e;
+    /* pcg_p also holds [q; d] of the iterate (the step solves for the
+     * increment), pcg_x the increment; pcg_y, pcg_e: cholmod_solve2's */
+    cholmod_dense *pcg_p, *pcg_ap, *pcg_r, *pcg_x, *pcg_y, *pcg_e;
     int32_t *corner_slot;   /* per corner: index in matrix->x of its first coupling entry */
     int32_t couple_key;     /* COUPLE_* flags the matrix pattern was built for; -1 none */
     /* the scalar coupling matrix K (vertex x vertex, symmetric): per vertex v,
@@ -140,8 +155,8 @@ struct facet_planarizer {
     double *couple_diag_mu, *couple_diag_con;
 
     /* Anderson acceleration */
-    double *aa_df, *aa_dg;                /* m columns of 3 nv */
-    double *aa_f, *aa_g;                  /* last f = g - x and g */
+    double *aa_df, *aa_dg;                /* m columns of 3 nv (2 if m = 1); the ring's
+                                             next slot holds the last f = g - x and g */
     int32_t aa_capacity;                  /* columns aa_df and aa_dg hold */
 
     char message[512];
