@@ -366,8 +366,10 @@ void facet_pl_prepare_solve(facet_planarizer *s)
             }
         }
     }
-    /* Laplacian weights, normalised to sum 1 around each vertex */
-    for (int32_t v = 0; v < nv; ++v) {
+    /* Laplacian weights, normalised to sum 1 around each vertex; read only
+     * while the Laplacian is on (not written otherwise: 32 bytes per face on
+     * quads that a solve without it does not touch) */
+    for (int32_t v = 0; o->laplacian > 0.0 && v < nv; ++v) {
         const int32_t b = s->vertex_adj_start[v], e = s->vertex_adj_start[v + 1];
         double sum = 0.0;
         for (int32_t k = b; k < e; ++k) {
