@@ -231,18 +231,7 @@ int facet_simd_max_level = 2;
 #define F(name) name##_w4
 #define LANES_T lanes_w4
 #define LANES_TARGET
-#include "fit_lanes.inc"
-#undef VD
-#undef VI
-#undef VW
-#undef VLANES
-#undef VSEL
-#undef VABS
-#undef VANY
-#undef VSQRT
-#undef F
-#undef LANES_T
-#undef LANES_TARGET
+#include "fit_lanes.inc" /* which undefines them */
 
 #if FACET_HAVE_AVX2_CLONE
 #define VD v8d
@@ -256,18 +245,7 @@ int facet_simd_max_level = 2;
 #define F(name) name##_w8
 #define LANES_T lanes_w8
 #define LANES_TARGET FACET_TARGET_AVX512 /* lowered for the target before they are inlined */
-#include "fit_lanes.inc"
-#undef VD
-#undef VI
-#undef VW
-#undef VLANES
-#undef VSEL
-#undef VABS
-#undef VANY
-#undef VSQRT
-#undef F
-#undef LANES_T
-#undef LANES_TARGET
+#include "fit_lanes.inc" /* which undefines them */
 #endif
 
 /* Two sets of four: their Newton steps (chains of dependent divisions)
