@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 static void cross3(const double a[3], const double b[3], double c[3])
 {
