@@ -145,6 +145,29 @@ static half_edge *sorted_half_edges(const facet_planarizer *s)
     return h;
 }
 
+/* For each pair of distinct faces on one edge of the sorted half-edges h,
+ * either both faces' counts go up in count[f + 1] (adj NULL), or each face
+ * goes at its neighbour's next slot fill[f] of adj. */
+static void walk_face_pairs(const half_edge *h, int32_t nc, int32_t *count, int32_t *fill, int32_t *adj)
+{
+    for (int32_t k = 0; k < nc;) {
+        int32_t e = k + 1;
+        while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
+            ++e;
+        for (int32_t a = k; a < e; ++a)
+            for (int32_t b = a + 1; b < e; ++b) {
+                const int32_t fa = h[a].face, fb = h[b].face;
+                if (fa == fb)
+                    continue;
+                if (adj)
+                    adj[fill[fa]++] = fb, adj[fill[fb]++] = fa;
+                else
+                    count[fa + 1]++, count[fb + 1]++;
+            }
+        k = e;
+    }
+}
+
 /* The faces sharing an edge with each face (face_adj), ascending: only the
  * face-normal Laplacian reads them, so they are built when it is first on. */
 static int build_face_adjacency(facet_planarizer *s)
@@ -158,22 +181,10 @@ static int build_face_adjacency(facet_planarizer *s)
         free(h);
         return 0;
     }
-    int64_t n_pairs = 0;
-    for (int32_t k = 0; k < nc;) {
-        int32_t e = k + 1;
-        while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
-            ++e;
-        for (int32_t a = k; a < e; ++a)
-            for (int32_t b = a + 1; b < e; ++b)
-                if (h[a].face != h[b].face) {
-                    s->face_adj_start[h[a].face + 1]++;
-                    s->face_adj_start[h[b].face + 1]++;
-                    n_pairs += 2;
-                }
-        k = e;
-    }
+    walk_face_pairs(h, nc, s->face_adj_start, NULL, NULL);
     for (int32_t f = 0; f < nf; ++f)
         s->face_adj_start[f + 1] += s->face_adj_start[f];
+    const int32_t n_pairs = s->face_adj_start[nf];
     s->face_adj = malloc(sizeof(int32_t) * (size_t)(n_pairs ? n_pairs : 1));
     int32_t *ffill = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
     if (!s->face_adj || !ffill) {
@@ -181,18 +192,7 @@ static int build_face_adjacency(facet_planarizer *s)
         return 0;
     }
     memcpy(ffill, s->face_adj_start, sizeof(int32_t) * (size_t)nf);
-    for (int32_t k = 0; k < nc;) {
-        int32_t e = k + 1;
-        while (e < nc && h[e].lo == h[k].lo && h[e].hi == h[k].hi)
-            ++e;
-        for (int32_t a = k; a < e; ++a)
-            for (int32_t b = a + 1; b < e; ++b)
-                if (h[a].face != h[b].face) {
-                    s->face_adj[ffill[h[a].face]++] = h[b].face;
-                    s->face_adj[ffill[h[b].face]++] = h[a].face;
-                }
-        k = e;
-    }
+    walk_face_pairs(h, nc, NULL, ffill, s->face_adj);
     free(h), free(ffill);
     csr_sort_unique(nf, s->face_adj_start, s->face_adj);
     return 1;
