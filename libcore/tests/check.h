@@ -11,6 +11,15 @@
 static int check_failures = 0;
 static int check_count = 0;
 
+/* Whether every one of the n doubles at x is finite. */
+static inline int all_finite(const double *x, size_t n)
+{
+    for (size_t i = 0; i < n; ++i)
+        if (!isfinite(x[i]))
+            return 0;
+    return 1;
+}
+
 #define CHECK(cond)                                                              \
     do {                                                                         \
         ++check_count;                                                           \

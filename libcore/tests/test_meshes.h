@@ -15,6 +15,16 @@ typedef struct {
     int32_t *face_start, *face_vertices;
 } test_mesh;
 
+/* Points t->mesh at t's own arrays, of nv vertices and nf faces. */
+static inline void test_mesh_view(test_mesh *t, int32_t nv, int32_t nf)
+{
+    t->mesh.n_vertices = nv;
+    t->mesh.n_faces = nf;
+    t->mesh.xyz = t->xyz;
+    t->mesh.face_start = t->face_start;
+    t->mesh.face_vertices = t->face_vertices;
+}
+
 /* An nu x nv quad grid over [0, nu] x [0, nv] (unit cells) with heights
  * z = amplitude * (bumps) plus a deterministic jitter, scaled by `scale` and
  * shifted by `offset` (georeferenced coordinates). */
@@ -48,11 +58,7 @@ static inline test_mesh test_grid(int nu, int nv, double amplitude, double scale
             t.face_vertices[4 * f + 2] = v + nu + 2;
             t.face_vertices[4 * f + 3] = v + nu + 1;
         }
-    t.mesh.n_vertices = np;
-    t.mesh.n_faces = nf;
-    t.mesh.xyz = t.xyz;
-    t.mesh.face_start = t.face_start;
-    t.mesh.face_vertices = t.face_vertices;
+    test_mesh_view(&t, np, nf);
     return t;
 }
 

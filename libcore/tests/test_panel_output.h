@@ -1,22 +1,15 @@
 /* SPDX-License-Identifier: LGPL-2.1-or-later */
 /* Tests' facet_panels outputs: every array allocated for a mesh of nv
  * vertices, nf faces and nc corners, the check that the double ones are all
- * finite, and their release. */
+ * finite (check.h's all_finite), and their release. */
 #ifndef FACET_TEST_PANEL_OUTPUT_H
 #define FACET_TEST_PANEL_OUTPUT_H
 
+#include "check.h"
 #include "facet.h"
 
 #include <math.h>
 #include <stdlib.h>
-
-static inline int all_finite(const double *x, size_t n)
-{
-    for (size_t i = 0; i < n; ++i)
-        if (!isfinite(x[i]))
-            return 0;
-    return 1;
-}
 
 static inline facet_panel_output test_panel_output(int nv, int nf, int nc)
 {

@@ -21,14 +21,6 @@ static facet_planarize_options options(facet_method method, int anderson, int th
     return o;
 }
 
-static int all_finite(const double *x, size_t n)
-{
-    for (size_t k = 0; k < n; ++k)
-        if (!isfinite(x[k]))
-            return 0;
-    return 1;
-}
-
 /* A solve that stops at iteration 0 gives back its starting point: with
  * warm, the last result, bit for bit. */
 static void check_previous_is(facet_planarizer *s, const test_mesh *t, facet_method method, int anderson,
@@ -143,11 +135,7 @@ static test_mesh ring_mesh(int n)
         q[0] = i, q[1] = j, q[2] = n + j, q[3] = n + i;
         t.face_start[2 + i] = n + 4 * (i + 1);
     }
-    t.mesh.n_vertices = nv;
-    t.mesh.n_faces = nf;
-    t.mesh.xyz = t.xyz;
-    t.mesh.face_start = t.face_start;
-    t.mesh.face_vertices = t.face_vertices;
+    test_mesh_view(&t, nv, nf);
     return t;
 }
 
