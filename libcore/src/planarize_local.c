@@ -160,6 +160,17 @@ void facet_pl_procrustes(const double c[9], int similar, double sr[9])
         sr[k] = scale * r[k];
 }
 
+/* The mean of the points xyz[idx[k]], k < n. */
+static void centroid_indexed(int32_t n, const double *xyz, const int32_t *idx, double c[3])
+{
+    c[0] = 0.0, c[1] = 0.0, c[2] = 0.0;
+    for (int32_t k = 0; k < n; ++k)
+        for (int a = 0; a < 3; ++a)
+            c[a] += xyz[3 * (size_t)idx[k] + a];
+    for (int a = 0; a < 3; ++a)
+        c[a] /= (double)n;
+}
+
 /* Circle through the n points xyz[idx[k]] in the plane with unit normal
  * `normal` (an algebraic least-squares fit, exact for concyclic points and for
  * triangles): targets[3k] is point k moved radially onto the circle and into
@@ -168,12 +179,8 @@ void facet_pl_procrustes(const double c[9], int similar, double sr[9])
 int facet_pl_circle_targets(int32_t n, const double *xyz, const int32_t *idx,
                             const double normal[3], double *targets)
 {
-    double c[3] = {0.0, 0.0, 0.0};
-    for (int32_t k = 0; k < n; ++k)
-        for (int a = 0; a < 3; ++a)
-            c[a] += xyz[3 * (size_t)idx[k] + a];
-    for (int a = 0; a < 3; ++a)
-        c[a] /= (double)n;
+    double c[3];
+    centroid_indexed(n, xyz, idx, c);
     /* in-plane frame */
     double e1[3], e2[3];
     const double *x0 = xyz + 3 * (size_t)idx[0];
@@ -654,12 +661,8 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads, int energy)
         /* scatter of the face about its centroid */
         const int32_t n = start[f + 1] - start[f];
         const int32_t *idx = fv + start[f];
-        double c[3] = {0.0, 0.0, 0.0};
-        for (int32_t k = 0; k < n; ++k)
-            for (int a = 0; a < 3; ++a)
-                c[a] += q[3 * (size_t)idx[k] + a];
-        for (int a = 0; a < 3; ++a)
-            c[a] /= (double)n;
+        double c[3];
+        centroid_indexed(n, q, idx, c);
         double sc[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
         for (int32_t k = 0; k < n; ++k) {
             const double *x = q + 3 * (size_t)idx[k];
@@ -724,12 +727,8 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
                 double e_mu = 0.0, e_con = face_weight(s, f) * s->face_sq[f], residual = 0.0;
                 if (shape) {
                     const double *cp = s->control_centroid + 3 * (size_t)f;
-                    double cq[3] = {0.0, 0.0, 0.0};
-                    for (int32_t k = 0; k < n; ++k)
-                        for (int a = 0; a < 3; ++a)
-                            cq[a] += q[3 * (size_t)idx[k] + a];
-                    for (int a = 0; a < 3; ++a)
-                        cq[a] /= (double)n;
+                    double cq[3];
+                    centroid_indexed(n, q, idx, cq);
                     double c[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, xx = 0.0;
                     for (int32_t k = 0; k < n; ++k) {
                         const double *x = p + 3 * (size_t)idx[k], *y = q + 3 * (size_t)idx[k];
