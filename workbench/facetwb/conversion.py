@@ -27,12 +27,16 @@ def has_surface(obj):
 
     if is_polymesh(obj):
         return False
-    if obj.isDerivedFrom("Mesh::Feature"):
-        return True
+    return obj.isDerivedFrom("Mesh::Feature") or shape_has(obj, "Faces")
+
+
+def shape_has(obj, what):
+    """Whether ``obj`` has a shape with some ``what`` ("Faces", "Edges"); a
+    missing, null or broken shape has none."""
     shape = getattr(obj, "Shape", None)
     try:
-        return shape is not None and not shape.isNull() and bool(shape.Faces)
-    except Exception:  # noqa: BLE001 - a broken shape is just not a surface
+        return shape is not None and not shape.isNull() and bool(getattr(shape, what))
+    except Exception:  # noqa: BLE001 - a broken shape just has none
         return False
 
 

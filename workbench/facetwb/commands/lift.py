@@ -13,15 +13,10 @@ PLAN_FILE_FILTER = "Plan drawings (*.dxf *.csv *.obj *.off *.json)"
 
 
 def _has_edges(obj):
+    from facetwb.conversion import shape_has
     from facetwb.objects.polymesh import is_polymesh
 
-    if is_polymesh(obj):
-        return False
-    shape = getattr(obj, "Shape", None)
-    try:
-        return shape is not None and not shape.isNull() and bool(shape.Edges)
-    except Exception:  # noqa: BLE001 - a broken shape is just not a drawing
-        return False
+    return not is_polymesh(obj) and shape_has(obj, "Edges")
 
 
 class CommandPlanGraph:
