@@ -29,8 +29,11 @@
  * 100k quads 4.2M entries in L against 6.4M. Eliminating the offsets first
  * instead (a 3 nv system) is far worse: a face's offset couples all its
  * corners, and the vertex graph's fill is 5.5x (Level 5: 0.71-0.77M
- * entries in L against 0.13M). The (3 nv + nf) matrix stays for the
- * residual and the conjugate gradients' products.
+ * entries in L against 0.13M). The (3 nv + nf) matrix is then never
+ * stored: each step computes its residual while it assembles the vertices'
+ * blocks, eliminates the vertices and solves the offsets' system for the
+ * offsets' increment (schur_step), so the conjugate gradients run on
+ * vectors of nf instead of 3 nv + nf (docs/benchmarks.md, "L/G memory").
  *
  * Fixed vertices stay unknowns with identity rows: their couplings move to
  * the right-hand side, so the pattern does not change when they do. */
@@ -62,24 +65,16 @@ void facet_pl_global_free(facet_planarizer *s)
     free(s->schur_slot);
     free(s->schur_start);
     free(s->block);
-    free(s->face_coupling);
-    free(s->corner_col);
-    s->schur_slot = s->schur_start = s->corner_col = NULL;
-    s->block = s->face_coupling = NULL;
+    free(s->schur_u);
+    free(s->schur_vec);
+    s->schur_slot = s->schur_start = NULL;
+    s->block = s->schur_u = s->schur_vec = NULL;
     free(s->pmap);
     free(s->perm);
     free(s->face_col);
     s->pmap = s->perm = s->face_col = NULL;
     s->factor_ready = 0;
     free(s->corner_slot);
-    free(s->mat_block);
-    free(s->mat_coupling);
-    free(s->mat_diag);
-    free(s->face_of_col);
-    free(s->corner_order);
-    s->mat_block = s->mat_coupling = s->mat_diag = NULL;
-    s->face_of_col = NULL;
-    s->corner_order = NULL;
     free(s->couple_start);
     free(s->couple_vertex);
     free(s->couple_mu);
@@ -358,18 +353,16 @@ static facet_status schur_setup(facet_planarizer *s, facet_error *error)
     s->schur_start = malloc(sizeof(int32_t) * ((size_t)nv + 1));
     s->schur_slot = malloc(sizeof(int32_t) * (pairs ? pairs : 1));
     s->block = malloc(sizeof(double) * 6 * (size_t)(nv ? nv : 1));
-    s->face_coupling = malloc(sizeof(double) * 3 * (size_t)(nf ? nf : 1));
-    s->corner_col = malloc(sizeof(int32_t) * (size_t)(s->nc ? s->nc : 1));
+    s->schur_u = malloc(sizeof(double) * 3 * (size_t)(nv ? nv : 1));
+    s->schur_vec = malloc(sizeof(double) * 3 * (size_t)(nf ? nf : 1));
     s->schur_b = cholmod_allocate_dense((size_t)nf, 1, (size_t)nf, CHOLMOD_REAL, cm);
     facet_status status = FACET_OK;
-    if (!room || !mark || !s->schur_start || !s->schur_slot || !s->block ||
-        !s->face_coupling || !s->corner_col || !s->schur_b) {
+    if (!room || !mark || !s->schur_start || !s->schur_slot || !s->block || !s->schur_u ||
+        !s->schur_vec || !s->schur_b) {
         status = facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
         goto done;
     }
     const int32_t base = 3 * nv;
-    for (int32_t i = 0; i < s->nc; ++i)
-        s->corner_col[i] = s->face_col[s->vertex_faces[i]] - base;
     /* room per column (in the offsets' order): one per pair with it the later */
     for (int32_t v = 0; v < nv; ++v)
         for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i)
@@ -443,102 +436,116 @@ done:
     return status;
 }
 
-/* Eliminates the vertices: the 3x3 blocks' LDL' into block, and the offsets'
- * system D - C^T B^-1 C into schur. Returns 0 if a block is not positive
- * definite. Serial: the faces' entries gather from several vertices. */
-static int schur_assemble(facet_planarizer *s)
+/* The coupling of a face's offset to each of its free corners, w_f n_f,
+ * and its offset's diagonal (w_f times its corners; 1 for an exempt face,
+ * whose offset is decoupled), at w = 1 - mu. */
+static inline void face_coupling(const facet_planarizer *s, int32_t f, double w, double *c)
+{
+    const double pw = w * (s->face_weight ? s->face_weight[f] : 1.0);
+    const double *n = s->normal + 3 * (size_t)f;
+    c[0] = pw * n[0], c[1] = pw * n[1], c[2] = pw * n[2];
+}
+
+static inline double face_diagonal(const facet_planarizer *s, int32_t f, double w)
+{
+    const double pw = w * (s->face_weight ? s->face_weight[f] : 1.0);
+    return pw > 0.0 ? pw * (double)(s->face_start[f + 1] - s->face_start[f]) : 1.0;
+}
+
+/* LDL' of the 3x3 block a (a00 a01 a11 a02 a12 a22) into bl (l10 l20 l21
+ * 1/d0 1/d1 1/d2); 0 if it is not positive definite. */
+static inline int block_ldl(const double *a, double *bl)
+{
+    const double a00 = a[0], a01 = a[1], a11 = a[2], a02 = a[3], a12 = a[4], a22 = a[5];
+    const double d0 = a00;
+    if (!(d0 > 0.0))
+        return 0;
+    const double l10 = a01 / d0, l20 = a02 / d0;
+    const double d1 = a11 - l10 * a01;
+    if (!(d1 > 0.0))
+        return 0;
+    const double l21 = (a12 - l20 * a01) / d1;
+    const double d2 = a22 - l20 * a02 - l21 * l21 * d1;
+    if (!(d2 > 0.0))
+        return 0;
+    bl[0] = l10, bl[1] = l20, bl[2] = l21, bl[3] = 1.0 / d0, bl[4] = 1.0 / d1, bl[5] = 1.0 / d2;
+    return 1;
+}
+
+/* z = B^-1 y for the block's LDL' bl (z may be y) */
+static inline void block_solve(const double *bl, const double *y, double *z)
+{
+    const double y0 = y[0], y1 = y[1] - bl[0] * y0, y2 = y[2] - bl[1] * y0 - bl[2] * y1;
+    const double z2 = y2 * bl[5], z1 = y1 * bl[4] - bl[2] * z2, z0 = y0 * bl[3] - bl[0] * z1 - bl[1] * z2;
+    z[0] = z0, z[1] = z1, z[2] = z2;
+}
+
+/* The offsets' system D - C^T B^-1 C into schur from this step's blocks
+ * (block) and couplings at w. Serial: the faces' entries gather from
+ * several vertices. */
+static void schur_assemble(facet_planarizer *s, double w)
 {
     const int32_t nv = s->nv, nf = s->nf, base = 3 * nv;
     double *sx = s->schur->x;
     const int *sp = s->schur->p;
     memset(sx, 0, sizeof(double) * (size_t)sp[nf]);
-    for (int32_t f = 0; f < nf; ++f) { /* the diagonal is each column's last entry */
-        const int32_t col = s->face_col[f];
-        sx[sp[col - base + 1] - 1] = s->mat_diag[f];
-        /* every free corner couples by the same w_f n_f; a fixed one by 0 */
-        double *cf = s->face_coupling + 3 * (size_t)(col - base);
-        cf[0] = cf[1] = cf[2] = 0.0;
-        for (int32_t c = s->face_start[f]; c < s->face_start[f + 1]; ++c)
-            if (!s->fixed[s->face_vertices[c]]) {
-                memcpy(cf, s->mat_coupling + 3 * (size_t)f, 3 * sizeof(double));
-                break;
-            }
-    }
+    for (int32_t f = 0; f < nf; ++f) /* the diagonal is each column's last entry */
+        sx[sp[s->face_col[f] - base + 1] - 1] = face_diagonal(s, f, w);
     for (int32_t v = 0; v < nv; ++v) {
-        const double *av = s->mat_block + 6 * (size_t)v;
-        const double a00 = av[0], a01 = av[1], a11 = av[2], a02 = av[3], a12 = av[4], a22 = av[5];
-        const double d0 = a00;
-        if (!(d0 > 0.0))
-            return 0;
-        const double l10 = a01 / d0, l20 = a02 / d0;
-        const double d1 = a11 - l10 * a01;
-        if (!(d1 > 0.0))
-            return 0;
-        const double l21 = (a12 - l20 * a01) / d1;
-        const double d2 = a22 - l20 * a02 - l21 * l21 * d1;
-        if (!(d2 > 0.0))
-            return 0;
-        double *bl = s->block + 6 * (size_t)v;
-        bl[0] = l10, bl[1] = l20, bl[2] = l21, bl[3] = 1.0 / d0, bl[4] = 1.0 / d1, bl[5] = 1.0 / d2;
         if (s->fixed[v]) /* an identity block, no coupling */
             continue;
+        const double *bl = s->block + 6 * (size_t)v;
         const int32_t b = s->vertex_start[v], k = s->vertex_start[v + 1] - b;
         const int32_t *slot = s->schur_slot + s->schur_start[v];
-        const int32_t *faces = s->corner_col + b;
-        const double *coupling = s->face_coupling;
-        for (int32_t i = 0; i < k; ++i) { /* w = B^-1 c_i; S_ij -= c_j . w */
-            const double *c = coupling + 3 * (size_t)faces[i];
-            const double y0 = c[0], y1 = c[1] - l10 * y0, y2 = c[2] - l20 * y0 - l21 * y1;
-            const double w2 = y2 * bl[5], w1 = y1 * bl[4] - l21 * w2, w0 = y0 * bl[3] - l10 * w1 - l20 * w2;
+        const int32_t *faces = s->vertex_faces + b;
+        for (int32_t i = 0; i < k; ++i) { /* z = B^-1 c_i; S_ij -= c_j . z */
+            double c[3], z[3];
+            face_coupling(s, faces[i], w, c);
+            block_solve(bl, c, z);
             for (int32_t j = 0; j <= i; ++j) {
-                const double *cj = coupling + 3 * (size_t)faces[j];
-                sx[*slot++] -= cj[0] * w0 + cj[1] * w1 + cj[2] * w2;
+                double cj[3];
+                face_coupling(s, faces[j], w, cj);
+                sx[*slot++] -= cj[0] * z[0] + cj[1] * z[1] + cj[2] * z[2];
             }
         }
     }
-    return 1;
 }
 
-/* out = A^-1 in through the vertices' blocks and the offsets' factor. */
-static int schur_solve(facet_planarizer *s, const double *r, double *y)
+/* y = S x for the offsets' system at w without storing it: D x - C^T
+ * B^-1 C x, vertex by vertex (serial: each scatters to its faces; vectors
+ * in schur's order). */
+static void schur_product(const facet_planarizer *s, double w, const double *x, double *y)
 {
-    const int32_t nv = s->nv, nf = s->nf;
-    const size_t base = 3 * (size_t)nv;
-    const double *cf = s->face_coupling;
-    const int32_t *vs = s->vertex_start, *col = s->corner_col;
-    double *sb = s->schur_b->x;
-    memcpy(sb, r + base, sizeof(double) * (size_t)nf); /* the offsets are in schur's order */
-    for (int32_t v = 0; v < nv; ++v) { /* y_v = B^-1 r_v; offsets' right-hand side -= C^T y_v */
+    const int32_t nv = s->nv, nf = s->nf, base = 3 * nv;
+    for (int32_t f = 0; f < nf; ++f) {
+        const int32_t col = s->face_col[f] - base;
+        y[col] = face_diagonal(s, f, w) * x[col];
+    }
+    for (int32_t v = 0; v < nv; ++v) {
         if (s->fixed[v])
             continue;
-        const double *bl = s->block + 6 * (size_t)v, *rv = r + 3 * (size_t)v;
-        const double y0 = rv[0], y1 = rv[1] - bl[0] * y0, y2 = rv[2] - bl[1] * y0 - bl[2] * y1;
-        const double z2 = y2 * bl[5], z1 = y1 * bl[4] - bl[2] * z2, z0 = y0 * bl[3] - bl[0] * z1 - bl[1] * z2;
-        for (int32_t i = vs[v]; i < vs[v + 1]; ++i) {
-            const double *c = cf + 3 * (size_t)col[i];
-            sb[col[i]] -= c[0] * z0 + c[1] * z1 + c[2] * z2;
+        double t[3] = {0.0, 0.0, 0.0}, c[3];
+        for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i) {
+            const int32_t f = s->vertex_faces[i];
+            const double xf = x[s->face_col[f] - base];
+            face_coupling(s, f, w, c);
+            t[0] += c[0] * xf, t[1] += c[1] * xf, t[2] += c[2] * xf;
+        }
+        block_solve(s->block + 6 * (size_t)v, t, t);
+        for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i) {
+            const int32_t f = s->vertex_faces[i];
+            face_coupling(s, f, w, c);
+            y[s->face_col[f] - base] -= c[0] * t[0] + c[1] * t[1] + c[2] * t[2];
         }
     }
-    if (!cholmod_solve2(CHOLMOD_A, s->factor, s->schur_b, NULL, &s->schur_x, NULL, &s->pcg_y, &s->pcg_e,
-                        &s->cm))
-        return 0;
-    const double *sz = s->schur_x->x;
-    memcpy(y + base, sz, sizeof(double) * (size_t)nf);
-    for (int32_t v = 0; v < nv; ++v) { /* y_v = B^-1 (r_v - C z) */
-        const double *bl = s->block + 6 * (size_t)v, *rv = r + 3 * (size_t)v;
-        double t0 = rv[0], t1 = rv[1], t2 = rv[2];
-        if (!s->fixed[v])
-            for (int32_t i = vs[v]; i < vs[v + 1]; ++i) {
-                const double *c = cf + 3 * (size_t)col[i], z = sz[col[i]];
-                t0 -= c[0] * z, t1 -= c[1] * z, t2 -= c[2] * z;
-            }
-        const double y0 = t0, y1 = t1 - bl[0] * y0, y2 = t2 - bl[1] * y0 - bl[2] * y1;
-        const double z2 = y2 * bl[5], z1 = y1 * bl[4] - bl[2] * z2, z0 = y0 * bl[3] - bl[0] * z1 - bl[1] * z2;
-        y[3 * v] = z0, y[3 * v + 1] = z1, y[3 * v + 2] = z2;
-    }
-    return 1;
 }
 
+/* schur_x = S_old^-1 schur_b by the factorization */
+static int schur_precondition(facet_planarizer *s)
+{
+    return cholmod_solve2(CHOLMOD_A, s->factor, s->schur_b, NULL, &s->schur_x, NULL, &s->pcg_y, &s->pcg_e,
+                          &s->cm);
+}
 /* ---- pattern and analysis ------------------------------------------------- */
 
 /* The symbolic factorization of a matrix already in its fill-reducing
@@ -584,48 +591,23 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
     /* no couplings: the offsets in the faces' nested dissection order, after
      * every vertex; else in face order, and the analysis finds the order */
     const int natural = n_couple == 0;
-    s->rhs = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
-    s->pcg_p = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
-    s->pcg_ap = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
-    s->pcg_r = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
-    s->pcg_x = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
-    if (!s->rhs || !s->pcg_p || !s->pcg_ap || !s->pcg_r || !s->pcg_x)
-        return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
-    if (natural) {
-        /* The matrix is not stored: its values are the vertices' 3x3 blocks
-         * and per face one coupling and one diagonal (mat_*; natural_matvec) */
-        s->mat_block = malloc(sizeof(double) * 6 * (size_t)(nv ? nv : 1));
-        s->mat_coupling = malloc(sizeof(double) * 3 * (size_t)(nf ? nf : 1));
-        s->mat_diag = malloc(sizeof(double) * (size_t)(nf ? nf : 1));
-        s->face_of_col = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
-        s->corner_order = malloc((size_t)(nc ? nc : 1));
-        if (!s->mat_block || !s->mat_coupling || !s->mat_diag || !s->face_of_col || !s->corner_order)
-            return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
-        for (int32_t f = 0; f < nf; ++f) { /* insertion sort of each face's corners by vertex */
-            const int32_t b = s->face_start[f], n_f = s->face_start[f + 1] - b;
-            uint8_t *ord = s->corner_order + b;
-            for (int32_t k = 0; k < n_f && n_f <= 255; ++k) {
-                int32_t m = k;
-                while (m > 0 && s->face_vertices[b + ord[m - 1]] > s->face_vertices[b + k]) {
-                    ord[m] = ord[m - 1];
-                    --m;
-                }
-                ord[m] = (uint8_t)k;
-            }
-        }
+    if (natural) { /* the matrix is not stored (schur_step) */
         status = order_faces(s, error);
         if (status != FACET_OK)
             return status;
-        for (int32_t f = 0; f < nf; ++f)
-            s->face_of_col[s->face_col[f] - 3 * nv] = f;
         status = schur_setup(s, error); /* the offsets' system, already in order */
         if (status != FACET_OK)
             return status;
         return analyze_natural(s, s->schur, key, error);
     }
+    s->rhs = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->pcg_p = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->pcg_ap = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->pcg_r = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
+    s->pcg_x = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cm);
     s->matrix = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &s->cm);
     s->corner_slot = malloc(sizeof(int32_t) * (size_t)nc);
-    if (!s->matrix || !s->corner_slot)
+    if (!s->rhs || !s->pcg_p || !s->pcg_ap || !s->pcg_r || !s->pcg_x || !s->matrix || !s->corner_slot)
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
     s->face_col = malloc(sizeof(int32_t) * (size_t)(nf ? nf : 1));
     if (!s->face_col)
@@ -721,8 +703,6 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
 static int factor_solve(facet_planarizer *s, const double *b, double *y)
 {
     const size_t n = 3 * (size_t)s->nv + (size_t)s->nf;
-    if (s->schur)
-        return schur_solve(s, b, y);
     double *pb = s->perm_b->x;
     for (size_t k = 0; k < n; ++k)
         pb[k] = b[s->perm[k]];
@@ -789,86 +769,6 @@ static void sym_matvec(const cholmod_sparse *a, double alpha, int beta, const do
     }
 }
 
-/* The vertex of the c-th corner of face f (n corners from b) by ascending
- * vertex, as the stored matrix's offset columns hold them: from
- * corner_order for faces of up to 255 corners, else found in turn (prev:
- * the (c-1)-th's vertex; a face's vertices are distinct). */
-static inline int32_t corner_vertex(const facet_planarizer *s, int32_t b, int32_t n, int32_t c,
-                                    int32_t prev)
-{
-    if (n <= 255)
-        return s->face_vertices[b + s->corner_order[b + c]];
-    int32_t best = INT32_MAX;
-    for (int32_t k = 0; k < n; ++k) {
-        const int32_t u = s->face_vertices[b + k];
-        if (u > prev && u < best)
-            best = u;
-    }
-    return best;
-}
-
-/* sym_matvec for the matrix without couplings, which is not stored: its
- * columns are those sym_matvec would read (vertex columns 3v+a with rows
- * 3v..3v+a, then the offsets' columns in face_col's order with their
- * corners' rows by ascending vertex and the diagonal last), taken from the
- * vertices' blocks (mat_block), the faces' couplings (mat_coupling, 0 at a
- * fixed corner) and diagonals (mat_diag), operation for operation in
- * sym_matvec's order: the same bits as the stored matrix gave. */
-static void natural_matvec(const facet_planarizer *s, double alpha, int beta, const double *x, double *y)
-{
-    const int32_t nv = s->nv, nf = s->nf;
-    const size_t base = 3 * (size_t)nv;
-    if (!beta)
-        memset(y, 0, sizeof(double) * (base + (size_t)nf));
-    for (int32_t v = 0; v < nv; ++v) {
-        const double *av = s->mat_block + 6 * (size_t)v, *xv = x + 3 * (size_t)v;
-        double *yv = y + 3 * (size_t)v;
-        double xj = alpha * xv[0], yj = 0.0; /* column 3v: the diagonal only */
-        yv[0] += av[0] * xj;
-        yv[0] += alpha * yj;
-        xj = alpha * xv[1], yj = 0.0; /* column 3v+1: rows 3v, 3v+1 */
-        yv[0] += av[1] * xj;
-        yj += av[1] * xv[0];
-        yv[1] += av[2] * xj;
-        yv[1] += alpha * yj;
-        xj = alpha * xv[2], yj = 0.0; /* column 3v+2: rows 3v .. 3v+2 */
-        yv[0] += av[3] * xj;
-        yj += av[3] * xv[0];
-        yv[1] += av[4] * xj;
-        yj += av[4] * xv[1];
-        yv[2] += av[5] * xj;
-        yv[2] += alpha * yj;
-    }
-    static const double zero[3] = {0.0, 0.0, 0.0};
-    const uint8_t *fixed = s->mat_any_fixed ? s->fixed : NULL;
-    for (int32_t k = 0; k < nf; ++k) {
-        const int32_t f = s->face_of_col[k], b = s->face_start[f], n = s->face_start[f + 1] - b;
-        const double *cf = s->mat_coupling + 3 * (size_t)f;
-        const size_t j = base + (size_t)k;
-        const double xj = alpha * x[j];
-        double yj = 0.0;
-        for (int32_t c = 0, u = -1; c < n; ++c) {
-            u = corner_vertex(s, b, n, c, u);
-            const double *cu = fixed && fixed[u] ? zero : cf;
-            for (int a = 0; a < 3; ++a) {
-                y[3 * (size_t)u + a] += cu[a] * xj;
-                yj += cu[a] * x[3 * (size_t)u + a];
-            }
-        }
-        y[j] += s->mat_diag[f] * xj;
-        y[j] += alpha * yj;
-    }
-}
-
-/* y = beta y + alpha A x, the matrix stored or not */
-static void matvec(const facet_planarizer *s, double alpha, int beta, const double *x, double *y)
-{
-    if (s->matrix)
-        sym_matvec(s->matrix, alpha, beta, x, y);
-    else
-        natural_matvec(s, alpha, beta, x, y);
-}
-
 /* Solves matrix * pcg_x = rhs by conjugate gradients preconditioned with
  * the (older) factorization, to a residual PCG_TOL of the right-hand side's.
  * Returns the steps taken, or 0 if it did not get there (or failed); rhs is
@@ -891,7 +791,7 @@ static int pcg_solve(facet_planarizer *s)
     memcpy(p, z, sizeof(double) * n);
     double rz = dot_n(r, z, n);
     for (int step = 1; step <= PCG_MAX; ++step) {
-        matvec(s, 1.0, 0, p, ap);
+        sym_matvec(s->matrix, 1.0, 0, p, ap);
         const double pap = dot_n(p, ap, n);
         if (!(pap > 0.0) || !isfinite(pap))
             return 0;
@@ -917,99 +817,108 @@ static double face_weight(const facet_planarizer *s, int32_t f)
     return s->face_weight ? s->face_weight[f] : 1.0;
 }
 
-facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
+/* The vertex v's 3x3 block (a00 a01 a11 a02 a12 a22) and right-hand side
+ * of the step at mu: its data, surface, planarity (the sum of its faces'
+ * w_f n_f n_f^T), shape, circle, sliding and angle floor terms and the
+ * diagonal of K. */
+static inline void vertex_terms(const facet_planarizer *s, int32_t v, double mu, double *av, double *bv)
 {
-    const int32_t nv = s->nv, nf = s->nf;
     const facet_planarize_options *o = &s->o;
     const double w = 1.0 - mu;
-    /* the stored matrix (with couplings), or NULL: mat_* (natural_matvec) */
-    double *x = s->matrix ? s->matrix->x : NULL;
-    const int *cp = s->matrix ? s->matrix->p : NULL;
-    const int *ri = s->matrix ? s->matrix->i : NULL;
-    double *b = s->rhs->x;
     const int shape = o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0;
     const int sliding = o->boundary == FACET_BOUNDARY_SLIDING;
+    const double *p = s->p;
+    const double *pv = p + 3 * (size_t)v, *nu = s->vertex_normal + 3 * (size_t)v;
+    const double dt = mu * o->data_tangent, dn = mu * o->data_normal;
+    const double kd = mu * s->couple_diag_mu[v] + w * s->couple_diag_con[v];
+    double a00 = dt + kd, a11 = dt + kd, a22 = dt + kd, a01 = 0.0, a02 = 0.0, a12 = 0.0;
+    const double e = dn - dt;
+    a00 += e * nu[0] * nu[0], a01 += e * nu[0] * nu[1], a02 += e * nu[0] * nu[2];
+    a11 += e * nu[1] * nu[1], a12 += e * nu[1] * nu[2], a22 += e * nu[2] * nu[2];
+    double b0 = a00 * pv[0] + a01 * pv[1] + a02 * pv[2];
+    double b1 = a01 * pv[0] + a11 * pv[1] + a12 * pv[2];
+    double b2 = a02 * pv[0] + a12 * pv[1] + a22 * pv[2];
+    /* the K diagonal belongs to the matrix, not to the data target */
+    b0 -= kd * pv[0], b1 -= kd * pv[1], b2 -= kd * pv[2];
+    if (o->surface_weight > 0.0 && s->reference) { /* mu w (n . (q - s))^2 */
+        const double *sn = s->surface_normal + 3 * (size_t)v, *sp = s->surface_point + 3 * (size_t)v;
+        const double sw = mu * o->surface_weight, ns = sn[0] * sp[0] + sn[1] * sp[1] + sn[2] * sp[2];
+        a00 += sw * sn[0] * sn[0], a01 += sw * sn[0] * sn[1], a02 += sw * sn[0] * sn[2];
+        a11 += sw * sn[1] * sn[1], a12 += sw * sn[1] * sn[2], a22 += sw * sn[2] * sn[2];
+        b0 += sw * ns * sn[0], b1 += sw * ns * sn[1], b2 += sw * ns * sn[2];
+    }
+    for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
+        const int32_t f = s->vertex_faces[k];
+        const double *n = s->normal + 3 * (size_t)f;
+        const double pw = w * face_weight(s, f);
+        a00 += pw * n[0] * n[0], a01 += pw * n[0] * n[1], a02 += pw * n[0] * n[2];
+        a11 += pw * n[1] * n[1], a12 += pw * n[1] * n[2], a22 += pw * n[2] * n[2];
+        if (!shape && !(o->circular > 0.0))
+            continue;
+        const int32_t fb = s->face_start[f];
+        int32_t corner = 0;
+        while (s->face_vertices[fb + corner] != v)
+            ++corner;
+        if (shape) { /* right-hand side of lambda |P q - s R x|^2: s R x */
+            const double *sr = s->shape + 9 * (size_t)f, *cpf = s->control_centroid + 3 * (size_t)f;
+            const double dx[3] = {pv[0] - cpf[0], pv[1] - cpf[1], pv[2] - cpf[2]};
+            const double lw = mu * o->shape_weight;
+            b0 += lw * (sr[0] * dx[0] + sr[1] * dx[1] + sr[2] * dx[2]);
+            b1 += lw * (sr[3] * dx[0] + sr[4] * dx[1] + sr[5] * dx[2]);
+            b2 += lw * (sr[6] * dx[0] + sr[7] * dx[1] + sr[8] * dx[2]);
+        }
+        if (o->circular > 0.0) {
+            const double *t = s->circle_target + 3 * (size_t)(fb + corner);
+            const double cw = w * o->circular;
+            b0 += cw * t[0], b1 += cw * t[1], b2 += cw * t[2];
+            a00 += cw, a11 += cw, a22 += cw;
+        }
+    }
+    if (sliding && s->boundary_prev[v] >= 0) {
+        const double *t = s->slide_tangent + 3 * (size_t)v, *g = s->slide_target + 3 * (size_t)v;
+        const double m00 = w * (1.0 - t[0] * t[0]), m01 = -w * t[0] * t[1], m02 = -w * t[0] * t[2];
+        const double m11 = w * (1.0 - t[1] * t[1]), m12 = -w * t[1] * t[2], m22 = w * (1.0 - t[2] * t[2]);
+        a00 += m00, a01 += m01, a02 += m02, a11 += m11, a12 += m12, a22 += m22;
+        b0 += m00 * g[0] + m01 * g[1] + m02 * g[2];
+        b1 += m01 * g[0] + m11 * g[1] + m12 * g[2];
+        b2 += m02 * g[0] + m12 * g[1] + m22 * g[2];
+    }
+    if (o->angle_floor > 0.0 && s->guard_count[v] > 0.0) { /* angle floor targets */
+        const double *t = s->guard_sum + 3 * (size_t)v, g = w * s->guard_count[v];
+        b0 += w * t[0], b1 += w * t[1], b2 += w * t[2];
+        a00 += g, a11 += g, a22 += g;
+    }
+    av[0] = a00, av[1] = a01, av[2] = a11, av[3] = a02, av[4] = a12, av[5] = a22;
+    bv[0] = b0, bv[1] = b1, bv[2] = b2;
+}
+
+/* One global step with vertex couplings: the stored (3 nv + nf) matrix. */
+static facet_status stored_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
+{
+    const int32_t nv = s->nv, nf = s->nf;
+    const double w = 1.0 - mu;
+    double *x = s->matrix->x;
+    const int *cp = s->matrix->p;
+    const int *ri = s->matrix->i;
+    double *b = s->rhs->x;
     const double *p = s->p;
     /* vertex columns: couplings, then the 3x3 block; right-hand side */
 #pragma omp parallel for schedule(static) num_threads(nthreads)
     for (int32_t v = 0; v < nv; ++v) {
-        const double *pv = p + 3 * (size_t)v, *nu = s->vertex_normal + 3 * (size_t)v;
-        const double dt = mu * o->data_tangent, dn = mu * o->data_normal;
-        const double kd = mu * s->couple_diag_mu[v] + w * s->couple_diag_con[v];
-        double a00 = dt + kd, a11 = dt + kd, a22 = dt + kd, a01 = 0.0, a02 = 0.0, a12 = 0.0;
-        const double e = dn - dt;
-        a00 += e * nu[0] * nu[0], a01 += e * nu[0] * nu[1], a02 += e * nu[0] * nu[2];
-        a11 += e * nu[1] * nu[1], a12 += e * nu[1] * nu[2], a22 += e * nu[2] * nu[2];
-        double b0 = a00 * pv[0] + a01 * pv[1] + a02 * pv[2];
-        double b1 = a01 * pv[0] + a11 * pv[1] + a12 * pv[2];
-        double b2 = a02 * pv[0] + a12 * pv[1] + a22 * pv[2];
-        /* the K diagonal belongs to the matrix, not to the data target */
-        b0 -= kd * pv[0], b1 -= kd * pv[1], b2 -= kd * pv[2];
-        if (o->surface_weight > 0.0 && s->reference) { /* mu w (n . (q - s))^2 */
-            const double *sn = s->surface_normal + 3 * (size_t)v, *sp = s->surface_point + 3 * (size_t)v;
-            const double sw = mu * o->surface_weight, ns = sn[0] * sp[0] + sn[1] * sp[1] + sn[2] * sp[2];
-            a00 += sw * sn[0] * sn[0], a01 += sw * sn[0] * sn[1], a02 += sw * sn[0] * sn[2];
-            a11 += sw * sn[1] * sn[1], a12 += sw * sn[1] * sn[2], a22 += sw * sn[2] * sn[2];
-            b0 += sw * ns * sn[0], b1 += sw * ns * sn[1], b2 += sw * ns * sn[2];
-        }
-        for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
-            const int32_t f = s->vertex_faces[k];
-            const double *n = s->normal + 3 * (size_t)f;
-            const double pw = w * face_weight(s, f);
-            a00 += pw * n[0] * n[0], a01 += pw * n[0] * n[1], a02 += pw * n[0] * n[2];
-            a11 += pw * n[1] * n[1], a12 += pw * n[1] * n[2], a22 += pw * n[2] * n[2];
-            if (!shape && !(o->circular > 0.0))
-                continue;
-            const int32_t fb = s->face_start[f];
-            int32_t corner = 0;
-            while (s->face_vertices[fb + corner] != v)
-                ++corner;
-            if (shape) { /* right-hand side of lambda |P q - s R x|^2: s R x */
-                const double *sr = s->shape + 9 * (size_t)f, *cpf = s->control_centroid + 3 * (size_t)f;
-                const double dx[3] = {pv[0] - cpf[0], pv[1] - cpf[1], pv[2] - cpf[2]};
-                const double lw = mu * o->shape_weight;
-                b0 += lw * (sr[0] * dx[0] + sr[1] * dx[1] + sr[2] * dx[2]);
-                b1 += lw * (sr[3] * dx[0] + sr[4] * dx[1] + sr[5] * dx[2]);
-                b2 += lw * (sr[6] * dx[0] + sr[7] * dx[1] + sr[8] * dx[2]);
-            }
-            if (o->circular > 0.0) {
-                const double *t = s->circle_target + 3 * (size_t)(fb + corner);
-                const double cw = w * o->circular;
-                b0 += cw * t[0], b1 += cw * t[1], b2 += cw * t[2];
-                a00 += cw, a11 += cw, a22 += cw;
+        double a[6], bv[3];
+        vertex_terms(s, v, mu, a, bv);
+        const int32_t nk = s->couple_start[v + 1] - s->couple_start[v];
+        for (int c = 0; c < 3; ++c) {
+            double *col = x + cp[3 * v + c];
+            for (int32_t k = 0; k < nk; ++k) {
+                const int32_t e2 = s->couple_start[v] + k;
+                col[k] = mu * s->couple_mu[e2] + w * s->couple_con[e2];
             }
         }
-        if (sliding && s->boundary_prev[v] >= 0) {
-            const double *t = s->slide_tangent + 3 * (size_t)v, *g = s->slide_target + 3 * (size_t)v;
-            const double m00 = w * (1.0 - t[0] * t[0]), m01 = -w * t[0] * t[1], m02 = -w * t[0] * t[2];
-            const double m11 = w * (1.0 - t[1] * t[1]), m12 = -w * t[1] * t[2], m22 = w * (1.0 - t[2] * t[2]);
-            a00 += m00, a01 += m01, a02 += m02, a11 += m11, a12 += m12, a22 += m22;
-            b0 += m00 * g[0] + m01 * g[1] + m02 * g[2];
-            b1 += m01 * g[0] + m11 * g[1] + m12 * g[2];
-            b2 += m02 * g[0] + m12 * g[1] + m22 * g[2];
-        }
-        if (o->angle_floor > 0.0 && s->guard_count[v] > 0.0) { /* angle floor targets */
-            const double *t = s->guard_sum + 3 * (size_t)v, g = w * s->guard_count[v];
-            b0 += w * t[0], b1 += w * t[1], b2 += w * t[2];
-            a00 += g, a11 += g, a22 += g;
-        }
-        if (!x) {
-            double *av = s->mat_block + 6 * (size_t)v;
-            av[0] = a00, av[1] = a01, av[2] = a11, av[3] = a02, av[4] = a12, av[5] = a22;
-        } else {
-            const int32_t nk = s->couple_start[v + 1] - s->couple_start[v];
-            for (int a = 0; a < 3; ++a) {
-                double *col = x + cp[3 * v + a];
-                for (int32_t k = 0; k < nk; ++k) {
-                    const int32_t e2 = s->couple_start[v] + k;
-                    col[k] = mu * s->couple_mu[e2] + w * s->couple_con[e2];
-                }
-            }
-            x[cp[3 * v] + nk] = a00;
-            x[cp[3 * v + 1] + nk] = a01, x[cp[3 * v + 1] + nk + 1] = a11;
-            x[cp[3 * v + 2] + nk] = a02, x[cp[3 * v + 2] + nk + 1] = a12, x[cp[3 * v + 2] + nk + 2] = a22;
-        }
-        b[3 * v] = b0, b[3 * v + 1] = b1, b[3 * v + 2] = b2;
+        x[cp[3 * v] + nk] = a[0];
+        x[cp[3 * v + 1] + nk] = a[1], x[cp[3 * v + 1] + nk + 1] = a[2];
+        x[cp[3 * v + 2] + nk] = a[3], x[cp[3 * v + 2] + nk + 1] = a[4], x[cp[3 * v + 2] + nk + 2] = a[5];
+        b[3 * v] = bv[0], b[3 * v + 1] = bv[1], b[3 * v + 2] = bv[2];
     }
     /* offset columns */
 #pragma omp parallel for schedule(static) num_threads(nthreads)
@@ -1020,17 +929,11 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
         /* an exempt face's offset is decoupled: identity row */
         const double diag = pw > 0.0 ? pw * (double)(b1 - b0) : 1.0;
         const int32_t col = s->face_col[f];
-        if (!x) {
-            double *cf = s->mat_coupling + 3 * (size_t)f;
-            cf[0] = pw * n[0], cf[1] = pw * n[1], cf[2] = pw * n[2];
-            s->mat_diag[f] = diag;
-        } else {
-            for (int32_t k = b0; k < b1; ++k) {
-                const int32_t at = s->corner_slot[k];
-                x[at] = pw * n[0], x[at + 1] = pw * n[1], x[at + 2] = pw * n[2];
-            }
-            x[cp[col + 1] - 1] = diag;
+        for (int32_t k = b0; k < b1; ++k) {
+            const int32_t at = s->corner_slot[k];
+            x[at] = pw * n[0], x[at + 1] = pw * n[1], x[at + 2] = pw * n[2];
         }
+        x[cp[col + 1] - 1] = diag;
         b[col] = 0.0;
     }
     /* fixed vertices: identity rows, couplings moved to the right-hand side
@@ -1038,31 +941,7 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
     int any_fixed = 0;
     for (int32_t v = 0; v < nv && !any_fixed; ++v)
         any_fixed = s->fixed[v];
-    s->mat_any_fixed = any_fixed;
-    if (any_fixed && !x) {
-        /* the stored matrix's pass below, entry for entry: a fixed vertex's
-         * block becomes the identity, and its corners' couplings (entries of
-         * the offsets' columns, by ascending vertex) move to those columns'
-         * right-hand side; natural_matvec takes them as 0 */
-        for (int32_t k = 0; k < nf; ++k) {
-            const int32_t f = s->face_of_col[k], fb = s->face_start[f], n = s->face_start[f + 1] - fb;
-            const double *cf = s->mat_coupling + 3 * (size_t)f;
-            double *bj = b + 3 * (size_t)nv + k;
-            for (int32_t c = 0, u = -1; c < n; ++c) {
-                u = corner_vertex(s, fb, n, c, u);
-                if (s->fixed[u])
-                    for (int a = 0; a < 3; ++a)
-                        *bj -= cf[a] * p[3 * (size_t)u + a];
-            }
-        }
-        for (int32_t v = 0; v < nv; ++v)
-            if (s->fixed[v]) {
-                double *av = s->mat_block + 6 * (size_t)v;
-                av[0] = 1.0, av[1] = 0.0, av[2] = 1.0, av[3] = 0.0, av[4] = 0.0, av[5] = 1.0;
-                for (int a = 0; a < 3; ++a)
-                    b[3 * v + a] = p[3 * (size_t)v + a];
-            }
-    } else if (any_fixed) {
+    if (any_fixed) {
         const int32_t n = 3 * nv + nf;
         for (int32_t c = 0; c < n; ++c) {
             const int fc = c < 3 * nv && s->fixed[c / 3];
@@ -1097,7 +976,7 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
     memcpy(cur, s->q, sizeof(double) * 3 * (size_t)nv);
     for (int32_t f = 0; f < nf; ++f)
         cur[s->face_col[f]] = s->offset[f];
-    matvec(s, -1.0, 1, cur, b);
+    sym_matvec(s->matrix, -1.0, 1, cur, b);
     /* Between the planes' steps only the normals turn (and mu stays within a
      * level of the schedule), so the last factorization stays a very good
      * preconditioner: conjugate gradients with it replace a refactorization
@@ -1113,15 +992,14 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
         }
     }
     if (!y) {
-        if (s->pmatrix) {
+        {
             const double *ax = s->matrix->x;
             double *px = s->pmatrix->x;
             const size_t nnz = (size_t)cp[3 * (size_t)nv + (size_t)nf];
             for (size_t k = 0; k < nnz; ++k)
                 px[k] = ax[s->pmap[k]];
         }
-        const int factorized = s->schur ? schur_assemble(s) && cholmod_factorize(s->schur, s->factor, &s->cm)
-                                        : cholmod_factorize(s->pmatrix, s->factor, &s->cm);
+        const int factorized = cholmod_factorize(s->pmatrix, s->factor, &s->cm);
         if (!factorized || s->cm.status != CHOLMOD_OK) {
             s->factor_ready = 0;
             return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
@@ -1143,4 +1021,165 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, 
         return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
                              "the sparse solve gave a non-finite result");
     return FACET_OK;
+}
+
+/* Solves the offsets' system S x = g (schur_vec: g, then the search
+ * direction and x) by conjugate gradients preconditioned with the (older)
+ * factorization, to a residual PCG_TOL of g's. Returns the steps taken, or
+ * 0 if it did not get there (or failed): g is left as it was. Serial and in
+ * a fixed order: the same bits for any thread count. The residual is
+ * schur_b, and schur_x takes S p and then z = M^-1 r (S p is dead once r is
+ * updated). */
+static int schur_pcg(facet_planarizer *s, double w)
+{
+    const size_t nf = (size_t)s->nf;
+    const double *g = s->schur_vec;
+    double *p = s->schur_vec + nf, *x = s->schur_vec + 2 * nf, *r = s->schur_b->x;
+    memcpy(r, g, sizeof(double) * nf);
+    memset(x, 0, sizeof(double) * nf);
+    const double r0 = sqrt(dot_n(r, r, nf));
+    if (!(r0 > 0.0))
+        return 1; /* x = 0 */
+    if (!schur_precondition(s))
+        return 0;
+    memcpy(p, s->schur_x->x, sizeof(double) * nf);
+    double rz = dot_n(r, s->schur_x->x, nf);
+    for (int step = 1; step <= PCG_MAX; ++step) {
+        double *ap = s->schur_x->x;
+        schur_product(s, w, p, ap);
+        const double pap = dot_n(p, ap, nf);
+        if (!(pap > 0.0) || !isfinite(pap))
+            return 0;
+        const double alpha = rz / pap;
+        for (size_t k = 0; k < nf; ++k) {
+            x[k] += alpha * p[k];
+            r[k] -= alpha * ap[k];
+        }
+        if (sqrt(dot_n(r, r, nf)) <= PCG_TOL * r0)
+            return step;
+        if (!schur_precondition(s))
+            return 0;
+        const double *z = s->schur_x->x;
+        const double rz_next = dot_n(r, z, nf), beta = rz_next / rz;
+        rz = rz_next;
+        for (size_t k = 0; k < nf; ++k)
+            p[k] = z[k] + beta * p[k];
+    }
+    return 0;
+}
+
+/* One global step without vertex couplings: the increment [dq; dd] from
+ * the iterate [q; d] solves A [dq; dd] = b - A [q; d]. Per vertex, with
+ * its block B_v (this step's LDL' into block) and residual r_v: u_v =
+ * B_v^-1 r_v; per face, the offsets' right-hand side g_f = r_f - sum over
+ * its free corners of c_f . u_v; S dd = g; then dq_v = u_v - B_v^-1 sum
+ * over its faces of c_f dd_f. A held vertex has an identity row (dq = p -
+ * q) and no coupling: its corners' terms move to its faces' right-hand
+ * side. The offsets themselves are not updated (the planes' step refits
+ * them). */
+static facet_status schur_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
+{
+    const int32_t nv = s->nv, nf = s->nf, base = 3 * nv;
+    const double w = 1.0 - mu;
+    const double *p = s->p, *offset = s->offset;
+    double *q = s->q, *u = s->schur_u, *g = s->schur_vec;
+    int bad = 0;
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(| : bad)
+    for (int32_t v = 0; v < nv; ++v) {
+        double *bl = s->block + 6 * (size_t)v, *uv = u + 3 * (size_t)v;
+        const double *qv = q + 3 * (size_t)v;
+        if (s->fixed[v]) {
+            bl[0] = bl[1] = bl[2] = 0.0, bl[3] = bl[4] = bl[5] = 1.0;
+            uv[0] = p[3 * (size_t)v] - qv[0], uv[1] = p[3 * (size_t)v + 1] - qv[1];
+            uv[2] = p[3 * (size_t)v + 2] - qv[2];
+            continue;
+        }
+        double a[6], b[3], c[3];
+        vertex_terms(s, v, mu, a, b);
+        if (!block_ldl(a, bl)) {
+            bad = 1;
+            continue;
+        }
+        double r[3] = {b[0] - (a[0] * qv[0] + a[1] * qv[1] + a[3] * qv[2]),
+                       b[1] - (a[1] * qv[0] + a[2] * qv[1] + a[4] * qv[2]),
+                       b[2] - (a[3] * qv[0] + a[4] * qv[1] + a[5] * qv[2])};
+        for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i) {
+            const int32_t f = s->vertex_faces[i];
+            face_coupling(s, f, w, c);
+            r[0] -= c[0] * offset[f], r[1] -= c[1] * offset[f], r[2] -= c[2] * offset[f];
+        }
+        block_solve(bl, r, uv);
+    }
+    if (bad) {
+        s->factor_ready = 0;
+        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
+                             "the sparse factorization failed (matrix not positive definite)");
+    }
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (int32_t f = 0; f < nf; ++f) {
+        double c[3];
+        face_coupling(s, f, w, c);
+        double r = -face_diagonal(s, f, w) * offset[f];
+        for (int32_t k = s->face_start[f]; k < s->face_start[f + 1]; ++k) {
+            const size_t v = (size_t)s->face_vertices[k];
+            if (s->fixed[v])
+                r -= c[0] * p[3 * v] + c[1] * p[3 * v + 1] + c[2] * p[3 * v + 2];
+            else
+                r -= c[0] * (q[3 * v] + u[3 * v]) + c[1] * (q[3 * v + 1] + u[3 * v + 1]) +
+                     c[2] * (q[3 * v + 2] + u[3 * v + 2]);
+        }
+        g[s->face_col[f] - base] = r;
+    }
+    /* the offsets' increment: conjugate gradients with the last
+     * factorization while it serves (global_step), else refactorized */
+    const double *dd = NULL;
+    if (s->factor_ready && s->factor_mu == mu && s->factor_age < FACTOR_AGE) {
+        const int steps = schur_pcg(s, w);
+        if (steps > 0) {
+            s->factor_age += steps > PCG_SLOW ? FACTOR_AGE : 1;
+            dd = s->schur_vec + 2 * (size_t)nf;
+        }
+    }
+    if (!dd) {
+        schur_assemble(s, w);
+        if (!cholmod_factorize(s->schur, s->factor, &s->cm) || s->cm.status != CHOLMOD_OK) {
+            s->factor_ready = 0;
+            return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
+                                 "the sparse factorization failed (matrix not positive definite)");
+        }
+        s->factor_ready = 1, s->factor_mu = mu, s->factor_age = 0;
+        memcpy(s->schur_b->x, g, sizeof(double) * (size_t)nf);
+        if (!schur_precondition(s))
+            return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse solve failed");
+        dd = s->schur_x->x;
+    }
+    int finite = 1;
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(& : finite)
+    for (int32_t v = 0; v < nv; ++v) {
+        double *uv = u + 3 * (size_t)v;
+        if (!s->fixed[v]) {
+            double t[3] = {0.0, 0.0, 0.0}, c[3];
+            for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i) {
+                const int32_t f = s->vertex_faces[i];
+                const double df = dd[s->face_col[f] - base];
+                face_coupling(s, f, w, c);
+                t[0] += c[0] * df, t[1] += c[1] * df, t[2] += c[2] * df;
+            }
+            block_solve(s->block + 6 * (size_t)v, t, t);
+            uv[0] -= t[0], uv[1] -= t[1], uv[2] -= t[2];
+        }
+        finite &= isfinite(uv[0]) && isfinite(uv[1]) && isfinite(uv[2]);
+    }
+    if (!finite)
+        return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
+                             "the sparse solve gave a non-finite result");
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (int32_t k = 0; k < 3 * nv; ++k)
+        q[k] += u[k];
+    return FACET_OK;
+}
+
+facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
+{
+    return s->matrix ? stored_step(s, mu, nthreads, error) : schur_step(s, mu, nthreads, error);
 }

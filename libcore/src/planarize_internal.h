@@ -111,32 +111,24 @@ struct facet_planarizer {
      * Without vertex couplings the unknowns are numbered in a fill-reducing
      * order from the start (face_col) and pmatrix, pmap and perm are NULL. */
     int32_t *face_col; /* per face: the column of its offset (3 nv + its rank) */
-    /* Without vertex couplings the vertices are eliminated by hand and
-     * CHOLMOD factorizes the offsets' system (planarize_global.c): schur is
-     * its upper triangle (nf x nf, faces in face_col's order), factor its
-     * factorization. schur_slot: per (vertex, pair i <= j of its faces, in
-     * vertex_faces' order) the index of that pair's entry in schur->x, from
-     * schur_start[v]; corner_col: per vertex_faces entry, that face's
-     * column in schur; block: per vertex, the LDL' of its 3x3 block
-     * (l10 l20 l21 1/d0 1/d1 1/d2); face_coupling: per column of schur, its corners'
-     * coupling w_f n_f when factorized (the preconditioner must not see the
-     * matrix's later values). NULL with couplings. */
+    /* Without vertex couplings the (3 nv + nf) matrix is never stored: the
+     * vertices are eliminated by hand and each step solves the offsets'
+     * system (Schur complement, nf x nf) for the offsets' increment, by
+     * conjugate gradients preconditioned with CHOLMOD's factorization of an
+     * earlier step's offsets' system, or directly after refactorizing it
+     * (planarize_global.c, schur_step). schur: that system's upper triangle
+     * (faces in face_col's order), factor its factorization. schur_slot: per
+     * (vertex, pair i <= j of its faces, in vertex_faces' order) the index of
+     * that pair's entry in schur->x, from schur_start[v]; block: per vertex,
+     * the LDL' of this step's 3x3 block (l10 l20 l21 1/d0 1/d1 1/d2);
+     * schur_u: per vertex, B^-1 of its residual, then its increment;
+     * schur_vec: three vectors of nf (right-hand side, search direction,
+     * solution), schur_b and schur_x two more (residual; preconditioned
+     * residual and product) for cholmod_solve2. NULL with couplings. */
     cholmod_sparse *schur;
-    int32_t *schur_slot, *schur_start, *corner_col;
-    double *block, *face_coupling;
+    int32_t *schur_slot, *schur_start;
+    double *block, *schur_u, *schur_vec;
     cholmod_dense *schur_b, *schur_x;
-    /* Without couplings the (3 nv + nf) matrix is not stored (matrix and
-     * corner_slot NULL): its values are per vertex the 3x3 block (a00 a01
-     * a11 a02 a12 a22: its three columns' entries), per face its corners'
-     * coupling w_f n_f and its offset's diagonal; face_of_col: the face of
-     * each offset column (planarize_global.c, natural_matvec); corner_order:
-     * per corner, the local index of each face's corners by ascending
-     * vertex (faces of up to 255 corners); mat_any_fixed: some vertex is
-     * held. NULL with couplings. */
-    double *mat_block, *mat_coupling, *mat_diag;
-    int32_t *face_of_col;
-    uint8_t *corner_order;
-    int mat_any_fixed;
     cholmod_sparse *pmatrix;
     int32_t *pmap, *perm;
     cholmod_dense *perm_b, *perm_x;
