@@ -62,12 +62,9 @@ void facet_pl_global_free(facet_planarizer *s)
         cholmod_free_dense(&s->schur_b, &s->cm);
         cholmod_free_dense(&s->schur_x, &s->cm);
     }
-    free(s->schur_slot);
-    free(s->schur_start);
     free(s->block);
     free(s->schur_u);
     free(s->schur_vec);
-    s->schur_slot = s->schur_start = NULL;
     s->block = s->schur_u = s->schur_vec = NULL;
     free(s->pmap);
     free(s->perm);
@@ -340,7 +337,8 @@ static int compare_int(const void *x, const void *y)
 }
 
 /* The pattern of the offsets' system after the vertices' elimination (two
- * faces coupled when they share a vertex) and its slots, after order_faces. */
+ * faces coupled when they share a vertex), after order_faces; also the
+ * vertices' blocks and the step's vectors. */
 static facet_status schur_setup(facet_planarizer *s, facet_error *error)
 {
     cholmod_common *cm = &s->cm;
@@ -350,14 +348,12 @@ static facet_status schur_setup(facet_planarizer *s, facet_error *error)
         return facet_pl_fail(s, error, FACET_ERROR_TOO_LARGE, "mesh too large for the sparse system");
     int *room = calloc((size_t)nf + 1, sizeof(int));
     int *mark = malloc(sizeof(int) * (size_t)(nf ? nf : 1));
-    s->schur_start = malloc(sizeof(int32_t) * ((size_t)nv + 1));
-    s->schur_slot = malloc(sizeof(int32_t) * (pairs ? pairs : 1));
     s->block = malloc(sizeof(double) * 6 * (size_t)(nv ? nv : 1));
     s->schur_u = malloc(sizeof(double) * 3 * (size_t)(nv ? nv : 1));
     s->schur_vec = malloc(sizeof(double) * 3 * (size_t)(nf ? nf : 1));
     s->schur_b = cholmod_allocate_dense((size_t)nf, 1, (size_t)nf, CHOLMOD_REAL, cm);
     facet_status status = FACET_OK;
-    if (!room || !mark || !s->schur_start || !s->schur_slot || !s->block || !s->schur_u ||
+    if (!room || !mark || !s->block || !s->schur_u ||
         !s->schur_vec || !s->schur_b) {
         status = facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the sparse system");
         goto done;
@@ -413,23 +409,6 @@ static facet_status schur_setup(facet_planarizer *s, facet_error *error)
     memcpy(sp, room, sizeof(int) * ((size_t)nf + 1));
     memcpy(si, rows, sizeof(int) * at);
     free(rows);
-    /* slots: per vertex, per pair (i >= j) of its faces */
-    size_t slot = 0;
-    for (int32_t v = 0; v < nv; ++v) {
-        s->schur_start[v] = (int32_t)slot;
-        for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i) {
-            const int32_t f = s->vertex_faces[i];
-            for (int32_t j = s->vertex_start[v]; j <= i; ++j) {
-                const int32_t a = s->face_col[f] - base, b = s->face_col[s->vertex_faces[j]] - base;
-                const int32_t col = a > b ? a : b, row = a > b ? b : a;
-                int32_t k = sp[col];
-                while (si[k] != row)
-                    ++k;
-                s->schur_slot[slot++] = k;
-            }
-        }
-    }
-    s->schur_start[nv] = (int32_t)slot;
 done:
     free(room);
     free(mark);
@@ -487,7 +466,7 @@ static void schur_assemble(facet_planarizer *s, double w)
 {
     const int32_t nv = s->nv, nf = s->nf, base = 3 * nv;
     double *sx = s->schur->x;
-    const int *sp = s->schur->p;
+    const int *sp = s->schur->p, *si = s->schur->i;
     memset(sx, 0, sizeof(double) * (size_t)sp[nf]);
     for (int32_t f = 0; f < nf; ++f) /* the diagonal is each column's last entry */
         sx[sp[s->face_col[f] - base + 1] - 1] = face_diagonal(s, f, w);
@@ -496,16 +475,22 @@ static void schur_assemble(facet_planarizer *s, double w)
             continue;
         const double *bl = s->block + 6 * (size_t)v;
         const int32_t b = s->vertex_start[v], k = s->vertex_start[v + 1] - b;
-        const int32_t *slot = s->schur_slot + s->schur_start[v];
         const int32_t *faces = s->vertex_faces + b;
         for (int32_t i = 0; i < k; ++i) { /* z = B^-1 c_i; S_ij -= c_j . z */
             double c[3], z[3];
             face_coupling(s, faces[i], w, c);
             block_solve(bl, c, z);
+            const int32_t ci = s->face_col[faces[i]] - base;
             for (int32_t j = 0; j <= i; ++j) {
                 double cj[3];
                 face_coupling(s, faces[j], w, cj);
-                sx[*slot++] -= cj[0] * z[0] + cj[1] * z[1] + cj[2] * z[2];
+                /* the pair's entry: row min, column max (rows ascend) */
+                const int32_t cj_col = s->face_col[faces[j]] - base;
+                const int32_t col = ci > cj_col ? ci : cj_col, row = ci > cj_col ? cj_col : ci;
+                int at = sp[col];
+                while (si[at] != row)
+                    ++at;
+                sx[at] -= cj[0] * z[0] + cj[1] * z[1] + cj[2] * z[2];
             }
         }
     }

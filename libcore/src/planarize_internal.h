@@ -117,16 +117,13 @@ struct facet_planarizer {
      * conjugate gradients preconditioned with CHOLMOD's factorization of an
      * earlier step's offsets' system, or directly after refactorizing it
      * (planarize_global.c, schur_step). schur: that system's upper triangle
-     * (faces in face_col's order), factor its factorization. schur_slot: per
-     * (vertex, pair i <= j of its faces, in vertex_faces' order) the index of
-     * that pair's entry in schur->x, from schur_start[v]; block: per vertex,
+     * (faces in face_col's order), factor its factorization; block: per vertex,
      * the LDL' of this step's 3x3 block (l10 l20 l21 1/d0 1/d1 1/d2);
      * schur_u: per vertex, B^-1 of its residual, then its increment;
      * schur_vec: three vectors of nf (right-hand side, search direction,
      * solution), schur_b and schur_x two more (residual; preconditioned
      * residual and product) for cholmod_solve2. NULL with couplings. */
     cholmod_sparse *schur;
-    int32_t *schur_slot, *schur_start;
     double *block, *schur_u, *schur_vec;
     cholmod_dense *schur_b, *schur_x;
     cholmod_sparse *pmatrix;
