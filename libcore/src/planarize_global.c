@@ -203,10 +203,11 @@ static facet_status build_coupling(facet_planarizer *s, facet_error *error)
     s->couple_vertex = malloc(sizeof(int32_t) * (list.n ? list.n : 1));
     s->couple_mu = malloc(sizeof(double) * (list.n ? list.n : 1));
     s->couple_con = malloc(sizeof(double) * (list.n ? list.n : 1));
-    s->couple_diag_mu = calloc((size_t)nv, sizeof(double));
-    s->couple_diag_con = calloc((size_t)nv, sizeof(double));
+    /* the diagonal only with coupled terms (NULL: K = 0, the default) */
+    s->couple_diag_mu = list.n ? calloc((size_t)nv, sizeof(double)) : NULL;
+    s->couple_diag_con = list.n ? calloc((size_t)nv, sizeof(double)) : NULL;
     if (!s->couple_start || !s->couple_vertex || !s->couple_mu || !s->couple_con ||
-        !s->couple_diag_mu || !s->couple_diag_con) {
+        (list.n && (!s->couple_diag_mu || !s->couple_diag_con))) {
         free(list.t);
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory for the couplings");
     }
@@ -815,7 +816,7 @@ static inline void vertex_terms(const facet_planarizer *s, int32_t v, double mu,
     const double *p = s->p;
     const double *pv = p + 3 * (size_t)v, *nu = s->vertex_normal + 3 * (size_t)v;
     const double dt = mu * o->data_tangent, dn = mu * o->data_normal;
-    const double kd = mu * s->couple_diag_mu[v] + w * s->couple_diag_con[v];
+    const double kd = s->couple_diag_mu ? mu * s->couple_diag_mu[v] + w * s->couple_diag_con[v] : 0.0;
     double a00 = dt + kd, a11 = dt + kd, a22 = dt + kd, a01 = 0.0, a02 = 0.0, a12 = 0.0;
     const double e = dn - dt;
     a00 += e * nu[0] * nu[0], a01 += e * nu[0] * nu[1], a02 += e * nu[0] * nu[2];

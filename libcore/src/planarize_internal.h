@@ -141,7 +141,7 @@ struct facet_planarizer {
      * entries u < v at couple_start[v] .. couple_start[v+1]-1 */
     int32_t *couple_start, *couple_vertex;
     double *couple_mu, *couple_con;       /* off-diagonal values */
-    double *couple_diag_mu, *couple_diag_con;
+    double *couple_diag_mu, *couple_diag_con; /* NULL without coupled terms */
 
     /* Anderson acceleration */
     double *aa_df, *aa_dg;                /* m columns of 3 nv (2 if m = 1); the ring's
