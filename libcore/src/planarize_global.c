@@ -720,6 +720,19 @@ enum {
 #ifndef PCG_TOL
 #define PCG_TOL 1e-4
 #endif
+/* The same for the offsets' system (schur_step), relative to its own
+ * right-hand side. 1e-5: its steps are cheap (vectors of nf), and a live
+ * update's result then follows a drag as exact solves do: over ten drags of
+ * the 24 x 24 grid of test_planarize_live, the dragged vertex follows by
+ * 0.619 of the drag on mean (exact solves, 1e-13: 0.614; 1e-4: 0.580; the
+ * stored matrix's 1e-4 on the whole system: 0.640), at +9.5% instructions
+ * for Level 5 L/G x30 (985M against 899M with 1e-4; the whole-system
+ * solve took 1,228M). Over the 28 public and generated meshes of
+ * docs/benchmarks.md ("L/G memory"), 2,194 iterations to 1e-6 in all
+ * against 2,208 with 1e-4 and 2,208 before. */
+#ifndef SCHUR_PCG_TOL
+#define SCHUR_PCG_TOL 1e-5
+#endif
 
 static double dot_n(const double *a, const double *b, size_t n)
 {
@@ -1011,7 +1024,7 @@ static facet_status stored_step(facet_planarizer *s, double mu, int nthreads, fa
 
 /* Solves the offsets' system S x = g (schur_vec: g, then the search
  * direction and x) by conjugate gradients preconditioned with the (older)
- * factorization, to a residual PCG_TOL of g's. Returns the steps taken, or
+ * factorization, to a residual SCHUR_PCG_TOL of g's. Returns the steps taken, or
  * 0 if it did not get there (or failed): g is left as it was. Serial and in
  * a fixed order: the same bits for any thread count. The residual is
  * schur_b, and schur_x takes S p and then z = M^-1 r (S p is dead once r is
@@ -1041,7 +1054,7 @@ static int schur_pcg(facet_planarizer *s, double w)
             x[k] += alpha * p[k];
             r[k] -= alpha * ap[k];
         }
-        if (sqrt(dot_n(r, r, nf)) <= PCG_TOL * r0)
+        if (sqrt(dot_n(r, r, nf)) <= SCHUR_PCG_TOL * r0)
             return step;
         if (!schur_precondition(s))
             return 0;
