@@ -129,11 +129,14 @@ struct facet_planarizer {
     cholmod_sparse *pmatrix;
     int32_t *pmap, *perm;
     cholmod_dense *perm_b, *perm_x;
-    /* the factorization as a preconditioner (planarize_global.c, pcg_solve) */
+    /* the factorization as a preconditioner (planarize_global.c, pcg_solve
+     * and schur_pcg) */
     int factor_ready, factor_age;
     double factor_mu;
-    /* pcg_p also holds [q; d] of the iterate (the step solves for the
-     * increment), pcg_x the increment; pcg_y, pcg_e: cholmod_solve2's */
+    /* With couplings (matrix, rhs and pcg_p .. pcg_x of 3 nv + nf; NULL
+     * without): pcg_p also holds [q; d] of the iterate (the step solves for
+     * the increment), pcg_x the increment. pcg_y, pcg_e: cholmod_solve2's
+     * workspace, either way */
     cholmod_dense *pcg_p, *pcg_ap, *pcg_r, *pcg_x, *pcg_y, *pcg_e;
     int32_t *corner_slot;   /* per corner: index in matrix->x of its first coupling entry */
     int32_t couple_key;     /* COUPLE_* flags the matrix pattern was built for; -1 none */
