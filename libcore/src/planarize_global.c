@@ -351,7 +351,7 @@ static facet_status schur_setup(facet_planarizer *s, facet_error *error)
     int *mark = malloc(sizeof(int) * (size_t)(nf ? nf : 1));
     s->block = malloc(sizeof(double) * 6 * (size_t)(nv ? nv : 1));
     s->schur_u = malloc(sizeof(double) * 3 * (size_t)(nv ? nv : 1));
-    s->schur_vec = malloc(sizeof(double) * 3 * (size_t)(nf ? nf : 1));
+    s->schur_vec = malloc(sizeof(double) * 2 * (size_t)(nf ? nf : 1));
     s->schur_b = cholmod_allocate_dense((size_t)nf, 1, (size_t)nf, CHOLMOD_REAL, cm);
     facet_status status = FACET_OK;
     if (!room || !mark || !s->block || !s->schur_u ||
@@ -1025,19 +1025,17 @@ static facet_status stored_step(facet_planarizer *s, double mu, int nthreads, fa
     return FACET_OK;
 }
 
-/* Solves the offsets' system S x = g (schur_vec: g, then the search
- * direction and x) by conjugate gradients preconditioned with the (older)
- * factorization, to a residual SCHUR_PCG_TOL of g's. Returns the steps taken, or
- * 0 if it did not get there (or failed): g is left as it was. Serial and in
- * a fixed order: the same bits for any thread count. The residual is
- * schur_b, and schur_x takes S p and then z = M^-1 r (S p is dead once r is
- * updated). */
+/* Solves the offsets' system S x = g (g in schur_b, which becomes the
+ * residual; schur_vec: the search direction and x) by conjugate gradients
+ * preconditioned with the (older) factorization, to a residual
+ * SCHUR_PCG_TOL of g's. Returns the steps taken, or 0 if it did not get
+ * there (or failed; schur_rhs gives g again). Serial and in a fixed order:
+ * the same bits for any thread count. schur_x takes S p and then z = M^-1 r
+ * (S p is dead once r is updated). */
 static int schur_pcg(facet_planarizer *s, double w)
 {
     const size_t nf = (size_t)s->nf;
-    const double *g = s->schur_vec;
-    double *p = s->schur_vec + nf, *x = s->schur_vec + 2 * nf, *r = s->schur_b->x;
-    memcpy(r, g, sizeof(double) * nf);
+    double *p = s->schur_vec, *x = s->schur_vec + nf, *r = s->schur_b->x;
     memset(x, 0, sizeof(double) * nf);
     const double r0 = sqrt(dot_n(r, r, nf));
     if (!(r0 > 0.0))
@@ -1070,6 +1068,31 @@ static int schur_pcg(facet_planarizer *s, double w)
     return 0;
 }
 
+/* The offsets' right-hand side g_f = r_f - sum over f's free corners of
+ * c_f . u_v into schur_b, in schur's order (r_f: the offset's residual, a
+ * held corner's terms moved to it). */
+static void schur_rhs(facet_planarizer *s, double w, int nthreads)
+{
+    const int32_t nf = s->nf, base = 3 * s->nv;
+    const double *p = s->p, *q = s->q, *u = s->schur_u, *offset = s->offset;
+    double *g = s->schur_b->x;
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+    for (int32_t f = 0; f < nf; ++f) {
+        double c[3];
+        face_coupling(s, f, w, c);
+        double r = -face_diagonal(s, f, w) * offset[f];
+        for (int32_t k = s->face_start[f]; k < s->face_start[f + 1]; ++k) {
+            const size_t v = (size_t)s->face_vertices[k];
+            if (s->fixed[v])
+                r -= c[0] * p[3 * v] + c[1] * p[3 * v + 1] + c[2] * p[3 * v + 2];
+            else
+                r -= c[0] * (q[3 * v] + u[3 * v]) + c[1] * (q[3 * v + 1] + u[3 * v + 1]) +
+                     c[2] * (q[3 * v + 2] + u[3 * v + 2]);
+        }
+        g[s->face_col[f] - base] = r;
+    }
+}
+
 /* One global step without vertex couplings: the increment [dq; dd] from
  * the iterate [q; d] solves A [dq; dd] = b - A [q; d]. Per vertex, with
  * its block B_v (this step's LDL' into block) and residual r_v: u_v =
@@ -1084,7 +1107,7 @@ static facet_status schur_step(facet_planarizer *s, double mu, int nthreads, fac
     const int32_t nv = s->nv, nf = s->nf, base = 3 * nv;
     const double w = 1.0 - mu;
     const double *p = s->p, *offset = s->offset;
-    double *q = s->q, *u = s->schur_u, *g = s->schur_vec;
+    double *q = s->q, *u = s->schur_u;
     int bad = 0;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(| : bad)
     for (int32_t v = 0; v < nv; ++v) {
@@ -1117,21 +1140,7 @@ static facet_status schur_step(facet_planarizer *s, double mu, int nthreads, fac
         return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL,
                              "the sparse factorization failed (matrix not positive definite)");
     }
-#pragma omp parallel for schedule(static) num_threads(nthreads)
-    for (int32_t f = 0; f < nf; ++f) {
-        double c[3];
-        face_coupling(s, f, w, c);
-        double r = -face_diagonal(s, f, w) * offset[f];
-        for (int32_t k = s->face_start[f]; k < s->face_start[f + 1]; ++k) {
-            const size_t v = (size_t)s->face_vertices[k];
-            if (s->fixed[v])
-                r -= c[0] * p[3 * v] + c[1] * p[3 * v + 1] + c[2] * p[3 * v + 2];
-            else
-                r -= c[0] * (q[3 * v] + u[3 * v]) + c[1] * (q[3 * v + 1] + u[3 * v + 1]) +
-                     c[2] * (q[3 * v + 2] + u[3 * v + 2]);
-        }
-        g[s->face_col[f] - base] = r;
-    }
+    schur_rhs(s, w, nthreads);
     /* the offsets' increment: conjugate gradients with the last
      * factorization while it serves (global_step), else refactorized */
     const double *dd = NULL;
@@ -1139,7 +1148,9 @@ static facet_status schur_step(facet_planarizer *s, double mu, int nthreads, fac
         const int steps = schur_pcg(s, w);
         if (steps > 0) {
             s->factor_age += steps > PCG_SLOW ? FACTOR_AGE : 1;
-            dd = s->schur_vec + 2 * (size_t)nf;
+            dd = s->schur_vec + (size_t)nf;
+        } else {
+            schur_rhs(s, w, nthreads); /* g again */
         }
     }
     if (!dd) {
@@ -1150,7 +1161,6 @@ static facet_status schur_step(facet_planarizer *s, double mu, int nthreads, fac
                                  "the sparse factorization failed (matrix not positive definite)");
         }
         s->factor_ready = 1, s->factor_mu = mu, s->factor_age = 0;
-        memcpy(s->schur_b->x, g, sizeof(double) * (size_t)nf);
         if (!schur_precondition(s))
             return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse solve failed");
         dd = s->schur_x->x;

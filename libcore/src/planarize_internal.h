@@ -120,8 +120,8 @@ struct facet_planarizer {
      * (faces in face_col's order), factor its factorization; block: per vertex,
      * the LDL' of this step's 3x3 block (l10 l20 l21 1/d0 1/d1 1/d2);
      * schur_u: per vertex, B^-1 of its residual, then its increment;
-     * schur_vec: three vectors of nf (right-hand side, search direction,
-     * solution), schur_b and schur_x two more (residual; preconditioned
+     * schur_vec: two vectors of nf (search direction, solution), schur_b
+     * and schur_x two more (right-hand side, then residual; preconditioned
      * residual and product) for cholmod_solve2. NULL with couplings. */
     cholmod_sparse *schur;
     double *block, *schur_u, *schur_vec;
