@@ -648,11 +648,81 @@ static const double *anderson_plain(const facet_planarizer *s, const anderson_st
  * index order, then the blocks' sums in block order: the bits do not depend
  * on the thread count, and a mesh of up to ANDERSON_BLOCK / 3 vertices (one
  * block) sums exactly as a plain serial loop. */
-enum { ANDERSON_BLOCK = 32768 };
+enum {
+    ANDERSON_BLOCK = 32768,
+    ANDERSON_PIECE = 3 * 512, /* entries: whole vertices, 12 KB of each column */
+    ANDERSON_PARTIAL = 2 * FACET_ANDERSON_MAX + 2 /* per block: the sums, largest |f|, move */
+};
 
 static size_t anderson_blocks(size_t n)
 {
     return (n + ANDERSON_BLOCK - 1) / ANDERSON_BLOCK;
+}
+
+/* The squared distance between a vertex's two positions. */
+static inline double vertex_move2(const double *g, const double *x)
+{
+    return (x[0] - g[0]) * (x[0] - g[0]) + (x[1] - g[1]) * (x[1] - g[1]) + (x[2] - g[2]) * (x[2] - g[2]);
+}
+
+/* What a pass of anderson_step reads and writes (see there). */
+typedef struct {
+    const double *g, *x;
+    double *df_new, *dg_new;
+    const double *f_prev, *g_prev;
+    double *f_to;
+    const double *df_all;
+    size_t n;
+    int m, have;
+} anderson_pass;
+
+/* The first pass of anderson_step over entries [c0, c1): the new
+ * differences, largest |f|, the new Gram row's and the right-hand side's
+ * sums (in index order), f into its column and, given `moved` (c0 and c1
+ * then at whole vertices), the largest squared move g - x of a vertex. */
+static inline void anderson_piece(const anderson_pass *c, size_t c0, size_t c1, double *largest,
+                                  double *gsum, double *rsum, double *moved)
+{
+    const double *g = c->g, *x = c->x, *f_prev = c->f_prev, *g_prev = c->g_prev, *df_all = c->df_all;
+    double *df_new = c->df_new, *dg_new = c->dg_new, *f_to = c->f_to;
+    const size_t n = c->n;
+    const int m = c->m;
+    double big = *largest; /* (locals: the stores below might alias the pointers) */
+    if (c->have) /* in place: each entry is read, then written */
+        for (size_t k = c0; k < c1; ++k) {
+            const double f = g[k] - x[k];
+            df_new[k] = f - f_prev[k];
+            dg_new[k] = g[k] - g_prev[k];
+            big = facet_max(big, fabs(f));
+        }
+    else
+        for (size_t k = c0; k < c1; ++k)
+            big = facet_max(big, fabs(g[k] - x[k]));
+    *largest = big;
+    if (m > 0) {
+        double gs[FACET_ANDERSON_MAX], rs[FACET_ANDERSON_MAX];
+        for (int j = 0; j < m; ++j)
+            gs[j] = gsum[j], rs[j] = rsum[j];
+        for (size_t k = c0; k < c1; ++k) {
+            const double d = df_new[k], f = g[k] - x[k];
+            for (int j = 0; j < m; ++j) {
+                const double dfjk = df_all[(size_t)j * n + k];
+                gs[j] += d * dfjk;
+                rs[j] += dfjk * f;
+            }
+        }
+        for (int j = 0; j < m; ++j)
+            gsum[j] = gs[j], rsum[j] = rs[j];
+    }
+    if (moved) {
+        double most = *moved;
+        for (size_t k = c0; k < c1; k += 3)
+            most = facet_max(most, vertex_move2(g + k, x + k));
+        *moved = most;
+    }
+    /* then f into its column, which (the ring full) the sums have read */
+    for (size_t k = c0; k < c1; ++k)
+        f_to[k] = g[k] - x[k];
 }
 
 /* Keeps the plain iterate g as the last step's (anderson_prev_col) when no
@@ -672,7 +742,7 @@ static int anderson_keep_plain(double *g_to, const double *g, size_t n, int nthr
  * One pass over the history for the new Gram row and the right-hand side,
  * one for the extrapolation, both in parallel over blocks: at a million
  * faces the serial passes cost as much as the local steps. */
-static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x)
+static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x, double *move)
 {
     const size_t n = 3 * (size_t)s->nv;
     double *g = s->q;
@@ -687,41 +757,35 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     const int to = anderson_prev_col(a); /* this step's f and g: never slot */
     a->plain_col = to;
     const int m = have ? a->count : 0;
-    const size_t blocks = anderson_blocks(n), width = 2 * (size_t)FACET_ANDERSON_MAX + 1;
+    const size_t blocks = anderson_blocks(n), width = ANDERSON_PARTIAL;
     double *df_new = s->aa_df + (size_t)slot * n, *dg_new = s->aa_dg + (size_t)slot * n;
     const double *f_prev = s->aa_df + (size_t)from * n, *g_prev = s->aa_dg + (size_t)from * n;
     double *f_to = s->aa_df + (size_t)to * n, *g_to = s->aa_dg + (size_t)to * n;
     const double *df_all = s->aa_df;
+    const anderson_pass ctx = {g, x, df_new, dg_new, f_prev, g_prev, f_to, df_all, n, m, have};
 #pragma omp parallel for schedule(static) num_threads(a->nthreads)
     for (size_t blk = 0; blk < blocks; ++blk) {
         const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
         double *part = a->partial + blk * width;
         double largest = 0.0;
-        for (size_t k = k0; k < k1; ++k) {
-            const double f = g[k] - x[k];
-            if (have) { /* in place: each entry is read, then written */
-                df_new[k] = f - f_prev[k];
-                dg_new[k] = g[k] - g_prev[k];
-            }
-            largest = facet_max(largest, fabs(f));
-        }
         /* the 2m sums side by side (each still in index order): one chain of
          * dependent additions per sum, 2m chains in flight instead of 2 */
         double gsum[FACET_ANDERSON_MAX] = {0.0}, rsum[FACET_ANDERSON_MAX] = {0.0};
-        for (size_t k = k0; k < k1 && m > 0; ++k) {
-            const double d = df_new[k], f = g[k] - x[k];
-            for (int j = 0; j < m; ++j) {
-                const double dfjk = df_all[(size_t)j * n + k];
-                gsum[j] += d * dfjk;
-                rsum[j] += dfjk * f;
-            }
-        }
-        /* then f into its column, which (the ring full) the sums have read */
-        for (size_t k = k0; k < k1; ++k)
-            f_to[k] = g[k] - x[k];
+        double moved = 0.0;
+        /* A piece at a time, so that the sums and f's column read g, x and
+         * the new difference from L1, not memory; each sum still runs in
+         * index order (the same bits). The pieces between the block's first
+         * and last whole vertex also give the vertices' moves. */
+        const size_t a0 = (k0 + 2) / 3 * 3, a1 = k1 / 3 * 3 > a0 ? k1 / 3 * 3 : a0;
+        anderson_piece(&ctx, k0, a0, &largest, gsum, rsum, NULL);
+        for (size_t c0 = a0; c0 < a1; c0 += ANDERSON_PIECE)
+            anderson_piece(&ctx, c0, c0 + ANDERSON_PIECE < a1 ? c0 + ANDERSON_PIECE : a1, &largest,
+                           gsum, rsum, move ? &moved : NULL);
+        anderson_piece(&ctx, a1, k1, &largest, gsum, rsum, NULL);
         for (int j = 0; j < m; ++j)
             part[2 * j] = gsum[j], part[2 * j + 1] = rsum[j];
-        part[width - 1] = largest;
+        part[width - 2] = largest;
+        part[width - 1] = moved;
     }
     double rhs[FACET_ANDERSON_MAX], largest = 0.0;
     for (int j = 0; j < m; ++j) {
@@ -732,7 +796,19 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
         rhs[j] = rsum;
     }
     for (size_t blk = 0; blk < blocks; ++blk)
-        largest = facet_max(largest, a->partial[blk * width + width - 1]);
+        largest = facet_max(largest, a->partial[blk * width + width - 2]);
+    if (move) {
+        double moved = 0.0;
+        for (size_t blk = 0; blk < blocks; ++blk)
+            moved = facet_max(moved, a->partial[blk * width + width - 1]);
+        /* the vertices across the blocks' boundaries */
+        for (size_t blk = 1; blk < blocks; ++blk)
+            if (blk * ANDERSON_BLOCK % 3 != 0) {
+                const size_t k = blk * ANDERSON_BLOCK / 3 * 3;
+                moved = facet_max(moved, vertex_move2(g + k, x + k));
+            }
+        *move = moved;
+    }
     a->have_previous = 1;
     /* at a fixed point to rounding there is nothing to extrapolate, and
      * differences of rounding errors would only add noise */
@@ -940,7 +1016,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         !(x_before = malloc(sizeof(double) * 3 * (size_t)nv)))
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     if (aa.m > 0 &&
-        !(aa.partial = malloc(sizeof(double) * (2 * FACET_ANDERSON_MAX + 1) *
+        !(aa.partial = malloc(sizeof(double) * ANDERSON_PARTIAL *
                               anderson_blocks(3 * (size_t)nv)))) {
         free(x_before);
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
@@ -1095,17 +1171,14 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         if (status != FACET_OK)
             break;
         double move = 0.0; /* largest vertex move of the plain step, squared */
-        if (staircase) {
+        const int accelerate = aa.m > 0 && mu < 1.0;
+        if (staircase && !accelerate) { /* (else anderson_step's first pass finds it) */
             const double *q = s->q;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : move)
-            for (int32_t v = 0; v < nv; ++v) {
-                const double *a = before + 3 * (size_t)v, *b = q + 3 * (size_t)v;
-                const double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                                  (a[2] - b[2]) * (a[2] - b[2]);
-                move = facet_max(move, d2);
-            }
+            for (int32_t v = 0; v < nv; ++v)
+                move = facet_max(move, vertex_move2(q + 3 * (size_t)v, before + 3 * (size_t)v));
         }
-        accelerated = aa.m > 0 && mu < 1.0 ? anderson_step(s, &aa, before) : 0;
+        accelerated = accelerate ? anderson_step(s, &aa, before, staircase ? &move : NULL) : 0;
         ++it;
         ++level_steps;
         /* The staircase lowers mu only while the planarity is above the
