@@ -725,6 +725,23 @@ static inline void anderson_piece(const anderson_pass *c, size_t c0, size_t c1, 
         f_to[k] = g[k] - x[k];
 }
 
+/* The extrapolation over entries [k0, k1): g - dG theta into g, the plain g
+ * kept in its column g_to (which the sum reads first). Whether all finite. */
+static inline int anderson_extrapolate(double *g, double *g_to, const double *dg_all, const double *theta,
+                                       int m, size_t n, size_t k0, size_t k1)
+{
+    int finite = 1;
+    for (size_t k = k0; k < k1; ++k) {
+        double value = g[k];
+        for (int j = 0; j < m; ++j)
+            value -= theta[j] * dg_all[(size_t)j * n + k];
+        g_to[k] = g[k]; /* the plain iterate, after the sum read its column */
+        g[k] = value;
+        finite = finite && isfinite(value);
+    }
+    return finite;
+}
+
 /* Keeps the plain iterate g as the last step's (anderson_prev_col) when no
  * extrapolation reads the history. Returns 0 (not accelerated). */
 static int anderson_keep_plain(double *g_to, const double *g, size_t n, int nthreads)
@@ -852,22 +869,30 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
             return anderson_keep_plain(g_to, g, n, a->nthreads);
     const double *dg_all = s->aa_dg;
     int finite = 1;
+    /* in the energy's blocks of vertices when it is plain: the vertices'
+     * part of the safeguard's energy summed from the iterate in cache */
+    const int energy = facet_pl_vertex_energy_plain(s);
+    const int32_t nv = s->nv, esize = facet_pl_energy_block_size(nv);
+    const size_t pieces = energy ? (size_t)(nv / esize + (nv % esize != 0)) : blocks;
 #pragma omp parallel for schedule(static) num_threads(a->nthreads) reduction(&& : finite)
-    for (size_t blk = 0; blk < blocks; ++blk) {
-        const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
-        for (size_t k = k0; k < k1; ++k) {
-            double value = g[k];
-            for (int j = 0; j < m; ++j)
-                value -= theta[j] * dg_all[(size_t)j * n + k];
-            g_to[k] = g[k]; /* the plain iterate, after the sum read its column */
-            g[k] = value;
-            finite = finite && isfinite(value);
+    for (size_t blk = 0; blk < pieces; ++blk) {
+        if (energy) {
+            const int32_t v0 = (int32_t)blk * esize, v1 = nv - v0 < esize ? nv : v0 + esize;
+            finite = anderson_extrapolate(g, g_to, dg_all, theta, m, n, 3 * (size_t)v0, 3 * (size_t)v1) && finite;
+            s->energy_block[1][0][blk] = facet_pl_vertex_data_energy(s, g, v0, v1);
+            s->energy_block[1][1][blk] = 0.0;
+        } else {
+            const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
+            finite = anderson_extrapolate(g, g_to, dg_all, theta, m, n, k0, k1) && finite;
         }
     }
+    if (energy)
+        s->energy_blocks[1] = (int32_t)pieces;
     if (!finite) { /* back to the plain step's iterate */
         memcpy(g, g_to, sizeof(double) * n);
         return 0;
     }
+    s->vertex_energy_done = energy;
     return 1;
 }
 
@@ -895,6 +920,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         options = &chosen;
     }
     s->o = *options;
+    s->vertex_energy_done = 0;
     if (!ensure_workspace(s))
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     const int32_t nv = s->nv, nf = s->nf;
