@@ -1078,24 +1078,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         }
         if (s->guard_on)
             guard_last = it;
-        max_abs = 0.0, max_rel = 0.0, constraint = 0.0;
-        {
-            /* largest values: exact in any order, so parallel and still the same bits */
-            double m_abs = 0.0, m_rel = 0.0;
-            const double *weight = s->face_weight, *dev = s->face_dev, *edge = s->face_edge;
-#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : m_abs, m_rel)
-            for (int32_t f = 0; f < nf; ++f) {
-                if (weight && !(weight[f] > 0.0))
-                    continue;
-                const double d = dev[f], e = edge[f];
-                m_abs = facet_max(m_abs, d);
-                /* divide only where the quotient may be a new largest (a
-                 * multiplication with a margin of rounding says where) */
-                if (!(d <= m_rel * e * (1.0 - 1e-12)))
-                    m_rel = facet_max(m_rel, e > 0.0 ? d / e : (d > 0.0 ? INFINITY : 0.0));
-            }
-            max_abs = m_abs, max_rel = m_rel;
-        }
+        max_abs = s->fit_max_abs, max_rel = s->fit_max_rel, constraint = 0.0;
         /* the residuals are zero unless these terms are on (planarize_local.c) */
         if (options->circular > 0.0 || options->parallelogram > 0.0)
             for (int32_t f = 0; f < nf; ++f)

@@ -54,6 +54,9 @@ struct facet_planarizer {
     double *normal, *offset;              /* per face plane of the step */
     double *face_dev, *face_edge;         /* per face: max distance, mean edge length */
     double *face_sq;                      /* per face: sum of squared distances */
+    /* the largest face_dev and face_dev / face_edge over the faces with a
+     * weight (exempt faces do not count), found by the plane fit */
+    double fit_max_abs, fit_max_rel;
     /* the energy's parts (mu's and the constraints'), summed per block of
      * faces and of vertices (facet_pl_energy adds the blocks in order) */
     double energy_block[2][2][FACET_ENERGY_BLOCKS];

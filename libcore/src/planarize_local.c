@@ -624,7 +624,12 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads, int energy)
     if (energy)
         s->energy_blocks[0] = blocks;
     int guard = 0;
-#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
+    /* and the largest planarity, read from cache after each group (maxima
+     * are exact in any order: the same bits for any thread count) */
+    double m_abs = 0.0, m_rel = 0.0;
+    const double *weight = s->face_weight, *dev = s->face_dev, *edge = s->face_edge;
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard) \
+    reduction(max : m_abs, m_rel)
     for (int32_t block = 0; block < blocks; ++block) {
         double sum = 0.0;
         const int32_t last = groups - block * per_block < per_block ? groups : (block + 1) * per_block;
@@ -633,10 +638,21 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads, int energy)
             guard = fit_group(s, f, lanes, floor_on) || guard;
             for (int32_t h = f; energy && h < f + 8 && h < nf; ++h)
                 sum += face_weight(s, h) * s->face_sq[h];
+            for (int32_t h = f; h < f + 8 && h < nf; ++h) {
+                if (weight && !(weight[h] > 0.0))
+                    continue;
+                const double d = dev[h], e = edge[h];
+                m_abs = facet_max(m_abs, d);
+                /* divide only where the quotient may be a new largest (a
+                 * multiplication with a margin of rounding says where) */
+                if (!(d <= m_rel * e * (1.0 - 1e-12)))
+                    m_rel = facet_max(m_rel, e > 0.0 ? d / e : (d > 0.0 ? INFINITY : 0.0));
+            }
         }
         if (energy)
             s->energy_block[0][0][block] = 0.0, s->energy_block[0][1][block] = sum;
     }
+    s->fit_max_abs = m_abs, s->fit_max_rel = m_rel;
     /* a regularizer: weighed by mu against the planarity's 1 - mu, so it
      * fades as the penalty hardens */
     const double lambda = mu < 1.0 ? s->o.normal_laplacian * mu / (1.0 - mu) : 0.0;
