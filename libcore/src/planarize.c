@@ -648,11 +648,98 @@ static const double *anderson_plain(const facet_planarizer *s, const anderson_st
  * index order, then the blocks' sums in block order: the bits do not depend
  * on the thread count, and a mesh of up to ANDERSON_BLOCK / 3 vertices (one
  * block) sums exactly as a plain serial loop. */
-enum { ANDERSON_BLOCK = 32768 };
+enum {
+    ANDERSON_BLOCK = 32768,
+    ANDERSON_PIECE = 3 * 512, /* entries: whole vertices, 12 KB of each column */
+    ANDERSON_PARTIAL = 2 * FACET_ANDERSON_MAX + 2 /* per block: the sums, largest |f|, move */
+};
 
 static size_t anderson_blocks(size_t n)
 {
     return (n + ANDERSON_BLOCK - 1) / ANDERSON_BLOCK;
+}
+
+/* The squared distance between a vertex's two positions. */
+static inline double vertex_move2(const double *g, const double *x)
+{
+    return (x[0] - g[0]) * (x[0] - g[0]) + (x[1] - g[1]) * (x[1] - g[1]) + (x[2] - g[2]) * (x[2] - g[2]);
+}
+
+/* What a pass of anderson_step reads and writes (see there). */
+typedef struct {
+    const double *g, *x;
+    double *df_new, *dg_new;
+    const double *f_prev, *g_prev;
+    double *f_to;
+    const double *df_all;
+    size_t n;
+    int m, have;
+} anderson_pass;
+
+/* The first pass of anderson_step over entries [c0, c1): the new
+ * differences, largest |f|, the new Gram row's and the right-hand side's
+ * sums (in index order), f into its column and, given `moved` (c0 and c1
+ * then at whole vertices), the largest squared move g - x of a vertex. */
+static inline void anderson_piece(const anderson_pass *c, size_t c0, size_t c1, double *largest,
+                                  double *gsum, double *rsum, double *moved)
+{
+    const double *g = c->g, *x = c->x, *f_prev = c->f_prev, *g_prev = c->g_prev, *df_all = c->df_all;
+    double *df_new = c->df_new, *dg_new = c->dg_new, *f_to = c->f_to;
+    const size_t n = c->n;
+    const int m = c->m;
+    double big = *largest; /* (locals: the stores below might alias the pointers) */
+    if (c->have) /* in place: each entry is read, then written */
+        for (size_t k = c0; k < c1; ++k) {
+            const double f = g[k] - x[k];
+            df_new[k] = f - f_prev[k];
+            dg_new[k] = g[k] - g_prev[k];
+            big = facet_max(big, fabs(f));
+        }
+    else
+        for (size_t k = c0; k < c1; ++k)
+            big = facet_max(big, fabs(g[k] - x[k]));
+    *largest = big;
+    if (m > 0) {
+        double gs[FACET_ANDERSON_MAX], rs[FACET_ANDERSON_MAX];
+        for (int j = 0; j < m; ++j)
+            gs[j] = gsum[j], rs[j] = rsum[j];
+        for (size_t k = c0; k < c1; ++k) {
+            const double d = df_new[k], f = g[k] - x[k];
+            for (int j = 0; j < m; ++j) {
+                const double dfjk = df_all[(size_t)j * n + k];
+                gs[j] += d * dfjk;
+                rs[j] += dfjk * f;
+            }
+        }
+        for (int j = 0; j < m; ++j)
+            gsum[j] = gs[j], rsum[j] = rs[j];
+    }
+    if (moved) {
+        double most = *moved;
+        for (size_t k = c0; k < c1; k += 3)
+            most = facet_max(most, vertex_move2(g + k, x + k));
+        *moved = most;
+    }
+    /* then f into its column, which (the ring full) the sums have read */
+    for (size_t k = c0; k < c1; ++k)
+        f_to[k] = g[k] - x[k];
+}
+
+/* The extrapolation over entries [k0, k1): g - dG theta into g, the plain g
+ * kept in its column g_to (which the sum reads first). Whether all finite. */
+static inline int anderson_extrapolate(double *g, double *g_to, const double *dg_all, const double *theta,
+                                       int m, size_t n, size_t k0, size_t k1)
+{
+    int finite = 1;
+    for (size_t k = k0; k < k1; ++k) {
+        double value = g[k];
+        for (int j = 0; j < m; ++j)
+            value -= theta[j] * dg_all[(size_t)j * n + k];
+        g_to[k] = g[k]; /* the plain iterate, after the sum read its column */
+        g[k] = value;
+        finite = finite && isfinite(value);
+    }
+    return finite;
 }
 
 /* Keeps the plain iterate g as the last step's (anderson_prev_col) when no
@@ -672,7 +759,7 @@ static int anderson_keep_plain(double *g_to, const double *g, size_t n, int nthr
  * One pass over the history for the new Gram row and the right-hand side,
  * one for the extrapolation, both in parallel over blocks: at a million
  * faces the serial passes cost as much as the local steps. */
-static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x)
+static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x, double *move)
 {
     const size_t n = 3 * (size_t)s->nv;
     double *g = s->q;
@@ -687,41 +774,35 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     const int to = anderson_prev_col(a); /* this step's f and g: never slot */
     a->plain_col = to;
     const int m = have ? a->count : 0;
-    const size_t blocks = anderson_blocks(n), width = 2 * (size_t)FACET_ANDERSON_MAX + 1;
+    const size_t blocks = anderson_blocks(n), width = ANDERSON_PARTIAL;
     double *df_new = s->aa_df + (size_t)slot * n, *dg_new = s->aa_dg + (size_t)slot * n;
     const double *f_prev = s->aa_df + (size_t)from * n, *g_prev = s->aa_dg + (size_t)from * n;
     double *f_to = s->aa_df + (size_t)to * n, *g_to = s->aa_dg + (size_t)to * n;
     const double *df_all = s->aa_df;
+    const anderson_pass ctx = {g, x, df_new, dg_new, f_prev, g_prev, f_to, df_all, n, m, have};
 #pragma omp parallel for schedule(static) num_threads(a->nthreads)
     for (size_t blk = 0; blk < blocks; ++blk) {
         const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
         double *part = a->partial + blk * width;
         double largest = 0.0;
-        for (size_t k = k0; k < k1; ++k) {
-            const double f = g[k] - x[k];
-            if (have) { /* in place: each entry is read, then written */
-                df_new[k] = f - f_prev[k];
-                dg_new[k] = g[k] - g_prev[k];
-            }
-            largest = facet_max(largest, fabs(f));
-        }
         /* the 2m sums side by side (each still in index order): one chain of
          * dependent additions per sum, 2m chains in flight instead of 2 */
         double gsum[FACET_ANDERSON_MAX] = {0.0}, rsum[FACET_ANDERSON_MAX] = {0.0};
-        for (size_t k = k0; k < k1 && m > 0; ++k) {
-            const double d = df_new[k], f = g[k] - x[k];
-            for (int j = 0; j < m; ++j) {
-                const double dfjk = df_all[(size_t)j * n + k];
-                gsum[j] += d * dfjk;
-                rsum[j] += dfjk * f;
-            }
-        }
-        /* then f into its column, which (the ring full) the sums have read */
-        for (size_t k = k0; k < k1; ++k)
-            f_to[k] = g[k] - x[k];
+        double moved = 0.0;
+        /* A piece at a time, so that the sums and f's column read g, x and
+         * the new difference from L1, not memory; each sum still runs in
+         * index order (the same bits). The pieces between the block's first
+         * and last whole vertex also give the vertices' moves. */
+        const size_t a0 = (k0 + 2) / 3 * 3, a1 = k1 / 3 * 3 > a0 ? k1 / 3 * 3 : a0;
+        anderson_piece(&ctx, k0, a0, &largest, gsum, rsum, NULL);
+        for (size_t c0 = a0; c0 < a1; c0 += ANDERSON_PIECE)
+            anderson_piece(&ctx, c0, c0 + ANDERSON_PIECE < a1 ? c0 + ANDERSON_PIECE : a1, &largest,
+                           gsum, rsum, move ? &moved : NULL);
+        anderson_piece(&ctx, a1, k1, &largest, gsum, rsum, NULL);
         for (int j = 0; j < m; ++j)
             part[2 * j] = gsum[j], part[2 * j + 1] = rsum[j];
-        part[width - 1] = largest;
+        part[width - 2] = largest;
+        part[width - 1] = moved;
     }
     double rhs[FACET_ANDERSON_MAX], largest = 0.0;
     for (int j = 0; j < m; ++j) {
@@ -732,7 +813,19 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
         rhs[j] = rsum;
     }
     for (size_t blk = 0; blk < blocks; ++blk)
-        largest = facet_max(largest, a->partial[blk * width + width - 1]);
+        largest = facet_max(largest, a->partial[blk * width + width - 2]);
+    if (move) {
+        double moved = 0.0;
+        for (size_t blk = 0; blk < blocks; ++blk)
+            moved = facet_max(moved, a->partial[blk * width + width - 1]);
+        /* the vertices across the blocks' boundaries */
+        for (size_t blk = 1; blk < blocks; ++blk)
+            if (blk * ANDERSON_BLOCK % 3 != 0) {
+                const size_t k = blk * ANDERSON_BLOCK / 3 * 3;
+                moved = facet_max(moved, vertex_move2(g + k, x + k));
+            }
+        *move = moved;
+    }
     a->have_previous = 1;
     /* at a fixed point to rounding there is nothing to extrapolate, and
      * differences of rounding errors would only add noise */
@@ -776,22 +869,30 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
             return anderson_keep_plain(g_to, g, n, a->nthreads);
     const double *dg_all = s->aa_dg;
     int finite = 1;
+    /* in the energy's blocks of vertices when it is plain: the vertices'
+     * part of the safeguard's energy summed from the iterate in cache */
+    const int energy = facet_pl_vertex_energy_plain(s);
+    const int32_t nv = s->nv, esize = facet_pl_energy_block_size(nv);
+    const size_t pieces = energy ? (size_t)(nv / esize + (nv % esize != 0)) : blocks;
 #pragma omp parallel for schedule(static) num_threads(a->nthreads) reduction(&& : finite)
-    for (size_t blk = 0; blk < blocks; ++blk) {
-        const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
-        for (size_t k = k0; k < k1; ++k) {
-            double value = g[k];
-            for (int j = 0; j < m; ++j)
-                value -= theta[j] * dg_all[(size_t)j * n + k];
-            g_to[k] = g[k]; /* the plain iterate, after the sum read its column */
-            g[k] = value;
-            finite = finite && isfinite(value);
+    for (size_t blk = 0; blk < pieces; ++blk) {
+        if (energy) {
+            const int32_t v0 = (int32_t)blk * esize, v1 = nv - v0 < esize ? nv : v0 + esize;
+            finite = anderson_extrapolate(g, g_to, dg_all, theta, m, n, 3 * (size_t)v0, 3 * (size_t)v1) && finite;
+            s->energy_block[1][0][blk] = facet_pl_vertex_data_energy(s, g, v0, v1);
+            s->energy_block[1][1][blk] = 0.0;
+        } else {
+            const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
+            finite = anderson_extrapolate(g, g_to, dg_all, theta, m, n, k0, k1) && finite;
         }
     }
+    if (energy)
+        s->energy_blocks[1] = (int32_t)pieces;
     if (!finite) { /* back to the plain step's iterate */
         memcpy(g, g_to, sizeof(double) * n);
         return 0;
     }
+    s->vertex_energy_done = energy;
     return 1;
 }
 
@@ -819,6 +920,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         options = &chosen;
     }
     s->o = *options;
+    s->vertex_energy_done = 0;
     if (!ensure_workspace(s))
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     const int32_t nv = s->nv, nf = s->nf;
@@ -940,7 +1042,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         !(x_before = malloc(sizeof(double) * 3 * (size_t)nv)))
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     if (aa.m > 0 &&
-        !(aa.partial = malloc(sizeof(double) * (2 * FACET_ANDERSON_MAX + 1) *
+        !(aa.partial = malloc(sizeof(double) * ANDERSON_PARTIAL *
                               anderson_blocks(3 * (size_t)nv)))) {
         free(x_before);
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
@@ -976,24 +1078,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         }
         if (s->guard_on)
             guard_last = it;
-        max_abs = 0.0, max_rel = 0.0, constraint = 0.0;
-        {
-            /* largest values: exact in any order, so parallel and still the same bits */
-            double m_abs = 0.0, m_rel = 0.0;
-            const double *weight = s->face_weight, *dev = s->face_dev, *edge = s->face_edge;
-#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : m_abs, m_rel)
-            for (int32_t f = 0; f < nf; ++f) {
-                if (weight && !(weight[f] > 0.0))
-                    continue;
-                const double d = dev[f], e = edge[f];
-                m_abs = facet_max(m_abs, d);
-                /* divide only where the quotient may be a new largest (a
-                 * multiplication with a margin of rounding says where) */
-                if (!(d <= m_rel * e * (1.0 - 1e-12)))
-                    m_rel = facet_max(m_rel, e > 0.0 ? d / e : (d > 0.0 ? INFINITY : 0.0));
-            }
-            max_abs = m_abs, max_rel = m_rel;
-        }
+        max_abs = s->fit_max_abs, max_rel = s->fit_max_rel, constraint = 0.0;
         /* the residuals are zero unless these terms are on (planarize_local.c) */
         if (options->circular > 0.0 || options->parallelogram > 0.0)
             for (int32_t f = 0; f < nf; ++f)
@@ -1095,17 +1180,14 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         if (status != FACET_OK)
             break;
         double move = 0.0; /* largest vertex move of the plain step, squared */
-        if (staircase) {
+        const int accelerate = aa.m > 0 && mu < 1.0;
+        if (staircase && !accelerate) { /* (else anderson_step's first pass finds it) */
             const double *q = s->q;
 #pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : move)
-            for (int32_t v = 0; v < nv; ++v) {
-                const double *a = before + 3 * (size_t)v, *b = q + 3 * (size_t)v;
-                const double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                                  (a[2] - b[2]) * (a[2] - b[2]);
-                move = facet_max(move, d2);
-            }
+            for (int32_t v = 0; v < nv; ++v)
+                move = facet_max(move, vertex_move2(q + 3 * (size_t)v, before + 3 * (size_t)v));
         }
-        accelerated = aa.m > 0 && mu < 1.0 ? anderson_step(s, &aa, before) : 0;
+        accelerated = accelerate ? anderson_step(s, &aa, before, staircase ? &move : NULL) : 0;
         ++it;
         ++level_steps;
         /* The staircase lowers mu only while the planarity is above the

@@ -54,10 +54,17 @@ struct facet_planarizer {
     double *normal, *offset;              /* per face plane of the step */
     double *face_dev, *face_edge;         /* per face: max distance, mean edge length */
     double *face_sq;                      /* per face: sum of squared distances */
+    /* the largest face_dev and face_dev / face_edge over the faces with a
+     * weight (exempt faces do not count), found by the plane fit */
+    double fit_max_abs, fit_max_rel;
     /* the energy's parts (mu's and the constraints'), summed per block of
      * faces and of vertices (facet_pl_energy adds the blocks in order) */
     double energy_block[2][2][FACET_ENERGY_BLOCKS];
     int32_t energy_blocks[2];
+    /* the vertices' blocks hold the energy of the iterate already: Anderson's
+     * extrapolation summed it as it wrote the iterate (the next local step
+     * then skips its pass; facet_pl_vertex_energy_plain) */
+    int vertex_energy_done;
     double *face_residual;                /* per face: constraint residual (circle, parallelogram) */
     double *vertex_residual;              /* per vertex: sliding residual */
     double *normal_fit;                   /* per face: best-fit normal (normal-Laplacian input) */
@@ -158,6 +165,9 @@ struct facet_planarizer {
 void facet_pl_prepare_solve(facet_planarizer *s);
 facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, facet_error *error);
 void facet_pl_energy(const facet_planarizer *s, double *energy_mu, double *energy_con);
+int32_t facet_pl_energy_block_size(int32_t n);
+int facet_pl_vertex_energy_plain(const facet_planarizer *s);
+double facet_pl_vertex_data_energy(const facet_planarizer *s, const double *q, int32_t v0, int32_t v1);
 int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads);
 void facet_pl_procrustes(const double c[9], int similar, double sr[9]);
 int facet_pl_circle_targets(int32_t n, const double *xyz, const int32_t *idx,

@@ -545,7 +545,7 @@ static inline __attribute__((always_inline)) int fit_pair(facet_planarizer *s, i
 
 /* Elements per block of the energy's sums (FACET_ENERGY_BLOCKS): a multiple
  * of 8, so that the plane fit's groups of eight faces fall in one block. */
-static int32_t energy_block_size(int32_t n)
+int32_t facet_pl_energy_block_size(int32_t n)
 {
     int32_t size = n / FACET_ENERGY_BLOCKS + (n % FACET_ENERGY_BLOCKS != 0);
     size = size > FACET_ENERGY_BLOCK_MIN ? size : FACET_ENERGY_BLOCK_MIN;
@@ -619,12 +619,17 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads, int energy)
     /* The groups go to the threads in the energy's blocks; with energy, the
      * faces' planarity energies (the face pass's e_con when no other term
      * is on) are summed per block as they are fitted. */
-    const int32_t size = energy_block_size(nf), blocks = nf / size + (nf % size != 0);
+    const int32_t size = facet_pl_energy_block_size(nf), blocks = nf / size + (nf % size != 0);
     const int32_t per_block = size / 8;
     if (energy)
         s->energy_blocks[0] = blocks;
     int guard = 0;
-#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard)
+    /* and the largest planarity, read from cache after each group (maxima
+     * are exact in any order: the same bits for any thread count) */
+    double m_abs = 0.0, m_rel = 0.0;
+    const double *weight = s->face_weight, *dev = s->face_dev, *edge = s->face_edge;
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard) \
+    reduction(max : m_abs, m_rel)
     for (int32_t block = 0; block < blocks; ++block) {
         double sum = 0.0;
         const int32_t last = groups - block * per_block < per_block ? groups : (block + 1) * per_block;
@@ -633,10 +638,21 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads, int energy)
             guard = fit_group(s, f, lanes, floor_on) || guard;
             for (int32_t h = f; energy && h < f + 8 && h < nf; ++h)
                 sum += face_weight(s, h) * s->face_sq[h];
+            for (int32_t h = f; h < f + 8 && h < nf; ++h) {
+                if (weight && !(weight[h] > 0.0))
+                    continue;
+                const double d = dev[h], e = edge[h];
+                m_abs = facet_max(m_abs, d);
+                /* divide only where the quotient may be a new largest (a
+                 * multiplication with a margin of rounding says where) */
+                if (!(d <= m_rel * e * (1.0 - 1e-12)))
+                    m_rel = facet_max(m_rel, e > 0.0 ? d / e : (d > 0.0 ? INFINITY : 0.0));
+            }
         }
         if (energy)
             s->energy_block[0][0][block] = 0.0, s->energy_block[0][1][block] = sum;
     }
+    s->fit_max_abs = m_abs, s->fit_max_rel = m_rel;
     /* a regularizer: weighed by mu against the planarity's 1 - mu, so it
      * fades as the penalty hardens */
     const double lambda = mu < 1.0 ? s->o.normal_laplacian * mu / (1.0 - mu) : 0.0;
@@ -687,6 +703,41 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads, int energy)
     return guard;
 }
 
+/* A vertex's data term at x: the tangential and normal parts of its move
+ * from the control position (the control normal splits them). */
+static inline double vertex_data_energy(const facet_planarizer *s, const double *x, int32_t v)
+{
+    const double *pv = s->p + 3 * (size_t)v, *nu = s->vertex_normal + 3 * (size_t)v;
+    const double d[3] = {x[0] - pv[0], x[1] - pv[1], x[2] - pv[2]};
+    const double dn = dot3(d, nu), dd = dot3(d, d);
+    return s->o.data_tangent * (dd - dn * dn) + s->o.data_normal * dn * dn;
+}
+
+/* Whether the vertices' part of the safeguard's energy is the data term
+ * alone (the default): no term that reads a neighbour, the reference
+ * surface or the boundary, no angle floor. Anderson's extrapolation then
+ * sums it as it writes the iterate (facet_pl_vertex_data_energy), in the
+ * blocks and the order of facet_pl_local_step's pass, which it saves: at a
+ * million faces that pass read 72 MB per iteration. */
+int facet_pl_vertex_energy_plain(const facet_planarizer *s)
+{
+    const facet_planarize_options *o = &s->o;
+    return o->anderson > 0 && !(o->surface_weight > 0.0 && s->reference) && !(o->laplacian > 0.0) &&
+           !(o->boundary_fairness > 0.0) && o->boundary != FACET_BOUNDARY_SLIDING &&
+           !(o->angle_floor > 0.0);
+}
+
+/* The data energy of vertices v0..v1-1 at q, summed in vertex order: one
+ * block of facet_pl_local_step's vertex pass when the energy is plain. */
+double facet_pl_vertex_data_energy(const facet_planarizer *s, const double *q, int32_t v0, int32_t v1)
+{
+    double sum = 0.0;
+    for (int32_t v = v0; v < v1; ++v)
+        if (!s->fixed[v])
+            sum += vertex_data_energy(s, q + 3 * (size_t)v, v);
+    return sum;
+}
+
 facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
 {
     const int32_t nv = s->nv, nf = s->nf;
@@ -715,7 +766,7 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
     /* the residuals are read only while their terms are on (planarize.c) */
     const int face_residuals = circular || parallel;
     if (shape || circular || parallel) {
-        const int32_t size = energy_block_size(nf), blocks = nf / size + (nf % size != 0);
+        const int32_t size = facet_pl_energy_block_size(nf), blocks = nf / size + (nf % size != 0);
         s->energy_blocks[0] = blocks;
 #pragma omp parallel for schedule(static) num_threads(nthreads)
         for (int32_t block = 0; block < blocks; ++block) {
@@ -796,19 +847,21 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
     s->guard_on = guard;
     if (!energies && !sliding && !guard)
         return FACET_OK;
-    const int32_t size = energy_block_size(nv), blocks = nv / size + (nv % size != 0);
+    if (s->vertex_energy_done) { /* summed by Anderson's extrapolation */
+        s->vertex_energy_done = 0;
+        return FACET_OK;
+    }
+    const int32_t size = facet_pl_energy_block_size(nv), blocks = nv / size + (nv % size != 0);
     s->energy_blocks[1] = blocks;
 #pragma omp parallel for schedule(static) num_threads(nthreads)
     for (int32_t block = 0; block < blocks; ++block) {
         double sum_mu = 0.0, sum_con = 0.0;
         const int32_t last = nv - block * size < size ? nv : (block + 1) * size;
         for (int32_t v = block * size; v < last; ++v) {
-            const double *x = q + 3 * (size_t)v, *pv = p + 3 * (size_t)v, *nu = s->vertex_normal + 3 * (size_t)v;
+            const double *x = q + 3 * (size_t)v;
             double e_mu = 0.0, e_con = 0.0, residual = 0.0;
             if (!s->fixed[v]) {
-                const double d[3] = {x[0] - pv[0], x[1] - pv[1], x[2] - pv[2]};
-                const double dn = dot3(d, nu), dd = dot3(d, d);
-                e_mu += o->data_tangent * (dd - dn * dn) + o->data_normal * dn * dn;
+                e_mu += vertex_data_energy(s, x, v);
                 if (surface) {
                     const double *sp = s->surface_point + 3 * (size_t)v, *sn = s->surface_normal + 3 * (size_t)v;
                     const double ds = (x[0] - sp[0]) * sn[0] + (x[1] - sp[1]) * sn[1] + (x[2] - sp[2]) * sn[2];

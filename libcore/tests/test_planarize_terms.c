@@ -495,6 +495,65 @@ static void test_deterministic(facet_method method)
     close_case(&c);
 }
 
+/* Anderson's extrapolation sums the vertices' data energy as it writes the
+ * iterate (facet_pl_vertex_energy_plain); the local step then skips its own
+ * pass. Checked at every step where it did: the local step's pass, run on
+ * the same iterate, gives the same bits in every block. A grid of several
+ * energy blocks, pinned vertices, unequal tangent and normal weights. */
+typedef struct {
+    facet_planarizer *s;
+    int fused, blocks_equal;
+} energy_watch;
+
+static int watch_energy(void *user, int32_t iteration, int32_t max_iter, double planarity)
+{
+    (void)iteration, (void)max_iter, (void)planarity;
+    energy_watch *w = user;
+    facet_planarizer *s = w->s;
+    if (!s->vertex_energy_done)
+        return 0;
+    ++w->fused;
+    double fused[2][FACET_ENERGY_BLOCKS];
+    const int32_t blocks = s->energy_blocks[1];
+    memcpy(fused, s->energy_block[1], sizeof fused);
+    s->vertex_energy_done = 0;
+    facet_error e;
+    if (facet_pl_local_step(s, 0.5, 1, &e) != FACET_OK || s->energy_blocks[1] != blocks)
+        return w->blocks_equal = 0, 0;
+    for (int part = 0; part < 2; ++part)
+        for (int32_t b = 0; b < blocks; ++b)
+            if (memcmp(&fused[part][b], &s->energy_block[1][part][b], sizeof(double)) != 0)
+                w->blocks_equal = 0;
+    return 0;
+}
+
+static void test_fused_vertex_energy(facet_method method)
+{
+    solve_case c;
+    open_case(&c, 45, 40); /* 1,886 vertices: 4 blocks of the energy */
+    facet_planarize_options o;
+    facet_planarize_options_default(method, &o);
+    o.data_tangent = 0.2;
+    const int32_t pins[3] = {0, 400, 777};
+    facet_error e;
+    CHECK_STATUS(facet_planarizer_set_fixed(c.s, 3, pins, &e), FACET_OK);
+    energy_watch w = {c.s, 0, 1};
+    o.progress = watch_energy, o.progress_user = &w;
+    solve_with(&c, &o);
+    CHECK(c.status >= 0);
+    CHECK(facet_pl_vertex_energy_plain(c.s)); /* (of the options of the last solve) */
+    CHECK(c.s->energy_blocks[1] >= 4);
+    CHECK(w.fused > 10);
+    CHECK(w.blocks_equal);
+    /* a term that reads the neighbours: the local step's pass, never fused */
+    o.laplacian = 0.01;
+    w.fused = 0;
+    solve_with(&c, &o);
+    CHECK(!facet_pl_vertex_energy_plain(c.s));
+    CHECK(w.fused == 0);
+    close_case(&c);
+}
+
 int main(void)
 {
     test_procrustes();
@@ -507,6 +566,7 @@ int main(void)
         test_regularizers(method);
         test_schedules(method);
         test_deterministic(method);
+        test_fused_vertex_energy(method);
     }
     return check_report("test_planarize_terms");
 }
