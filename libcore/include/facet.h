@@ -436,7 +436,9 @@ facet_status facet_surface_closest(const facet_surface *surface, int64_t n, cons
  *  min_angle   smallest interior angle in radians, in [0, 2 pi): measured at
  *              each corner between the two edges, turning about the face's
  *              Newell normal, so a reflex corner of a concave panel counts
- *              as more than pi; 0 at a corner with a zero-length edge;
+ *              as more than pi; 0 at a corner with a zero-length edge,
+ *              and 0 for a face that folds over itself (two of its edges
+ *              cross, seen along its normal: a bowtie has no interior);
  *  area        length of the face's vector area (Newell), model units^2;
  *  ratio_change  with xyz_input (the same topology before an operation; may
  *              be NULL, then 0): with r_e = l_e / mean_l the length of edge

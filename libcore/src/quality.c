@@ -63,6 +63,41 @@ static double smallest_angle(int32_t n, const double *xyz, const int32_t *idx, c
     return smallest;
 }
 
+/* Whether two edges of a face cross (not at a shared corner) when the face
+ * is seen along its normal: the face then folds over itself (a bowtie), and
+ * its signed corners (smallest_angle) would count the fold's narrow corner
+ * as reflex. In the plane of the two axes other than the normal's largest;
+ * a strict orientation test, so edges that only touch or lie on one line do
+ * not count. */
+static double orient2(const double *a, const double *b, const double *c, int u, int v)
+{
+    return (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
+}
+
+static int face_folds(int32_t n, const double *xyz, const int32_t *idx, const double nrm[3])
+{
+    if (n < 4)
+        return 0;
+    const double ax = fabs(nrm[0]), ay = fabs(nrm[1]), az = fabs(nrm[2]);
+    const int drop = ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
+    const int u = drop == 0 ? 1 : 0, v = drop == 2 ? 1 : 2;
+    for (int32_t i = 0; i < n; ++i) {
+        const double *a = xyz + 3 * (size_t)idx[i], *b = xyz + 3 * (size_t)idx[(i + 1) % n];
+        /* the edges j that share no corner with edge i */
+        for (int32_t j = i + 2; j < n; ++j) {
+            if (i == 0 && j == n - 1)
+                continue;
+            const double *c = xyz + 3 * (size_t)idx[j], *d = xyz + 3 * (size_t)idx[(j + 1) % n];
+            const double o1 = orient2(a, b, c, u, v), o2 = orient2(a, b, d, u, v);
+            const double o3 = orient2(c, d, a, u, v), o4 = orient2(c, d, b, u, v);
+            if (((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) &&
+                ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0)))
+                return 1;
+        }
+    }
+    return 0;
+}
+
 facet_status facet_face_shape(const facet_mesh *mesh, const double *xyz_input, int32_t threads,
                               double *min_angle, double *area, double *ratio_change,
                               facet_error *error)
@@ -103,7 +138,10 @@ facet_status facet_face_shape(const facet_mesh *mesh, const double *xyz_input, i
             double unit[3] = {0.0, 0.0, 0.0};
             if (len > 0.0)
                 unit[0] = nrm[0] / len, unit[1] = nrm[1] / len, unit[2] = nrm[2] / len;
-            min_angle[f] = smallest_angle(n, xyz, idx, unit);
+            /* a face folded over itself has no interior: 0, as for a
+             * face without area */
+            min_angle[f] = len > 0.0 && face_folds(n, xyz, idx, unit) ? 0.0
+                                                                      : smallest_angle(n, xyz, idx, unit);
         }
         if (ratio_change) {
             double change = 0.0;

@@ -3,6 +3,7 @@
 #include "check.h"
 #include "facet.h"
 
+#include <math.h>
 #include <string.h>
 
 int main(void)
@@ -57,6 +58,36 @@ int main(void)
     const double before[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     CHECK_STATUS(facet_face_shape(&mp, before, 0, angle, area, change, &e), FACET_OK);
     CHECK(angle[0] == 0.0 && area[0] == 0.0 && change[0] == 1.0);
+
+    /* a bowtie: edges 0-1 and 2-3 cross at (2/3, 2/3). Its lobes have
+     * different areas, so the Newell normal is the larger's, and the
+     * smaller lobe's narrow corner (at 3, about 63 degrees) turns the other
+     * way and counts as reflex; the face folds over itself, so 0. The same
+     * points as 0-2-1-3 (no fold) and a dart (a non-convex quad whose
+     * reflex corner does not fold) keep their angles. Tilted out of the
+     * axes' planes and moved to large coordinates. */
+    {
+        const double c = cos(0.3), sn = sin(0.3);
+        const double flat[] = {0, 0, 0, 2, 2, 0, 2, 0, 0, 0, 1, 0,  /* bowtie 0-1-2-3 */
+                               0, 0, 0, 4, 0, 0, 1, 1, 0, 0, 4, 0}; /* dart 4-7 */
+        double tilted[24];
+        for (int k = 0; k < 8; ++k) { /* about the x axis, then lifted */
+            const double *p = flat + 3 * k;
+            tilted[3 * k] = p[0] + 1e6;
+            tilted[3 * k + 1] = c * p[1] - sn * p[2];
+            tilted[3 * k + 2] = sn * p[1] + c * p[2] + 2e5;
+        }
+        const int32_t qstart[] = {0, 4, 8, 12};
+        const int32_t qfv[] = {0, 1, 2, 3, 0, 2, 1, 3, 4, 5, 6, 7};
+        facet_mesh mq = {8, 3, tilted, qstart, qfv};
+        CHECK_STATUS(facet_face_shape(&mq, NULL, 1, angle, area, NULL, &e), FACET_OK);
+        CHECK(angle[0] == 0.0);
+        CHECK_NEAR(area[0], 1.0, 1e-9); /* the lobes: 4/3 and 1/3, turning opposite ways */
+        CHECK(angle[1] > 0.3); /* 0-2-1-3: a quad with corners of 45 degrees and more */
+        /* the dart: corners 90 at 4, 45-ish at 5 and 7, reflex at 6 */
+        const double dart = atan2(1.0, 3.0); /* at 5: between (-4, 0) and (-3, 1) */
+        CHECK_NEAR(angle[2], dart, 1e-9);
+    }
 
     const int32_t bad[] = {0, 1, 5};
     facet_mesh mb = {3, 1, point, tstart, bad};

@@ -92,6 +92,20 @@ def test_quality_of_planarize():
     assert same["ratio_change_max"] == 0
 
 
+def test_quality_a_folded_panel_is_degenerate():
+    # A planar bowtie (edges 0-1 and 2-3 cross) beside a dart (non-convex,
+    # not folded): the bowtie's signed corners look fine (its narrow corner
+    # turns the other way and counts as reflex), but it has no interior.
+    mesh = facet.PolyMesh.from_faces(
+        [(0, 0, 0), (2, 2, 0), (2, 0, 0), (0, 1, 0), (10, 0, 0), (14, 0, 0), (11, 1, 0), (10, 4, 0)],
+        [[0, 1, 2, 3], [4, 5, 6, 7]],
+    )
+    report = facet.quality(mesh)
+    assert report.min_angle[0] == 0.0
+    assert report.min_angle[1] == pytest.approx(np.degrees(np.arctan2(1.0, 3.0)))
+    assert report.degenerate.tolist() == [0]
+
+
 def test_quality_degenerate_and_errors():
     mesh = facet.PolyMesh.from_faces(
         [(0, 0, 0), (1, 0, 0), (0, 1, 0), (2, 0, 0), (3, 0, 0), (2.5, 0.01, 0)],

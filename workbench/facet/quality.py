@@ -10,7 +10,9 @@ was made from (same topology) and a `reference` surface:
 - distance of each result vertex from the reference surface (`reference`,
   else the surface of `input`), model units;
 - face shape: the smallest interior angle of each face (degrees; a reflex
-  corner of a concave panel counts as more than 180), and the change of edge
+  corner of a concave panel counts as more than 180, and a face folded over
+  itself, two of its edges crossing like a bowtie's, counts 0: it has no
+  interior, and a panel cannot be cut from it), and the change of edge
   length ratios against `input`: with ``r_e = l_e / mean_l`` the length of
   edge e over the face's mean edge length, per face
   ``max_e |r_e(result) / r_e(input) - 1|`` (edges of zero input length left
