@@ -89,6 +89,7 @@ void facet_planarize_options_default(facet_method method, facet_planarize_option
     o->shape_weight = 1.0;
     o->boundary = FACET_BOUNDARY_FREE;
     o->angle_floor = 0.0; /* off: see above */
+    o->quality_angle = 5.0; /* planarize_quality.c */
 }
 
 /* ---- topology --------------------------------------------------------------- */
@@ -499,6 +500,8 @@ static facet_status check_options(const facet_planarize_options *o, int has_refe
         BAD("unknown boundary mode %d", (int)o->boundary);
     if (!(o->angle_floor >= 0.0 && o->angle_floor < 60.0))
         BAD("angle_floor must be in [0, 60) degrees, not %g", o->angle_floor);
+    if (!(o->quality_angle >= 0.0 && o->quality_angle < 60.0))
+        BAD("quality_angle must be in [0, 60) degrees, not %g", o->quality_angle);
     if (!(o->hold_tol >= 0.0) || !isfinite(o->hold_tol))
         BAD("hold_tol must be finite and >= 0, not %g", o->hold_tol);
     if (o->hold_max < 1)
@@ -797,9 +800,11 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
 
 /* ---- the solve --------------------------------------------------------- */
 
-facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
-                                    const facet_planarize_options *options, double *xyz_out,
-                                    facet_planarize_result *result, facet_error *error)
+/* One solve with these options; facet_planarizer_solve (planarize_quality.c)
+ * calls it and, when the result has a new narrow corner, re-solves. */
+facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
+                                 const facet_planarize_options *options, double *xyz_out,
+                                 facet_planarize_result *result, facet_error *error)
 {
     facet_error_clear(error);
     if (!s || !xyz_in || !xyz_out || !options)

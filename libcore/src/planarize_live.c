@@ -214,6 +214,7 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
     }
     facet_planarize_options o = *options;
     o.warm = 0;
+    o.quality_angle = 0.0; /* no re-solve within a frame (planarize_quality.c) */
     facet_planarize_result sub_result;
     memset(&sub_result, 0, sizeof sub_result);
     facet_status status = FACET_OK;
