@@ -758,9 +758,9 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
  * hold_max 40), then hold_tol 0.003, then along the exact penalty path
  * (hold_tol 1e-9, hold_max 200, max_iter at least 4000),
  * stopping at the first result that reaches the tolerance with no new
- * narrow corner. Otherwise the result is the attempt (at the tolerance) with
- * the fewest new narrow corners, then the widest smallest one, then the
- * first. Deterministic for any thread count (each solve is). The progress
+ * narrow corner, which is returned. If none does, the first solve's result
+ * is returned (FACET_QUALITY_NARROW, narrow_corners > 0; the message says
+ * so). Deterministic for any thread count (each solve is). The progress
  * callback restarts at iteration 0 for each re-solve, and cancelling one
  * returns FACET_ERROR_CANCELLED with xyz_out holding the first solve's
  * result. The live update (facet_planarizer_update) does not check. */
@@ -768,7 +768,7 @@ typedef enum facet_quality_outcome {
     FACET_QUALITY_NOT_CHECKED = 0, /* off, fixed count, angle floor, live, or not converged */
     FACET_QUALITY_OK = 1,          /* checked: no new narrow corner */
     FACET_QUALITY_RECOVERED = 2,   /* the first result had one; a re-solve has none */
-    FACET_QUALITY_NARROW = 3       /* every attempt left one: the best is returned */
+    FACET_QUALITY_NARROW = 3       /* every re-solve left one (or warm): the first result */
 } facet_quality_outcome;
 
 #ifdef __cplusplus

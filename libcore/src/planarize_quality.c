@@ -113,7 +113,12 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
 
     /* Recovery: the input (kept by the solve in previous_control; copied, as
      * a later solve may reuse that storage) and a buffer for each attempt's
-     * result; xyz_out keeps the best so far. */
+     * result. The first re-solve with no new narrow corner replaces the
+     * first result in xyz_out; if none has, the first result stands: where
+     * every schedule closes a corner (hypar.obj with its boundary and a
+     * vertex held, surface data) the re-solves had fewer narrow corners but
+     * as narrow (0.001 degrees) and twice the RMS distance from the design
+     * (docs/solver-notes.md). */
     const size_t v3 = 3 * (size_t)s->nv;
     double *input = malloc(sizeof(double) * v3), *out = malloc(sizeof(double) * v3);
     if (!input || !out) { /* the first result stands */
@@ -153,10 +158,9 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             continue;
         }
         double angle;
-        const int32_t count = facet_pl_new_narrow(s, options->quality_angle, nthreads, &angle);
-        if (count < best_count || (count == best_count && angle > best_angle)) {
+        if (facet_pl_new_narrow(s, options->quality_angle, nthreads, &angle) == 0) {
             memcpy(xyz_out, out, sizeof(double) * v3);
-            best = r, best_count = count, best_angle = angle, best_is_last = 1;
+            best = r, best_count = 0, best_is_last = 1;
         }
     }
     if (!best_is_last) {
