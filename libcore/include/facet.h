@@ -286,7 +286,9 @@ typedef struct facet_planarize_options {
  * 0.01, hold_max 40) with Anderson acceleration of depth 5; mu_min 1e-6
  * (L/L) or 1e-12 (L/G and AUTO); tol_rel 1e-6, tol_abs off; max_iter 3000
  * (L/L) or 1000 (L/G and AUTO); data 1 and 1 (point-to-point); no angle
- * floor, no regularizer, other constraint or time budget. The paper's
+ * floor, no regularizer, other constraint or time budget; quality_angle 5
+ * (a result with a new corner under 5 degrees is solved again: see
+ * facet_quality_outcome). The paper's
  * schedule is hold_tol 0, anderson 0, ratio 0.7 (L/G) or 0.9 (L/L).
  * AUTO solves by facet_planarizer_choose_method's choice with these
  * options, except that when it picks L/L its floor is at least

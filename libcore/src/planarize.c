@@ -69,7 +69,9 @@ void facet_planarize_options_default(facet_method method, facet_planarize_option
      * degrees), but not with plane or surface data (Level 5: 4.4 and 4.2
      * degrees after the floor lets go), nor with a sliding boundary and held
      * vertices, and it costs 10-60% more iterations and live updates 3-20
-     * times more; so neither is the default (docs/solver-notes.md). */
+     * times more; so neither is the default (docs/solver-notes.md). What is:
+     * a result with a new narrow corner is solved again along the penalty
+     * path (quality_angle, planarize_quality.c). */
     o->ratio = 0.1;
     o->hold_tol = 0.01;
     o->hold_max = 40;

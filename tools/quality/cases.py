@@ -23,7 +23,18 @@ CASES = [
     ('level5', 'surface', lambda: fam(families.level_patch(5))),
     ('hypar64', 'surface', lambda: fam(families.hypar(64))),
     ('hypar64', 'plane', lambda: fam(families.hypar(64))),
+    ('hypar64', 'point', lambda: fam(families.hypar(64))),
+    ('level5', 'tangent0.01', lambda: fam(families.level_patch(5))),
 ]
+
+
+def data_options(data):
+    """planarize keywords of a case's data term: a preset of facet.DATA_TERMS,
+    or 'tangent0.01' (point data with data_tangent 0.01 and no shape term,
+    the "plane data" of docs/solver-notes.md's earlier sections)."""
+    if data == 'tangent0.01':
+        return dict(data='point', data_tangent=0.01)
+    return dict(data=data)
 
 
 def corner_angles(vertices, face_start, face_vertices):

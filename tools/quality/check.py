@@ -2,7 +2,7 @@
 case: iterations (first solve's), quality outcome, smallest angle, new narrow
 corners; 1 against 2 threads bit for bit."""
 import sys, time
-from cases import CASES, new_narrow, np, facet
+from cases import CASES, data_options, new_narrow, np, facet
 names = sys.argv[1:]
 cache = {}
 for name, data, mk in CASES:
@@ -10,12 +10,12 @@ for name, data, mk in CASES:
         continue
     m = cache.setdefault(name, mk())
     t = time.process_time()
-    r = facet.planarize(m, data=data, threads=1)
+    r = facet.planarize(m, **data_options(data), threads=1)
     dt = time.process_time() - t
     n, amin = new_narrow(m, r.mesh.vertices)
     same = ''
     if '--threads' in sys.argv:
-        r2 = facet.planarize(m, data=data, threads=2)
+        r2 = facet.planarize(m, **data_options(data), threads=2)
         same = f" same_bits_1v2={np.array_equal(r.mesh.vertices, r2.mesh.vertices)}"
     print(f"{name:8s} {data:8s} it={r.iterations:5d} (first {r.first_iterations}) {r.quality_check} "
           f"resolves={r.quality_resolves} stop={r.stop_reason} pl={float(np.max(r.planarity.max_rel)):.1e} "

@@ -4,7 +4,7 @@ default (with the re-solve) and the exact penalty path (no Anderson,
 hold_tol 1e-9, hold_max 200): iterations, smallest angle, new narrow corners,
 RMS distance from the input surface in mean edges; one thread."""
 import sys, time
-from cases import CASES, new_narrow, np, facet
+from cases import CASES, data_options, new_narrow, np, facet
 names = sys.argv[1:]
 cache = {}
 VARIANTS = [('before', dict(quality_angle=0)), ('after', {}),
@@ -19,7 +19,7 @@ for name, data, mk in CASES:
     cells = []
     for label, extra in VARIANTS:
         t = time.process_time()
-        r = facet.planarize(m, data=data, threads=1, **extra)
+        r = facet.planarize(m, **data_options(data), threads=1, **extra)
         dt = time.process_time() - t
         n, amin = new_narrow(m, r.mesh.vertices)
         d = r.quality.as_dict()['distance_rms'] / mean_edge
