@@ -757,8 +757,11 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
  * its input corner. If there is one, a cold solve is run again from the input
  * (a warm one only reports them: FACET_QUALITY_NARROW, no re-solve),
  * without Anderson acceleration: with the default hold (hold_tol 0.01,
- * hold_max 40), then hold_tol 0.003, then along the exact penalty path
- * (hold_tol 1e-9, hold_max 200, max_iter at least 4000),
+ * hold_max 40), then hold_tol 0.003 (these two only when data_tangent >=
+ * data_normal and surface_weight is 0: vertices held at their control
+ * points), then along the exact penalty path (hold_tol 1e-9, hold_max 200,
+ * max_iter at least 4000), then with Anderson, hold_tol 0.003 and the angle
+ * floor at 1.2 quality_angle,
  * stopping at the first result that reaches the tolerance with no new
  * narrow corner, which is returned. If none does, the first solve's result
  * is returned (FACET_QUALITY_NARROW, narrow_corners > 0; the message says

@@ -72,14 +72,29 @@ int32_t facet_pl_new_narrow(const facet_planarizer *s, double angle_deg, int nth
     return count;
 }
 
-/* the re-solves, in order: each from the input, without Anderson */
+/* The re-solves, in order, each from the input. The first two follow the
+ * default's path without its jumps (no Anderson) and are tried only when
+ * the data term holds vertices at their control points: measured, they
+ * kept every corner open on 7 point-data meshes (hypar grids, Level 6) at
+ * 2-4 times the first solve's iterations, and on none of 5 with vertices
+ * sliding along the design (plane or surface data, data_tangent 0.01). The
+ * exact penalty path kept them open on all but one of those (Level 5 with
+ * plane and surface data: 8.1 and 8.9 degrees, at about 1,200 iterations);
+ * the last (the 64 x 64 hypar with surface data: 2.3 degrees) the angle
+ * floor does, set a fifth above quality_angle (a corner it holds ends at
+ * the floor to the tolerance), with the finer hold it is meant for
+ * (docs/solver-notes.md, "Quality by default (branch quality5)"). */
 static const struct {
     double hold_tol;
     int32_t hold_max, max_iter;
+    int anderson; /* keep the options' Anderson depth */
+    int floor;    /* the angle floor at 1.2 quality_angle */
+    int sliding;  /* also when vertices slide along the design */
 } STAGES[] = {
-    {0.01, 40, 0},     /* the default's hold without the jumps (Anderson's steps) */
-    {0.003, 40, 0},    /* a finer hold */
-    {1e-9, 200, 4000}, /* the exact penalty path: 200 steps at every mu */
+    {0.01, 40, 0, 0, 0, 0},     /* the default's hold without the jumps (Anderson's steps) */
+    {0.003, 40, 0, 0, 0, 0},    /* a finer hold */
+    {1e-9, 200, 4000, 0, 0, 1}, /* the exact penalty path: 200 steps at every mu */
+    {0.003, 40, 0, 1, 1, 1},    /* the opt-in angle floor's recipe */
 };
 
 facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
@@ -131,9 +146,15 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     facet_planarize_result best = first;
     int best_is_last = 1;
     int32_t total = first.iterations, resolves = 0;
+    const int sliding = options->data_tangent < options->data_normal || options->surface_weight > 0.0;
     for (size_t k = 0; k < sizeof STAGES / sizeof STAGES[0] && best_count > 0; ++k) {
+        if (sliding && !STAGES[k].sliding)
+            continue;
         facet_planarize_options o = *options;
-        o.anderson = 0;
+        if (!STAGES[k].anderson)
+            o.anderson = 0;
+        if (STAGES[k].floor)
+            o.angle_floor = facet_min(1.2 * options->quality_angle, 59.0);
         o.hold_tol = STAGES[k].hold_tol;
         o.hold_max = STAGES[k].hold_max;
         if (STAGES[k].max_iter > o.max_iter)

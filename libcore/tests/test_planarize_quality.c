@@ -226,7 +226,7 @@ static void test_resolve_threads_and_cancel(void)
     CHECK_STATUS(facet_planarizer_solve(s, g.xyz, &o, out1, &r1, &err), FACET_OK);
     o.threads = 2;
     CHECK_STATUS(facet_planarizer_solve(s, g.xyz, &o, out2, &r2, &err), FACET_OK);
-    CHECK(r1.quality_resolves == 3 && r1.quality == FACET_QUALITY_NARROW);
+    CHECK(r1.quality_resolves == 4 && r1.quality == FACET_QUALITY_NARROW);
     CHECK(r1.narrow_corners > 0);
     CHECK(r1.stop_reason == FACET_STOP_TOLERANCE && r1.planarity_max_rel <= 1e-6);
     CHECK(memcmp(out1, out2, sizeof(double) * v3) == 0);

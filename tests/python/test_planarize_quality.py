@@ -113,7 +113,7 @@ def test_resolve_same_bits_on_one_and_two_threads():
     mesh = _mesh(families.hypar(8))
     r1 = facet.planarize(mesh, threads=1, quality_angle=40.0)
     r2 = facet.planarize(mesh, threads=2, quality_angle=40.0)
-    assert r1.quality_check == "narrow" and r1.quality_resolves == 3
+    assert r1.quality_check == "narrow" and r1.quality_resolves == 4
     assert r1.converged and np.max(r1.planarity.max_rel) <= 1e-6
     assert r1.narrow_corners == new_narrow(mesh, r1.mesh.vertices, 40.0) > 0
     assert np.array_equal(r1.mesh.vertices, r2.mesh.vertices)

@@ -9,6 +9,8 @@ for name, data, mk in CASES:
     if names and name not in names and f'{name}:{data}' not in names:
         continue
     m = cache.setdefault(name, mk())
+    edges = m.edges()
+    mean_edge = float(np.mean(np.linalg.norm(m.vertices[edges[:, 0]] - m.vertices[edges[:, 1]], axis=1)))
     t = time.process_time()
     r = facet.planarize(m, **data_options(data), threads=1)
     dt = time.process_time() - t
@@ -19,4 +21,5 @@ for name, data, mk in CASES:
         same = f" same_bits_1v2={np.array_equal(r.mesh.vertices, r2.mesh.vertices)}"
     print(f"{name:8s} {data:8s} it={r.iterations:5d} (first {r.first_iterations}) {r.quality_check} "
           f"resolves={r.quality_resolves} stop={r.stop_reason} pl={float(np.max(r.planarity.max_rel)):.1e} "
-          f"min={amin:6.2f} new<5={n:3d} lib_narrow={r.narrow_corners} cpu={dt:.2f}{same}", flush=True)
+          f"min={amin:6.2f} new<5={n:3d} lib_narrow={r.narrow_corners} "
+          f"dist={r.quality.as_dict()['distance_rms'] / mean_edge:.4f} cpu={dt:.2f}{same}", flush=True)
