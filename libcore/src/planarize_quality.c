@@ -78,12 +78,13 @@ int32_t facet_pl_new_narrow(const facet_planarizer *s, double angle_deg, int nth
  * kept every corner open on 7 point-data meshes (hypar grids, Level 6) at
  * 2-4 times the first solve's iterations, and on none of 5 with vertices
  * sliding along the design (plane or surface data, data_tangent 0.01). The
- * exact penalty path kept them open on all but one of those (Level 5 with
- * plane and surface data: 8.1 and 8.9 degrees, at about 1,200 iterations);
- * the last (the 64 x 64 hypar with surface data: 2.3 degrees) the angle
- * floor does, set a fifth above quality_angle (a corner it holds ends at
- * the floor to the tolerance), with the finer hold it is meant for
- * (docs/solver-notes.md, "Quality by default (branch quality5)"). */
+ * exact penalty path kept them open on three of those (Level 5 with plane,
+ * surface and data_tangent 0.01: 8.1, 8.9 and 5.8 degrees, at 1,000-1,200
+ * iterations); the other two (the 64 x 64 hypar with plane and surface
+ * data: 4.3 and 2.3 degrees) the angle floor does, set a fifth above
+ * quality_angle (a corner it holds ends at the floor to the tolerance),
+ * with the finer hold it is meant for (docs/solver-notes.md, "Quality by
+ * default (branch quality5)"). */
 static const struct {
     double hold_tol;
     int32_t hold_max, max_iter;
