@@ -149,3 +149,19 @@ def test_quality_angle_is_checked():
     for bad in (-1.0, 60.0, 1e300):
         with pytest.raises(facet.FacetError, match="quality_angle"):
             facet.planarize(mesh, quality_angle=bad)
+
+
+def test_live_update_is_not_checked_and_warm_solve_is_checked():
+    b = families.quad_grid(20, 20)
+    mesh = _mesh(b)
+    p = facet.Planarizer(mesh)
+    assert p.solve(mesh, threads=1).quality_check == "ok"
+    V = mesh.vertices.copy()
+    V[50] += 0.01
+    edited = mesh.with_vertices(V)
+    live = p.solve(edited, live=True, threads=1)
+    assert live.quality_check == "not_checked"
+    assert (live.narrow_corners, live.quality_resolves) == (0, 0)
+    assert live.first_iterations == live.iterations
+    warm = p.solve(edited, warm=True, threads=1)
+    assert warm.quality_check == "ok" and warm.quality_resolves == 0
