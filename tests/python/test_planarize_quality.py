@@ -72,6 +72,7 @@ def _check_default(mesh):
 
 def test_hypar32_default_has_no_new_narrow_corner(hypar32):
     r = _check_default(hypar32)
+    assert not any("did not have" in w for w in r.warnings)
     report = planarize_report(hypar32, r)
     assert report["quality_check"] == r.quality_check
     assert report["narrow_corners"] == 0
@@ -118,6 +119,7 @@ def test_resolve_same_bits_on_one_and_two_threads():
     assert r1.narrow_corners == new_narrow(mesh, r1.mesh.vertices, 40.0) > 0
     assert np.array_equal(r1.mesh.vertices, r2.mesh.vertices)
     assert r1.iterations == r2.iterations
+    assert any("under 40 degrees that the input did not have" in w for w in r1.warnings)
     first = facet.planarize(mesh, threads=1, quality_angle=0)
     assert np.array_equal(r1.mesh.vertices, first.mesh.vertices)
     assert r1.first_iterations == first.iterations < r1.iterations

@@ -412,7 +412,7 @@ class Planarizer:
             planarity=planarity(result_mesh, threads=threads),
             displacement=displacement,
             options=options,
-            warnings=list(self._warnings),
+            warnings=list(self._warnings) + _quality_warnings(stats, options),
             constraint_max_rel=stats["constraint_max_rel"],
             anderson=(stats["anderson_accepted"], stats["anderson_rejected"]),
             quality_check=stats["quality"],
@@ -422,6 +422,18 @@ class Planarizer:
             control=control,
             reference=surface,
         )
+
+
+def _quality_warnings(stats, options):
+    """A warning when the solve kept corners under ``quality_angle`` that the input did not
+    have (no re-solve kept them open; see PlanarizeResult.quality_check)."""
+    if stats.get("quality") != "narrow":
+        return []
+    n = int(stats["narrow_corners"])
+    angle = float(options.get("quality_angle", 5.0))
+    return [f"{n} panel corner{'s' if n != 1 else ''} under {angle:g} degrees that the input "
+            f"did not have ({int(stats['quality_resolves'])} re-solves did not keep "
+            f"{'them' if n != 1 else 'it'} open)"]
 
 
 def planarize(mesh, method="auto", tol=1e-6, tol_abs=None, max_iter=None, iterations=None,
