@@ -272,13 +272,23 @@ typedef struct facet_planarize_options {
     int32_t hold_max;         /* longest stay at one mu in the staircase schedule */
     int32_t anderson;         /* Anderson acceleration history depth (0 = off, max 16) */
     double time_budget;       /* stop after this many seconds (0 = no budget) */
+    /* --- quality by default (facet_planarizer_solve; docs/solver-notes.md, "Quality by
+     * default (branch quality5)") */
+    double quality_angle;     /* degrees: a cold solve that reaches the tolerance and leaves a
+                                 corner below this angle that the input did not have (a
+                                 new narrow corner: below it while the input corner was not,
+                                 or below half the input corner) is solved again along the
+                                 penalty path, without Anderson acceleration, until no such
+                                 corner is left (5, the default; 0 = off; < 60) */
 } facet_planarize_options;
 
 /* Defaults for a method: mu0 1; the staircase schedule (ratio 0.1, hold_tol
  * 0.01, hold_max 40) with Anderson acceleration of depth 5; mu_min 1e-6
  * (L/L) or 1e-12 (L/G and AUTO); tol_rel 1e-6, tol_abs off; max_iter 3000
  * (L/L) or 1000 (L/G and AUTO); data 1 and 1 (point-to-point); no angle
- * floor, no regularizer, other constraint or time budget. The paper's
+ * floor, no regularizer, other constraint or time budget; quality_angle 5
+ * (a result with a new corner under 5 degrees is solved again: see
+ * facet_quality_outcome). The paper's
  * schedule is hold_tol 0, anderson 0, ratio 0.7 (L/G) or 0.9 (L/L).
  * AUTO solves by facet_planarizer_choose_method's choice with these
  * options, except that when it picks L/L its floor is at least
@@ -306,6 +316,13 @@ typedef struct facet_planarize_result {
     int32_t anderson_accepted; /* accelerated steps kept */
     int32_t anderson_rejected; /* accelerated steps refused by the energy safeguard */
     facet_method method;       /* the method that ran (what FACET_METHOD_AUTO chose) */
+    /* quality by default (options.quality_angle; facet_quality_outcome) */
+    int32_t quality;           /* FACET_QUALITY_*: checked? recovered? */
+    int32_t narrow_corners;    /* new narrow corners in xyz_out (0 unless quality is
+                                  FACET_QUALITY_NARROW or NOT_CHECKED) */
+    int32_t quality_resolves;  /* re-solves run (0: the first solve's result) */
+    int32_t first_iterations;  /* iterations of the first solve; `iterations` counts every
+                                  solve's, `seconds` their time */
 } facet_planarize_result;
 
 /* A planarization solver for one mesh topology. It copies the topology and
@@ -730,6 +747,36 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
  * coordinate beyond it is FACET_ERROR_COORDINATE_RANGE (lift targets:
  * FACET_ERROR_BAD_TARGET), naming the vertex. */
 #define FACET_COORDINATE_MAX 1e30
+
+/* ------------------------------------------------------------------------ */
+/* Planarization quality by default (branch quality5)                       */
+/* ------------------------------------------------------------------------ */
+
+/* facet_planarize_result.quality. A solve (not a fixed iteration count, no
+ * angle floor, quality_angle > 0) that stops at the tolerance is checked, in
+ * one pass over the faces, for new narrow corners:
+ * a corner below quality_angle whose input corner was not, or below half of
+ * its input corner. If there is one, a cold solve is run again from the input
+ * (a warm one only reports them: FACET_QUALITY_NARROW, no re-solve),
+ * without Anderson acceleration: with the default hold (hold_tol 0.01,
+ * hold_max 40), then hold_tol 0.003 (these two only when data_tangent >=
+ * data_normal and surface_weight is 0: vertices held at their control
+ * points), then along the exact penalty path (hold_tol 1e-9, hold_max 200,
+ * max_iter at least 4000), then with Anderson, hold_tol 0.003 and the angle
+ * floor at 1.2 quality_angle,
+ * stopping at the first result that reaches the tolerance with no new
+ * narrow corner, which is returned. If none does, the first solve's result
+ * is returned (FACET_QUALITY_NARROW, narrow_corners > 0; the message says
+ * so). Deterministic for any thread count (each solve is). The progress
+ * callback restarts at iteration 0 for each re-solve, and cancelling one
+ * returns FACET_ERROR_CANCELLED with xyz_out holding the first solve's
+ * result. The live update (facet_planarizer_update) does not check. */
+typedef enum facet_quality_outcome {
+    FACET_QUALITY_NOT_CHECKED = 0, /* off, fixed count, angle floor, live, or not converged */
+    FACET_QUALITY_OK = 1,          /* checked: no new narrow corner */
+    FACET_QUALITY_RECOVERED = 2,   /* the first result had one; a re-solve has none */
+    FACET_QUALITY_NARROW = 3       /* every re-solve left one (or warm): the first result */
+} facet_quality_outcome;
 
 #ifdef __cplusplus
 }

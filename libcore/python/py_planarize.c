@@ -117,22 +117,23 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
                                "laplacian_weights", "normal_laplacian", "boundary_fairness",
                                "shape", "shape_weight", "boundary", "circular", "parallelogram",
                                "anderson", "time_budget", "hold_tol", "hold_max", "surface_weight",
-                               "live", "rings", "angle_floor", NULL};
+                               "live", "rings", "angle_floor", "quality_angle", NULL};
     PyObject *in_obj, *out_obj, *progress = Py_None;
     const char *method = "auto", *lap_weights = NULL, *shape = NULL, *boundary = NULL;
     double mu0 = NAN, ratio = NAN, mu_min = NAN, tol_abs = NAN, tol_rel = NAN;
     double data_tangent = NAN, data_normal = NAN, laplacian = NAN, normal_laplacian = NAN;
     double fairness = NAN, shape_weight = NAN, circular = NAN, parallelogram = NAN;
     double time_budget = NAN, hold_tol = NAN, surface_weight = NAN, angle_floor = NAN;
+    double quality_angle = NAN;
     int hold_max = -1, live = 0, rings = 0;
     int max_iter = -1, iterations = 0, threads = 0, warm = 0, anderson = -1;
     if (!PyArg_ParseTupleAndKeywords(
-            args, kwargs, "OO|$sdddddiiipOdddzddzdzddiddidpid:solve", keywords, &in_obj, &out_obj,
+            args, kwargs, "OO|$sdddddiiipOdddzddzdzddiddidpidd:solve", keywords, &in_obj, &out_obj,
             &method, &mu0, &ratio, &mu_min, &tol_abs, &tol_rel, &max_iter, &iterations, &threads,
             &warm, &progress, &data_tangent, &data_normal, &laplacian, &lap_weights,
             &normal_laplacian, &fairness, &shape, &shape_weight, &boundary, &circular,
             &parallelogram, &anderson, &time_budget, &hold_tol, &hold_max, &surface_weight,
-            &live, &rings, &angle_floor))
+            &live, &rings, &angle_floor, &quality_angle))
         return NULL;
     module_state *st = py_state(PyType_GetModule(Py_TYPE(self_obj)));
     if (!self->handle) {
@@ -183,7 +184,8 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
                    {fairness, &o.boundary_fairness}, {shape_weight, &o.shape_weight},
                    {circular, &o.circular}, {parallelogram, &o.parallelogram},
                    {time_budget, &o.time_budget}, {hold_tol, &o.hold_tol},
-                   {surface_weight, &o.surface_weight}, {angle_floor, &o.angle_floor}};
+                   {surface_weight, &o.surface_weight}, {angle_floor, &o.angle_floor},
+                   {quality_angle, &o.quality_angle}};
     for (size_t k = 0; k < sizeof weights / sizeof weights[0]; ++k)
         if (!isnan(weights[k].value))
             *weights[k].field = weights[k].value;
@@ -258,14 +260,18 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
     }
     if (status < 0)
         return py_raise_status(st, status, &error);
-    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s}", "iterations",
+    static const char *const quality_names[] = {"not_checked", "ok", "recovered", "narrow"};
+    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:i}", "iterations",
                          (int)r.iterations, "stop_reason", stop_reason_name(r.stop_reason), "mu",
                          r.mu, "planarity_max_abs", r.planarity_max_abs, "planarity_max_rel",
                          r.planarity_max_rel, "constraint_max_rel", r.constraint_max_rel,
                          "seconds", r.seconds, "anderson_accepted", (int)r.anderson_accepted,
                          "anderson_rejected", (int)r.anderson_rejected, "converged",
                          (r.stop_reason == FACET_STOP_TOLERANCE) ? Py_True : Py_False, "method",
-                         r.method == FACET_METHOD_LOCAL_LOCAL ? "ll" : "lg");
+                         r.method == FACET_METHOD_LOCAL_LOCAL ? "ll" : "lg", "quality",
+                         quality_names[r.quality >= 0 && r.quality <= 3 ? r.quality : 0],
+                         "narrow_corners", (int)r.narrow_corners, "quality_resolves",
+                         (int)r.quality_resolves, "first_iterations", (int)r.first_iterations);
 }
 
 /* The handle of a planarizer that may be configured now; NULL with an error set. */
@@ -354,7 +360,8 @@ static PyMethodDef planarizer_methods[] = {
      "      iterations=0, threads=0, warm=False, progress=None, data_tangent, data_normal,\n"
      "      laplacian, laplacian_weights, normal_laplacian, boundary_fairness, shape,\n"
      "      shape_weight, boundary, circular, parallelogram, anderson, time_budget,\n"
-     "      hold_tol, hold_max, surface_weight, live=False, rings=0, angle_floor) -> dict\n\n"
+     "      hold_tol, hold_max, surface_weight, live=False, rings=0, angle_floor,\n"
+     "      quality_angle) -> dict\n\n"
      "Planarize the control positions xyz_in (float64, 3*n_vertices) into xyz_out.\n"
      "live=True: a live update of the region around the vertices edited since the\n"
      "last solve, `rings` edges deep (0: 4) (facet_planarizer_update).\n"

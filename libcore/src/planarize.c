@@ -69,7 +69,9 @@ void facet_planarize_options_default(facet_method method, facet_planarize_option
      * degrees), but not with plane or surface data (Level 5: 4.4 and 4.2
      * degrees after the floor lets go), nor with a sliding boundary and held
      * vertices, and it costs 10-60% more iterations and live updates 3-20
-     * times more; so neither is the default (docs/solver-notes.md). */
+     * times more; so neither is the default (docs/solver-notes.md). What is:
+     * a result with a new narrow corner is solved again along the penalty
+     * path (quality_angle, planarize_quality.c). */
     o->ratio = 0.1;
     o->hold_tol = 0.01;
     o->hold_max = 40;
@@ -89,6 +91,7 @@ void facet_planarize_options_default(facet_method method, facet_planarize_option
     o->shape_weight = 1.0;
     o->boundary = FACET_BOUNDARY_FREE;
     o->angle_floor = 0.0; /* off: see above */
+    o->quality_angle = 5.0; /* planarize_quality.c */
 }
 
 /* ---- topology --------------------------------------------------------------- */
@@ -499,6 +502,8 @@ static facet_status check_options(const facet_planarize_options *o, int has_refe
         BAD("unknown boundary mode %d", (int)o->boundary);
     if (!(o->angle_floor >= 0.0 && o->angle_floor < 60.0))
         BAD("angle_floor must be in [0, 60) degrees, not %g", o->angle_floor);
+    if (!(o->quality_angle >= 0.0 && o->quality_angle < 60.0))
+        BAD("quality_angle must be in [0, 60) degrees, not %g", o->quality_angle);
     if (!(o->hold_tol >= 0.0) || !isfinite(o->hold_tol))
         BAD("hold_tol must be finite and >= 0, not %g", o->hold_tol);
     if (o->hold_max < 1)
@@ -898,9 +903,11 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
 
 /* ---- the solve --------------------------------------------------------- */
 
-facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
-                                    const facet_planarize_options *options, double *xyz_out,
-                                    facet_planarize_result *result, facet_error *error)
+/* One solve with these options; facet_planarizer_solve (planarize_quality.c)
+ * calls it and, when the result has a new narrow corner, re-solves. */
+facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
+                                 const facet_planarize_options *options, double *xyz_out,
+                                 facet_planarize_result *result, facet_error *error)
 {
     facet_error_clear(error);
     if (!s || !xyz_in || !xyz_out || !options)

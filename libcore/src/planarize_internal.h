@@ -181,7 +181,16 @@ facet_status facet_pl_global_step(facet_planarizer *s, double mu, int nthreads,
 void facet_pl_global_free(facet_planarizer *s);
 
 /* planarize.c */
+facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
+                                 const facet_planarize_options *options, double *xyz_out,
+                                 facet_planarize_result *result, facet_error *error);
 facet_status facet_pl_fail(facet_planarizer *s, facet_error *error, facet_status status,
                            const char *text);
+
+/* planarize_quality.c: corners of the iterate q below angle_deg whose control
+ * corner (p) was not, or below half of the control corner; the smallest such
+ * corner's angle in degrees in *smallest (180 if none) */
+int32_t facet_pl_new_narrow(const facet_planarizer *s, double angle_deg, int nthreads,
+                            double *smallest);
 
 #endif

@@ -214,6 +214,7 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
     }
     facet_planarize_options o = *options;
     o.warm = 0;
+    o.quality_angle = 0.0; /* no re-solve within a frame (planarize_quality.c) */
     facet_planarize_result sub_result;
     memset(&sub_result, 0, sizeof sub_result);
     facet_status status = FACET_OK;
@@ -306,6 +307,11 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
         result->method = n_changed ? sub_result.method
                          : options->method == FACET_METHOD_AUTO ? facet_planarizer_choose_method(s->live ? s->live : s)
                                                                 : options->method;
+        /* the region solves are not checked (planarize_quality.c) */
+        result->quality = FACET_QUALITY_NOT_CHECKED;
+        result->narrow_corners = 0;
+        result->quality_resolves = 0;
+        result->first_iterations = iterations;
     }
     return status;
 }

@@ -30,6 +30,9 @@ class TestPlanarized(DocumentTestCase):
         self.assertGreater(result.Iterations, 0)
         self.assertEqual(result.StopReason, "tolerance")
         self.assertTrue(result.Converged)
+        # checked for corners under 5 degrees the source did not have: none
+        self.assertIn(result.QualityCheck, ("ok", "recovered"))
+        self.assertEqual(result.NarrowCorners, 0)
         self.assertLessEqual(result.PlanarityMaxRel, TOLERANCE)
         self.assertLess(result.PlanarityMaxAbs.Value, self.source.PlanarityMaxAbs.Value / 1000)
         self.assertGreater(result.DisplacementMax.Value, 0.0)

@@ -61,6 +61,7 @@ TERMS = {
     "circular": float,
     "parallelogram": float,
     "angle_floor": float,
+    "quality_angle": float,
     "anderson": int,
     "hold_tol": float,
     "hold_max": int,
@@ -110,6 +111,20 @@ class PlanarizeResult:
         constraints, relative to the mean edge (0 when none is on).
     anderson : tuple of int
         Accelerated steps (kept, refused by the energy safeguard).
+    quality_check : str
+        Whether the solve checked its result for new narrow corners (a
+        corner below ``quality_angle``, 5 degrees by default, that the
+        input did not have) and what it did: ``"not_checked"`` (off, warm,
+        live, a fixed iteration count, the angle floor on, or not
+        converged), ``"ok"`` (none), ``"recovered"`` (the first result had
+        one; a re-solve along the penalty path has none) or ``"narrow"``
+        (every re-solve left one; the best result is returned).
+    narrow_corners : int
+        New narrow corners in the result.
+    quality_resolves : int
+        Re-solves run after the first solve (``iterations`` counts them all).
+    first_iterations : int
+        Iterations of the first solve.
     control : facet.PolyMesh or None
         The control mesh the result was solved from.
     reference : facet.Surface or None
@@ -128,6 +143,10 @@ class PlanarizeResult:
     warnings: list = field(default_factory=list)
     constraint_max_rel: float = 0.0
     anderson: tuple = (0, 0)
+    quality_check: str = "not_checked"
+    narrow_corners: int = 0
+    quality_resolves: int = 0
+    first_iterations: int = 0
     control: object = None
     reference: object = None
     _quality: object = field(default=None, repr=False)
@@ -288,7 +307,8 @@ class Planarizer:
             ``shape_weight``), constraints (``boundary``
             "free"/"fixed"/"sliding", ``circular``, ``parallelogram``), the
             data weights, and ``anderson``, ``hold_tol``, ``hold_max``,
-            ``time_budget`` (seconds).
+            ``time_budget`` (seconds), ``quality_angle`` (degrees, 5; 0
+            turns off the re-solve of a result with a new narrow corner).
 
         Returns
         -------
@@ -392,12 +412,28 @@ class Planarizer:
             planarity=planarity(result_mesh, threads=threads),
             displacement=displacement,
             options=options,
-            warnings=list(self._warnings),
+            warnings=list(self._warnings) + _quality_warnings(stats, options),
             constraint_max_rel=stats["constraint_max_rel"],
             anderson=(stats["anderson_accepted"], stats["anderson_rejected"]),
+            quality_check=stats["quality"],
+            narrow_corners=stats["narrow_corners"],
+            quality_resolves=stats["quality_resolves"],
+            first_iterations=stats["first_iterations"],
             control=control,
             reference=surface,
         )
+
+
+def _quality_warnings(stats, options):
+    """A warning when the solve kept corners under ``quality_angle`` that the input did not
+    have (no re-solve kept them open; see PlanarizeResult.quality_check)."""
+    if stats.get("quality") != "narrow":
+        return []
+    n = int(stats["narrow_corners"])
+    angle = float(options.get("quality_angle", 5.0))
+    return [f"{n} panel corner{'s' if n != 1 else ''} under {angle:g} degrees that the input "
+            f"did not have ({int(stats['quality_resolves'])} re-solves did not keep "
+            f"{'them' if n != 1 else 'it'} open)"]
 
 
 def planarize(mesh, method="auto", tol=1e-6, tol_abs=None, max_iter=None, iterations=None,

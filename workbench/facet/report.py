@@ -94,7 +94,10 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         ``warnings`` lists what the solver noted about the mesh; ``quality``
         is :meth:`facet.QualityReport.as_dict` of the result against
         `source`: planarity, displacement, distance from the source's
-        surface, smallest angles, edge ratio change, degenerate faces).
+        surface, smallest angles, edge ratio change, degenerate faces;
+        ``quality_check``, ``narrow_corners``, ``quality_resolves`` and
+        ``first_iterations`` say whether the solve re-solved a result with a
+        new narrow corner: see :class:`facet.PlanarizeResult`).
         Already JSON-safe.
     """
     if input_planarity is None:
@@ -122,6 +125,10 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         "iterations": int(result.iterations),
         "stop_reason": str(result.stop_reason),
         "converged": bool(result.converged),
+        "quality_check": str(getattr(result, "quality_check", "not_checked")),
+        "narrow_corners": int(getattr(result, "narrow_corners", 0)),
+        "quality_resolves": int(getattr(result, "quality_resolves", 0)),
+        "first_iterations": int(getattr(result, "first_iterations", result.iterations)),
         "solve_seconds": float(result.solve_seconds),
         "input_planarity_max_rel": input_planarity.max_rel_all,
         "input_planarity_max_abs": input_planarity.max_abs_all,

@@ -133,6 +133,14 @@ class Planarized(PolyMesh):
         compat.add_property(obj, "App::PropertyBool", "Converged", "Result",
                             "True if the last solve reached the tolerance", attr=output,
                             editor_mode=read_only)
+        compat.add_property(obj, "App::PropertyString", "QualityCheck", "Result",
+                            "Whether the last solve left a corner under 5 degrees that the "
+                            "source did not have, and what it did: ok (none), recovered (solved "
+                            "again without one), narrow (every re-solve left one), not_checked",
+                            attr=output, editor_mode=read_only)
+        compat.add_property(obj, "App::PropertyInteger", "NarrowCorners", "Result",
+                            "Corners under 5 degrees in the result that the source did not have",
+                            attr=output, editor_mode=read_only)
         compat.add_property(obj, "App::PropertyLength", "DisplacementMax", "Result",
                             "Largest distance a vertex moved from the source", attr=output,
                             editor_mode=read_only)
@@ -161,6 +169,8 @@ class Planarized(PolyMesh):
         obj.Iterations = int(result.iterations)
         obj.StopReason = str(result.stop_reason)
         obj.Converged = bool(result.converged)
+        obj.QualityCheck = str(result.quality_check)
+        obj.NarrowCorners = int(result.narrow_corners)
         obj.DisplacementMax = float(result.displacement_max)
         obj.DisplacementRms = float(result.displacement_rms)
 
@@ -237,4 +247,10 @@ def planarize_summary(obj):
         f"  vertices moved: max {format_length(obj.DisplacementMax.Value)}, "
         f"rms {format_length(obj.DisplacementRms.Value)}",
     ]
+    check = getattr(obj, "QualityCheck", "")
+    if check == "recovered":
+        lines.append("  a panel corner closed below 5 degrees; solved again without it")
+    elif check == "narrow":
+        lines.append(f"  {obj.NarrowCorners} panel corners under 5 degrees that the source "
+                     "did not have (see the quality report)")
     return "\n".join(lines)
