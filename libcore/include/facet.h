@@ -277,7 +277,8 @@ typedef struct facet_planarize_options {
     double quality_angle;     /* degrees: a cold solve that reaches the tolerance and leaves a
                                  corner below this angle that the input did not have (a
                                  new narrow corner: below it while the input corner was not,
-                                 or below half the input corner) is solved again along the
+                                 or below half the input corner; or a face folded over
+                                 itself, a bowtie, that was not) is solved again along the
                                  penalty path, without Anderson acceleration, until no such
                                  corner is left (5, the default; 0 = off; < 60) */
 } facet_planarize_options;

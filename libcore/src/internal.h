@@ -45,6 +45,12 @@ facet_status facet_mesh_validate_topology(const facet_mesh *mesh, int check_coor
  * Writes a unit vector to v and returns the eigenvalue. */
 double facet_sym3_smallest_eigenvector(const double a[6], double v[3]);
 
+/* quality.c: a face's Newell normal (its vector area, twice: not unit),
+ * about its first vertex; whether a face folds over itself: two of its
+ * edges cross when seen along nrm (nonzero; any length), as a bowtie's do. */
+void facet_newell(int32_t n, const double *xyz, const int32_t *idx, double out[3]);
+int facet_face_folds(int32_t n, const double *xyz, const int32_t *idx, const double nrm[3]);
+
 /* The same for two matrices at once (the same bits as two calls; faster:
  * their Newton steps overlap). */
 void facet_sym3_smallest_eigenvector2(const double a[6], const double b[6], double va[3], double vb[3]);

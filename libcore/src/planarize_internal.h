@@ -188,8 +188,10 @@ facet_status facet_pl_fail(facet_planarizer *s, facet_error *error, facet_status
                            const char *text);
 
 /* planarize_quality.c: corners of the iterate q below angle_deg whose control
- * corner (p) was not, or below half of the control corner; the smallest such
- * corner's angle in degrees in *smallest (180 if none) */
+ * corner (p) was not, or below half of the control corner, and faces of q
+ * that fold over themselves where p's did not (each counted once, as a
+ * corner of 0 degrees); the smallest such corner's angle in degrees in
+ * *smallest (180 if none) */
 int32_t facet_pl_new_narrow(const facet_planarizer *s, double angle_deg, int nthreads,
                             double *smallest);
 

@@ -32,6 +32,18 @@ static double corner_angle(const double *prev, const double *at, const double *n
     return atan2(cross, dot) / DEG; /* 0 for an edge of zero length */
 }
 
+/* Whether the face folds over itself (quality.c: two edges cross, seen
+ * along its Newell normal); a face without area does not count here (its
+ * corners do). */
+static int folds(int32_t n, const double *xyz, const int32_t *idx)
+{
+    if (n < 4)
+        return 0;
+    double nrm[3];
+    facet_newell(n, xyz, idx, nrm);
+    return (nrm[0] != 0.0 || nrm[1] != 0.0 || nrm[2] != 0.0) && facet_face_folds(n, xyz, idx, nrm);
+}
+
 int32_t facet_pl_new_narrow(const facet_planarizer *s, double angle_deg, int nthreads,
                             double *smallest)
 {
@@ -45,6 +57,13 @@ int32_t facet_pl_new_narrow(const facet_planarizer *s, double angle_deg, int nth
     reduction(min : least)
     for (int32_t f = 0; f < s->nf; ++f) {
         const int32_t b = start[f], e = start[f + 1];
+        if (folds(e - b, q, fv + b) && !folds(e - b, p, fv + b)) {
+            /* a new fold: no interior, whatever its corners (a bowtie's may
+             * all be wide), counted as a corner of 0 degrees */
+            ++count;
+            least = 0.0;
+            continue;
+        }
         for (int32_t k = b; k < e; ++k) {
             const int32_t ip = fv[k > b ? k - 1 : e - 1], ia = fv[k], in = fv[k + 1 < e ? k + 1 : b];
             const double *a = q + 3 * (size_t)ia, *u0 = q + 3 * (size_t)ip, *w0 = q + 3 * (size_t)in;

@@ -7,7 +7,7 @@
 
 #define TWO_PI 6.283185307179586476925286766559
 
-static void newell(int32_t n, const double *xyz, const int32_t *idx, double out[3])
+void facet_newell(int32_t n, const double *xyz, const int32_t *idx, double out[3])
 {
     out[0] = out[1] = out[2] = 0.0;
     /* about the first vertex, so large coordinates do not swamp the sum */
@@ -74,7 +74,7 @@ static double orient2(const double *a, const double *b, const double *c, int u, 
     return (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
 }
 
-static int face_folds(int32_t n, const double *xyz, const int32_t *idx, const double nrm[3])
+int facet_face_folds(int32_t n, const double *xyz, const int32_t *idx, const double nrm[3])
 {
     if (n < 4)
         return 0;
@@ -130,7 +130,7 @@ facet_status facet_face_shape(const facet_mesh *mesh, const double *xyz_input, i
             continue;
         }
         double nrm[3];
-        newell(n, xyz, idx, nrm);
+        facet_newell(n, xyz, idx, nrm);
         const double len = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
         if (area)
             area[f] = 0.5 * len;
@@ -140,7 +140,7 @@ facet_status facet_face_shape(const facet_mesh *mesh, const double *xyz_input, i
                 unit[0] = nrm[0] / len, unit[1] = nrm[1] / len, unit[2] = nrm[2] / len;
             /* a face folded over itself has no interior: 0, as for a
              * face without area */
-            min_angle[f] = len > 0.0 && face_folds(n, xyz, idx, unit) ? 0.0
+            min_angle[f] = len > 0.0 && facet_face_folds(n, xyz, idx, unit) ? 0.0
                                                                       : smallest_angle(n, xyz, idx, unit);
         }
         if (ratio_change) {

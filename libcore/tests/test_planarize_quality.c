@@ -5,6 +5,7 @@
  * and can be cancelled. */
 #include "check.h"
 #include "facet.h"
+#include "planarize_internal.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -69,9 +70,42 @@ static double angle_at(const double *xyz, int32_t a, int32_t b, int32_t c)
                  u[0] * w[0] + u[1] * w[1] + u[2] * w[2]) * 180.0 / 3.14159265358979323846;
 }
 
+/* Whether the quad q folds over itself (a bowtie): seen in the plane of its
+ * diagonals, edges 0-1 and 2-3, or 1-2 and 3-0, cross. */
+static int quad_folds(const double *xyz, const int32_t *q)
+{
+    const double *x[4];
+    for (int k = 0; k < 4; ++k)
+        x[k] = xyz + 3 * (size_t)q[k];
+    const double d1[3] = {x[2][0] - x[0][0], x[2][1] - x[0][1], x[2][2] - x[0][2]};
+    const double d2[3] = {x[3][0] - x[1][0], x[3][1] - x[1][1], x[3][2] - x[1][2]};
+    const double n[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2],
+                         d1[0] * d2[1] - d1[1] * d2[0]};
+    const double l1 = sqrt(d1[0] * d1[0] + d1[1] * d1[1] + d1[2] * d1[2]);
+    const double e1[3] = {d1[0] / l1, d1[1] / l1, d1[2] / l1};
+    const double e2[3] = {n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]};
+    double u[4][2];
+    for (int k = 0; k < 4; ++k) {
+        const double r[3] = {x[k][0] - x[0][0], x[k][1] - x[0][1], x[k][2] - x[0][2]};
+        u[k][0] = r[0] * e1[0] + r[1] * e1[1] + r[2] * e1[2];
+        u[k][1] = r[0] * e2[0] + r[1] * e2[1] + r[2] * e2[2];
+    }
+    for (int k = 0; k < 2; ++k) { /* edges k, k+1 against k+2, k+3 */
+        const double *a = u[k], *b = u[k + 1], *c = u[k + 2], *d = u[(k + 3) % 4];
+        const double o1 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        const double o2 = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
+        const double o3 = (d[0] - c[0]) * (a[1] - c[1]) - (d[1] - c[1]) * (a[0] - c[0]);
+        const double o4 = (d[0] - c[0]) * (b[1] - c[1]) - (d[1] - c[1]) * (b[0] - c[0]);
+        if (o1 * o2 < 0.0 && o3 * o4 < 0.0)
+            return 1;
+    }
+    return 0;
+}
+
 /* Corners of `out` below `floor` degrees whose corner in `in` was not (or
- * below half of it), counted independently of the library; the smallest
- * corner of `out` in *smallest. */
+ * below half of it), and quads of `out` that fold where `in`'s did not
+ * (once each, as a corner of 0 degrees), counted independently of the
+ * library; the smallest corner of `out` in *smallest. */
 static int new_narrow(const grid *g, const double *in, const double *out, double floor,
                       double *smallest)
 {
@@ -79,6 +113,11 @@ static int new_narrow(const grid *g, const double *in, const double *out, double
     *smallest = 180.0;
     for (int32_t f = 0; f < g->mesh.n_faces; ++f) {
         const int32_t b = g->face_start[f], e = g->face_start[f + 1];
+        if (quad_folds(out, g->face_vertices + b) && !quad_folds(in, g->face_vertices + b)) {
+            ++count;
+            *smallest = 0.0;
+            continue;
+        }
         for (int32_t k = b; k < e; ++k) {
             const int32_t p = g->face_vertices[k > b ? k - 1 : e - 1], v = g->face_vertices[k],
                           n = g->face_vertices[k + 1 < e ? k + 1 : b];
@@ -149,7 +188,9 @@ static void test_hypar_default(void)
 }
 
 /* An input with a 3-degree corner: the result keeps a narrow corner there,
- * and that is not a new one (no re-solve). */
+ * and that is not a new one. (The first solve folds that face over, which
+ * is new: the check sees the fold and re-solves; the result keeps the
+ * corner, narrow and unfolded.) */
 static void test_input_narrow_corner(void)
 {
     grid g = hypar(8);
@@ -183,8 +224,16 @@ static void test_input_narrow_corner(void)
     CHECK(r.stop_reason == FACET_STOP_TOLERANCE && r.planarity_max_rel <= 1e-6);
     CHECK(new_narrow(&g, g.xyz, out, 5.0, &smallest) == 0);
     CHECK(smallest < 5.0); /* the corner is still narrow: the check saw it */
-    CHECK(r.quality == FACET_QUALITY_OK);
-    CHECK(r.quality_resolves == 0 && r.narrow_corners == 0 && r.first_iterations == r.iterations);
+    CHECK(!quad_folds(out, g.face_vertices));
+    CHECK(r.quality == FACET_QUALITY_OK || r.quality == FACET_QUALITY_RECOVERED);
+    CHECK(r.narrow_corners == 0);
+    /* the first solve alone: its narrow corner is not new, its fold is */
+    o.quality_angle = 0.0;
+    facet_planarize_result r0;
+    CHECK_STATUS(facet_planarizer_solve(s, g.xyz, &o, out, &r0, &err), FACET_OK);
+    const int folded = quad_folds(out, g.face_vertices);
+    CHECK((r.quality == FACET_QUALITY_RECOVERED) == folded);
+    CHECK(new_narrow(&g, g.xyz, out, 5.0, &smallest) == folded);
     free(out);
     facet_planarizer_free(&s);
     grid_free(&g);
@@ -260,6 +309,35 @@ static void test_resolve_threads_and_cancel(void)
     grid_free(&g);
 }
 
+/* The check counts a face that folds over itself (a bowtie) where the
+ * input's did not, though each of its corners is wide (45 and 63
+ * degrees): the quality report gives such a face 0 degrees, and a re-solve
+ * that ends with one has not recovered (the 64 x 64 hypar's L/L re-solve
+ * did, before the check saw folds). An input fold is not new. */
+static void test_new_fold(void)
+{
+    const double square[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, 0, 0, 2, 1, 0};
+    const double bowtie[] = {0, 0, 0, 2, 2, 0, 2, 0, 0, 0, 1, 0, 3, 2, 0, 3, 0, 0};
+    const int32_t start[] = {0, 4, 8}, fv[] = {0, 1, 2, 3, 1, 4, 5, 2};
+    const facet_mesh m = {6, 2, square, start, fv};
+    facet_planarizer *s = NULL;
+    facet_error err;
+    CHECK_STATUS(facet_planarizer_create(&m, &s, &err), FACET_OK);
+    facet_planarize_options o;
+    facet_planarize_options_default(FACET_METHOD_LOCAL_LOCAL, &o);
+    double out[18];
+    CHECK_STATUS(facet_planarizer_solve(s, square, &o, out, NULL, &err), FACET_OK); /* the arrays */
+    double smallest;
+    memcpy(s->p, square, sizeof square), memcpy(s->q, square, sizeof square);
+    CHECK(facet_pl_new_narrow(s, 5.0, 1, &smallest) == 0);
+    memcpy(s->q, bowtie, sizeof bowtie);
+    CHECK(facet_pl_new_narrow(s, 5.0, 1, &smallest) == 1);
+    CHECK(smallest == 0.0);
+    memcpy(s->p, bowtie, sizeof bowtie);
+    CHECK(facet_pl_new_narrow(s, 5.0, 2, &smallest) == 0);
+    facet_planarizer_free(&s);
+}
+
 int main(void)
 {
     double t = facet_test_now();
@@ -267,6 +345,7 @@ int main(void)
     printf("hypar default: %.2f s\n", facet_test_now() - t), t = facet_test_now();
     test_input_narrow_corner();
     printf("input narrow corner: %.2f s\n", facet_test_now() - t), t = facet_test_now();
+    test_new_fold();
     test_resolve_threads_and_cancel();
     printf("re-solves, threads, cancel: %.2f s\n", facet_test_now() - t);
     return check_report("test_planarize_quality");
