@@ -460,6 +460,22 @@ static inline void block_solve(const double *bl, const double *y, double *z)
     z[0] = z0, z[1] = z1, z[2] = z2;
 }
 
+/* t = B_v^-1 sum over v's faces of c_f x_f: vertex v's share of the
+ * offsets' x (x by offsets' index, face_col - 3 nv) */
+static inline void coupled_solve(const facet_planarizer *s, int32_t v, double w, const double *x, double t[3])
+{
+    const int32_t base = 3 * s->nv;
+    double c[3];
+    t[0] = t[1] = t[2] = 0.0;
+    for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i) {
+        const int32_t f = s->vertex_faces[i];
+        const double xf = x[s->face_col[f] - base];
+        face_coupling(s, f, w, c);
+        t[0] += c[0] * xf, t[1] += c[1] * xf, t[2] += c[2] * xf;
+    }
+    block_solve(s->block + 6 * (size_t)v, t, t);
+}
+
 /* The offsets' system D - C^T B^-1 C into schur from this step's blocks
  * (block) and couplings at w. Serial: the faces' entries gather from
  * several vertices. */
@@ -510,14 +526,8 @@ static void schur_product(const facet_planarizer *s, double w, const double *x, 
     for (int32_t v = 0; v < nv; ++v) {
         if (s->fixed[v])
             continue;
-        double t[3] = {0.0, 0.0, 0.0}, c[3];
-        for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i) {
-            const int32_t f = s->vertex_faces[i];
-            const double xf = x[s->face_col[f] - base];
-            face_coupling(s, f, w, c);
-            t[0] += c[0] * xf, t[1] += c[1] * xf, t[2] += c[2] * xf;
-        }
-        block_solve(s->block + 6 * (size_t)v, t, t);
+        double t[3], c[3];
+        coupled_solve(s, v, w, x, t);
         for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i) {
             const int32_t f = s->vertex_faces[i];
             face_coupling(s, f, w, c);
@@ -771,29 +781,33 @@ static void sym_matvec(const cholmod_sparse *a, double alpha, int beta, const do
     }
 }
 
-/* Solves matrix * pcg_x = rhs by conjugate gradients preconditioned with
- * the (older) factorization, to a residual PCG_TOL of the right-hand side's.
- * Returns the steps taken, or 0 if it did not get there (or failed); rhs is
- * left as it was (a failure falls back to a factorization of it). Serial
- * and in a fixed order: the same bits for any thread count. Four vectors of
- * the system's size: r, p, x, and one for A p that then takes z = M^-1 r
- * (A p is dead once r is updated). */
-static int pcg_solve(facet_planarizer *s)
+/* A system for pcg_run: y = A p into a vector of the solve's (returned), and
+ * z = M^-1 r into the same vector (returned; NULL on failure). */
+typedef struct {
+    double *(*apply)(void *ctx, const double *p);
+    double *(*precondition)(void *ctx, const double *r);
+    void *ctx;
+} pcg_system;
+
+/* Conjugate gradients on sys from x = 0 (x is zeroed), r the right-hand side
+ * and then the residual, p the search direction, to a residual of tol times
+ * the right-hand side's. Returns the steps taken, or 0 if it did not get
+ * there (or failed). Serial and in a fixed order: the same bits for any
+ * thread count. A p and then z = M^-1 r share one vector (A p is dead once
+ * r is updated), so the solve needs four: r, p, x and that one. */
+static int pcg_run(const pcg_system *sys, size_t n, double tol, double *x, double *r, double *p)
 {
-    const size_t n = 3 * (size_t)s->nv + (size_t)s->nf;
-    double *r = s->pcg_r->x, *p = s->pcg_p->x, *ap = s->pcg_ap->x, *x = s->pcg_x->x;
-    memcpy(r, s->rhs->x, sizeof(double) * n);
     memset(x, 0, sizeof(double) * n);
     const double r0 = sqrt(dot_n(r, r, n));
     if (!(r0 > 0.0))
         return 1; /* x = 0 */
-    double *z = ap;
-    if (!factor_solve(s, r, z))
+    const double *z = sys->precondition(sys->ctx, r);
+    if (!z)
         return 0;
     memcpy(p, z, sizeof(double) * n);
     double rz = dot_n(r, z, n);
     for (int step = 1; step <= PCG_MAX; ++step) {
-        sym_matvec(s->matrix, 1.0, 0, p, ap);
+        const double *ap = sys->apply(sys->ctx, p);
         const double pap = dot_n(p, ap, n);
         if (!(pap > 0.0) || !isfinite(pap))
             return 0;
@@ -802,9 +816,9 @@ static int pcg_solve(facet_planarizer *s)
             x[k] += alpha * p[k];
             r[k] -= alpha * ap[k];
         }
-        if (sqrt(dot_n(r, r, n)) <= PCG_TOL * r0)
+        if (sqrt(dot_n(r, r, n)) <= tol * r0)
             return step;
-        if (!factor_solve(s, r, z))
+        if (!(z = sys->precondition(sys->ctx, r)))
             return 0;
         const double rz_next = dot_n(r, z, n), beta = rz_next / rz;
         rz = rz_next;
@@ -812,6 +826,31 @@ static int pcg_solve(facet_planarizer *s)
             p[k] = z[k] + beta * p[k];
     }
     return 0;
+}
+
+static double *stored_apply(void *ctx, const double *p)
+{
+    facet_planarizer *s = ctx;
+    sym_matvec(s->matrix, 1.0, 0, p, s->pcg_ap->x);
+    return s->pcg_ap->x;
+}
+
+static double *stored_precondition(void *ctx, const double *r)
+{
+    facet_planarizer *s = ctx;
+    return factor_solve(s, r, s->pcg_ap->x) ? s->pcg_ap->x : NULL;
+}
+
+/* Solves matrix * pcg_x = rhs by conjugate gradients preconditioned with
+ * the (older) factorization, to a residual PCG_TOL of the right-hand side's.
+ * Returns the steps taken, or 0 if it did not get there (or failed); rhs is
+ * left as it was (a failure falls back to a factorization of it). */
+static int pcg_solve(facet_planarizer *s)
+{
+    const size_t n = 3 * (size_t)s->nv + (size_t)s->nf;
+    memcpy(s->pcg_r->x, s->rhs->x, sizeof(double) * n);
+    const pcg_system sys = {stored_apply, stored_precondition, s};
+    return pcg_run(&sys, n, PCG_TOL, s->pcg_x->x, s->pcg_r->x, s->pcg_p->x);
 }
 
 static double face_weight(const facet_planarizer *s, int32_t f)
@@ -1025,47 +1064,38 @@ static facet_status stored_step(facet_planarizer *s, double mu, int nthreads, fa
     return FACET_OK;
 }
 
+typedef struct {
+    facet_planarizer *s;
+    double w;
+} schur_system;
+
+static double *schur_apply(void *ctx, const double *p)
+{
+    const schur_system *c = ctx;
+    schur_product(c->s, c->w, p, c->s->schur_x->x);
+    return c->s->schur_x->x;
+}
+
+/* (r is schur_b, which the factorization's solve reads) */
+static double *schur_apply_precondition(void *ctx, const double *r)
+{
+    const schur_system *c = ctx;
+    (void)r;
+    return schur_precondition(c->s) ? c->s->schur_x->x : NULL;
+}
+
 /* Solves the offsets' system S x = g (g in schur_b, which becomes the
  * residual; schur_vec: the search direction and x) by conjugate gradients
  * preconditioned with the (older) factorization, to a residual
- * SCHUR_PCG_TOL of g's. Returns the steps taken, or 0 if it did not get
- * there (or failed; schur_rhs gives g again). Serial and in a fixed order:
- * the same bits for any thread count. schur_x takes S p and then z = M^-1 r
- * (S p is dead once r is updated). */
+ * SCHUR_PCG_TOL of g's (pcg_run). Returns the steps taken, or 0 if it did
+ * not get there (or failed; schur_rhs gives g again). schur_x takes S p and
+ * then z = M^-1 r. */
 static int schur_pcg(facet_planarizer *s, double w)
 {
     const size_t nf = (size_t)s->nf;
-    double *p = s->schur_vec, *x = s->schur_vec + nf, *r = s->schur_b->x;
-    memset(x, 0, sizeof(double) * nf);
-    const double r0 = sqrt(dot_n(r, r, nf));
-    if (!(r0 > 0.0))
-        return 1; /* x = 0 */
-    if (!schur_precondition(s))
-        return 0;
-    memcpy(p, s->schur_x->x, sizeof(double) * nf);
-    double rz = dot_n(r, s->schur_x->x, nf);
-    for (int step = 1; step <= PCG_MAX; ++step) {
-        double *ap = s->schur_x->x;
-        schur_product(s, w, p, ap);
-        const double pap = dot_n(p, ap, nf);
-        if (!(pap > 0.0) || !isfinite(pap))
-            return 0;
-        const double alpha = rz / pap;
-        for (size_t k = 0; k < nf; ++k) {
-            x[k] += alpha * p[k];
-            r[k] -= alpha * ap[k];
-        }
-        if (sqrt(dot_n(r, r, nf)) <= SCHUR_PCG_TOL * r0)
-            return step;
-        if (!schur_precondition(s))
-            return 0;
-        const double *z = s->schur_x->x;
-        const double rz_next = dot_n(r, z, nf), beta = rz_next / rz;
-        rz = rz_next;
-        for (size_t k = 0; k < nf; ++k)
-            p[k] = z[k] + beta * p[k];
-    }
-    return 0;
+    schur_system c = {s, w};
+    const pcg_system sys = {schur_apply, schur_apply_precondition, &c};
+    return pcg_run(&sys, nf, SCHUR_PCG_TOL, s->schur_vec + nf, s->schur_b->x, s->schur_vec);
 }
 
 /* The offsets' right-hand side g_f = r_f - sum over f's free corners of
@@ -1104,7 +1134,7 @@ static void schur_rhs(facet_planarizer *s, double w, int nthreads)
  * them). */
 static facet_status schur_step(facet_planarizer *s, double mu, int nthreads, facet_error *error)
 {
-    const int32_t nv = s->nv, nf = s->nf, base = 3 * nv;
+    const int32_t nv = s->nv, nf = s->nf;
     const double w = 1.0 - mu;
     const double *p = s->p, *offset = s->offset;
     double *q = s->q, *u = s->schur_u;
@@ -1170,14 +1200,8 @@ static facet_status schur_step(facet_planarizer *s, double mu, int nthreads, fac
     for (int32_t v = 0; v < nv; ++v) {
         double *uv = u + 3 * (size_t)v;
         if (!s->fixed[v]) {
-            double t[3] = {0.0, 0.0, 0.0}, c[3];
-            for (int32_t i = s->vertex_start[v]; i < s->vertex_start[v + 1]; ++i) {
-                const int32_t f = s->vertex_faces[i];
-                const double df = dd[s->face_col[f] - base];
-                face_coupling(s, f, w, c);
-                t[0] += c[0] * df, t[1] += c[1] * df, t[2] += c[2] * df;
-            }
-            block_solve(s->block + 6 * (size_t)v, t, t);
+            double t[3];
+            coupled_solve(s, v, w, dd, t);
             uv[0] -= t[0], uv[1] -= t[1], uv[2] -= t[2];
         }
         finite &= isfinite(uv[0]) && isfinite(uv[1]) && isfinite(uv[2]);

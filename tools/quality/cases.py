@@ -28,6 +28,16 @@ CASES = [
 ]
 
 
+def selected(names):
+    """(name, data, mesh) of the cases named (name or name:data; all when
+    none), each mesh built once."""
+    cache = {}
+    for name, data, mk in CASES:
+        if names and name not in names and f'{name}:{data}' not in names:
+            continue
+        yield name, data, cache.setdefault(name, mk())
+
+
 def data_options(data):
     """planarize keywords of a case's data term: a preset of facet.DATA_TERMS,
     or 'tangent0.01' (point data with data_tangent 0.01 and no shape term,

@@ -2,13 +2,9 @@
 case: iterations (first solve's), quality outcome, smallest angle, new narrow
 corners; 1 against 2 threads bit for bit."""
 import sys, time
-from cases import CASES, data_options, new_narrow, np, facet
+from cases import selected, data_options, new_narrow, np, facet
 names = sys.argv[1:]
-cache = {}
-for name, data, mk in CASES:
-    if names and name not in names and f'{name}:{data}' not in names:
-        continue
-    m = cache.setdefault(name, mk())
+for name, data, m in selected(names):
     edges = m.edges()
     mean_edge = float(np.mean(np.linalg.norm(m.vertices[edges[:, 0]] - m.vertices[edges[:, 1]], axis=1)))
     t = time.process_time()

@@ -1,14 +1,10 @@
 """sweep.py "dict(anderson=0)" [case names]: iterations, planarity, smallest angle
 and new narrow corners of each case with these options."""
 import sys, time
-from cases import CASES, data_options, new_narrow, np, facet
+from cases import selected, data_options, new_narrow, np, facet
 extra = eval(sys.argv[1]) if len(sys.argv) > 1 else {}
 names = sys.argv[2:]
-cache = {}
-for name, data, mk in CASES:
-    if names and name not in names and f'{name}:{data}' not in names:
-        continue
-    m = cache.setdefault(name, mk())
+for name, data, m in selected(names):
     t = time.process_time()
     r = facet.planarize(m, **data_options(data), **extra)
     dt = time.process_time() - t
