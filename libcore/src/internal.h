@@ -47,7 +47,8 @@ double facet_sym3_smallest_eigenvector(const double a[6], double v[3]);
 
 /* quality.c: a face's Newell normal (its vector area, twice: not unit),
  * about its first vertex; whether a face folds over itself: two of its
- * edges cross when seen along nrm (nonzero; any length), as a bowtie's do. */
+ * edges cross when seen along nrm (any length), as a bowtie's do; never for
+ * a triangle or a zero nrm (a face without area). */
 void facet_newell(int32_t n, const double *xyz, const int32_t *idx, double out[3]);
 int facet_face_folds(int32_t n, const double *xyz, const int32_t *idx, const double nrm[3]);
 

@@ -33,15 +33,15 @@ static double corner_angle(const double *prev, const double *at, const double *n
 }
 
 /* Whether the face folds over itself (quality.c: two edges cross, seen
- * along its Newell normal); a face without area does not count here (its
+ * along its Newell normal; a face without area does not count here, its
  * corners do). */
 static int folds(int32_t n, const double *xyz, const int32_t *idx)
 {
-    if (n < 4)
+    if (n < 4) /* (no Newell normal for a triangle) */
         return 0;
     double nrm[3];
     facet_newell(n, xyz, idx, nrm);
-    return (nrm[0] != 0.0 || nrm[1] != 0.0 || nrm[2] != 0.0) && facet_face_folds(n, xyz, idx, nrm);
+    return facet_face_folds(n, xyz, idx, nrm);
 }
 
 int32_t facet_pl_new_narrow(const facet_planarizer *s, double angle_deg, int nthreads,

@@ -76,7 +76,8 @@ static double orient2(const double *a, const double *b, const double *c, int u, 
 
 int facet_face_folds(int32_t n, const double *xyz, const int32_t *idx, const double nrm[3])
 {
-    if (n < 4)
+    /* a triangle cannot fold; a face without area has no side to see it from */
+    if (n < 4 || (nrm[0] == 0.0 && nrm[1] == 0.0 && nrm[2] == 0.0))
         return 0;
     const double ax = fabs(nrm[0]), ay = fabs(nrm[1]), az = fabs(nrm[2]);
     const int drop = ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
@@ -140,8 +141,7 @@ facet_status facet_face_shape(const facet_mesh *mesh, const double *xyz_input, i
                 unit[0] = nrm[0] / len, unit[1] = nrm[1] / len, unit[2] = nrm[2] / len;
             /* a face folded over itself has no interior: 0, as for a
              * face without area */
-            min_angle[f] = len > 0.0 && facet_face_folds(n, xyz, idx, unit) ? 0.0
-                                                                      : smallest_angle(n, xyz, idx, unit);
+            min_angle[f] = facet_face_folds(n, xyz, idx, unit) ? 0.0 : smallest_angle(n, xyz, idx, unit);
         }
         if (ratio_change) {
             double change = 0.0;
