@@ -114,7 +114,8 @@ class PlanarizeResult:
     quality_check : str
         Whether the solve checked its result for new narrow corners (a
         corner below ``quality_angle``, 5 degrees by default, that the
-        input did not have) and what it did: ``"not_checked"`` (off, warm,
+        input did not have; a panel folded over itself, a bowtie, that the
+        input did not have counts as one) and what it did: ``"not_checked"`` (off, warm,
         live, a fixed iteration count, the angle floor on, or not
         converged), ``"ok"`` (none), ``"recovered"`` (the first result had
         one; a re-solve along the penalty path has none) or ``"narrow"``
