@@ -96,7 +96,7 @@ def test_cancel_in_a_resolve():
         return bool(seen) and seen[-1] == 2
 
     with pytest.raises(facet.Cancelled):
-        facet.planarize(mesh, quality_angle=40.0, progress=progress,
+        facet.planarize(mesh, quality_angle=40.0, threads=1, progress=progress,
                         stage=lambda k, n: seen.append(k))
     assert seen == [1, 2]
 
@@ -108,8 +108,51 @@ def test_stage_errors():
         raise RuntimeError(f"stage {k} of {n}")
 
     with pytest.raises(RuntimeError, match="stage 1 of 4"):
-        facet.planarize(mesh, quality_angle=40.0, stage=boom)
+        facet.planarize(mesh, quality_angle=40.0, threads=1, stage=boom)
     with pytest.raises(TypeError, match="stage must be callable"):
         facet.planarize(mesh, stage=3)
     # the Planarizer keeps working after either
     assert facet.Planarizer(mesh).solve(quality_angle=0.0).converged
+
+
+def test_cli_progress_line():
+    import io
+
+    from facet.cli_progress import ProgressLine
+
+    out = io.StringIO()
+    quiet = ProgressLine(out)  # not a terminal: nothing
+    assert not quiet.enabled
+    quiet.progress(1, 10, 0.5)
+    assert out.getvalue() == ""
+    line = ProgressLine(out, interval=0.0, force=True)
+    result = facet.planarize(_hypar(8), quality_angle=40.0, threads=1, progress=line.progress,
+                             stage=line.stage)
+    line.close()
+    shown = out.getvalue().split("\r")
+    assert "facet planarize: iteration 1 of at most 8000, planarity" in shown[1]
+    resolving = [s for s in shown if "re-solving for panel quality (stage 4 of 4): iteration" in s]
+    assert resolving and f"iteration {result.iterations} of at most" in resolving[-1]
+    assert shown[-1] == "" and shown[-2].strip() == ""  # erased at the end
+    assert not any("stage" in s for s in shown[:result.first_iterations + 1])
+
+
+def test_cli_planarize_prints_no_progress_to_a_pipe(tmp_path):
+    """Into a pipe: no progress line; the summary says how many re-solves ran."""
+    import subprocess
+
+    mesh = _hypar(32)
+    path = tmp_path / "hypar32.obj"
+    facet.write_mesh(mesh, str(path))
+    run = subprocess.run([sys.executable, "-m", "facet", "planarize", str(path), "-o",
+                          str(tmp_path / "out.obj"), "--threads", "1"], capture_output=True,
+                         text=True,
+                         env=dict(os.environ, PYTHONPATH=os.path.dirname(facet.__path__[0])))
+    assert run.returncode == 0, run.stderr
+    assert "\r" not in run.stderr and "iteration" not in run.stderr
+    expected = facet.planarize(facet.read_mesh(str(path)), threads=1)
+    if expected.quality_resolves:
+        assert (f"re-solves     {expected.quality_resolves} for panel quality after the first "
+                f"solve's {expected.first_iterations} iterations") in run.stdout
+    else:
+        assert "re-solves" not in run.stdout
