@@ -207,7 +207,17 @@ typedef enum facet_laplacian_weights {
 /* Progress callback: called once per iteration from the calling thread, with
  * the iteration just finished, the iteration limit and the largest relative
  * planarity. Return nonzero to cancel (the solve returns
- * FACET_ERROR_CANCELLED with the last iterate in the output). */
+ * FACET_ERROR_CANCELLED with the last iterate in the output).
+ * facet_planarizer_solve reports its quality re-solves (facet_quality_outcome)
+ * as part of one solve: `iteration` counts every iteration, re-solves
+ * included (the last call's is result.iterations), and `max_iter` bounds the
+ * whole solve: options.max_iter (options.iterations for a fixed count) plus,
+ * when the solve may re-solve, the limits of the re-solves that may follow;
+ * when a re-solve starts it is recomputed as the iterations done, that
+ * re-solve's limit and the later ones'. It never grows during a solve and is
+ * never below `iteration`, so iteration / max_iter never falls: a progress
+ * bar does not run backwards (it may jump forward when a solve ends early).
+ * facet_planarizer_stage says which re-solve is running. */
 typedef int (*facet_progress_fn)(void *user, int32_t iteration, int32_t max_iter,
                                  double planarity_max_rel);
 
@@ -769,7 +779,8 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
  * narrow corner, which is returned. If none does, the first solve's result
  * is returned (FACET_QUALITY_NARROW, narrow_corners > 0; the message says
  * so). Deterministic for any thread count (each solve is). The progress
- * callback restarts at iteration 0 for each re-solve, and cancelling one
+ * callback counts on through the re-solves (facet_progress_fn,
+ * facet_planarizer_stage), and cancelling one
  * returns FACET_ERROR_CANCELLED with xyz_out holding the first solve's
  * result. The live update (facet_planarizer_update) does not check. */
 typedef enum facet_quality_outcome {
@@ -778,6 +789,23 @@ typedef enum facet_quality_outcome {
     FACET_QUALITY_RECOVERED = 2,   /* the first result had one; a re-solve has none */
     FACET_QUALITY_NARROW = 3       /* every re-solve left one (or warm): the first result */
 } facet_quality_outcome;
+
+/* ------------------------------------------------------------------------ */
+/* Progress across the quality re-solves (branch progress6)                 */
+/* ------------------------------------------------------------------------ */
+
+/* Which solve of facet_planarizer_solve is running, for the progress text
+ * ("re-solving for panel quality, stage 2 of 4"). Call it from the solve's
+ * progress callback (the calling thread, while the solve runs). Returns 0
+ * during the first solve and k (1 <= k <= *stages) during the k-th quality
+ * re-solve (facet_quality_outcome); *stages (may be NULL) receives how many
+ * re-solves this solve may run: 0 when it cannot re-solve (quality_angle 0,
+ * a fixed iteration count, an angle floor, a warm start), else 4 (vertices
+ * held at their control points) or 2 (vertices sliding along the design:
+ * data_tangent < data_normal or surface_weight > 0). Re-solves end at the
+ * first that recovers, so k = *stages is not always reached. Outside a
+ * solve, in a live update (facet_planarizer_update) and for NULL: 0 and 0. */
+int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stages);
 
 #ifdef __cplusplus
 }

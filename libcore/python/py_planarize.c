@@ -60,6 +60,9 @@ static void planarizer_dealloc(PyObject *self_obj)
 typedef struct {
     PyObject *callback; /* may be NULL */
     PyObject *exc_type, *exc_value, *exc_tb;
+    PyObject *stage;    /* stage(stage, stages) when a quality re-solve starts; may be NULL */
+    const facet_planarizer *handle;
+    int32_t stage_seen;
 } progress_state;
 
 /* Runs with the GIL released: takes it for the callback and for Ctrl+C. */
@@ -68,9 +71,17 @@ static int progress_trampoline(void *user, int32_t iteration, int32_t max_iter, 
     progress_state *ps = user;
     PyGILState_STATE gil = PyGILState_Ensure();
     int cancel = 0;
+    int32_t stages = 0;
+    const int32_t stage = ps->stage ? facet_planarizer_stage(ps->handle, &stages) : 0;
     if (PyErr_CheckSignals() < 0) {
         cancel = 1;
-    } else if (ps->callback) {
+    } else if (stage != ps->stage_seen) { /* a re-solve started: said before its first iteration */
+        ps->stage_seen = stage;
+        PyObject *r = PyObject_CallFunction(ps->stage, "ii", (int)stage, (int)stages);
+        cancel = !r;
+        Py_XDECREF(r);
+    }
+    if (!cancel && ps->callback) {
         PyObject *r = PyObject_CallFunction(ps->callback, "iid", (int)iteration, (int)max_iter,
                                             planarity);
         if (!r) {
@@ -117,8 +128,8 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
                                "laplacian_weights", "normal_laplacian", "boundary_fairness",
                                "shape", "shape_weight", "boundary", "circular", "parallelogram",
                                "anderson", "time_budget", "hold_tol", "hold_max", "surface_weight",
-                               "live", "rings", "angle_floor", "quality_angle", NULL};
-    PyObject *in_obj, *out_obj, *progress = Py_None;
+                               "live", "rings", "angle_floor", "quality_angle", "stage", NULL};
+    PyObject *in_obj, *out_obj, *progress = Py_None, *stage = Py_None;
     const char *method = "auto", *lap_weights = NULL, *shape = NULL, *boundary = NULL;
     double mu0 = NAN, ratio = NAN, mu_min = NAN, tol_abs = NAN, tol_rel = NAN;
     double data_tangent = NAN, data_normal = NAN, laplacian = NAN, normal_laplacian = NAN;
@@ -128,12 +139,12 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
     int hold_max = -1, live = 0, rings = 0;
     int max_iter = -1, iterations = 0, threads = 0, warm = 0, anderson = -1;
     if (!PyArg_ParseTupleAndKeywords(
-            args, kwargs, "OO|$sdddddiiipOdddzddzdzddiddidpidd:solve", keywords, &in_obj, &out_obj,
+            args, kwargs, "OO|$sdddddiiipOdddzddzdzddiddidpiddO:solve", keywords, &in_obj, &out_obj,
             &method, &mu0, &ratio, &mu_min, &tol_abs, &tol_rel, &max_iter, &iterations, &threads,
             &warm, &progress, &data_tangent, &data_normal, &laplacian, &lap_weights,
             &normal_laplacian, &fairness, &shape, &shape_weight, &boundary, &circular,
             &parallelogram, &anderson, &time_budget, &hold_tol, &hold_max, &surface_weight,
-            &live, &rings, &angle_floor, &quality_angle))
+            &live, &rings, &angle_floor, &quality_angle, &stage))
         return NULL;
     module_state *st = py_state(PyType_GetModule(Py_TYPE(self_obj)));
     if (!self->handle) {
@@ -157,6 +168,10 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
     }
     if (progress != Py_None && !PyCallable_Check(progress)) {
         PyErr_SetString(PyExc_TypeError, "progress must be callable or None");
+        return NULL;
+    }
+    if (stage != Py_None && !PyCallable_Check(stage)) {
+        PyErr_SetString(PyExc_TypeError, "stage must be callable or None");
         return NULL;
     }
     facet_planarize_options o;
@@ -229,7 +244,8 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
             return NULL;
         }
     }
-    progress_state ps = {progress == Py_None ? NULL : progress, NULL, NULL, NULL};
+    progress_state ps = {progress == Py_None ? NULL : progress, NULL, NULL, NULL,
+                         stage == Py_None ? NULL : stage, self->handle, 0};
     o.progress = progress_trampoline;
     o.progress_user = &ps;
 
@@ -361,12 +377,15 @@ static PyMethodDef planarizer_methods[] = {
      "      laplacian, laplacian_weights, normal_laplacian, boundary_fairness, shape,\n"
      "      shape_weight, boundary, circular, parallelogram, anderson, time_budget,\n"
      "      hold_tol, hold_max, surface_weight, live=False, rings=0, angle_floor,\n"
-     "      quality_angle) -> dict\n\n"
+     "      quality_angle, stage=None) -> dict\n\n"
      "Planarize the control positions xyz_in (float64, 3*n_vertices) into xyz_out.\n"
      "live=True: a live update of the region around the vertices edited since the\n"
      "last solve, `rings` edges deep (0: 4) (facet_planarizer_update).\n"
      "The GIL is released while solving; progress(iteration, max_iter, planarity_max_rel)\n"
-     "returning True cancels."},
+     "returning True cancels. It counts on through the quality re-solves (iteration up to\n"
+     "the result's iterations, max_iter a bound of the whole solve that never grows);\n"
+     "stage(stage, stages) is called when the stage-th of at most `stages` re-solves\n"
+     "starts, before its first progress call (facet_planarizer_stage)."},
     {"set_fixed", planarizer_set_fixed, METH_O,
      "set_fixed(vertices) -> None\n\nHard-fix these vertices (int32 indices) at their control\n"
      "positions in every later solve; None clears."},

@@ -92,6 +92,10 @@ struct facet_planarizer {
     int previous_in_history;              /* both in aa_df's first two columns
                                              (planarize.c, previous_storage) */
 
+    /* quality re-solves (planarize_quality.c): facet_planarizer_stage's
+     * answer, 0 and 0 outside a solve */
+    int32_t quality_stage, quality_stages;
+
     /* live updates (planarize_live.c): the region around the edited vertices */
     struct facet_planarizer *live;        /* handle of the region's submesh; NULL: none */
     int32_t *live_vertex;                 /* submesh vertex -> vertex */

@@ -117,15 +117,128 @@ static const struct {
     {0.003, 40, 0, 1, 1, 1},    /* the opt-in angle floor's recipe */
 };
 
+/* ---- progress across the re-solves (facet.h: facet_progress_fn,
+ * facet_planarizer_stage) ------------------------------------------------
+ *
+ * The caller's callback sees one solve: the iteration counts on through the
+ * re-solves (the total that result.iterations reports), and max_iter is the
+ * whole solve's bound: the iterations done so far, the running solve's limit
+ * and the limits of the stages still to come. A solve ends at or before its
+ * limit, so the bound only falls when a stage starts and the fraction
+ * iteration / max_iter never does (a progress bar never runs backwards).
+ * The first solve's bound counts every stage that may follow it: a default
+ * L/G solve shows 1,000 + 7,000 (four stages), of which it usually needs a
+ * hundred or two before it ends without a re-solve. */
+
+/* The iteration limit of re-solve stage k (its options' max_iter). */
+static int32_t stage_limit(const facet_planarize_options *options, size_t k)
+{
+    return STAGES[k].max_iter > options->max_iter ? STAGES[k].max_iter : options->max_iter;
+}
+
+/* Whether a stage runs for these options (vertices sliding along the design
+ * skip the first two). */
+static int stage_applies(const facet_planarize_options *options, size_t k)
+{
+    const int sliding = options->data_tangent < options->data_normal || options->surface_weight > 0.0;
+    return !sliding || STAGES[k].sliding;
+}
+
+/* a + b, at most INT32_MAX (the counts are int32; a bound may not wrap) */
+static int32_t add_clamped(int64_t a, int64_t b)
+{
+    const int64_t sum = a + b;
+    return sum > INT32_MAX ? INT32_MAX : sum < 0 ? 0 : (int32_t)sum;
+}
+
+/* The iterations the stages from k on may take at most. */
+static int64_t stages_bound(const facet_planarize_options *options, size_t k)
+{
+    int64_t sum = 0;
+    for (; k < sizeof STAGES / sizeof STAGES[0]; ++k)
+        if (stage_applies(options, k))
+            sum += stage_limit(options, k) > 0 ? stage_limit(options, k) : 0;
+    return sum;
+}
+
+typedef struct {
+    facet_progress_fn progress; /* the caller's */
+    void *user;
+    int32_t done;  /* iterations of the solves before the running one */
+    int32_t bound; /* the whole solve's bound while this one runs */
+} progress_relay;
+
+static int relay_progress(void *user, int32_t iteration, int32_t max_iter, double planarity)
+{
+    const progress_relay *relay = user;
+    (void)max_iter; /* the running solve's own limit: within relay->bound */
+    return relay->progress(relay->user, add_clamped(relay->done, iteration), relay->bound,
+                           planarity);
+}
+
+/* The options with the progress callback relayed (unchanged without one). */
+static facet_planarize_options relayed(const facet_planarize_options *options,
+                                       progress_relay *relay, int32_t done, int64_t bound)
+{
+    facet_planarize_options o = *options;
+    if (options->progress) {
+        relay->progress = options->progress;
+        relay->user = options->progress_user;
+        relay->done = done;
+        relay->bound = add_clamped(bound, 0);
+        o.progress = relay_progress;
+        o.progress_user = relay;
+    }
+    return o;
+}
+
+int32_t facet_planarizer_stage(const facet_planarizer *s, int32_t *stages)
+{
+    if (stages)
+        *stages = s ? s->quality_stages : 0;
+    return s ? s->quality_stage : 0;
+}
+
+static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
+                                  const facet_planarize_options *options, double *xyz_out,
+                                  facet_planarize_result *result, facet_error *error);
+
 facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                                     const facet_planarize_options *options, double *xyz_out,
                                     facet_planarize_result *result, facet_error *error)
+{
+    if (s) {
+        s->quality_stage = 0;
+        s->quality_stages = 0;
+        if (options && options->quality_angle > 0.0 && options->iterations <= 0 &&
+            !(options->angle_floor > 0.0) && !(options->warm && s->has_previous))
+            for (size_t k = 0; k < sizeof STAGES / sizeof STAGES[0]; ++k)
+                s->quality_stages += stage_applies(options, k);
+    }
+    const facet_status status = solve_checked(s, xyz_in, options, xyz_out, result, error);
+    if (s) /* outside a solve: 0 and 0 */
+        s->quality_stage = s->quality_stages = 0;
+    return status;
+}
+
+static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
+                                  const facet_planarize_options *options, double *xyz_out,
+                                  facet_planarize_result *result, facet_error *error)
 {
     const double t0 = facet_now();
     const int warm = s && options && options->warm && s->has_previous;
     facet_planarize_result first;
     memset(&first, 0, sizeof first);
-    facet_status status = facet_pl_solve_once(s, xyz_in, options, xyz_out, &first, error);
+    /* the first solve's bound: its own limit, and the stages' when it may be
+     * followed by any (s->quality_stages, set by the caller) */
+    progress_relay relay;
+    facet_planarize_options first_o;
+    const facet_planarize_options *first_options = options;
+    if (s && options && s->quality_stages > 0) {
+        first_o = relayed(options, &relay, 0, (int64_t)options->max_iter + stages_bound(options, 0));
+        first_options = &first_o;
+    }
+    facet_status status = facet_pl_solve_once(s, xyz_in, first_options, xyz_out, &first, error);
     first.quality = FACET_QUALITY_NOT_CHECKED;
     first.first_iterations = first.iterations;
     if (status != FACET_OK || first.stop_reason != FACET_STOP_TOLERANCE ||
@@ -166,19 +279,18 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     facet_planarize_result best = first;
     int best_is_last = 1;
     int32_t total = first.iterations, resolves = 0;
-    const int sliding = options->data_tangent < options->data_normal || options->surface_weight > 0.0;
     for (size_t k = 0; k < sizeof STAGES / sizeof STAGES[0] && best_count > 0; ++k) {
-        if (sliding && !STAGES[k].sliding)
+        if (!stage_applies(options, k))
             continue;
-        facet_planarize_options o = *options;
+        /* the bound from here: done, this stage's limit and the later stages' */
+        facet_planarize_options o = relayed(options, &relay, total, total + stages_bound(options, k));
         if (!STAGES[k].anderson)
             o.anderson = 0;
         if (STAGES[k].floor)
             o.angle_floor = facet_min(1.2 * options->quality_angle, 59.0);
         o.hold_tol = STAGES[k].hold_tol;
         o.hold_max = STAGES[k].hold_max;
-        if (STAGES[k].max_iter > o.max_iter)
-            o.max_iter = STAGES[k].max_iter;
+        o.max_iter = stage_limit(options, k);
         o.warm = 0;
         if (options->time_budget > 0.0) {
             o.time_budget = options->time_budget - (facet_now() - t0);
@@ -187,6 +299,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
         }
         facet_planarize_result r;
         memset(&r, 0, sizeof r);
+        s->quality_stage = resolves + 1; /* facet_planarizer_stage */
         status = facet_pl_solve_once(s, input, &o, out, &r, error);
         ++resolves;
         total += r.iterations;

@@ -411,6 +411,11 @@
         <source>Automatic</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="192"/>
+        <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>Facet_Cleanup</name>

@@ -216,10 +216,53 @@ def run(out_dir):
     check_edit_control(check, out_dir)
     check_edit_region(check)
     check_edit_planarized(check, out_dir)
+    check_planarize_progress(check)
     import ui_checks
 
     ui_checks.run(check, out_dir, sys.modules[__name__])
     return check
+
+
+def check_planarize_progress(check):
+    """A Planarized recompute that re-solves for panel quality (the 32 x 32 hypar): the
+    progress dialog's text names the re-solve and its bar never runs backwards."""
+    import FreeCAD as App
+
+    import facet
+    import facetwb
+    from facetwb import progress
+
+    sys.path.insert(0, os.path.join(ROOT, "tools", "bench"))
+    import families
+
+    b = families.hypar(32)
+    doc = App.newDocument("ProgressCheck")
+    source = facetwb.make_polymesh(facet.PolyMesh(b.vertices, b.face_start, b.face_vertices),
+                                   doc=doc, label="hypar 32")
+    result = facetwb.make_planarized(source)
+    shown = []  # (dialog text, bar value) whenever the text changes
+    with progress.reporting("Planarize ...", minimum_seconds=0) as reporter:
+        say = reporter.say
+
+        def recording_say(text=None):
+            say(text)
+            shown.append((reporter.dialog.labelText(), reporter.dialog.value()))
+
+        reporter.say = recording_say
+        doc.recompute()
+    check(result.isValid(), f"the hypar 32 planarizes ({result.getStatusString()})")
+    resolving = [(text, value) for text, value in shown if "re-solving" in text]
+    if result.QualityCheck in ("recovered", "narrow"):
+        check(bool(resolving) and resolving[0][0] == "Planarize ...\nPlanarize "
+              f"{result.Label}: re-solving for panel quality (stage 1 of 4)",
+              f"the progress dialog says it re-solves ({resolving[:1]})")
+        values = [value for _text, value in resolving]
+        check(values == sorted(values) and 0 < values[0] < 1000,
+              f"the progress bar does not run backwards across re-solves ({values})")
+    else:
+        check(not resolving, "no re-solve, no re-solve text")
+    check(shown and shown[-1][0] == "Planarize ...", "the title alone after the solve")
+    App.closeDocument(doc.Name)
 
 
 def legend_strings(vobj):

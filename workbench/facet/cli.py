@@ -320,6 +320,12 @@ def print_planarize_summary(report, out=None):
         f"{report['method']}, {_count(report['iterations'], 'iteration')} in "
         f"{report['solve_seconds']:.3g} s: {reason}",
     )
+    resolves = report.get("quality_resolves") or 0
+    if resolves:
+        outcome = ("the last kept every corner open" if report.get("quality_check") == "recovered"
+                   else "none kept every corner open: the first solve's result")
+        _line(out, "re-solves", f"{resolves} for panel quality after the first solve's "
+              f"{_count(report.get('first_iterations', 0), 'iteration')}: {outcome}")
     relative = report.get("displacement_max_rel")
     share = "" if relative is None else f" ({relative * 100:.3g}% of the mean edge)"
     _line(
@@ -433,16 +439,24 @@ def run_planarize(args):
     mesh = _read(args)
     options = _term_options(args, mesh)
     before = planarity(mesh, threads=args.threads)
-    result = planarize(
-        mesh,
-        method=args.method,
-        tol=args.tol,
-        tol_abs=args.tol_abs,
-        max_iter=args.max_iter,
-        iterations=args.iterations,
-        threads=args.threads,
-        **options,
-    )
+    from facet.cli_progress import ProgressLine
+
+    line = ProgressLine(sys.stderr)  # a terminal only; says when it re-solves for quality
+    try:
+        result = planarize(
+            mesh,
+            method=args.method,
+            tol=args.tol,
+            tol_abs=args.tol_abs,
+            max_iter=args.max_iter,
+            iterations=args.iterations,
+            threads=args.threads,
+            progress=line.progress if line.enabled else None,
+            stage=line.stage if line.enabled else None,
+            **options,
+        )
+    finally:
+        line.close()
     write_mesh(result.mesh, args.output)
     report = planarize_report(
         mesh, result, input_path=args.input, output_path=args.output, input_planarity=before

@@ -239,6 +239,7 @@ class Planarizer:
         live=False,
         rings=None,
         progress=None,
+        stage=None,
         mu0=None,
         ratio=None,
         mu_min=None,
@@ -287,7 +288,19 @@ class Planarizer:
             Depth of the live region (default 4).
         progress : callable, optional
             ``progress(iteration, max_iter, planarity_max_rel)``, called once
-            per iteration; returning True cancels.
+            per iteration; returning True cancels. The quality re-solves
+            (``quality_angle``) count as part of one solve: `iteration` runs
+            on through them up to the result's ``iterations``, and
+            `max_iter` bounds the whole solve (the limits of the re-solves
+            that may still follow included); it never grows, so
+            ``iteration / max_iter`` never falls.
+        stage : callable, optional
+            ``stage(stage, stages)``, called when a quality re-solve starts
+            (before its first `progress` call): the `stage`-th of at most
+            `stages` (4, or 2 when vertices slide along the design; they stop
+            at the first that recovers), for a progress text such as
+            "re-solving for panel quality (stage 2 of 4)". Exceptions it
+            raises stop the solve and propagate.
         mu0, ratio, mu_min : float, optional
             The penalty schedule: first weight, factor per step, floor.
         data : {"point", "plane", "surface"}, optional
@@ -396,7 +409,7 @@ class Planarizer:
         try:
             stats = self._core.solve(
                 xyz_in, xyz_out, warm=bool(warm and self._solved), progress=progress,
-                live=live, rings=int(rings or 0), **options
+                stage=stage, live=live, rings=int(rings or 0), **options
             )
         except _core.CoreError as exc:
             raise from_core(exc, source=self._source) from None
@@ -438,14 +451,14 @@ def _quality_warnings(stats, options):
 
 
 def planarize(mesh, method="auto", tol=1e-6, tol_abs=None, max_iter=None, iterations=None,
-              threads=None, progress=None, **options):
+              threads=None, progress=None, stage=None, **options):
     """Find the nearest mesh whose faces are flat.
 
     Parameters
     ----------
     mesh : facet.PolyMesh
         The control mesh; it is not modified.
-    method, tol, tol_abs, max_iter, iterations, threads, progress
+    method, tol, tol_abs, max_iter, iterations, threads, progress, stage
         As :meth:`Planarizer.solve`.
     **options
         The schedule (``mu0``, ``ratio``, ``mu_min``), ``data``,
@@ -474,5 +487,6 @@ def planarize(mesh, method="auto", tol=1e-6, tol_abs=None, max_iter=None, iterat
         iterations=iterations,
         threads=threads,
         progress=progress,
+        stage=stage,
         **options,
     )

@@ -9,6 +9,10 @@ callable. Headless, or with no context open, :func:`hook` is None and nothing is
 ``facet`` progress callables get ``(done, total, ...)`` or ``(iteration, max_iterations,
 planarity)``; both start with a count and its total, which is all this module reads. A
 callable returning True cancels: the ``facet`` function raises ``facet.Cancelled``.
+
+What the operation is doing now (a planarization re-solving for panel quality) goes in the
+dialog's text through :func:`say_hook`; the bar keeps counting (the planarizer's count and
+bound run on through its re-solves, so the bar never runs backwards).
 """
 
 import contextlib
@@ -25,6 +29,12 @@ def hook():
         return None
     reporter = _stack[-1]
     return reporter
+
+
+def say_hook():
+    """``say(text)`` showing what the operation is doing now under the title (None: the
+    title alone again), or None when nobody is listening."""
+    return _stack[-1].say if _stack else None
 
 
 @contextlib.contextmanager
@@ -53,6 +63,11 @@ class _Reporter:
         self.cancelled = False
         self.calls = 0
         self.dialog = None
+        #: The dialog's text now, and every text shown (for scripts and tests).
+        self.text = title
+        self.texts = [title]
+        #: The last call's count and total.
+        self.done = self.total = 0
         #: For tests: cancel at this call number (0: never).
         self.cancel_at = _cancel_at
         if App.GuiUp:
@@ -70,6 +85,7 @@ class _Reporter:
 
     def __call__(self, done=0, total=0, *rest):
         self.calls += 1
+        self.done, self.total = done, total
         if self.cancel_at and self.calls >= self.cancel_at:
             self.cancelled = True
         if self.dialog is not None:
@@ -84,6 +100,16 @@ class _Reporter:
             if self.dialog.wasCanceled():
                 self.cancelled = True
         return self.cancelled
+
+    def say(self, text=None):
+        """Show ``text`` (what the operation does now) below the title; None: the title alone."""
+        self.text = self.title if not text else f"{self.title}\n{text}"
+        self.texts.append(self.text)
+        if self.dialog is not None:
+            from facetwb.compat import qt_gui
+
+            self.dialog.setLabelText(self.text)
+            qt_gui().QApplication.processEvents()
 
     def close(self):
         if self.dialog is not None:

@@ -11,6 +11,7 @@ import FreeCAD as App
 
 import facet
 from facetwb import compat, progress
+from facetwb.translation import translate
 from facetwb.recompute import guarded
 from facetwb import conversion
 from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
@@ -153,16 +154,22 @@ class Planarized(PolyMesh):
         if obj.Source is None:
             raise ValueError(f"{obj.Label}: Source is empty, nothing to planarize")
         mesh = conversion.mesh_from_object(obj.Source)
-        result = facet.planarize(
-            mesh,
-            method=obj.Method,
-            tol=obj.Tolerance,
-            tol_abs=obj.ToleranceAbs.Value or None,
-            max_iter=obj.MaxIterations or None,
-            threads=obj.Threads or None,
-            progress=progress.hook(),
-            **term_options(obj, mesh),
-        )
+        say = progress.say_hook()
+        try:
+            result = facet.planarize(
+                mesh,
+                method=obj.Method,
+                tol=obj.Tolerance,
+                tol_abs=obj.ToleranceAbs.Value or None,
+                max_iter=obj.MaxIterations or None,
+                threads=obj.Threads or None,
+                progress=progress.hook(),
+                stage=_stage_text(obj, say),
+                **term_options(obj, mesh),
+            )
+        finally:
+            if say is not None:
+                say(None)
         set_mesh(obj, result.mesh)
         set_planarity(obj, result.planarity)
         self.method_ran = result.method  # what "auto" chose; for the report, not saved
@@ -173,6 +180,19 @@ class Planarized(PolyMesh):
         obj.NarrowCorners = int(result.narrow_corners)
         obj.DisplacementMax = float(result.displacement_max)
         obj.DisplacementRms = float(result.displacement_rms)
+
+
+def _stage_text(obj, say):
+    """facet.planarize's ``stage(k, n)``: the re-solve in the progress text (None without
+    a progress dialog)."""
+    if say is None:
+        return None
+
+    def stage(k, n):
+        text = translate("Facet", "Planarize {0}: re-solving for panel quality (stage {1} of {2})")
+        say(text.format(obj.Label, k, n))
+
+    return stage
 
 
 def term_options(obj, mesh):
