@@ -216,16 +216,17 @@ def run(out_dir):
     check_edit_control(check, out_dir)
     check_edit_region(check)
     check_edit_planarized(check, out_dir)
-    check_planarize_progress(check)
+    check_planarize_progress(check, out_dir)
     import ui_checks
 
     ui_checks.run(check, out_dir, sys.modules[__name__])
     return check
 
 
-def check_planarize_progress(check):
+def check_planarize_progress(check, out_dir):
     """A Planarized recompute that re-solves for panel quality (the 32 x 32 hypar): the
-    progress dialog's text names the re-solve and its bar never runs backwards."""
+    progress dialog's text names the re-solve and its bar never runs backwards; the
+    dialog as the first re-solve starts is saved as progress_resolve.png."""
     import FreeCAD as App
 
     import facet
@@ -241,12 +242,16 @@ def check_planarize_progress(check):
                                    doc=doc, label="hypar 32")
     result = facetwb.make_planarized(source)
     shown = []  # (dialog text, bar value) whenever the text changes
+    saved = []
     with progress.reporting("Planarize ...", minimum_seconds=0) as reporter:
         say = reporter.say
 
         def recording_say(text=None):
             say(text)
             shown.append((reporter.dialog.labelText(), reporter.dialog.value()))
+            if "re-solving" in shown[-1][0] and not saved:
+                saved.append(os.path.join(out_dir, "progress_resolve.png"))
+                reporter.dialog.grab().save(saved[-1])
 
         reporter.say = recording_say
         doc.recompute()
@@ -259,6 +264,7 @@ def check_planarize_progress(check):
         values = [value for _text, value in resolving]
         check(values == sorted(values) and 0 < values[0] < 1000,
               f"the progress bar does not run backwards across re-solves ({values})")
+        check(saved and os.path.getsize(saved[0]) > 1000, f"the dialog's screenshot ({saved})")
     else:
         check(not resolving, "no re-solve, no re-solve text")
     check(shown and shown[-1][0] == "Planarize ...", "the title alone after the solve")
