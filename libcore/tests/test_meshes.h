@@ -62,6 +62,34 @@ static inline test_mesh test_grid(int nu, int nv, double amplitude, double scale
     return t;
 }
 
+/* An n x n quad grid on z = x y over [-1, 1]^2 (tools/bench/families.py's
+ * hypar(n), the same vertices and faces): every quad is skew, every input
+ * corner at least 60 degrees. */
+static inline test_mesh test_hypar(int n)
+{
+    test_mesh g;
+    const int cu = n + 1, nv = cu * cu, nf = n * n;
+    g.xyz = malloc(sizeof(double) * 3 * (size_t)nv);
+    g.face_start = malloc(sizeof(int32_t) * (size_t)(nf + 1));
+    g.face_vertices = malloc(sizeof(int32_t) * 4 * (size_t)nf);
+    const double step = 2.0 / n;
+    for (int j = 0; j < cu; ++j)
+        for (int i = 0; i < cu; ++i) {
+            const double x = i == n ? 1.0 : -1.0 + i * step, y = j == n ? 1.0 : -1.0 + j * step;
+            double *p = g.xyz + 3 * (size_t)(j * cu + i);
+            p[0] = x, p[1] = y, p[2] = x * y;
+        }
+    for (int f = 0; f <= nf; ++f)
+        g.face_start[f] = 4 * f;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            int32_t *q = g.face_vertices + 4 * (size_t)(j * n + i);
+            q[0] = j * cu + i, q[1] = j * cu + i + 1, q[2] = (j + 1) * cu + i + 1, q[3] = (j + 1) * cu + i;
+        }
+    test_mesh_view(&g, nv, nf);
+    return g;
+}
+
 static inline void test_mesh_free(test_mesh *t)
 {
     free(t->xyz);

@@ -8,50 +8,12 @@
  * re-solve running. Cancelling a re-solve still returns the first result. */
 #include "check.h"
 #include "facet.h"
+#include "test_meshes.h"
 
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-typedef struct {
-    facet_mesh mesh;
-    double *xyz;
-    int32_t *face_start, *face_vertices;
-} grid;
-
-/* An n x n quad grid on z = x y over [-1, 1]^2 (tools/bench/families.py's
- * hypar(n)): every quad is skew, every input corner at least 60 degrees. */
-static grid hypar(int n)
-{
-    grid g;
-    const int cu = n + 1, nv = cu * cu, nf = n * n;
-    g.xyz = malloc(sizeof(double) * 3 * (size_t)nv);
-    g.face_start = malloc(sizeof(int32_t) * (size_t)(nf + 1));
-    g.face_vertices = malloc(sizeof(int32_t) * 4 * (size_t)nf);
-    const double step = 2.0 / n;
-    for (int j = 0; j < cu; ++j)
-        for (int i = 0; i < cu; ++i) {
-            const double x = i == n ? 1.0 : -1.0 + i * step, y = j == n ? 1.0 : -1.0 + j * step;
-            double *p = g.xyz + 3 * (size_t)(j * cu + i);
-            p[0] = x, p[1] = y, p[2] = x * y;
-        }
-    for (int f = 0; f <= nf; ++f)
-        g.face_start[f] = 4 * f;
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            int32_t *q = g.face_vertices + 4 * (size_t)(j * n + i);
-            q[0] = j * cu + i, q[1] = j * cu + i + 1, q[2] = (j + 1) * cu + i + 1, q[3] = (j + 1) * cu + i;
-        }
-    g.mesh.n_vertices = nv, g.mesh.n_faces = nf;
-    g.mesh.xyz = g.xyz, g.mesh.face_start = g.face_start, g.mesh.face_vertices = g.face_vertices;
-    return g;
-}
-
-static void grid_free(grid *g)
-{
-    free(g->xyz), free(g->face_start), free(g->face_vertices);
-}
 
 enum { MAX_CALLS = 40000 };
 
@@ -154,7 +116,7 @@ static void check_one_solve(const recorder *rec, const facet_planarize_result *r
  * written) and the first result stands. */
 static void test_all_four_stages(void)
 {
-    grid g = hypar(8);
+    test_mesh g = test_hypar(8);
     facet_planarizer *s = NULL;
     facet_error err;
     CHECK_STATUS(facet_planarizer_create(&g.mesh, &s, &err), FACET_OK);
@@ -202,14 +164,14 @@ static void test_all_four_stages(void)
     CHECK(facet_planarizer_stage(s, &stages) == 0 && stages == 0);
     free(rec), free(out), free(plain);
     facet_planarizer_free(&s);
-    grid_free(&g);
+    test_mesh_free(&g);
 }
 
 /* Vertices sliding along the design (data_tangent 0.01): two stages (the
  * exact penalty path and the angle floor's recipe), numbered 1 and 2 of 2. */
 static void test_sliding_two_stages(void)
 {
-    grid g = hypar(8);
+    test_mesh g = test_hypar(8);
     facet_planarizer *s = NULL;
     facet_error err;
     CHECK_STATUS(facet_planarizer_create(&g.mesh, &s, &err), FACET_OK);
@@ -227,7 +189,7 @@ static void test_sliding_two_stages(void)
     check_one_solve(rec, &r, o.max_iter, 2);
     free(rec), free(out);
     facet_planarizer_free(&s);
-    grid_free(&g);
+    test_mesh_free(&g);
 }
 
 /* The default on the 32 x 32 hypar: the first solve closes corners, a
@@ -235,7 +197,7 @@ static void test_sliding_two_stages(void)
  * after it do not run: the bound falls to the total at the end. */
 static void test_recovered_default(void)
 {
-    grid g = hypar(32);
+    test_mesh g = test_hypar(32);
     facet_planarizer *s = NULL;
     facet_error err;
     CHECK_STATUS(facet_planarizer_create(&g.mesh, &s, &err), FACET_OK);
@@ -255,13 +217,13 @@ static void test_recovered_default(void)
     }
     free(rec), free(out);
     facet_planarizer_free(&s);
-    grid_free(&g);
+    test_mesh_free(&g);
 }
 
 /* Solves that cannot re-solve report as before: their own limit, stage 0 of 0. */
 static void test_no_resolve(void)
 {
-    grid g = hypar(8);
+    test_mesh g = test_hypar(8);
     facet_planarizer *s = NULL;
     facet_error err;
     CHECK_STATUS(facet_planarizer_create(&g.mesh, &s, &err), FACET_OK);
@@ -304,7 +266,7 @@ static void test_no_resolve(void)
     }
     free(out);
     facet_planarizer_free(&s);
-    grid_free(&g);
+    test_mesh_free(&g);
 }
 
 int main(void)

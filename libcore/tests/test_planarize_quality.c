@@ -5,6 +5,7 @@
  * and can be cancelled. */
 #include "check.h"
 #include "facet.h"
+#include "test_meshes.h"
 #include "planarize_internal.h"
 
 #include <math.h>
@@ -13,51 +14,11 @@
 #include <string.h>
 #include <time.h>
 
-typedef struct {
-    facet_mesh mesh;
-    double *xyz;
-    int32_t *face_start, *face_vertices;
-} grid;
-
-/* An n x n quad grid on z = x y over [-1, 1]^2 (tools/bench/families.py's
- * hypar(n), the same vertices and faces): every quad is skew, every input
- * corner at least 60 degrees. */
-static grid hypar(int n)
-{
-    grid g;
-    const int cu = n + 1, nv = cu * cu, nf = n * n;
-    g.xyz = malloc(sizeof(double) * 3 * (size_t)nv);
-    g.face_start = malloc(sizeof(int32_t) * (size_t)(nf + 1));
-    g.face_vertices = malloc(sizeof(int32_t) * 4 * (size_t)nf);
-    const double step = 2.0 / n;
-    for (int j = 0; j < cu; ++j)
-        for (int i = 0; i < cu; ++i) {
-            const double x = i == n ? 1.0 : -1.0 + i * step, y = j == n ? 1.0 : -1.0 + j * step;
-            double *p = g.xyz + 3 * (size_t)(j * cu + i);
-            p[0] = x, p[1] = y, p[2] = x * y;
-        }
-    for (int f = 0; f <= nf; ++f)
-        g.face_start[f] = 4 * f;
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            int32_t *q = g.face_vertices + 4 * (size_t)(j * n + i);
-            q[0] = j * cu + i, q[1] = j * cu + i + 1, q[2] = (j + 1) * cu + i + 1, q[3] = (j + 1) * cu + i;
-        }
-    g.mesh.n_vertices = nv, g.mesh.n_faces = nf;
-    g.mesh.xyz = g.xyz, g.mesh.face_start = g.face_start, g.mesh.face_vertices = g.face_vertices;
-    return g;
-}
-
 static double facet_test_now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static void grid_free(grid *g)
-{
-    free(g->xyz), free(g->face_start), free(g->face_vertices);
 }
 
 static double angle_at(const double *xyz, int32_t a, int32_t b, int32_t c)
@@ -106,7 +67,7 @@ static int quad_folds(const double *xyz, const int32_t *q)
  * below half of it), and quads of `out` that fold where `in`'s did not
  * (once each, as a corner of 0 degrees), counted independently of the
  * library; the smallest corner of `out` in *smallest. */
-static int new_narrow(const grid *g, const double *in, const double *out, double floor,
+static int new_narrow(const test_mesh *g, const double *in, const double *out, double floor,
                       double *smallest)
 {
     int count = 0;
@@ -137,7 +98,7 @@ static int new_narrow(const grid *g, const double *in, const double *out, double
  * does, the assertions hold either way). */
 static void test_hypar_default(void)
 {
-    grid g = hypar(32);
+    test_mesh g = test_hypar(32);
     facet_planarizer *s = NULL;
     facet_error err;
     CHECK_STATUS(facet_planarizer_create(&g.mesh, &s, &err), FACET_OK);
@@ -184,7 +145,7 @@ static void test_hypar_default(void)
     CHECK(rw.quality == (rw.narrow_corners ? FACET_QUALITY_NARROW : FACET_QUALITY_OK));
     free(out), free(first);
     facet_planarizer_free(&s);
-    grid_free(&g);
+    test_mesh_free(&g);
 }
 
 /* An input with a 3-degree corner: the result keeps a narrow corner there,
@@ -193,7 +154,7 @@ static void test_hypar_default(void)
  * corner, narrow and unfolded.) */
 static void test_input_narrow_corner(void)
 {
-    grid g = hypar(8);
+    test_mesh g = test_hypar(8);
     /* the grid's first vertex (of face 0 = 0 1 10 9 only) moved so that face
      * 0's corner at vertex 1 is 3 degrees: half an edge from vertex 1,
      * turned 3 degrees off the edge to vertex 10, towards where it was */
@@ -236,7 +197,7 @@ static void test_input_narrow_corner(void)
     CHECK(new_narrow(&g, g.xyz, out, 5.0, &smallest) == folded);
     free(out);
     facet_planarizer_free(&s);
-    grid_free(&g);
+    test_mesh_free(&g);
 }
 
 typedef struct {
@@ -260,7 +221,7 @@ static int cancel_in_resolve(void *user, int32_t iteration, int32_t max_iter, do
  * result. */
 static void test_resolve_threads_and_cancel(void)
 {
-    grid g = hypar(8);
+    test_mesh g = test_hypar(8);
     facet_planarizer *s = NULL;
     facet_error err;
     CHECK_STATUS(facet_planarizer_create(&g.mesh, &s, &err), FACET_OK);
@@ -306,7 +267,7 @@ static void test_resolve_threads_and_cancel(void)
     CHECK(strstr(err.message, "quality_angle") != NULL);
     free(out1), free(out2), free(first);
     facet_planarizer_free(&s);
-    grid_free(&g);
+    test_mesh_free(&g);
 }
 
 /* The check counts a face that folds over itself (a bowtie) where the
