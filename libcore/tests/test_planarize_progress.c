@@ -49,6 +49,37 @@ static recorder *recorder_new(const facet_planarizer *s)
     return r;
 }
 
+/* An n x n hypar, its planarizer, an output array and the default options
+ * recording every progress call. */
+typedef struct {
+    test_mesh g;
+    facet_planarizer *s;
+    double *out;
+    facet_planarize_options o;
+    recorder *rec;
+} fixture;
+
+static fixture fixture_new(int n)
+{
+    fixture x;
+    facet_error err;
+    x.g = test_hypar(n);
+    x.s = NULL;
+    CHECK_STATUS(facet_planarizer_create(&x.g.mesh, &x.s, &err), FACET_OK);
+    x.out = malloc(sizeof(double) * 3 * (size_t)x.g.mesh.n_vertices);
+    facet_planarize_options_default(FACET_METHOD_AUTO, &x.o);
+    x.rec = recorder_new(x.s);
+    x.o.progress = record, x.o.progress_user = x.rec;
+    return x;
+}
+
+static void fixture_free(fixture *x)
+{
+    free(x->rec), free(x->out);
+    facet_planarizer_free(&x->s);
+    test_mesh_free(&x->g);
+}
+
 /* The re-solves' limits from stage k (1-based) on, as facet.h documents
  * them for point data (four stages: max_iter, max_iter, at least 4000,
  * max_iter) or sliding data (the last two). */
@@ -116,23 +147,22 @@ static void check_one_solve(const recorder *rec, const facet_planarize_result *r
  * written) and the first result stands. */
 static void test_all_four_stages(void)
 {
-    test_mesh g = test_hypar(8);
-    facet_planarizer *s = NULL;
+    fixture x = fixture_new(8);
+    facet_planarizer *s = x.s;
+    recorder *rec = x.rec;
     facet_error err;
-    CHECK_STATUS(facet_planarizer_create(&g.mesh, &s, &err), FACET_OK);
-    const size_t v3 = 3 * (size_t)g.mesh.n_vertices;
-    double *out = malloc(sizeof(double) * v3), *plain = malloc(sizeof(double) * v3);
-    facet_planarize_options o;
-    facet_planarize_options_default(FACET_METHOD_AUTO, &o);
+    const size_t v3 = 3 * (size_t)x.g.mesh.n_vertices;
+    double *plain = malloc(sizeof(double) * v3);
+    facet_planarize_options o = x.o;
     o.quality_angle = 40.0;
     /* the same solve without a callback: the relay changes no bit */
+    facet_planarize_options quiet = o;
+    quiet.progress = NULL;
     facet_planarize_result r0, r;
-    CHECK_STATUS(facet_planarizer_solve(s, g.xyz, &o, plain, &r0, &err), FACET_OK);
-    recorder *rec = recorder_new(s);
-    o.progress = record, o.progress_user = rec;
-    CHECK_STATUS(facet_planarizer_solve(s, g.xyz, &o, out, &r, &err), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(s, x.g.xyz, &quiet, plain, &r0, &err), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(s, x.g.xyz, &o, x.out, &r, &err), FACET_OK);
     CHECK(r.quality_resolves == 4 && r.quality == FACET_QUALITY_NARROW);
-    CHECK(r.iterations == r0.iterations && memcmp(out, plain, sizeof(double) * v3) == 0);
+    CHECK(r.iterations == r0.iterations && memcmp(x.out, plain, sizeof(double) * v3) == 0);
     printf("hypar 8, quality_angle 40: %d calls, first %d, max_iter %d -> %d\n", (int)rec->n,
            (int)r.first_iterations, (int)rec->max_iter[0], (int)rec->max_iter[rec->n - 1]);
     CHECK(rec->max_iter[0] == 8000); /* 1000 + 1000 + 1000 + 4000 + 1000 */
@@ -141,7 +171,7 @@ static void test_all_four_stages(void)
     /* a smaller limit: the exact penalty path's 4000 stays */
     memset(rec, 0, sizeof *rec), rec->s = s;
     o.max_iter = 600;
-    CHECK_STATUS(facet_planarizer_solve(s, g.xyz, &o, out, &r, &err), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(s, x.g.xyz, &o, x.out, &r, &err), FACET_OK);
     CHECK(rec->max_iter[0] == 600 + 600 + 600 + 4000 + 600);
     if (r.quality_resolves > 0)
         check_one_solve(rec, &r, 600, 4);
@@ -152,44 +182,34 @@ static void test_all_four_stages(void)
     facet_planarize_options off = o;
     off.quality_angle = 0.0;
     off.progress = NULL;
-    CHECK_STATUS(facet_planarizer_solve(s, g.xyz, &off, plain, &r0, &err), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(s, x.g.xyz, &off, plain, &r0, &err), FACET_OK);
     memset(rec, 0, sizeof *rec), rec->s = s;
     rec->cancel_stage = 2, rec->cancel_after = 3;
-    CHECK_STATUS(facet_planarizer_solve(s, g.xyz, &o, out, &r, &err), FACET_ERROR_CANCELLED);
-    CHECK(memcmp(out, plain, sizeof(double) * v3) == 0);
+    CHECK_STATUS(facet_planarizer_solve(s, x.g.xyz, &o, x.out, &r, &err), FACET_ERROR_CANCELLED);
+    CHECK(memcmp(x.out, plain, sizeof(double) * v3) == 0);
     CHECK(r.quality_resolves == 2);
     CHECK(rec->n == r.iterations && rec->iteration[rec->n - 1] == r.iterations);
     CHECK(rec->stage[rec->n - 1] == 2 && rec->stage[rec->n - 4] == 1);
     int32_t stages = -1;
     CHECK(facet_planarizer_stage(s, &stages) == 0 && stages == 0);
-    free(rec), free(out), free(plain);
-    facet_planarizer_free(&s);
-    test_mesh_free(&g);
+    free(plain);
+    fixture_free(&x);
 }
 
 /* Vertices sliding along the design (data_tangent 0.01): two stages (the
  * exact penalty path and the angle floor's recipe), numbered 1 and 2 of 2. */
 static void test_sliding_two_stages(void)
 {
-    test_mesh g = test_hypar(8);
-    facet_planarizer *s = NULL;
+    fixture x = fixture_new(8);
     facet_error err;
-    CHECK_STATUS(facet_planarizer_create(&g.mesh, &s, &err), FACET_OK);
-    double *out = malloc(sizeof(double) * 3 * (size_t)g.mesh.n_vertices);
-    facet_planarize_options o;
-    facet_planarize_options_default(FACET_METHOD_AUTO, &o);
-    o.quality_angle = 40.0;
-    o.data_tangent = 0.01;
-    recorder *rec = recorder_new(s);
-    o.progress = record, o.progress_user = rec;
+    x.o.quality_angle = 40.0;
+    x.o.data_tangent = 0.01;
     facet_planarize_result r;
-    CHECK_STATUS(facet_planarizer_solve(s, g.xyz, &o, out, &r, &err), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(x.s, x.g.xyz, &x.o, x.out, &r, &err), FACET_OK);
     CHECK(r.quality_resolves == 2);
-    CHECK(rec->max_iter[0] == 1000 + 4000 + 1000);
-    check_one_solve(rec, &r, o.max_iter, 2);
-    free(rec), free(out);
-    facet_planarizer_free(&s);
-    test_mesh_free(&g);
+    CHECK(x.rec->max_iter[0] == 1000 + 4000 + 1000);
+    check_one_solve(x.rec, &r, x.o.max_iter, 2);
+    fixture_free(&x);
 }
 
 /* The default on the 32 x 32 hypar: the first solve closes corners, a
@@ -197,27 +217,18 @@ static void test_sliding_two_stages(void)
  * after it do not run: the bound falls to the total at the end. */
 static void test_recovered_default(void)
 {
-    test_mesh g = test_hypar(32);
-    facet_planarizer *s = NULL;
+    fixture x = fixture_new(32);
     facet_error err;
-    CHECK_STATUS(facet_planarizer_create(&g.mesh, &s, &err), FACET_OK);
-    double *out = malloc(sizeof(double) * 3 * (size_t)g.mesh.n_vertices);
-    facet_planarize_options o;
-    facet_planarize_options_default(FACET_METHOD_AUTO, &o);
-    recorder *rec = recorder_new(s);
-    o.progress = record, o.progress_user = rec;
     facet_planarize_result r;
-    CHECK_STATUS(facet_planarizer_solve(s, g.xyz, &o, out, &r, &err), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(x.s, x.g.xyz, &x.o, x.out, &r, &err), FACET_OK);
     printf("hypar 32, default: %d iterations, %d re-solves, %s\n", (int)r.iterations,
            (int)r.quality_resolves, r.quality == FACET_QUALITY_RECOVERED ? "recovered" : "other");
     if (r.quality_resolves > 0) {
-        check_one_solve(rec, &r, o.max_iter, 4);
+        check_one_solve(x.rec, &r, x.o.max_iter, 4);
     } else { /* the first solve kept its corners open (a change of schedule) */
-        CHECK(rec->n == r.iterations && rec->max_iter[0] == 8000);
+        CHECK(x.rec->n == r.iterations && x.rec->max_iter[0] == 8000);
     }
-    free(rec), free(out);
-    facet_planarizer_free(&s);
-    test_mesh_free(&g);
+    fixture_free(&x);
 }
 
 /* Solves that cannot re-solve report as before: their own limit, stage 0 of 0. */
