@@ -412,8 +412,18 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="192"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="221"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="212"/>
+        <source>planarity {0:.2g}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="214"/>
+        <source>planarity {0:.2g} (tolerance {1:.2g})</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

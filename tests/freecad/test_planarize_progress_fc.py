@@ -4,6 +4,7 @@ says so ("re-solving for panel quality (stage k of n)") and the count runs on th
 re-solves (headless: the reporter records what the dialog would show)."""
 
 import os
+import re
 import sys
 
 import facet
@@ -34,15 +35,27 @@ class TestPlanarizeProgress(DocumentTestCase):
         with progress.reporting("Planarize ...") as reporter:
             self.doc.recompute()
         self.assertTrue(result.isValid(), result.getStatusString())
+        # the planarity reached against the tolerance, from the first iteration on
+        first = re.fullmatch(r"Planarize \.\.\.\nplanarity (\S+) \(tolerance (\S+)\)",
+                             reporter.texts[1])
+        self.assertTrue(first, reporter.texts[:2])
+        self.assertEqual(float(first.group(2)), result.Tolerance)
+        self.assertGreater(float(first.group(1)), 100 * result.Tolerance)  # a skew hypar
         said = [t for t in reporter.texts if "re-solving for panel quality" in t]
         if result.QualityCheck == "ok":  # the first solve kept its corners open
             self.assertEqual(said, [])
             return
         self.assertIn(result.QualityCheck, ("recovered", "narrow"))
-        self.assertGreaterEqual(len(said), 1)
-        for k, text in enumerate(said, start=1):
-            self.assertEqual(text, f"Planarize ...\nPlanarize {result.Label}: re-solving for "
-                                   f"panel quality (stage {k} of 4)")
+        # each re-solve named as it starts, then with its planarity below
+        stages = [t.split("\n")[1] for t in said]
+        starts = [t for k, t in enumerate(stages) if k == 0 or t != stages[k - 1]]
+        self.assertGreaterEqual(len(starts), 1)
+        for k, text in enumerate(starts, start=1):
+            self.assertEqual(text, f"Planarize {result.Label}: re-solving for panel quality "
+                                   f"(stage {k} of 4)")
+        self.assertTrue(all(len(t.split("\n")) == 2 or t.split("\n")[2].startswith("planarity ")
+                            for t in said), said[:3])
+        self.assertTrue(any(len(t.split("\n")) == 3 for t in said))
         # one count through the re-solves: one call per iteration, the last at the total,
         # within its bound
         self.assertEqual(reporter.calls, result.Iterations)

@@ -226,7 +226,8 @@ def run(out_dir):
 def check_planarize_progress(check, out_dir):
     """A Planarized recompute that re-solves for panel quality (the 32 x 32 hypar): the
     progress dialog's text names the re-solve and its bar never runs backwards; the
-    dialog as the first re-solve starts is saved as progress_resolve.png."""
+    dialog in the first re-solve (its name, its planarity) is saved as
+    progress_resolve.png."""
     import FreeCAD as App
 
     import facet
@@ -249,7 +250,7 @@ def check_planarize_progress(check, out_dir):
         def recording_say(text=None):
             say(text)
             shown.append((reporter.dialog.labelText(), reporter.dialog.value()))
-            if "re-solving" in shown[-1][0] and not saved:
+            if "re-solving" in shown[-1][0] and "planarity" in shown[-1][0] and not saved:
                 saved.append(os.path.join(out_dir, "progress_resolve.png"))
                 reporter.dialog.grab().save(saved[-1])
 
@@ -262,6 +263,8 @@ def check_planarize_progress(check, out_dir):
               f"{result.Label}: re-solving for panel quality (stage 1 of 4)",
               f"the progress dialog says it re-solves ({resolving[:1]})")
         values = [value for _text, value in resolving]
+        check(any("\nplanarity " in text for text, _value in resolving),
+              "the dialog shows the re-solve's planarity under its name")
         check(values == sorted(values) and 0 < values[0] < 1000,
               f"the progress bar does not run backwards across re-solves ({values})")
         check(saved and os.path.getsize(saved[0]) > 1000, f"the dialog's screenshot ({saved})")

@@ -7,6 +7,8 @@ source's mesh again. The source is never modified. The result is stored like a P
 mesh (so it can be the source of the next step) with the solver's report in ``Result``.
 """
 
+import time
+
 import FreeCAD as App
 
 import facet
@@ -154,7 +156,7 @@ class Planarized(PolyMesh):
         if obj.Source is None:
             raise ValueError(f"{obj.Label}: Source is empty, nothing to planarize")
         mesh = conversion.mesh_from_object(obj.Source)
-        say = progress.say_hook()
+        follow = _Follow.of(obj)
         try:
             result = facet.planarize(
                 mesh,
@@ -163,13 +165,13 @@ class Planarized(PolyMesh):
                 tol_abs=obj.ToleranceAbs.Value or None,
                 max_iter=obj.MaxIterations or None,
                 threads=obj.Threads or None,
-                progress=progress.hook(),
-                stage=_stage_text(obj, say),
+                progress=follow and follow.progress,
+                stage=follow and follow.stage,
                 **term_options(obj, mesh),
             )
         finally:
-            if say is not None:
-                say(None)
+            if follow is not None:
+                follow.say(None)
         set_mesh(obj, result.mesh)
         set_planarity(obj, result.planarity)
         self.method_ran = result.method  # what "auto" chose; for the report, not saved
@@ -182,17 +184,44 @@ class Planarized(PolyMesh):
         obj.DisplacementRms = float(result.displacement_rms)
 
 
-def _stage_text(obj, say):
-    """facet.planarize's ``stage(k, n)``: the re-solve in the progress text (None without
-    a progress dialog)."""
-    if say is None:
-        return None
+class _Follow:
+    """The progress dialog while a Planarized object solves (None without one): the bar
+    counts the iterations, through the quality re-solves; the text says which re-solve
+    runs and, a few times a second, the planarity reached against the tolerance (the bar
+    alone says little: its bound is the whole solve's limit, re-solves included)."""
 
-    def stage(k, n):
+    #: Seconds between two planarity texts.
+    INTERVAL = 0.25
+
+    @classmethod
+    def of(cls, obj):
+        report, say = progress.hook(), progress.say_hook()
+        return None if report is None or say is None else cls(obj, report, say)
+
+    def __init__(self, obj, report, say):
+        self.obj, self.report, self.say = obj, report, say
+        # (a tolerance in model units stops the solve instead: no relative one to show)
+        self.tolerance = None if obj.ToleranceAbs.Value > 0 else float(obj.Tolerance)
+        self.stage_text = None
+        self.shown = None  # when the last planarity text was shown
+
+    def progress(self, iteration, max_iter, planarity):
+        now = time.monotonic()
+        if self.shown is None or now - self.shown >= self.INTERVAL:
+            self.shown = now
+            line = (translate("Facet", "planarity {0:.2g}").format(float(planarity))
+                    if self.tolerance is None else
+                    translate("Facet", "planarity {0:.2g} (tolerance {1:.2g})").format(
+                        float(planarity), self.tolerance))
+            self.say(line if self.stage_text is None else f"{self.stage_text}\n{line}")
+        return self.report(iteration, max_iter, planarity)
+
+    def stage(self, k, n):
+        """facet.planarize's ``stage(k, n)``: the re-solve in the text."""
         text = translate("Facet", "Planarize {0}: re-solving for panel quality (stage {1} of {2})")
-        say(text.format(obj.Label, k, n))
-
-    return stage
+        self.stage_text = text.format(self.obj.Label, k, n)
+        self.say(self.stage_text)
+        self.shown = None  # and its planarity at its first iteration
 
 
 def term_options(obj, mesh):
