@@ -136,6 +136,14 @@ static int32_t stage_limit(const facet_planarize_options *options, size_t k)
     return STAGES[k].max_iter > options->max_iter ? STAGES[k].max_iter : options->max_iter;
 }
 
+/* Whether a solve with these options checks its result: the check on, not
+ * a fixed iteration count, not the angle floor (which holds corners itself);
+ * a cold one may then re-solve. */
+static int checks_result(const facet_planarize_options *options)
+{
+    return options->quality_angle > 0.0 && options->iterations <= 0 && !(options->angle_floor > 0.0);
+}
+
 /* Whether a stage runs for these options (vertices sliding along the design
  * skip the first two). */
 static int stage_applies(const facet_planarize_options *options, size_t k)
@@ -210,8 +218,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     if (s) {
         s->quality_stage = 0;
         s->quality_stages = 0;
-        if (options && options->quality_angle > 0.0 && options->iterations <= 0 &&
-            !(options->angle_floor > 0.0) && !(options->warm && s->has_previous))
+        if (options && checks_result(options) && !(options->warm && s->has_previous))
             for (size_t k = 0; k < sizeof STAGES / sizeof STAGES[0]; ++k)
                 s->quality_stages += stage_applies(options, k);
     }
@@ -241,9 +248,8 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
     facet_status status = facet_pl_solve_once(s, xyz_in, first_options, xyz_out, &first, error);
     first.quality = FACET_QUALITY_NOT_CHECKED;
     first.first_iterations = first.iterations;
-    if (status != FACET_OK || first.stop_reason != FACET_STOP_TOLERANCE ||
-        !(options->quality_angle > 0.0) || options->iterations > 0 ||
-        options->angle_floor > 0.0 || first.iterations == 0) {
+    if (status != FACET_OK || first.stop_reason != FACET_STOP_TOLERANCE || !checks_result(options) ||
+        first.iterations == 0) {
         if (result)
             *result = first;
         return status;
