@@ -10,7 +10,8 @@ through bench_large's --set NAME=VALUE; a NAME starting with FACET_EXP_ is put i
 environment instead) on the five large meshes of docs/benchmarks.md, "Settling a penalty
 level at 1M faces (branch settle7)": the 1M quad grid and torus, the 250k grid and torus,
 the 100k hex torus. The meshes are written by tools/bench/dump_mesh.py into --dir (/tmp by
-default) when absent. 'default' (no change) always runs first for each mesh.
+default) when absent; --meshes also takes grid700, torus700, hex250k, level8 and bench_large's
+grid:NUxNV. 'default' (no change) always runs first for each mesh.
 
 Prints one row per mesh and variant: all iterations, the first solve's and the quality
 re-solves, the smallest corner angle, faces under 5 degrees, the RMS distance from the input
@@ -43,14 +44,22 @@ MESHES = {  # name: (dump_mesh.py family, size)
     "grid500": ("quad_grid", 500),
     "hex100k": ("hex_torus", 100000),
 }
+EXTRA = {  # more large meshes, by --meshes only
+    "grid700": ("quad_grid", 700),
+    "torus700": ("quad_torus", 700),
+    "hex250k": ("hex_torus", 250000),
+    "level8": ("level", 8),
+}
 FIELDS = ("iterations", "first", "resolves", "min_angle", "below_5", "surface_rms", "wall", "cpu",
           "max_rel", "reason")
 
 
 def mesh_path(name, directory):
+    if name.startswith("grid:"):  # bench_large's own generated grid (test_meshes.h)
+        return name
     path = Path(directory) / f"facet_settle_{name}.bin"
     if not path.exists():
-        family, size = MESHES[name]
+        family, size = {**MESHES, **EXTRA}[name]
         subprocess.run([sys.executable, str(ROOT / "tools/bench/dump_mesh.py"), family, str(size),
                         str(path)], check=True, stdout=subprocess.DEVNULL)
     return path
@@ -103,8 +112,9 @@ def main(argv=None):
     variants = [("default", [])] + [parse_variant(v) for v in args.variant]
     names = [n for n in args.meshes.split(",") if n]
     for n in names:
-        if n not in MESHES:
-            raise SystemExit(f"settle_levels.py: unknown mesh {n!r} (one of {', '.join(MESHES)})")
+        if n not in MESHES and n not in EXTRA and not re.fullmatch(r"grid:\d+x\d+", n):
+            raise SystemExit(f"settle_levels.py: unknown mesh {n!r} "
+                             f"(one of {', '.join(list(MESHES) + list(EXTRA))})")
     print("mesh       variant              iters  first  resolves  min_angle  below_5  "
           "surf_rms  wall_s  cpu_s  load  levels", flush=True)
     for name in names:
