@@ -126,6 +126,17 @@ class PlanarizeResult:
         Re-solves run after the first solve (``iterations`` counts them all).
     first_iterations : int
         Iterations of the first solve.
+    compared : dict or None
+        Method ``"auto"``'s comparison, where it picked L/G: it also solved
+        by L/L and returned the result closer to the design (``method`` says
+        whose), unless L/L's had a narrower smallest corner (below L/G's and
+        10 degrees) or more new narrow corners. ``{"iterations": n, "lg":
+        {"distance_rms": d, "min_angle": a}, "ll": {...}}``: the L/L solve's
+        iterations (counted in ``iterations``), and each result's RMS
+        distance from the input surface (model units) and smallest corner
+        angle (degrees); the two dicts are empty when L/L did not reach the
+        tolerance. None when no comparison ran (another method, a warm
+        start, a fixed iteration count, a shape term or a regularizer).
     control : facet.PolyMesh or None
         The control mesh the result was solved from.
     reference : facet.Surface or None
@@ -148,6 +159,7 @@ class PlanarizeResult:
     narrow_corners: int = 0
     quality_resolves: int = 0
     first_iterations: int = 0
+    compared: object = None
     control: object = None
     reference: object = None
     _quality: object = field(default=None, repr=False)
@@ -433,9 +445,21 @@ class Planarizer:
             narrow_corners=stats["narrow_corners"],
             quality_resolves=stats["quality_resolves"],
             first_iterations=stats["first_iterations"],
+            compared=_compared(stats),
             control=control,
             reference=surface,
         )
+
+
+def _compared(stats):
+    """PlanarizeResult.compared from the core's compare_* figures."""
+    if not stats.get("compare_iterations"):
+        return None
+    distance, angle = stats["compare_distance_rms"], stats["compare_min_angle"]
+    measured = distance[0] > 0.0 or distance[1] > 0.0 or angle[0] > 0.0 or angle[1] > 0.0
+    return {"iterations": int(stats["compare_iterations"]),
+            **{name: ({"distance_rms": float(distance[k]), "min_angle": float(angle[k])}
+                      if measured else {}) for k, name in enumerate(("ll", "lg"))}}
 
 
 def _quality_warnings(stats, options):
