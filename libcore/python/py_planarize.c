@@ -427,5 +427,7 @@ int py_add_planarize(PyObject *module)
         return -1;
     int r = PyModule_AddObjectRef(module, "Planarizer", type);
     Py_DECREF(type);
+    if (r == 0) /* stage(STAGE_COMPARE, stages): method auto's comparison solve */
+        r = PyModule_AddIntConstant(module, "STAGE_COMPARE", FACET_STAGE_COMPARE);
     return r;
 }

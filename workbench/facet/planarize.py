@@ -22,11 +22,19 @@ from facet import _core
 from facet.errors import FacetError, MeshError, from_core
 from facet.planarity import PlanarityReport, planarity
 
-__all__ = ["METHODS", "Planarizer", "PlanarizeResult", "planarize"]
+__all__ = ["METHODS", "STAGE_COMPARE", "Planarizer", "PlanarizeResult", "planarize"]
 
 #: Solver schemes by name: what the command line and the workbench offer.
-METHODS = {"auto": "automatic (local/global up to 50,000 quads, local/local above)",
+#: "auto" solves by local/global up to 50,000 quads and also by local/local,
+#: returning the result closer to the design (PlanarizeResult.compared); by
+#: local/local alone above.
+METHODS = {"auto": "automatic (local/global and local/local up to 50,000 quads, the result "
+                   "closer to the design; local/local above)",
            "lg": "local/global", "ll": "local/local"}
+
+#: The `stage` callable's first argument during method "auto"'s comparison
+#: solve by local/local (facet.h, FACET_STAGE_COMPARE).
+STAGE_COMPARE = _core.STAGE_COMPARE
 
 #: Data-term presets: how strongly a vertex is held to its control position
 #: along the control surface (tangent) and across it (normal), and to the
@@ -307,6 +315,8 @@ class Planarizer:
             that may still follow included); it never grows, so
             ``iteration / max_iter`` never falls.
         stage : callable, optional
+            ``stage(STAGE_COMPARE, stages)`` when method "auto"'s comparison
+            solve by local/local starts (see ``compared``); else
             ``stage(stage, stages)``, called when a quality re-solve starts
             (before its first `progress` call): the `stage`-th of at most
             `stages` (4, or 2 when vertices slide along the design; they stop

@@ -217,8 +217,15 @@ class _Follow:
         return self.report(iteration, max_iter, planarity)
 
     def stage(self, k, n):
-        """facet.planarize's ``stage(k, n)``: the re-solve in the text."""
-        text = translate("Facet", "Planarize {0}: re-solving for panel quality (stage {1} of {2})")
+        """facet.planarize's ``stage(k, n)``: the re-solve, or method auto's comparison
+        solve (k == facet.planarize.STAGE_COMPARE), in the text."""
+        from facet.planarize import STAGE_COMPARE
+
+        if k == STAGE_COMPARE:
+            text = translate("Facet", "Planarize {0}: solving by local/local too, for a result "
+                                      "closer to the design")
+        else:
+            text = translate("Facet", "Planarize {0}: re-solving for panel quality (stage {1} of {2})")
         self.stage_text = text.format(self.obj.Label, k, n)
         self.say(self.stage_text)
         self.shown = None  # and its planarity at its first iteration
