@@ -175,6 +175,7 @@ class Planarized(PolyMesh):
         set_mesh(obj, result.mesh)
         set_planarity(obj, result.planarity)
         self.method_ran = result.method  # what "auto" chose; for the report, not saved
+        self.compared = result.compared  # and what it compared (the same)
         obj.Iterations = int(result.iterations)
         obj.StopReason = str(result.stop_reason)
         obj.Converged = bool(result.converged)
@@ -287,6 +288,18 @@ def method_text(obj):
     return text
 
 
+def _compared_text(compared, kept):
+    """The summary line of method auto's comparison (facet.PlanarizeResult.compared)."""
+    if not (compared.get("lg") and compared.get("ll")) or kept not in ("lg", "ll"):
+        return "  local/local also tried: it did not reach the tolerance; local/global kept"
+    other = "ll" if kept == "lg" else "lg"
+    a, b = compared[kept], compared[other]
+    return (f"  local/global and local/local compared: {METHOD_NAMES[kept]} kept, "
+            f"distance from the source surface rms {format_length(a['distance_rms'])} "
+            f"(smallest corner {a['min_angle']:.1f} deg) against "
+            f"{format_length(b['distance_rms'])} ({b['min_angle']:.1f} deg)")
+
+
 def planarize_summary(obj):
     """A few lines for the report view about a recomputed Planarized object."""
     if not obj.isValid():
@@ -303,6 +316,9 @@ def planarize_summary(obj):
         f"  vertices moved: max {format_length(obj.DisplacementMax.Value)}, "
         f"rms {format_length(obj.DisplacementRms.Value)}",
     ]
+    compared = getattr(getattr(obj, "Proxy", None), "compared", None)
+    if obj.Method == "auto" and compared:
+        lines.append(_compared_text(compared, getattr(obj.Proxy, "method_ran", None)))
     check = getattr(obj, "QualityCheck", "")
     if check == "recovered":
         lines.append("  a panel corner closed below 5 degrees; solved again without it")
