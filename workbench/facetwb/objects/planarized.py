@@ -223,8 +223,8 @@ class _Follow:
         from facet.planarize import STAGE_COMPARE
 
         if k == STAGE_COMPARE:
-            text = translate("Facet", "Planarize {0}: solving by local/local too, for a result "
-                                      "closer to the design")
+            text = translate(
+                "Facet", "Planarize {0}: solving by local/local too, for a result closer to the design")
         else:
             text = translate("Facet", "Planarize {0}: re-solving for panel quality (stage {1} of {2})")
         self.stage_text = text.format(self.obj.Label, k, n)
