@@ -415,6 +415,40 @@ static int measure(const facet_planarizer *s, const facet_surface *surface, cons
     return isfinite(*rms) && isfinite(*angle);
 }
 
+/* Whether L/L's result (the handle's last: s->previous, solved from
+ * s->previous_control, the input) is to be returned instead of L/G's
+ * (xyz_out); fills the result's compare_* measures. narrow: L/L's new
+ * narrow corners. Memory: what L/G no longer needs is given back first, so
+ * that the input surface's tree fits within L/G's own peak. */
+static int closer(facet_planarizer *s, const facet_planarize_options *options, const double *xyz_out,
+                  int32_t narrow, facet_planarize_result *result)
+{
+    facet_pl_history_trim(s);
+    const int nthreads = facet_thread_count(options->threads);
+    const size_t nwork = s->nf > s->nv ? (size_t)s->nf : (size_t)s->nv;
+    double *work = malloc(sizeof(double) * nwork);
+    const facet_surface *surface = options->surface_weight > 0.0 ? s->reference : NULL;
+    facet_surface *own = NULL;
+    if (!surface && work) {
+        const facet_mesh mesh = {s->nv, s->nf, s->previous_control, s->face_start, s->face_vertices};
+        facet_error ignored;
+        if (facet_surface_create_from_mesh(&mesh, &own, &ignored) == FACET_OK)
+            surface = own;
+    }
+    double *d = result->compare_distance_rms, *a = result->compare_min_angle;
+    const int lg = FACET_METHOD_LOCAL_GLOBAL, ll = FACET_METHOD_LOCAL_LOCAL;
+    int take = 0;
+    if (surface && measure(s, surface, xyz_out, nthreads, work, &d[lg], &a[lg]) &&
+        measure(s, surface, s->previous, nthreads, work, &d[ll], &a[ll]))
+        take = d[ll] < d[lg] && a[ll] >= facet_min(a[lg], COMPARE_ANGLE_ENOUGH) &&
+               narrow <= result->narrow_corners;
+    else /* out of memory: L/G's result stands */
+        d[0] = d[1] = a[0] = a[1] = 0.0;
+    facet_surface_free(&own);
+    free(work);
+    return take;
+}
+
 static facet_status compare_ll(facet_planarizer *s, const facet_planarize_options *options,
                                double *xyz_out, facet_planarize_result *result, facet_error *error)
 {
@@ -426,20 +460,17 @@ static facet_status compare_ll(facet_planarizer *s, const facet_planarize_option
         if (!(remaining > 0.0))
             return FACET_OK;
     }
-    const size_t nwork = s->nf > s->nv ? (size_t)s->nf : (size_t)s->nv;
     /* the input (the last solve kept it; xyz_in may be xyz_out), L/L's result */
-    double *input = malloc(sizeof(double) * v3), *out = malloc(sizeof(double) * v3),
-           *work = malloc(sizeof(double) * nwork);
-    if (!input || !out || !work) { /* L/G's result stands */
-        free(input), free(out), free(work);
+    double *input = malloc(sizeof(double) * v3), *out = malloc(sizeof(double) * v3);
+    if (!input || !out) { /* L/G's result stands */
+        free(input), free(out);
         return FACET_OK;
     }
     memcpy(input, s->previous_control, sizeof(double) * v3);
     /* L/G's system goes, so that the L/L solve and the measures (the input
-     * surface's tree: about 500 bytes per face while it is built) take no
-     * more memory than L/G took: the peak stays L/G's. A later L/G solve on
-     * this handle sets its system up again (its analysis: about 5% of a
-     * cold solve's time). */
+     * surface's tree: about 150 bytes per triangle while it is built) take
+     * no more memory than L/G took. A later L/G solve on this handle sets
+     * its system up again (its analysis: about 5% of a cold solve's time). */
     facet_pl_global_free(s);
     progress_relay relay;
     facet_planarize_options o = relayed(options, &relay, result->iterations,
@@ -455,32 +486,20 @@ static facet_status compare_ll(facet_planarizer *s, const facet_planarize_option
     result->iterations += r.iterations;
     result->compare_iterations = r.iterations;
     int take = 0;
-    const int nthreads = facet_thread_count(options->threads);
     if (status == FACET_OK && r.stop_reason == FACET_STOP_TOLERANCE) {
+        /* the handle keeps L/L's result and the input (s->previous,
+         * s->previous_control): the copies go before the measures */
+        free(input), free(out);
+        input = out = NULL;
         /* new narrow corners of L/L's result (s->q, s->p: the solve's own) */
         double narrowest = 180.0;
         const int32_t narrow = options->quality_angle > 0.0
-                                   ? facet_pl_new_narrow(s, options->quality_angle, nthreads, &narrowest)
+                                   ? facet_pl_new_narrow(s, options->quality_angle,
+                                                         facet_thread_count(options->threads), &narrowest)
                                    : 0;
-        const facet_surface *surface = options->surface_weight > 0.0 ? s->reference : NULL;
-        facet_surface *own = NULL;
-        if (!surface) {
-            const facet_mesh mesh = {s->nv, s->nf, input, s->face_start, s->face_vertices};
-            facet_error ignored;
-            if (facet_surface_create_from_mesh(&mesh, &own, &ignored) == FACET_OK)
-                surface = own;
-        }
-        double *d = result->compare_distance_rms, *a = result->compare_min_angle;
-        const int lg = FACET_METHOD_LOCAL_GLOBAL, ll = FACET_METHOD_LOCAL_LOCAL;
-        if (surface && measure(s, surface, xyz_out, nthreads, work, &d[lg], &a[lg]) &&
-            measure(s, surface, out, nthreads, work, &d[ll], &a[ll]))
-            take = d[ll] < d[lg] && a[ll] >= facet_min(a[lg], COMPARE_ANGLE_ENOUGH) &&
-                   narrow <= result->narrow_corners;
-        else
-            d[0] = d[1] = a[0] = a[1] = 0.0;
-        facet_surface_free(&own);
+        take = closer(s, options, xyz_out, narrow, result);
         if (take) {
-            memcpy(xyz_out, out, sizeof(double) * v3);
+            memcpy(xyz_out, s->previous, sizeof(double) * v3);
             result->method = FACET_METHOD_LOCAL_LOCAL;
             result->mu = r.mu;
             result->planarity_max_abs = r.planarity_max_abs;
@@ -497,12 +516,13 @@ static facet_status compare_ll(facet_planarizer *s, const facet_planarize_option
         facet_error_clear(error); /* a failed comparison: L/G's result stands */
         status = FACET_OK;
     }
-    if (!take) { /* the handle's last result (warm starts, live updates) is L/G's */
+    if (!take && s->previous) { /* the handle's last result (warm starts, live updates) is L/G's */
         memcpy(s->previous, xyz_out, sizeof(double) * v3);
-        memcpy(s->previous_control, input, sizeof(double) * v3);
+        if (input)
+            memcpy(s->previous_control, input, sizeof(double) * v3);
         s->has_previous = 1;
     }
-    free(input), free(out), free(work);
+    free(input), free(out);
     result->seconds += facet_now() - t0;
     if (status == FACET_ERROR_CANCELLED) {
         snprintf(s->message, sizeof s->message, "cancelled");
