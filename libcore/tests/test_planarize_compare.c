@@ -5,7 +5,8 @@
  * L/G's and 10 degrees. Each case solves L/G and L/L on handles of their
  * own, measures both results here through the public API, applies the rule
  * and checks that AUTO returned the bits of the one the rule picks; the
- * meshes are chosen so that both outcomes occur. Then: the progress of the
+ * meshes are chosen so that both outcomes occur; a warm start after it
+ * starts from the result returned. Then: the progress of the
  * comparison (one count, its limit in the bound, the stage named),
  * cancelling it (L/G's result, kept as the handle's last result), output in
  * place, thread counts, a second solve on the same handle, and the solves
@@ -52,18 +53,6 @@ static void measure(const test_mesh *g, const double *xyz, double *rms, double *
     facet_surface_free(&surface);
 }
 
-/* One solve on a fresh handle. */
-static facet_status solve_fresh(const test_mesh *g, const facet_planarize_options *o, double *out,
-                                facet_planarize_result *r)
-{
-    facet_planarizer *s = NULL;
-    facet_error err;
-    CHECK_STATUS(facet_planarizer_create(&g->mesh, &s, &err), FACET_OK);
-    const facet_status status = facet_planarizer_solve(s, g->xyz, o, out, r, &err);
-    facet_planarizer_free(&s);
-    return status;
-}
-
 /* L/L as AUTO's comparison runs it: AUTO's options, L/L's floor, one solve. */
 static facet_planarize_options ll_as_compared(void)
 {
@@ -81,16 +70,21 @@ static int check_rule(const char *name, test_mesh *g)
     const size_t v3 = v3_of(g);
     double *lg = malloc(sizeof(double) * v3), *ll = malloc(sizeof(double) * v3);
     double *out = malloc(sizeof(double) * v3);
+    facet_planarizer *h_lg = NULL, *h_ll = NULL, *h_auto = NULL;
+    facet_error err;
+    CHECK_STATUS(facet_planarizer_create(&g->mesh, &h_lg, &err), FACET_OK);
+    CHECK_STATUS(facet_planarizer_create(&g->mesh, &h_ll, &err), FACET_OK);
+    CHECK_STATUS(facet_planarizer_create(&g->mesh, &h_auto, &err), FACET_OK);
     facet_planarize_options o;
     facet_planarize_result r_lg, r_ll, r;
     facet_planarize_options_default(FACET_METHOD_LOCAL_GLOBAL, &o);
-    CHECK_STATUS(solve_fresh(g, &o, lg, &r_lg), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(h_lg, g->xyz, &o, lg, &r_lg, &err), FACET_OK);
     CHECK(r_lg.compare_iterations == 0); /* L/G named: no comparison */
     o = ll_as_compared();
-    CHECK_STATUS(solve_fresh(g, &o, ll, &r_ll), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(h_ll, g->xyz, &o, ll, &r_ll, &err), FACET_OK);
     CHECK(r_lg.stop_reason == FACET_STOP_TOLERANCE && r_ll.stop_reason == FACET_STOP_TOLERANCE);
     facet_planarize_options_default(FACET_METHOD_AUTO, &o);
-    CHECK_STATUS(solve_fresh(g, &o, out, &r), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(h_auto, g->xyz, &o, out, &r, &err), FACET_OK);
 
     double d_lg, a_lg, d_ll, a_ll;
     measure(g, lg, &d_lg, &a_lg);
@@ -111,6 +105,17 @@ static int check_rule(const char *name, test_mesh *g)
     CHECK(r.compare_distance_rms[FACET_METHOD_LOCAL_LOCAL] == d_ll);
     CHECK(r.compare_min_angle[FACET_METHOD_LOCAL_GLOBAL] == a_lg);
     CHECK(r.compare_min_angle[FACET_METHOD_LOCAL_LOCAL] == a_ll);
+    /* the handle's last result is the one returned: a warm start from it as
+     * from the handle that solved it alone */
+    double *warm = malloc(sizeof(double) * v3);
+    facet_planarize_result rw, rw_ref;
+    facet_planarize_options_default(FACET_METHOD_LOCAL_GLOBAL, &o);
+    o.warm = 1;
+    CHECK_STATUS(facet_planarizer_solve(h_auto, g->xyz, &o, out, &rw, &err), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(take_ll ? h_ll : h_lg, g->xyz, &o, warm, &rw_ref, &err), FACET_OK);
+    CHECK(rw.iterations == rw_ref.iterations && memcmp(out, warm, sizeof(double) * v3) == 0);
+    free(warm);
+    facet_planarizer_free(&h_lg), facet_planarizer_free(&h_ll), facet_planarizer_free(&h_auto);
     free(lg), free(ll), free(out);
     return take_ll;
 }
