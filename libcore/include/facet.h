@@ -839,7 +839,8 @@ int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stag
  * meshes (docs/solver-notes.md, "Method auto: the closer result").
  * result.method says whose result was returned, compare_* what was
  * compared. No comparison is made for a fixed iteration count, a warm start,
- * or a solve whose energy asks for more than closeness (a shape term,
+ * the paper's schedule (hold_tol 0: L/L does not reach the tolerance with
+ * it), or a solve whose energy asks for more than closeness (a shape term,
  * laplacian, normal_laplacian or boundary_fairness > 0). If the comparison
  * solve fails or stops short of the tolerance, L/G's result stands;
  * cancelling it returns FACET_ERROR_CANCELLED with L/G's result in xyz_out.

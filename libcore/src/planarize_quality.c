@@ -381,9 +381,13 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
  * whose corners are all 10 degrees or wider is as good as any for panels. */
 static const double COMPARE_ANGLE_ENOUGH = 10.0;
 
+/* Whether AUTO compares: where it picks L/G, for a cold solve to the
+ * tolerance whose energy asks for closeness alone, with the staircase
+ * schedule (L/L finishes only with it: without, it stalls above the
+ * tolerance and the comparison would run to max_iter for nothing). */
 static int compares(const facet_planarizer *s, const facet_planarize_options *options)
 {
-    return s && options && options->method == FACET_METHOD_AUTO &&
+    return s && options && options->method == FACET_METHOD_AUTO && options->hold_tol > 0.0 &&
            facet_planarizer_choose_method(s) == FACET_METHOD_LOCAL_GLOBAL &&
            options->iterations <= 0 && !(options->warm && s->has_previous) &&
            options->shape == FACET_SHAPE_NONE && options->laplacian == 0.0 &&

@@ -255,15 +255,17 @@ static void test_no_comparison(void)
         int32_t iterations, warm;
         double laplacian, normal_laplacian, fairness;
         facet_shape_mode shape;
+        double hold_tol;
     } cases[] = {
-        {"L/G named", FACET_METHOD_LOCAL_GLOBAL, 0, 0, 0, 0, 0, FACET_SHAPE_NONE},
-        {"L/L named", FACET_METHOD_LOCAL_LOCAL, 0, 0, 0, 0, 0, FACET_SHAPE_NONE},
-        {"fixed count", FACET_METHOD_AUTO, 30, 0, 0, 0, 0, FACET_SHAPE_NONE},
-        {"warm", FACET_METHOD_AUTO, 0, 1, 0, 0, 0, FACET_SHAPE_NONE},
-        {"laplacian", FACET_METHOD_AUTO, 0, 0, 0.1, 0, 0, FACET_SHAPE_NONE},
-        {"normal laplacian", FACET_METHOD_AUTO, 0, 0, 0, 0.1, 0, FACET_SHAPE_NONE},
-        {"boundary fairness", FACET_METHOD_AUTO, 0, 0, 0, 0, 0.1, FACET_SHAPE_NONE},
-        {"ASAP", FACET_METHOD_AUTO, 0, 0, 0, 0, 0, FACET_SHAPE_ASAP},
+        {"L/G named", FACET_METHOD_LOCAL_GLOBAL, 0, 0, 0, 0, 0, FACET_SHAPE_NONE, 0.01},
+        {"L/L named", FACET_METHOD_LOCAL_LOCAL, 0, 0, 0, 0, 0, FACET_SHAPE_NONE, 0.01},
+        {"fixed count", FACET_METHOD_AUTO, 30, 0, 0, 0, 0, FACET_SHAPE_NONE, 0.01},
+        {"warm", FACET_METHOD_AUTO, 0, 1, 0, 0, 0, FACET_SHAPE_NONE, 0.01},
+        {"laplacian", FACET_METHOD_AUTO, 0, 0, 0.1, 0, 0, FACET_SHAPE_NONE, 0.01},
+        {"normal laplacian", FACET_METHOD_AUTO, 0, 0, 0, 0.1, 0, FACET_SHAPE_NONE, 0.01},
+        {"boundary fairness", FACET_METHOD_AUTO, 0, 0, 0, 0, 0.1, FACET_SHAPE_NONE, 0.01},
+        {"ASAP", FACET_METHOD_AUTO, 0, 0, 0, 0, 0, FACET_SHAPE_ASAP, 0.01},
+        {"paper's schedule", FACET_METHOD_AUTO, 0, 0, 0, 0, 0, FACET_SHAPE_NONE, 0.0},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
         facet_planarize_options o;
@@ -274,6 +276,7 @@ static void test_no_comparison(void)
         o.normal_laplacian = cases[c].normal_laplacian;
         o.boundary_fairness = cases[c].fairness;
         o.shape = cases[c].shape;
+        o.hold_tol = cases[c].hold_tol;
         facet_planarize_result r;
         memset(&r, 0xff, sizeof r);
         const facet_status status = facet_planarizer_solve(s, g.xyz, &o, out, &r, &err);

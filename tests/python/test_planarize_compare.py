@@ -106,7 +106,7 @@ def test_cancelled_in_the_comparison():
 
 @pytest.mark.parametrize("options", [dict(method="lg"), dict(method="ll"), dict(iterations=20),
                                      dict(laplacian=0.1), dict(shape="asap"),
-                                     dict(boundary_fairness=0.1)])
+                                     dict(boundary_fairness=0.1), dict(hold_tol=0.0)])
 def test_no_comparison(options):
     result = facet.planarize(_mesh(families.hypar(8)), threads=1, **options)
     assert result.compared is None

@@ -144,7 +144,8 @@ class PlanarizeResult:
         distance from the input surface (model units) and smallest corner
         angle (degrees); the two dicts are empty when L/L did not reach the
         tolerance. None when no comparison ran (another method, a warm
-        start, a fixed iteration count, a shape term or a regularizer).
+        start, a fixed iteration count, the paper's schedule (``hold_tol``
+        0), a shape term or a regularizer).
     control : facet.PolyMesh or None
         The control mesh the result was solved from.
     reference : facet.Surface or None
