@@ -164,7 +164,9 @@ typedef enum facet_method {
     FACET_METHOD_LOCAL_GLOBAL = 1, /* normals local, (q, d) by one sparse solve */
     FACET_METHOD_AUTO = 2          /* L/G up to FACET_AUTO_LG_MAX_CORNERS face corners
                                       (its factorization's memory), L/L above; see
-                                      facet_planarize_options_default */
+                                      facet_planarize_options_default; where it picks
+                                      L/G it also solves by L/L and returns the result
+                                      closer to the design (FACET_STAGE_COMPARE) */
 } facet_method;
 
 /* The largest mesh (in face corners: 4 per quad) that FACET_METHOD_AUTO
@@ -217,6 +219,8 @@ typedef enum facet_laplacian_weights {
  * re-solve's limit and the later ones'. It never grows during a solve and is
  * never below `iteration`, so iteration / max_iter never falls: a progress
  * bar does not run backwards (it may jump forward when a solve ends early).
+ * Method AUTO's comparison solve (FACET_STAGE_COMPARE) counts on in the
+ * same way, its limit included in the bound from the start.
  * facet_planarizer_stage says which re-solve is running. */
 typedef int (*facet_progress_fn)(void *user, int32_t iteration, int32_t max_iter,
                                  double planarity_max_rel);
@@ -334,6 +338,14 @@ typedef struct facet_planarize_result {
     int32_t quality_resolves;  /* re-solves run (0: the first solve's result) */
     int32_t first_iterations;  /* iterations of the first solve; `iterations` counts every
                                   solve's, `seconds` their time */
+    /* method AUTO's comparison of L/G's result with L/L's (facet_planarizer_solve;
+     * FACET_STAGE_COMPARE) */
+    int32_t compare_iterations;      /* iterations of the L/L solve it ran (counted in
+                                        `iterations`; 0: no comparison ran) */
+    double compare_distance_rms[2];  /* RMS distance of L/L's [0] and L/G's [1] result
+                                        (indexed by facet_method) from the input surface,
+                                        model units; 0 0 when none was compared */
+    double compare_min_angle[2];     /* their smallest corner angles, degrees (facet_face_shape) */
 } facet_planarize_result;
 
 /* A planarization solver for one mesh topology. It copies the topology and
@@ -798,7 +810,8 @@ typedef enum facet_quality_outcome {
  * ("re-solving for panel quality, stage 2 of 4"). Call it from the solve's
  * progress callback (the calling thread, while the solve runs). Returns 0
  * during the first solve and k (1 <= k <= *stages) during the k-th quality
- * re-solve (facet_quality_outcome); *stages (may be NULL) receives how many
+ * re-solve (facet_quality_outcome), FACET_STAGE_COMPARE during method AUTO's
+ * comparison solve (below); *stages (may be NULL) receives how many
  * re-solves this solve may run: 0 when it cannot re-solve (quality_angle 0,
  * a fixed iteration count, an angle floor, a warm start), else 4 (vertices
  * held at their control points) or 2 (vertices sliding along the design:
@@ -806,6 +819,33 @@ typedef enum facet_quality_outcome {
  * first that recovers, so k = *stages is not always reached. Outside a
  * solve, in a live update (facet_planarizer_update) and for NULL: 0 and 0. */
 int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stages);
+
+/* ------------------------------------------------------------------------ */
+/* Method auto: the result closer to the design (branch ref7)               */
+/* ------------------------------------------------------------------------ */
+
+/* Where FACET_METHOD_AUTO picks L/G (facet_planarizer_choose_method), a cold
+ * solve that reaches the tolerance, after its quality re-solves, is solved
+ * again from the input by L/L (the same options, mu_min at least
+ * FACET_LL_MU_MIN; about a twentieth of an L/G solve's time), and L/L's
+ * result is returned instead of L/G's when it reaches the tolerance, lies
+ * closer to the input surface (RMS distance of the vertices; the reference
+ * surface instead when surface_weight > 0), has a smallest corner angle of
+ * at least the smaller of L/G's and 10 degrees, and has no more new narrow
+ * corners (facet_quality_outcome) than L/G's. Neither method is closer on
+ * every mesh: L/G ends up to 24% further from the design than the exact
+ * penalty path on some meshes, L/L up to 12% on others; the closer of the
+ * two was no further than the exact path on all 34 benchmark and public
+ * meshes (docs/solver-notes.md, "Method auto: the closer result").
+ * result.method says whose result was returned, compare_* what was
+ * compared. No comparison is made for a fixed iteration count, a warm start,
+ * the paper's schedule (hold_tol 0: L/L does not reach the tolerance with
+ * it), or a solve whose energy asks for more than closeness (a shape term,
+ * laplacian, normal_laplacian or boundary_fairness > 0). If the comparison
+ * solve fails or stops short of the tolerance, L/G's result stands;
+ * cancelling it returns FACET_ERROR_CANCELLED with L/G's result in xyz_out.
+ * During the comparison facet_planarizer_stage returns FACET_STAGE_COMPARE. */
+#define FACET_STAGE_COMPARE (-1)
 
 #ifdef __cplusplus
 }

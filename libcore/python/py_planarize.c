@@ -277,7 +277,9 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
     if (status < 0)
         return py_raise_status(st, status, &error);
     static const char *const quality_names[] = {"not_checked", "ok", "recovered", "narrow"};
-    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:i}", "iterations",
+    /* compare_*: (L/L, L/G), facet_method's order */
+    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:i,s:i,s:(dd),s:(dd)}",
+                         "iterations",
                          (int)r.iterations, "stop_reason", stop_reason_name(r.stop_reason), "mu",
                          r.mu, "planarity_max_abs", r.planarity_max_abs, "planarity_max_rel",
                          r.planarity_max_rel, "constraint_max_rel", r.constraint_max_rel,
@@ -287,7 +289,10 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
                          r.method == FACET_METHOD_LOCAL_LOCAL ? "ll" : "lg", "quality",
                          quality_names[r.quality >= 0 && r.quality <= 3 ? r.quality : 0],
                          "narrow_corners", (int)r.narrow_corners, "quality_resolves",
-                         (int)r.quality_resolves, "first_iterations", (int)r.first_iterations);
+                         (int)r.quality_resolves, "first_iterations", (int)r.first_iterations,
+                         "compare_iterations", (int)r.compare_iterations, "compare_distance_rms",
+                         r.compare_distance_rms[0], r.compare_distance_rms[1], "compare_min_angle",
+                         r.compare_min_angle[0], r.compare_min_angle[1]);
 }
 
 /* The handle of a planarizer that may be configured now; NULL with an error set. */
@@ -422,5 +427,7 @@ int py_add_planarize(PyObject *module)
         return -1;
     int r = PyModule_AddObjectRef(module, "Planarizer", type);
     Py_DECREF(type);
+    if (r == 0) /* stage(STAGE_COMPARE, stages): method auto's comparison solve */
+        r = PyModule_AddIntConstant(module, "STAGE_COMPARE", FACET_STAGE_COMPARE);
     return r;
 }

@@ -587,6 +587,28 @@ static int ensure_workspace(facet_planarizer *s)
     return 1;
 }
 
+/* Between solves the Anderson history holds only the last result and its
+ * control positions (previous_storage): gives back the rest, for work done
+ * after a solve (method AUTO's comparison measures); the next solve
+ * allocates it again (ensure_workspace). */
+void facet_pl_history_trim(facet_planarizer *s)
+{
+    if (!s->aa_df)
+        return;
+    free(s->aa_dg);
+    s->aa_dg = NULL;
+    s->aa_capacity = 0;
+    if (!s->previous_in_history) {
+        free(s->aa_df);
+        s->aa_df = NULL;
+        return;
+    }
+    const size_t v3 = 3 * (size_t)s->nv;
+    double *kept = realloc(s->aa_df, sizeof(double) * 2 * v3);
+    if (kept)
+        s->aa_df = kept, s->previous = kept, s->previous_control = kept + v3;
+}
+
 /* Where the last result and its control positions are kept between solves:
  * the first two columns of the Anderson history (at least two when it is
  * allocated), which a solve needs only from its first step to its end,

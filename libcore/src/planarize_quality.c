@@ -208,8 +208,12 @@ int32_t facet_planarizer_stage(const facet_planarizer *s, int32_t *stages)
 }
 
 static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
-                                  const facet_planarize_options *options, double *xyz_out,
-                                  facet_planarize_result *result, facet_error *error);
+                                  const facet_planarize_options *options, int64_t after,
+                                  double *xyz_out, facet_planarize_result *result,
+                                  facet_error *error);
+static int compares(const facet_planarizer *s, const facet_planarize_options *options);
+static facet_status compare_ll(facet_planarizer *s, const facet_planarize_options *options,
+                               double *xyz_out, facet_planarize_result *result, facet_error *error);
 
 facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                                     const facet_planarize_options *options, double *xyz_out,
@@ -222,15 +226,27 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             for (size_t k = 0; k < sizeof STAGES / sizeof STAGES[0]; ++k)
                 s->quality_stages += stage_applies(options, k);
     }
-    const facet_status status = solve_checked(s, xyz_in, options, xyz_out, result, error);
+    /* method AUTO's comparison solve may follow: its limit is in every bound */
+    const int compare = compares(s, options);
+    facet_planarize_result r;
+    memset(&r, 0, sizeof r);
+    facet_status status = solve_checked(s, xyz_in, options, compare ? options->max_iter : 0,
+                                        xyz_out, &r, error);
+    if (compare && status == FACET_OK && r.stop_reason == FACET_STOP_TOLERANCE)
+        status = compare_ll(s, options, xyz_out, &r, error);
+    if (result)
+        *result = r;
     if (s) /* outside a solve: 0 and 0 */
         s->quality_stage = s->quality_stages = 0;
     return status;
 }
 
+/* The solve with its quality re-solves; `after` more iterations may follow
+ * it (method AUTO's comparison), which every progress bound includes. */
 static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
-                                  const facet_planarize_options *options, double *xyz_out,
-                                  facet_planarize_result *result, facet_error *error)
+                                  const facet_planarize_options *options, int64_t after,
+                                  double *xyz_out, facet_planarize_result *result,
+                                  facet_error *error)
 {
     const double t0 = facet_now();
     const int warm = s && options && options->warm && s->has_previous;
@@ -241,8 +257,9 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
     progress_relay relay;
     facet_planarize_options first_o;
     const facet_planarize_options *first_options = options;
-    if (s && options && s->quality_stages > 0) {
-        first_o = relayed(options, &relay, 0, (int64_t)options->max_iter + stages_bound(options, 0));
+    if (s && options && (s->quality_stages > 0 || after > 0)) {
+        first_o = relayed(options, &relay, 0,
+                          (int64_t)options->max_iter + (s->quality_stages > 0 ? stages_bound(options, 0) : 0) + after);
         first_options = &first_o;
     }
     facet_status status = facet_pl_solve_once(s, xyz_in, first_options, xyz_out, &first, error);
@@ -289,7 +306,7 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
         if (!stage_applies(options, k))
             continue;
         /* the bound from here: done, this stage's limit and the later stages' */
-        facet_planarize_options o = relayed(options, &relay, total, total + stages_bound(options, k));
+        facet_planarize_options o = relayed(options, &relay, total, total + stages_bound(options, k) + after);
         if (!STAGES[k].anderson)
             o.anderson = 0;
         if (STAGES[k].floor)
@@ -347,5 +364,173 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
                  "%d corners narrower than %g degrees that the input did not have remain after "
                  "%d re-solves (the smallest %.3g degrees)",
                  (int)best_count, options->quality_angle, (int)resolves, best_angle);
+    return FACET_OK;
+}
+
+/* ---- method AUTO: the result closer to the design (facet.h,
+ * FACET_STAGE_COMPARE; docs/solver-notes.md, "Method auto: the closer
+ * result") ----------------------------------------------------------------
+ *
+ * Neither L/G nor L/L ends closer to the input surface on every mesh: each
+ * follows the penalty path only approximately (the 1% hold, Anderson's
+ * jumps), and where it strays it strays differently. L/L costs about a
+ * twentieth of L/G, so where AUTO picks L/G it solves by both and returns
+ * the closer result, unless that costs panel shape. */
+
+/* The smallest corner L/L's result may have: at least L/G's, but a result
+ * whose corners are all 10 degrees or wider is as good as any for panels. */
+static const double COMPARE_ANGLE_ENOUGH = 10.0;
+
+/* Whether AUTO compares: where it picks L/G, for a cold solve to the
+ * tolerance whose energy asks for closeness alone, with the staircase
+ * schedule (L/L finishes only with it: without, it stalls above the
+ * tolerance and the comparison would run to max_iter for nothing). */
+static int compares(const facet_planarizer *s, const facet_planarize_options *options)
+{
+    return s && options && options->method == FACET_METHOD_AUTO && options->hold_tol > 0.0 &&
+           facet_planarizer_choose_method(s) == FACET_METHOD_LOCAL_GLOBAL &&
+           options->iterations <= 0 && !(options->warm && s->has_previous) &&
+           options->shape == FACET_SHAPE_NONE && options->laplacian == 0.0 &&
+           options->normal_laplacian == 0.0 && options->boundary_fairness == 0.0;
+}
+
+/* RMS distance of the n points xyz from the surface and the smallest corner
+ * angle of the mesh with those positions, degrees; 0 when a call fails
+ * (then the comparison keeps L/G's result). Sums in vertex order: the same
+ * for any thread count. */
+static int measure(const facet_planarizer *s, const facet_surface *surface, const double *xyz,
+                   int nthreads, double *work, double *rms, double *angle)
+{
+    facet_error error;
+    if (facet_surface_closest(surface, s->nv, xyz, nthreads, NULL, work, NULL, NULL, &error) !=
+        FACET_OK)
+        return 0;
+    double sum = 0.0;
+    for (int32_t v = 0; v < s->nv; ++v)
+        sum += work[v] * work[v];
+    *rms = sqrt(sum / (double)s->nv);
+    const facet_mesh mesh = {s->nv, s->nf, xyz, s->face_start, s->face_vertices};
+    if (facet_face_shape(&mesh, NULL, nthreads, work, NULL, NULL, &error) != FACET_OK)
+        return 0;
+    double least = 2.0 * 3.14159265358979323846;
+    for (int32_t f = 0; f < s->nf; ++f)
+        least = facet_min(least, work[f]);
+    *angle = least / DEG;
+    return isfinite(*rms) && isfinite(*angle);
+}
+
+/* Whether L/L's result (the handle's last: s->previous, solved from
+ * s->previous_control, the input) is to be returned instead of L/G's
+ * (xyz_out); fills the result's compare_* measures. narrow: L/L's new
+ * narrow corners. Memory: what L/G no longer needs is given back first, so
+ * that the input surface's tree fits within L/G's own peak. */
+static int closer(facet_planarizer *s, const facet_planarize_options *options, const double *xyz_out,
+                  int32_t narrow, facet_planarize_result *result)
+{
+    facet_pl_history_trim(s);
+    const int nthreads = facet_thread_count(options->threads);
+    const size_t nwork = s->nf > s->nv ? (size_t)s->nf : (size_t)s->nv;
+    double *work = malloc(sizeof(double) * nwork);
+    const facet_surface *surface = options->surface_weight > 0.0 ? s->reference : NULL;
+    facet_surface *own = NULL;
+    if (!surface && work) {
+        const facet_mesh mesh = {s->nv, s->nf, s->previous_control, s->face_start, s->face_vertices};
+        facet_error ignored;
+        if (facet_surface_create_from_mesh(&mesh, &own, &ignored) == FACET_OK)
+            surface = own;
+    }
+    double *d = result->compare_distance_rms, *a = result->compare_min_angle;
+    const int lg = FACET_METHOD_LOCAL_GLOBAL, ll = FACET_METHOD_LOCAL_LOCAL;
+    int take = 0;
+    if (surface && measure(s, surface, xyz_out, nthreads, work, &d[lg], &a[lg]) &&
+        measure(s, surface, s->previous, nthreads, work, &d[ll], &a[ll]))
+        take = d[ll] < d[lg] && a[ll] >= facet_min(a[lg], COMPARE_ANGLE_ENOUGH) &&
+               narrow <= result->narrow_corners;
+    else /* out of memory: L/G's result stands */
+        d[0] = d[1] = a[0] = a[1] = 0.0;
+    facet_surface_free(&own);
+    free(work);
+    return take;
+}
+
+static facet_status compare_ll(facet_planarizer *s, const facet_planarize_options *options,
+                               double *xyz_out, facet_planarize_result *result, facet_error *error)
+{
+    const double t0 = facet_now();
+    const size_t v3 = 3 * (size_t)s->nv;
+    double remaining = 0.0;
+    if (options->time_budget > 0.0) {
+        remaining = options->time_budget - result->seconds;
+        if (!(remaining > 0.0))
+            return FACET_OK;
+    }
+    /* the input (the last solve kept it; xyz_in may be xyz_out), L/L's result */
+    double *input = malloc(sizeof(double) * v3), *out = malloc(sizeof(double) * v3);
+    if (!input || !out) { /* L/G's result stands */
+        free(input), free(out);
+        return FACET_OK;
+    }
+    memcpy(input, s->previous_control, sizeof(double) * v3);
+    /* L/G's system goes, so that the L/L solve and the measures (the input
+     * surface's tree: about 150 bytes per triangle while it is built) take
+     * no more memory than L/G took. A later L/G solve on this handle sets
+     * its system up again (its analysis: about 5% of a cold solve's time). */
+    facet_pl_global_free(s);
+    progress_relay relay;
+    facet_planarize_options o = relayed(options, &relay, result->iterations,
+                                        (int64_t)result->iterations + options->max_iter);
+    o.method = FACET_METHOD_LOCAL_LOCAL;
+    o.mu_min = facet_max(o.mu_min, FACET_LL_MU_MIN);
+    o.warm = 0;
+    o.time_budget = remaining;
+    facet_planarize_result r;
+    memset(&r, 0, sizeof r);
+    s->quality_stage = FACET_STAGE_COMPARE;
+    facet_status status = facet_pl_solve_once(s, input, &o, out, &r, error);
+    result->iterations += r.iterations;
+    result->compare_iterations = r.iterations;
+    int take = 0;
+    if (status == FACET_OK && r.stop_reason == FACET_STOP_TOLERANCE) {
+        /* the handle keeps L/L's result and the input (s->previous,
+         * s->previous_control): the copies go before the measures */
+        free(input), free(out);
+        input = out = NULL;
+        /* new narrow corners of L/L's result (s->q, s->p: the solve's own) */
+        double narrowest = 180.0;
+        const int32_t narrow = options->quality_angle > 0.0
+                                   ? facet_pl_new_narrow(s, options->quality_angle,
+                                                         facet_thread_count(options->threads), &narrowest)
+                                   : 0;
+        take = closer(s, options, xyz_out, narrow, result);
+        if (take) {
+            memcpy(xyz_out, s->previous, sizeof(double) * v3);
+            result->method = FACET_METHOD_LOCAL_LOCAL;
+            result->mu = r.mu;
+            result->planarity_max_abs = r.planarity_max_abs;
+            result->planarity_max_rel = r.planarity_max_rel;
+            result->constraint_max_rel = r.constraint_max_rel;
+            result->anderson_accepted = r.anderson_accepted;
+            result->anderson_rejected = r.anderson_rejected;
+            result->narrow_corners = narrow;
+            if (result->quality != FACET_QUALITY_NOT_CHECKED)
+                result->quality = narrow ? FACET_QUALITY_NARROW : FACET_QUALITY_OK;
+            s->message[0] = '\0'; /* L/G's (its narrow corners) no longer applies */
+        }
+    } else if (status != FACET_ERROR_CANCELLED) {
+        facet_error_clear(error); /* a failed comparison: L/G's result stands */
+        status = FACET_OK;
+    }
+    if (!take && s->previous) { /* the handle's last result (warm starts, live updates) is L/G's */
+        memcpy(s->previous, xyz_out, sizeof(double) * v3);
+        if (input)
+            memcpy(s->previous_control, input, sizeof(double) * v3);
+        s->has_previous = 1;
+    }
+    free(input), free(out);
+    result->seconds += facet_now() - t0;
+    if (status == FACET_ERROR_CANCELLED) {
+        snprintf(s->message, sizeof s->message, "cancelled");
+        return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
+    }
     return FACET_OK;
 }

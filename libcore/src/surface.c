@@ -151,19 +151,27 @@ static double box_dist2(const node *nd, const double p[3])
 /* ---- building ------------------------------------------------------------ */
 
 typedef struct {
-    const double *centroid; /* 3 per triangle (normalised) */
     const double *corners;  /* 9 per triangle (normalised), by triangle index */
     int32_t *order;
     node *nodes;
     int32_t n_nodes;
 } builder;
 
+/* Coordinate `axis` of triangle t's centroid (computed where needed: an
+ * array of them would add a third to the memory a surface takes while it
+ * is built). */
+static inline double centroid(const builder *b, int32_t t, int axis)
+{
+    const double *c = b->corners + 9 * (size_t)t;
+    return (c[axis] + c[3 + axis] + c[6 + axis]) / 3.0;
+}
+
 /* Quickselect: order[lo..hi) partitioned so that position mid holds the
- * element of rank mid by centroid[axis] (ties by triangle index, so the
- * tree does not depend on anything but the input). */
+ * element of rank mid by the centroids' coordinate `axis` (ties by triangle
+ * index, so the tree does not depend on anything but the input). */
 static int tri_less(const builder *b, int axis, int32_t x, int32_t y)
 {
-    const double cx = b->centroid[3 * (size_t)x + axis], cy = b->centroid[3 * (size_t)y + axis];
+    const double cx = centroid(b, x, axis), cy = centroid(b, y, axis);
     return cx < cy || (cx == cy && x < y);
 }
 
@@ -227,13 +235,12 @@ static void build(builder *b, int32_t self, int32_t lo, int32_t hi)
         return;
     }
     double clo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, chi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
-    for (int32_t i = lo; i < hi; ++i) {
-        const double *c = b->centroid + 3 * (size_t)b->order[i];
+    for (int32_t i = lo; i < hi; ++i)
         for (int k = 0; k < 3; ++k) {
-            clo[k] = fmin(clo[k], c[k]);
-            chi[k] = fmax(chi[k], c[k]);
+            const double c = centroid(b, b->order[i], k);
+            clo[k] = fmin(clo[k], c);
+            chi[k] = fmax(chi[k], c);
         }
-    }
     int axis = 0;
     for (int k = 1; k < 3; ++k)
         if (chi[k] - clo[k] > chi[axis] - clo[axis])
@@ -288,10 +295,7 @@ static facet_status create_from_corners(int32_t nt, double *corners, int32_t *fa
         }
     }
     facet_surface *s = calloc(1, sizeof *s);
-    double *centroid = malloc(sizeof *centroid * 3 * (size_t)nt);
-    if (!s || !centroid) {
-        free(s);
-        free(centroid);
+    if (!s) {
         free(corners);
         free(face);
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
@@ -318,12 +322,9 @@ static facet_status create_from_corners(int32_t nt, double *corners, int32_t *fa
     s->scale = 1.0 / fmax(extent, 1e-110);
     s->normals = malloc(sizeof *s->normals * 3 * (size_t)nt);
     s->order = malloc(sizeof *s->order * (size_t)nt);
-    s->flat = malloc((size_t)nt);
+    s->flat = calloc((size_t)nt, 1); /* zero: no slot in tree order yet (below) */
     s->nodes = malloc(sizeof *s->nodes * (2 * (size_t)nt + 1));
-    double *sorted = malloc(sizeof *sorted * 9 * (size_t)nt);
-    if (!s->normals || !s->order || !s->flat || !s->nodes || !sorted) {
-        free(sorted);
-        free(centroid);
+    if (!s->normals || !s->order || !s->flat || !s->nodes) {
         free(corners);
         facet_surface_free(&s);
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
@@ -347,22 +348,37 @@ static facet_status create_from_corners(int32_t nt, double *corners, int32_t *fa
         } else {
             nn[0] = nn[1] = nn[2] = 0.0;
         }
-        for (int k = 0; k < 3; ++k)
-            centroid[3 * (size_t)t + k] = (c[k] + c[3 + k] + c[6 + k]) / 3.0;
         s->order[t] = t;
     }
-    builder b = {centroid, corners, s->order, s->nodes, 1};
+    builder b = {corners, s->order, s->nodes, 1};
     build(&b, 0, 0, nt);
     s->n_nodes = b.n_nodes;
+    node *fit = realloc(s->nodes, sizeof *s->nodes * (size_t)b.n_nodes); /* (shrinks) */
+    s->nodes = fit ? fit : s->nodes;
+    /* the corners into tree order in place (slot i takes triangle order[i]),
+     * cycle by cycle, flat marking the slots done; then flat's own values */
     for (int32_t i = 0; i < nt; ++i) {
-        const int32_t t = s->order[i];
-        memcpy(sorted + 9 * (size_t)i, corners + 9 * (size_t)t, 9 * sizeof *sorted);
-        const double *nn = s->normals + 3 * (size_t)t;
+        if (s->flat[i])
+            continue;
+        double first[9];
+        memcpy(first, corners + 9 * (size_t)i, sizeof first);
+        int32_t j = i;
+        for (;;) {
+            s->flat[j] = 1;
+            const int32_t from = s->order[j];
+            if (from == i) {
+                memcpy(corners + 9 * (size_t)j, first, sizeof first);
+                break;
+            }
+            memcpy(corners + 9 * (size_t)j, corners + 9 * (size_t)from, sizeof first);
+            j = from;
+        }
+    }
+    for (int32_t i = 0; i < nt; ++i) {
+        const double *nn = s->normals + 3 * (size_t)s->order[i];
         s->flat[i] = (nn[0] == 0.0 && nn[1] == 0.0 && nn[2] == 0.0);
     }
-    s->corners = sorted;
-    free(corners);
-    free(centroid);
+    s->corners = corners;
     *out = s;
     return FACET_OK;
 }

@@ -67,7 +67,7 @@ static fixture fixture_new(int n)
     x.s = NULL;
     CHECK_STATUS(facet_planarizer_create(&x.g.mesh, &x.s, &err), FACET_OK);
     x.out = malloc(sizeof(double) * 3 * (size_t)x.g.mesh.n_vertices);
-    facet_planarize_options_default(FACET_METHOD_AUTO, &x.o);
+    facet_planarize_options_default(FACET_METHOD_LOCAL_GLOBAL, &x.o);
     x.rec = recorder_new(x.s);
     x.o.progress = record, x.o.progress_user = x.rec;
     return x;
@@ -254,7 +254,7 @@ static void test_no_resolve(void)
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
         facet_planarize_options o;
-        facet_planarize_options_default(FACET_METHOD_AUTO, &o);
+        facet_planarize_options_default(FACET_METHOD_LOCAL_GLOBAL, &o);
         o.quality_angle = cases[c].quality_angle;
         o.angle_floor = cases[c].angle_floor;
         o.iterations = cases[c].iterations;

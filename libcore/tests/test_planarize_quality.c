@@ -103,7 +103,7 @@ static void test_hypar_default(void)
     facet_error err;
     CHECK_STATUS(facet_planarizer_create(&g.mesh, &s, &err), FACET_OK);
     facet_planarize_options o;
-    facet_planarize_options_default(FACET_METHOD_AUTO, &o);
+    facet_planarize_options_default(FACET_METHOD_LOCAL_GLOBAL, &o);
     CHECK(o.quality_angle == 5.0);
     o.threads = 1; /* 1 against 2 threads: test_resolve_threads_and_cancel */
     const size_t v3 = 3 * (size_t)g.mesh.n_vertices;
@@ -179,7 +179,7 @@ static void test_input_narrow_corner(void)
     CHECK(new_narrow(&g, g.xyz, g.xyz, 180.0, &smallest) >= 0);
     CHECK(smallest > 2.5 && smallest < 3.5); /* the input's narrow corner */
     facet_planarize_options o;
-    facet_planarize_options_default(FACET_METHOD_AUTO, &o);
+    facet_planarize_options_default(FACET_METHOD_LOCAL_GLOBAL, &o);
     facet_planarize_result r;
     CHECK_STATUS(facet_planarizer_solve(s, g.xyz, &o, out, &r, &err), FACET_OK);
     CHECK(r.stop_reason == FACET_STOP_TOLERANCE && r.planarity_max_rel <= 1e-6);
@@ -229,7 +229,7 @@ static void test_resolve_threads_and_cancel(void)
     double *out1 = malloc(sizeof(double) * v3), *out2 = malloc(sizeof(double) * v3);
     double *first = malloc(sizeof(double) * v3);
     facet_planarize_options o;
-    facet_planarize_options_default(FACET_METHOD_AUTO, &o);
+    facet_planarize_options_default(FACET_METHOD_LOCAL_GLOBAL, &o);
     o.quality_angle = 40.0;
     o.threads = 1;
     facet_planarize_result r1, r2, r0;

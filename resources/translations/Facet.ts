@@ -412,7 +412,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="221"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="227"/>
+        <source>Planarize {0}: solving by local/local too, for a result closer to the design</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
         <translation type="unfinished"></translation>
     </message>

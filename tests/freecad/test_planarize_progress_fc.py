@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """A Planarized object's recompute that re-solves for panel quality: the progress text
 says so ("re-solving for panel quality (stage k of n)") and the count runs on through the
-re-solves (headless: the reporter records what the dialog would show)."""
+re-solves (headless: the reporter records what the dialog would show); method auto's
+comparison solve by L/L is named too."""
 
 import os
 import re
@@ -29,7 +30,7 @@ class TestPlanarizeProgress(DocumentTestCase):
 
     def test_progress_text_names_the_resolve(self):
         source = self._hypar()
-        result = facetwb.make_planarized(source)
+        result = facetwb.make_planarized(source, method="lg")  # (auto: the test below)
         self.doc.recompute()  # the source first, without a dialog
         result.touch()
         with progress.reporting("Planarize ...") as reporter:
@@ -64,11 +65,30 @@ class TestPlanarizeProgress(DocumentTestCase):
         # the text is the title again once the solve is done
         self.assertEqual(reporter.text, "Planarize ...")
 
-    def test_cancel_in_a_resolve(self):
+    def test_progress_text_names_the_comparison(self):
         source = self._hypar()
         result = facetwb.make_planarized(source)
         self.doc.recompute()
-        first = facet.planarize(facetwb.get_mesh(source), quality_angle=0.0)
+        result.touch()
+        with progress.reporting("Planarize ...") as reporter:
+            self.doc.recompute()
+        self.assertTrue(result.isValid(), result.getStatusString())
+        title = (f"Planarize {result.Label}: solving by local/local too, for a result closer "
+                 "to the design")
+        said = [k for k, t in enumerate(reporter.texts) if title in t]
+        self.assertTrue(said, reporter.texts[-3:])
+        # after every re-solve's text, then with its planarity below
+        self.assertFalse(any("re-solving" in t for t in reporter.texts[said[0]:]))
+        self.assertTrue(any(t.endswith(")") and "\nplanarity " in t
+                            for t in reporter.texts[said[0]:]))
+        self.assertEqual(reporter.calls, result.Iterations)
+        self.assertEqual(reporter.text, "Planarize ...")
+
+    def test_cancel_in_a_resolve(self):
+        source = self._hypar()
+        result = facetwb.make_planarized(source, method="lg")
+        self.doc.recompute()
+        first = facet.planarize(facetwb.get_mesh(source), method="lg", quality_angle=0.0)
         if result.QualityCheck == "ok":
             self.skipTest("the first solve of the 32 x 32 hypar no longer closes a corner")
         result.touch()

@@ -224,10 +224,11 @@ def run(out_dir):
 
 
 def check_planarize_progress(check, out_dir):
-    """A Planarized recompute that re-solves for panel quality (the 32 x 32 hypar): the
-    progress dialog's text names the re-solve and its bar never runs backwards; the
-    dialog in the first re-solve (its name, its planarity) is saved as
-    progress_resolve.png."""
+    """A Planarized recompute that re-solves for panel quality (the 32 x 32 hypar) and
+    then, method auto, solves by L/L too: the progress dialog's text names the re-solve
+    and the comparison, and its bar never runs backwards; the dialog in the first
+    re-solve and in the comparison (name, planarity) is saved as progress_resolve.png and
+    progress_compare.png."""
     import FreeCAD as App
 
     import facet
@@ -250,26 +251,36 @@ def check_planarize_progress(check, out_dir):
         def recording_say(text=None):
             say(text)
             shown.append((reporter.dialog.labelText(), reporter.dialog.value()))
-            if "re-solving" in shown[-1][0] and "planarity" in shown[-1][0] and not saved:
-                saved.append(os.path.join(out_dir, "progress_resolve.png"))
-                reporter.dialog.grab().save(saved[-1])
+            for key, name in (("re-solving", "progress_resolve.png"),
+                              ("local/local too", "progress_compare.png")):
+                path = os.path.join(out_dir, name)
+                if key in shown[-1][0] and "planarity" in shown[-1][0] and path not in saved:
+                    saved.append(path)
+                    reporter.dialog.grab().save(path)
 
         reporter.say = recording_say
         doc.recompute()
     check(result.isValid(), f"the hypar 32 planarizes ({result.getStatusString()})")
     resolving = [(text, value) for text, value in shown if "re-solving" in text]
-    if result.QualityCheck in ("recovered", "narrow"):
-        check(bool(resolving) and resolving[0][0] == "Planarize ...\nPlanarize "
+    comparing = [(text, value) for text, value in shown if "local/local too" in text]
+    if resolving:  # L/G's first solve of this hypar closes corners (test_planarize_quality)
+        check(resolving[0][0] == "Planarize ...\nPlanarize "
               f"{result.Label}: re-solving for panel quality (stage 1 of 4)",
               f"the progress dialog says it re-solves ({resolving[:1]})")
-        values = [value for _text, value in resolving]
         check(any("\nplanarity " in text for text, _value in resolving),
               "the dialog shows the re-solve's planarity under its name")
-        check(values == sorted(values) and 0 < values[0] < 1000,
-              f"the progress bar does not run backwards across re-solves ({values})")
-        check(saved and os.path.getsize(saved[0]) > 1000, f"the dialog's screenshot ({saved})")
-    else:
-        check(not resolving, "no re-solve, no re-solve text")
+    # method auto (the default) then solves by L/L too: named after the re-solves
+    check(bool(comparing) and comparing[0][0] == "Planarize ...\nPlanarize "
+          f"{result.Label}: solving by local/local too, for a result closer to the design"
+          and shown.index(comparing[0]) > max([shown.index(r) for r in resolving], default=-1),
+          f"the progress dialog names auto's comparison after any re-solve ({comparing[:1]})")
+    check(any("\nplanarity " in text for text, _value in comparing),
+          "the dialog shows the comparison's planarity under its name")
+    values = [value for _text, value in resolving + comparing]
+    check(values == sorted(values) and 0 < values[0] < 1000,
+          f"the progress bar does not run backwards across re-solves and comparison ({values})")
+    check(len(saved) == 1 + bool(resolving) and all(os.path.getsize(p) > 1000 for p in saved),
+          f"the dialog's screenshots ({saved})")
     check(shown and shown[-1][0] == "Planarize ...", "the title alone after the solve")
     App.closeDocument(doc.Name)
 

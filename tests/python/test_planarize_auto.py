@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""The large-mesh default: method "auto" (L/G on small meshes, L/L above
-200,000 face corners) and L/L's finish, through facet.planarize and the
-command line."""
+"""The large-mesh default: method "auto" (L/G on small meshes, compared with
+L/L, L/L above 200,000 face corners) and L/L's finish, through
+facet.planarize and the command line. The comparison's rule:
+test_planarize_compare.py."""
 
 import json
 
@@ -23,16 +24,18 @@ def grid(n, seed=7):
     return facet.PolyMesh.from_faces(np.stack([x, y, z], axis=1), faces.tolist())
 
 
-def test_auto_is_the_default_and_picks_lg_on_small_meshes(data_dir):
+def test_auto_is_the_default_and_solves_by_lg_and_ll_on_small_meshes(data_dir):
     tube = facet.read_mesh(data_dir / "tubemesh.off")
     result = facet.planarize(tube)
     assert result.options["method"] == "auto"
-    assert result.method == "lg"
     assert result.converged and result.planarity.max_rel_all <= 1e-6
-    explicit = facet.planarize(tube, method="lg")
-    # auto on a small mesh is L/G with L/G's defaults: the same bits
-    assert np.array_equal(result.mesh.vertices, explicit.mesh.vertices)
-    assert result.iterations == explicit.iterations
+    lg = facet.planarize(tube, method="lg")
+    ll = facet.planarize(tube, method="ll", quality_angle=0)  # the comparison's one L/L solve
+    # L/G with L/G's defaults, then L/L: the bits of the one returned
+    assert result.iterations == lg.iterations + ll.iterations
+    assert result.compared["iterations"] == ll.iterations
+    assert result.method == "ll"  # tubemesh: L/L's result is closer, as wide
+    assert np.array_equal(result.mesh.vertices, ll.mesh.vertices)
 
 
 def test_auto_picks_ll_above_the_threshold():
@@ -71,8 +74,9 @@ def test_command_line_auto(facet_command, data_dir, tmp_path):
     )
     assert done.returncode == 0, done.stderr
     report = json.loads(report_path.read_text())
-    assert report["method"] == "lg"
+    assert report["method"] == "ll" and report["compared"]["iterations"] > 0
     assert report["stop_reason"] == "tolerance"
+    assert "compared      local/local too (" in done.stdout and "kept ll's result" in done.stdout
     bad = facet_command("planarize", data_dir / "tubemesh.off", "-o", tmp_path / "u.obj",
                         "--method", "fast")
     assert bad.returncode == 2

@@ -28,7 +28,9 @@ def _hypar(n):
 
 def _solve(mesh, **options):
     """The result and every call, in order: ("progress", iteration, max_iter) and
-    ("stage", stage, stages)."""
+    ("stage", stage, stages). L/G unless `method` is given (method auto's comparison
+    solve: test_planarize_compare.py)."""
+    options.setdefault("method", "lg")
     events = []
 
     def progress(iteration, max_iter, planarity):
@@ -65,7 +67,7 @@ def _check_one_solve(result, events, stages):
 
 def test_progress_counts_through_all_four_stages():
     mesh = _hypar(8)
-    plain = facet.planarize(mesh, threads=1, quality_angle=40.0)
+    plain = facet.planarize(mesh, method="lg", threads=1, quality_angle=40.0)
     result, events = _solve(mesh, quality_angle=40.0)
     assert result.quality_resolves == 4 and result.quality_check == "narrow"
     _check_one_solve(result, events, 4)
@@ -130,9 +132,14 @@ def test_cli_progress_line():
                              stage=line.stage)
     line.close()
     shown = out.getvalue().split("\r")
-    assert "facet planarize: iteration 1 of at most 8000, planarity" in shown[1]
+    # method auto: 1000 for L/G, 7000 for its four re-solves, 1000 for L/L's comparison
+    assert "facet planarize: iteration 1 of at most 9000, planarity" in shown[1]
     resolving = [s for s in shown if "re-solving for panel quality (stage 4 of 4): iteration" in s]
-    assert resolving and f"iteration {result.iterations} of at most" in resolving[-1]
+    comparing = [s for s in shown if "solving by local/local too, for a result closer to the "
+                 "design: iteration" in s]
+    assert resolving and comparing and result.compared["iterations"] > 0
+    assert f"iteration {result.iterations - result.compared['iterations']} of at most" in resolving[-1]
+    assert f"iteration {result.iterations} of at most" in comparing[-1]
     assert shown[-1] == "" and shown[-2].strip() == ""  # erased at the end
     assert not any("stage" in s for s in shown[:result.first_iterations + 1])
 

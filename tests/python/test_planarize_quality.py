@@ -82,14 +82,19 @@ def hypar32():
 
 
 def _check_default(mesh):
-    first = facet.planarize(mesh, threads=1, quality_angle=0)
-    r = facet.planarize(mesh, threads=1)
+    # L/G's re-solves (method auto then compares L/G's result with L/L's:
+    # test_planarize_compare.py)
+    first = facet.planarize(mesh, method="lg", threads=1, quality_angle=0)
+    r = facet.planarize(mesh, method="lg", threads=1)
     assert r.converged and np.max(r.planarity.max_rel) <= 1e-6
     assert new_narrow(mesh, r.mesh.vertices) == 0
     assert r.narrow_corners == 0
     assert first.quality_check == "not_checked" and first.quality_resolves == 0
     collapsed = new_narrow(mesh, first.mesh.vertices)
     assert r.first_iterations == first.iterations
+    # the default (method auto: L/G's result or L/L's) has none either
+    auto = facet.planarize(mesh, threads=1)
+    assert auto.converged and new_narrow(mesh, auto.mesh.vertices) == 0 and auto.narrow_corners == 0
     if collapsed:
         assert r.quality_check == "recovered" and r.quality_resolves > 0
         assert r.iterations > first.iterations
@@ -147,15 +152,15 @@ def test_resolve_same_bits_on_one_and_two_threads():
     # re-solve leaves some new corner below 40, so all of them run and the
     # first solve's result is returned
     mesh = _mesh(families.hypar(8))
-    r1 = facet.planarize(mesh, threads=1, quality_angle=40.0)
-    r2 = facet.planarize(mesh, threads=2, quality_angle=40.0)
+    r1 = facet.planarize(mesh, method="lg", threads=1, quality_angle=40.0)
+    r2 = facet.planarize(mesh, method="lg", threads=2, quality_angle=40.0)
     assert r1.quality_check == "narrow" and r1.quality_resolves == 4
     assert r1.converged and np.max(r1.planarity.max_rel) <= 1e-6
     assert r1.narrow_corners == new_narrow(mesh, r1.mesh.vertices, 40.0) > 0
     assert np.array_equal(r1.mesh.vertices, r2.mesh.vertices)
     assert r1.iterations == r2.iterations
     assert any("under 40 degrees that the input did not have" in w for w in r1.warnings)
-    first = facet.planarize(mesh, threads=1, quality_angle=0)
+    first = facet.planarize(mesh, method="lg", threads=1, quality_angle=0)
     assert np.array_equal(r1.mesh.vertices, first.mesh.vertices)
     assert r1.first_iterations == first.iterations < r1.iterations
 

@@ -279,6 +279,24 @@ def _quality_lines(out, quality):
         )
 
 
+def _compared_line(out, report):
+    """The summary line of method auto's comparison (PlanarizeResult.compared)."""
+    compared = report.get("compared")
+    if not compared:
+        return
+    kept = report["method"]
+    text = f"local/local too ({_count(compared['iterations'], 'iteration')})"
+    if compared.get(kept) and compared.get("lg") and compared.get("ll"):
+        other = "ll" if kept == "lg" else "lg"
+        a, b = compared[kept], compared[other]
+        text += (f": kept {kept}'s result, distance from the input surface rms "
+                 f"{_g(a['distance_rms'])} (smallest angle {_g(a['min_angle'])} deg) against "
+                 f"{other}'s {_g(b['distance_rms'])} ({_g(b['min_angle'])} deg)")
+    else:
+        text += ": it did not reach the tolerance; kept lg's result"
+    _line(out, "compared", text)
+
+
 def print_planarize_summary(report, out=None):
     """Print the human summary of a planarization report.
 
@@ -326,6 +344,7 @@ def print_planarize_summary(report, out=None):
                    else "none kept every corner open: the first solve's result")
         _line(out, "re-solves", f"{resolves} for panel quality after the first solve's "
               f"{_count(report.get('first_iterations', 0), 'iteration')}: {outcome}")
+    _compared_line(out, report)
     relative = report.get("displacement_max_rel")
     share = "" if relative is None else f" ({relative * 100:.3g}% of the mean edge)"
     _line(

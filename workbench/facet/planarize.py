@@ -22,11 +22,19 @@ from facet import _core
 from facet.errors import FacetError, MeshError, from_core
 from facet.planarity import PlanarityReport, planarity
 
-__all__ = ["METHODS", "Planarizer", "PlanarizeResult", "planarize"]
+__all__ = ["METHODS", "STAGE_COMPARE", "Planarizer", "PlanarizeResult", "planarize"]
 
 #: Solver schemes by name: what the command line and the workbench offer.
-METHODS = {"auto": "automatic (local/global up to 50,000 quads, local/local above)",
+#: "auto" solves by local/global up to 50,000 quads and also by local/local,
+#: returning the result closer to the design (PlanarizeResult.compared); by
+#: local/local alone above.
+METHODS = {"auto": "automatic (local/global and local/local up to 50,000 quads, the result "
+                   "closer to the design; local/local above)",
            "lg": "local/global", "ll": "local/local"}
+
+#: The `stage` callable's first argument during method "auto"'s comparison
+#: solve by local/local (facet.h, FACET_STAGE_COMPARE).
+STAGE_COMPARE = _core.STAGE_COMPARE
 
 #: Data-term presets: how strongly a vertex is held to its control position
 #: along the control surface (tangent) and across it (normal), and to the
@@ -126,6 +134,18 @@ class PlanarizeResult:
         Re-solves run after the first solve (``iterations`` counts them all).
     first_iterations : int
         Iterations of the first solve.
+    compared : dict or None
+        Method ``"auto"``'s comparison, where it picked L/G: it also solved
+        by L/L and returned the result closer to the design (``method`` says
+        whose), unless L/L's had a narrower smallest corner (below L/G's and
+        10 degrees) or more new narrow corners. ``{"iterations": n, "lg":
+        {"distance_rms": d, "min_angle": a}, "ll": {...}}``: the L/L solve's
+        iterations (counted in ``iterations``), and each result's RMS
+        distance from the input surface (model units) and smallest corner
+        angle (degrees); the two dicts are empty when L/L did not reach the
+        tolerance. None when no comparison ran (another method, a warm
+        start, a fixed iteration count, the paper's schedule (``hold_tol``
+        0), a shape term or a regularizer).
     control : facet.PolyMesh or None
         The control mesh the result was solved from.
     reference : facet.Surface or None
@@ -148,6 +168,7 @@ class PlanarizeResult:
     narrow_corners: int = 0
     quality_resolves: int = 0
     first_iterations: int = 0
+    compared: object = None
     control: object = None
     reference: object = None
     _quality: object = field(default=None, repr=False)
@@ -295,6 +316,8 @@ class Planarizer:
             that may still follow included); it never grows, so
             ``iteration / max_iter`` never falls.
         stage : callable, optional
+            ``stage(STAGE_COMPARE, stages)`` when method "auto"'s comparison
+            solve by local/local starts (see ``compared``); else
             ``stage(stage, stages)``, called when a quality re-solve starts
             (before its first `progress` call): the `stage`-th of at most
             `stages` (4, or 2 when vertices slide along the design; they stop
@@ -433,9 +456,21 @@ class Planarizer:
             narrow_corners=stats["narrow_corners"],
             quality_resolves=stats["quality_resolves"],
             first_iterations=stats["first_iterations"],
+            compared=_compared(stats),
             control=control,
             reference=surface,
         )
+
+
+def _compared(stats):
+    """PlanarizeResult.compared from the core's compare_* figures."""
+    if not stats.get("compare_iterations"):
+        return None
+    distance, angle = stats["compare_distance_rms"], stats["compare_min_angle"]
+    measured = distance[0] > 0.0 or distance[1] > 0.0 or angle[0] > 0.0 or angle[1] > 0.0
+    return {"iterations": int(stats["compare_iterations"]),
+            **{name: ({"distance_rms": float(distance[k]), "min_angle": float(angle[k])}
+                      if measured else {}) for k, name in enumerate(("ll", "lg"))}}
 
 
 def _quality_warnings(stats, options):

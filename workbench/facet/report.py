@@ -97,7 +97,8 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         surface, smallest angles, edge ratio change, degenerate faces;
         ``quality_check``, ``narrow_corners``, ``quality_resolves`` and
         ``first_iterations`` say whether the solve re-solved a result with a
-        new narrow corner: see :class:`facet.PlanarizeResult`).
+        new narrow corner, ``compared`` what method auto compared before it
+        picked ``method``'s result, or None: see :class:`facet.PlanarizeResult`).
         Already JSON-safe.
     """
     if input_planarity is None:
@@ -129,6 +130,7 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         "narrow_corners": int(getattr(result, "narrow_corners", 0)),
         "quality_resolves": int(getattr(result, "quality_resolves", 0)),
         "first_iterations": int(getattr(result, "first_iterations", result.iterations)),
+        "compared": getattr(result, "compared", None),
         "solve_seconds": float(result.solve_seconds),
         "input_planarity_max_rel": input_planarity.max_rel_all,
         "input_planarity_max_abs": input_planarity.max_abs_all,

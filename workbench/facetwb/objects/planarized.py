@@ -175,6 +175,7 @@ class Planarized(PolyMesh):
         set_mesh(obj, result.mesh)
         set_planarity(obj, result.planarity)
         self.method_ran = result.method  # what "auto" chose; for the report, not saved
+        self.compared = result.compared  # and what it compared (the same)
         obj.Iterations = int(result.iterations)
         obj.StopReason = str(result.stop_reason)
         obj.Converged = bool(result.converged)
@@ -217,8 +218,15 @@ class _Follow:
         return self.report(iteration, max_iter, planarity)
 
     def stage(self, k, n):
-        """facet.planarize's ``stage(k, n)``: the re-solve in the text."""
-        text = translate("Facet", "Planarize {0}: re-solving for panel quality (stage {1} of {2})")
+        """facet.planarize's ``stage(k, n)``: the re-solve, or method auto's comparison
+        solve (k == facet.planarize.STAGE_COMPARE), in the text."""
+        from facet.planarize import STAGE_COMPARE
+
+        if k == STAGE_COMPARE:
+            text = translate(
+                "Facet", "Planarize {0}: solving by local/local too, for a result closer to the design")
+        else:
+            text = translate("Facet", "Planarize {0}: re-solving for panel quality (stage {1} of {2})")
         self.stage_text = text.format(self.obj.Label, k, n)
         self.say(self.stage_text)
         self.shown = None  # and its planarity at its first iteration
@@ -280,6 +288,18 @@ def method_text(obj):
     return text
 
 
+def _compared_text(compared, kept):
+    """The summary line of method auto's comparison (facet.PlanarizeResult.compared)."""
+    if not (compared.get("lg") and compared.get("ll")) or kept not in ("lg", "ll"):
+        return "  local/local also tried: it did not reach the tolerance; local/global kept"
+    other = "ll" if kept == "lg" else "lg"
+    a, b = compared[kept], compared[other]
+    return (f"  local/global and local/local compared: {METHOD_NAMES[kept]} kept, "
+            f"distance from the source surface rms {format_length(a['distance_rms'])} "
+            f"(smallest corner {a['min_angle']:.1f} deg) against "
+            f"{format_length(b['distance_rms'])} ({b['min_angle']:.1f} deg)")
+
+
 def planarize_summary(obj):
     """A few lines for the report view about a recomputed Planarized object."""
     if not obj.isValid():
@@ -296,6 +316,9 @@ def planarize_summary(obj):
         f"  vertices moved: max {format_length(obj.DisplacementMax.Value)}, "
         f"rms {format_length(obj.DisplacementRms.Value)}",
     ]
+    compared = getattr(getattr(obj, "Proxy", None), "compared", None)
+    if obj.Method == "auto" and compared:
+        lines.append(_compared_text(compared, getattr(obj.Proxy, "method_ran", None)))
     check = getattr(obj, "QualityCheck", "")
     if check == "recovered":
         lines.append("  a panel corner closed below 5 degrees; solved again without it")
