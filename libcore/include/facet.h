@@ -827,7 +827,7 @@ int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stag
 /* Where FACET_METHOD_AUTO picks L/G (facet_planarizer_choose_method), a cold
  * solve that reaches the tolerance, after its quality re-solves, is solved
  * again from the input by L/L (the same options, mu_min at least
- * FACET_LL_MU_MIN; about a twentieth of an L/G solve's time), and L/L's
+ * FACET_LL_MU_MIN; a tenth of an L/G solve's time or less), and L/L's
  * result is returned instead of L/G's when it reaches the tolerance, lies
  * closer to the input surface (RMS distance of the vertices; the reference
  * surface instead when surface_weight > 0), has a smallest corner angle of

@@ -258,8 +258,8 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
     facet_planarize_options first_o;
     const facet_planarize_options *first_options = options;
     if (s && options && (s->quality_stages > 0 || after > 0)) {
-        first_o = relayed(options, &relay, 0,
-                          (int64_t)options->max_iter + (s->quality_stages > 0 ? stages_bound(options, 0) : 0) + after);
+        const int64_t stages = s->quality_stages > 0 ? stages_bound(options, 0) : 0;
+        first_o = relayed(options, &relay, 0, (int64_t)options->max_iter + stages + after);
         first_options = &first_o;
     }
     facet_status status = facet_pl_solve_once(s, xyz_in, first_options, xyz_out, &first, error);
@@ -306,7 +306,8 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
         if (!stage_applies(options, k))
             continue;
         /* the bound from here: done, this stage's limit and the later stages' */
-        facet_planarize_options o = relayed(options, &relay, total, total + stages_bound(options, k) + after);
+        facet_planarize_options o =
+            relayed(options, &relay, total, total + stages_bound(options, k) + after);
         if (!STAGES[k].anderson)
             o.anderson = 0;
         if (STAGES[k].floor)
@@ -373,9 +374,9 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
  *
  * Neither L/G nor L/L ends closer to the input surface on every mesh: each
  * follows the penalty path only approximately (the 1% hold, Anderson's
- * jumps), and where it strays it strays differently. L/L costs about a
- * twentieth of L/G, so where AUTO picks L/G it solves by both and returns
- * the closer result, unless that costs panel shape. */
+ * jumps), and where it strays it strays differently. L/L costs a tenth of
+ * L/G or less, so where AUTO picks L/G it solves by both and returns the
+ * closer result, unless that costs panel shape. */
 
 /* The smallest corner L/L's result may have: at least L/G's, but a result
  * whose corners are all 10 degrees or wider is as good as any for panels. */
