@@ -346,6 +346,7 @@ typedef struct facet_planarize_result {
                                         (indexed by facet_method) from the input surface,
                                         model units; 0 0 when none was compared */
     double compare_min_angle[2];     /* their smallest corner angles, degrees (facet_face_shape) */
+    double compare_displacement_rms[2]; /* their RMS vertex displacement from the input */
 } facet_planarize_result;
 
 /* A planarization solver for one mesh topology. It copies the topology and
@@ -831,12 +832,15 @@ int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stag
  * result is returned instead of L/G's when it reaches the tolerance, lies
  * closer to the input surface (RMS distance of the vertices; the reference
  * surface instead when surface_weight > 0), has a smallest corner angle of
- * at least the smaller of L/G's and 10 degrees, and has no more new narrow
- * corners (facet_quality_outcome) than L/G's. Neither method is closer on
- * every mesh: L/G ends up to 24% further from the design than the exact
- * penalty path on some meshes, L/L up to 12% on others; the closer of the
- * two was no further than the exact path on all 34 benchmark and public
- * meshes (docs/solver-notes.md, "Method auto: the closer result").
+ * at least the smaller of L/G's and 10 degrees, has no more new narrow
+ * corners (facet_quality_outcome) than L/G's and, unless the data term lets
+ * vertices slide (data_tangent < data_normal or surface_weight > 0), moves
+ * the vertices no more than 5% further (RMS) than L/G's: L/L is often
+ * closer because its vertices slide further along the surface, which
+ * changes the panels' sizes. Neither method is closer on every mesh: L/G
+ * ends up to 24% further from the design than the exact penalty path on
+ * some meshes, L/L up to 12% on others (docs/solver-notes.md, "Method auto:
+ * the closer result").
  * result.method says whose result was returned, compare_* what was
  * compared. No comparison is made for a fixed iteration count, a warm start,
  * the paper's schedule (hold_tol 0: L/L does not reach the tolerance with

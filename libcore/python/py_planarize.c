@@ -278,7 +278,7 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
         return py_raise_status(st, status, &error);
     static const char *const quality_names[] = {"not_checked", "ok", "recovered", "narrow"};
     /* compare_*: (L/L, L/G), facet_method's order */
-    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:i,s:i,s:(dd),s:(dd)}",
+    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:i,s:i,s:(dd),s:(dd),s:(dd)}",
                          "iterations",
                          (int)r.iterations, "stop_reason", stop_reason_name(r.stop_reason), "mu",
                          r.mu, "planarity_max_abs", r.planarity_max_abs, "planarity_max_rel",
@@ -292,7 +292,8 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
                          (int)r.quality_resolves, "first_iterations", (int)r.first_iterations,
                          "compare_iterations", (int)r.compare_iterations, "compare_distance_rms",
                          r.compare_distance_rms[0], r.compare_distance_rms[1], "compare_min_angle",
-                         r.compare_min_angle[0], r.compare_min_angle[1]);
+                         r.compare_min_angle[0], r.compare_min_angle[1], "compare_displacement_rms",
+                         r.compare_displacement_rms[0], r.compare_displacement_rms[1]);
 }
 
 /* The handle of a planarizer that may be configured now; NULL with an error set. */

@@ -144,12 +144,18 @@ static int checks_result(const facet_planarize_options *options)
     return options->quality_angle > 0.0 && options->iterations <= 0 && !(options->angle_floor > 0.0);
 }
 
+/* Whether the data term lets vertices slide along the design (plane or
+ * surface data) instead of holding them at their control points. */
+static int slides(const facet_planarize_options *options)
+{
+    return options->data_tangent < options->data_normal || options->surface_weight > 0.0;
+}
+
 /* Whether a stage runs for these options (vertices sliding along the design
  * skip the first two). */
 static int stage_applies(const facet_planarize_options *options, size_t k)
 {
-    const int sliding = options->data_tangent < options->data_normal || options->surface_weight > 0.0;
-    return !sliding || STAGES[k].sliding;
+    return !slides(options) || STAGES[k].sliding;
 }
 
 /* a + b, at most INT32_MAX (the counts are int32; a bound may not wrap) */
@@ -382,6 +388,13 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
  * whose corners are all 10 degrees or wider is as good as any for panels. */
 static const double COMPARE_ANGLE_ENOUGH = 10.0;
 
+/* How much further L/L's result may move the vertices (RMS) than L/G's when
+ * the data term holds them at their control points: L/L is often closer to
+ * the surface because its vertices slide further along it, which changes the
+ * panels' sizes (the demo facade: 1.26 times L/G's displacement, edges up to
+ * 87% longer against 43%, three panels too large for its sheets). */
+static const double COMPARE_DISPLACEMENT_MORE = 1.05;
+
 /* Whether AUTO compares: where it picks L/G, for a cold solve to the
  * tolerance whose energy asks for closeness alone, with the staircase
  * schedule (L/L finishes only with it: without, it stalls above the
@@ -395,14 +408,21 @@ static int compares(const facet_planarizer *s, const facet_planarize_options *op
            options->normal_laplacian == 0.0 && options->boundary_fairness == 0.0;
 }
 
-/* RMS distance of the n points xyz from the surface and the smallest corner
- * angle of the mesh with those positions, degrees; 0 when a call fails
- * (then the comparison keeps L/G's result). Sums in vertex order: the same
- * for any thread count. */
+/* RMS distance of the n points xyz from the surface, their RMS displacement
+ * from the input (s->previous_control) and the smallest corner angle of the
+ * mesh with those positions, degrees; 0 when a call fails (then the
+ * comparison keeps L/G's result). Sums in vertex order: the same for any
+ * thread count. */
 static int measure(const facet_planarizer *s, const facet_surface *surface, const double *xyz,
-                   int nthreads, double *work, double *rms, double *angle)
+                   int nthreads, double *work, double *rms, double *moved, double *angle)
 {
     facet_error error;
+    double sum_moved = 0.0;
+    for (size_t k = 0; k < 3 * (size_t)s->nv; ++k) {
+        const double d = xyz[k] - s->previous_control[k];
+        sum_moved += d * d;
+    }
+    *moved = sqrt(sum_moved / (double)s->nv);
     if (facet_surface_closest(surface, s->nv, xyz, nthreads, NULL, work, NULL, NULL, &error) !=
         FACET_OK)
         return 0;
@@ -417,7 +437,7 @@ static int measure(const facet_planarizer *s, const facet_surface *surface, cons
     for (int32_t f = 0; f < s->nf; ++f)
         least = facet_min(least, work[f]);
     *angle = least / DEG;
-    return isfinite(*rms) && isfinite(*angle);
+    return isfinite(*rms) && isfinite(*moved) && isfinite(*angle);
 }
 
 /* Whether L/L's result (the handle's last: s->previous, solved from
@@ -441,14 +461,16 @@ static int closer(facet_planarizer *s, const facet_planarize_options *options, c
             surface = own;
     }
     double *d = result->compare_distance_rms, *a = result->compare_min_angle;
+    double *m = result->compare_displacement_rms;
     const int lg = FACET_METHOD_LOCAL_GLOBAL, ll = FACET_METHOD_LOCAL_LOCAL;
     int take = 0;
-    if (surface && measure(s, surface, xyz_out, nthreads, work, &d[lg], &a[lg]) &&
-        measure(s, surface, s->previous, nthreads, work, &d[ll], &a[ll]))
+    if (surface && measure(s, surface, xyz_out, nthreads, work, &d[lg], &m[lg], &a[lg]) &&
+        measure(s, surface, s->previous, nthreads, work, &d[ll], &m[ll], &a[ll]))
         take = d[ll] < d[lg] && a[ll] >= facet_min(a[lg], COMPARE_ANGLE_ENOUGH) &&
-               narrow <= result->narrow_corners;
+               narrow <= result->narrow_corners &&
+               (slides(options) || m[ll] <= COMPARE_DISPLACEMENT_MORE * m[lg]);
     else /* out of memory: L/G's result stands */
-        d[0] = d[1] = a[0] = a[1] = 0.0;
+        d[0] = d[1] = a[0] = a[1] = m[0] = m[1] = 0.0;
     facet_surface_free(&own);
     free(work);
     return take;

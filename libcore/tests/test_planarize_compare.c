@@ -28,10 +28,15 @@ static size_t v3_of(const test_mesh *g)
     return 3 * (size_t)g->mesh.n_vertices;
 }
 
-/* RMS distance of the mesh's vertices at xyz from its input surface and the
- * smallest corner angle (degrees), as the rule measures them. */
-static void measure(const test_mesh *g, const double *xyz, double *rms, double *angle)
+/* RMS distance of the mesh's vertices at xyz from its input surface, their
+ * RMS displacement from the input and the smallest corner angle (degrees),
+ * as the rule measures them. */
+static void measure(const test_mesh *g, const double *xyz, double *rms, double *moved, double *angle)
 {
+    double sum_moved = 0.0;
+    for (size_t k = 0; k < v3_of(g); ++k)
+        sum_moved += (xyz[k] - g->xyz[k]) * (xyz[k] - g->xyz[k]);
+    *moved = sqrt(sum_moved / (double)g->mesh.n_vertices);
     facet_error err;
     facet_surface *surface = NULL;
     CHECK_STATUS(facet_surface_create_from_mesh(&g->mesh, &surface, &err), FACET_OK);
@@ -64,8 +69,9 @@ static facet_planarize_options ll_as_compared(void)
     return o;
 }
 
-/* Returns whether AUTO returned L/L's result. */
-static int check_rule(const char *name, test_mesh *g)
+/* Returns whether AUTO returned L/L's result; *guarded: whether L/L's was
+ * closer and as wide but moved the vertices too far. */
+static int check_rule(const char *name, test_mesh *g, int *guarded)
 {
     const size_t v3 = v3_of(g);
     double *lg = malloc(sizeof(double) * v3), *ll = malloc(sizeof(double) * v3);
@@ -86,12 +92,16 @@ static int check_rule(const char *name, test_mesh *g)
     facet_planarize_options_default(FACET_METHOD_AUTO, &o);
     CHECK_STATUS(facet_planarizer_solve(h_auto, g->xyz, &o, out, &r, &err), FACET_OK);
 
-    double d_lg, a_lg, d_ll, a_ll;
-    measure(g, lg, &d_lg, &a_lg);
-    measure(g, ll, &d_ll, &a_ll);
-    const int take_ll = d_ll < d_lg && a_ll >= (a_lg < 10.0 ? a_lg : 10.0);
-    printf("%s: L/G %.6g (%.3g deg, %d it), L/L %.6g (%.3g deg, %d it): %s\n", name, d_lg, a_lg,
-           (int)r_lg.iterations, d_ll, a_ll, (int)r_ll.iterations, take_ll ? "L/L" : "L/G");
+    double d_lg, m_lg, a_lg, d_ll, m_ll, a_ll;
+    measure(g, lg, &d_lg, &m_lg, &a_lg);
+    measure(g, ll, &d_ll, &m_ll, &a_ll);
+    const int closer = d_ll < d_lg, wide = a_ll >= (a_lg < 10.0 ? a_lg : 10.0);
+    const int still = m_ll <= 1.05 * m_lg; /* point data: vertices held at their points */
+    const int take_ll = closer && wide && still;
+    printf("%s: L/G %.6g (moved %.4g, %.3g deg, %d it), L/L %.6g (moved %.4g, %.3g deg, %d it): %s\n",
+           name, d_lg, m_lg, a_lg, (int)r_lg.iterations, d_ll, m_ll, a_ll, (int)r_ll.iterations,
+           take_ll ? "L/L" : "L/G");
+    *guarded = closer && wide && !still;
     CHECK(r.narrow_corners == 0 && r_lg.narrow_corners == 0);
     CHECK(r.method == (take_ll ? FACET_METHOD_LOCAL_LOCAL : FACET_METHOD_LOCAL_GLOBAL));
     CHECK(memcmp(out, take_ll ? ll : lg, sizeof(double) * v3) == 0);
@@ -105,6 +115,8 @@ static int check_rule(const char *name, test_mesh *g)
     CHECK(r.compare_distance_rms[FACET_METHOD_LOCAL_LOCAL] == d_ll);
     CHECK(r.compare_min_angle[FACET_METHOD_LOCAL_GLOBAL] == a_lg);
     CHECK(r.compare_min_angle[FACET_METHOD_LOCAL_LOCAL] == a_ll);
+    CHECK(r.compare_displacement_rms[FACET_METHOD_LOCAL_GLOBAL] == m_lg);
+    CHECK(r.compare_displacement_rms[FACET_METHOD_LOCAL_LOCAL] == m_ll);
     /* the handle's last result is the one returned: a warm start from it as
      * from the handle that solved it alone */
     double *warm = malloc(sizeof(double) * v3);
@@ -295,7 +307,7 @@ static void test_no_comparison(void)
 
 int main(void)
 {
-    int took_ll = 0, kept_lg = 0;
+    int took_ll = 0, kept_lg = 0, guarded = 0;
     const struct {
         const char *name;
         int hypar; /* n for test_hypar, else a test_grid of nu x nv */
@@ -308,14 +320,15 @@ int main(void)
     for (size_t m = 0; m < sizeof meshes / sizeof meshes[0]; ++m) {
         test_mesh g = meshes[m].hypar ? test_hypar(meshes[m].hypar)
                                       : test_grid(meshes[m].nu, meshes[m].nv, meshes[m].amplitude, 1.0, 0.0);
-        const int ll = check_rule(meshes[m].name, &g);
-        took_ll += ll, kept_lg += !ll;
+        int moved_too_far = 0;
+        const int ll = check_rule(meshes[m].name, &g, &moved_too_far);
+        took_ll += ll, kept_lg += !ll, guarded += moved_too_far;
         if (m == 0)
             test_same_bits(&g);
         test_mesh_free(&g);
     }
     /* the meshes cover both outcomes (else the rule's other branch is untested) */
-    CHECK(took_ll > 0 && kept_lg > 0);
+    CHECK(took_ll > 0 && kept_lg > 0 && guarded > 0);
     test_progress_and_cancel();
     test_no_comparison();
     return check_report("test_planarize_compare");

@@ -290,8 +290,9 @@ def _compared_line(out, report):
         other = "ll" if kept == "lg" else "lg"
         a, b = compared[kept], compared[other]
         text += (f": kept {kept}'s result, distance from the input surface rms "
-                 f"{_g(a['distance_rms'])} (smallest angle {_g(a['min_angle'])} deg) against "
-                 f"{other}'s {_g(b['distance_rms'])} ({_g(b['min_angle'])} deg)")
+                 f"{_g(a['distance_rms'])}, vertices moved rms {_g(a['displacement_rms'])}, "
+                 f"smallest angle {_g(a['min_angle'])} deg; {other}'s "
+                 f"{_g(b['distance_rms'])}, {_g(b['displacement_rms'])}, {_g(b['min_angle'])} deg")
     else:
         text += ": it did not reach the tolerance; kept lg's result"
     _line(out, "compared", text)

@@ -138,12 +138,13 @@ class PlanarizeResult:
         Method ``"auto"``'s comparison, where it picked L/G: it also solved
         by L/L and returned the result closer to the design (``method`` says
         whose), unless L/L's had a narrower smallest corner (below L/G's and
-        10 degrees) or more new narrow corners. ``{"iterations": n, "lg":
-        {"distance_rms": d, "min_angle": a}, "ll": {...}}``: the L/L solve's
-        iterations (counted in ``iterations``), and each result's RMS
-        distance from the input surface (model units) and smallest corner
-        angle (degrees); the two dicts are empty when L/L did not reach the
-        tolerance. None when no comparison ran (another method, a warm
+        10 degrees), more new narrow corners, or (with point data) moved the
+        vertices more than 5% further than L/G's. ``{"iterations": n, "lg":
+        {"distance_rms": d, "displacement_rms": m, "min_angle": a}, "ll":
+        {...}}``: the L/L solve's iterations (counted in ``iterations``), and
+        each result's RMS distance from the input surface and RMS vertex
+        displacement (model units) and smallest corner angle (degrees); the
+        two dicts are empty when L/L did not reach the tolerance. None when no comparison ran (another method, a warm
         start, a fixed iteration count, the paper's schedule (``hold_tol``
         0), a shape term or a regularizer).
     control : facet.PolyMesh or None
@@ -467,10 +468,12 @@ def _compared(stats):
     if not stats.get("compare_iterations"):
         return None
     distance, angle = stats["compare_distance_rms"], stats["compare_min_angle"]
-    measured = distance[0] > 0.0 or distance[1] > 0.0 or angle[0] > 0.0 or angle[1] > 0.0
+    moved = stats["compare_displacement_rms"]
+    measured = any(v > 0.0 for v in (*distance, *angle, *moved))
     return {"iterations": int(stats["compare_iterations"]),
-            **{name: ({"distance_rms": float(distance[k]), "min_angle": float(angle[k])}
-                      if measured else {}) for k, name in enumerate(("ll", "lg"))}}
+            **{name: ({"distance_rms": float(distance[k]), "displacement_rms": float(moved[k]),
+                       "min_angle": float(angle[k])} if measured else {})
+               for k, name in enumerate(("ll", "lg"))}}
 
 
 def _quality_warnings(stats, options):

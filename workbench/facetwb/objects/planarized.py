@@ -295,9 +295,11 @@ def _compared_text(compared, kept):
     other = "ll" if kept == "lg" else "lg"
     a, b = compared[kept], compared[other]
     return (f"  local/global and local/local compared: {METHOD_NAMES[kept]} kept, "
-            f"distance from the source surface rms {format_length(a['distance_rms'])} "
-            f"(smallest corner {a['min_angle']:.1f} deg) against "
-            f"{format_length(b['distance_rms'])} ({b['min_angle']:.1f} deg)")
+            f"distance from the source surface rms {format_length(a['distance_rms'])}, "
+            f"vertices moved rms {format_length(a['displacement_rms'])}, smallest corner "
+            f"{a['min_angle']:.1f} deg; {METHOD_NAMES[other]}: "
+            f"{format_length(b['distance_rms'])}, {format_length(b['displacement_rms'])}, "
+            f"{b['min_angle']:.1f} deg")
 
 
 def planarize_summary(obj):
