@@ -307,7 +307,8 @@ typedef struct facet_planarize_options {
  * schedule is hold_tol 0, anderson 0, ratio 0.7 (L/G) or 0.9 (L/L).
  * AUTO solves by facet_planarizer_choose_method's choice with these
  * options, except that when it picks L/L its floor is at least
- * FACET_LL_MU_MIN. With the staircase (hold_tol > 0) and no shape term,
+ * FACET_LL_MU_MIN; where it picks L/G it also solves by L/L and may return
+ * that result (FACET_STAGE_COMPARE). With the staircase (hold_tol > 0) and no shape term,
  * L/L finishes: once mu is at its floor and the step has settled above the
  * tolerance, the data terms pull towards the iterate itself instead of the
  * control mesh, so the planarity no longer stalls near 10 mu_min
