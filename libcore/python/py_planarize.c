@@ -60,7 +60,8 @@ static void planarizer_dealloc(PyObject *self_obj)
 typedef struct {
     PyObject *callback; /* may be NULL */
     PyObject *exc_type, *exc_value, *exc_tb;
-    PyObject *stage;    /* stage(stage, stages) when a quality re-solve starts; may be NULL */
+    PyObject *stage;    /* stage(stage, stages) when a quality re-solve or method auto's
+                           comparison (stage FACET_STAGE_COMPARE) starts; may be NULL */
     const facet_planarizer *handle;
     int32_t stage_seen;
 } progress_state;
@@ -75,7 +76,8 @@ static int progress_trampoline(void *user, int32_t iteration, int32_t max_iter, 
     const int32_t stage = ps->stage ? facet_planarizer_stage(ps->handle, &stages) : 0;
     if (PyErr_CheckSignals() < 0) {
         cancel = 1;
-    } else if (stage != ps->stage_seen) { /* a re-solve started: said before its first iteration */
+    } else if (stage != ps->stage_seen) { /* a re-solve or the comparison started: said before
+                                             its first iteration */
         ps->stage_seen = stage;
         PyObject *r = PyObject_CallFunction(ps->stage, "ii", (int)stage, (int)stages);
         cancel = !r;
@@ -391,7 +393,8 @@ static PyMethodDef planarizer_methods[] = {
      "returning True cancels. It counts on through the quality re-solves (iteration up to\n"
      "the result's iterations, max_iter a bound of the whole solve that never grows);\n"
      "stage(stage, stages) is called when the stage-th of at most `stages` re-solves\n"
-     "starts, before its first progress call (facet_planarizer_stage)."},
+     "starts, and stage(STAGE_COMPARE, stages) when method auto's comparison solve by\n"
+     "L/L starts, each before its first progress call (facet_planarizer_stage)."},
     {"set_fixed", planarizer_set_fixed, METH_O,
      "set_fixed(vertices) -> None\n\nHard-fix these vertices (int32 indices) at their control\n"
      "positions in every later solve; None clears."},

@@ -218,6 +218,7 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
                                   double *xyz_out, facet_planarize_result *result,
                                   facet_error *error);
 static int compares(const facet_planarizer *s, const facet_planarize_options *options);
+static int32_t compare_limit(const facet_planarize_options *options);
 static facet_status compare_ll(facet_planarizer *s, const facet_planarize_options *options,
                                double *xyz_out, facet_planarize_result *result, facet_error *error);
 
@@ -236,7 +237,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     const int compare = compares(s, options);
     facet_planarize_result r;
     memset(&r, 0, sizeof r);
-    facet_status status = solve_checked(s, xyz_in, options, compare ? options->max_iter : 0,
+    facet_status status = solve_checked(s, xyz_in, options, compare ? compare_limit(options) : 0,
                                         xyz_out, &r, error);
     if (compare && status == FACET_OK && r.stop_reason == FACET_STOP_TOLERANCE)
         status = compare_ll(s, options, xyz_out, &r, error);
@@ -399,6 +400,13 @@ static const double COMPARE_DISPLACEMENT_MORE = 1.05;
  * tolerance whose energy asks for closeness alone, with the staircase
  * schedule (L/L finishes only with it: without, it stalls above the
  * tolerance and the comparison would run to max_iter for nothing). */
+/* The comparison solve's iteration limit (its options' max_iter), which the
+ * progress bound counts from the first solve on (facet_planarizer_solve). */
+static int32_t compare_limit(const facet_planarize_options *options)
+{
+    return options->max_iter;
+}
+
 static int compares(const facet_planarizer *s, const facet_planarize_options *options)
 {
     return s && options && options->method == FACET_METHOD_AUTO && options->hold_tol > 0.0 &&
@@ -501,7 +509,8 @@ static facet_status compare_ll(facet_planarizer *s, const facet_planarize_option
     facet_pl_global_free(s);
     progress_relay relay;
     facet_planarize_options o = relayed(options, &relay, result->iterations,
-                                        (int64_t)result->iterations + options->max_iter);
+                                        (int64_t)result->iterations + compare_limit(options));
+    o.max_iter = compare_limit(options);
     o.method = FACET_METHOD_LOCAL_LOCAL;
     o.mu_min = facet_max(o.mu_min, FACET_LL_MU_MIN);
     o.warm = 0;
