@@ -219,6 +219,8 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
                                   facet_error *error);
 static int compares(const facet_planarizer *s, const facet_planarize_options *options);
 static int32_t compare_limit(const facet_planarize_options *options);
+static int32_t finer_limit(const facet_planarize_options *options);
+static int finer_may_follow(const facet_planarize_options *options);
 static facet_status compare_ll(facet_planarizer *s, const facet_planarize_options *options,
                                double *xyz_out, facet_planarize_result *result, facet_error *error);
 
@@ -233,12 +235,14 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             for (size_t k = 0; k < sizeof STAGES / sizeof STAGES[0]; ++k)
                 s->quality_stages += stage_applies(options, k);
     }
-    /* method AUTO's comparison solve may follow: its limit is in every bound */
+    /* method AUTO's comparison solves may follow: their limits are in every bound */
     const int compare = compares(s, options);
+    const int64_t after =
+        compare ? (int64_t)compare_limit(options) + (finer_may_follow(options) ? finer_limit(options) : 0)
+                : 0;
     facet_planarize_result r;
     memset(&r, 0, sizeof r);
-    facet_status status = solve_checked(s, xyz_in, options, compare ? compare_limit(options) : 0,
-                                        xyz_out, &r, error);
+    facet_status status = solve_checked(s, xyz_in, options, after, xyz_out, &r, error);
     if (compare && status == FACET_OK && r.stop_reason == FACET_STOP_TOLERANCE)
         status = compare_ll(s, options, xyz_out, &r, error);
     if (result)
@@ -448,95 +452,155 @@ static int measure(const facet_planarizer *s, const facet_surface *surface, cons
     return isfinite(*rms) && isfinite(*moved) && isfinite(*angle);
 }
 
-/* Whether L/L's result (the handle's last: s->previous, solved from
- * s->previous_control, the input) is to be returned instead of L/G's
- * (xyz_out); fills the result's compare_* measures. narrow: L/L's new
+/* The input surface that results are measured against: the reference
+ * surface when the data term uses it, else a tree of the input mesh
+ * (s->previous_control) in *own, which the caller frees; NULL when out of
+ * memory. */
+static const facet_surface *input_surface(const facet_planarizer *s,
+                                          const facet_planarize_options *options,
+                                          facet_surface **own)
+{
+    *own = NULL;
+    if (options->surface_weight > 0.0)
+        return s->reference;
+    const facet_mesh mesh = {s->nv, s->nf, s->previous_control, s->face_start, s->face_vertices};
+    facet_error ignored;
+    return facet_surface_create_from_mesh(&mesh, own, &ignored) == FACET_OK ? *own : NULL;
+}
+
+/* What the comparison makes of another result. */
+typedef enum {
+    KEEP_LG,  /* L/G's result stands */
+    TAKE,     /* the other is returned */
+    MOVED_FAR /* the other is closer, its corners as wide, but its vertices moved too far */
+} verdict;
+
+/* The rule (facet.h): a result at RMS distance d from the input surface,
+ * displacement m, smallest corner a and `narrow` new narrow corners against
+ * L/G's figures (the result's compare_*[FACET_METHOD_LOCAL_GLOBAL], its
+ * narrow_corners). */
+static verdict judge(const facet_planarize_options *options, const facet_planarize_result *result,
+                     double d, double m, double a, int32_t narrow)
+{
+    const int lg = FACET_METHOD_LOCAL_GLOBAL;
+    if (!(d < result->compare_distance_rms[lg]) ||
+        a < facet_min(result->compare_min_angle[lg], COMPARE_ANGLE_ENOUGH) ||
+        narrow > result->narrow_corners)
+        return KEEP_LG;
+    return slides(options) || m <= COMPARE_DISPLACEMENT_MORE * result->compare_displacement_rms[lg]
+               ? TAKE
+               : MOVED_FAR;
+}
+
+/* Measures L/G's result (xyz_out) into compare_*[FACET_METHOD_LOCAL_GLOBAL]
+ * and the handle's last (s->previous, solved from s->previous_control, the
+ * input) into compare_*[other], and judges the latter; narrow: its new
  * narrow corners. Memory: what L/G no longer needs is given back first, so
  * that the input surface's tree fits within L/G's own peak. */
-static int closer(facet_planarizer *s, const facet_planarize_options *options, const double *xyz_out,
-                  int32_t narrow, facet_planarize_result *result)
+static verdict closer(facet_planarizer *s, const facet_planarize_options *options, int other,
+                      const double *xyz_out, int32_t narrow, facet_planarize_result *result)
 {
     facet_pl_history_trim(s);
     const int nthreads = facet_thread_count(options->threads);
     const size_t nwork = s->nf > s->nv ? (size_t)s->nf : (size_t)s->nv;
     double *work = malloc(sizeof(double) * nwork);
-    const facet_surface *surface = options->surface_weight > 0.0 ? s->reference : NULL;
     facet_surface *own = NULL;
-    if (!surface && work) {
-        const facet_mesh mesh = {s->nv, s->nf, s->previous_control, s->face_start, s->face_vertices};
-        facet_error ignored;
-        if (facet_surface_create_from_mesh(&mesh, &own, &ignored) == FACET_OK)
-            surface = own;
-    }
+    const facet_surface *surface = work ? input_surface(s, options, &own) : NULL;
     double *d = result->compare_distance_rms, *a = result->compare_min_angle;
     double *m = result->compare_displacement_rms;
-    const int lg = FACET_METHOD_LOCAL_GLOBAL, ll = FACET_METHOD_LOCAL_LOCAL;
-    int take = 0;
-    if (surface && measure(s, surface, xyz_out, nthreads, work, &d[lg], &m[lg], &a[lg]) &&
-        measure(s, surface, s->previous, nthreads, work, &d[ll], &m[ll], &a[ll]))
-        take = d[ll] < d[lg] && a[ll] >= facet_min(a[lg], COMPARE_ANGLE_ENOUGH) &&
-               narrow <= result->narrow_corners &&
-               (slides(options) || m[ll] <= COMPARE_DISPLACEMENT_MORE * m[lg]);
-    else /* out of memory: L/G's result stands */
+    const int lg = FACET_METHOD_LOCAL_GLOBAL;
+    verdict v = KEEP_LG;
+    double dl, ml, al;
+    /* (L/G's result, when the other is L/G again, was measured with L/L's) */
+    if (surface && (other == lg || measure(s, surface, xyz_out, nthreads, work, &d[lg], &m[lg], &a[lg])) &&
+        measure(s, surface, s->previous, nthreads, work, &dl, &ml, &al)) {
+        v = judge(options, result, dl, ml, al, narrow);
+        if (other != lg)
+            d[other] = dl, m[other] = ml, a[other] = al;
+        else if (v == TAKE) /* L/G again: its figures are the returned result's */
+            d[lg] = dl, m[lg] = ml, a[lg] = al;
+    } else if (other != lg) { /* out of memory: L/G's result stands */
         d[0] = d[1] = a[0] = a[1] = m[0] = m[1] = 0.0;
+    }
     facet_surface_free(&own);
     free(work);
-    return take;
+    return v;
 }
 
-static facet_status compare_ll(facet_planarizer *s, const facet_planarize_options *options,
-                               double *xyz_out, facet_planarize_result *result, facet_error *error)
+/* The L/G solve with a finer hold's iteration limit (its options' max_iter),
+ * in the progress bound from the first solve on where it may run. */
+static int32_t finer_limit(const facet_planarize_options *options)
 {
-    const double t0 = facet_now();
+    return options->max_iter;
+}
+
+/* Whether the L/G solve with a finer hold may follow the comparison: only
+ * with point data, where the comparison refuses a result for moving the
+ * vertices further. */
+static int finer_may_follow(const facet_planarize_options *options)
+{
+    return !slides(options);
+}
+
+/* One solve from the input (the handle's: the last solve kept it) with the
+ * options o, whose result is judged against L/G's (xyz_out) as `other`
+ * (closer). `later`: the limits of the solves that may follow, for the
+ * progress bound. On TAKE xyz_out and the result's figures are the new
+ * result's and the handle keeps it; else L/G's result stands and the handle
+ * keeps that. *v is KEEP_LG also when the solve failed or stopped short of
+ * the tolerance. Only cancelling returns an error. */
+static facet_status solve_again(facet_planarizer *s, const facet_planarize_options *options,
+                                const facet_planarize_options *o_in, int32_t stage, int other,
+                                int64_t later, double *xyz_out, facet_planarize_result *result,
+                                verdict *v, int32_t *iterations, double t0, facet_error *error)
+{
+    *v = KEEP_LG;
     const size_t v3 = 3 * (size_t)s->nv;
     double remaining = 0.0;
     if (options->time_budget > 0.0) {
-        remaining = options->time_budget - result->seconds;
+        remaining = options->time_budget - result->seconds - (facet_now() - t0);
         if (!(remaining > 0.0))
             return FACET_OK;
     }
-    /* the input (the last solve kept it; xyz_in may be xyz_out), L/L's result */
+    /* the input (the last solve kept it; xyz_in may be xyz_out), the result */
     double *input = malloc(sizeof(double) * v3), *out = malloc(sizeof(double) * v3);
     if (!input || !out) { /* L/G's result stands */
         free(input), free(out);
         return FACET_OK;
     }
     memcpy(input, s->previous_control, sizeof(double) * v3);
-    /* L/G's system goes, so that the L/L solve and the measures (the input
+    /* L/G's system goes, so that an L/L solve and the measures (the input
      * surface's tree: about 150 bytes per triangle while it is built) take
      * no more memory than L/G took. A later L/G solve on this handle sets
      * its system up again (its analysis: about 5% of a cold solve's time). */
     facet_pl_global_free(s);
     progress_relay relay;
-    facet_planarize_options o = relayed(options, &relay, result->iterations,
-                                        (int64_t)result->iterations + compare_limit(options));
-    o.max_iter = compare_limit(options);
-    o.method = FACET_METHOD_LOCAL_LOCAL;
-    o.mu_min = facet_max(o.mu_min, FACET_LL_MU_MIN);
+    facet_planarize_options o = relayed(o_in, &relay, result->iterations,
+                                        (int64_t)result->iterations + o_in->max_iter + later);
     o.warm = 0;
     o.time_budget = remaining;
     facet_planarize_result r;
     memset(&r, 0, sizeof r);
-    s->quality_stage = FACET_STAGE_COMPARE;
+    s->quality_stage = stage;
     facet_status status = facet_pl_solve_once(s, input, &o, out, &r, error);
+    facet_pl_global_free(s);
     result->iterations += r.iterations;
-    result->compare_iterations = r.iterations;
-    int take = 0;
+    *iterations = r.iterations;
     if (status == FACET_OK && r.stop_reason == FACET_STOP_TOLERANCE) {
-        /* the handle keeps L/L's result and the input (s->previous,
+        /* the handle keeps the result and the input (s->previous,
          * s->previous_control): the copies go before the measures */
         free(input), free(out);
         input = out = NULL;
-        /* new narrow corners of L/L's result (s->q, s->p: the solve's own) */
+        /* the result's new narrow corners (s->q, s->p: the solve's own) */
         double narrowest = 180.0;
         const int32_t narrow = options->quality_angle > 0.0
                                    ? facet_pl_new_narrow(s, options->quality_angle,
                                                          facet_thread_count(options->threads), &narrowest)
                                    : 0;
-        take = closer(s, options, xyz_out, narrow, result);
-        if (take) {
+        *v = closer(s, options, other, xyz_out, narrow, result);
+        if (*v == TAKE) {
             memcpy(xyz_out, s->previous, sizeof(double) * v3);
-            result->method = FACET_METHOD_LOCAL_LOCAL;
+            result->method = o.method;
             result->mu = r.mu;
             result->planarity_max_abs = r.planarity_max_abs;
             result->planarity_max_rel = r.planarity_max_rel;
@@ -549,16 +613,45 @@ static facet_status compare_ll(facet_planarizer *s, const facet_planarize_option
             s->message[0] = '\0'; /* L/G's (its narrow corners) no longer applies */
         }
     } else if (status != FACET_ERROR_CANCELLED) {
-        facet_error_clear(error); /* a failed comparison: L/G's result stands */
+        facet_error_clear(error); /* a failed solve: L/G's result stands */
         status = FACET_OK;
     }
-    if (!take && s->previous) { /* the handle's last result (warm starts, live updates) is L/G's */
+    if (*v != TAKE && s->previous) { /* the handle's last result (warm starts, live updates) is L/G's */
         memcpy(s->previous, xyz_out, sizeof(double) * v3);
         if (input)
             memcpy(s->previous_control, input, sizeof(double) * v3);
         s->has_previous = 1;
     }
     free(input), free(out);
+    return status;
+}
+
+/* Method AUTO's comparison (facet.h): L/L's result, then, when L/L's was
+ * refused only for moving the vertices further, L/G's with a finer hold. */
+static facet_status compare_ll(facet_planarizer *s, const facet_planarize_options *options,
+                               double *xyz_out, facet_planarize_result *result, facet_error *error)
+{
+    const double t0 = facet_now();
+    const int finer = finer_may_follow(options);
+    facet_planarize_options o = *options;
+    o.max_iter = compare_limit(options);
+    o.method = FACET_METHOD_LOCAL_LOCAL;
+    o.mu_min = facet_max(o.mu_min, FACET_LL_MU_MIN);
+    verdict v;
+    facet_status status = solve_again(s, options, &o, FACET_STAGE_COMPARE, FACET_METHOD_LOCAL_LOCAL,
+                                      finer ? finer_limit(options) : 0, xyz_out, result, &v,
+                                      &result->compare_iterations, t0, error);
+    if (status == FACET_OK && finer && v == MOVED_FAR) {
+        /* L/L's result shows a planar mesh nearer the design than L/G's,
+         * which strayed from the penalty path: L/G follows it more closely */
+        o = *options;
+        o.max_iter = finer_limit(options);
+        o.method = FACET_METHOD_LOCAL_GLOBAL;
+        o.hold_tol = options->hold_tol * FACET_FINER_HOLD;
+        status = solve_again(s, options, &o, FACET_STAGE_FINER, FACET_METHOD_LOCAL_GLOBAL, 0, xyz_out,
+                             result, &v, &result->finer_iterations, t0, error);
+        result->finer_kept = v == TAKE;
+    }
     result->seconds += facet_now() - t0;
     if (status == FACET_ERROR_CANCELLED) {
         snprintf(s->message, sizeof s->message, "cancelled");
