@@ -2,7 +2,7 @@
 """A Planarized object's recompute that re-solves for panel quality: the progress text
 says so ("re-solving for panel quality (stage k of n)") and the count runs on through the
 re-solves (headless: the reporter records what the dialog would show); method auto's
-comparison solve by L/L is named too."""
+comparison solve by L/L and its L/G solve with a finer hold are named too."""
 
 import os
 import re
@@ -83,6 +83,12 @@ class TestPlanarizeProgress(DocumentTestCase):
                             for t in reporter.texts[said[0]:]))
         self.assertEqual(reporter.calls, result.Iterations)
         self.assertEqual(reporter.text, "Planarize ...")
+        # L/L's result moved the vertices too far here: L/G with a finer hold follows,
+        # named after the comparison
+        finer = (f"Planarize {result.Label}: solving by local/global again with a finer hold, "
+                 "closer to the design")
+        after = [k for k, t in enumerate(reporter.texts) if finer in t]
+        self.assertTrue(after and after[0] > said[-1], reporter.texts[-3:])
 
     def test_cancel_in_a_resolve(self):
         source = self._hypar()

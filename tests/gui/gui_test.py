@@ -225,10 +225,11 @@ def run(out_dir):
 
 def check_planarize_progress(check, out_dir):
     """A Planarized recompute that re-solves for panel quality (the 32 x 32 hypar) and
-    then, method auto, solves by L/L too: the progress dialog's text names the re-solve
-    and the comparison, and its bar never runs backwards; the dialog in the first
-    re-solve and in the comparison (name, planarity) is saved as progress_resolve.png and
-    progress_compare.png."""
+    then, method auto, solves by L/L too, whose result moves the vertices too far, and by
+    L/G with a finer hold: the progress dialog's text names the re-solve, the comparison
+    and the finer solve, and its bar never runs backwards; the dialog in the first
+    re-solve, the comparison and the finer solve (name, planarity) is saved as
+    progress_resolve.png, progress_compare.png and progress_finer.png."""
     import FreeCAD as App
 
     import facet
@@ -252,7 +253,8 @@ def check_planarize_progress(check, out_dir):
             say(text)
             shown.append((reporter.dialog.labelText(), reporter.dialog.value()))
             for key, name in (("re-solving", "progress_resolve.png"),
-                              ("local/local too", "progress_compare.png")):
+                              ("local/local too", "progress_compare.png"),
+                              ("finer hold", "progress_finer.png")):
                 path = os.path.join(out_dir, name)
                 if key in shown[-1][0] and "planarity" in shown[-1][0] and path not in saved:
                     saved.append(path)
@@ -276,10 +278,15 @@ def check_planarize_progress(check, out_dir):
           f"the progress dialog names auto's comparison after any re-solve ({comparing[:1]})")
     check(any("\nplanarity " in text for text, _value in comparing),
           "the dialog shows the comparison's planarity under its name")
-    values = [value for _text, value in resolving + comparing]
+    finer = [(text, value) for text, value in shown if "finer hold" in text]
+    check(bool(finer) and finer[0][0] == "Planarize ...\nPlanarize "
+          f"{result.Label}: solving by local/global again with a finer hold, closer to the design"
+          and shown.index(finer[0]) > shown.index(comparing[-1]),
+          f"the progress dialog names the finer L/G solve after the comparison ({finer[:1]})")
+    values = [value for _text, value in resolving + comparing + finer]
     check(values == sorted(values) and 0 < values[0] < 1000,
-          f"the progress bar does not run backwards across re-solves and comparison ({values})")
-    check(len(saved) == 1 + bool(resolving) and all(os.path.getsize(p) > 1000 for p in saved),
+          f"the progress bar does not run backwards across re-solves and comparisons ({values})")
+    check(len(saved) == 2 + bool(resolving) and all(os.path.getsize(p) > 1000 for p in saved),
           f"the dialog's screenshots ({saved})")
     check(shown and shown[-1][0] == "Planarize ...", "the title alone after the solve")
     App.closeDocument(doc.Name)
