@@ -858,11 +858,12 @@ int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stag
  * cancelling it returns FACET_ERROR_CANCELLED with L/G's result in xyz_out.
  * During the comparison facet_planarizer_stage returns FACET_STAGE_COMPARE.
  *
- * When L/L's result is refused only for moving the vertices further (it is
- * closer, its corners as wide), L/G's result has strayed from the penalty
- * path that L/L's shows to lie nearer the design: L/G solves once more from
- * the input with a finer hold (hold_tol times FACET_FINER_HOLD, Anderson
- * kept, no quality re-solve; facet_planarizer_stage returns
+ * When L/L's result is refused only for moving the vertices further (its
+ * corners as wide) and lies markedly closer to the input surface (at most
+ * FACET_FINER_WHEN times L/G's distance), L/G's result has strayed from the
+ * penalty path, which L/L's shows to lie nearer the design: L/G solves once
+ * more from the input with a finer hold (hold_tol times FACET_FINER_HOLD,
+ * Anderson kept, no quality re-solve; facet_planarizer_stage returns
  * FACET_STAGE_FINER), and its result is returned instead of the first when
  * it reaches the tolerance, lies closer to the input surface, has a
  * smallest corner of at least the smaller of the first's and 10 degrees, no
@@ -875,6 +876,7 @@ int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stag
 #define FACET_STAGE_COMPARE (-1)
 #define FACET_STAGE_FINER (-2)
 #define FACET_FINER_HOLD 0.3
+#define FACET_FINER_WHEN 0.8
 
 #ifdef __cplusplus
 }

@@ -641,7 +641,9 @@ static facet_status compare_ll(facet_planarizer *s, const facet_planarize_option
     facet_status status = solve_again(s, options, &o, FACET_STAGE_COMPARE, FACET_METHOD_LOCAL_LOCAL,
                                       finer ? finer_limit(options) : 0, xyz_out, result, &v,
                                       &result->compare_iterations, t0, error);
-    if (status == FACET_OK && finer && v == MOVED_FAR) {
+    const double *d = result->compare_distance_rms;
+    if (status == FACET_OK && finer && v == MOVED_FAR &&
+        d[FACET_METHOD_LOCAL_LOCAL] <= FACET_FINER_WHEN * d[FACET_METHOD_LOCAL_GLOBAL]) {
         /* L/L's result shows a planar mesh nearer the design than L/G's,
          * which strayed from the penalty path: L/G follows it more closely */
         o = *options;

@@ -117,7 +117,9 @@ static outcome check_rule(const char *name, test_mesh *g)
     const int closer = d_ll < d_lg, wide = a_ll >= (a_lg < 10.0 ? a_lg : 10.0);
     const int still = m_ll <= 1.05 * m_lg; /* point data: vertices held at their points */
     outcome result = {closer && wide && still, closer && wide && !still, 0};
-    if (result.guarded) { /* then L/G with a finer hold, by the same rule against L/G's */
+    /* then, L/L's markedly closer, L/G with a finer hold, by the same rule against L/G's */
+    const int finer_runs = result.guarded && d_ll <= FACET_FINER_WHEN * d_lg;
+    if (finer_runs) {
         o = finer_as_run();
         CHECK_STATUS(facet_planarizer_solve(h_fine, g->xyz, &o, fine, &r_fine, &err), FACET_OK);
         measure(g, fine, &d_f, &m_f, &a_f);
@@ -139,7 +141,7 @@ static outcome check_rule(const char *name, test_mesh *g)
     CHECK(memcmp(out, expected, sizeof(double) * v3) == 0);
     CHECK(r.stop_reason == FACET_STOP_TOLERANCE);
     CHECK(r.planarity_max_rel == expected_r->planarity_max_rel);
-    CHECK(r.iterations == r_lg.iterations + r_ll.iterations + (result.guarded ? r_fine.iterations : 0));
+    CHECK(r.iterations == r_lg.iterations + r_ll.iterations + (finer_runs ? r_fine.iterations : 0));
     CHECK(r.compare_iterations == r_ll.iterations);
     CHECK(r.first_iterations == r_lg.first_iterations);
     CHECK(r.quality_resolves == r_lg.quality_resolves);
