@@ -348,6 +348,7 @@ typedef struct facet_planarize_result {
                                         model units; 0 0 when none was compared */
     double compare_min_angle[2];     /* their smallest corner angles, degrees (facet_face_shape) */
     double compare_displacement_rms[2]; /* their RMS vertex displacement from the input */
+    double compare_edge_ratio[2];    /* their shortest edge relative to its input length */
     int32_t finer_iterations;        /* iterations of the L/G solve with a finer hold that
                                         follows when L/L's result was closer but moved the
                                         vertices too far (FACET_STAGE_FINER; counted in
@@ -840,7 +841,10 @@ int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stag
  * result is returned instead of L/G's when it reaches the tolerance, lies
  * closer to the input surface (RMS distance of the vertices; the reference
  * surface instead when surface_weight > 0), has a smallest corner angle of
- * at least the smaller of L/G's and 10 degrees, has no more new narrow
+ * at least the smaller of L/G's and 10 degrees, a shortest edge (relative
+ * to its input length) of at least the smaller of L/G's and a quarter (a
+ * skew quad may shrink an edge to nothing, becoming a triangle, with no
+ * narrow corner), has no more new narrow
  * corners (facet_quality_outcome) than L/G's and, unless the data term lets
  * vertices slide (data_tangent < data_normal or surface_weight > 0), moves
  * the vertices no more than 5% further (RMS) than L/G's: L/L is often
@@ -866,7 +870,8 @@ int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stag
  * Anderson kept, no quality re-solve; facet_planarizer_stage returns
  * FACET_STAGE_FINER), and its result is returned instead of the first when
  * it reaches the tolerance, lies closer to the input surface, has a
- * smallest corner of at least the smaller of the first's and 10 degrees, no
+ * smallest corner of at least the smaller of the first's and 10 degrees, a
+ * shortest edge of at least the smaller of the first's and a quarter, no
  * more new narrow corners, and moves the vertices no more than 5% further
  * (RMS). result.finer_iterations and finer_kept say what it did. The bound
  * the progress callback sees from the first call includes this solve's

@@ -393,6 +393,13 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
  * whose corners are all 10 degrees or wider is as good as any for panels. */
 static const double COMPARE_ANGLE_ENOUGH = 10.0;
 
+/* The shortest edge (relative to its input length) L/L's result may have:
+ * at least L/G's, but a result whose edges all keep a quarter of their
+ * length is as good as any. The penalty method may shrink an edge to
+ * nothing where the surface asks for it (a skew quad becomes a triangle:
+ * hypar grids, Level 5, hex tori), and the corner angles do not show it. */
+static const double COMPARE_EDGE_ENOUGH = 0.25;
+
 /* How much further L/L's result may move the vertices (RMS) than L/G's when
  * the data term holds them at their control points: L/L is often closer to
  * the surface because its vertices slide further along it, which changes the
@@ -420,36 +427,60 @@ static int compares(const facet_planarizer *s, const facet_planarize_options *op
            options->normal_laplacian == 0.0 && options->boundary_fairness == 0.0;
 }
 
-/* RMS distance of the n points xyz from the surface, their RMS displacement
- * from the input (s->previous_control) and the smallest corner angle of the
- * mesh with those positions, degrees; 0 when a call fails (then the
- * comparison keeps L/G's result). Sums in vertex order: the same for any
- * thread count. */
+/* What the comparison measures of a result. */
+typedef struct {
+    double distance; /* RMS distance of the vertices from the input surface */
+    double moved;    /* RMS displacement from the input (s->previous_control) */
+    double angle;    /* smallest corner angle, degrees */
+    double edge;     /* shortest edge relative to its length in the input */
+} figures;
+
+/* The figures of the result xyz (0 when a call fails: then the comparison
+ * keeps L/G's result). Sums in vertex order: the same for any thread count. */
 static int measure(const facet_planarizer *s, const facet_surface *surface, const double *xyz,
-                   int nthreads, double *work, double *rms, double *moved, double *angle)
+                   int nthreads, double *work, figures *f)
 {
     facet_error error;
+    const double *input = s->previous_control;
     double sum_moved = 0.0;
     for (size_t k = 0; k < 3 * (size_t)s->nv; ++k) {
-        const double d = xyz[k] - s->previous_control[k];
+        const double d = xyz[k] - input[k];
         sum_moved += d * d;
     }
-    *moved = sqrt(sum_moved / (double)s->nv);
+    f->moved = sqrt(sum_moved / (double)s->nv);
     if (facet_surface_closest(surface, s->nv, xyz, nthreads, NULL, work, NULL, NULL, &error) !=
         FACET_OK)
         return 0;
     double sum = 0.0;
     for (int32_t v = 0; v < s->nv; ++v)
         sum += work[v] * work[v];
-    *rms = sqrt(sum / (double)s->nv);
+    f->distance = sqrt(sum / (double)s->nv);
     const facet_mesh mesh = {s->nv, s->nf, xyz, s->face_start, s->face_vertices};
     if (facet_face_shape(&mesh, NULL, nthreads, work, NULL, NULL, &error) != FACET_OK)
         return 0;
     double least = 2.0 * 3.14159265358979323846;
-    for (int32_t f = 0; f < s->nf; ++f)
-        least = facet_min(least, work[f]);
-    *angle = least / DEG;
-    return isfinite(*rms) && isfinite(*moved) && isfinite(*angle);
+    for (int32_t f_ = 0; f_ < s->nf; ++f_)
+        least = facet_min(least, work[f_]);
+    f->angle = least / DEG;
+    /* a quad whose edge shrinks to nothing is a triangle, whatever its
+     * angles say (the angles at a vanishing edge are those of its ends) */
+    double shortest = 1.0;
+    for (int32_t face = 0; face < s->nf; ++face) {
+        const int32_t b = s->face_start[face], e = s->face_start[face + 1];
+        for (int32_t k = b; k < e; ++k) {
+            const size_t i = 3 * (size_t)s->face_vertices[k];
+            const size_t j = 3 * (size_t)s->face_vertices[k + 1 < e ? k + 1 : b];
+            double in2 = 0.0, out2 = 0.0;
+            for (int c = 0; c < 3; ++c) {
+                in2 += (input[j + c] - input[i + c]) * (input[j + c] - input[i + c]);
+                out2 += (xyz[j + c] - xyz[i + c]) * (xyz[j + c] - xyz[i + c]);
+            }
+            if (in2 > 0.0)
+                shortest = facet_min(shortest, sqrt(out2 / in2));
+        }
+    }
+    f->edge = shortest;
+    return isfinite(f->distance) && isfinite(f->moved) && isfinite(f->angle) && isfinite(f->edge);
 }
 
 /* The input surface that results are measured against: the reference
@@ -475,28 +506,41 @@ typedef enum {
     MOVED_FAR /* the other is closer, its corners as wide, but its vertices moved too far */
 } verdict;
 
-/* The rule (facet.h): a result at RMS distance d from the input surface,
- * displacement m, smallest corner a and `narrow` new narrow corners against
- * L/G's figures (the result's compare_*[FACET_METHOD_LOCAL_GLOBAL], its
- * narrow_corners). */
-static verdict judge(const facet_planarize_options *options, const facet_planarize_result *result,
-                     double d, double m, double a, int32_t narrow)
+/* L/G's figures as the result holds them (compare_*[FACET_METHOD_LOCAL_GLOBAL]),
+ * and a result's figures into them (index: a facet_method). */
+static figures held(const facet_planarize_result *result, int index)
 {
-    const int lg = FACET_METHOD_LOCAL_GLOBAL;
-    if (!(d < result->compare_distance_rms[lg]) ||
-        a < facet_min(result->compare_min_angle[lg], COMPARE_ANGLE_ENOUGH) ||
-        narrow > result->narrow_corners)
+    const figures f = {result->compare_distance_rms[index], result->compare_displacement_rms[index],
+                       result->compare_min_angle[index], result->compare_edge_ratio[index]};
+    return f;
+}
+
+static void hold(facet_planarize_result *result, int index, const figures *f)
+{
+    result->compare_distance_rms[index] = f->distance;
+    result->compare_displacement_rms[index] = f->moved;
+    result->compare_min_angle[index] = f->angle;
+    result->compare_edge_ratio[index] = f->edge;
+}
+
+/* The rule (facet.h): a result with figures f and `narrow` new narrow
+ * corners against L/G's (lg) and its narrow corners. */
+static verdict judge(const facet_planarize_options *options, const figures *f, const figures *lg,
+                     int32_t narrow, int32_t lg_narrow)
+{
+    if (!(f->distance < lg->distance) || f->angle < facet_min(lg->angle, COMPARE_ANGLE_ENOUGH) ||
+        f->edge < facet_min(lg->edge, COMPARE_EDGE_ENOUGH) || narrow > lg_narrow)
         return KEEP_LG;
-    return slides(options) || m <= COMPARE_DISPLACEMENT_MORE * result->compare_displacement_rms[lg]
-               ? TAKE
-               : MOVED_FAR;
+    return slides(options) || f->moved <= COMPARE_DISPLACEMENT_MORE * lg->moved ? TAKE : MOVED_FAR;
 }
 
 /* Measures L/G's result (xyz_out) into compare_*[FACET_METHOD_LOCAL_GLOBAL]
  * and the handle's last (s->previous, solved from s->previous_control, the
  * input) into compare_*[other], and judges the latter; narrow: its new
- * narrow corners. Memory: what L/G no longer needs is given back first, so
- * that the input surface's tree fits within L/G's own peak. */
+ * narrow corners. When other is L/G again (the finer solve), L/G's figures
+ * were measured with L/L's, and they become the new result's if it is
+ * taken. Memory: what L/G no longer needs is given back first, so that the
+ * input surface's tree fits within L/G's own peak. */
 static verdict closer(facet_planarizer *s, const facet_planarize_options *options, int other,
                       const double *xyz_out, int32_t narrow, facet_planarize_result *result)
 {
@@ -506,21 +550,19 @@ static verdict closer(facet_planarizer *s, const facet_planarize_options *option
     double *work = malloc(sizeof(double) * nwork);
     facet_surface *own = NULL;
     const facet_surface *surface = work ? input_surface(s, options, &own) : NULL;
-    double *d = result->compare_distance_rms, *a = result->compare_min_angle;
-    double *m = result->compare_displacement_rms;
     const int lg = FACET_METHOD_LOCAL_GLOBAL;
     verdict v = KEEP_LG;
-    double dl, ml, al;
-    /* (L/G's result, when the other is L/G again, was measured with L/L's) */
-    if (surface && (other == lg || measure(s, surface, xyz_out, nthreads, work, &d[lg], &m[lg], &a[lg])) &&
-        measure(s, surface, s->previous, nthreads, work, &dl, &ml, &al)) {
-        v = judge(options, result, dl, ml, al, narrow);
-        if (other != lg)
-            d[other] = dl, m[other] = ml, a[other] = al;
-        else if (v == TAKE) /* L/G again: its figures are the returned result's */
-            d[lg] = dl, m[lg] = ml, a[lg] = al;
+    figures first = held(result, lg), f;
+    if (surface && (other == lg || measure(s, surface, xyz_out, nthreads, work, &first)) &&
+        measure(s, surface, s->previous, nthreads, work, &f)) {
+        v = judge(options, &f, &first, narrow, result->narrow_corners);
+        hold(result, lg, &first);
+        if (other != lg || v == TAKE)
+            hold(result, other, &f);
     } else if (other != lg) { /* out of memory: L/G's result stands */
-        d[0] = d[1] = a[0] = a[1] = m[0] = m[1] = 0.0;
+        const figures none = {0.0, 0.0, 0.0, 0.0};
+        hold(result, FACET_METHOD_LOCAL_LOCAL, &none);
+        hold(result, lg, &none);
     }
     facet_surface_free(&own);
     free(work);

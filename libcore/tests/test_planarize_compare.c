@@ -28,6 +28,26 @@ static size_t v3_of(const test_mesh *g)
     return 3 * (size_t)g->mesh.n_vertices;
 }
 
+/* The shortest edge of the mesh at xyz relative to its length in the input. */
+static double edge_ratio(const test_mesh *g, const double *xyz)
+{
+    double shortest = 1.0;
+    for (int32_t f = 0; f < g->mesh.n_faces; ++f) {
+        const int32_t b = g->mesh.face_start[f], e = g->mesh.face_start[f + 1];
+        for (int32_t k = b; k < e; ++k) {
+            const int32_t i = g->mesh.face_vertices[k], j = g->mesh.face_vertices[k + 1 < e ? k + 1 : b];
+            double in2 = 0.0, out2 = 0.0;
+            for (int c = 0; c < 3; ++c) {
+                const double din = g->xyz[3 * j + c] - g->xyz[3 * i + c], dout = xyz[3 * j + c] - xyz[3 * i + c];
+                in2 += din * din, out2 += dout * dout;
+            }
+            if (in2 > 0.0 && sqrt(out2 / in2) < shortest)
+                shortest = sqrt(out2 / in2);
+        }
+    }
+    return shortest;
+}
+
 /* RMS distance of the mesh's vertices at xyz from its input surface, their
  * RMS displacement from the input and the smallest corner angle (degrees),
  * as the rule measures them. */
@@ -85,6 +105,7 @@ static facet_planarize_options finer_as_run(void)
  * solve ran. */
 typedef struct {
     int ll, guarded, finer;
+    int short_edge; /* closer, as wide corners, but a shorter edge than L/G's and a quarter */
 } outcome;
 
 /* Returns what AUTO returned: L/L's result, L/G's, or (guarded: L/L's was
@@ -111,28 +132,35 @@ static outcome check_rule(const char *name, test_mesh *g)
     facet_planarize_options_default(FACET_METHOD_AUTO, &o);
     CHECK_STATUS(facet_planarizer_solve(h_auto, g->xyz, &o, out, &r, &err), FACET_OK);
 
-    double d_lg, m_lg, a_lg, d_ll, m_ll, a_ll, d_f = 0, m_f = 0, a_f = 0;
+    double d_lg, m_lg, a_lg, d_ll, m_ll, a_ll, d_f = 0, m_f = 0, a_f = 0, e_f = 0;
     measure(g, lg, &d_lg, &m_lg, &a_lg);
     measure(g, ll, &d_ll, &m_ll, &a_ll);
-    const int closer = d_ll < d_lg, wide = a_ll >= (a_lg < 10.0 ? a_lg : 10.0);
+    const double e_lg = edge_ratio(g, lg), e_ll = edge_ratio(g, ll);
+    const int closer = d_ll < d_lg;
+    const int edge_kept = e_ll >= (e_lg < 0.25 ? e_lg : 0.25);
+    const int wide = a_ll >= (a_lg < 10.0 ? a_lg : 10.0) && edge_kept;
     const int still = m_ll <= 1.05 * m_lg; /* point data: vertices held at their points */
-    outcome result = {closer && wide && still, closer && wide && !still, 0};
+    outcome result = {closer && wide && still, closer && wide && !still, 0,
+                      closer && a_ll >= (a_lg < 10.0 ? a_lg : 10.0) && !edge_kept};
     /* then, L/L's markedly closer, L/G with a finer hold, by the same rule against L/G's */
     const int finer_runs = result.guarded && d_ll <= FACET_FINER_WHEN * d_lg;
     if (finer_runs) {
         o = finer_as_run();
         CHECK_STATUS(facet_planarizer_solve(h_fine, g->xyz, &o, fine, &r_fine, &err), FACET_OK);
         measure(g, fine, &d_f, &m_f, &a_f);
+        e_f = edge_ratio(g, fine);
         result.finer = r_fine.stop_reason == FACET_STOP_TOLERANCE && d_f < d_lg &&
-                       a_f >= (a_lg < 10.0 ? a_lg : 10.0) && m_f <= 1.05 * m_lg;
+                       a_f >= (a_lg < 10.0 ? a_lg : 10.0) && e_f >= (e_lg < 0.25 ? e_lg : 0.25) &&
+                       m_f <= 1.05 * m_lg;
         printf("%s: L/G with a finer hold %.6g (moved %.4g, %.3g deg, %d it): %s\n", name, d_f, m_f,
                a_f, (int)r_fine.iterations, result.finer ? "taken" : "not taken");
         CHECK(r.finer_iterations == r_fine.iterations && r.finer_kept == result.finer);
     } else {
         CHECK(r.finer_iterations == 0 && r.finer_kept == 0);
     }
-    printf("%s: L/G %.6g (moved %.4g, %.3g deg, %d it), L/L %.6g (moved %.4g, %.3g deg, %d it): %s\n",
-           name, d_lg, m_lg, a_lg, (int)r_lg.iterations, d_ll, m_ll, a_ll, (int)r_ll.iterations,
+    printf("%s: L/G %.6g (moved %.4g, %.3g deg, edge %.3g, %d it), L/L %.6g (moved %.4g, %.3g deg, "
+           "edge %.3g, %d it): %s\n",
+           name, d_lg, m_lg, a_lg, e_lg, (int)r_lg.iterations, d_ll, m_ll, a_ll, e_ll, (int)r_ll.iterations,
            result.ll ? "L/L" : result.finer ? "L/G, finer" : "L/G");
     const double *expected = result.ll ? ll : result.finer ? fine : lg;
     const facet_planarize_result *expected_r = result.ll ? &r_ll : result.finer ? &r_fine : &r_lg;
@@ -152,6 +180,8 @@ static outcome check_rule(const char *name, test_mesh *g)
     CHECK(r.compare_min_angle[FACET_METHOD_LOCAL_LOCAL] == a_ll);
     CHECK(r.compare_displacement_rms[FACET_METHOD_LOCAL_GLOBAL] == (result.finer ? m_f : m_lg));
     CHECK(r.compare_displacement_rms[FACET_METHOD_LOCAL_LOCAL] == m_ll);
+    CHECK(r.compare_edge_ratio[FACET_METHOD_LOCAL_GLOBAL] == (result.finer ? e_f : e_lg));
+    CHECK(r.compare_edge_ratio[FACET_METHOD_LOCAL_LOCAL] == e_ll);
     /* the handle's last result is the one returned: a warm start from it as
      * from the handle that solved it alone */
     double *warm = malloc(sizeof(double) * v3);
@@ -213,7 +243,7 @@ static void test_progress_and_cancel(void)
     /* the first solve's bound: its 1000, the four re-solves' 1000, 1000,
      * 4000, 1000, the comparison's 1000 and the finer L/G solve's 1000 */
     CHECK(rec->max_iter[0] == 10000);
-    CHECK(r.finer_iterations == 0); /* (L/L's result was taken) */
+    CHECK(r.finer_iterations == 0); /* (L/L's result was refused for its shortest edge) */
     int ordered = 1, compare_calls = 0, compare_first = -1;
     for (int32_t k = 0; k < rec->n && k < MAX_CALLS; ++k) {
         ordered &= rec->iteration[k] == k + 1 && rec->max_iter[k] >= rec->iteration[k];
@@ -261,14 +291,14 @@ static void test_progress_and_cancel(void)
     test_mesh_free(&g);
 }
 
-/* The L/G solve with a finer hold (hypar 10: L/L's result moved too far,
+/* The L/G solve with a finer hold (grid 16x8: L/L's result moved too far,
  * the finer L/G's taken): its calls come last, named FACET_STAGE_FINER,
  * bounded by the iterations done and its limit; cancelled in it, the first
  * L/G result, which the handle keeps. With plane data (vertices sliding) no
  * finer solve can follow: its limit is not in the bound. */
 static void test_finer_progress_and_cancel(void)
 {
-    test_mesh g = test_hypar(10);
+    test_mesh g = test_grid(16, 8, 0.3, 1.0, 0.0);
     const size_t v3 = v3_of(&g);
     facet_planarizer *s = NULL, *h = NULL;
     facet_error err;
@@ -416,30 +446,32 @@ static void test_no_comparison(void)
 
 int main(void)
 {
-    int took_ll = 0, kept_lg = 0, guarded = 0, finer = 0;
+    int took_ll = 0, kept_lg = 0, guarded = 0, finer = 0, short_edge = 0;
     const struct {
         const char *name;
         int hypar; /* n for test_hypar, else a test_grid of nu x nv */
         int nu, nv;
         double amplitude;
     } meshes[] = {
-        {"hypar 8", 8, 0, 0, 0},     {"hypar 12", 12, 0, 0, 0},   {"hypar 16", 16, 0, 0, 0},
-        {"grid 12x9", 0, 12, 9, 0.5}, {"grid 24x18", 0, 24, 18, 0.3}, {"grid 20x20", 0, 20, 20, 1.0},
-        {"hypar 10", 10, 0, 0, 0},
+        {"hypar 8", 8, 0, 0, 0},       {"hypar 12", 12, 0, 0, 0},      {"hypar 6", 6, 0, 0, 0},
+        {"grid 12x9", 0, 12, 9, 0.5},  {"grid 24x18", 0, 24, 18, 0.3}, {"grid 20x20", 0, 20, 20, 1.0},
+        {"grid 16x8", 0, 16, 8, 0.3},  {"grid 12x12", 0, 12, 12, 0.4},
     };
     for (size_t m = 0; m < sizeof meshes / sizeof meshes[0]; ++m) {
         test_mesh g = meshes[m].hypar ? test_hypar(meshes[m].hypar)
                                       : test_grid(meshes[m].nu, meshes[m].nv, meshes[m].amplitude, 1.0, 0.0);
         const outcome o = check_rule(meshes[m].name, &g);
         took_ll += o.ll, kept_lg += !o.ll, guarded += o.guarded, finer += o.finer;
+        short_edge += o.short_edge;
         if (m == 0)
             test_same_bits(&g);
         test_mesh_free(&g);
     }
     /* the meshes cover every outcome (else a branch of the rule is untested):
-     * L/L's result, L/G's, L/L's refused for moving further and then the
-     * finer L/G's taken (hypar 10) or not (the grids) */
-    CHECK(took_ll > 0 && kept_lg > 0 && guarded > finer && finer > 0);
+     * L/L's result (hypar 6, grid 12x12), L/G's, L/L's refused for moving
+     * further and then the finer L/G's taken (grid 16x8) or not (grid
+     * 24x18), L/L's refused for its shortest edge (hypar 12) */
+    CHECK(took_ll > 0 && kept_lg > 0 && guarded > finer && finer > 0 && short_edge > 0);
     printf("L/L taken on %d, L/G's kept on %d, L/L's moved too far on %d, the finer L/G's taken on %d\n",
            took_ll, kept_lg, guarded, finer);
     test_progress_and_cancel();

@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Planarized objects: solve on recompute, keep the source, survive save and reopen."""
 
+import os
+
 import numpy as np
 
 import facet
@@ -115,12 +117,13 @@ class TestPlanarizedMethod(DocumentTestCase):
 
     def test_auto_follows_with_a_finer_hold_when_ll_moved_too_far(self):
         from facetwb.objects.planarized import planarize_summary
-        source = importer.import_mesh(data_path("hypar.obj"), self.doc)
+        from facet_test_support import ROOT
+        source = importer.import_mesh(os.path.join(ROOT, "examples", "wave_facade.obj"), self.doc)
         auto = facetwb.make_planarized(source, tolerance=TOLERANCE)
         lg = facetwb.make_planarized(source, method="lg", tolerance=TOLERANCE)
         self.doc.recompute()
-        # L/L's result is closer but moves the vertices further: refused; L/G with a
-        # finer hold is closer than the first L/G result and kept
+        # the demo facade: L/L's result is closer but moves the vertices further:
+        # refused; L/G with a finer hold is closer than the first L/G result and kept
         finer = auto.Proxy.compared["finer"]
         self.assertTrue(finer["kept"])
         self.assertGreater(finer["iterations"], 0)

@@ -217,6 +217,7 @@ def run(out_dir):
     check_edit_region(check)
     check_edit_planarized(check, out_dir)
     check_planarize_progress(check, out_dir)
+    check_planarize_progress_finer(check, out_dir)
     import ui_checks
 
     ui_checks.run(check, out_dir, sys.modules[__name__])
@@ -225,11 +226,10 @@ def run(out_dir):
 
 def check_planarize_progress(check, out_dir):
     """A Planarized recompute that re-solves for panel quality (the 32 x 32 hypar) and
-    then, method auto, solves by L/L too, whose result moves the vertices too far, and by
-    L/G with a finer hold: the progress dialog's text names the re-solve, the comparison
-    and the finer solve, and its bar never runs backwards; the dialog in the first
-    re-solve, the comparison and the finer solve (name, planarity) is saved as
-    progress_resolve.png, progress_compare.png and progress_finer.png."""
+    then, method auto, solves by L/L too: the progress dialog's text names the re-solve
+    and the comparison, and its bar never runs backwards; the dialog in the first
+    re-solve and in the comparison (name, planarity) is saved as progress_resolve.png and
+    progress_compare.png."""
     import FreeCAD as App
 
     import facet
@@ -253,8 +253,7 @@ def check_planarize_progress(check, out_dir):
             say(text)
             shown.append((reporter.dialog.labelText(), reporter.dialog.value()))
             for key, name in (("re-solving", "progress_resolve.png"),
-                              ("local/local too", "progress_compare.png"),
-                              ("finer hold", "progress_finer.png")):
+                              ("local/local too", "progress_compare.png")):
                 path = os.path.join(out_dir, name)
                 if key in shown[-1][0] and "planarity" in shown[-1][0] and path not in saved:
                     saved.append(path)
@@ -278,17 +277,51 @@ def check_planarize_progress(check, out_dir):
           f"the progress dialog names auto's comparison after any re-solve ({comparing[:1]})")
     check(any("\nplanarity " in text for text, _value in comparing),
           "the dialog shows the comparison's planarity under its name")
-    finer = [(text, value) for text, value in shown if "finer hold" in text]
-    check(bool(finer) and finer[0][0] == "Planarize ...\nPlanarize "
+    values = [value for _text, value in resolving + comparing]
+    check(values == sorted(values) and 0 < values[0] < 1000,
+          f"the progress bar does not run backwards across re-solves and comparison ({values})")
+    check(len(saved) == 1 + bool(resolving) and all(os.path.getsize(p) > 1000 for p in saved),
+          f"the dialog's screenshots ({saved})")
+    check(shown and shown[-1][0] == "Planarize ...", "the title alone after the solve")
+    App.closeDocument(doc.Name)
+
+
+def check_planarize_progress_finer(check, out_dir):
+    """The demo facade, method auto: L/L's result moves the vertices too far and L/G
+    solves again with a finer hold; the progress dialog names that solve after the
+    comparison, with its planarity, and is saved as progress_finer.png."""
+    import FreeCAD as App
+
+    import facetwb
+    from facetwb import importer, progress
+
+    doc = App.newDocument("FinerCheck")
+    source = importer.import_mesh(os.path.join(ROOT, "examples", "wave_facade.obj"), doc)
+    doc.recompute()
+    result = facetwb.make_planarized(source)
+    shown = []
+    path = os.path.join(out_dir, "progress_finer.png")
+    with progress.reporting("Planarize ...", minimum_seconds=0) as reporter:
+        say = reporter.say
+
+        def recording_say(text=None):
+            say(text)
+            shown.append((reporter.dialog.labelText(), reporter.dialog.value()))
+            if "finer hold" in shown[-1][0] and "planarity" in shown[-1][0] and not os.path.exists(path):
+                reporter.dialog.grab().save(path)
+
+        reporter.say = recording_say
+        doc.recompute()
+    check(result.isValid(), f"the demo facade planarizes ({result.getStatusString()})")
+    comparing = [s for s in shown if "local/local too" in s[0]]
+    finer = [s for s in shown if "finer hold" in s[0]]
+    check(bool(comparing) and bool(finer) and finer[0][0] == "Planarize ...\nPlanarize "
           f"{result.Label}: solving by local/global again with a finer hold, closer to the design"
           and shown.index(finer[0]) > shown.index(comparing[-1]),
           f"the progress dialog names the finer L/G solve after the comparison ({finer[:1]})")
-    values = [value for _text, value in resolving + comparing + finer]
-    check(values == sorted(values) and 0 < values[0] < 1000,
-          f"the progress bar does not run backwards across re-solves and comparisons ({values})")
-    check(len(saved) == 2 + bool(resolving) and all(os.path.getsize(p) > 1000 for p in saved),
-          f"the dialog's screenshots ({saved})")
-    check(shown and shown[-1][0] == "Planarize ...", "the title alone after the solve")
+    values = [value for _text, value in comparing + finer]
+    check(values == sorted(values), f"the progress bar does not run backwards ({values})")
+    check(os.path.exists(path) and os.path.getsize(path) > 1000, f"the dialog's screenshot ({path})")
     App.closeDocument(doc.Name)
 
 

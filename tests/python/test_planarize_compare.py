@@ -30,11 +30,20 @@ def _mesh(b):
     return facet.PolyMesh(b.vertices, b.face_start, b.face_vertices)
 
 
+def _edge_ratio(mesh, vertices):
+    """The shortest edge at `vertices` relative to its length in the input mesh."""
+    fs, fv = mesh.face_start, mesh.face_vertices
+    nxt = np.concatenate([np.roll(fv[fs[f]:fs[f + 1]], -1) for f in range(len(fs) - 1)])
+    before = np.linalg.norm(mesh.vertices[nxt] - mesh.vertices[fv], axis=1)
+    after = np.linalg.norm(vertices[nxt] - vertices[fv], axis=1)
+    return float(np.min(after[before > 0] / before[before > 0]))
+
+
 def _measure(mesh, result):
     _, distance, _, _ = facet.Surface(mesh).closest(result.mesh.vertices, threads=1)
     moved = np.sqrt(np.sum((result.mesh.vertices - mesh.vertices) ** 2) / mesh.n_vertices)
     return (float(np.sqrt(np.mean(distance**2))), float(moved),
-            float(np.min(result.quality.min_angle)))
+            float(np.min(result.quality.min_angle)), _edge_ratio(mesh, result.mesh.vertices))
 
 
 DATA = os.path.join(os.path.dirname(__file__), "..", "data")
@@ -55,9 +64,10 @@ def test_auto_returns_the_closer_result(name):
     auto = facet.planarize(mesh, threads=1)
     lg = facet.planarize(mesh, method="lg", threads=1)
     ll = facet.planarize(mesh, method="ll", quality_angle=0, threads=1)
-    d_lg, m_lg, a_lg = _measure(mesh, lg)
-    d_ll, m_ll, a_ll = _measure(mesh, ll)
-    closer, wide, still = d_ll < d_lg, a_ll >= min(a_lg, 10.0), m_ll <= 1.05 * m_lg
+    d_lg, m_lg, a_lg, e_lg = _measure(mesh, lg)
+    d_ll, m_ll, a_ll, e_ll = _measure(mesh, ll)
+    closer, still = d_ll < d_lg, m_ll <= 1.05 * m_lg
+    wide = a_ll >= min(a_lg, 10.0) and e_ll >= min(e_lg, 0.25)
     pick = "ll" if closer and wide and still else "lg"
     decided = ("ll" if pick == "ll" else "further" if not closer else "narrower" if not wide
                else "moved")
@@ -68,11 +78,12 @@ def test_auto_returns_the_closer_result(name):
     if decided == "moved" and d_ll <= 0.8 * d_lg:
         # L/L's markedly closer: then L/G with a finer hold, judged against L/G's first result
         finer = facet.planarize(mesh, method="lg", hold_tol=0.01 * 0.3, quality_angle=0, threads=1)
-        d_f, m_f, a_f = _measure(mesh, finer)
-        taken = finer.converged and d_f < d_lg and a_f >= min(a_lg, 10.0) and m_f <= 1.05 * m_lg
+        d_f, m_f, a_f, e_f = _measure(mesh, finer)
+        taken = (finer.converged and d_f < d_lg and a_f >= min(a_lg, 10.0)
+                 and e_f >= min(e_lg, 0.25) and m_f <= 1.05 * m_lg)
         assert compared["finer"] == {"iterations": finer.iterations, "kept": taken}
         if taken:
-            lg, d_lg, m_lg, a_lg = finer, d_f, m_f, a_f  # L/G's result returned, its figures
+            lg, d_lg, m_lg, a_lg, e_lg = finer, d_f, m_f, a_f, e_f  # returned: its figures
     else:
         assert compared["finer"] is None
     assert (compared["finer"] is not None) == (name == "wave_facade")  # both branches met
@@ -86,6 +97,8 @@ def test_auto_returns_the_closer_result(name):
     assert compared["ll"]["min_angle"] == pytest.approx(a_ll, rel=1e-12)
     assert compared["lg"]["displacement_rms"] == pytest.approx(m_lg, rel=1e-12)
     assert compared["ll"]["displacement_rms"] == pytest.approx(m_ll, rel=1e-12)
+    assert compared["lg"]["edge_ratio"] == pytest.approx(e_lg, rel=1e-12)
+    assert compared["ll"]["edge_ratio"] == pytest.approx(e_ll, rel=1e-12)
     # the quality report of what was returned agrees
     returned = d_ll if pick == "ll" else d_lg
     assert auto.quality.as_dict()["distance_rms"] == pytest.approx(returned, rel=1e-12)

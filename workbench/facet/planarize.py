@@ -143,12 +143,14 @@ class PlanarizeResult:
         Method ``"auto"``'s comparison, where it picked L/G: it also solved
         by L/L and returned the result closer to the design (``method`` says
         whose), unless L/L's had a narrower smallest corner (below L/G's and
-        10 degrees), more new narrow corners, or (with point data) moved the
-        vertices more than 5% further than L/G's. ``{"iterations": n, "lg":
-        {"distance_rms": d, "displacement_rms": m, "min_angle": a}, "ll":
-        {...}}``: the L/L solve's iterations (counted in ``iterations``), and
-        each result's RMS distance from the input surface and RMS vertex
-        displacement (model units) and smallest corner angle (degrees); the
+        10 degrees), a shorter shortest edge (below L/G's and a quarter of
+        its input length), more new narrow corners, or (with point data)
+        moved the vertices more than 5% further than L/G's. ``{"iterations":
+        n, "lg": {"distance_rms": d, "displacement_rms": m, "min_angle": a,
+        "edge_ratio": e}, "ll": {...}}``: the L/L solve's iterations (counted
+        in ``iterations``), and each result's RMS distance from the input
+        surface and RMS vertex displacement (model units), smallest corner
+        angle (degrees) and shortest edge relative to its input length; the
         two dicts are empty when L/L did not reach the tolerance. When L/L's
         result was refused only for moving the vertices further, L/G solved
         again with a finer hold (``hold_tol`` times 0.3): ``"finer":
@@ -480,13 +482,14 @@ def _compared(stats):
     if not stats.get("compare_iterations"):
         return None
     distance, angle = stats["compare_distance_rms"], stats["compare_min_angle"]
-    moved = stats["compare_displacement_rms"]
-    measured = any(v > 0.0 for v in (*distance, *angle, *moved))
+    moved, edge = stats["compare_displacement_rms"], stats["compare_edge_ratio"]
+    measured = any(v > 0.0 for v in (*distance, *angle, *moved, *edge))
     finer = int(stats.get("finer_iterations", 0))
     return {"iterations": int(stats["compare_iterations"]),
             "finer": {"iterations": finer, "kept": bool(stats["finer_kept"])} if finer else None,
             **{name: ({"distance_rms": float(distance[k]), "displacement_rms": float(moved[k]),
-                       "min_angle": float(angle[k])} if measured else {})
+                       "min_angle": float(angle[k]), "edge_ratio": float(edge[k])}
+                      if measured else {})
                for k, name in enumerate(("ll", "lg"))}}
 
 
