@@ -389,12 +389,12 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
  * L/G or less, so where AUTO picks L/G it solves by both and returns the
  * closer result, unless that costs panel shape. */
 
-/* The smallest corner L/L's result may have: at least L/G's, but a result
+/* The smallest corner a compared result may have: at least L/G's, but a result
  * whose corners are all 10 degrees or wider is as good as any for panels. */
 static const double COMPARE_ANGLE_ENOUGH = 10.0;
 
-/* The shortest edge (relative to its input length) L/L's result may have:
- * at least L/G's, but a result whose edges all keep a quarter of their
+/* The shortest edge (relative to its input length) a compared result may
+ * have: at least L/G's, but a result whose edges all keep a quarter of their
  * length is as good as any. The penalty method may shrink an edge to
  * nothing where the surface asks for it (a skew quad becomes a triangle:
  * hypar grids, Level 5, hex tori), and the corner angles do not show it. */
@@ -438,7 +438,7 @@ typedef struct {
 /* The figures of the result xyz (0 when a call fails: then the comparison
  * keeps L/G's result). Sums in vertex order: the same for any thread count. */
 static int measure(const facet_planarizer *s, const facet_surface *surface, const double *xyz,
-                   int nthreads, double *work, figures *f)
+                   int nthreads, double *work, figures *fig)
 {
     facet_error error;
     const double *input = s->previous_control;
@@ -447,26 +447,26 @@ static int measure(const facet_planarizer *s, const facet_surface *surface, cons
         const double d = xyz[k] - input[k];
         sum_moved += d * d;
     }
-    f->moved = sqrt(sum_moved / (double)s->nv);
+    fig->moved = sqrt(sum_moved / (double)s->nv);
     if (facet_surface_closest(surface, s->nv, xyz, nthreads, NULL, work, NULL, NULL, &error) !=
         FACET_OK)
         return 0;
     double sum = 0.0;
     for (int32_t v = 0; v < s->nv; ++v)
         sum += work[v] * work[v];
-    f->distance = sqrt(sum / (double)s->nv);
+    fig->distance = sqrt(sum / (double)s->nv);
     const facet_mesh mesh = {s->nv, s->nf, xyz, s->face_start, s->face_vertices};
     if (facet_face_shape(&mesh, NULL, nthreads, work, NULL, NULL, &error) != FACET_OK)
         return 0;
     double least = 2.0 * 3.14159265358979323846;
-    for (int32_t f_ = 0; f_ < s->nf; ++f_)
-        least = facet_min(least, work[f_]);
-    f->angle = least / DEG;
+    for (int32_t f = 0; f < s->nf; ++f)
+        least = facet_min(least, work[f]);
+    fig->angle = least / DEG;
     /* a quad whose edge shrinks to nothing is a triangle, whatever its
      * angles say (the angles at a vanishing edge are those of its ends) */
     double shortest = 1.0;
-    for (int32_t face = 0; face < s->nf; ++face) {
-        const int32_t b = s->face_start[face], e = s->face_start[face + 1];
+    for (int32_t f = 0; f < s->nf; ++f) {
+        const int32_t b = s->face_start[f], e = s->face_start[f + 1];
         for (int32_t k = b; k < e; ++k) {
             const size_t i = 3 * (size_t)s->face_vertices[k];
             const size_t j = 3 * (size_t)s->face_vertices[k + 1 < e ? k + 1 : b];
@@ -479,8 +479,8 @@ static int measure(const facet_planarizer *s, const facet_surface *surface, cons
                 shortest = facet_min(shortest, sqrt(out2 / in2));
         }
     }
-    f->edge = shortest;
-    return isfinite(f->distance) && isfinite(f->moved) && isfinite(f->angle) && isfinite(f->edge);
+    fig->edge = shortest;
+    return isfinite(fig->distance) && isfinite(fig->moved) && isfinite(fig->angle) && isfinite(fig->edge);
 }
 
 /* The input surface that results are measured against: the reference
@@ -503,7 +503,7 @@ static const facet_surface *input_surface(const facet_planarizer *s,
 typedef enum {
     KEEP_LG,  /* L/G's result stands */
     TAKE,     /* the other is returned */
-    MOVED_FAR /* the other is closer, its corners as wide, but its vertices moved too far */
+    MOVED_FAR /* the other is closer, its corners and edges as good, but its vertices moved too far */
 } verdict;
 
 /* L/G's figures as the result holds them (compare_*[FACET_METHOD_LOCAL_GLOBAL]),
