@@ -348,6 +348,13 @@ typedef struct facet_planarize_result {
                                         model units; 0 0 when none was compared */
     double compare_min_angle[2];     /* their smallest corner angles, degrees (facet_face_shape) */
     double compare_displacement_rms[2]; /* their RMS vertex displacement from the input */
+    double compare_edge_ratio[2];    /* their shortest edge relative to its input length */
+    int32_t finer_iterations;        /* iterations of the L/G solve with a finer hold that
+                                        follows when L/L's result was closer but moved the
+                                        vertices too far (FACET_STAGE_FINER; counted in
+                                        `iterations`; 0: none ran) */
+    int32_t finer_kept;              /* 1 when that solve's result was returned: then
+                                        compare_*[FACET_METHOD_LOCAL_GLOBAL] are its figures */
 } facet_planarize_result;
 
 /* A planarization solver for one mesh topology. It copies the topology and
@@ -813,7 +820,8 @@ typedef enum facet_quality_outcome {
  * progress callback (the calling thread, while the solve runs). Returns 0
  * during the first solve and k (1 <= k <= *stages) during the k-th quality
  * re-solve (facet_quality_outcome), FACET_STAGE_COMPARE during method AUTO's
- * comparison solve (below); *stages (may be NULL) receives how many
+ * comparison solve and FACET_STAGE_FINER during its L/G solve with a finer
+ * hold (below); *stages (may be NULL) receives how many
  * re-solves this solve may run: 0 when it cannot re-solve (quality_angle 0,
  * a fixed iteration count, an angle floor, a warm start), else 4 (vertices
  * held at their control points) or 2 (vertices sliding along the design:
@@ -833,7 +841,10 @@ int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stag
  * result is returned instead of L/G's when it reaches the tolerance, lies
  * closer to the input surface (RMS distance of the vertices; the reference
  * surface instead when surface_weight > 0), has a smallest corner angle of
- * at least the smaller of L/G's and 10 degrees, has no more new narrow
+ * at least the smaller of L/G's and 10 degrees, a shortest edge (relative
+ * to its input length) of at least the smaller of L/G's and a quarter (a
+ * skew quad may shrink an edge to nothing, becoming a triangle, with no
+ * narrow corner), has no more new narrow
  * corners (facet_quality_outcome) than L/G's and, unless the data term lets
  * vertices slide (data_tangent < data_normal or surface_weight > 0), moves
  * the vertices no more than 5% further (RMS) than L/G's: L/L is often
@@ -849,8 +860,28 @@ int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stag
  * laplacian, normal_laplacian or boundary_fairness > 0). If the comparison
  * solve fails or stops short of the tolerance, L/G's result stands;
  * cancelling it returns FACET_ERROR_CANCELLED with L/G's result in xyz_out.
- * During the comparison facet_planarizer_stage returns FACET_STAGE_COMPARE. */
+ * During the comparison facet_planarizer_stage returns FACET_STAGE_COMPARE.
+ *
+ * When L/L's result is refused only for moving the vertices further (its
+ * corners as wide) and lies markedly closer to the input surface (at most
+ * FACET_FINER_WHEN times L/G's distance), L/G's result has strayed from the
+ * penalty path, which L/L's shows to lie nearer the design: L/G solves once
+ * more from the input with a finer hold (hold_tol times FACET_FINER_HOLD,
+ * Anderson kept, no quality re-solve; facet_planarizer_stage returns
+ * FACET_STAGE_FINER), and its result is returned instead of the first when
+ * it reaches the tolerance, lies closer to the input surface, has a
+ * smallest corner of at least the smaller of the first's and 10 degrees, a
+ * shortest edge of at least the smaller of the first's and a quarter, no
+ * more new narrow corners, and moves the vertices no more than 5% further
+ * (RMS). result.finer_iterations and finer_kept say what it did. The bound
+ * the progress callback sees from the first call includes this solve's
+ * limit (max_iter) where it may run (vertices held at their control
+ * points). Cancelling it returns FACET_ERROR_CANCELLED with the first L/G
+ * result in xyz_out. */
 #define FACET_STAGE_COMPARE (-1)
+#define FACET_STAGE_FINER (-2)
+#define FACET_FINER_HOLD 0.3
+#define FACET_FINER_WHEN 0.8
 
 #ifdef __cplusplus
 }

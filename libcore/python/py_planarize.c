@@ -60,8 +60,9 @@ static void planarizer_dealloc(PyObject *self_obj)
 typedef struct {
     PyObject *callback; /* may be NULL */
     PyObject *exc_type, *exc_value, *exc_tb;
-    PyObject *stage;    /* stage(stage, stages) when a quality re-solve or method auto's
-                           comparison (stage FACET_STAGE_COMPARE) starts; may be NULL */
+    PyObject *stage;    /* stage(stage, stages) when a quality re-solve or one of method
+                           auto's comparison solves (stage FACET_STAGE_COMPARE or
+                           FACET_STAGE_FINER) starts; may be NULL */
     const facet_planarizer *handle;
     int32_t stage_seen;
 } progress_state;
@@ -280,7 +281,7 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
         return py_raise_status(st, status, &error);
     static const char *const quality_names[] = {"not_checked", "ok", "recovered", "narrow"};
     /* compare_*: (L/L, L/G), facet_method's order */
-    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:i,s:i,s:(dd),s:(dd),s:(dd)}",
+    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:i,s:i,s:(dd),s:(dd),s:(dd),s:(dd),s:i,s:O}",
                          "iterations",
                          (int)r.iterations, "stop_reason", stop_reason_name(r.stop_reason), "mu",
                          r.mu, "planarity_max_abs", r.planarity_max_abs, "planarity_max_rel",
@@ -295,7 +296,10 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
                          "compare_iterations", (int)r.compare_iterations, "compare_distance_rms",
                          r.compare_distance_rms[0], r.compare_distance_rms[1], "compare_min_angle",
                          r.compare_min_angle[0], r.compare_min_angle[1], "compare_displacement_rms",
-                         r.compare_displacement_rms[0], r.compare_displacement_rms[1]);
+                         r.compare_displacement_rms[0], r.compare_displacement_rms[1],
+                         "compare_edge_ratio", r.compare_edge_ratio[0], r.compare_edge_ratio[1],
+                         "finer_iterations", (int)r.finer_iterations, "finer_kept",
+                         r.finer_kept ? Py_True : Py_False);
 }
 
 /* The handle of a planarizer that may be configured now; NULL with an error set. */
@@ -393,8 +397,9 @@ static PyMethodDef planarizer_methods[] = {
      "returning True cancels. It counts on through the quality re-solves (iteration up to\n"
      "the result's iterations, max_iter a bound of the whole solve that never grows);\n"
      "stage(stage, stages) is called when the stage-th of at most `stages` re-solves\n"
-     "starts, and stage(STAGE_COMPARE, stages) when method auto's comparison solve by\n"
-     "L/L starts, each before its first progress call (facet_planarizer_stage)."},
+     "starts, stage(STAGE_COMPARE, stages) when method auto's comparison solve by L/L\n"
+     "starts and stage(STAGE_FINER, stages) when its L/G solve with a finer hold starts,\n"
+     "each before its first progress call (facet_planarizer_stage)."},
     {"set_fixed", planarizer_set_fixed, METH_O,
      "set_fixed(vertices) -> None\n\nHard-fix these vertices (int32 indices) at their control\n"
      "positions in every later solve; None clears."},
@@ -433,5 +438,7 @@ int py_add_planarize(PyObject *module)
     Py_DECREF(type);
     if (r == 0) /* stage(STAGE_COMPARE, stages): method auto's comparison solve */
         r = PyModule_AddIntConstant(module, "STAGE_COMPARE", FACET_STAGE_COMPARE);
+    if (r == 0) /* stage(STAGE_FINER, stages): its L/G solve with a finer hold */
+        r = PyModule_AddIntConstant(module, "STAGE_FINER", FACET_STAGE_FINER);
     return r;
 }

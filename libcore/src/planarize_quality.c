@@ -219,6 +219,8 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
                                   facet_error *error);
 static int compares(const facet_planarizer *s, const facet_planarize_options *options);
 static int32_t compare_limit(const facet_planarize_options *options);
+static int32_t finer_limit(const facet_planarize_options *options);
+static int finer_may_follow(const facet_planarize_options *options);
 static facet_status compare_ll(facet_planarizer *s, const facet_planarize_options *options,
                                double *xyz_out, facet_planarize_result *result, facet_error *error);
 
@@ -233,12 +235,14 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
             for (size_t k = 0; k < sizeof STAGES / sizeof STAGES[0]; ++k)
                 s->quality_stages += stage_applies(options, k);
     }
-    /* method AUTO's comparison solve may follow: its limit is in every bound */
+    /* method AUTO's comparison solves may follow: their limits are in every bound */
     const int compare = compares(s, options);
+    const int64_t after =
+        compare ? (int64_t)compare_limit(options) + (finer_may_follow(options) ? finer_limit(options) : 0)
+                : 0;
     facet_planarize_result r;
     memset(&r, 0, sizeof r);
-    facet_status status = solve_checked(s, xyz_in, options, compare ? compare_limit(options) : 0,
-                                        xyz_out, &r, error);
+    facet_status status = solve_checked(s, xyz_in, options, after, xyz_out, &r, error);
     if (compare && status == FACET_OK && r.stop_reason == FACET_STOP_TOLERANCE)
         status = compare_ll(s, options, xyz_out, &r, error);
     if (result)
@@ -385,9 +389,16 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
  * L/G or less, so where AUTO picks L/G it solves by both and returns the
  * closer result, unless that costs panel shape. */
 
-/* The smallest corner L/L's result may have: at least L/G's, but a result
+/* The smallest corner a compared result may have: at least L/G's, but a result
  * whose corners are all 10 degrees or wider is as good as any for panels. */
 static const double COMPARE_ANGLE_ENOUGH = 10.0;
+
+/* The shortest edge (relative to its input length) a compared result may
+ * have: at least L/G's, but a result whose edges all keep a quarter of their
+ * length is as good as any. The penalty method may shrink an edge to
+ * nothing where the surface asks for it (a skew quad becomes a triangle:
+ * hypar grids, Level 5, hex tori), and the corner angles do not show it. */
+static const double COMPARE_EDGE_ENOUGH = 0.25;
 
 /* How much further L/L's result may move the vertices (RMS) than L/G's when
  * the data term holds them at their control points: L/L is often closer to
@@ -416,127 +427,222 @@ static int compares(const facet_planarizer *s, const facet_planarize_options *op
            options->normal_laplacian == 0.0 && options->boundary_fairness == 0.0;
 }
 
-/* RMS distance of the n points xyz from the surface, their RMS displacement
- * from the input (s->previous_control) and the smallest corner angle of the
- * mesh with those positions, degrees; 0 when a call fails (then the
- * comparison keeps L/G's result). Sums in vertex order: the same for any
- * thread count. */
+/* What the comparison measures of a result. */
+typedef struct {
+    double distance; /* RMS distance of the vertices from the input surface */
+    double moved;    /* RMS displacement from the input (s->previous_control) */
+    double angle;    /* smallest corner angle, degrees */
+    double edge;     /* shortest edge relative to its length in the input */
+} figures;
+
+/* The figures of the result xyz (0 when a call fails: then the comparison
+ * keeps L/G's result). Sums in vertex order: the same for any thread count. */
 static int measure(const facet_planarizer *s, const facet_surface *surface, const double *xyz,
-                   int nthreads, double *work, double *rms, double *moved, double *angle)
+                   int nthreads, double *work, figures *fig)
 {
     facet_error error;
+    const double *input = s->previous_control;
     double sum_moved = 0.0;
     for (size_t k = 0; k < 3 * (size_t)s->nv; ++k) {
-        const double d = xyz[k] - s->previous_control[k];
+        const double d = xyz[k] - input[k];
         sum_moved += d * d;
     }
-    *moved = sqrt(sum_moved / (double)s->nv);
+    fig->moved = sqrt(sum_moved / (double)s->nv);
     if (facet_surface_closest(surface, s->nv, xyz, nthreads, NULL, work, NULL, NULL, &error) !=
         FACET_OK)
         return 0;
     double sum = 0.0;
     for (int32_t v = 0; v < s->nv; ++v)
         sum += work[v] * work[v];
-    *rms = sqrt(sum / (double)s->nv);
+    fig->distance = sqrt(sum / (double)s->nv);
     const facet_mesh mesh = {s->nv, s->nf, xyz, s->face_start, s->face_vertices};
     if (facet_face_shape(&mesh, NULL, nthreads, work, NULL, NULL, &error) != FACET_OK)
         return 0;
     double least = 2.0 * 3.14159265358979323846;
     for (int32_t f = 0; f < s->nf; ++f)
         least = facet_min(least, work[f]);
-    *angle = least / DEG;
-    return isfinite(*rms) && isfinite(*moved) && isfinite(*angle);
+    fig->angle = least / DEG;
+    /* a quad whose edge shrinks to nothing is a triangle, whatever its
+     * angles say (the angles at a vanishing edge are those of its ends) */
+    double shortest = 1.0;
+    for (int32_t f = 0; f < s->nf; ++f) {
+        const int32_t b = s->face_start[f], e = s->face_start[f + 1];
+        for (int32_t k = b; k < e; ++k) {
+            const size_t i = 3 * (size_t)s->face_vertices[k];
+            const size_t j = 3 * (size_t)s->face_vertices[k + 1 < e ? k + 1 : b];
+            double in2 = 0.0, out2 = 0.0;
+            for (int c = 0; c < 3; ++c) {
+                in2 += (input[j + c] - input[i + c]) * (input[j + c] - input[i + c]);
+                out2 += (xyz[j + c] - xyz[i + c]) * (xyz[j + c] - xyz[i + c]);
+            }
+            if (in2 > 0.0)
+                shortest = facet_min(shortest, sqrt(out2 / in2));
+        }
+    }
+    fig->edge = shortest;
+    return isfinite(fig->distance) && isfinite(fig->moved) && isfinite(fig->angle) && isfinite(fig->edge);
 }
 
-/* Whether L/L's result (the handle's last: s->previous, solved from
- * s->previous_control, the input) is to be returned instead of L/G's
- * (xyz_out); fills the result's compare_* measures. narrow: L/L's new
- * narrow corners. Memory: what L/G no longer needs is given back first, so
- * that the input surface's tree fits within L/G's own peak. */
-static int closer(facet_planarizer *s, const facet_planarize_options *options, const double *xyz_out,
-                  int32_t narrow, facet_planarize_result *result)
+/* The input surface that results are measured against: the reference
+ * surface when the data term uses it, else a tree of the input mesh
+ * (s->previous_control) in *own, which the caller frees; NULL when out of
+ * memory. */
+static const facet_surface *input_surface(const facet_planarizer *s,
+                                          const facet_planarize_options *options,
+                                          facet_surface **own)
+{
+    *own = NULL;
+    if (options->surface_weight > 0.0)
+        return s->reference;
+    const facet_mesh mesh = {s->nv, s->nf, s->previous_control, s->face_start, s->face_vertices};
+    facet_error ignored;
+    return facet_surface_create_from_mesh(&mesh, own, &ignored) == FACET_OK ? *own : NULL;
+}
+
+/* What the comparison makes of another result. */
+typedef enum {
+    KEEP_LG,  /* L/G's result stands */
+    TAKE,     /* the other is returned */
+    MOVED_FAR /* the other is closer, its corners and edges as good, but its vertices moved too far */
+} verdict;
+
+/* L/G's figures as the result holds them (compare_*[FACET_METHOD_LOCAL_GLOBAL]),
+ * and a result's figures into them (index: a facet_method). */
+static figures held(const facet_planarize_result *result, int index)
+{
+    const figures f = {result->compare_distance_rms[index], result->compare_displacement_rms[index],
+                       result->compare_min_angle[index], result->compare_edge_ratio[index]};
+    return f;
+}
+
+static void hold(facet_planarize_result *result, int index, const figures *f)
+{
+    result->compare_distance_rms[index] = f->distance;
+    result->compare_displacement_rms[index] = f->moved;
+    result->compare_min_angle[index] = f->angle;
+    result->compare_edge_ratio[index] = f->edge;
+}
+
+/* The rule (facet.h): a result with figures f and `narrow` new narrow
+ * corners against L/G's (lg) and its narrow corners. */
+static verdict judge(const facet_planarize_options *options, const figures *f, const figures *lg,
+                     int32_t narrow, int32_t lg_narrow)
+{
+    if (!(f->distance < lg->distance) || f->angle < facet_min(lg->angle, COMPARE_ANGLE_ENOUGH) ||
+        f->edge < facet_min(lg->edge, COMPARE_EDGE_ENOUGH) || narrow > lg_narrow)
+        return KEEP_LG;
+    return slides(options) || f->moved <= COMPARE_DISPLACEMENT_MORE * lg->moved ? TAKE : MOVED_FAR;
+}
+
+/* Measures L/G's result (xyz_out) into compare_*[FACET_METHOD_LOCAL_GLOBAL]
+ * and the handle's last (s->previous, solved from s->previous_control, the
+ * input) into compare_*[other], and judges the latter; narrow: its new
+ * narrow corners. When other is L/G again (the finer solve), L/G's figures
+ * were measured with L/L's, and they become the new result's if it is
+ * taken. Memory: what L/G no longer needs is given back first, so that the
+ * input surface's tree fits within L/G's own peak. */
+static verdict closer(facet_planarizer *s, const facet_planarize_options *options, int other,
+                      const double *xyz_out, int32_t narrow, facet_planarize_result *result)
 {
     facet_pl_history_trim(s);
     const int nthreads = facet_thread_count(options->threads);
     const size_t nwork = s->nf > s->nv ? (size_t)s->nf : (size_t)s->nv;
     double *work = malloc(sizeof(double) * nwork);
-    const facet_surface *surface = options->surface_weight > 0.0 ? s->reference : NULL;
     facet_surface *own = NULL;
-    if (!surface && work) {
-        const facet_mesh mesh = {s->nv, s->nf, s->previous_control, s->face_start, s->face_vertices};
-        facet_error ignored;
-        if (facet_surface_create_from_mesh(&mesh, &own, &ignored) == FACET_OK)
-            surface = own;
+    const facet_surface *surface = work ? input_surface(s, options, &own) : NULL;
+    const int lg = FACET_METHOD_LOCAL_GLOBAL;
+    verdict v = KEEP_LG;
+    figures first = held(result, lg), f;
+    if (surface && (other == lg || measure(s, surface, xyz_out, nthreads, work, &first)) &&
+        measure(s, surface, s->previous, nthreads, work, &f)) {
+        v = judge(options, &f, &first, narrow, result->narrow_corners);
+        hold(result, lg, &first);
+        if (other != lg || v == TAKE)
+            hold(result, other, &f);
+    } else if (other != lg) { /* out of memory: L/G's result stands */
+        const figures none = {0.0, 0.0, 0.0, 0.0};
+        hold(result, FACET_METHOD_LOCAL_LOCAL, &none);
+        hold(result, lg, &none);
     }
-    double *d = result->compare_distance_rms, *a = result->compare_min_angle;
-    double *m = result->compare_displacement_rms;
-    const int lg = FACET_METHOD_LOCAL_GLOBAL, ll = FACET_METHOD_LOCAL_LOCAL;
-    int take = 0;
-    if (surface && measure(s, surface, xyz_out, nthreads, work, &d[lg], &m[lg], &a[lg]) &&
-        measure(s, surface, s->previous, nthreads, work, &d[ll], &m[ll], &a[ll]))
-        take = d[ll] < d[lg] && a[ll] >= facet_min(a[lg], COMPARE_ANGLE_ENOUGH) &&
-               narrow <= result->narrow_corners &&
-               (slides(options) || m[ll] <= COMPARE_DISPLACEMENT_MORE * m[lg]);
-    else /* out of memory: L/G's result stands */
-        d[0] = d[1] = a[0] = a[1] = m[0] = m[1] = 0.0;
     facet_surface_free(&own);
     free(work);
-    return take;
+    return v;
 }
 
-static facet_status compare_ll(facet_planarizer *s, const facet_planarize_options *options,
-                               double *xyz_out, facet_planarize_result *result, facet_error *error)
+/* The L/G solve with a finer hold's iteration limit (its options' max_iter),
+ * in the progress bound from the first solve on where it may run. */
+static int32_t finer_limit(const facet_planarize_options *options)
 {
-    const double t0 = facet_now();
+    return options->max_iter;
+}
+
+/* Whether the L/G solve with a finer hold may follow the comparison: only
+ * with point data, where the comparison refuses a result for moving the
+ * vertices further. */
+static int finer_may_follow(const facet_planarize_options *options)
+{
+    return !slides(options);
+}
+
+/* One solve from the input (the handle's: the last solve kept it) with the
+ * options o, whose result is judged against L/G's (xyz_out) as `other`
+ * (closer). `later`: the limits of the solves that may follow, for the
+ * progress bound. On TAKE xyz_out and the result's figures are the new
+ * result's and the handle keeps it; else L/G's result stands and the handle
+ * keeps that. *v is KEEP_LG also when the solve failed or stopped short of
+ * the tolerance. Only cancelling returns an error. */
+static facet_status solve_again(facet_planarizer *s, const facet_planarize_options *options,
+                                const facet_planarize_options *o_in, int32_t stage, int other,
+                                int64_t later, double *xyz_out, facet_planarize_result *result,
+                                verdict *v, int32_t *iterations, double t0, facet_error *error)
+{
+    *v = KEEP_LG;
     const size_t v3 = 3 * (size_t)s->nv;
     double remaining = 0.0;
     if (options->time_budget > 0.0) {
-        remaining = options->time_budget - result->seconds;
+        remaining = options->time_budget - result->seconds - (facet_now() - t0);
         if (!(remaining > 0.0))
             return FACET_OK;
     }
-    /* the input (the last solve kept it; xyz_in may be xyz_out), L/L's result */
+    /* the input (the last solve kept it; xyz_in may be xyz_out), the result */
     double *input = malloc(sizeof(double) * v3), *out = malloc(sizeof(double) * v3);
     if (!input || !out) { /* L/G's result stands */
         free(input), free(out);
         return FACET_OK;
     }
     memcpy(input, s->previous_control, sizeof(double) * v3);
-    /* L/G's system goes, so that the L/L solve and the measures (the input
+    /* L/G's system goes, so that an L/L solve and the measures (the input
      * surface's tree: about 150 bytes per triangle while it is built) take
      * no more memory than L/G took. A later L/G solve on this handle sets
      * its system up again (its analysis: about 5% of a cold solve's time). */
     facet_pl_global_free(s);
     progress_relay relay;
-    facet_planarize_options o = relayed(options, &relay, result->iterations,
-                                        (int64_t)result->iterations + compare_limit(options));
-    o.max_iter = compare_limit(options);
-    o.method = FACET_METHOD_LOCAL_LOCAL;
-    o.mu_min = facet_max(o.mu_min, FACET_LL_MU_MIN);
+    facet_planarize_options o = relayed(o_in, &relay, result->iterations,
+                                        (int64_t)result->iterations + o_in->max_iter + later);
     o.warm = 0;
     o.time_budget = remaining;
     facet_planarize_result r;
     memset(&r, 0, sizeof r);
-    s->quality_stage = FACET_STAGE_COMPARE;
+    s->quality_stage = stage;
     facet_status status = facet_pl_solve_once(s, input, &o, out, &r, error);
+    facet_pl_global_free(s);
     result->iterations += r.iterations;
-    result->compare_iterations = r.iterations;
-    int take = 0;
+    *iterations = r.iterations;
     if (status == FACET_OK && r.stop_reason == FACET_STOP_TOLERANCE) {
-        /* the handle keeps L/L's result and the input (s->previous,
+        /* the handle keeps the result and the input (s->previous,
          * s->previous_control): the copies go before the measures */
         free(input), free(out);
         input = out = NULL;
-        /* new narrow corners of L/L's result (s->q, s->p: the solve's own) */
+        /* the result's new narrow corners (s->q, s->p: the solve's own) */
         double narrowest = 180.0;
         const int32_t narrow = options->quality_angle > 0.0
                                    ? facet_pl_new_narrow(s, options->quality_angle,
                                                          facet_thread_count(options->threads), &narrowest)
                                    : 0;
-        take = closer(s, options, xyz_out, narrow, result);
-        if (take) {
+        *v = closer(s, options, other, xyz_out, narrow, result);
+        if (*v == TAKE) {
             memcpy(xyz_out, s->previous, sizeof(double) * v3);
-            result->method = FACET_METHOD_LOCAL_LOCAL;
+            result->method = o.method;
             result->mu = r.mu;
             result->planarity_max_abs = r.planarity_max_abs;
             result->planarity_max_rel = r.planarity_max_rel;
@@ -549,16 +655,47 @@ static facet_status compare_ll(facet_planarizer *s, const facet_planarize_option
             s->message[0] = '\0'; /* L/G's (its narrow corners) no longer applies */
         }
     } else if (status != FACET_ERROR_CANCELLED) {
-        facet_error_clear(error); /* a failed comparison: L/G's result stands */
+        facet_error_clear(error); /* a failed solve: L/G's result stands */
         status = FACET_OK;
     }
-    if (!take && s->previous) { /* the handle's last result (warm starts, live updates) is L/G's */
+    if (*v != TAKE && s->previous) { /* the handle's last result (warm starts, live updates) is L/G's */
         memcpy(s->previous, xyz_out, sizeof(double) * v3);
         if (input)
             memcpy(s->previous_control, input, sizeof(double) * v3);
         s->has_previous = 1;
     }
     free(input), free(out);
+    return status;
+}
+
+/* Method AUTO's comparison (facet.h): L/L's result, then, when L/L's was
+ * refused only for moving the vertices further, L/G's with a finer hold. */
+static facet_status compare_ll(facet_planarizer *s, const facet_planarize_options *options,
+                               double *xyz_out, facet_planarize_result *result, facet_error *error)
+{
+    const double t0 = facet_now();
+    const int finer = finer_may_follow(options);
+    facet_planarize_options o = *options;
+    o.max_iter = compare_limit(options);
+    o.method = FACET_METHOD_LOCAL_LOCAL;
+    o.mu_min = facet_max(o.mu_min, FACET_LL_MU_MIN);
+    verdict v;
+    facet_status status = solve_again(s, options, &o, FACET_STAGE_COMPARE, FACET_METHOD_LOCAL_LOCAL,
+                                      finer ? finer_limit(options) : 0, xyz_out, result, &v,
+                                      &result->compare_iterations, t0, error);
+    const double *d = result->compare_distance_rms;
+    if (status == FACET_OK && finer && v == MOVED_FAR &&
+        d[FACET_METHOD_LOCAL_LOCAL] <= FACET_FINER_WHEN * d[FACET_METHOD_LOCAL_GLOBAL]) {
+        /* L/L's result shows a planar mesh nearer the design than L/G's,
+         * which strayed from the penalty path: L/G follows it more closely */
+        o = *options;
+        o.max_iter = finer_limit(options);
+        o.method = FACET_METHOD_LOCAL_GLOBAL;
+        o.hold_tol = options->hold_tol * FACET_FINER_HOLD;
+        status = solve_again(s, options, &o, FACET_STAGE_FINER, FACET_METHOD_LOCAL_GLOBAL, 0, xyz_out,
+                             result, &v, &result->finer_iterations, t0, error);
+        result->finer_kept = v == TAKE;
+    }
     result->seconds += facet_now() - t0;
     if (status == FACET_ERROR_CANCELLED) {
         snprintf(s->message, sizeof s->message, "cancelled");

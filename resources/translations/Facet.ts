@@ -417,7 +417,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="230"/>
+        <source>Planarize {0}: solving by local/global again with a finer hold, closer to the design</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="233"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
         <translation type="unfinished"></translation>
     </message>

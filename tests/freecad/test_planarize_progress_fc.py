@@ -2,7 +2,7 @@
 """A Planarized object's recompute that re-solves for panel quality: the progress text
 says so ("re-solving for panel quality (stage k of n)") and the count runs on through the
 re-solves (headless: the reporter records what the dialog would show); method auto's
-comparison solve by L/L is named too."""
+comparison solve by L/L and its L/G solve with a finer hold are named too."""
 
 import os
 import re
@@ -83,6 +83,25 @@ class TestPlanarizeProgress(DocumentTestCase):
                             for t in reporter.texts[said[0]:]))
         self.assertEqual(reporter.calls, result.Iterations)
         self.assertEqual(reporter.text, "Planarize ...")
+
+    def test_progress_text_names_the_finer_solve(self):
+        # the demo facade: L/L's result moves the vertices too far, L/G with a finer
+        # hold follows, named after the comparison
+        from facetwb import importer
+        from facet_test_support import ROOT
+        source = importer.import_mesh(os.path.join(ROOT, "examples", "wave_facade.obj"), self.doc)
+        result = facetwb.make_planarized(source)
+        self.doc.recompute()
+        result.touch()
+        with progress.reporting("Planarize ...") as reporter:
+            self.doc.recompute()
+        self.assertTrue(result.isValid(), result.getStatusString())
+        compare = [k for k, t in enumerate(reporter.texts) if "local/local too" in t]
+        finer = [k for k, t in enumerate(reporter.texts)
+                 if f"Planarize {result.Label}: solving by local/global again with a finer hold, "
+                    "closer to the design" in t]
+        self.assertTrue(compare and finer and finer[0] > compare[-1], reporter.texts[-3:])
+        self.assertEqual(reporter.calls, result.Iterations)
 
     def test_cancel_in_a_resolve(self):
         source = self._hypar()

@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Planarized objects: solve on recompute, keep the source, survive save and reopen."""
 
+import os
+
 import numpy as np
 
 import facet
@@ -113,6 +115,31 @@ class TestPlanarizedMethod(DocumentTestCase):
         self.assertIn("local/global and local/local compared: local/local kept, distance from "
                       "the source surface rms", summary)
 
+    def test_auto_follows_with_a_finer_hold_when_ll_moved_too_far(self):
+        from facetwb.objects.planarized import planarize_summary
+        from facet_test_support import ROOT
+        source = importer.import_mesh(os.path.join(ROOT, "examples", "wave_facade.obj"), self.doc)
+        auto = facetwb.make_planarized(source, tolerance=TOLERANCE)
+        lg = facetwb.make_planarized(source, method="lg", tolerance=TOLERANCE)
+        self.doc.recompute()
+        # the demo facade: L/L's result is closer but moves the vertices further:
+        # refused; L/G with a finer hold is closer than the first L/G result and kept
+        finer = auto.Proxy.compared["finer"]
+        self.assertTrue(finer["kept"])
+        self.assertGreater(finer["iterations"], 0)
+        self.assertEqual(auto.Iterations, lg.Iterations + auto.Proxy.compared["iterations"]
+                         + finer["iterations"])
+        # the figures are the returned result's; its vertices moved no more than 5%
+        # further than the first L/G result's (the L/G object's)
+        self.assertAlmostEqual(auto.DisplacementRms.Value,
+                               auto.Proxy.compared["lg"]["displacement_rms"], places=9)
+        self.assertLessEqual(auto.DisplacementRms.Value, 1.05 * lg.DisplacementRms.Value)
+        self.assertNotEqual(bits(points_array(auto)).tobytes(), bits(points_array(lg)).tobytes())
+        summary = planarize_summary(auto)
+        self.assertIn("automatic: local/global,", summary)
+        self.assertIn(f"; local/global again with a finer hold ({finer['iterations']} iterations): "
+                      "its result kept", summary)
+
     def test_a_document_from_before_auto_keeps_its_method(self):
         from facetwb.objects.planarized import METHODS
         source = importer.import_mesh(data_path("hypar.obj"), self.doc)
@@ -162,8 +189,10 @@ class TestPlanarizedTerms(DocumentTestCase):
 
     def test_terms_change_the_result(self):
         source = importer.import_mesh(data_path("hypar.obj"), self.doc)
-        plain = facetwb.make_planarized(source)
-        slid = facetwb.make_planarized(source)
+        # one method for both, so that only the terms differ (auto may return another
+        # method's result for one of them)
+        plain = facetwb.make_planarized(source, method="lg")
+        slid = facetwb.make_planarized(source, method="lg")
         slid.Data = "surface"
         slid.Boundary = "fixed"
         slid.FixedVertices = [40]

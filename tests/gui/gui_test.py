@@ -217,6 +217,7 @@ def run(out_dir):
     check_edit_region(check)
     check_edit_planarized(check, out_dir)
     check_planarize_progress(check, out_dir)
+    check_planarize_progress_finer(check, out_dir)
     import ui_checks
 
     ui_checks.run(check, out_dir, sys.modules[__name__])
@@ -282,6 +283,45 @@ def check_planarize_progress(check, out_dir):
     check(len(saved) == 1 + bool(resolving) and all(os.path.getsize(p) > 1000 for p in saved),
           f"the dialog's screenshots ({saved})")
     check(shown and shown[-1][0] == "Planarize ...", "the title alone after the solve")
+    App.closeDocument(doc.Name)
+
+
+def check_planarize_progress_finer(check, out_dir):
+    """The demo facade, method auto: L/L's result moves the vertices too far and L/G
+    solves again with a finer hold; the progress dialog names that solve after the
+    comparison, with its planarity, and is saved as progress_finer.png."""
+    import FreeCAD as App
+
+    import facetwb
+    from facetwb import importer, progress
+
+    doc = App.newDocument("FinerCheck")
+    source = importer.import_mesh(os.path.join(ROOT, "examples", "wave_facade.obj"), doc)
+    doc.recompute()
+    result = facetwb.make_planarized(source)
+    shown = []
+    path = os.path.join(out_dir, "progress_finer.png")
+    with progress.reporting("Planarize ...", minimum_seconds=0) as reporter:
+        say = reporter.say
+
+        def recording_say(text=None):
+            say(text)
+            shown.append((reporter.dialog.labelText(), reporter.dialog.value()))
+            if "finer hold" in shown[-1][0] and "planarity" in shown[-1][0] and not os.path.exists(path):
+                reporter.dialog.grab().save(path)
+
+        reporter.say = recording_say
+        doc.recompute()
+    check(result.isValid(), f"the demo facade planarizes ({result.getStatusString()})")
+    comparing = [s for s in shown if "local/local too" in s[0]]
+    finer = [s for s in shown if "finer hold" in s[0]]
+    check(bool(comparing) and bool(finer) and finer[0][0] == "Planarize ...\nPlanarize "
+          f"{result.Label}: solving by local/global again with a finer hold, closer to the design"
+          and shown.index(finer[0]) > shown.index(comparing[-1]),
+          f"the progress dialog names the finer L/G solve after the comparison ({finer[:1]})")
+    values = [value for _text, value in comparing + finer]
+    check(values == sorted(values), f"the progress bar does not run backwards ({values})")
+    check(os.path.exists(path) and os.path.getsize(path) > 1000, f"the dialog's screenshot ({path})")
     App.closeDocument(doc.Name)
 
 

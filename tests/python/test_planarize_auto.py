@@ -5,6 +5,7 @@ facet.planarize and the command line. The comparison's rule:
 test_planarize_compare.py."""
 
 import json
+import os
 
 import numpy as np
 import pytest
@@ -77,6 +78,7 @@ def test_command_line_auto(facet_command, data_dir, tmp_path):
     assert report["method"] == "ll" and report["compared"]["iterations"] > 0
     assert report["stop_reason"] == "tolerance"
     assert "compared      local/local too (" in done.stdout and "kept ll's result" in done.stdout
+    assert "finer hold" not in done.stdout and report["compared"]["finer"] is None
     bad = facet_command("planarize", data_dir / "tubemesh.off", "-o", tmp_path / "u.obj",
                         "--method", "fast")
     assert bad.returncode == 2
@@ -90,3 +92,16 @@ def test_ll_finish_after_a_stall_at_the_floor(data_dir):
     result = facet.planarize(hypar, method="ll", threads=1)
     assert result.stop_reason == "tolerance"
     assert result.planarity.max_rel_all <= 1e-6
+
+
+def test_command_line_names_the_finer_solve(facet_command, tmp_path):
+    # the demo facade: L/L's result refused for moving the vertices further, then L/G
+    # with a finer hold, whose result is kept
+    demo = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "wave_facade.obj")
+    report_path = tmp_path / "r.json"
+    done = facet_command("planarize", demo, "-o", tmp_path / "w.obj", "--report", report_path)
+    assert done.returncode == 0, done.stderr
+    finer = json.loads(report_path.read_text())["compared"]["finer"]
+    assert finer["kept"] and finer["iterations"] > 0
+    assert (f"; lg again with a finer hold ({finer['iterations']} iterations): its result kept"
+            in done.stdout)

@@ -133,7 +133,8 @@ def test_cli_progress_line():
     line.close()
     shown = out.getvalue().split("\r")
     # method auto: 1000 for L/G, 7000 for its four re-solves, 1000 for L/L's comparison
-    assert "facet planarize: iteration 1 of at most 9000, planarity" in shown[1]
+    # and 1000 for the finer L/G solve that may follow it
+    assert "facet planarize: iteration 1 of at most 10000, planarity" in shown[1]
     resolving = [s for s in shown if "re-solving for panel quality (stage 4 of 4): iteration" in s]
     comparing = [s for s in shown if "solving by local/local too, for a result closer to the "
                  "design: iteration" in s]
@@ -142,6 +143,24 @@ def test_cli_progress_line():
     assert f"iteration {result.iterations} of at most" in comparing[-1]
     assert shown[-1] == "" and shown[-2].strip() == ""  # erased at the end
     assert not any("stage" in s for s in shown[:result.first_iterations + 1])
+
+
+def test_cli_progress_line_names_the_finer_solve():
+    import io
+
+    from facet.cli_progress import ProgressLine
+
+    out = io.StringIO()
+    line = ProgressLine(out, interval=0.0, force=True)
+    demo = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "wave_facade.obj")
+    result = facet.planarize(facet.read_mesh(demo), threads=1, progress=line.progress,
+                             stage=line.stage)
+    line.close()
+    shown = out.getvalue().split("\r")
+    finer = [s for s in shown if "solving by local/global again with a finer hold, closer to the "
+             "design: iteration" in s]
+    assert len(finer) == result.compared["finer"]["iterations"] > 0
+    assert f"iteration {result.iterations} of at most" in finer[-1]
 
 
 def test_cli_planarize_prints_no_progress_to_a_pipe(tmp_path):

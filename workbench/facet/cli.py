@@ -295,6 +295,10 @@ def _compared_line(out, report):
                  f"{_g(b['distance_rms'])}, {_g(b['displacement_rms'])}, {_g(b['min_angle'])} deg")
     else:
         text += ": it did not reach the tolerance; kept lg's result"
+    finer = compared.get("finer")
+    if finer:
+        text += (f"; lg again with a finer hold ({_count(finer['iterations'], 'iteration')}): "
+                 + ("its result kept" if finer["kept"] else "not closer, the first lg result kept"))
     _line(out, "compared", text)
 
 

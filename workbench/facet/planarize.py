@@ -22,7 +22,7 @@ from facet import _core
 from facet.errors import FacetError, MeshError, from_core
 from facet.planarity import PlanarityReport, planarity
 
-__all__ = ["METHODS", "STAGE_COMPARE", "Planarizer", "PlanarizeResult", "planarize"]
+__all__ = ["METHODS", "STAGE_COMPARE", "STAGE_FINER", "Planarizer", "PlanarizeResult", "planarize"]
 
 #: Solver schemes by name: what the command line and the workbench offer.
 #: "auto" solves by local/global up to 50,000 quads and also by local/local,
@@ -35,6 +35,11 @@ METHODS = {"auto": "automatic (local/global and local/local up to 50,000 quads, 
 #: The `stage` callable's first argument during method "auto"'s comparison
 #: solve by local/local (facet.h, FACET_STAGE_COMPARE).
 STAGE_COMPARE = _core.STAGE_COMPARE
+
+#: The `stage` callable's first argument during method "auto"'s L/G solve
+#: with a finer hold, which follows the comparison when L/L's result was
+#: closer but moved the vertices too far (facet.h, FACET_STAGE_FINER).
+STAGE_FINER = _core.STAGE_FINER
 
 #: Data-term presets: how strongly a vertex is held to its control position
 #: along the control surface (tangent) and across it (normal), and to the
@@ -138,15 +143,22 @@ class PlanarizeResult:
         Method ``"auto"``'s comparison, where it picked L/G: it also solved
         by L/L and returned the result closer to the design (``method`` says
         whose), unless L/L's had a narrower smallest corner (below L/G's and
-        10 degrees), more new narrow corners, or (with point data) moved the
-        vertices more than 5% further than L/G's. ``{"iterations": n, "lg":
-        {"distance_rms": d, "displacement_rms": m, "min_angle": a}, "ll":
-        {...}}``: the L/L solve's iterations (counted in ``iterations``), and
-        each result's RMS distance from the input surface and RMS vertex
-        displacement (model units) and smallest corner angle (degrees); the
-        two dicts are empty when L/L did not reach the tolerance. None when no comparison ran (another method, a warm
-        start, a fixed iteration count, the paper's schedule (``hold_tol``
-        0), a shape term or a regularizer).
+        10 degrees), a shorter shortest edge (below L/G's and a quarter of
+        its input length), more new narrow corners, or (with point data)
+        moved the vertices more than 5% further than L/G's. ``{"iterations":
+        n, "lg": {"distance_rms": d, "displacement_rms": m, "min_angle": a,
+        "edge_ratio": e}, "ll": {...}}``: the L/L solve's iterations (counted
+        in ``iterations``), and each result's RMS distance from the input
+        surface and RMS vertex displacement (model units), smallest corner
+        angle (degrees) and shortest edge relative to its input length; the
+        two dicts are empty when L/L did not reach the tolerance. When L/L's
+        result was refused only for moving the vertices further, L/G solved
+        again with a finer hold (``hold_tol`` times 0.3): ``"finer":
+        {"iterations": n, "kept": bool}``, and when kept, ``"lg"`` holds
+        that result's figures (it was closer, as wide, moved no more than 5%
+        further); else ``"finer"`` is None. None when no comparison ran
+        (another method, a warm start, a fixed iteration count, the paper's
+        schedule (``hold_tol`` 0), a shape term or a regularizer).
     control : facet.PolyMesh or None
         The control mesh the result was solved from.
     reference : facet.Surface or None
@@ -318,7 +330,9 @@ class Planarizer:
             ``iteration / max_iter`` never falls.
         stage : callable, optional
             ``stage(STAGE_COMPARE, stages)`` when method "auto"'s comparison
-            solve by local/local starts (see ``compared``); else
+            solve by local/local starts and ``stage(STAGE_FINER, stages)``
+            when its local/global solve with a finer hold starts (see
+            ``compared``); else
             ``stage(stage, stages)``, called when a quality re-solve starts
             (before its first `progress` call): the `stage`-th of at most
             `stages` (4, or 2 when vertices slide along the design; they stop
@@ -468,11 +482,14 @@ def _compared(stats):
     if not stats.get("compare_iterations"):
         return None
     distance, angle = stats["compare_distance_rms"], stats["compare_min_angle"]
-    moved = stats["compare_displacement_rms"]
-    measured = any(v > 0.0 for v in (*distance, *angle, *moved))
+    moved, edge = stats["compare_displacement_rms"], stats["compare_edge_ratio"]
+    measured = any(v > 0.0 for v in (*distance, *angle, *moved, *edge))
+    finer = int(stats.get("finer_iterations", 0))
     return {"iterations": int(stats["compare_iterations"]),
+            "finer": {"iterations": finer, "kept": bool(stats["finer_kept"])} if finer else None,
             **{name: ({"distance_rms": float(distance[k]), "displacement_rms": float(moved[k]),
-                       "min_angle": float(angle[k])} if measured else {})
+                       "min_angle": float(angle[k]), "edge_ratio": float(edge[k])}
+                      if measured else {})
                for k, name in enumerate(("ll", "lg"))}}
 
 

@@ -218,13 +218,16 @@ class _Follow:
         return self.report(iteration, max_iter, planarity)
 
     def stage(self, k, n):
-        """facet.planarize's ``stage(k, n)``: the re-solve, or method auto's comparison
-        solve (k == facet.planarize.STAGE_COMPARE), in the text."""
-        from facet.planarize import STAGE_COMPARE
+        """facet.planarize's ``stage(k, n)``: the re-solve, or one of method auto's
+        comparison solves (k == facet.planarize.STAGE_COMPARE or STAGE_FINER), in the text."""
+        from facet.planarize import STAGE_COMPARE, STAGE_FINER
 
         if k == STAGE_COMPARE:
             text = translate(
                 "Facet", "Planarize {0}: solving by local/local too, for a result closer to the design")
+        elif k == STAGE_FINER:
+            text = translate(
+                "Facet", "Planarize {0}: solving by local/global again with a finer hold, closer to the design")
         else:
             text = translate("Facet", "Planarize {0}: re-solving for panel quality (stage {1} of {2})")
         self.stage_text = text.format(self.obj.Label, k, n)
@@ -294,12 +297,17 @@ def _compared_text(compared, kept):
         return "  local/local also tried: it did not reach the tolerance; local/global kept"
     other = "ll" if kept == "lg" else "lg"
     a, b = compared[kept], compared[other]
-    return (f"  local/global and local/local compared: {METHOD_NAMES[kept]} kept, "
+    text = (f"  local/global and local/local compared: {METHOD_NAMES[kept]} kept, "
             f"distance from the source surface rms {format_length(a['distance_rms'])}, "
             f"vertices moved rms {format_length(a['displacement_rms'])}, smallest corner "
             f"{a['min_angle']:.1f} deg; {METHOD_NAMES[other]}: "
             f"{format_length(b['distance_rms'])}, {format_length(b['displacement_rms'])}, "
             f"{b['min_angle']:.1f} deg")
+    finer = compared.get("finer")
+    if finer:
+        text += (f"; local/global again with a finer hold ({finer['iterations']} iterations): "
+                 + ("its result kept" if finer["kept"] else "not closer, the first result kept"))
+    return text
 
 
 def planarize_summary(obj):
