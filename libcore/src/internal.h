@@ -97,20 +97,6 @@ int facet_face_measure8(int32_t na, int32_t nb, const double *xyz, const int32_t
  * OpenMP default; n is clamped to max(64, 4 x processors, the default). */
 int facet_thread_count(int requested);
 
-/* The chunk of a schedule(dynamic) loop of n iterations on nthreads
- * threads: about 16 chunks per thread, so that a thread the host slows
- * holds up the others by at most one chunk, and never one chunk for all
- * (a fixed chunk of 4096 gave a 10k-vertex mesh's loops to one thread),
- * and at least 64 iterations, so that taking a chunk costs little.
- * Only the work's placement depends on it: every floating-point sum in
- * these loops is formed per element or per fixed block, never across a
- * chunk, so the results have the same bits for any chunk. */
-static inline int facet_dynamic_chunk(int64_t n, int nthreads)
-{
-    const int64_t chunk = n / (16 * (int64_t)(nthreads > 0 ? nthreads : 1));
-    return chunk > 64 ? (int)(chunk < (1 << 20) ? chunk : (1 << 20)) : 64;
-}
-
 /* max and min without fmax's call and NaN rules (callers pass no NaN). */
 /* A point the library accepts: every coordinate finite and within
  * FACET_COORDINATE_MAX (NaN fails the comparison). Check isfinite first to

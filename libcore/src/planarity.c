@@ -403,7 +403,7 @@ facet_status facet_planarity(const facet_mesh *mesh, int threads, double *max_ab
     const double *xyz = mesh->xyz;
     const int nthreads = facet_thread_count(threads);
     (void)nthreads;
-#pragma omp parallel for schedule(dynamic, facet_dynamic_chunk(nf, nthreads)) num_threads(nthreads)
+#pragma omp parallel for schedule(static) num_threads(nthreads)
     for (int32_t f = 0; f < nf; ++f) {
         const int32_t n = start[f + 1] - start[f];
         const int32_t *idx = fv + start[f];

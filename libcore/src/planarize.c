@@ -773,7 +773,7 @@ static inline int anderson_extrapolate(double *g, double *g_to, const double *dg
  * extrapolation reads the history. Returns 0 (not accelerated). */
 static int anderson_keep_plain(double *g_to, const double *g, size_t n, int nthreads)
 {
-#pragma omp parallel for schedule(dynamic) num_threads(nthreads)
+#pragma omp parallel for schedule(static) num_threads(nthreads)
     for (size_t blk = 0; blk < anderson_blocks(n); ++blk) {
         const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
         memcpy(g_to + k0, g + k0, sizeof(double) * (k1 - k0));
@@ -807,7 +807,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     double *f_to = s->aa_df + (size_t)to * n, *g_to = s->aa_dg + (size_t)to * n;
     const double *df_all = s->aa_df;
     const anderson_pass ctx = {g, x, df_new, dg_new, f_prev, g_prev, f_to, df_all, n, m, have};
-#pragma omp parallel for schedule(dynamic) num_threads(a->nthreads)
+#pragma omp parallel for schedule(static) num_threads(a->nthreads)
     for (size_t blk = 0; blk < blocks; ++blk) {
         const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
         double *part = a->partial + blk * width;
@@ -901,7 +901,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     const int energy = facet_pl_vertex_energy_plain(s);
     const int32_t nv = s->nv, esize = facet_pl_energy_block_size(nv);
     const size_t pieces = energy ? (size_t)(nv / esize + (nv % esize != 0)) : blocks;
-#pragma omp parallel for schedule(dynamic) num_threads(a->nthreads) reduction(&& : finite)
+#pragma omp parallel for schedule(static) num_threads(a->nthreads) reduction(&& : finite)
     for (size_t blk = 0; blk < pieces; ++blk) {
         if (energy) {
             const int32_t v0 = (int32_t)blk * esize, v1 = nv - v0 < esize ? nv : v0 + esize;
@@ -1175,7 +1175,7 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
         const double *before = copy;
         if (need_before && !ll_step) {
             const double *q = s->q;
-#pragma omp parallel for schedule(dynamic, facet_dynamic_chunk(nv, nthreads)) num_threads(nthreads)
+#pragma omp parallel for schedule(static) num_threads(nthreads)
             for (int32_t v = 0; v < nv; ++v)
                 memcpy(copy + 3 * (size_t)v, q + 3 * (size_t)v, 3 * sizeof(double));
         }
@@ -1212,7 +1212,7 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
         const int accelerate = aa.m > 0 && mu < 1.0;
         if (staircase && !accelerate) { /* (else anderson_step's first pass finds it) */
             const double *q = s->q;
-#pragma omp parallel for schedule(dynamic, facet_dynamic_chunk(nv, nthreads)) num_threads(nthreads) reduction(max : move)
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(max : move)
             for (int32_t v = 0; v < nv; ++v)
                 move = facet_max(move, vertex_move2(q + 3 * (size_t)v, before + 3 * (size_t)v));
         }

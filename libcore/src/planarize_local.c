@@ -628,7 +628,7 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads, int energy)
      * are exact in any order: the same bits for any thread count) */
     double m_abs = 0.0, m_rel = 0.0;
     const double *weight = s->face_weight, *dev = s->face_dev, *edge = s->face_edge;
-#pragma omp parallel for schedule(dynamic) num_threads(nthreads) reduction(|| : guard) \
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(|| : guard) \
     reduction(max : m_abs, m_rel)
     for (int32_t block = 0; block < blocks; ++block) {
         double sum = 0.0;
@@ -659,7 +659,7 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads, int energy)
     if (!(lambda > 0.0))
         return guard;
     memcpy(s->normal_fit, s->normal, sizeof(double) * 3 * (size_t)nf);
-#pragma omp parallel for schedule(dynamic, facet_dynamic_chunk(nf, nthreads)) num_threads(nthreads)
+#pragma omp parallel for schedule(static) num_threads(nthreads)
     for (int32_t f = 0; f < nf; ++f) {
         const double *nf0 = s->normal_fit + 3 * (size_t)f;
         double m[3] = {0.0, 0.0, 0.0};
@@ -768,7 +768,7 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
     if (shape || circular || parallel) {
         const int32_t size = facet_pl_energy_block_size(nf), blocks = nf / size + (nf % size != 0);
         s->energy_blocks[0] = blocks;
-#pragma omp parallel for schedule(dynamic) num_threads(nthreads)
+#pragma omp parallel for schedule(static) num_threads(nthreads)
         for (int32_t block = 0; block < blocks; ++block) {
             double sum_mu = 0.0, sum_con = 0.0;
             const int32_t last = nf - block * size < size ? nf : (block + 1) * size;
@@ -853,7 +853,7 @@ facet_status facet_pl_local_step(facet_planarizer *s, double mu, int nthreads, f
     }
     const int32_t size = facet_pl_energy_block_size(nv), blocks = nv / size + (nv % size != 0);
     s->energy_blocks[1] = blocks;
-#pragma omp parallel for schedule(dynamic) num_threads(nthreads)
+#pragma omp parallel for schedule(static) num_threads(nthreads)
     for (int32_t block = 0; block < blocks; ++block) {
         double sum_mu = 0.0, sum_con = 0.0;
         const int32_t last = nv - block * size < size ? nv : (block + 1) * size;
@@ -1168,7 +1168,7 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
 #endif
         const int32_t groups = nv / 8 + (nv % 8 != 0);
         int finite = 1;
-#pragma omp parallel for schedule(dynamic, facet_dynamic_chunk(groups, nthreads)) num_threads(nthreads) reduction(&& : finite)
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(&& : finite)
         for (int32_t g = 0; g < groups; ++g)
             finite = step4(s, 8 * g, mu, q_new) && finite;
         if (finite) { /* the new iterate becomes the current one */
@@ -1180,7 +1180,7 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
     /* Each face's planarity term once per face rather than once per corner:
      * pw n n^T and pw d n, the same products the vertices add up. */
     double *terms = s->face_plane_terms;
-#pragma omp parallel for schedule(dynamic, facet_dynamic_chunk(s->nf, nthreads)) num_threads(nthreads)
+#pragma omp parallel for schedule(static) num_threads(nthreads)
     for (int32_t f = 0; f < s->nf; ++f) {
         const double *n = s->normal + 3 * (size_t)f;
         const double pw = w * face_weight(s, f), d = s->offset[f];
@@ -1190,7 +1190,7 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
         t[6] = pw * d * n[0], t[7] = pw * d * n[1], t[8] = pw * d * n[2];
     }
     int finite = 1;
-#pragma omp parallel for schedule(dynamic, facet_dynamic_chunk(nv, nthreads)) num_threads(nthreads) reduction(&& : finite)
+#pragma omp parallel for schedule(static) num_threads(nthreads) reduction(&& : finite)
     for (int32_t v = 0; v < nv; ++v) {
         const double *pv = s->p + 3 * (size_t)v, *nu = s->vertex_normal + 3 * (size_t)v;
         double *out = q_new + 3 * (size_t)v;
