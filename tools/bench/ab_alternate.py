@@ -44,12 +44,16 @@ def main():
     p.add_argument('--mesh', default='/tmp/grid1000.bin')
     p.add_argument('--threads', type=int, default=2)
     p.add_argument('--set', action='append', default=[])
+    p.add_argument('--method', default=None, help='auto, ll or lg (default: auto)')
+    p.add_argument('--runs', type=int, default=1, help="bench_large's runs per call (it reports their median)")
     p.add_argument('--env', action='append', default=[])
     p.add_argument('--spin-cpu', type=int, default=None)
     p.add_argument('builds', nargs='+', help='NAME=path/to/bench_large')
     a = p.parse_args()
     builds = [b.split('=', 1) for b in a.builds]
-    args = [a.mesh, '--threads', str(a.threads)]
+    args = [a.mesh, '--threads', str(a.threads), '--runs', str(a.runs)]
+    if a.method:
+        args += ['--method', a.method]
     for s in a.set:
         args += ['--set', s]
     env = dict(os.environ)
@@ -67,7 +71,8 @@ def main():
             wall, cpu, iters, disp = run(binary, args, env, a.spin_cpu)
             walls[name].append(wall)
             cpus[name].append(cpu)
-            print(f'{i} {name:8s} load {load:4.2f} wall {wall:6.3f} cpu {cpu:6.3f} it {iters} disp_rms {disp}',
+            print(f'{i} {name:8s} load {load:4.2f} wall {wall:6.3f} cpu {cpu:6.3f} cpu/wall {cpu / wall:4.2f} '
+                  f'it {iters} disp_rms {disp}',
                   flush=True)
     ref = builds[0][0]
     for name, _ in builds:
