@@ -252,7 +252,8 @@ typedef struct facet_planarize_options {
     double tol_rel;      /* stop when every face's max_abs/mean_edge <= tol_rel (0: off) */
     int32_t max_iter;    /* iteration limit */
     int32_t iterations;  /* > 0: run exactly this many, no early stop */
-    int32_t threads;     /* <= 0: OpenMP default */
+    int32_t threads;     /* <= 0: by mesh size: one thread per FACET_CORNERS_PER_THREAD
+                            face corners, at most OpenMP's default */
     int32_t warm;        /* nonzero: start from the previous result of this handle */
     facet_progress_fn progress; /* may be NULL */
     void *progress_user;
@@ -315,6 +316,15 @@ typedef struct facet_planarize_options {
  * (docs/solver-notes.md, "Large meshes"). */
 void facet_planarize_options_default(facet_method method, facet_planarize_options *options);
 
+/* With options.threads <= 0 a solve runs on one thread per this many face
+ * corners (at least one, at most OpenMP's default): 100,000 corners, 25,000
+ * quads. Below it a second thread gained nothing on this project's 2-core
+ * machine (0.92-1.10 times, 256 to 30,000 quads, to 1e-6) and, while another
+ * process held a core, made solves 2 to 400 times slower (every barrier
+ * waits for a descheduled thread); above it L/L gains (1.6 times at 50,000
+ * quads). Results do not depend on the thread count. */
+#define FACET_CORNERS_PER_THREAD 100000
+
 /* L/L's default floor on mu, also the least FACET_METHOD_AUTO uses when it
  * chooses L/L (below it L/L's vertex step amplifies rounding, and its
  * finish reaches the tolerance instead). */
@@ -355,6 +365,7 @@ typedef struct facet_planarize_result {
                                         `iterations`; 0: none ran) */
     int32_t finer_kept;              /* 1 when that solve's result was returned: then
                                         compare_*[FACET_METHOD_LOCAL_GLOBAL] are its figures */
+    int32_t threads;                 /* threads the (last) solve ran on (options.threads) */
 } facet_planarize_result;
 
 /* A planarization solver for one mesh topology. It copies the topology and

@@ -925,6 +925,23 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
 
 /* ---- the solve --------------------------------------------------------- */
 
+/* Threads of a solve (facet.h, facet_planarize_options.threads): the count
+ * asked for, or by default one per FACET_CORNERS_PER_THREAD face corners, at
+ * least one and at most OpenMP's default. An iteration is a handful of
+ * parallel passes, each ended by a barrier; on a small mesh a pass takes
+ * microseconds, so a second thread gains little, and when another process
+ * holds a core every barrier waits for a descheduled thread (measured on
+ * this project's 2-core machine, docs/solver-notes.md, "Threads by mesh
+ * size"). */
+int facet_pl_threads(const facet_planarizer *s, int requested)
+{
+    if (requested > 0)
+        return facet_thread_count(requested);
+    const int most = facet_thread_count(0);
+    const int64_t by_size = (int64_t)s->face_start[s->nf] / FACET_CORNERS_PER_THREAD;
+    return by_size < 1 ? 1 : by_size > most ? most : (int)by_size;
+}
+
 /* One solve with these options; facet_planarizer_solve (planarize_quality.c)
  * calls it and, when the result has a new narrow corner, re-solves. */
 facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
@@ -967,7 +984,7 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
             return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, -1, v, "%s", s->message);
         }
     }
-    const int nthreads = facet_thread_count(options->threads);
+    const int nthreads = facet_pl_threads(s, options->threads);
     /* A factorization left by an earlier solve must not precondition this
      * one: the result would depend on what was solved before (the fuzz
      * replay's 1-then-2-thread oracle caught it). */
@@ -1290,6 +1307,7 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
         result->anderson_accepted = accepted;
         result->anderson_rejected = rejected;
         result->method = options->method;
+        result->threads = nthreads;
     }
     if (status == FACET_ERROR_CANCELLED)
         return status;

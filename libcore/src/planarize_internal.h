@@ -191,6 +191,8 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
 facet_status facet_pl_fail(facet_planarizer *s, facet_error *error, facet_status status,
                            const char *text);
 void facet_pl_history_trim(facet_planarizer *s);
+/* The threads a solve of this planarizer uses for options.threads = requested. */
+int facet_pl_threads(const facet_planarizer *s, int requested);
 
 /* planarize_quality.c: corners of the iterate q below angle_deg whose control
  * corner (p) was not, or below half of the control corner, and faces of q

@@ -282,7 +282,7 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
             *result = first;
         return status;
     }
-    const int nthreads = facet_thread_count(options->threads);
+    const int nthreads = facet_pl_threads(s, options->threads);
     double best_angle;
     int32_t best_count = facet_pl_new_narrow(s, options->quality_angle, nthreads, &best_angle);
     first.quality = best_count ? FACET_QUALITY_NARROW : FACET_QUALITY_OK;
@@ -545,7 +545,7 @@ static verdict closer(facet_planarizer *s, const facet_planarize_options *option
                       const double *xyz_out, int32_t narrow, facet_planarize_result *result)
 {
     facet_pl_history_trim(s);
-    const int nthreads = facet_thread_count(options->threads);
+    const int nthreads = facet_pl_threads(s, options->threads);
     const size_t nwork = s->nf > s->nv ? (size_t)s->nf : (size_t)s->nv;
     double *work = malloc(sizeof(double) * nwork);
     facet_surface *own = NULL;
@@ -637,7 +637,7 @@ static facet_status solve_again(facet_planarizer *s, const facet_planarize_optio
         double narrowest = 180.0;
         const int32_t narrow = options->quality_angle > 0.0
                                    ? facet_pl_new_narrow(s, options->quality_angle,
-                                                         facet_thread_count(options->threads), &narrowest)
+                                                         facet_pl_threads(s, options->threads), &narrowest)
                                    : 0;
         *v = closer(s, options, other, xyz_out, narrow, result);
         if (*v == TAKE) {

@@ -138,7 +138,8 @@ def build_parser():
         help="run exactly N iterations, without stopping early",
     )
     planarize.add_argument(
-        "--threads", type=_non_negative_int, metavar="N", help="threads to use (0: all cores)"
+        "--threads", type=_non_negative_int, metavar="N",
+        help="threads to use (0: one per 25,000 quads, at most all cores)"
     )
     planarize.add_argument("--report", metavar="R.json", help="write a JSON report")
     planarize.add_argument(
@@ -341,7 +342,9 @@ def print_planarize_summary(report, out=None):
         out,
         "solve",
         f"{report['method']}, {_count(report['iterations'], 'iteration')} in "
-        f"{report['solve_seconds']:.3g} s: {reason}",
+        f"{report['solve_seconds']:.3g} s"
+        + (f" on {_count(report['threads'], 'thread')}" if report.get("threads") else "")
+        + f": {reason}",
     )
     resolves = report.get("quality_resolves") or 0
     if resolves:

@@ -139,6 +139,10 @@ class PlanarizeResult:
         Re-solves run after the first solve (``iterations`` counts them all).
     first_iterations : int
         Iterations of the first solve.
+    threads : int
+        Threads the solve ran on: ``threads`` when given, else one per
+        100,000 face corners (25,000 quads), at most OpenMP's default (a
+        live update: its region's size decides).
     compared : dict or None
         Method ``"auto"``'s comparison, where it picked L/G: it also solved
         by L/L and returned the result closer to the design (``method`` says
@@ -181,6 +185,7 @@ class PlanarizeResult:
     narrow_corners: int = 0
     quality_resolves: int = 0
     first_iterations: int = 0
+    threads: int = 0
     compared: object = None
     control: object = None
     reference: object = None
@@ -471,6 +476,7 @@ class Planarizer:
             narrow_corners=stats["narrow_corners"],
             quality_resolves=stats["quality_resolves"],
             first_iterations=stats["first_iterations"],
+            threads=int(stats.get("threads", 0)),
             compared=_compared(stats),
             control=control,
             reference=surface,

@@ -130,6 +130,7 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         "narrow_corners": int(getattr(result, "narrow_corners", 0)),
         "quality_resolves": int(getattr(result, "quality_resolves", 0)),
         "first_iterations": int(getattr(result, "first_iterations", result.iterations)),
+        "threads": int(getattr(result, "threads", 0)),
         "compared": getattr(result, "compared", None),
         "solve_seconds": float(result.solve_seconds),
         "input_planarity_max_rel": input_planarity.max_rel_all,

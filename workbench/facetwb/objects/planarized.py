@@ -86,7 +86,7 @@ class Planarized(PolyMesh):
             "Most iterations to run (0: the solver's default)")
         compat.add_property(
             obj, "App::PropertyInteger", "Threads", "Planarize",
-            "Threads for the solver (0: all cores)")
+            "Threads for the solver (0: one per 25,000 quads, at most all cores)")
         if compat.add_property(
                 obj, "App::PropertyEnumeration", "Data", "Terms",
                 "What the result stays close to: point (each vertex near its control point), "
