@@ -224,6 +224,24 @@ static int record(void *user, int32_t iteration, int32_t max_iter, double planar
            r->cancel_at_compare > 0 && ++r->in_compare >= r->cancel_at_compare;
 }
 
+/* Whether the recorded calls count 1, 2, ... under bounds that never grow;
+ * *calls and *first: how many were made during `stage` and the index of
+ * the first of them (-1: none). */
+static int scan_calls(const recorder *rec, int32_t stage, int *calls, int *first)
+{
+    int ordered = 1;
+    *calls = 0, *first = -1;
+    for (int32_t k = 0; k < rec->n && k < MAX_CALLS; ++k) {
+        ordered &= rec->iteration[k] == k + 1 && rec->max_iter[k] >= rec->iteration[k];
+        ordered &= k == 0 || rec->max_iter[k] <= rec->max_iter[k - 1];
+        if (rec->stage[k] == stage) {
+            *first = *first < 0 ? k : *first;
+            ++*calls;
+        }
+    }
+    return ordered;
+}
+
 static void test_progress_and_cancel(void)
 {
     test_mesh g = test_hypar(12);
@@ -244,16 +262,8 @@ static void test_progress_and_cancel(void)
      * 4000, 1000, the comparison's 1000 and the finer L/G solve's 1000 */
     CHECK(rec->max_iter[0] == 10000);
     CHECK(r.finer_iterations == 0); /* (L/L's result was refused for its shortest edge) */
-    int ordered = 1, compare_calls = 0, compare_first = -1;
-    for (int32_t k = 0; k < rec->n && k < MAX_CALLS; ++k) {
-        ordered &= rec->iteration[k] == k + 1 && rec->max_iter[k] >= rec->iteration[k];
-        ordered &= k == 0 || rec->max_iter[k] <= rec->max_iter[k - 1];
-        if (rec->stage[k] == FACET_STAGE_COMPARE) {
-            compare_first = compare_first < 0 ? k : compare_first;
-            ++compare_calls;
-        }
-    }
-    CHECK(ordered);
+    int compare_calls, compare_first;
+    CHECK(scan_calls(rec, FACET_STAGE_COMPARE, &compare_calls, &compare_first));
     /* the comparison's calls come last, after every L/G call, and its
      * bound is the iterations done and its own limit */
     CHECK(compare_calls == r.compare_iterations);
@@ -315,16 +325,8 @@ static void test_finer_progress_and_cancel(void)
     CHECK_STATUS(facet_planarizer_solve(s, g.xyz, &o, out, &r, &err), FACET_OK);
     CHECK(r.finer_iterations > 0 && r.finer_kept == 1 && r.method == FACET_METHOD_LOCAL_GLOBAL);
     CHECK(rec->n == r.iterations && rec->n <= MAX_CALLS && rec->max_iter[0] == 10000);
-    int ordered = 1, finer_calls = 0, finer_first = -1;
-    for (int32_t k = 0; k < rec->n && k < MAX_CALLS; ++k) {
-        ordered &= rec->iteration[k] == k + 1 && rec->max_iter[k] >= rec->iteration[k];
-        ordered &= k == 0 || rec->max_iter[k] <= rec->max_iter[k - 1];
-        if (rec->stage[k] == FACET_STAGE_FINER) {
-            finer_first = finer_first < 0 ? k : finer_first;
-            ++finer_calls;
-        }
-    }
-    CHECK(ordered);
+    int finer_calls, finer_first;
+    CHECK(scan_calls(rec, FACET_STAGE_FINER, &finer_calls, &finer_first));
     CHECK(finer_calls == r.finer_iterations && finer_first == r.iterations - r.finer_iterations);
     CHECK(finer_first > 0 && rec->max_iter[finer_first] == finer_first + 1000);
     CHECK(rec->stage[finer_first - 1] == FACET_STAGE_COMPARE);

@@ -65,14 +65,19 @@ class TestPlanarizeProgress(DocumentTestCase):
         # the text is the title again once the solve is done
         self.assertEqual(reporter.text, "Planarize ...")
 
-    def test_progress_text_names_the_comparison(self):
-        source = self._hypar()
+    def _recompute_reporting(self, source):
+        """A Planarized object of source (method auto), recomputed once without and
+        then with the progress reporter; returns (object, reporter)."""
         result = facetwb.make_planarized(source)
         self.doc.recompute()
         result.touch()
         with progress.reporting("Planarize ...") as reporter:
             self.doc.recompute()
         self.assertTrue(result.isValid(), result.getStatusString())
+        return result, reporter
+
+    def test_progress_text_names_the_comparison(self):
+        result, reporter = self._recompute_reporting(self._hypar())
         title = (f"Planarize {result.Label}: solving by local/local too, for a result closer "
                  "to the design")
         said = [k for k, t in enumerate(reporter.texts) if title in t]
@@ -90,12 +95,7 @@ class TestPlanarizeProgress(DocumentTestCase):
         from facetwb import importer
         from facet_test_support import ROOT
         source = importer.import_mesh(os.path.join(ROOT, "examples", "wave_facade.obj"), self.doc)
-        result = facetwb.make_planarized(source)
-        self.doc.recompute()
-        result.touch()
-        with progress.reporting("Planarize ...") as reporter:
-            self.doc.recompute()
-        self.assertTrue(result.isValid(), result.getStatusString())
+        result, reporter = self._recompute_reporting(source)
         compare = [k for k, t in enumerate(reporter.texts) if "local/local too" in t]
         finer = [k for k, t in enumerate(reporter.texts)
                  if f"Planarize {result.Label}: solving by local/global again with a finer hold, "
