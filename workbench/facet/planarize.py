@@ -159,8 +159,9 @@ class PlanarizeResult:
         result was refused only for moving the vertices further, L/G solved
         again with a finer hold (``hold_tol`` times 0.3): ``"finer":
         {"iterations": n, "kept": bool}``, and when kept, ``"lg"`` holds
-        that result's figures (it was closer, as wide, moved no more than 5%
-        further); else ``"finer"`` is None. None when no comparison ran
+        that result's figures (it was closer, its corners and edges as good,
+        its vertices moved no more than 5% further); else ``"finer"`` is
+        None. None when no comparison ran
         (another method, a warm start, a fixed iteration count, the paper's
         schedule (``hold_tol`` 0), a shape term or a regularizer).
     control : facet.PolyMesh or None
