@@ -320,7 +320,7 @@ void facet_planarize_options_default(facet_method method, facet_planarize_option
  * corners (at least one, at most OpenMP's default): 100,000 corners, 25,000
  * quads. Below it a second thread gained nothing on this project's 2-core
  * machine (0.92-1.10 times, 256 to 30,000 quads, to 1e-6) and, while another
- * process held a core, made solves 2 to 400 times slower (every barrier
+ * process held a core, made solves 2 to several hundred times slower (every barrier
  * waits for a descheduled thread); above it L/L gains (1.6 times at 50,000
  * quads). Results do not depend on the thread count. */
 #define FACET_CORNERS_PER_THREAD 100000
@@ -874,7 +874,7 @@ int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stag
  * During the comparison facet_planarizer_stage returns FACET_STAGE_COMPARE.
  *
  * When L/L's result is refused only for moving the vertices further (its
- * corners as wide) and lies markedly closer to the input surface (at most
+ * corners and edges as good) and lies markedly closer to the input surface (at most
  * FACET_FINER_WHEN times L/G's distance), L/G's result has strayed from the
  * penalty path, which L/L's shows to lie nearer the design: L/G solves once
  * more from the input with a finer hold (hold_tol times FACET_FINER_HOLD,
