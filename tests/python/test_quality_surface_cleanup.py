@@ -84,12 +84,29 @@ def test_quality_of_planarize():
     assert 0 < figures["distance_rms"] <= figures["distance_max"] <= figures["displacement_max"]
     assert 0 < figures["min_angle_deg"] < figures["input_min_angle_deg"] <= 90
     assert figures["ratio_change_max"] > 0
-    assert figures["degenerate_faces"] == 0
+    # the nearest planar mesh of this skew hypar turns some quads into triangles: an
+    # edge shrinks to nothing while every angle stays wide; those faces are degenerate
+    v, fs, fv = result.mesh.vertices, result.mesh.face_start, result.mesh.face_vertices
+    short = [f for f in range(mesh.n_faces)
+             if min(np.linalg.norm(v[fv[k]] - v[fv[fs[f] + (k - fs[f] + 1) % (fs[f + 1] - fs[f])]])
+                    for k in range(fs[f], fs[f + 1])) < 0.01 * report.planarity.mean_edge[f]]
+    assert len(short) > 0 and figures["min_angle_deg"] > 5.0
+    assert report.degenerate.tolist() == short
+    assert figures["degenerate_faces"] == len(short) and figures["degenerate_short_edge"] == 0.01
     json.dumps(figures, allow_nan=False)
     # the unchanged input measured against itself
     same = facet.quality(mesh, input=mesh).as_dict()
     assert same["displacement_max"] == 0 and same["distance_max"] < 1e-12
     assert same["ratio_change_max"] == 0
+
+
+def test_quality_a_vanishing_edge_makes_a_face_degenerate():
+    # a square whose edge 1-2 shrinks to 0.5% of the mean edge: its angles stay wide
+    for shrink, degenerate in ((0.005, [0]), (0.02, [])):
+        xyz = np.array([[0.0, 0, 0], [1.0, 0, 0], [1.0, shrink, 0], [0.0, 1, 0]])
+        report = facet.quality(facet.PolyMesh.from_faces(xyz, [[0, 1, 2, 3]]))
+        assert report.degenerate.tolist() == degenerate
+        assert report.as_dict()["min_angle_deg"] > 5.0
 
 
 def test_quality_a_folded_panel_is_degenerate():

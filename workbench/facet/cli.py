@@ -275,8 +275,10 @@ def _quality_lines(out, quality):
         _line(
             out,
             "degenerate",
-            f"{_count(count, 'face')} with no area or an angle under "
-            f"{_g(quality.get('degenerate_min_angle_deg'))} deg (first: {first})",
+            f"{_count(count, 'face')} with no area, an angle under "
+            f"{_g(quality.get('degenerate_min_angle_deg'))} deg or an edge under "
+            f"{_g(100 * (quality.get('degenerate_short_edge') or 0))}% of the face's mean edge "
+            f"(first: {first})",
         )
 
 

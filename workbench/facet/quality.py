@@ -19,7 +19,10 @@ was made from (same topology) and a `reference` surface:
   out), so 0 means the panel kept its proportions and a uniform scale
   changes nothing;
 - degenerate faces: zero area (below ``1e-12`` times the squared mean edge
-  of the face) or smallest angle below `min_angle` degrees.
+  of the face), smallest angle below `min_angle` degrees, or an edge shorter
+  than :data:`DEFAULT_SHORT_EDGE` of the face's mean edge (a quad whose edge
+  has shrunk to nothing is a triangle to the fabricator, whatever its angles
+  say: the angles at a vanishing edge are those of its ends).
 
 Every figure in :meth:`QualityReport.as_dict` is a finite float or None.
 """
@@ -34,10 +37,13 @@ from facet.mesh import PolyMesh
 from facet.planarity import PlanarityReport, planarity
 from facet.surface import Surface
 
-__all__ = ["QualityReport", "quality", "DEFAULT_MIN_ANGLE"]
+__all__ = ["QualityReport", "quality", "DEFAULT_MIN_ANGLE", "DEFAULT_SHORT_EDGE"]
 
 #: Faces with a smaller interior angle (degrees) count as degenerate.
 DEFAULT_MIN_ANGLE = 5.0
+
+#: Faces with an edge shorter than this fraction of their mean edge count as degenerate.
+DEFAULT_SHORT_EDGE = 0.01
 
 #: Relative area under which a face counts as having none.
 _ZERO_AREA = 1e-12
@@ -81,6 +87,9 @@ class QualityReport:
         The input's smallest angles, degrees.
     mesh : PolyMesh or None
         The mesh measured (for :meth:`per_face`).
+    short_edge_threshold : float
+        The fraction of a face's mean edge under which an edge makes the face
+        degenerate.
     """
 
     planarity: PlanarityReport
@@ -93,6 +102,7 @@ class QualityReport:
     min_angle_threshold: float
     input_min_angle: object = None
     mesh: object = None
+    short_edge_threshold: float = DEFAULT_SHORT_EDGE
 
     #: Names :meth:`per_face` knows.
     PER_FACE = ("planarity", "planarity_rel", "displacement", "distance", "min_angle",
@@ -137,7 +147,8 @@ class QualityReport:
         ``min_angle_deg`` (smallest over all faces), ``input_min_angle_deg``,
         ``ratio_change_max``, ``ratio_change_rms``, ``degenerate_faces``
         (count), ``degenerate_face_indices`` (the first `worst` * 4),
-        ``degenerate_min_angle_deg`` (the threshold), ``worst_planarity_faces``.
+        ``degenerate_min_angle_deg`` and ``degenerate_short_edge`` (the
+        thresholds), ``worst_planarity_faces``.
         """
         from facet.report import json_safe
 
@@ -158,6 +169,7 @@ class QualityReport:
             "degenerate_faces": int(self.degenerate.size),
             "degenerate_face_indices": [int(f) for f in self.degenerate[: 4 * worst]],
             "degenerate_min_angle_deg": float(self.min_angle_threshold),
+            "degenerate_short_edge": float(self.short_edge_threshold),
             "worst_planarity_faces": p.worst_faces(worst),
         }
         return json_safe(report)
@@ -181,6 +193,16 @@ def _shape(mesh, xyz_input, threads):
     except _core.CoreError as exc:
         raise from_core(exc, source=mesh.info.get("source") if mesh.info else None) from exc
     return np.degrees(angle), area, change
+
+
+def _shortest_edges(mesh):
+    """The shortest edge of each face, model units."""
+    fv, fs = mesh.face_vertices, mesh.face_start
+    following = np.empty_like(fv)
+    following[:-1] = fv[1:]
+    following[fs[1:] - 1] = fv[fs[:-1]]  # a face's last corner closes to its first
+    lengths = np.linalg.norm(mesh.vertices[following] - mesh.vertices[fv], axis=1)
+    return np.minimum.reduceat(lengths, fs[:-1])
 
 
 def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_MIN_ANGLE,
@@ -253,7 +275,8 @@ def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_
     degrees = np.diff(mesh.face_start)
     # squared mean edge from the planarity report: zero area relative to the face's size
     size2 = report.mean_edge**2 * np.maximum(degrees, 3)
-    degenerate = np.flatnonzero((area <= _ZERO_AREA * size2) | (angle < float(min_angle)))
+    short = _shortest_edges(mesh) < DEFAULT_SHORT_EDGE * report.mean_edge
+    degenerate = np.flatnonzero((area <= _ZERO_AREA * size2) | (angle < float(min_angle)) | short)
     return QualityReport(
         planarity=report,
         displacement=displacement,
