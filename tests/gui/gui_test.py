@@ -224,6 +224,31 @@ def run(out_dir):
     return check
 
 
+def recompute_recording_dialog(doc, out_dir, shots):
+    """Recompute `doc` under a progress dialog shown at once; returns the (dialog text,
+    bar value) pairs whenever the text changed, and the screenshots saved: for each
+    (key, file name) of `shots`, the dialog the first time its text holds the key and a
+    planarity line."""
+    from facetwb import progress
+
+    shown, saved = [], []
+    with progress.reporting("Planarize ...", minimum_seconds=0) as reporter:
+        say = reporter.say
+
+        def recording_say(text=None):
+            say(text)
+            shown.append((reporter.dialog.labelText(), reporter.dialog.value()))
+            for key, name in shots:
+                path = os.path.join(out_dir, name)
+                if key in shown[-1][0] and "planarity" in shown[-1][0] and path not in saved:
+                    saved.append(path)
+                    reporter.dialog.grab().save(path)
+
+        reporter.say = recording_say
+        doc.recompute()
+    return shown, saved
+
+
 def check_planarize_progress(check, out_dir):
     """A Planarized recompute that re-solves for panel quality (the 32 x 32 hypar) and
     then, method auto, solves by L/L too: the progress dialog's text names the re-solve
@@ -234,7 +259,6 @@ def check_planarize_progress(check, out_dir):
 
     import facet
     import facetwb
-    from facetwb import progress
 
     sys.path.insert(0, os.path.join(ROOT, "tools", "bench"))
     import families
@@ -244,23 +268,9 @@ def check_planarize_progress(check, out_dir):
     source = facetwb.make_polymesh(facet.PolyMesh(b.vertices, b.face_start, b.face_vertices),
                                    doc=doc, label="hypar 32")
     result = facetwb.make_planarized(source)
-    shown = []  # (dialog text, bar value) whenever the text changes
-    saved = []
-    with progress.reporting("Planarize ...", minimum_seconds=0) as reporter:
-        say = reporter.say
-
-        def recording_say(text=None):
-            say(text)
-            shown.append((reporter.dialog.labelText(), reporter.dialog.value()))
-            for key, name in (("re-solving", "progress_resolve.png"),
-                              ("local/local too", "progress_compare.png")):
-                path = os.path.join(out_dir, name)
-                if key in shown[-1][0] and "planarity" in shown[-1][0] and path not in saved:
-                    saved.append(path)
-                    reporter.dialog.grab().save(path)
-
-        reporter.say = recording_say
-        doc.recompute()
+    shown, saved = recompute_recording_dialog(
+        doc, out_dir, (("re-solving", "progress_resolve.png"),
+                       ("local/local too", "progress_compare.png")))
     check(result.isValid(), f"the hypar 32 planarizes ({result.getStatusString()})")
     resolving = [(text, value) for text, value in shown if "re-solving" in text]
     comparing = [(text, value) for text, value in shown if "local/local too" in text]
@@ -293,25 +303,13 @@ def check_planarize_progress_finer(check, out_dir):
     import FreeCAD as App
 
     import facetwb
-    from facetwb import importer, progress
+    from facetwb import importer
 
     doc = App.newDocument("FinerCheck")
     source = importer.import_mesh(os.path.join(ROOT, "examples", "wave_facade.obj"), doc)
     doc.recompute()
     result = facetwb.make_planarized(source)
-    shown = []
-    path = os.path.join(out_dir, "progress_finer.png")
-    with progress.reporting("Planarize ...", minimum_seconds=0) as reporter:
-        say = reporter.say
-
-        def recording_say(text=None):
-            say(text)
-            shown.append((reporter.dialog.labelText(), reporter.dialog.value()))
-            if "finer hold" in shown[-1][0] and "planarity" in shown[-1][0] and not os.path.exists(path):
-                reporter.dialog.grab().save(path)
-
-        reporter.say = recording_say
-        doc.recompute()
+    shown, saved = recompute_recording_dialog(doc, out_dir, (("finer hold", "progress_finer.png"),))
     check(result.isValid(), f"the demo facade planarizes ({result.getStatusString()})")
     comparing = [s for s in shown if "local/local too" in s[0]]
     finer = [s for s in shown if "finer hold" in s[0]]
@@ -321,7 +319,7 @@ def check_planarize_progress_finer(check, out_dir):
           f"the progress dialog names the finer L/G solve after the comparison ({finer[:1]})")
     values = [value for _text, value in comparing + finer]
     check(values == sorted(values), f"the progress bar does not run backwards ({values})")
-    check(os.path.exists(path) and os.path.getsize(path) > 1000, f"the dialog's screenshot ({path})")
+    check(len(saved) == 1 and os.path.getsize(saved[0]) > 1000, f"the dialog's screenshot ({saved})")
     App.closeDocument(doc.Name)
 
 
