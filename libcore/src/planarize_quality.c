@@ -219,8 +219,7 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
                                   facet_error *error);
 static int compares(const facet_planarizer *s, const facet_planarize_options *options);
 static int32_t compare_limit(const facet_planarize_options *options);
-static int32_t finer_limit(const facet_planarize_options *options);
-static int finer_may_follow(const facet_planarize_options *options);
+static int32_t finer_bound(const facet_planarize_options *options);
 static facet_status compare_ll(facet_planarizer *s, const facet_planarize_options *options,
                                double *xyz_out, facet_planarize_result *result, facet_error *error);
 
@@ -237,9 +236,7 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     }
     /* method AUTO's comparison solves may follow: their limits are in every bound */
     const int compare = compares(s, options);
-    const int64_t after =
-        compare ? (int64_t)compare_limit(options) + (finer_may_follow(options) ? finer_limit(options) : 0)
-                : 0;
+    const int64_t after = compare ? (int64_t)compare_limit(options) + finer_bound(options) : 0;
     facet_planarize_result r;
     memset(&r, 0, sizeof r);
     facet_status status = solve_checked(s, xyz_in, options, after, xyz_out, &r, error);
@@ -407,17 +404,18 @@ static const double COMPARE_EDGE_ENOUGH = 0.25;
  * 87% longer against 43%, three panels too large for its sheets). */
 static const double COMPARE_DISPLACEMENT_MORE = 1.05;
 
-/* Whether AUTO compares: where it picks L/G, for a cold solve to the
- * tolerance whose energy asks for closeness alone, with the staircase
- * schedule (L/L finishes only with it: without, it stalls above the
- * tolerance and the comparison would run to max_iter for nothing). */
-/* The comparison solve's iteration limit (its options' max_iter), which the
- * progress bound counts from the first solve on (facet_planarizer_solve). */
+/* The iteration limit of each solve of the comparison (L/L's, the finer
+ * L/G's: their options' max_iter), which the progress bound counts from the
+ * first solve on (facet_planarizer_solve). */
 static int32_t compare_limit(const facet_planarize_options *options)
 {
     return options->max_iter;
 }
 
+/* Whether AUTO compares: where it picks L/G, for a cold solve to the
+ * tolerance whose energy asks for closeness alone, with the staircase
+ * schedule (L/L finishes only with it: without, it stalls above the
+ * tolerance and the comparison would run to max_iter for nothing). */
 static int compares(const facet_planarizer *s, const facet_planarize_options *options)
 {
     return s && options && options->method == FACET_METHOD_AUTO && options->hold_tol > 0.0 &&
@@ -569,19 +567,12 @@ static verdict closer(facet_planarizer *s, const facet_planarize_options *option
     return v;
 }
 
-/* The L/G solve with a finer hold's iteration limit (its options' max_iter),
- * in the progress bound from the first solve on where it may run. */
-static int32_t finer_limit(const facet_planarize_options *options)
+/* The iterations the L/G solve with a finer hold may add to the progress
+ * bound: it may follow the comparison only with point data, where a result
+ * can be refused for moving the vertices further (judge's MOVED_FAR). */
+static int32_t finer_bound(const facet_planarize_options *options)
 {
-    return options->max_iter;
-}
-
-/* Whether the L/G solve with a finer hold may follow the comparison: only
- * with point data, where the comparison refuses a result for moving the
- * vertices further. */
-static int finer_may_follow(const facet_planarize_options *options)
-{
-    return !slides(options);
+    return slides(options) ? 0 : compare_limit(options);
 }
 
 /* One solve from the input (the handle's: the last solve kept it) with the
@@ -674,22 +665,21 @@ static facet_status compare_ll(facet_planarizer *s, const facet_planarize_option
                                double *xyz_out, facet_planarize_result *result, facet_error *error)
 {
     const double t0 = facet_now();
-    const int finer = finer_may_follow(options);
     facet_planarize_options o = *options;
     o.max_iter = compare_limit(options);
     o.method = FACET_METHOD_LOCAL_LOCAL;
     o.mu_min = facet_max(o.mu_min, FACET_LL_MU_MIN);
     verdict v;
     facet_status status = solve_again(s, options, &o, FACET_STAGE_COMPARE, FACET_METHOD_LOCAL_LOCAL,
-                                      finer ? finer_limit(options) : 0, xyz_out, result, &v,
+                                      finer_bound(options), xyz_out, result, &v,
                                       &result->compare_iterations, t0, error);
     const double *d = result->compare_distance_rms;
-    if (status == FACET_OK && finer && v == MOVED_FAR &&
+    if (status == FACET_OK && v == MOVED_FAR &&
         d[FACET_METHOD_LOCAL_LOCAL] <= FACET_FINER_WHEN * d[FACET_METHOD_LOCAL_GLOBAL]) {
         /* L/L's result shows a planar mesh nearer the design than L/G's,
          * which strayed from the penalty path: L/G follows it more closely */
         o = *options;
-        o.max_iter = finer_limit(options);
+        o.max_iter = compare_limit(options);
         o.method = FACET_METHOD_LOCAL_GLOBAL;
         o.hold_tol = options->hold_tol * FACET_FINER_HOLD;
         status = solve_again(s, options, &o, FACET_STAGE_FINER, FACET_METHOD_LOCAL_GLOBAL, 0, xyz_out,
