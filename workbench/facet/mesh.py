@@ -359,14 +359,22 @@ class PolyMesh:
         return f"<PolyMesh: {self.n_vertices} vertices, {self.n_faces} faces>"
 
 
+def next_corners(face_start):
+    """For each face corner k (an index into face_vertices), the index of the next corner
+    of its face: k + 1, and a face's last corner back to its first (int64, size
+    face_start[-1])."""
+    following = np.arange(1, int(face_start[-1]) + 1, dtype=np.int64)
+    starts, ends = face_start[:-1], face_start[1:]
+    nonempty = ends > starts
+    following[ends[nonempty] - 1] = starts[nonempty]
+    return following
+
+
 def _unique_edges(face_start, face_vertices):
     """Distinct undirected edges of a CSR face list, as a sorted (E, 2) int32 array."""
     if face_vertices.size == 0:
         return np.zeros((0, 2), dtype=np.int32)
-    following = np.arange(1, face_vertices.size + 1, dtype=np.int64)
-    starts, ends = face_start[:-1], face_start[1:]
-    nonempty = ends > starts
-    following[ends[nonempty] - 1] = starts[nonempty]
+    following = next_corners(face_start)
     a = face_vertices.astype(np.int64)
     if a.min() < 0:
         raise MeshError("face_vertices holds a negative index (call validate() first)")

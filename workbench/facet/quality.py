@@ -33,7 +33,7 @@ import numpy as np
 
 from facet import _core
 from facet.errors import InputError, from_core
-from facet.mesh import PolyMesh
+from facet.mesh import PolyMesh, next_corners
 from facet.planarity import PlanarityReport, planarity
 from facet.surface import Surface
 
@@ -198,10 +198,8 @@ def _shape(mesh, xyz_input, threads):
 def _shortest_edges(mesh):
     """The shortest edge of each face, model units."""
     fv, fs = mesh.face_vertices, mesh.face_start
-    following = np.empty_like(fv)
-    following[:-1] = fv[1:]
-    following[fs[1:] - 1] = fv[fs[:-1]]  # a face's last corner closes to its first
-    lengths = np.linalg.norm(mesh.vertices[following] - mesh.vertices[fv], axis=1)
+    ends = mesh.vertices[fv[next_corners(fs)]]
+    lengths = np.linalg.norm(ends - mesh.vertices[fv], axis=1)
     return np.minimum.reduceat(lengths, fs[:-1])
 
 
