@@ -757,9 +757,12 @@ def check_edit_region(check):
     before = points(proxy.coords.point)
     px, py = session.screen_position(vertex)
     session._on_button(_mouse("button", (px, py), True))
+    frames = []  # (stop reason, iterations, frame count): printed, for a failure's diagnosis
     for k in range(1, 6):
         session._on_move(_mouse("move", (px, py + 5 * k)))
         Gui.updateGui()
+        frames.append((session.live.result.stop_reason, session.live.result.iterations,
+                       session.live.frames))
     live = session.live.result.mesh.vertices
     still = proxy.faces.coordIndex.getNum() // 4
     region = session.region_faces.coordIndex.getNum() // 4
@@ -770,7 +773,7 @@ def check_edit_region(check):
     outside = int(np.count_nonzero(moved & ~session.region_vertices))
     print(f"  (edit region: {int(moved.sum())} moved, {outside} outside the region, object "
           f"coordinates still: {np.array_equal(points(proxy.coords.point), before)}, "
-          f"iterations {session.live.result.iterations})", file=sys.__stdout__)
+          f"frames {frames})", file=sys.__stdout__)
     check(moved.any() and np.array_equal(points(proxy.coords.point), before)
           and np.allclose(points(session.region_coords.point), live, atol=1e-3)
           and np.all(session.region_vertices[moved]),
