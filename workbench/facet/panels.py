@@ -461,8 +461,9 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
     every face, so the faces beside the edge lose a corner and their
     neighbours still share their edges and nodes. The merged corner is the
     group's centroid or one of its vertices, whichever bends the faces
-    around it least; it lies within the group's edge lengths of every vertex
-    it replaces. A group whose merge would bend a face beyond the planarity
+    around it least (the centroid whenever it keeps them within the
+    tolerance); it lies within the group's edge lengths of every vertex it
+    replaces. A group whose merge would bend a face beyond the planarity
     tolerance (``max(tol_abs, tol x mean edge)``, and beyond what the face
     already had) is left as it is and reported.
 
@@ -567,6 +568,8 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
             ok = bool(np.all(dev <= allowed))
             if best is None or (ok, -score) > (best[0], -best[1]):
                 best = (ok, score, cand.copy(), worst, float(dev[worst]))
+            if ok and best[2] is not None and cand is candidates[0]:
+                break  # the centroid moves the vertices least
         ok, _, point, worst, worst_dev = best
         info = [{"vertices": [u, v], "length": edges[(u, v)],
                  "faces": sorted(edge_faces.get((u, v), []))} for u, v in keys]
