@@ -184,14 +184,14 @@ class PanelSet(_Proxy):
         if vanished:
             App.Console.PrintMessage(translate(
                 "Facet", "{0}: {1} panels built with fewer corners than their faces "
-                "({2} edges shorter than MinEdge vanished): {3}\n").format(
+                "({2} edges shorter than MinEdge vanished): {3}").format(
                     obj.Label, len(vanished), len(ps.vanished_edges),
-                    ", ".join(vanished[:8]) + (", ..." if len(vanished) > 8 else "")))
+                    ", ".join(vanished[:8]) + (", ..." if len(vanished) > 8 else "")) + "\n")
         if ps.short_edges_kept:
             App.Console.PrintWarning(translate(
                 "Facet", "{0}: {1} edges shorter than MinEdge kept: merging their ends would "
-                "bend a face beyond the planarity tolerance\n").format(
-                    obj.Label, len(ps.short_edges_kept)))
+                "bend a face beyond the planarity tolerance").format(
+                    obj.Label, len(ps.short_edges_kept)) + "\n")
         self._update_panel_objects(obj, ps, solids)
         self._cache = (self._key(obj), ps)
 
