@@ -443,7 +443,7 @@
     </message>
     <message>
         <location filename="../../workbench/facetwb/objects/panelset.py" line="191"/>
-        <source>{0}: {1} edges shorter than MinEdge kept: merging their ends would bend a face beyond the planarity tolerance</source>
+        <source>{0}: {1} edges shorter than MinEdge kept as they are (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

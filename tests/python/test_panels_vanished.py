@@ -189,6 +189,7 @@ def test_a_merge_that_would_bend_a_face_is_kept_and_reported():
     assert [d["vertices"] for d in ps.short_edges_kept] == [[7, 12]]
     assert ps.short_edges_kept[0]["faces"] == [5, 6]
     assert ps.short_edges_kept[0]["planarity"] > 1e-6 * STEP
+    assert ps.short_edges_kept[0]["reason"] == "planarity"
     assert any("1 edges shorter than min_edge kept" in w and "edge 7-12" in w
                for w in ps.warnings)
 
@@ -202,6 +203,14 @@ def test_a_triangle_whose_edge_vanished_is_an_error_naming_it():
         panels(mesh, 0.1)
     assert e.value.faces == [1]
     assert "\n" not in str(e.value)
+    # a needle triangle whose short edge can still be cut is kept, and said so
+    xyz[2] = [1, 0.004, 0]
+    mesh = facet.PolyMesh.from_faces(xyz, [[1, 3, 4, 2], [0, 1, 2]])
+    ps = panels(mesh, 0.1)
+    assert [p.corners for p in ps.panels] == [4, 3] and ps.vanished_edges == []
+    assert [(d["vertices"], d["reason"], d["face"]) for d in ps.short_edges_kept] == \
+        [([1, 2], "corners", 1)]
+    assert any("fewer than 3 corners (edge 1-2" in w for w in ps.warnings)
 
 
 @pytest.mark.parametrize("kw, text", [({"min_edge": -0.1}, "min_edge must be"),

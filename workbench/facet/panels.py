@@ -267,10 +267,11 @@ class PanelSet:
         (the vertex that stands for the merged corner) and ``moved`` (how far
         the merged corner lies from the farther end).
     short_edges_kept : list of dict
-        Edges shorter than ``min_edge`` left as they are, because merging their
-        ends would bend a face beyond the planarity tolerance: ``vertices``,
-        ``length``, ``faces``, ``face`` (the face it would bend) and
-        ``planarity`` (how far that face's corners would lie from its plane).
+        Edges shorter than ``min_edge`` left as they are: ``vertices``,
+        ``length``, ``faces``, ``reason`` ("planarity": merging their ends
+        would bend ``face`` beyond the planarity tolerance, its corners
+        ``planarity`` from its plane; "corners": it would leave ``face``, a
+        needle triangle, with fewer than 3 corners; ``planarity`` None).
     """
 
     panels: list
@@ -430,6 +431,11 @@ def _check_face_areas(mesh, source):
                          f"coincide){more}", faces=bad.tolist())
 
 
+#: model units: facet.step refuses a solid's edge under ten times its 1e-7
+#: tolerance; a face that only a shorter edge keeps from being a line is a sliver
+_SOLID_MIN_EDGE = 1e-6
+
+
 def _ring(rep_of, fv, s, e):
     """A face's corners after merging (``rep_of`` maps each vertex to the one
     standing for it): runs of the same corner become one, cyclically."""
@@ -465,7 +471,9 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
     tolerance); it lies within the group's edge lengths of every vertex it
     replaces. A group whose merge would bend a face beyond the planarity
     tolerance (``max(tol_abs, tol x mean edge)``, and beyond what the face
-    already had) is left as it is and reported.
+    already had), or leave a face with fewer than 3 corners (a needle
+    triangle, whose short edge can still be cut), is left as it is and
+    reported.
 
     Returns
     -------
@@ -478,7 +486,8 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
     ------
     PanelError
         A face would be left with fewer than 3 corners, or with a corner
-        twice.
+        twice, by an edge too short for a solid (`_SOLID_MIN_EDGE`, or
+        within the planarity tolerance): a sliver no panel can be made of.
     """
     if not (min_edge > 0.0 or min_edge_abs > 0.0):
         return None
@@ -545,15 +554,24 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
         trial[members] = root
         before = [_ring(rep_of, fv, fs[f], fs[f + 1]) for f in faces]
         after = [_ring(trial, fv, fs[f], fs[f + 1]) for f in faces]
-        for f, ring in zip(faces, after):
-            if len(ring) < 3 or len(set(ring)) != len(ring):
-                u, v = next((k for k in keys if f in edge_faces.get(k, ())), keys[0])
-                what = (f"{len(set(ring))} corners" if len(set(ring)) < 3
-                        else "a corner twice")
+        info = [{"vertices": [u, v], "length": edges[(u, v)],
+                 "faces": sorted(edge_faces.get((u, v), []))} for u, v in keys]
+        broken = [(f, ring) for f, ring in zip(faces, after)
+                  if len(ring) < 3 or len(set(ring)) != len(ring)]
+        if broken:
+            f, ring = broken[0]
+            u, v = next((k for k in keys if f in edge_faces.get(k, ())), keys[0])
+            what = (f"{len(set(ring))} corners" if len(set(ring)) < 3 else "a corner twice")
+            if edges[(u, v)] <= max(_SOLID_MIN_EDGE, tol_abs, tol * mean[f]):
                 raise PanelError(
-                    f"{where}face {f}: its edge {u}-{v} is {edges[(u, v)]:.3g} long, shorter "
-                    f"than min_edge; merging the edge's ends would leave the face {what}. "
-                    "Remove the face (a sliver) or lower min_edge", faces=[f])
+                    f"{where}face {f}: its edge {u}-{v} is {edges[(u, v)]:.3g} long, too short "
+                    f"for a solid, and merging its ends would leave the face {what}: remove "
+                    "the face (a sliver) from the mesh", faces=[f])
+            # a needle triangle: its short edge is a cut that can be made
+            for d in info:
+                d.update(face=f, reason="corners", planarity=None)
+            kept.extend(info)
+            continue
         old_dev, _ = _local_planarity(xyz, before)
         points = xyz[members]
         candidates = [points.mean(axis=0)] + [p for p in points]
@@ -568,14 +586,12 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
             ok = bool(np.all(dev <= allowed))
             if best is None or (ok, -score) > (best[0], -best[1]):
                 best = (ok, score, cand.copy(), worst, float(dev[worst]))
-            if ok and best[2] is not None and cand is candidates[0]:
+            if ok and cand is candidates[0]:
                 break  # the centroid moves the vertices least
         ok, _, point, worst, worst_dev = best
-        info = [{"vertices": [u, v], "length": edges[(u, v)],
-                 "faces": sorted(edge_faces.get((u, v), []))} for u, v in keys]
         if not ok:
             for d in info:
-                d.update(face=faces[worst], planarity=worst_dev)
+                d.update(face=faces[worst], reason="planarity", planarity=worst_dev)
             kept.extend(info)
             continue
         moved = float(np.max(np.linalg.norm(points - point, axis=1)))
@@ -639,8 +655,10 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         with fewer corners; on a 1.5 m panel it is 15 mm, far above the
         length the solid needs. The merged corner moves no vertex farther
         than the edge's length; an edge whose merge would bend a face beyond
-        the planarity tolerance is left as it is and reported
-        (``PanelSet.short_edges_kept`` and a warning). 0 and 0 merge nothing.
+        the planarity tolerance, or leave a face (a needle triangle) with
+        fewer than 3 corners, is left as it is and reported
+        (``PanelSet.short_edges_kept`` and a warning); a triangle whose edge
+        is too short for any solid is an error. 0 and 0 merge nothing.
         The panels' ``input_corners`` and the schedule's ``corners`` and
         ``input_corners`` tell which panels lost a corner.
     progress : callable, optional
@@ -656,8 +674,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     PanelError
         Bad option, faces not planar (``error.faces`` lists them all), a
         non-orientable surface, a gap/bevel that consumes a panel, or a face
-        that a vanished edge would leave with fewer than 3 corners (a sliver
-        triangle: remove it or lower ``min_edge``).
+        that an edge too short for a solid would leave with fewer than 3
+        corners (a sliver triangle: remove it from the mesh).
     facet.MeshError
         The mesh is not valid.
     """
@@ -731,12 +749,20 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         warnings.append(f"{n_panels} panels built with fewer corners than their faces: "
                         f"{len(vanished)} edges shorter than min_edge vanished (their ends "
                         "merged into one corner)")
-    if kept:
-        d = kept[0]
-        warnings.append(f"{len(kept)} edges shorter than min_edge kept: merging their ends "
+    bending = [d for d in kept if d["reason"] == "planarity"]
+    if bending:
+        d = bending[0]
+        warnings.append(f"{len(bending)} edges shorter than min_edge kept: merging their ends "
                         f"would bend a face beyond the planarity tolerance (edge "
                         f"{d['vertices'][0]}-{d['vertices'][1]}, {d['length']:.3g} long: face "
                         f"{d['face']} {d['planarity']:.3g} from its plane)")
+    needles = [d for d in kept if d["reason"] == "corners"]
+    if needles:
+        d = needles[0]
+        warnings.append(f"{len(needles)} edges shorter than min_edge kept: merging their ends "
+                        f"would leave a face with fewer than 3 corners (edge "
+                        f"{d['vertices'][0]}-{d['vertices'][1]}, {d['length']:.3g} long, of "
+                        f"face {d['face']}, a needle)")
     if rep_of is not None:
         # a merged vertex's node is its group's
         out["node_deviation"] = out["node_deviation"][rep_of]

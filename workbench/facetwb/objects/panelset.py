@@ -189,8 +189,8 @@ class PanelSet(_Proxy):
                     ", ".join(vanished[:8]) + (", ..." if len(vanished) > 8 else "")) + "\n")
         if ps.short_edges_kept:
             App.Console.PrintWarning(translate(
-                "Facet", "{0}: {1} edges shorter than MinEdge kept: merging their ends would "
-                "bend a face beyond the planarity tolerance").format(
+                "Facet", "{0}: {1} edges shorter than MinEdge kept as they are (see its "
+                "Warnings)").format(
                     obj.Label, len(ps.short_edges_kept)) + "\n")
         self._update_panel_objects(obj, ps, solids)
         self._cache = (self._key(obj), ps)
