@@ -566,7 +566,7 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
                 raise PanelError(
                     f"{where}face {f}: its edge {u}-{v} is {edges[(u, v)]:.3g} long, too short "
                     f"for a solid, and merging its ends would leave the face {what}: remove "
-                    "the face (a sliver) from the mesh", faces=[f])
+                    "the face (a sliver; facet cleanup does)", faces=[f])
             # a needle triangle: its short edge is a cut that can be made
             for d in info:
                 d.update(face=f, reason="corners", planarity=None)
@@ -755,7 +755,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         warnings.append(f"{len(bending)} edges shorter than min_edge kept: merging their ends "
                         f"would bend a face beyond the planarity tolerance (edge "
                         f"{d['vertices'][0]}-{d['vertices'][1]}, {d['length']:.3g} long: face "
-                        f"{d['face']} {d['planarity']:.3g} from its plane)")
+                        f"{d['face']} {d['planarity']:.3g} from its plane); facet cleanup "
+                        "collapses them and planarizes again")
     needles = [d for d in kept if d["reason"] == "corners"]
     if needles:
         d = needles[0]
