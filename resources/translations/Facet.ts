@@ -436,6 +436,16 @@
         <source>planarity {0:.2g} (tolerance {1:.2g})</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="185"/>
+        <source>{0}: {1} panels built with fewer corners than their faces ({2} edges shorter than MinEdge vanished): {3}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="191"/>
+        <source>{0}: {1} edges shorter than MinEdge kept as they are (see its Warnings)</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>Facet_Cleanup</name>

@@ -13,11 +13,11 @@ import Part
 import facet
 import facetwb
 from facet.panels import panels
-from facet_test_support import DocumentTestCase, bits, points_array
+from facet_test_support import DocumentTestCase, bits, data_path, points_array
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                                 "python"))
-from panel_meshes import cylinder, translational  # noqa: E402
+from panel_meshes import cylinder, folded_grid, translational  # noqa: E402
 
 T = 30.0
 GAP = 6.0
@@ -231,3 +231,60 @@ class TestPanelSetOnPlanarized(DocumentTestCase):
         self.assertLess(ps.MaxNodeDeviation.Value, 1e-5)
         for s in ps.Shape.Solids:
             s.check(True)
+
+
+class TestPanelSetVanishedEdge(DocumentTestCase):
+    """A quad whose edge vanished (1e-6 of a 1000 mm grid) is built as a triangle panel."""
+
+    def test_recomputes_with_triangle_panels_and_says_how_many(self):
+        source = facetwb.make_polymesh(folded_grid(short=1e-6), label="folded")
+        before = points_array(source).copy()
+        obj = facetwb.make_panelset(source, thickness=18.0, edge="bisector", gap=4.0,
+                                    name="Vanished")
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertTrue(obj.Shape.isValid())
+        self.assertEqual(obj.PanelCount, 8)
+        self.assertEqual(list(obj.VanishedEdgePanels), ["P-R01C02", "P-R01C03"])
+        self.assertEqual(list(obj.Corners), [4, 3, 3, 4, 4, 4, 4, 4])
+        self.assertTrue(any("2 panels built with fewer corners" in w for w in obj.Warnings))
+        solids = obj.Shape.Solids
+        self.assertEqual([len(s.Faces) for s in solids], [c + 2 for c in obj.Corners])
+        for s in solids:
+            self.assertTrue(s.isValid() and s.Shells[0].isClosed())
+        np.testing.assert_array_equal(points_array(source), before)  # source untouched
+        # without the merge the gap consumes the vanished edge: a clear error, not a shape
+        obj.MinEdge = 0.0
+        self.doc.recompute()
+        self.assertFalse(obj.isValid())
+        self.assertIn("face 1", obj.getStatusString() + "".join(
+            str(m) for m in getattr(obj, "Warnings", [])))
+        obj.MinEdge = 0.01
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(list(obj.VanishedEdgePanels), ["P-R01C02", "P-R01C03"])
+
+    def test_planarized_hypar_chain(self):
+        """hypar.obj planarized (the default method shrinks 8 edges to ~5e-7 of the mean
+        edge): the PanelSet builds the faces with an edge under 1% of their mean as
+        triangles, and its solids are valid."""
+        from facetwb import conversion
+
+        source = facetwb.make_polymesh(facet.read_mesh(data_path("hypar.obj")), label="hypar")
+        planar = facetwb.make_planarized(source)
+        obj = facetwb.make_panelset(planar, thickness=0.01, name="HyparPanels")
+        self.doc.recompute()
+        self.assertTrue(planar.isValid(), planar.getStatusString())
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        mesh = conversion.mesh_from_object(planar)
+        fs, fv, xyz = mesh.face_start, mesh.face_vertices, mesh.vertices
+        nxt = np.arange(1, fv.size + 1)
+        nxt[fs[1:] - 1] = fs[:-1]
+        lengths = np.linalg.norm(xyz[fv[nxt]] - xyz[fv], axis=1)
+        short = np.minimum.reduceat(lengths, fs[:-1]) < 0.01 * (
+            np.add.reduceat(lengths, fs[:-1]) / np.diff(fs))
+        self.assertGreater(int(short.sum()), 0)
+        self.assertEqual(len(obj.VanishedEdgePanels), int(short.sum()))
+        self.assertEqual([c for c in obj.Corners if c == 3], [3] * int(short.sum()))
+        self.assertTrue(all(s.isValid() for s in obj.Shape.Solids))
+        self.assertEqual(len(obj.Shape.Solids), 64)

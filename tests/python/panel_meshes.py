@@ -34,3 +34,24 @@ def translational(nu=5, nv=4, step=1000.0):
             x, y = i * step, j * step
             pts.append([x, y, 0.00012 * (x - 2500.0) ** 2 - 0.00009 * (y - 2000.0) ** 2])
     return PolyMesh.from_faces(np.array(pts), grid_faces(nu, nv))
+
+
+#: heights of the fold lines x = i * step of `folded_grid`
+FOLDS = (0.0, 0.3, 0.1, 0.5, 0.2)
+
+
+def folded_grid(short=None, nv=2, step=1000.0):
+    """Planar quads folded along the lines x = i * step (z depends on x alone, so
+    every quad is exactly planar whatever the y of its corners), 4 columns by `nv`
+    rows, faces numbered row by row. With `short`, the fold-line edge from vertex 2
+    (x = 2 step, y = 0) to vertex 7 (the next row's) is `short` long: faces 1 and 2
+    lie beside it, faces 6 and 7 touch only vertex 7."""
+    nu = len(FOLDS) - 1
+    pts = []
+    for j in range(nv + 1):
+        for i in range(nu + 1):
+            y = j * step + (0.1 * step * ((i * 7 + j * 3) % 3) if 0 < j < nv else 0.0)
+            if short is not None and i == 2 and j == 1:
+                y = short
+            pts.append([i * step, y, FOLDS[i] * step])
+    return PolyMesh.from_faces(np.array(pts), grid_faces(nu, nv))

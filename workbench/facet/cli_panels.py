@@ -5,7 +5,8 @@
 
     python3 -m facet panels MESH --thickness T [--offset outer|inner|center]
         [--gap G] [--edge square|bisector] [--flip] [--ids auto|grid|index]
-        [--prefix P] [--tol T] [--sheet WxH] [--margin M] [--spacing S]
+        [--prefix P] [--tol T] [--min-edge F] [--min-edge-abs L] [--sheet WxH]
+        [--margin M] [--spacing S]
         [--rotations none|90|free] [--grain X,Y,Z] [--dxf OUT.dxf] [--per-sheet]
         [--step OUT.step] [--schedule OUT.csv|OUT.json] [--svg DIR] [--png DIR]
         [--report R.json]
@@ -51,6 +52,7 @@ def _vector(text):
 def add_commands(commands):
     """Add the ``panels`` sub-command to the argparse sub-parsers object."""
     from facet.cli import _non_negative_float
+    from facet.panels import DEFAULT_MIN_EDGE
 
     p = commands.add_parser(
         "panels",
@@ -75,6 +77,12 @@ def add_commands(commands):
                    help="planarity tolerance relative to each face's mean edge (default 1e-6)")
     p.add_argument("--tol-abs", type=_non_negative_float, default=0.0,
                    help="planarity tolerance in model units (the larger one applies)")
+    p.add_argument("--min-edge", type=_non_negative_float, default=DEFAULT_MIN_EDGE,
+                   help="an edge shorter than this fraction of a face's mean edge vanishes: its "
+                   "ends become one corner (a quad whose edge vanished is built as a triangle; "
+                   f"default {DEFAULT_MIN_EDGE:g}, 0 keeps every edge)")
+    p.add_argument("--min-edge-abs", type=_non_negative_float, default=0.0,
+                   help="the same in model units (the larger one applies)")
     p.add_argument("--sheet", type=_sheet, metavar="WxH", help="stock sheet size: nest the parts")
     p.add_argument("--margin", type=float, default=0.0, help="clear border along sheet edges")
     p.add_argument("--spacing", type=float, default=0.0, help="least distance between parts")
@@ -93,7 +101,8 @@ def add_commands(commands):
 
 
 def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False,
-                 ids="auto", prefix="P-", tol=1e-6, tol_abs=0.0, sheet=None, margin=0.0,
+                 ids="auto", prefix="P-", tol=1e-6, tol_abs=0.0, min_edge=None,
+                 min_edge_abs=0.0, sheet=None, margin=0.0,
                  spacing=0.0, rotations="90", grain=None, dxf=None, per_sheet=False,
                  step=None, schedule=None, svg=None, png=None, progress=None,
                  panel_set=None, solids=None, allow_unplaced=False):
@@ -111,8 +120,10 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
     (nothing written) unless `allow_unplaced` is true.
     """
     from facet.errors import InputError
-    from facet.panels import panels
+    from facet.panels import DEFAULT_MIN_EDGE, panels
 
+    if min_edge is None:
+        min_edge = DEFAULT_MIN_EDGE
     if dxf and sheet is None:
         raise InputError("--dxf needs --sheet WxH (the DXF holds nested sheets)")
     if (svg or png) and sheet is None:
@@ -133,7 +144,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
         ps = panel_set
     else:
         ps = panels(mesh, thickness, offset=offset, gap=gap, edge=edge, flip=flip, ids=ids,
-                    prefix=prefix, tol=tol, tol_abs=tol_abs, progress=stage_progress("panels"))
+                    prefix=prefix, tol=tol, tol_abs=tol_abs, min_edge=min_edge,
+                    min_edge_abs=min_edge_abs, progress=stage_progress("panels"))
     times["panels"] = time.perf_counter() - t
     job = None
     if step and (solids is None or len(solids) != len(ps.panels)):
@@ -238,6 +250,9 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         "max_node_deviation_unit": "degrees",
         "worst_node": ps.worst_node,
         "max_planarity": float(ps.planarity.max()),
+        "n_vanished_panels": len(ps.vanished_panels),
+        "vanished_edges": ps.vanished_edges,
+        "short_edges_kept": ps.short_edges_kept,
         "warnings": ps.warnings,
         "files": files,
         "seconds": times,
@@ -253,7 +268,8 @@ def run_panels(args):
     mesh = _read(args)
     report, ps, drawings, result = run_pipeline(
         mesh, args.thickness, offset=args.offset, gap=args.gap, edge=args.edge, flip=args.flip,
-        ids=args.ids, prefix=args.prefix, tol=args.tol, tol_abs=args.tol_abs, sheet=args.sheet,
+        ids=args.ids, prefix=args.prefix, tol=args.tol, tol_abs=args.tol_abs,
+        min_edge=args.min_edge, min_edge_abs=args.min_edge_abs, sheet=args.sheet,
         margin=args.margin, spacing=args.spacing, rotations=args.rotations, grain=args.grain,
         dxf=args.dxf, per_sheet=args.per_sheet, step=args.step, schedule=args.schedule,
         svg=args.svg, png=args.png)
@@ -264,6 +280,13 @@ def run_panels(args):
     print(f"  panels        {len(ps)} ({ps.id_scheme} IDs"
           + (f", {ps.grid_shape[0]} x {ps.grid_shape[1]} grid" if ps.grid_shape else "") + ")",
           file=out)
+    if ps.vanished_edges or ps.short_edges_kept:
+        vanished = ps.vanished_panels
+        shown = ", ".join(p.id for p in vanished[:4]) + (", ..." if len(vanished) > 4 else "")
+        print(f"  vanished      {len(vanished)} panels built with fewer corners "
+              f"({len(ps.vanished_edges)} edges under min_edge merged to a corner"
+              + (f"; {len(ps.short_edges_kept)} kept" if ps.short_edges_kept else "") + ")"
+              + (f": {shown}" if shown else ""), file=out)
     print(f"  nodes         largest deviation from a common axis "
           f"{ps.max_node_deviation_deg:.3g} degrees", file=out)
     if result is not None:

@@ -168,7 +168,8 @@ def schedule_rows(panel_set, nest_result=None):
     return rows
 
 
-_CSV_COLUMNS = ["id", "face", "area", "area_top", "perimeter", "width", "height", "thickness",
+_CSV_COLUMNS = ["id", "face", "corners", "input_corners", "area", "area_top", "perimeter",
+                "width", "height", "thickness",
                 "edge_lengths", "bevel_deg", "dihedral_deg", "sheet", "x", "y",
                 "rotation_deg"]
 

@@ -27,9 +27,18 @@ import numpy as np
 
 from facet import _core
 from facet.errors import Cancelled, FacetError, InputError, from_core
+from facet.mesh import PolyMesh, next_corners
+from facet.quality import DEFAULT_SHORT_EDGE
 
 __all__ = ["PanelError", "Panel", "PanelSet", "panels", "OFFSETS", "EDGES", "ID_SCHEMES",
-           "grid_positions"]
+           "grid_positions", "DEFAULT_MIN_EDGE"]
+
+#: Default of ``panels(min_edge=...)``: an edge shorter than this fraction of
+#: the mean edge of a face beside it has vanished, and its two ends become one
+#: corner. It is the quality report's degenerate short edge
+#: (:data:`facet.quality.DEFAULT_SHORT_EDGE`, 1%), so the faces the report
+#: calls degenerate for a short edge are the panels built with fewer corners.
+DEFAULT_MIN_EDGE = DEFAULT_SHORT_EDGE
 
 #: Offset sides: where the panel lies relative to the mesh surface.
 OFFSETS = ("outer", "inner", "center")
@@ -111,6 +120,22 @@ class Panel:
     dihedral_deg: list
     neighbors: list
     grid: tuple = None
+    input_corners: int = None
+
+    def __post_init__(self):
+        if self.input_corners is None:
+            self.input_corners = len(self.vertices)
+
+    @property
+    def corners(self):
+        """Number of corners of the panel."""
+        return len(self.vertices)
+
+    @property
+    def vanished_edges(self):
+        """How many of its face's edges vanished (their ends merged into one
+        corner): a quad built as a triangle has 1."""
+        return int(self.input_corners) - len(self.vertices)
 
     @property
     def area(self):
@@ -190,6 +215,8 @@ class Panel:
         return {
             "id": self.id,
             "face": self.face,
+            "corners": self.corners,
+            "input_corners": int(self.input_corners),
             "area": self.area,
             "area_top": self.area_top,
             "perimeter": self.perimeter,
@@ -233,6 +260,18 @@ class PanelSet:
     warnings : list of str
     seconds : float
         Wall time of the geometry.
+    vanished_edges : list of dict
+        The edges shorter than ``min_edge`` whose ends were merged into one
+        corner: ``vertices`` (the two mesh vertices), ``length``, ``faces``
+        (the faces beside it, each a panel with one corner fewer), ``vertex``
+        (the vertex that stands for the merged corner) and ``moved`` (how far
+        the merged corner lies from the farther end).
+    short_edges_kept : list of dict
+        Edges shorter than ``min_edge`` left as they are: ``vertices``,
+        ``length``, ``faces``, ``reason`` ("planarity": merging their ends
+        would bend ``face`` beyond the planarity tolerance, its corners
+        ``planarity`` from its plane; "corners": it would leave ``face``, a
+        needle triangle, with fewer than 3 corners; ``planarity`` None).
     """
 
     panels: list
@@ -247,6 +286,14 @@ class PanelSet:
     n_components: int
     warnings: list = field(default_factory=list)
     seconds: float = 0.0
+    vanished_edges: list = field(default_factory=list)
+    short_edges_kept: list = field(default_factory=list)
+
+    @property
+    def vanished_panels(self):
+        """The panels built with fewer corners than their face has (a quad
+        whose edge vanished, built as a triangle)."""
+        return [p for p in self.panels if p.vanished_edges > 0]
 
     def __len__(self):
         return len(self.panels)
@@ -384,8 +431,189 @@ def _check_face_areas(mesh, source):
                          f"coincide){more}", faces=bad.tolist())
 
 
+#: model units: facet.step refuses a solid's edge under ten times its 1e-7
+#: tolerance; a face that only a shorter edge keeps from being a line is a sliver
+_SOLID_MIN_EDGE = 1e-6
+
+
+def _ring(rep_of, fv, s, e):
+    """A face's corners after merging (``rep_of`` maps each vertex to the one
+    standing for it): runs of the same corner become one, cyclically."""
+    ring = [int(v) for v in rep_of[fv[s:e]]]
+    out = [v for k, v in enumerate(ring) if v != ring[k - 1]] if len(ring) > 1 else ring
+    if not out:  # every corner merged into one
+        out = ring[:1]
+    return out
+
+
+def _local_planarity(xyz, rings):
+    """(max_abs, mean_edge) of these faces (rings of vertex indices into xyz),
+    measured as the core measures planarity."""
+    from facet.planarity import planarity
+
+    used = sorted({v for r in rings for v in r})
+    local = {v: i for i, v in enumerate(used)}
+    sub = PolyMesh.from_faces(xyz[used], [[local[v] for v in r] for r in rings])
+    rep = planarity(sub, threads=1)
+    return rep.max_abs, rep.mean_edge
+
+
+def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
+    """Merge the two ends of every edge shorter than the limit into one corner.
+
+    An edge is short when it is shorter than ``max(min_edge_abs, min_edge x
+    the mean edge of a face beside it)``. Short edges that share a vertex
+    make one group; each group becomes one vertex (its lowest index) in
+    every face, so the faces beside the edge lose a corner and their
+    neighbours still share their edges and nodes. The merged corner is the
+    group's centroid or one of its vertices, whichever bends the faces
+    around it least (the centroid whenever it keeps them within the
+    tolerance); it lies within the group's edge lengths of every vertex it
+    replaces. A group whose merge would bend a face beyond the planarity
+    tolerance (``max(tol_abs, tol x mean edge)``, and beyond what the face
+    already had), or leave a face with fewer than 3 corners (a needle
+    triangle, whose short edge can still be cut), is left as it is and
+    reported.
+
+    Returns
+    -------
+    (PolyMesh, rep_of, vanished, kept) or None when no edge is short
+        The merged mesh has the input's vertices (the merged ones no longer
+        used) and its faces in the same order; ``rep_of`` maps every vertex to
+        the one standing for it.
+
+    Raises
+    ------
+    PanelError
+        A face would be left with fewer than 3 corners, or with a corner
+        twice, by an edge too short for a solid (`_SOLID_MIN_EDGE`, or
+        within the planarity tolerance): a sliver no panel can be made of.
+    """
+    if not (min_edge > 0.0 or min_edge_abs > 0.0):
+        return None
+    xyz = np.array(mesh.vertices, dtype=np.float64)
+    fs = np.asarray(mesh.face_start, dtype=np.int64)
+    fv = np.asarray(mesh.face_vertices, dtype=np.int64)
+    nf, nv = fs.size - 1, xyz.shape[0]
+    if fv.size == 0:
+        return None
+    degree = np.diff(fs)
+    face = np.repeat(np.arange(nf), degree)
+    nxt = next_corners(fs)
+    a, b = fv, fv[nxt]
+    length = np.linalg.norm(xyz[b] - xyz[a], axis=1)
+    mean = np.bincount(face, weights=length, minlength=nf) / degree
+    limit = np.maximum(min_edge_abs, min_edge * mean[face])
+    short = np.flatnonzero(length < limit)
+    if short.size == 0:
+        return None
+    where = f"{source}: " if source else ""
+
+    # the short edges, and the faces beside each
+    edges = {}
+    for c in short.tolist():
+        key = (int(min(a[c], b[c])), int(max(a[c], b[c])))
+        edges.setdefault(key, float(length[c]))
+    edge_faces = {}
+    corner_key = np.minimum(a, b) * nv + np.maximum(a, b)
+    beside = np.flatnonzero(np.isin(corner_key, corner_key[short]))
+    for c in beside.tolist():
+        key = (int(min(a[c], b[c])), int(max(a[c], b[c])))
+        edge_faces.setdefault(key, []).append(int(face[c]))
+    # groups of short edges sharing a vertex (union-find)
+    parent = {}
+
+    def find(v):
+        parent.setdefault(v, v)
+        while parent[v] != v:
+            parent[v] = parent[parent[v]]
+            v = parent[v]
+        return v
+
+    for u, v in edges:
+        ru, rv = find(u), find(v)
+        if ru != rv:
+            parent[max(ru, rv)] = min(ru, rv)
+    groups = {}
+    for v in list(parent):
+        groups.setdefault(find(v), []).append(v)
+    group_edges = {}
+    for key in edges:
+        group_edges.setdefault(find(key[0]), []).append(key)
+    # the corners of each vertex
+    order = np.argsort(fv, kind="stable")
+    vstart = np.searchsorted(fv[order], np.arange(nv + 1))
+
+    rep_of = np.arange(nv, dtype=np.int64)
+    vanished, kept = [], []
+    for root in sorted(groups):
+        members = sorted(groups[root])
+        keys = sorted(group_edges[root])
+        faces = sorted({int(face[c]) for v in members for c in order[vstart[v]:vstart[v + 1]]})
+        trial = rep_of.copy()
+        trial[members] = root
+        before = [_ring(rep_of, fv, fs[f], fs[f + 1]) for f in faces]
+        after = [_ring(trial, fv, fs[f], fs[f + 1]) for f in faces]
+        info = [{"vertices": [u, v], "length": edges[(u, v)],
+                 "faces": sorted(edge_faces.get((u, v), []))} for u, v in keys]
+        broken = [(f, ring) for f, ring in zip(faces, after)
+                  if len(ring) < 3 or len(set(ring)) != len(ring)]
+        if broken:
+            f, ring = broken[0]
+            u, v = next((k for k in keys if f in edge_faces.get(k, ())), keys[0])
+            what = (f"{len(set(ring))} corners" if len(set(ring)) < 3 else "a corner twice")
+            if edges[(u, v)] <= max(_SOLID_MIN_EDGE, tol_abs, tol * mean[f]):
+                raise PanelError(
+                    f"{where}face {f}: its edge {u}-{v} is {edges[(u, v)]:.3g} long, too short "
+                    f"for a solid, and merging its ends would leave the face {what}: remove "
+                    "the face (a sliver; facet cleanup does)", faces=[f])
+            # a needle triangle: its short edge is a cut that can be made
+            for d in info:
+                d.update(face=f, reason="corners", planarity=None)
+            kept.extend(info)
+            continue
+        old_dev, _ = _local_planarity(xyz, before)
+        points = xyz[members]
+        candidates = [points.mean(axis=0)] + [p for p in points]
+        best = None
+        trial_xyz = xyz.copy()
+        for cand in candidates:
+            trial_xyz[root] = cand
+            dev, me = _local_planarity(trial_xyz, after)
+            allowed = np.maximum(np.maximum(tol_abs, tol * me), old_dev)
+            worst = int(np.argmax(dev - allowed))
+            score = float(np.max(dev / np.where(allowed > 0, allowed, np.inf), initial=0.0))
+            ok = bool(np.all(dev <= allowed))
+            if best is None or (ok, -score) > (best[0], -best[1]):
+                best = (ok, score, cand.copy(), worst, float(dev[worst]))
+            if ok and cand is candidates[0]:
+                break  # the centroid moves the vertices least
+        ok, _, point, worst, worst_dev = best
+        if not ok:
+            for d in info:
+                d.update(face=faces[worst], reason="planarity", planarity=worst_dev)
+            kept.extend(info)
+            continue
+        moved = float(np.max(np.linalg.norm(points - point, axis=1)))
+        for d in info:
+            d.update(vertex=int(root), moved=moved)
+        vanished.extend(info)
+        rep_of[members] = root
+        xyz[members] = point
+    if not vanished:
+        return None, rep_of, vanished, kept
+    mapped = rep_of[fv]
+    keep = mapped != mapped[nxt]
+    new_degree = np.bincount(face[keep], minlength=nf)
+    new_start = np.zeros(nf + 1, dtype=np.int64)
+    np.cumsum(new_degree, out=new_start[1:])
+    merged = PolyMesh(xyz, new_start, mapped[keep], info=mesh.info)
+    return merged, rep_of, vanished, kept
+
+
 def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, ids="auto",
-           prefix="P-", tol=1e-6, tol_abs=0.0, progress=None):
+           prefix="P-", tol=1e-6, tol_abs=0.0, min_edge=DEFAULT_MIN_EDGE, min_edge_abs=0.0,
+           progress=None):
     """Make the panels of a planar mesh.
 
     Parameters
@@ -411,6 +639,28 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     tol, tol_abs : float
         A face is planar when its vertices lie within max(tol_abs, tol x its
         mean edge length) of its plane.
+    min_edge, min_edge_abs : float
+        An edge shorter than max(min_edge_abs, min_edge x the mean edge of a
+        face beside it) has vanished: its two ends become one corner in every
+        face, so a quad whose edge vanished is built as a triangle panel, and
+        the panel across that edge loses the same corner (the panels still
+        meet along their edges and nodes). Planarization makes such edges
+        wherever a skew quad is best made a triangle (hypar grids, dense
+        subdivision patches); kept, they give a sliver side face, a cut of
+        no length and a corner no fabricator can make, and under about 1e-6
+        model units no solid at all (:mod:`facet.step` refuses it). The
+        default, 1% of the face's mean edge, is the quality report's
+        degenerate short edge (:data:`facet.quality.DEFAULT_SHORT_EDGE`), so
+        the faces it calls degenerate for a short edge are the panels built
+        with fewer corners; on a 1.5 m panel it is 15 mm, far above the
+        length the solid needs. The merged corner moves no vertex farther
+        than the edge's length; an edge whose merge would bend a face beyond
+        the planarity tolerance, or leave a face (a needle triangle) with
+        fewer than 3 corners, is left as it is and reported
+        (``PanelSet.short_edges_kept`` and a warning); a triangle whose edge
+        is too short for any solid is an error. 0 and 0 merge nothing.
+        The panels' ``input_corners`` and the schedule's ``corners`` and
+        ``input_corners`` tell which panels lost a corner.
     progress : callable, optional
         ``progress(done, total)``; returning True cancels (raises
         :class:`facet.Cancelled`).
@@ -423,7 +673,9 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     ------
     PanelError
         Bad option, faces not planar (``error.faces`` lists them all), a
-        non-orientable surface, or a gap/bevel that consumes a panel.
+        non-orientable surface, a gap/bevel that consumes a panel, or a face
+        that an edge too short for a solid would leave with fewer than 3
+        corners (a sliver triangle: remove it from the mesh).
     facet.MeshError
         The mesh is not valid.
     """
@@ -431,6 +683,12 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     gap = _check_float("gap", gap, 0.0, False)
     tol = _check_float("tol", tol, 0.0, False)
     tol_abs = _check_float("tol_abs", tol_abs, 0.0, False)
+    min_edge = _check_float("min_edge", min_edge, 0.0, False)
+    min_edge_abs = _check_float("min_edge_abs", min_edge_abs, 0.0, False)
+    if min_edge >= 1.0:
+        # below 1 a face always keeps an edge at least its mean long
+        raise PanelError(f"min_edge must be below 1 (a fraction of the face's mean edge), "
+                         f"not {min_edge!r}")
     if offset not in OFFSETS:
         raise PanelError(f"offset must be one of {', '.join(OFFSETS)}, not {offset!r}")
     if edge not in EDGES:
@@ -438,6 +696,13 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     source = mesh.info.get("source") if mesh.info else None
     report = mesh.validate()
     _check_face_areas(mesh, source)
+    input_mesh = mesh
+    merged = _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source)
+    rep_of, vanished, kept = None, [], []
+    if merged is not None:
+        merged_mesh, rep_of, vanished, kept = merged
+        if merged_mesh is not None:
+            mesh = merged_mesh
     nf, nv = mesh.n_faces, mesh.n_vertices
     nc = int(mesh.face_start[-1])
     out = {
@@ -479,6 +744,29 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
                         "reversed to make orientation consistent")
     if res["n_components"] > 1:
         warnings.append(f"{res['n_components']} separate parts, each oriented on its own")
+    if vanished:
+        n_panels = len({f for d in vanished for f in d["faces"]})
+        warnings.append(f"{n_panels} panels built with fewer corners than their faces: "
+                        f"{len(vanished)} edges shorter than min_edge vanished (their ends "
+                        "merged into one corner)")
+    bending = [d for d in kept if d["reason"] == "planarity"]
+    if bending:
+        d = bending[0]
+        warnings.append(f"{len(bending)} edges shorter than min_edge kept: merging their ends "
+                        f"would bend a face beyond the planarity tolerance (edge "
+                        f"{d['vertices'][0]}-{d['vertices'][1]}, {d['length']:.3g} long: face "
+                        f"{d['face']} {d['planarity']:.3g} from its plane); facet cleanup "
+                        "collapses them and planarizes again")
+    needles = [d for d in kept if d["reason"] == "corners"]
+    if needles:
+        d = needles[0]
+        warnings.append(f"{len(needles)} edges shorter than min_edge kept: merging their ends "
+                        f"would leave a face with fewer than 3 corners (edge "
+                        f"{d['vertices'][0]}-{d['vertices'][1]}, {d['length']:.3g} long, of "
+                        f"face {d['face']}, a needle)")
+    if rep_of is not None:
+        # a merged vertex's node is its group's
+        out["node_deviation"] = out["node_deviation"][rep_of]
 
     start = np.asarray(mesh.face_start)
     fv = np.asarray(mesh.face_vertices)
@@ -492,7 +780,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     dih = np.degrees(out["dihedral"])
     bev = np.degrees(out["bevel"])
 
-    grid = grid_positions(mesh, rev) if ids in ("auto", "grid") else None
+    # the input's faces (a merged quad is still a quad of the grid)
+    grid = grid_positions(input_mesh, rev) if ids in ("auto", "grid") else None
     if isinstance(ids, str):
         if ids not in ID_SCHEMES:
             raise PanelError(f"ids must be one of {', '.join(ID_SCHEMES)} or a list, not {ids!r}")
@@ -532,13 +821,14 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             dihedral_deg=[None if n < 0 else float(a) for n, a in zip(nb, dih[edges])],
             neighbors=[None if n < 0 else int(n) for n in nb],
             grid=None if grid is None else tuple(int(x) for x in grid[2][f]),
+            input_corners=int(input_mesh.face_start[f + 1] - input_mesh.face_start[f]),
         ))
     worst = res["worst_node"]
     return PanelSet(
         panels=result,
         options={"thickness": thickness, "offset": offset, "gap": gap, "edge": edge,
                  "flip": bool(flip), "tol": tol, "tol_abs": tol_abs, "ids": scheme,
-                 "prefix": prefix},
+                 "prefix": prefix, "min_edge": min_edge, "min_edge_abs": min_edge_abs},
         id_scheme=scheme,
         grid_shape=None if grid is None else (grid[0], grid[1]),
         node_deviation_deg=np.degrees(out["node_deviation"]),
@@ -549,4 +839,6 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         n_components=int(res["n_components"]),
         warnings=warnings,
         seconds=float(res["seconds"]),
+        vanished_edges=vanished,
+        short_edges_kept=kept,
     )

@@ -21,6 +21,7 @@ import FreeCAD as App
 
 from facetwb import compat, progress
 from facetwb.recompute import guarded
+from facetwb.translation import translate
 
 TYPE_PANELSET = "Facet::PanelSet"
 TYPE_CUTSHEETS = "Facet::CutSheets"
@@ -92,6 +93,12 @@ class PanelSet(_Proxy):
             "Planarity accepted, relative to each face's mean edge length", value=1e-6)
         add(obj, "App::PropertyLength", "ToleranceAbs", "Panels",
             "Planarity accepted, in model units (the larger tolerance applies)")
+        add(obj, "App::PropertyFloat", "MinEdge", "Panels",
+            "An edge shorter than this fraction of a face's mean edge vanishes: its ends "
+            "become one corner, so a quad whose edge vanished is a triangle panel (0: keep "
+            "every edge)", value=0.01)
+        add(obj, "App::PropertyLength", "MinEdgeAbs", "Panels",
+            "The same in model units (the larger one applies)")
         _enum(obj, "IdScheme", "Part IDs", "auto: grid row and column when the mesh is a "
               "regular quad grid, else the face index", ID_SCHEMES, "auto")
         add(obj, "App::PropertyString", "IdPrefix", "Part IDs", "Prefix of every part ID",
@@ -106,6 +113,12 @@ class PanelSet(_Proxy):
         _output(obj, "App::PropertyFloatList", "Areas", "Bottom face area of each panel")
         _output(obj, "App::PropertyAngle", "MaxNodeDeviation",
                 "Largest angle by which a node's edge planes miss a common axis")
+        _output(obj, "App::PropertyIntegerList", "Corners",
+                "Corners of each panel, in the order of PartIds (a quad whose edge vanished "
+                "has 3)")
+        _output(obj, "App::PropertyStringList", "VanishedEdgePanels",
+                "Part IDs of the panels built with fewer corners than their faces, because an "
+                "edge shorter than MinEdge vanished")
         _output(obj, "App::PropertyStringList", "Warnings", "What was found worth telling")
 
     def panel_set(self, obj):
@@ -119,6 +132,7 @@ class PanelSet(_Proxy):
         return panels(mesh, obj.Thickness.Value, offset=obj.Offset, gap=obj.Gap.Value,
                       edge=obj.EdgeMode, flip=bool(obj.Flip), ids=obj.IdScheme,
                       prefix=obj.IdPrefix, tol=obj.Tolerance, tol_abs=obj.ToleranceAbs.Value,
+                      min_edge=obj.MinEdge, min_edge_abs=obj.MinEdgeAbs.Value,
                       progress=progress.hook())
 
     def _key(self, obj):
@@ -126,7 +140,8 @@ class PanelSet(_Proxy):
         src = obj.Source
         return (src.Name if src is not None else None, obj.Thickness.Value, obj.Offset,
                 obj.Gap.Value, obj.EdgeMode, bool(obj.Flip), obj.Tolerance,
-                obj.ToleranceAbs.Value, obj.IdScheme, obj.IdPrefix)
+                obj.ToleranceAbs.Value, obj.MinEdge, obj.MinEdgeAbs.Value, obj.IdScheme,
+                obj.IdPrefix)
 
     def computed(self, obj):
         """(facet PanelSet, [(id, Part.Solid)] or None) as of the last recompute, when
@@ -162,7 +177,21 @@ class PanelSet(_Proxy):
         obj.Volumes = [s.Volume for s in solids]
         obj.Areas = [p.area for p in ps.panels]
         obj.MaxNodeDeviation = ps.max_node_deviation_deg
+        obj.Corners = [p.corners for p in ps.panels]
+        vanished = [p.id for p in ps.vanished_panels]
+        obj.VanishedEdgePanels = vanished
         obj.Warnings = list(ps.warnings)
+        if vanished:
+            App.Console.PrintMessage(translate(
+                "Facet", "{0}: {1} panels built with fewer corners than their faces "
+                "({2} edges shorter than MinEdge vanished): {3}").format(
+                    obj.Label, len(vanished), len(ps.vanished_edges),
+                    ", ".join(vanished[:8]) + (", ..." if len(vanished) > 8 else "")) + "\n")
+        if ps.short_edges_kept:
+            App.Console.PrintWarning(translate(
+                "Facet", "{0}: {1} edges shorter than MinEdge kept as they are (see its "
+                "Warnings)").format(
+                    obj.Label, len(ps.short_edges_kept)) + "\n")
         self._update_panel_objects(obj, ps, solids)
         self._cache = (self._key(obj), ps)
 
@@ -243,6 +272,7 @@ class CutSheets(_Proxy):
             mesh, ps_obj.Thickness.Value, panel_set=panel_set, solids=solids, offset=ps_obj.Offset, gap=ps_obj.Gap.Value,
             edge=ps_obj.EdgeMode, flip=bool(ps_obj.Flip), ids=ps_obj.IdScheme,
             prefix=ps_obj.IdPrefix, tol=ps_obj.Tolerance, tol_abs=ps_obj.ToleranceAbs.Value,
+            min_edge=ps_obj.MinEdge, min_edge_abs=ps_obj.MinEdgeAbs.Value,
             sheet=(obj.SheetWidth.Value, obj.SheetHeight.Value), margin=obj.Margin.Value,
             spacing=obj.Spacing.Value, rotations=obj.Rotations, grain=grain,
             dxf=os.path.join(out, "sheets.dxf") if out else None,
