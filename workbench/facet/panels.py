@@ -94,6 +94,10 @@ class Panel:
         (180 when flat; None on the boundary).
     neighbors : list of int or None
         Per edge, the face across it (None on the boundary).
+    dropped_edges : int
+        Edges of the face the joint gap consumed (square edges): the outline
+        drops them, so the panel has that many corners fewer than its face
+        (`vertices` keeps the last mesh vertex of each merged corner).
     """
 
     id: str
@@ -111,6 +115,7 @@ class Panel:
     dihedral_deg: list
     neighbors: list
     grid: tuple = None
+    dropped_edges: int = 0
 
     @property
     def area(self):
@@ -199,6 +204,7 @@ class Panel:
             "edge_lengths": [float(x) for x in self.edge_lengths],
             "bevel_deg": [float(x) for x in self.bevel_deg],
             "dihedral_deg": [None if x is None else float(x) for x in self.dihedral_deg],
+            "dropped_edges": int(self.dropped_edges),
         }
 
 
@@ -452,6 +458,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         "node_deviation": np.empty(nv),
         "planarity": np.empty(nf),
         "nonplanar": np.full(nf, -1, dtype=np.int32),
+        "dropped": np.zeros(nc, dtype=np.int32),
     }
     xyz = np.ascontiguousarray(mesh.vertices, dtype=np.float64).reshape(-1)
     try:
@@ -479,6 +486,10 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
                         "reversed to make orientation consistent")
     if res["n_components"] > 1:
         warnings.append(f"{res['n_components']} separate parts, each oriented on its own")
+    if res["n_dropped_edges"]:
+        warnings.append(f"the joint gap consumes {res['n_dropped_edges']} short edges: "
+                        "dropped from their panels' outlines (those panels have fewer corners "
+                        "than their faces)")
 
     start = np.asarray(mesh.face_start)
     fv = np.asarray(mesh.face_vertices)
@@ -491,6 +502,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     nbr = out["neighbor"]
     dih = np.degrees(out["dihedral"])
     bev = np.degrees(out["bevel"])
+    dropped = out["dropped"]
 
     grid = grid_positions(mesh, rev) if ids in ("auto", "grid") else None
     if isinstance(ids, str):
@@ -520,6 +532,11 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             corners = np.arange(s, e)
             edges = corners
         R, t = frames[f, :, :3], frames[f, :, 3]
+        gone = dropped[edges].astype(bool)
+        if gone.any():
+            # edge j dropped: corners j and j + 1 coincide, and corner j + 1
+            # (whose edge is j + 1) stays
+            corners, edges = corners[~gone], edges[~gone]
         tp, bt = top[corners], bottom[corners]
         ft = (tp @ R.T + t)[:, :2]
         fb = (bt @ R.T + t)[:, :2]
@@ -532,6 +549,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             dihedral_deg=[None if n < 0 else float(a) for n, a in zip(nb, dih[edges])],
             neighbors=[None if n < 0 else int(n) for n in nb],
             grid=None if grid is None else tuple(int(x) for x in grid[2][f]),
+            dropped_edges=int(gone.sum()),
         ))
     worst = res["worst_node"]
     return PanelSet(
