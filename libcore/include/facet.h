@@ -680,6 +680,17 @@ const char *facet_lifter_message(const facet_lifter *lifter);
  * neighbours the joint is a slot of constant width g; with square edges each
  * edge line moves g/2 into its panel, measured in the panel's plane.
  *
+ * Consumed edges: the penalty method shrinks some edges to a few percent of
+ * their length or to nothing (a skew quad made planar is often nearly a
+ * triangle), and a gap then turns such an edge of the offset outline around.
+ * With square edges the outlines are the face's outline offset in its plane,
+ * and such an edge is dropped as a CAD offset drops it: its two corners
+ * become the point where its neighbours' edge lines meet (the same point in
+ * both outlines; dropped[k] = 1), the worst first until every kept edge
+ * keeps its direction. A face left with fewer than three edges is an error.
+ * With mitred edges (or drop_consumed 0) a consumed edge is an error naming
+ * the face, the vertex and the edge's length.
+ *
  * Angles (radians), per face corner k, for the edge from corner k to k+1:
  *  dihedral  angle between the two panels on their bottom (-n) side: pi
  *            when flat, below pi where the top side is convex (a ridge);
@@ -726,11 +737,14 @@ typedef struct facet_panel_options {
     int32_t flip;              /* nonzero: reverse every face's orientation */
     double planarity_tol_abs;  /* a face is planar when its vertices are within */
     double planarity_tol_rel;  /* max(tol_abs, tol_rel * mean edge) of its plane */
+    int32_t drop_consumed;     /* square edges: an edge the gap turns around is
+                                  dropped from the outlines (default 1); 0: an error */
     facet_count_progress_fn progress; /* may be NULL */
     void *progress_user;
 } facet_panel_options;
 
-/* thickness 1, outer, gap 0, square, no flip, tol_abs 0, tol_rel 1e-6. */
+/* thickness 1, outer, gap 0, square, no flip, tol_abs 0, tol_rel 1e-6,
+ * drop_consumed 1. */
 void facet_panel_options_default(facet_panel_options *options);
 
 /* Caller-allocated outputs; any pointer may be NULL. nc = face_start[n_faces]
@@ -747,6 +761,8 @@ typedef struct facet_panel_output {
     double *node_deviation; /* n_vertices, radians */
     double *planarity;      /* n_faces: largest vertex distance from its plane */
     int32_t *nonplanar;     /* n_faces: indices of the faces above tolerance */
+    int32_t *dropped;       /* nc: 1 when the outlines drop edge k (corners k and
+                               k+1 then coincide in both), else 0 */
 } facet_panel_output;
 
 typedef struct facet_panel_result {
@@ -757,6 +773,7 @@ typedef struct facet_panel_result {
     int64_t worst_node;           /* vertex of max_node_deviation, or -1 */
     double max_node_deviation;    /* radians */
     double max_planarity;         /* model units */
+    int64_t n_dropped_edges;      /* edges the gap consumed, dropped (square edges) */
     double seconds;
 } facet_panel_result;
 

@@ -40,6 +40,7 @@ void facet_panel_options_default(facet_panel_options *options)
     options->flip = 0;
     options->planarity_tol_abs = 0.0;
     options->planarity_tol_rel = 1e-6;
+    options->drop_consumed = 1;
 }
 
 /* A half-edge keyed by its undirected edge, for grouping. */
@@ -68,6 +69,7 @@ typedef struct {
     double *plane;        /* 4*n_faces, normalized, oriented */
     double *eplane;       /* 4*nc: inward edge plane p.x = d (p unit) */
     double *fold;         /* nc: signed fold angle at the edge (>0 convex on top) */
+    int8_t *drop;         /* nc: the outline drops edge k (the gap consumes it) */
 } work;
 
 static void work_free(work *w)
@@ -80,6 +82,7 @@ static void work_free(work *w)
     free(w->plane);
     free(w->eplane);
     free(w->fold);
+    free(w->drop);
 }
 
 /* The next corner of a corner within its face, in input order. */
@@ -91,6 +94,26 @@ static int64_t next_corner(const facet_mesh *m, int32_t f, int64_t c)
 static int64_t prev_corner(const facet_mesh *m, int32_t f, int64_t c)
 {
     return c > m->face_start[f] ? c - 1 : m->face_start[f + 1] - 1;
+}
+
+/* The last edge at or before the corner's previous edge that the outline
+ * keeps (edge k runs from corner k to k + 1; w->drop marks dropped edges). A
+ * face keeps at least three edges, so the walks end. */
+static int64_t active_before(const work *w, int32_t f, int64_t c)
+{
+    int64_t e = prev_corner(w->mesh, f, c);
+    while (w->drop[e])
+        e = prev_corner(w->mesh, f, e);
+    return e;
+}
+
+/* The first edge after edge c that the outline keeps. */
+static int64_t active_after(const work *w, int32_t f, int64_t c)
+{
+    int64_t e = next_corner(w->mesh, f, c);
+    while (w->drop[e])
+        e = next_corner(w->mesh, f, e);
+    return e;
 }
 
 /* Groups half-edges into edges: neighbours across manifold edges. */
@@ -246,8 +269,9 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
     w.plane = malloc(4 * (size_t)nf * sizeof *w.plane);
     w.eplane = malloc(4 * nc * sizeof *w.eplane);
     w.fold = malloc(nc * sizeof *w.fold);
+    w.drop = malloc(nc * sizeof *w.drop);
     if (!w.corner_face || !w.nbr || !w.nbr_corner || !w.sign || !w.xyz || !w.plane ||
-        !w.eplane || !w.fold) {
+        !w.eplane || !w.fold || !w.drop) {
         work_free(&w);
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1,
                           "out of memory for %d faces", (int)nf);
@@ -451,19 +475,82 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
         up = 0.5 * th, down = -0.5 * th;
 
     /* Outlines: each corner is where the top (bottom) plane meets the planes
-     * of the two edges at that corner. */
+     * of the two edges at that corner. Every edge of the offset outlines must
+     * keep its direction: a gap or bevel wider than the panel turns an edge
+     * around. With square edges the outlines are the face's outline offset
+     * in its plane (a mitred offset), and an edge the gap turns around is
+     * dropped, as a CAD offset drops it: its two corners become the one where
+     * its neighbours' edge lines meet, in both outlines (a quad becomes a
+     * triangle panel). Mitred edges tilt each side face by its own angle, so
+     * the two outlines would lose different edges: an error there. */
+    const int may_drop = o->edge == FACET_PANEL_EDGE_SQUARE && o->drop_consumed;
     for (int32_t f = 0; f < nf; ++f) {
         const double *n = w.plane + 4 * f;
         const int32_t s = m->face_start[f], d = m->face_start[f + 1] - s;
+        int32_t active = d;
+        for (int64_t c = s; c < s + d; ++c)
+            w.drop[c] = 0;
+        for (;;) {
+            /* the edge turned around the most, if any */
+            int64_t worst = -1;
+            int worst_side = 0;
+            double worst_ratio = 0.0, worst_length = 0.0;
+            for (int64_t c = s; c < s + d; ++c) {
+                if (w.drop[c])
+                    continue;
+                const int64_t cn = next_corner(m, f, c);
+                const double *p = w.xyz + 3 * m->face_vertices[c];
+                const double *q = w.xyz + 3 * m->face_vertices[cn];
+                const double *a = w.eplane + 4 * active_before(&w, f, c), *b = w.eplane + 4 * c,
+                             *bb = w.eplane + 4 * active_after(&w, f, c);
+                const double ed[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+                for (int side = 0; side < 2; ++side) {
+                    const double h = side ? down : up;
+                    double x0[3], x1[3];
+                    solve3(n, h - n[3], a, a[3], b, b[3], x0);
+                    solve3(n, h - n[3], b, b[3], bb, bb[3], x1);
+                    const double od[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
+                    const double ratio = dot3(ed, od) / dot3(ed, ed);
+                    if (!(ratio > 1e-9) && (worst < 0 || !(ratio >= worst_ratio))) {
+                        worst = c, worst_side = side, worst_ratio = ratio;
+                        worst_length = norm3(ed) * scale;
+                    }
+                }
+            }
+            if (worst < 0)
+                break;
+            if (!may_drop || active <= 3) {
+                work_free(&w);
+                if (may_drop)
+                    return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[worst],
+                                      "face %d: the gap %.6g leaves fewer than three edges of its "
+                                      "outline (the edge from vertex %d is %.6g long)",
+                                      (int)f, o->gap, (int)m->face_vertices[worst], worst_length);
+                return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[worst],
+                                  "face %d: the %s outline loses its edge from vertex %d, %.6g "
+                                  "long (gap %.6g or bevel too large for the panel: square edges "
+                                  "drop such an edge; or collapse short edges first)",
+                                  (int)f, worst_side ? "bottom" : "top",
+                                  (int)m->face_vertices[worst], worst_length, o->gap);
+            }
+            w.drop[worst] = 1;
+            --active;
+            ++r.n_dropped_edges;
+        }
         for (int64_t c = s; c < s + d; ++c) {
-            const int64_t cp = prev_corner(m, f, c);
-            const double *a = w.eplane + 4 * cp, *b = w.eplane + 4 * c;
+            /* the edges before and after the corner that are kept */
+            const double *a = w.eplane + 4 * active_before(&w, f, c),
+                         *b = w.eplane + 4 * (w.drop[c] ? active_after(&w, f, c) : c);
             double xt[3], xb[3];
             const double dt = solve3(n, up - n[3], a, a[3], b, b[3], xt);
             const double db = solve3(n, down - n[3], a, a[3], b, b[3], xb);
             if (dt == 0.0 || db == 0.0) {
                 work_free(&w);
                 return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
+                                  r.n_dropped_edges ?
+                                  "face %d: the edges at vertex %d are collinear, or parallel "
+                                  "around an edge the gap dropped; remove the vertex or split "
+                                  "the face" :
                                   "face %d: the edges at vertex %d are collinear; remove the "
                                   "vertex or split the face",
                                   (int)f, (int)m->face_vertices[c]);
@@ -474,31 +561,8 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                 if (out->bottom)
                     out->bottom[3 * c + k] = xb[k] * scale + centre[k];
             }
-        }
-        /* Every edge of the offset outlines must keep its direction: a gap
-         * or bevel wider than the panel turns an edge around. */
-        for (int64_t c = s; c < s + d; ++c) {
-            const int64_t cn = next_corner(m, f, c);
-            const double *p = w.xyz + 3 * m->face_vertices[c];
-            const double *q = w.xyz + 3 * m->face_vertices[cn];
-            const double *a = w.eplane + 4 * prev_corner(m, f, c), *b = w.eplane + 4 * c,
-                         *bb = w.eplane + 4 * cn;
-            for (int side = 0; side < 2; ++side) {
-                const double h = side ? down : up;
-                double x0[3], x1[3];
-                solve3(n, h - n[3], a, a[3], b, b[3], x0);
-                solve3(n, h - n[3], b, b[3], bb, bb[3], x1);
-                const double ed[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-                const double od[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
-                if (!(dot3(ed, od) > 1e-9 * dot3(ed, ed))) {
-                    work_free(&w);
-                    return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
-                                      "face %d: the %s outline loses its edge from vertex %d "
-                                      "(gap %.6g or bevel too large for the panel)",
-                                      (int)f, side ? "bottom" : "top",
-                                      (int)m->face_vertices[c], o->gap);
-                }
-            }
+            if (out->dropped)
+                out->dropped[c] = w.drop[c];
         }
         if (out->plane) {
             out->plane[4 * f + 0] = n[0];

@@ -44,6 +44,76 @@ static int cancel_now(void *user, int64_t done, int64_t total)
     return 1;
 }
 
+/* Distance of the point from the line through a and b (in the xy plane). */
+static double line_distance(const double *x, const double *a, const double *b)
+{
+    const double ux = b[0] - a[0], uy = b[1] - a[1], l = sqrt(ux * ux + uy * uy);
+    return fabs((x[0] - a[0]) * uy - (x[1] - a[1]) * ux) / l;
+}
+
+/* A gap that consumes a short edge: square edges drop it (the quad becomes a
+ * triangle panel whose corners lie half the gap inside the other three edge
+ * lines, the same point in both outlines); mitred edges, or drop_consumed 0,
+ * name it in an error; a gap that leaves fewer than three edges is an error. */
+static void consumed_edge(void)
+{
+    /* at georeferenced coordinates: the test is of the geometry, not of the
+     * coordinates' size */
+    const double ox = 2.5e6, oy = 1.2e6;
+    /* a sharp triangle with its tip cut off by an edge 0.2 long */
+    double q[12] = {0, 0, 0, 10, 0, 0, 5.1, 20, 0, 4.9, 20, 0};
+    for (int v = 0; v < 4; ++v)
+        q[3 * v] += ox, q[3 * v + 1] += oy;
+    int32_t qs[2] = {0, 4}, qf[4] = {0, 1, 2, 3};
+    facet_mesh qm = {4, 1, q, qs, qf};
+    double top[12], bottom[12];
+    int32_t dropped[4] = {-1, -1, -1, -1};
+    facet_panel_output out;
+    memset(&out, 0, sizeof out);
+    out.top = top, out.bottom = bottom, out.dropped = dropped;
+    facet_panel_options o;
+    facet_panel_options_default(&o);
+    CHECK(o.drop_consumed == 1);
+    o.thickness = 0.05;
+    o.gap = 0.4; /* the edge from vertex 2 (0.2 long) shrinks by 1.57 gap / 2 */
+    facet_panel_result r;
+    facet_error e;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_dropped_edges == 1);
+    CHECK(dropped[0] == 0 && dropped[1] == 0 && dropped[2] == 1 && dropped[3] == 0);
+    CHECK(memcmp(top + 6, top + 9, 3 * sizeof(double)) == 0);
+    CHECK(memcmp(bottom + 6, bottom + 9, 3 * sizeof(double)) == 0);
+    /* every corner half the gap inside the lines of the edges it joins
+     * (corner 2 = corner 3 joins edges 1 and 3); top above bottom by t */
+    const int before[4] = {3, 0, 1, 1}, after[4] = {0, 1, 3, 3};
+    for (int c = 0; c < 4; ++c) {
+        const int a = before[c], b = after[c];
+        CHECK_NEAR(line_distance(bottom + 3 * c, q + 3 * a, q + 3 * ((a + 1) % 4)), 0.2, 1e-7);
+        CHECK_NEAR(line_distance(bottom + 3 * c, q + 3 * b, q + 3 * ((b + 1) % 4)), 0.2, 1e-7);
+        CHECK_NEAR(top[3 * c + 2] - bottom[3 * c + 2], 0.05, 1e-9);
+        CHECK_NEAR(top[3 * c] - bottom[3 * c], 0.0, 1e-7);
+    }
+    /* just under the consuming gap the quad keeps its four edges */
+    o.gap = 0.2;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_dropped_edges == 0 && dropped[2] == 0);
+    CHECK(dist3(top + 6, top + 9) > 0.01);
+    /* asked not to drop, and with mitred edges: an error naming the edge */
+    o.gap = 0.4;
+    o.drop_consumed = 0;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
+    CHECK(strstr(e.message, "face 0") != NULL && strstr(e.message, "vertex 2, 0.2 long") != NULL);
+    o.drop_consumed = 1;
+    o.edge = FACET_PANEL_EDGE_BISECTOR;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
+    CHECK(strstr(e.message, "loses its edge from vertex 2") != NULL);
+    /* a gap as wide as the panel: fewer than three edges left */
+    o.edge = FACET_PANEL_EDGE_SQUARE;
+    o.gap = 12.0;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
+    CHECK(strstr(e.message, "fewer than three edges") != NULL);
+}
+
 int main(void)
 {
     const double R = 5000.0, da = 0.2, h = 800.0, t = 40.0;
@@ -56,7 +126,7 @@ int main(void)
     double top[3 * 4 * NU * NV], bottom[3 * 4 * NU * NV], plane[4 * NU * NV], frame[12 * NU * NV];
     double dih[4 * NU * NV], bev[4 * NU * NV], dev[(NU + 1) * (NV + 1)], pl[NU * NV];
     int32_t nbr[4 * NU * NV], rev[NU * NV], bad[NU * NV];
-    facet_panel_output out = {plane, top, bottom, frame, rev, nbr, dih, bev, dev, pl, bad};
+    facet_panel_output out = {plane, top, bottom, frame, rev, nbr, dih, bev, dev, pl, bad, NULL};
     facet_panel_options o;
     facet_panel_options_default(&o);
     o.thickness = t;
@@ -234,5 +304,6 @@ int main(void)
         CHECK_STATUS(facet_panels(&gm, &go, &none, &gr, &e), FACET_OK);
         CHECK(gr.max_node_deviation < 1e-12); /* a flat grid: every node is torsion-free */
     }
+    consumed_edge();
     return check_report("test_panel");
 }

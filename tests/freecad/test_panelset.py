@@ -70,6 +70,24 @@ class TestPanelSet(DocumentTestCase):
     def test_source_unchanged(self):
         np.testing.assert_array_equal(bits(points_array(self.source)), bits(self.mesh.vertices))
 
+    def test_an_edge_the_gap_consumes_is_dropped_and_reported(self):
+        # a sharp quad whose tip is cut off by an edge 200 long (mm): a 400 joint
+        # consumes it, so that panel is cut as a triangle and the object says so
+        xy = [(0, 0), (10, 0), (5.1, 20), (4.9, 20), (12, 24), (-2, 24)]
+        mesh = facet.PolyMesh.from_faces([(1000.0 * x, 1000.0 * y, 0.0) for x, y in xy],
+                                         [[0, 1, 2, 3], [3, 2, 4, 5]])
+        source = facetwb.make_polymesh(mesh, label="cut tip")
+        obj = facetwb.make_panelset(source, thickness=50.0, gap=400.0, name="CutTip")
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(sorted(len(s.Faces) for s in obj.Shape.Solids), [5, 6])
+        for solid in obj.Shape.Solids:
+            solid.check(True)
+        self.assertTrue(any("consumes 1 short edges" in w for w in obj.Warnings), obj.Warnings)
+        np.testing.assert_array_equal(bits(points_array(source)), bits(mesh.vertices))
+        self.doc.removeObject(obj.Name)
+        self.doc.removeObject(source.Name)
+
     def test_bad_thickness_marks_the_object_invalid(self):
         obj = facetwb.make_panelset(self.source, thickness=T, name="Bad")
         obj.Thickness = 0.0

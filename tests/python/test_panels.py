@@ -665,3 +665,79 @@ def test_panel_solids_check_convex_outlines_without_shapely(monkeypatch):
                         lambda *a, **k: calls.append(1) or polygon(*a, **k))
     assert len(step.panel_solids(ps)) == len(ps.panels)
     assert calls == []  # top and bottom found convex (and so simple) by their turns
+
+
+def _cut_tip_mesh(offset=(0.0, 0.0)):
+    """A sharp quad whose tip is cut off by an edge 0.2 long (face 0) and a
+    trapezoid above it on that edge (face 1); flat, in the xy plane."""
+    ox, oy = offset
+    xy = [(0, 0), (10, 0), (5.1, 20), (4.9, 20), (12, 24), (-2, 24)]
+    vertices = [(x + ox, y + oy, 0.0) for x, y in xy]
+    return facet.PolyMesh.from_faces(vertices, [[0, 1, 2, 3], [3, 2, 4, 5]])
+
+
+def _line_distance(x, a, b):
+    u = (b - a)[:2] / np.linalg.norm((b - a)[:2])
+    w = (x - a)[:2]
+    return abs(w[0] * u[1] - w[1] * u[0])
+
+
+@pytest.mark.parametrize("offset", [(0.0, 0.0), (2.5e6, 1.2e6)])
+def test_square_edges_drop_an_edge_the_gap_consumes(offset):
+    mesh = _cut_tip_mesh(offset)
+    before = mesh.vertices.copy()
+    # the tip's edge shrinks by 1.57 times half the gap: kept at 0.2, consumed at 0.4
+    kept = panels(mesh, 0.05, gap=0.2)
+    assert [len(p.top) for p in kept] == [4, 4] and not kept.warnings
+    assert [p.dropped_edges for p in kept] == [0, 0]
+    ps = panels(mesh, 0.05, gap=0.4)
+    a, b = ps.panels
+    assert (len(a.top), len(a.bottom), len(a.flat_bottom)) == (3, 3, 3)
+    assert a.dropped_edges == 1 and b.dropped_edges == 0 and len(b.top) == 4
+    assert len(a.edge_lengths) == len(a.bevel_deg) == len(a.neighbors) == 3
+    assert a.neighbors == [None, None, None]  # the edge to face 1 is gone
+    assert b.neighbors.count(0) == 1
+    assert any("consumes 1 short edges" in w for w in ps.warnings)
+    # every corner of the triangle lies half the gap inside the two mesh edges it joins
+    # (the tip's corner joins edges 1 and 3: vertex 1 to 2, vertex 3 to 0)
+    v = mesh.vertices
+    lines = {0: (v[0], v[1]), 1: (v[1], v[2]), 3: (v[3], v[0])}
+    for corner, (e, f) in zip(a.bottom, [(3, 0), (0, 1), (1, 3)]):
+        for edge in (e, f):
+            assert _line_distance(corner, *lines[edge]) == pytest.approx(0.2, abs=1e-6)
+    assert np.allclose(a.top - a.bottom, [0.0, 0.0, 0.05])
+    assert a.schedule_row()["dropped_edges"] == 1
+    assert np.array_equal(mesh.vertices, before)
+
+
+def test_mitred_edges_name_an_edge_the_gap_consumes():
+    with pytest.raises(PanelError, match=r"face 0: the (top|bottom) outline loses its edge "
+                                         r"from vertex 2, 0\.2 long") as info:
+        panels(_cut_tip_mesh(), 0.05, gap=0.4, edge="bisector")
+    assert info.value.faces == [0]
+    with pytest.raises(PanelError, match="fewer than three edges"):
+        panels(_cut_tip_mesh(), 0.05, gap=12.0)
+
+
+def test_a_panel_whose_edge_was_dropped_is_a_valid_solid_and_cut(tmp_path):
+    step = _freecad_step()
+    ps = panels(_cut_tip_mesh(), 0.05, gap=0.4)
+    solids = step.panel_solids(ps)
+    (_, tri), (_, quad) = solids
+    assert tri.isValid() and tri.Shells[0].isClosed() and len(tri.Faces) == 5
+    assert quad.isValid() and len(quad.Faces) == 6
+    assert tri.Volume == pytest.approx(ps.panels[0].volume, rel=1e-9)
+    # laid flat, nested and cut: the cut outline is the triangle
+    import ezdxf
+    from facet.cli_panels import run_pipeline
+
+    report, ps, drawings, result = run_pipeline(_cut_tip_mesh(), 0.05, gap=0.4,
+                                                sheet=(30.0, 30.0), dxf=str(tmp_path / "cut.dxf"),
+                                                schedule=str(tmp_path / "schedule.csv"))
+    doc = ezdxf.readfile(tmp_path / "cut.dxf")
+    assert not doc.audit().has_errors
+    cuts = doc.modelspace().query("LWPOLYLINE[layer=='CUT']")
+    assert sorted(len(c) for c in cuts) == [3, 4]
+    with open(tmp_path / "schedule.csv", newline="") as f:
+        rows = {r["id"]: r for r in csv.DictReader(f)}
+    assert sorted(r["dropped_edges"] for r in rows.values()) == ["0", "1"]

@@ -103,6 +103,10 @@ class Panel:
         (180 when flat; None on the boundary).
     neighbors : list of int or None
         Per edge, the face across it (None on the boundary).
+    dropped_edges : int
+        Edges of the face the joint gap consumed (square edges): the outline
+        drops them, so the panel has that many corners fewer than its face
+        (`vertices` keeps the last mesh vertex of each merged corner).
     """
 
     id: str
@@ -120,11 +124,12 @@ class Panel:
     dihedral_deg: list
     neighbors: list
     grid: tuple = None
+    dropped_edges: int = 0
     input_corners: int = None
 
     def __post_init__(self):
         if self.input_corners is None:
-            self.input_corners = len(self.vertices)
+            self.input_corners = len(self.vertices) + self.dropped_edges
 
     @property
     def corners(self):
@@ -135,7 +140,7 @@ class Panel:
     def vanished_edges(self):
         """How many of its face's edges vanished (their ends merged into one
         corner): a quad built as a triangle has 1."""
-        return int(self.input_corners) - len(self.vertices)
+        return int(self.input_corners) - len(self.vertices) - int(self.dropped_edges)
 
     @property
     def area(self):
@@ -226,6 +231,7 @@ class Panel:
             "edge_lengths": [float(x) for x in self.edge_lengths],
             "bevel_deg": [float(x) for x in self.bevel_deg],
             "dihedral_deg": [None if x is None else float(x) for x in self.dihedral_deg],
+            "dropped_edges": int(self.dropped_edges),
         }
 
 
@@ -717,6 +723,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         "node_deviation": np.empty(nv),
         "planarity": np.empty(nf),
         "nonplanar": np.full(nf, -1, dtype=np.int32),
+        "dropped": np.zeros(nc, dtype=np.int32),
     }
     xyz = np.ascontiguousarray(mesh.vertices, dtype=np.float64).reshape(-1)
     try:
@@ -767,6 +774,10 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     if rep_of is not None:
         # a merged vertex's node is its group's
         out["node_deviation"] = out["node_deviation"][rep_of]
+    if res["n_dropped_edges"]:
+        warnings.append(f"the joint gap consumes {res['n_dropped_edges']} short edges: "
+                        "dropped from their panels' outlines (those panels have fewer corners "
+                        "than their faces)")
 
     start = np.asarray(mesh.face_start)
     fv = np.asarray(mesh.face_vertices)
@@ -779,6 +790,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     nbr = out["neighbor"]
     dih = np.degrees(out["dihedral"])
     bev = np.degrees(out["bevel"])
+    dropped = out["dropped"]
 
     # the input's faces (a merged quad is still a quad of the grid)
     grid = grid_positions(input_mesh, rev) if ids in ("auto", "grid") else None
@@ -809,6 +821,11 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             corners = np.arange(s, e)
             edges = corners
         R, t = frames[f, :, :3], frames[f, :, 3]
+        gone = dropped[edges].astype(bool)
+        if gone.any():
+            # edge j dropped: corners j and j + 1 coincide, and corner j + 1
+            # (whose edge is j + 1) stays
+            corners, edges = corners[~gone], edges[~gone]
         tp, bt = top[corners], bottom[corners]
         ft = (tp @ R.T + t)[:, :2]
         fb = (bt @ R.T + t)[:, :2]
@@ -822,6 +839,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             neighbors=[None if n < 0 else int(n) for n in nb],
             grid=None if grid is None else tuple(int(x) for x in grid[2][f]),
             input_corners=int(input_mesh.face_start[f + 1] - input_mesh.face_start[f]),
+            dropped_edges=int(gone.sum()),
         ))
     worst = res["worst_node"]
     return PanelSet(
