@@ -681,15 +681,29 @@ const char *facet_lifter_message(const facet_lifter *lifter);
  * edge line moves g/2 into its panel, measured in the panel's plane.
  *
  * Consumed edges: the penalty method shrinks some edges to a few percent of
- * their length or to nothing (a skew quad made planar is often nearly a
- * triangle), and a gap then turns such an edge of the offset outline around.
- * With square edges the outlines are the face's outline offset in its plane,
- * and such an edge is dropped as a CAD offset drops it: its two corners
- * become the point where its neighbours' edge lines meet (the same point in
- * both outlines; dropped[k] = 1), the worst first until every kept edge
- * keeps its direction. A face left with fewer than three edges is an error.
- * With mitred edges (or drop_consumed 0) a consumed edge is an error naming
- * the face, the vertex and the edge's length.
+ * their length, and leaves some corners nearly straight (a vertex slid onto
+ * the line of its neighbours). A gap, or a bevel, then turns such an edge of
+ * an offset outline around: a short edge's outline vanishes, and two mitres
+ * of different angles meet far beyond a nearly straight corner. Such an
+ * edge is repaired (repair_consumed, the default):
+ *  - where it and the kept edges on either side of it are square, the
+ *    outlines there are the face's outline offset in its plane, and it is
+ *    dropped as a CAD offset drops it: its two corners become the point
+ *    where its neighbours' edge lines meet, the same point in both outlines
+ *    (dropped[k] = 1; a quad becomes a triangle panel). The worst first,
+ *    until every kept edge keeps its direction;
+ *  - where one of the three is mitred, those joints become butt joints:
+ *    cut square on this panel (squared[k] = 1, bevel 0) and on the
+ *    neighbour's side with the whole fold, on this panel's square plane
+ *    (squared = 2), so the joint stays a slot of constant width; the mitres
+ *    beside the edge first, then its own. The faces they touch are outlined
+ *    again. If the neighbour needs that joint square too, it is square on
+ *    both sides, which closes the joint on the fold's inner side: if the two
+ *    panels would then overlap, that is an error naming both faces and the
+ *    overlap (a larger gap or thinner panels).
+ * A face left with fewer than three edges is an error. With repair_consumed
+ * 0 a consumed edge is an error naming the face, the vertex and the edge's
+ * length.
  *
  * Angles (radians), per face corner k, for the edge from corner k to k+1:
  *  dihedral  angle between the two panels on their bottom (-n) side: pi
@@ -737,14 +751,14 @@ typedef struct facet_panel_options {
     int32_t flip;              /* nonzero: reverse every face's orientation */
     double planarity_tol_abs;  /* a face is planar when its vertices are within */
     double planarity_tol_rel;  /* max(tol_abs, tol_rel * mean edge) of its plane */
-    int32_t drop_consumed;     /* square edges: an edge the gap turns around is
-                                  dropped from the outlines (default 1); 0: an error */
+    int32_t repair_consumed;   /* an edge the gap or bevel turns around is dropped,
+                                  its mitres cut square first (default 1); 0: an error */
     facet_count_progress_fn progress; /* may be NULL */
     void *progress_user;
 } facet_panel_options;
 
 /* thickness 1, outer, gap 0, square, no flip, tol_abs 0, tol_rel 1e-6,
- * drop_consumed 1. */
+ * repair_consumed 1. */
 void facet_panel_options_default(facet_panel_options *options);
 
 /* Caller-allocated outputs; any pointer may be NULL. nc = face_start[n_faces]
@@ -763,6 +777,10 @@ typedef struct facet_panel_output {
     int32_t *nonplanar;     /* n_faces: indices of the faces above tolerance */
     int32_t *dropped;       /* nc: 1 when the outlines drop edge k (corners k and
                                k+1 then coincide in both), else 0 */
+    int32_t *squared;       /* nc: 1 when edge k is cut square because a mitre
+                               could not be cut, 2 when it is the other half of
+                               such a butt joint (cut with the whole fold), else
+                               0 (see Consumed edges) */
 } facet_panel_output;
 
 typedef struct facet_panel_result {
@@ -773,7 +791,9 @@ typedef struct facet_panel_result {
     int64_t worst_node;           /* vertex of max_node_deviation, or -1 */
     double max_node_deviation;    /* radians */
     double max_planarity;         /* model units */
-    int64_t n_dropped_edges;      /* edges the gap consumed, dropped (square edges) */
+    int64_t n_dropped_edges;      /* face edges the gap consumed, dropped */
+    int64_t n_squared_edges;      /* face edges cut square where a mitre could not be */
+    int64_t n_butt_edges;         /* their neighbours' edges, cut with the whole fold */
     double seconds;
 } facet_panel_result;
 

@@ -36,15 +36,15 @@ static int count_progress(void *user, int64_t done, int64_t total)
     return cancel;
 }
 
-enum { N_OUT = 12 };
+enum { N_OUT = 13 };
 
 static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
 {
     static char *keywords[] = {"xyz", "face_start", "face_vertices", "thickness", "offset",
                                "gap", "edge", "flip", "tol_abs", "tol_rel", "plane", "top",
                                "bottom", "frame", "reversed", "neighbor", "dihedral", "bevel",
-                               "node_deviation", "planarity", "nonplanar", "dropped", "progress",
-                               "drop_consumed", NULL};
+                               "node_deviation", "planarity", "nonplanar", "dropped", "squared", "progress",
+                               "repair_consumed", NULL};
     PyObject *xyz, *start, *faces, *progress = Py_None;
     PyObject *outs[N_OUT];
     for (int k = 0; k < N_OUT; ++k)
@@ -54,10 +54,11 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     const char *offset = "outer", *edge = "square";
     int flip = 0, drop = 1;
     if (!PyArg_ParseTupleAndKeywords(
-            args, kwargs, "OOO|$dsdspddOOOOOOOOOOOOOp:panels", keywords, &xyz, &start, &faces,
+            args, kwargs, "OOO|$dsdspddOOOOOOOOOOOOOOp:panels", keywords, &xyz, &start, &faces,
             &o.thickness, &offset, &o.gap, &edge, &flip, &o.planarity_tol_abs,
             &o.planarity_tol_rel, &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
-            &outs[6], &outs[7], &outs[8], &outs[9], &outs[10], &outs[11], &progress, &drop))
+            &outs[6], &outs[7], &outs[8], &outs[9], &outs[10], &outs[11], &outs[12], &progress,
+            &drop))
         return NULL;
     if (strcmp(offset, "outer") == 0)
         o.offset = FACET_PANEL_OFFSET_OUTER;
@@ -76,7 +77,7 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
         return PyErr_Format(PyExc_ValueError, "edge must be 'square' or 'bisector', not '%s'",
                             edge);
     o.flip = flip;
-    o.drop_consumed = drop;
+    o.repair_consumed = drop;
     if (progress != Py_None && !PyCallable_Check(progress)) {
         PyErr_SetString(PyExc_TypeError, "progress must be callable or None");
         return NULL;
@@ -88,10 +89,11 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     const Py_ssize_t nc = m.mesh.face_start[nf];
     static const char *names[N_OUT] = {"plane",    "top",      "bottom", "frame",
                                        "reversed", "neighbor", "dihedral", "bevel",
-                                       "node_deviation", "planarity", "nonplanar", "dropped"};
-    const char codes[N_OUT] = {'d', 'd', 'd', 'd', 'i', 'i', 'd', 'd', 'd', 'd', 'i', 'i'};
+                                       "node_deviation", "planarity", "nonplanar", "dropped",
+                                       "squared"};
+    const char codes[N_OUT] = {'d', 'd', 'd', 'd', 'i', 'i', 'd', 'd', 'd', 'd', 'i', 'i', 'i'};
     const Py_ssize_t sizes[N_OUT] = {4 * nf, 3 * nc, 3 * nc, 12 * nf, nf, nc,
-                                     nc,     nc,     nv,     nf,      nf, nc};
+                                     nc,     nc,     nv,     nf,      nf, nc, nc};
     Py_buffer views[N_OUT];
     void *ptrs[N_OUT];
     int got = 0;
@@ -106,7 +108,7 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     PyObject *ret = NULL;
     if (got == N_OUT) {
         facet_panel_output out = {ptrs[0], ptrs[1], ptrs[2], ptrs[3], ptrs[4], ptrs[5],
-                                  ptrs[6], ptrs[7], ptrs[8], ptrs[9], ptrs[10], ptrs[11]};
+                                  ptrs[6], ptrs[7], ptrs[8], ptrs[9], ptrs[10], ptrs[11], ptrs[12]};
         count_progress_state ps = {progress == Py_None ? NULL : progress, NULL, NULL, NULL};
         o.progress = count_progress;
         o.progress_user = &ps;
@@ -123,11 +125,12 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
             py_raise_status(py_state(module), status, &error);
         } else {
             ret = Py_BuildValue(
-                "{s:L,s:L,s:L,s:i,s:L,s:d,s:d,s:L,s:d,s:s}", "n_nonplanar", (long long)r.n_nonplanar,
+                "{s:L,s:L,s:L,s:i,s:L,s:d,s:d,s:L,s:L,s:L,s:d,s:s}", "n_nonplanar", (long long)r.n_nonplanar,
                 "n_non_manifold_edges", (long long)r.n_non_manifold_edges, "n_reversed",
                 (long long)r.n_reversed, "n_components", (int)r.n_components, "worst_node",
                 (long long)r.worst_node, "max_node_deviation", r.max_node_deviation,
                 "max_planarity", r.max_planarity, "n_dropped_edges", (long long)r.n_dropped_edges,
+                "n_squared_edges", (long long)r.n_squared_edges, "n_butt_edges", (long long)r.n_butt_edges,
                 "seconds", r.seconds, "warning",
                 status > 0 ? error.message : "");
         }
@@ -145,7 +148,7 @@ static PyMethodDef panel_methods[] = {
      "       edge='square', flip=False, tol_abs=0, tol_rel=1e-6, plane=None, top=None,\n"
      "       bottom=None, frame=None, reversed=None, neighbor=None, dihedral=None,\n"
      "       bevel=None, node_deviation=None, planarity=None, nonplanar=None,\n"
-     "       dropped=None, progress=None, drop_consumed=True) -> dict\n\n"
+     "       dropped=None, squared=None, progress=None, repair_consumed=True) -> dict\n\n"
      "Panel geometry (facet_panels) into the given writable buffers (float64 or int32,\n"
      "sizes as in facet.h). progress(done, total) returning True cancels."},
     {NULL, NULL, 0, NULL}};

@@ -40,7 +40,7 @@ void facet_panel_options_default(facet_panel_options *options)
     options->flip = 0;
     options->planarity_tol_abs = 0.0;
     options->planarity_tol_rel = 1e-6;
-    options->drop_consumed = 1;
+    options->repair_consumed = 1;
 }
 
 /* A half-edge keyed by its undirected edge, for grouping. */
@@ -70,6 +70,7 @@ typedef struct {
     double *eplane;       /* 4*nc: inward edge plane p.x = d (p unit) */
     double *fold;         /* nc: signed fold angle at the edge (>0 convex on top) */
     int8_t *drop;         /* nc: the outline drops edge k (the gap consumes it) */
+    int8_t *square;       /* nc: how edge k is cut: CUT_MITRE, CUT_SQUARE, ... */
 } work;
 
 static void work_free(work *w)
@@ -83,6 +84,18 @@ static void work_free(work *w)
     free(w->eplane);
     free(w->fold);
     free(w->drop);
+    free(w->square);
+}
+
+/* How an edge is cut (work.square): on the bisector plane; square to its
+ * panel (asked, a boundary or a flat joint); square because its mitre could
+ * not be cut; or on its neighbour's square plane (the other half of a butt
+ * joint whose neighbour is cut square: it takes the whole fold). */
+enum { CUT_MITRE = 0, CUT_SQUARE = 1, CUT_SQUARED = 2, CUT_BUTT = 3 };
+
+static int is_square(int8_t cut)
+{
+    return cut == CUT_SQUARE || cut == CUT_SQUARED;
 }
 
 /* The next corner of a corner within its face, in input order. */
@@ -218,6 +231,129 @@ static double solve3(const double a[3], double da, const double b[3], double db,
     return det;
 }
 
+/* The plane of edge c (corner c to the next) of face f, its fold angle and
+ * its outputs: as w->square[c] says (square: perpendicular to the face; a
+ * mitre: the bisector of the two panels' planes; a butt: the neighbour's
+ * square plane), moved half the gap inwards. */
+static facet_status edge_plane(work *w, int32_t f, int64_t c, double half_gap, facet_panel_output *out,
+                               facet_error *error)
+{
+    const facet_mesh *m = w->mesh;
+    const double *nf_ = w->plane + 4 * f;
+    const double sg = w->sign[f];
+    const double *p = w->xyz + 3 * m->face_vertices[c];
+    const double *q = w->xyz + 3 * m->face_vertices[next_corner(m, f, c)];
+    /* Consistent direction of this edge: along the winding. */
+    double e[3] = {sg * (q[0] - p[0]), sg * (q[1] - p[1]), sg * (q[2] - p[2])};
+    /* Project onto the face's plane, then normalise. */
+    const double en = dot3(e, nf_);
+    for (int k = 0; k < 3; ++k)
+        e[k] -= en * nf_[k];
+    const double le = norm3(e);
+    if (!(le > 1e-14))
+        return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
+                          "face %d: edge from vertex %d has no length in the face's plane",
+                          (int)f, (int)m->face_vertices[c]);
+    for (int k = 0; k < 3; ++k)
+        e[k] /= le;
+    double mi[3]; /* inward in the face's plane */
+    cross3(nf_, e, mi);
+    double pl[3] = {mi[0], mi[1], mi[2]};
+    double fold = 0.0;
+    const int32_t h = w->nbr[c];
+    if (h >= 0) {
+        const double *nh = w->plane + 4 * h;
+        double x[3];
+        cross3(nf_, nh, x);
+        const double sn = norm3(x), cs = dot3(nf_, nh);
+        const double psi = atan2(sn, cs);
+        /* Convex on top (a ridge) when the neighbour's normal leans
+         * away from this face's interior. */
+        fold = dot3(nh, mi) < 0.0 ? psi : -psi;
+        if (psi > PI - 1e-6)
+            return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
+                              "faces %d and %d fold back onto each other at vertex %d",
+                              (int)f, (int)h, (int)m->face_vertices[c]);
+        if (w->square[c] == CUT_BUTT) {
+            /* the neighbour's square plane, facing this panel */
+            double eh[3] = {-e[0], -e[1], -e[2]}, mh[3];
+            const double ehn = dot3(eh, nh);
+            for (int k = 0; k < 3; ++k)
+                eh[k] -= ehn * nh[k];
+            const double lh = norm3(eh);
+            for (int k = 0; k < 3; ++k)
+                eh[k] /= lh;
+            cross3(nh, eh, mh);
+            pl[0] = -mh[0], pl[1] = -mh[1], pl[2] = -mh[2];
+        } else if (w->square[c] == CUT_MITRE && psi > 1e-12) {
+            double avg[3] = {nf_[0] + nh[0], nf_[1] + nh[1], nf_[2] + nh[2]};
+            double b[3];
+            cross3(e, avg, b);
+            const double lb = norm3(b);
+            for (int k = 0; k < 3; ++k)
+                b[k] /= lb;
+            if (dot3(b, mi) < 0.0)
+                for (int k = 0; k < 3; ++k)
+                    b[k] = -b[k];
+            pl[0] = b[0], pl[1] = b[1], pl[2] = b[2];
+        }
+    }
+    /* The edge line on the face's plane: p projected. */
+    const double pd = dot3(nf_, p) + nf_[3];
+    const double p0[3] = {p[0] - pd * nf_[0], p[1] - pd * nf_[1], p[2] - pd * nf_[2]};
+    w->eplane[4 * c + 0] = pl[0];
+    w->eplane[4 * c + 1] = pl[1];
+    w->eplane[4 * c + 2] = pl[2];
+    w->eplane[4 * c + 3] = dot3(pl, p0) + half_gap;
+    w->fold[c] = fold;
+    if (out->neighbor)
+        out->neighbor[c] = h;
+    if (out->dihedral)
+        out->dihedral[c] = h >= 0 ? PI - fold : 0.0;
+    if (out->bevel)
+        out->bevel[c] = atan2(dot3(pl, nf_), dot3(pl, mi));
+    return FACET_OK;
+}
+
+/* How deep the panels of edge c (face f) and of its twin overlap when both
+ * are cut on their edge planes, normalised units (0 when they do not): in the
+ * cross-section at the edge's midpoint, the deepest corner of one side face
+ * inside the other panel. A mitred joint never overlaps; a square one on a
+ * fold closes the joint on the fold's inner side. */
+static double joint_overlap(const work *w, int32_t f, int64_t c, double up, double down)
+{
+    const facet_mesh *m = w->mesh;
+    const int64_t t = w->nbr_corner[c];
+    if (t < 0)
+        return 0.0;
+    const int32_t h = w->corner_face[t];
+    const double *p = w->xyz + 3 * m->face_vertices[c];
+    const double *q = w->xyz + 3 * m->face_vertices[next_corner(m, f, c)];
+    double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    const double le = norm3(e);
+    if (!(le > 0.0))
+        return 0.0;
+    for (int k = 0; k < 3; ++k)
+        e[k] /= le;
+    const double mid = 0.5 * (dot3(e, p) + dot3(e, q));
+    const int32_t faces[2] = {f, h};
+    const int64_t corners[2] = {c, t};
+    double deepest = 0.0;
+    for (int i = 0; i < 2; ++i) {
+        const double *n = w->plane + 4 * faces[i], *side = w->eplane + 4 * corners[i];
+        const double *n2 = w->plane + 4 * faces[1 - i], *side2 = w->eplane + 4 * corners[1 - i];
+        for (int top = 0; top < 2; ++top) {
+            double x[3];
+            if (solve3(e, mid, side, side[3], n, (top ? up : down) - n[3], x) == 0.0)
+                continue;
+            const double height = dot3(n2, x) + n2[3];
+            const double depth = fmin(dot3(side2, x) - side2[3], fmin(height - down, up - height));
+            deepest = fmax(deepest, depth);
+        }
+    }
+    return deepest;
+}
+
 facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *options,
                           facet_panel_output *out, facet_panel_result *result,
                           facet_error *error)
@@ -270,8 +406,9 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
     w.eplane = malloc(4 * nc * sizeof *w.eplane);
     w.fold = malloc(nc * sizeof *w.fold);
     w.drop = malloc(nc * sizeof *w.drop);
+    w.square = malloc(nc * sizeof *w.square);
     if (!w.corner_face || !w.nbr || !w.nbr_corner || !w.sign || !w.xyz || !w.plane ||
-        !w.eplane || !w.fold || !w.drop) {
+        !w.eplane || !w.fold || !w.drop || !w.square) {
         work_free(&w);
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1,
                           "out of memory for %d faces", (int)nf);
@@ -393,73 +530,15 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
 
     /* Edge planes and fold angles, per input corner (edge corner -> next). */
     for (int32_t f = 0; f < nf; ++f) {
-        const double *nf_ = w.plane + 4 * f;
-        const double sg = w.sign[f];
         for (int64_t c = m->face_start[f]; c < m->face_start[f + 1]; ++c) {
-            const double *p = w.xyz + 3 * m->face_vertices[c];
-            const double *q = w.xyz + 3 * m->face_vertices[next_corner(m, f, c)];
-            /* Consistent direction of this edge: along the winding. */
-            double e[3] = {sg * (q[0] - p[0]), sg * (q[1] - p[1]), sg * (q[2] - p[2])};
-            /* Project onto the face's plane, then normalise. */
-            const double en = dot3(e, nf_);
-            for (int k = 0; k < 3; ++k)
-                e[k] -= en * nf_[k];
-            const double le = norm3(e);
-            if (!(le > 1e-14)) {
+            w.square[c] = o->edge == FACET_PANEL_EDGE_SQUARE || w.nbr[c] < 0 ? CUT_SQUARE : CUT_MITRE;
+            status = edge_plane(&w, f, c, half_gap, out, error);
+            if (status < 0) {
                 work_free(&w);
-                return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
-                                  "face %d: edge from vertex %d has no length in the face's plane",
-                                  (int)f, (int)m->face_vertices[c]);
+                return status;
             }
-            for (int k = 0; k < 3; ++k)
-                e[k] /= le;
-            double mi[3]; /* inward in the face's plane */
-            cross3(nf_, e, mi);
-            double pl[3] = {mi[0], mi[1], mi[2]};
-            double fold = 0.0;
-            const int32_t h = w.nbr[c];
-            if (h >= 0) {
-                const double *nh = w.plane + 4 * h;
-                double x[3];
-                cross3(nf_, nh, x);
-                const double sn = norm3(x), cs = dot3(nf_, nh);
-                const double psi = atan2(sn, cs);
-                /* Convex on top (a ridge) when the neighbour's normal leans
-                 * away from this face's interior. */
-                fold = dot3(nh, mi) < 0.0 ? psi : -psi;
-                if (psi > PI - 1e-6) {
-                    work_free(&w);
-                    return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
-                                      "faces %d and %d fold back onto each other at vertex %d",
-                                      (int)f, (int)h, (int)m->face_vertices[c]);
-                }
-                if (o->edge == FACET_PANEL_EDGE_BISECTOR && psi > 1e-12) {
-                    double avg[3] = {nf_[0] + nh[0], nf_[1] + nh[1], nf_[2] + nh[2]};
-                    double b[3];
-                    cross3(e, avg, b);
-                    const double lb = norm3(b);
-                    for (int k = 0; k < 3; ++k)
-                        b[k] /= lb;
-                    if (dot3(b, mi) < 0.0)
-                        for (int k = 0; k < 3; ++k)
-                            b[k] = -b[k];
-                    pl[0] = b[0], pl[1] = b[1], pl[2] = b[2];
-                }
-            }
-            /* The edge line on the face's plane: p projected. */
-            const double pd = dot3(nf_, p) + nf_[3];
-            const double p0[3] = {p[0] - pd * nf_[0], p[1] - pd * nf_[1], p[2] - pd * nf_[2]};
-            w.eplane[4 * c + 0] = pl[0];
-            w.eplane[4 * c + 1] = pl[1];
-            w.eplane[4 * c + 2] = pl[2];
-            w.eplane[4 * c + 3] = dot3(pl, p0) + half_gap;
-            w.fold[c] = fold;
-            if (out->neighbor)
-                out->neighbor[c] = h;
-            if (out->dihedral)
-                out->dihedral[c] = h >= 0 ? PI - fold : 0.0;
-            if (out->bevel)
-                out->bevel[c] = atan2(dot3(pl, nf_), dot3(pl, mi));
+            if (fabs(w.fold[c]) <= 1e-12) /* flat: the mitre is square */
+                w.square[c] = CUT_SQUARE;
         }
         if (o->progress && (f & 1023) == 1023 && o->progress(o->progress_user, f + 1, 2 * (int64_t)nf)) {
             work_free(&w);
@@ -477,17 +556,21 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
     /* Outlines: each corner is where the top (bottom) plane meets the planes
      * of the two edges at that corner. Every edge of the offset outlines must
      * keep its direction: a gap or bevel wider than the panel turns an edge
-     * around. With square edges the outlines are the face's outline offset
-     * in its plane (a mitred offset), and an edge the gap turns around is
-     * dropped, as a CAD offset drops it: its two corners become the one where
-     * its neighbours' edge lines meet, in both outlines (a quad becomes a
-     * triangle panel). Mitred edges tilt each side face by its own angle, so
-     * the two outlines would lose different edges: an error there. */
-    const int may_drop = o->edge == FACET_PANEL_EDGE_SQUARE && o->drop_consumed;
+     * around. Where the edge and the kept edges on either side of it are
+     * square, the outlines there are the face's outline offset in its plane
+     * (a mitred offset), and such an edge is dropped, as a CAD offset drops
+     * it: its two corners become the one where its neighbours' edge lines
+     * meet, in both outlines (a quad becomes a triangle panel). A mitred
+     * joint there cannot be cut (the mitre of a short edge, or two mitres of
+     * different angles meeting beyond a nearly straight corner): those three
+     * joints are cut square instead, on both panels, and the faces they touch
+     * are outlined again. With repair_consumed 0 either is an error. */
+    const int repair = o->repair_consumed != 0;
+    int32_t reported = 0; /* faces outlined, as progress told (a repair outlines some again) */
     for (int32_t f = 0; f < nf; ++f) {
         const double *n = w.plane + 4 * f;
         const int32_t s = m->face_start[f], d = m->face_start[f + 1] - s;
-        int32_t active = d;
+        int32_t active = d, again = -1;
         for (int64_t c = s; c < s + d; ++c)
             w.drop[c] = 0;
         for (;;) {
@@ -519,23 +602,60 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             }
             if (worst < 0)
                 break;
-            if (!may_drop || active <= 3) {
+            /* the mitres beside the edge first (theirs are what consume a
+             * short edge), then its own (a dropped edge's corners are the
+             * same in both outlines only when all three are square) */
+            int64_t around[2] = {active_before(&w, f, worst), active_after(&w, f, worst)};
+            if (is_square(w.square[around[0]]) && is_square(w.square[around[1]]))
+                around[0] = around[1] = worst;
+            if (repair && !(is_square(w.square[around[0]]) && is_square(w.square[around[1]]))) {
+                /* cut these joints square on this panel: butt joints, the
+                 * neighbour taking the whole fold (or, if it is square
+                 * already, square on both); outline again from the first
+                 * face they touch */
+                again = f;
+                for (int k = 0; k < 2; ++k) {
+                    const int64_t c = around[k], t = w.nbr_corner[c];
+                    if (is_square(w.square[c]))
+                        continue;
+                    w.square[c] = CUT_SQUARED;
+                    status = edge_plane(&w, f, c, half_gap, out, error);
+                    if (status < 0) {
+                        work_free(&w);
+                        return status;
+                    }
+                    if (t >= 0 && w.square[t] == CUT_MITRE) {
+                        w.square[t] = CUT_BUTT;
+                        status = edge_plane(&w, w.corner_face[t], t, half_gap, out, error);
+                        if (status < 0) {
+                            work_free(&w);
+                            return status;
+                        }
+                        again = again < w.corner_face[t] ? again : w.corner_face[t];
+                    }
+                }
+                break;
+            }
+            if (!repair || active <= 3) {
                 work_free(&w);
-                if (may_drop)
+                if (repair)
                     return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[worst],
                                       "face %d: the gap %.6g leaves fewer than three edges of its "
                                       "outline (the edge from vertex %d is %.6g long)",
                                       (int)f, o->gap, (int)m->face_vertices[worst], worst_length);
                 return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[worst],
                                   "face %d: the %s outline loses its edge from vertex %d, %.6g "
-                                  "long (gap %.6g or bevel too large for the panel: square edges "
-                                  "drop such an edge; or collapse short edges first)",
+                                  "long (gap %.6g or bevel too large for the panel; or collapse "
+                                  "short edges first)",
                                   (int)f, worst_side ? "bottom" : "top",
                                   (int)m->face_vertices[worst], worst_length, o->gap);
             }
             w.drop[worst] = 1;
             --active;
-            ++r.n_dropped_edges;
+        }
+        if (again >= 0) {
+            f = again - 1; /* (the loop's ++f) */
+            continue;
         }
         for (int64_t c = s; c < s + d; ++c) {
             /* the edges before and after the corner that are kept */
@@ -547,10 +667,6 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             if (dt == 0.0 || db == 0.0) {
                 work_free(&w);
                 return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
-                                  r.n_dropped_edges ?
-                                  "face %d: the edges at vertex %d are collinear, or parallel "
-                                  "around an edge the gap dropped; remove the vertex or split "
-                                  "the face" :
                                   "face %d: the edges at vertex %d are collinear; remove the "
                                   "vertex or split the face",
                                   (int)f, (int)m->face_vertices[c]);
@@ -596,12 +712,36 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                 F[9 + i] = -org;
             }
         }
-        if (o->progress && (f & 1023) == 1023 &&
-            o->progress(o->progress_user, nf + f + 1, 2 * (int64_t)nf)) {
+        if (o->progress && (f & 1023) == 1023 && f + 1 > reported &&
+            o->progress(o->progress_user, nf + (reported = f + 1), 2 * (int64_t)nf)) {
             work_free(&w);
             return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
         }
     }
+    /* what the repairs did; a joint cut square must not close on its panels */
+    for (int32_t f = 0; f < nf; ++f)
+        for (int64_t c = m->face_start[f]; c < m->face_start[f + 1]; ++c) {
+            r.n_dropped_edges += w.drop[c];
+            r.n_squared_edges += w.square[c] == CUT_SQUARED;
+            r.n_butt_edges += w.square[c] == CUT_BUTT;
+            if (out->squared)
+                out->squared[c] = w.square[c] == CUT_SQUARED ? 1 : w.square[c] == CUT_BUTT ? 2 : 0;
+            const int64_t t = w.nbr_corner[c];
+            if (t > c && (w.square[c] == CUT_SQUARED || w.square[t] == CUT_SQUARED)) {
+                const double depth = joint_overlap(&w, f, c, up, down);
+                if (depth > 1e-9) {
+                    work_free(&w);
+                    return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
+                                      "faces %d and %d: their mitre at the edge from vertex %d "
+                                      "cannot be cut (it would consume a short edge or meet "
+                                      "beyond a nearly straight corner), and cut square the "
+                                      "panels overlap by %.3g there: use a larger gap or "
+                                      "thinner panels, or collapse short edges first",
+                                      (int)f, (int)w.corner_face[t], (int)m->face_vertices[c],
+                                      depth * scale);
+                }
+            }
+        }
 
     /* Node deviation from the bisector planes (the mesh's own property,
      * whatever the edge mode): each undirected edge once. */

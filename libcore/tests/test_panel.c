@@ -53,7 +53,7 @@ static double line_distance(const double *x, const double *a, const double *b)
 
 /* A gap that consumes a short edge: square edges drop it (the quad becomes a
  * triangle panel whose corners lie half the gap inside the other three edge
- * lines, the same point in both outlines); mitred edges, or drop_consumed 0,
+ * lines, the same point in both outlines); mitred edges, or repair_consumed 0,
  * name it in an error; a gap that leaves fewer than three edges is an error. */
 static void consumed_edge(void)
 {
@@ -73,7 +73,7 @@ static void consumed_edge(void)
     out.top = top, out.bottom = bottom, out.dropped = dropped;
     facet_panel_options o;
     facet_panel_options_default(&o);
-    CHECK(o.drop_consumed == 1);
+    CHECK(o.repair_consumed == 1);
     o.thickness = 0.05;
     o.gap = 0.4; /* the edge from vertex 2 (0.2 long) shrinks by 1.57 gap / 2 */
     facet_panel_result r;
@@ -98,20 +98,127 @@ static void consumed_edge(void)
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
     CHECK(r.n_dropped_edges == 0 && dropped[2] == 0);
     CHECK(dist3(top + 6, top + 9) > 0.01);
-    /* asked not to drop, and with mitred edges: an error naming the edge */
+    /* asked not to repair: an error naming the edge */
     o.gap = 0.4;
-    o.drop_consumed = 0;
+    o.repair_consumed = 0;
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
     CHECK(strstr(e.message, "face 0") != NULL && strstr(e.message, "vertex 2, 0.2 long") != NULL);
-    o.drop_consumed = 1;
+    o.repair_consumed = 1;
+    /* mitred: a lone face's edges are boundary edges, square, so it is dropped too */
     o.edge = FACET_PANEL_EDGE_BISECTOR;
-    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
-    CHECK(strstr(e.message, "loses its edge from vertex 2") != NULL);
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_dropped_edges == 1 && r.n_squared_edges == 0 && dropped[2] == 1);
     /* a gap as wide as the panel: fewer than three edges left */
     o.edge = FACET_PANEL_EDGE_SQUARE;
     o.gap = 12.0;
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
     CHECK(strstr(e.message, "fewer than three edges") != NULL);
+}
+
+/* p rotated by angle about the line through a and b. */
+static void rotate_about(double p[3], const double a[3], const double b[3], double angle)
+{
+    double k[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+    const double lk = sqrt(k[0] * k[0] + k[1] * k[1] + k[2] * k[2]);
+    for (int i = 0; i < 3; ++i)
+        k[i] /= lk;
+    const double kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+    const double kxv[3] = {k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]};
+    for (int i = 0; i < 3; ++i)
+        p[i] = a[i] + v[i] * cos(angle) + kxv[i] * sin(angle) + k[i] * kv * (1.0 - cos(angle));
+}
+
+/* A mitre that cannot be cut: the cut-tip quad (face 0) with a quad on each
+ * long side (faces 1 and 2), both folded up by 30 degrees (valleys). Thick
+ * panels' top outline loses the short tip edge to the long sides' 15-degree
+ * mitres: those joints become butt joints, square on face 0 and cut with the
+ * whole fold on faces 1 and 2, and the quad keeps its four corners. */
+static void squared_mitre(void)
+{
+    const double fold = 30.0 * PI / 180.0;
+    double q[30] = {0, 0, 0, 10, 0, 0, 5.1, 20, 0, 4.9, 20, 0,
+                    15, 0, 0, 10.1, 20, 0,      /* 4, 5: beyond the edge from 1 to 2 */
+                    -0.1, 20, 0, -5, 0, 0};     /* 6, 7: beyond the edge from 3 to 0 */
+    /* the side quads fold up about their edges with face 0 */
+    for (int v = 4; v <= 5; ++v)
+        rotate_about(q + 3 * v, q + 3, q + 6, -fold);
+    for (int v = 6; v <= 7; ++v)
+        rotate_about(q + 3 * v, q + 0, q + 9, fold);
+    CHECK(q[3 * 4 + 2] > 0.5 && q[3 * 6 + 2] > 0.5);
+    int32_t qs[4] = {0, 4, 8, 12}, qf[12] = {0, 1, 2, 3, 2, 1, 4, 5, 0, 3, 6, 7};
+    facet_mesh qm = {8, 3, q, qs, qf};
+    double top[36], bottom[36], bevel[12];
+    int32_t dropped[12], squared[12];
+    facet_panel_output out;
+    memset(&out, 0, sizeof out);
+    out.top = top, out.bottom = bottom, out.bevel = bevel, out.dropped = dropped, out.squared = squared;
+    facet_panel_options o;
+    facet_panel_options_default(&o);
+    o.edge = FACET_PANEL_EDGE_BISECTOR;
+    o.gap = 0.2;
+    facet_panel_result r;
+    facet_error e;
+    /* thin panels: the mitres are cut, at half the fold */
+    o.thickness = 0.01;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_squared_edges == 0 && r.n_dropped_edges == 0);
+    const int joints[4] = {1, 3, 4, 8}; /* face 0's long sides, and the same edges in faces 1, 2 */
+    for (int k = 0; k < 4; ++k)
+        CHECK_NEAR(fabs(bevel[joints[k]]), 0.5 * fold, 1e-9);
+    /* thick: the top outline would lose the tip's edge (shrunk by 1.57 x
+     * (0.1 + 0.2 tan 15)); cut square it shrinks by 1.57 x 0.1 and stays */
+    o.thickness = 0.2;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_squared_edges == 2 && r.n_butt_edges == 2 && r.n_dropped_edges == 0);
+    for (int c = 0; c < 12; ++c) {
+        const int square = c == 1 || c == 3, butt = c == 4 || c == 8;
+        CHECK(squared[c] == (square ? 1 : butt ? 2 : 0) && dropped[c] == 0);
+        if (square)
+            CHECK_NEAR(bevel[c], 0.0, 1e-12);
+        if (butt)
+            CHECK_NEAR(fabs(bevel[c]), fold, 1e-9);
+    }
+    CHECK(dist3(top + 6, top + 9) > 0.01 && dist3(bottom + 6, bottom + 9) > 0.01);
+    o.repair_consumed = 0;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
+    CHECK(strstr(e.message, "face 0: the top outline loses its edge from vertex 2") != NULL);
+    o.repair_consumed = 1;
+    /* a butt joint keeps the gap, however thick the panels */
+    o.thickness = 0.5;
+    o.gap = 0.02;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_squared_edges == 2 && r.n_butt_edges == 2);
+}
+
+/* Two cut-tip quads on either side of a long edge, folded by 30 degrees (a
+ * valley): the mitre consumes both tips, so the joint must be square on both
+ * panels, and with thick panels and a thin gap they would overlap: an error
+ * naming both faces. */
+static void square_joint_overlap(void)
+{
+    const double fold = 30.0 * PI / 180.0;
+    double q[18] = {0, 0, 0, 10, 0, 0, 5.1, 20, 0, 4.9, 20, 0, 15, 0, 0, 5.3, 20, 0};
+    for (int v = 4; v <= 5; ++v)
+        rotate_about(q + 3 * v, q + 3, q + 6, -fold);
+    int32_t qs[3] = {0, 4, 8}, qf[8] = {0, 1, 2, 3, 2, 1, 4, 5};
+    facet_mesh qm = {6, 2, q, qs, qf};
+    int32_t squared[8];
+    facet_panel_output out;
+    memset(&out, 0, sizeof out);
+    out.squared = squared;
+    facet_panel_options o;
+    facet_panel_options_default(&o);
+    o.edge = FACET_PANEL_EDGE_BISECTOR;
+    o.thickness = 1.0;
+    o.gap = 0.02;
+    facet_panel_result r;
+    facet_error e;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
+    CHECK(strstr(e.message, "faces 0 and 1") != NULL && strstr(e.message, "overlap by") != NULL);
+    /* a gap wider than the fold closes: square on both, and cut */
+    o.gap = 0.8;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(squared[1] == 1 && squared[4] == 1);
 }
 
 int main(void)
@@ -126,7 +233,7 @@ int main(void)
     double top[3 * 4 * NU * NV], bottom[3 * 4 * NU * NV], plane[4 * NU * NV], frame[12 * NU * NV];
     double dih[4 * NU * NV], bev[4 * NU * NV], dev[(NU + 1) * (NV + 1)], pl[NU * NV];
     int32_t nbr[4 * NU * NV], rev[NU * NV], bad[NU * NV];
-    facet_panel_output out = {plane, top, bottom, frame, rev, nbr, dih, bev, dev, pl, bad, NULL};
+    facet_panel_output out = {plane, top, bottom, frame, rev, nbr, dih, bev, dev, pl, bad, NULL, NULL};
     facet_panel_options o;
     facet_panel_options_default(&o);
     o.thickness = t;
@@ -305,5 +412,7 @@ int main(void)
         CHECK(gr.max_node_deviation < 1e-12); /* a flat grid: every node is torsion-free */
     }
     consumed_edge();
+    squared_mitre();
+    square_joint_overlap();
     return check_report("test_panel");
 }

@@ -83,8 +83,33 @@ class TestPanelSet(DocumentTestCase):
         self.assertEqual(sorted(len(s.Faces) for s in obj.Shape.Solids), [5, 6])
         for solid in obj.Shape.Solids:
             solid.check(True)
-        self.assertTrue(any("consumes 1 short edges" in w for w in obj.Warnings), obj.Warnings)
+        self.assertTrue(any(w.startswith("1 short edges that the joint gap or a bevel consumes "
+                                         "dropped from the outlines of 1 panel")
+                            for w in obj.Warnings), obj.Warnings)
         np.testing.assert_array_equal(bits(points_array(source)), bits(mesh.vertices))
+        self.doc.removeObject(obj.Name)
+        self.doc.removeObject(source.Name)
+
+    def test_a_mitre_that_cannot_be_cut_becomes_a_butt_joint(self):
+        # sys.path has tests/python: the folded cut-tip mesh of the Python tests, in mm
+        from test_panels import _folded_tip_mesh
+
+        mesh = _folded_tip_mesh()
+        mesh = facet.PolyMesh(mesh.vertices * 1000.0, mesh.face_start, mesh.face_vertices)
+        source = facetwb.make_polymesh(mesh, label="folded tip")
+        obj = facetwb.make_panelset(source, thickness=200.0, gap=200.0, edge="bisector",
+                                    name="FoldedTip")
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        solids = obj.Shape.Solids
+        self.assertEqual(len(solids), 3)
+        for solid in solids:
+            solid.check(True)
+        for other in solids[1:]:  # the butt joints keep their gap: no overlap
+            self.assertLess(abs(solids[0].common(other).Volume), 1e-6 * solids[0].Volume)
+            self.assertAlmostEqual(solids[0].distToShape(other)[0], 200.0, places=6)
+        self.assertTrue(any("mitred joints cut as butt joints" in w for w in obj.Warnings),
+                        obj.Warnings)
         self.doc.removeObject(obj.Name)
         self.doc.removeObject(source.Name)
 
@@ -275,8 +300,8 @@ class TestPanelSetVanishedEdge(DocumentTestCase):
         obj.MinEdge = 0.0
         self.doc.recompute()
         self.assertFalse(obj.isValid())
-        self.assertIn("face 1", obj.getStatusString() + "".join(
-            str(m) for m in getattr(obj, "Warnings", [])))
+        self.assertRegex(obj.getStatusString() + "".join(
+            str(m) for m in getattr(obj, "Warnings", [])), r"faces? 1\b")
         obj.MinEdge = 0.01
         self.doc.recompute()
         self.assertTrue(obj.isValid(), obj.getStatusString())

@@ -697,7 +697,8 @@ def test_square_edges_drop_an_edge_the_gap_consumes(offset):
     assert len(a.edge_lengths) == len(a.bevel_deg) == len(a.neighbors) == 3
     assert a.neighbors == [None, None, None]  # the edge to face 1 is gone
     assert b.neighbors.count(0) == 1
-    assert any("consumes 1 short edges" in w for w in ps.warnings)
+    assert any(w.startswith("1 short edges that the joint gap or a bevel consumes dropped "
+                            "from the outlines of 1 panel: P-") for w in ps.warnings)
     # every corner of the triangle lies half the gap inside the two mesh edges it joins
     # (the tip's corner joins edges 1 and 3: vertex 1 to 2, vertex 3 to 0)
     v = mesh.vertices
@@ -710,13 +711,69 @@ def test_square_edges_drop_an_edge_the_gap_consumes(offset):
     assert np.array_equal(mesh.vertices, before)
 
 
-def test_mitred_edges_name_an_edge_the_gap_consumes():
+def test_flat_mitres_are_square_and_drop_too_and_a_gap_wider_than_the_panel_is_an_error():
+    ps = panels(_cut_tip_mesh(), 0.05, gap=0.4, edge="bisector")
+    assert [p.dropped_edges for p in ps] == [1, 0] and [p.squared_edges for p in ps] == [0, 0]
     with pytest.raises(PanelError, match=r"face 0: the (top|bottom) outline loses its edge "
                                          r"from vertex 2, 0\.2 long") as info:
-        panels(_cut_tip_mesh(), 0.05, gap=0.4, edge="bisector")
+        panels(_cut_tip_mesh(), 0.05, gap=0.4, edge="bisector", repair=False)
     assert info.value.faces == [0]
     with pytest.raises(PanelError, match="fewer than three edges"):
         panels(_cut_tip_mesh(), 0.05, gap=12.0)
+
+
+def _rotate_about(points, a, b, angle):
+    k = (b - a) / np.linalg.norm(b - a)
+    v = points - a
+    return (a + v * math.cos(angle) + np.cross(k, v) * math.sin(angle)
+            + np.outer(v @ k, k) * (1.0 - math.cos(angle)))
+
+
+def _folded_tip_mesh(fold_deg=30.0):
+    """The cut-tip quad (face 0) with a quad on each long side (faces 1, 2),
+    both folded up by fold_deg about their shared edges (valleys)."""
+    q = np.array([(0, 0, 0), (10, 0, 0), (5.1, 20, 0), (4.9, 20, 0), (15, 0, 0), (10.1, 20, 0),
+                  (-0.1, 20, 0), (-5, 0, 0)], dtype=float)
+    fold = math.radians(fold_deg)
+    q[4:6] = _rotate_about(q[4:6], q[1], q[2], -fold)
+    q[6:8] = _rotate_about(q[6:8], q[0], q[3], fold)
+    return facet.PolyMesh.from_faces(q, [[0, 1, 2, 3], [2, 1, 4, 5], [0, 3, 6, 7]])
+
+
+def test_a_mitre_that_cannot_be_cut_becomes_a_butt_joint():
+    mesh = _folded_tip_mesh()
+    thin = panels(mesh, 0.01, gap=0.2, edge="bisector")
+    assert [p.squared_edges for p in thin] == [0, 0, 0]
+    assert sorted(round(abs(b), 9) for b in thin.panels[0].bevel_deg) == [0, 0, 15, 15]
+    # thick: the long sides' mitres would consume the tip's edge at the top; they
+    # become butt joints, square on face 0, the whole 30-degree fold on faces 1, 2
+    ps = panels(mesh, 0.2, gap=0.2, edge="bisector")
+    assert [p.squared_edges for p in ps] == [2, 0, 0]
+    assert [p.butt_edges for p in ps] == [0, 1, 1]
+    assert [len(p.top) for p in ps] == [4, 4, 4]
+    assert np.allclose(ps.panels[0].bevel_deg, 0.0, atol=1e-9)
+    assert sorted(round(abs(b), 6) for b in ps.panels[1].bevel_deg) == [0, 0, 0, 30]
+    assert any(w.startswith("2 mitred joints cut as butt joints") and "on 1 panel: P-" in w
+               for w in ps.warnings)
+    row = ps.panels[1].schedule_row()
+    assert (row["squared_edges"], row["butt_edges"]) == (0, 1)
+    # the joint is a slot of constant width: each side face lies half the gap
+    # off the plane through the edge square to face 0
+    a, b = ps.panels[0], ps.panels[1]
+    v = mesh.vertices
+    e = (v[2] - v[1]) / np.linalg.norm(v[2] - v[1])
+    inward = np.cross(a.normal, e)  # into face 0 (counter-clockwise)
+    for panel, side in ((a, 0.1), (b, -0.1)):
+        at_joint = np.isin(panel.vertices, [1, 2])  # the corners at the joint's ends
+        for ring in (panel.top, panel.bottom):
+            assert np.allclose((ring[at_joint] - v[1]) @ inward, side)
+    step = _freecad_step()
+    solids = step.panel_solids(ps)
+    for _, solid in solids:
+        assert solid.isValid() and solid.Shells[0].isClosed()
+    assert solids[0][1].common(solids[1][1]).Volume < 1e-9
+    with pytest.raises(PanelError, match="face 0: the top outline loses its edge from vertex 2"):
+        panels(mesh, 0.2, gap=0.2, edge="bisector", repair=False)
 
 
 def test_a_panel_whose_edge_was_dropped_is_a_valid_solid_and_cut(tmp_path):

@@ -104,9 +104,16 @@ class Panel:
     neighbors : list of int or None
         Per edge, the face across it (None on the boundary).
     dropped_edges : int
-        Edges of the face the joint gap consumed (square edges): the outline
-        drops them, so the panel has that many corners fewer than its face
-        (`vertices` keeps the last mesh vertex of each merged corner).
+        Edges of the face that the joint gap (or a bevel) consumed: the
+        outline drops them, so the panel has that many corners fewer than its
+        face (`vertices` keeps the last mesh vertex of each merged corner).
+    squared_edges : int
+        Mitred edges cut square instead, because their mitre would consume a
+        short edge or meet beyond a nearly straight corner (bevel 0): butt
+        joints, whose other half is the neighbour's...
+    butt_edges : int
+        ... edge cut on this panel's square plane, with the whole fold (the
+        joint stays a slot of constant width).
     """
 
     id: str
@@ -125,6 +132,8 @@ class Panel:
     neighbors: list
     grid: tuple = None
     dropped_edges: int = 0
+    squared_edges: int = 0
+    butt_edges: int = 0
     input_corners: int = None
 
     def __post_init__(self):
@@ -232,6 +241,8 @@ class Panel:
             "bevel_deg": [float(x) for x in self.bevel_deg],
             "dihedral_deg": [None if x is None else float(x) for x in self.dihedral_deg],
             "dropped_edges": int(self.dropped_edges),
+            "squared_edges": int(self.squared_edges),
+            "butt_edges": int(self.butt_edges),
         }
 
 
@@ -619,7 +630,7 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
 
 def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, ids="auto",
            prefix="P-", tol=1e-6, tol_abs=0.0, min_edge=DEFAULT_MIN_EDGE, min_edge_abs=0.0,
-           progress=None):
+           repair=True, progress=None):
     """Make the panels of a planar mesh.
 
     Parameters
@@ -667,6 +678,16 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         is too short for any solid is an error. 0 and 0 merge nothing.
         The panels' ``input_corners`` and the schedule's ``corners`` and
         ``input_corners`` tell which panels lost a corner.
+    repair : bool
+        Where the joint gap or a bevel turns an edge of a panel's outline
+        around (a short edge, or two mitres of different angles meeting far
+        beyond a nearly straight corner), repair it as a fabricator would:
+        mitred joints there are cut square on both panels, and an edge
+        still consumed is dropped from the outline as a CAD offset drops it
+        (the panel has a corner fewer). ``Panel.squared_edges``,
+        ``Panel.dropped_edges``, the schedule and a warning say where. A
+        square joint that would make its panels overlap is an error. False:
+        any such edge is an error.
     progress : callable, optional
         ``progress(done, total)``; returning True cancels (raises
         :class:`facet.Cancelled`).
@@ -724,12 +745,13 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         "planarity": np.empty(nf),
         "nonplanar": np.full(nf, -1, dtype=np.int32),
         "dropped": np.zeros(nc, dtype=np.int32),
+        "squared": np.zeros(nc, dtype=np.int32),
     }
     xyz = np.ascontiguousarray(mesh.vertices, dtype=np.float64).reshape(-1)
     try:
         res = _core.panels(xyz, mesh.face_start, mesh.face_vertices, thickness=thickness,
                            offset=offset, gap=gap, edge=edge, flip=bool(flip), tol_abs=tol_abs,
-                           tol_rel=tol, progress=progress, **out)
+                           tol_rel=tol, repair_consumed=bool(repair), progress=progress, **out)
     except _core.CoreError as exc:
         name = getattr(exc, "status_name", None)
         if name == "FACET_ERROR_CANCELLED" or isinstance(exc, _core.Cancelled):
@@ -774,10 +796,6 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     if rep_of is not None:
         # a merged vertex's node is its group's
         out["node_deviation"] = out["node_deviation"][rep_of]
-    if res["n_dropped_edges"]:
-        warnings.append(f"the joint gap consumes {res['n_dropped_edges']} short edges: "
-                        "dropped from their panels' outlines (those panels have fewer corners "
-                        "than their faces)")
 
     start = np.asarray(mesh.face_start)
     fv = np.asarray(mesh.face_vertices)
@@ -791,6 +809,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     dih = np.degrees(out["dihedral"])
     bev = np.degrees(out["bevel"])
     dropped = out["dropped"]
+    squared = out["squared"]
 
     # the input's faces (a merged quad is still a quad of the grid)
     grid = grid_positions(input_mesh, rev) if ids in ("auto", "grid") else None
@@ -840,12 +859,26 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             grid=None if grid is None else tuple(int(x) for x in grid[2][f]),
             input_corners=int(input_mesh.face_start[f + 1] - input_mesh.face_start[f]),
             dropped_edges=int(gone.sum()),
+            squared_edges=int(np.count_nonzero(squared[edges] == 1)),
+            butt_edges=int(np.count_nonzero(squared[edges] == 2)),
         ))
+    for what, attr, text in (
+            ("dropped", "dropped_edges", "short edges that the joint gap or a bevel consumes "
+             "dropped from the outlines of"),
+            ("squared", "squared_edges", "mitred joints cut as butt joints instead, square on "
+             "one panel and with the whole fold on the other (the mitre would consume a short "
+             "edge or meet beyond a nearly straight corner); square on")):
+        hit = [p.id for p in result if getattr(p, attr)]
+        if hit:
+            count = sum(getattr(p, attr) for p in result)
+            shown = ", ".join(hit[:5]) + (", ..." if len(hit) > 5 else "")
+            warnings.append(f"{count} {text} {len(hit)} panel{'s' * (len(hit) > 1)}: {shown}")
     worst = res["worst_node"]
     return PanelSet(
         panels=result,
         options={"thickness": thickness, "offset": offset, "gap": gap, "edge": edge,
-                 "flip": bool(flip), "tol": tol, "tol_abs": tol_abs, "ids": scheme,
+                 "flip": bool(flip), "tol": tol, "tol_abs": tol_abs, "repair": bool(repair),
+                 "ids": scheme,
                  "prefix": prefix, "min_edge": min_edge, "min_edge_abs": min_edge_abs},
         id_scheme=scheme,
         grid_shape=None if grid is None else (grid[0], grid[1]),
