@@ -730,6 +730,7 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             if (t > c && (w.square[c] == CUT_SQUARED || w.square[t] == CUT_SQUARED)) {
                 const double depth = joint_overlap(&w, f, c, up, down);
                 if (depth > 1e-9) {
+                    const int32_t other = w.corner_face[t];
                     work_free(&w);
                     return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
                                       "faces %d and %d: their mitre at the edge from vertex %d "
@@ -737,7 +738,7 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                                       "beyond a nearly straight corner), and cut square the "
                                       "panels overlap by %.3g there: use a larger gap or "
                                       "thinner panels, or collapse short edges first",
-                                      (int)f, (int)w.corner_face[t], (int)m->face_vertices[c],
+                                      (int)f, (int)other, (int)m->face_vertices[c],
                                       depth * scale);
                 }
             }
