@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import facet
+from facet.errors import Cancelled
 from facet.mesh import next_corners
 from facet.panels import DEFAULT_MIN_EDGE, PanelError, panels
 from panel_meshes import folded_grid
@@ -306,3 +307,20 @@ def test_planarized_hypar_panels_and_step():
     assert math.isclose(sum(s.Volume for _, s in solids), sum(p.volume for p in ps.panels),
                         rel_tol=1e-9)
 
+
+
+def test_merging_reports_progress_before_the_core_and_cancels():
+    # 1,200 faces: the core reports too (every 1,024 faces), after the one group merged
+    mesh = folded_grid(short=1e-6, nv=300)
+    calls = []
+    ps = panels(mesh, 18.0, progress=lambda done, total: calls.append((done, total)) and False)
+    assert len(ps.vanished_panels) == 2
+    total = 1 + 2 * mesh.n_faces
+    assert calls[0] == (0, total) and len(calls) > 1
+    assert all(t == total for _, t in calls)
+    assert [d for d, _ in calls] == sorted(d for d, _ in calls) and calls[-1][0] <= total
+    # cancelled at the merge's first report: before the core was called
+    seen = []
+    with pytest.raises(Cancelled):
+        panels(mesh, 18.0, progress=lambda done, total: seen.append(done) or True)
+    assert seen == [0]

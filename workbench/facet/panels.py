@@ -475,7 +475,14 @@ def _local_planarity(xyz, rings):
     return rep.max_abs, rep.mean_edge
 
 
-def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
+def _after(progress, first):
+    """The core's progress(done, total) after `first` units of merging."""
+    if progress is None or first == 0:
+        return progress
+    return lambda done, total: progress(first + done, first + total)
+
+
+def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source, progress=None):
     """Merge the two ends of every edge shorter than the limit into one corner.
 
     An edge is short when it is shorter than ``max(min_edge_abs, min_edge x
@@ -494,7 +501,7 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
 
     Returns
     -------
-    (PolyMesh, rep_of, vanished, kept) or None when no edge is short
+    (PolyMesh, rep_of, vanished, kept, n_groups) or None when no edge is short
         The merged mesh has the input's vertices (the merged ones no longer
         used) and its faces in the same order; ``rep_of`` maps every vertex to
         the one standing for it.
@@ -563,7 +570,12 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
 
     rep_of = np.arange(nv, dtype=np.int64)
     vanished, kept = [], []
-    for root in sorted(groups):
+    # this step's share of the progress: one unit per group, before the
+    # core's 2 per face (panels() adds the groups to the core's counts)
+    total = len(groups) + 2 * nf
+    for done, root in enumerate(sorted(groups)):
+        if progress is not None and done % 64 == 0 and progress(done, total):
+            raise Cancelled("panels cancelled")
         members = sorted(groups[root])
         keys = sorted(group_edges[root])
         faces = sorted({int(face[c]) for v in members for c in order[vstart[v]:vstart[v + 1]]})
@@ -618,14 +630,14 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source):
         rep_of[members] = root
         xyz[members] = point
     if not vanished:
-        return None, rep_of, vanished, kept
+        return None, rep_of, vanished, kept, len(groups)
     mapped = rep_of[fv]
     keep = mapped != mapped[nxt]
     new_degree = np.bincount(face[keep], minlength=nf)
     new_start = np.zeros(nf + 1, dtype=np.int64)
     np.cumsum(new_degree, out=new_start[1:])
     merged = PolyMesh(xyz, new_start, mapped[keep], info=mesh.info)
-    return merged, rep_of, vanished, kept
+    return merged, rep_of, vanished, kept, len(groups)
 
 
 def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, ids="auto",
@@ -724,10 +736,10 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     report = mesh.validate()
     _check_face_areas(mesh, source)
     input_mesh = mesh
-    merged = _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source)
-    rep_of, vanished, kept = None, [], []
+    merged = _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source, progress)
+    rep_of, vanished, kept, n_groups = None, [], [], 0
     if merged is not None:
-        merged_mesh, rep_of, vanished, kept = merged
+        merged_mesh, rep_of, vanished, kept, n_groups = merged
         if merged_mesh is not None:
             mesh = merged_mesh
     nf, nv = mesh.n_faces, mesh.n_vertices
@@ -751,7 +763,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     try:
         res = _core.panels(xyz, mesh.face_start, mesh.face_vertices, thickness=thickness,
                            offset=offset, gap=gap, edge=edge, flip=bool(flip), tol_abs=tol_abs,
-                           tol_rel=tol, repair_consumed=bool(repair), progress=progress, **out)
+                           tol_rel=tol, repair_consumed=bool(repair),
+                           progress=_after(progress, n_groups), **out)
     except _core.CoreError as exc:
         name = getattr(exc, "status_name", None)
         if name == "FACET_ERROR_CANCELLED" or isinstance(exc, _core.Cancelled):
