@@ -590,8 +590,11 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                 for (int side = 0; side < 2; ++side) {
                     const double h = side ? down : up;
                     double x0[3], x1[3];
-                    solve3(n, h - n[3], a, a[3], b, b[3], x0);
-                    solve3(n, h - n[3], b, b[3], bb, bb[3], x1);
+                    /* parallel planes: no corner, which the corners' pass
+                     * below reports (collinear edges) */
+                    if (solve3(n, h - n[3], a, a[3], b, b[3], x0) == 0.0 ||
+                        solve3(n, h - n[3], b, b[3], bb, bb[3], x1) == 0.0)
+                        continue;
                     const double od[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
                     const double ratio = dot3(ed, od) / dot3(ed, ed);
                     if (!(ratio > 1e-9) && (worst < 0 || !(ratio >= worst_ratio))) {
