@@ -73,17 +73,19 @@ static inline __attribute__((always_inline)) v4d v4_sqrt(v4d x)
 }
 
 #if FACET_HAVE_AVX2_CLONE
-/* Vectors of eight doubles, for the AVX-512 copy only. */
+/* Vectors of eight doubles, for the AVX-512 copy only: every helper carries
+ * its target (Clang refuses a 64-byte vector argument of a function without
+ * AVX-512, even one always inlined: make fuzz-build failed). */
 #include <immintrin.h>
 typedef double v8d __attribute__((vector_size(64)));
 typedef int64_t v8i __attribute__((vector_size(64)));
 
-static inline __attribute__((always_inline)) v8d v8_select(v8i mask, v8d yes, v8d no)
+static inline __attribute__((always_inline)) FACET_TARGET_AVX512 v8d v8_select(v8i mask, v8d yes, v8d no)
 {
     return (v8d)((mask & (v8i)yes) | (~mask & (v8i)no));
 }
 
-static inline __attribute__((always_inline)) v8d v8_abs(v8d x)
+static inline __attribute__((always_inline)) FACET_TARGET_AVX512 v8d v8_abs(v8d x)
 {
     const v8i magnitude = {INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX,
                            INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX};
@@ -97,7 +99,7 @@ static inline __attribute__((always_inline)) FACET_TARGET_AVX512 int v8_any(v8i 
     return _mm512_test_epi64_mask((__m512i)mask, (__m512i)mask) != 0;
 }
 
-static inline __attribute__((always_inline)) v8d v8_sqrt(v8d x)
+static inline __attribute__((always_inline)) FACET_TARGET_AVX512 v8d v8_sqrt(v8d x)
 {
     v8d r;
     for (int l = 0; l < 8; ++l)
