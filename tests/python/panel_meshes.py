@@ -55,3 +55,16 @@ def folded_grid(short=None, nv=2, step=1000.0):
                 y = short
             pts.append([i * step, y, FOLDS[i] * step])
     return PolyMesh.from_faces(np.array(pts), grid_faces(nu, nv))
+
+
+def freecad_step():
+    """facet.step with FreeCAD imported, or the test skipped when FreeCAD is missing."""
+    import pytest
+
+    import facet.step as step
+
+    try:
+        step.import_freecad()
+    except step.FreeCADMissing:
+        pytest.skip("FreeCAD is not installed")
+    return step

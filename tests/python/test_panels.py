@@ -16,7 +16,7 @@ import facet
 from facet.errors import Cancelled
 from facet.panels import PanelError, grid_positions, panels
 from facet.unfold import label_point, unfold
-from panel_meshes import cylinder, grid_faces, translational
+from panel_meshes import cylinder, freecad_step, translational
 
 
 def face_points(mesh, p):
@@ -463,18 +463,8 @@ def test_step_says_clearly_when_freecad_is_missing(monkeypatch):
     assert not isinstance(info.value, facet.InputError)  # exit 1 on the command line, not 2
 
 
-def _freecad_step():
-    import facet.step as step
-
-    try:
-        step.import_freecad()
-    except step.FreeCADMissing:
-        pytest.skip("FreeCAD is not installed")
-    return step
-
-
 def test_panel_solids_are_valid_closed_polyhedra_in_chunks(monkeypatch):
-    step = _freecad_step()
+    step = freecad_step()
     ps = panels(translational(nu=6, nv=5, step=400.0), 18.0, edge="bisector", gap=4)
     monkeypatch.setattr(step, "_SOLID_CHUNK", 7)  # 30 panels: 5 texts read
     seen = []
@@ -497,7 +487,7 @@ def test_panel_solids_are_valid_closed_polyhedra_in_chunks(monkeypatch):
 
 
 def test_panel_solids_of_reversed_rings_still_face_outwards():
-    step = _freecad_step()
+    step = freecad_step()
     ps = panels(translational(nu=3, nv=2, step=400.0), 18.0, edge="bisector", gap=4)
     p = ps.panels[0]
     a = step.panel_solid(p)
@@ -513,7 +503,7 @@ def test_panel_solids_of_reversed_rings_still_face_outwards():
     (lambda t, b: b.__setitem__(slice(None), t), "edge 8 of its solid has no length"),
 ])
 def test_panel_solids_refuse_outlines_that_bound_no_solid(spoil, message):
-    step = _freecad_step()
+    step = freecad_step()
     ps = panels(translational(nu=3, nv=2, step=400.0), 18.0)
     p = ps.panels[4]
     top, bottom = p.top.copy(), p.bottom.copy()
@@ -534,7 +524,7 @@ def test_panel_solids_refuse_outlines_that_bound_no_solid(spoil, message):
      "outline crosses itself"),
 ])
 def test_panel_solids_refuse_degenerate_panels(top, bottom, message):
-    step = _freecad_step()
+    step = freecad_step()
 
     class Panel:
         id = "P-X"
@@ -571,7 +561,7 @@ def test_half_turn_symmetric_parts_skip_the_redundant_rotations():
 # ---- solids and STEP in a worker process -----------------------------------
 
 def test_step_job_writes_the_solids_in_a_worker_while_this_process_goes_on(tmp_path):
-    step = _freecad_step()
+    step = freecad_step()
     FreeCAD, Part = step.import_freecad()
     ps = panels(translational(nu=4, nv=3, step=400.0), 18.0, edge="bisector", gap=4)
     path = tmp_path / "p.step"
@@ -589,7 +579,7 @@ def test_step_job_writes_the_solids_in_a_worker_while_this_process_goes_on(tmp_p
 
 
 def test_step_job_cancelled_or_failed_writes_nothing(tmp_path):
-    step = _freecad_step()
+    step = freecad_step()
     ps = panels(translational(nu=4, nv=3, step=400.0), 18.0, edge="bisector", gap=4)
     job = step.start_step(tmp_path / "c.step", ps)
     job.cancel()
@@ -608,7 +598,7 @@ def test_step_job_cancelled_or_failed_writes_nothing(tmp_path):
 def test_cli_panels_writes_step_next_to_the_other_files(tmp_path, facet_command):
     from facet import write_mesh
 
-    step = _freecad_step()
+    step = freecad_step()
     FreeCAD, Part = step.import_freecad()
     mesh_path = tmp_path / "m.obj"
     write_mesh(translational(nu=4, nv=3, step=400.0), mesh_path)
@@ -627,7 +617,7 @@ def test_cli_panels_writes_step_next_to_the_other_files(tmp_path, facet_command)
 def test_step_job_without_a_worker_interpreter_runs_in_this_process(tmp_path, monkeypatch):
     import facet.parallel
 
-    step = _freecad_step()
+    step = freecad_step()
     FreeCAD, Part = step.import_freecad()
     monkeypatch.setattr(facet.parallel, "python_executable", lambda: None)
     ps = panels(translational(nu=3, nv=2, step=400.0), 18.0, edge="bisector", gap=4)
@@ -643,7 +633,7 @@ def test_step_job_without_a_worker_interpreter_runs_in_this_process(tmp_path, mo
 def test_ctrl_c_while_the_step_worker_runs_writes_nothing(tmp_path, facet_interrupt):
     from facet import write_mesh
 
-    _freecad_step()
+    freecad_step()
     mesh_path = tmp_path / "m.obj"
     write_mesh(translational(nu=60, nv=60, step=400.0), mesh_path)  # 3,600 panels
     # after 3 s nesting and the STEP worker are both running
@@ -657,7 +647,7 @@ def test_ctrl_c_while_the_step_worker_runs_writes_nothing(tmp_path, facet_interr
 def test_panel_solids_check_convex_outlines_without_shapely(monkeypatch):
     import shapely.geometry
 
-    step = _freecad_step()
+    step = freecad_step()
     ps = panels(translational(nu=6, nv=5, step=400.0), 18.0, edge="bisector", gap=4)
     calls = []
     polygon = shapely.geometry.Polygon
@@ -767,7 +757,7 @@ def test_a_mitre_that_cannot_be_cut_becomes_a_butt_joint():
         at_joint = np.isin(panel.vertices, [1, 2])  # the corners at the joint's ends
         for ring in (panel.top, panel.bottom):
             assert np.allclose((ring[at_joint] - v[1]) @ inward, side)
-    step = _freecad_step()
+    step = freecad_step()
     solids = step.panel_solids(ps)
     for _, solid in solids:
         assert solid.isValid() and solid.Shells[0].isClosed()
@@ -777,7 +767,7 @@ def test_a_mitre_that_cannot_be_cut_becomes_a_butt_joint():
 
 
 def test_a_panel_whose_edge_was_dropped_is_a_valid_solid_and_cut(tmp_path):
-    step = _freecad_step()
+    step = freecad_step()
     ps = panels(_cut_tip_mesh(), 0.05, gap=0.4)
     solids = step.panel_solids(ps)
     (_, tri), (_, quad) = solids

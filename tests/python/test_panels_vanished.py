@@ -15,7 +15,7 @@ import facet
 from facet.errors import Cancelled
 from facet.mesh import next_corners
 from facet.panels import DEFAULT_MIN_EDGE, PanelError, panels
-from panel_meshes import folded_grid
+from panel_meshes import folded_grid, freecad_step
 
 STEP = 1000.0
 #: the faces beside the short edge 2-7 of folded_grid, and the faces touching vertex 7 only
@@ -34,16 +34,6 @@ def faces_with_short_edge(mesh, fraction):
     lengths, mean = face_edge_lengths(mesh)
     fs = np.asarray(mesh.face_start)
     return np.flatnonzero(np.minimum.reduceat(lengths, fs[:-1]) < fraction * mean)
-
-
-def _freecad_step():
-    import facet.step as step
-
-    try:
-        step.import_freecad()
-    except step.FreeCADMissing:
-        pytest.skip("FreeCAD is not installed")
-    return step
 
 
 @pytest.fixture(scope="module")
@@ -224,7 +214,7 @@ def test_bad_min_edge_is_a_panel_error(kw, text):
 
 
 def test_without_the_merge_step_refuses_the_solid_and_with_it_reads_back(tmp_path, vanished):
-    step = _freecad_step()
+    step = freecad_step()
     FreeCAD, Part = step.import_freecad()
     mesh, _, ps = vanished
     kept = panels(mesh, 18.0, min_edge=0.0)  # (the bisector cut with a gap is refused)
@@ -288,7 +278,7 @@ def test_dxf_audits_and_the_schedule_marks_exactly_the_triangles(tmp_path, facet
 def test_planarized_hypar_panels_and_step():
     """The real case: hypar.obj planarized by the default method shrinks edges to about
     5e-7 of the mean edge (quads best made triangles)."""
-    step = _freecad_step()
+    step = freecad_step()
     import os
 
     data = os.path.join(os.path.dirname(os.path.dirname(__file__)), "data", "hypar.obj")
@@ -306,7 +296,6 @@ def test_planarized_hypar_panels_and_step():
     assert all(s.isValid() and s.Shells[0].isClosed() for _, s in solids)
     assert math.isclose(sum(s.Volume for _, s in solids), sum(p.volume for p in ps.panels),
                         rel_tol=1e-9)
-
 
 
 def test_merging_reports_progress_before_the_core_and_cancels():

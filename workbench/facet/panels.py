@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from facet import _core
-from facet.errors import Cancelled, FacetError, InputError, from_core
+from facet.errors import Cancelled, InputError, from_core
 from facet.mesh import PolyMesh, next_corners
 from facet.quality import DEFAULT_SHORT_EDGE
 
@@ -791,21 +791,18 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         warnings.append(f"{n_panels} panels built with fewer corners than their faces: "
                         f"{len(vanished)} edges shorter than min_edge vanished (their ends "
                         "merged into one corner)")
-    bending = [d for d in kept if d["reason"] == "planarity"]
-    if bending:
-        d = bending[0]
-        warnings.append(f"{len(bending)} edges shorter than min_edge kept: merging their ends "
-                        f"would bend a face beyond the planarity tolerance (edge "
-                        f"{d['vertices'][0]}-{d['vertices'][1]}, {d['length']:.3g} long: face "
-                        f"{d['face']} {d['planarity']:.3g} from its plane); facet cleanup "
-                        "collapses them and planarizes again")
-    needles = [d for d in kept if d["reason"] == "corners"]
-    if needles:
-        d = needles[0]
-        warnings.append(f"{len(needles)} edges shorter than min_edge kept: merging their ends "
-                        f"would leave a face with fewer than 3 corners (edge "
-                        f"{d['vertices'][0]}-{d['vertices'][1]}, {d['length']:.3g} long, of "
-                        f"face {d['face']}, a needle)")
+    for reason, why, tail in (
+            ("planarity", "would bend a face beyond the planarity tolerance",
+             lambda d: f": face {d['face']} {d['planarity']:.3g} from its plane); facet cleanup "
+                       "collapses them and planarizes again"),
+            ("corners", "would leave a face with fewer than 3 corners",
+             lambda d: f", of face {d['face']}, a needle)")):
+        hit = [d for d in kept if d["reason"] == reason]
+        if hit:
+            d = hit[0]
+            warnings.append(f"{len(hit)} edges shorter than min_edge kept: merging their ends "
+                            f"{why} (edge {d['vertices'][0]}-{d['vertices'][1]}, "
+                            f"{d['length']:.3g} long{tail(d)}")
     if rep_of is not None:
         # a merged vertex's node is its group's
         out["node_deviation"] = out["node_deviation"][rep_of]
