@@ -312,6 +312,14 @@ void facet_pl_prepare_solve(facet_planarizer *s)
 {
     const int32_t nv = s->nv, nf = s->nf;
     const facet_planarize_options *o = &s->o;
+    /* no corner held yet: a held corner's targets left by an earlier solve
+     * (one whose last step held a corner, followed by one without the angle
+     * floor, which never clears them) would steer this solve's first global
+     * steps (the planarize fuzzer's same-input oracle: one handle solving the
+     * same input twice took 10, then 18 iterations) */
+    if (s->guard_count)
+        memset(s->guard_count, 0, sizeof(double) * (size_t)nv);
+    s->guard_on = 0;
     memset(s->fixed, 0, (size_t)nv);
     for (int32_t k = 0; k < s->n_user_fixed; ++k)
         s->fixed[s->user_fixed[k]] = 1;
