@@ -231,6 +231,20 @@ static double solve3(const double a[3], double da, const double b[3], double db,
     return det;
 }
 
+/* v projected onto the plane of unit normal n, then made a unit vector (when
+ * not zero); returns its length before that. */
+static double in_plane_unit(double v[3], const double n[3])
+{
+    const double vn = dot3(v, n);
+    for (int k = 0; k < 3; ++k)
+        v[k] -= vn * n[k];
+    const double l = norm3(v);
+    if (l > 0.0)
+        for (int k = 0; k < 3; ++k)
+            v[k] /= l;
+    return l;
+}
+
 /* The plane of edge c (corner c to the next) of face f, its fold angle and
  * its outputs: as w->square[c] says (square: perpendicular to the face; a
  * mitre: the bisector of the two panels' planes; a butt: the neighbour's
@@ -246,16 +260,10 @@ static facet_status edge_plane(work *w, int32_t f, int64_t c, double half_gap, f
     /* Consistent direction of this edge: along the winding. */
     double e[3] = {sg * (q[0] - p[0]), sg * (q[1] - p[1]), sg * (q[2] - p[2])};
     /* Project onto the face's plane, then normalise. */
-    const double en = dot3(e, nf_);
-    for (int k = 0; k < 3; ++k)
-        e[k] -= en * nf_[k];
-    const double le = norm3(e);
-    if (!(le > 1e-14))
+    if (!(in_plane_unit(e, nf_) > 1e-14))
         return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
                           "face %d: edge from vertex %d has no length in the face's plane",
                           (int)f, (int)m->face_vertices[c]);
-    for (int k = 0; k < 3; ++k)
-        e[k] /= le;
     double mi[3]; /* inward in the face's plane */
     cross3(nf_, e, mi);
     double pl[3] = {mi[0], mi[1], mi[2]};
@@ -277,12 +285,7 @@ static facet_status edge_plane(work *w, int32_t f, int64_t c, double half_gap, f
         if (w->square[c] == CUT_BUTT) {
             /* the neighbour's square plane, facing this panel */
             double eh[3] = {-e[0], -e[1], -e[2]}, mh[3];
-            const double ehn = dot3(eh, nh);
-            for (int k = 0; k < 3; ++k)
-                eh[k] -= ehn * nh[k];
-            const double lh = norm3(eh);
-            for (int k = 0; k < 3; ++k)
-                eh[k] /= lh;
+            in_plane_unit(eh, nh);
             cross3(nh, eh, mh);
             pl[0] = -mh[0], pl[1] = -mh[1], pl[2] = -mh[2];
         } else if (w->square[c] == CUT_MITRE && psi > 1e-12) {
@@ -695,12 +698,7 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             const double pd = dot3(n, p) + n[3];
             const double p0[3] = {p[0] - pd * n[0], p[1] - pd * n[1], p[2] - pd * n[2]};
             double ex[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-            const double en = dot3(ex, n);
-            for (int k = 0; k < 3; ++k)
-                ex[k] -= en * n[k];
-            const double le = norm3(ex);
-            for (int k = 0; k < 3; ++k)
-                ex[k] /= le;
+            in_plane_unit(ex, n);
             double ey[3];
             cross3(n, ex, ey);
             double *F = out->frame + 12 * f;
