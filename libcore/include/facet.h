@@ -794,6 +794,10 @@ typedef struct facet_panel_result {
     int64_t n_dropped_edges;      /* face edges the gap consumed, dropped */
     int64_t n_squared_edges;      /* face edges cut square where a mitre could not be */
     int64_t n_butt_edges;         /* their neighbours' edges, cut with the whole fold */
+    double narrowest_repaired_joint; /* the narrowest of those joints across its section
+                                        at its edge's midpoint, model units: the gap at a
+                                        butt joint, less at one square on both panels
+                                        across a fold; -1 when none */
     double seconds;
 } facet_panel_result;
 

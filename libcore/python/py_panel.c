@@ -125,12 +125,13 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
             py_raise_status(py_state(module), status, &error);
         } else {
             ret = Py_BuildValue(
-                "{s:L,s:L,s:L,s:i,s:L,s:d,s:d,s:L,s:L,s:L,s:d,s:s}", "n_nonplanar", (long long)r.n_nonplanar,
+                "{s:L,s:L,s:L,s:i,s:L,s:d,s:d,s:L,s:L,s:L,s:d,s:d,s:s}", "n_nonplanar", (long long)r.n_nonplanar,
                 "n_non_manifold_edges", (long long)r.n_non_manifold_edges, "n_reversed",
                 (long long)r.n_reversed, "n_components", (int)r.n_components, "worst_node",
                 (long long)r.worst_node, "max_node_deviation", r.max_node_deviation,
                 "max_planarity", r.max_planarity, "n_dropped_edges", (long long)r.n_dropped_edges,
                 "n_squared_edges", (long long)r.n_squared_edges, "n_butt_edges", (long long)r.n_butt_edges,
+                "narrowest_repaired_joint", r.narrowest_repaired_joint,
                 "seconds", r.seconds, "warning",
                 status > 0 ? error.message : "");
         }

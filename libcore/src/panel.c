@@ -318,15 +318,29 @@ static facet_status edge_plane(work *w, int32_t f, int64_t c, double half_gap, f
     return FACET_OK;
 }
 
+/* The distance from x to the segment from a to b. */
+static double segment_distance(const double x[3], const double a[3], const double b[3])
+{
+    const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, ax[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
+    const double l2 = dot3(ab, ab);
+    const double t = l2 > 0.0 ? fmin(1.0, fmax(0.0, dot3(ax, ab) / l2)) : 0.0;
+    const double d[3] = {ax[0] - t * ab[0], ax[1] - t * ab[1], ax[2] - t * ab[2]};
+    return norm3(d);
+}
+
 /* How deep the panels of edge c (face f) and of its twin overlap when both
  * are cut on their edge planes, normalised units (0 when they do not): in the
  * cross-section at the edge's midpoint, the deepest corner of one side face
- * inside the other panel. A mitred joint never overlaps; a square one on a
- * fold closes the joint on the fold's inner side. */
-static double joint_overlap(const work *w, int32_t f, int64_t c, double up, double down)
+ * inside the other panel. *narrowest: the joint's narrowest width there, the
+ * least distance between the two side faces' sections (minus the depth
+ * where they overlap). A mitred or butt joint keeps the gap; a square one on
+ * a fold closes the joint on the fold's inner side. */
+static double joint_overlap(const work *w, int32_t f, int64_t c, double up, double down,
+                            double *narrowest)
 {
     const facet_mesh *m = w->mesh;
     const int64_t t = w->nbr_corner[c];
+    *narrowest = INFINITY;
     if (t < 0)
         return 0.0;
     const int32_t h = w->corner_face[t];
@@ -341,19 +355,25 @@ static double joint_overlap(const work *w, int32_t f, int64_t c, double up, doub
     const double mid = 0.5 * (dot3(e, p) + dot3(e, q));
     const int32_t faces[2] = {f, h};
     const int64_t corners[2] = {c, t};
-    double deepest = 0.0;
+    double x[2][2][3]; /* [panel][bottom, top]: its side face's section's ends */
     for (int i = 0; i < 2; ++i) {
         const double *n = w->plane + 4 * faces[i], *side = w->eplane + 4 * corners[i];
+        for (int top = 0; top < 2; ++top)
+            if (solve3(e, mid, side, side[3], n, (top ? up : down) - n[3], x[i][top]) == 0.0)
+                return 0.0;
+    }
+    double deepest = 0.0;
+    for (int i = 0; i < 2; ++i) {
         const double *n2 = w->plane + 4 * faces[1 - i], *side2 = w->eplane + 4 * corners[1 - i];
         for (int top = 0; top < 2; ++top) {
-            double x[3];
-            if (solve3(e, mid, side, side[3], n, (top ? up : down) - n[3], x) == 0.0)
-                continue;
-            const double height = dot3(n2, x) + n2[3];
-            const double depth = fmin(dot3(side2, x) - side2[3], fmin(height - down, up - height));
-            deepest = fmax(deepest, depth);
+            const double height = dot3(n2, x[i][top]) + n2[3];
+            const double inside = dot3(side2, x[i][top]) - side2[3];
+            deepest = fmax(deepest, fmin(inside, fmin(height - down, up - height)));
+            *narrowest = fmin(*narrowest, segment_distance(x[i][top], x[1 - i][0], x[1 - i][1]));
         }
     }
+    if (deepest > 0.0)
+        *narrowest = -deepest;
     return deepest;
 }
 
@@ -419,6 +439,7 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
     facet_panel_result r;
     memset(&r, 0, sizeof r);
     r.worst_node = -1;
+    r.narrowest_repaired_joint = -1.0;
 
     /* Centre and scale. */
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -729,7 +750,12 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                 out->squared[c] = w.square[c] == CUT_SQUARED ? 1 : w.square[c] == CUT_BUTT ? 2 : 0;
             const int64_t t = w.nbr_corner[c];
             if (t > c && (w.square[c] == CUT_SQUARED || w.square[t] == CUT_SQUARED)) {
-                const double depth = joint_overlap(&w, f, c, up, down);
+                double width;
+                const double depth = joint_overlap(&w, f, c, up, down, &width);
+                if (isfinite(width))
+                    r.narrowest_repaired_joint = r.narrowest_repaired_joint < 0.0
+                                                     ? width * scale
+                                                     : fmin(r.narrowest_repaired_joint, width * scale);
                 if (depth > 1e-9) {
                     const int32_t other = w.corner_face[t];
                     work_free(&w);

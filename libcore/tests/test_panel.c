@@ -161,7 +161,7 @@ static void squared_mitre(void)
     /* thin panels: the mitres are cut, at half the fold */
     o.thickness = 0.01;
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
-    CHECK(r.n_squared_edges == 0 && r.n_dropped_edges == 0);
+    CHECK(r.n_squared_edges == 0 && r.n_dropped_edges == 0 && r.narrowest_repaired_joint == -1.0);
     const int joints[4] = {1, 3, 4, 8}; /* face 0's long sides, and the same edges in faces 1, 2 */
     for (int k = 0; k < 4; ++k)
         CHECK_NEAR(fabs(bevel[joints[k]]), 0.5 * fold, 1e-9);
@@ -170,6 +170,7 @@ static void squared_mitre(void)
     o.thickness = 0.2;
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
     CHECK(r.n_squared_edges == 2 && r.n_butt_edges == 2 && r.n_dropped_edges == 0);
+    CHECK_NEAR(r.narrowest_repaired_joint, 0.2, 1e-9); /* a butt joint keeps the gap */
     for (int c = 0; c < 12; ++c) {
         const int square = c == 1 || c == 3, butt = c == 4 || c == 8;
         CHECK(squared[c] == (square ? 1 : butt ? 2 : 0) && dropped[c] == 0);
@@ -219,6 +220,11 @@ static void square_joint_overlap(void)
     o.gap = 0.8;
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
     CHECK(squared[1] == 1 && squared[4] == 1);
+    /* narrower than the gap at the valley's top: the distance between the
+     * two panels' top corners (each half the gap off the edge in its plane,
+     * a thickness up), in the cross-section */
+    const double half = 0.4, width = 2.0 * (half * cos(0.5 * fold) - 1.0 * sin(0.5 * fold));
+    CHECK_NEAR(r.narrowest_repaired_joint, width, 1e-9);
 }
 
 int main(void)

@@ -744,7 +744,11 @@ def test_a_mitre_that_cannot_be_cut_becomes_a_butt_joint():
     assert np.allclose(ps.panels[0].bevel_deg, 0.0, atol=1e-9)
     assert sorted(round(abs(b), 6) for b in ps.panels[1].bevel_deg) == [0, 0, 0, 30]
     assert any(w.startswith("2 mitred joints cut as butt joints") and "on 1 panel: P-" in w
+               and w.endswith("the narrowest of those joints is 0.2 wide across its section "
+                              "(gap 0.2)")
                for w in ps.warnings)
+    assert ps.narrowest_repaired_joint == pytest.approx(0.2)
+    assert thin.narrowest_repaired_joint is None
     row = ps.panels[1].schedule_row()
     assert (row["squared_edges"], row["butt_edges"]) == (0, 1)
     # the joint is a slot of constant width: each side face lies half the gap
@@ -788,3 +792,22 @@ def test_a_panel_whose_edge_was_dropped_is_a_valid_solid_and_cut(tmp_path):
     with open(tmp_path / "schedule.csv", newline="") as f:
         rows = {r["id"]: r for r in csv.DictReader(f)}
     assert sorted(r["dropped_edges"] for r in rows.values()) == ["0", "1"]
+
+
+def test_a_joint_square_on_both_panels_reports_its_width_or_its_overlap():
+    """Two cut-tip quads on either side of a long edge, folded 30 degrees (a valley):
+    the mitre consumes both tips, so the joint is square on both panels; it narrows
+    towards the top, as far as OCC measures between the two solids."""
+    q = np.array([(0, 0, 0), (10, 0, 0), (5.1, 20, 0), (4.9, 20, 0), (15, 0, 0), (5.3, 20, 0)],
+                 dtype=float)
+    q[4:6] = _rotate_about(q[4:6], q[1], q[2], -math.radians(30.0))
+    mesh = facet.PolyMesh.from_faces(q, [[0, 1, 2, 3], [2, 1, 4, 5]])
+    ps = panels(mesh, 1.0, gap=0.8, edge="bisector")
+    assert [p.squared_edges for p in ps] == [1, 1] and [p.butt_edges for p in ps] == [0, 0]
+    width = 2 * (0.4 * math.cos(math.radians(15)) - math.sin(math.radians(15)))
+    assert ps.narrowest_repaired_joint == pytest.approx(width, abs=1e-9)
+    step = freecad_step()
+    (_, a), (_, b) = step.panel_solids(ps)
+    assert a.distToShape(b)[0] == pytest.approx(width, rel=1e-6)
+    with pytest.raises(PanelError, match=r"faces 0 and 1: .* overlap by"):
+        panels(mesh, 1.0, gap=0.02, edge="bisector")

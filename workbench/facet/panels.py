@@ -289,6 +289,11 @@ class PanelSet:
         would bend ``face`` beyond the planarity tolerance, its corners
         ``planarity`` from its plane; "corners": it would leave ``face``, a
         needle triangle, with fewer than 3 corners; ``planarity`` None).
+    narrowest_repaired_joint : float or None
+        The narrowest joint where a mitre that could not be cut was repaired,
+        across its section at its edge's midpoint (model units): the gap at a
+        butt joint, less where the joint had to be square on both panels
+        across a fold. None when nothing was repaired.
     """
 
     panels: list
@@ -305,6 +310,7 @@ class PanelSet:
     seconds: float = 0.0
     vanished_edges: list = field(default_factory=list)
     short_edges_kept: list = field(default_factory=list)
+    narrowest_repaired_joint: float = None
 
     @property
     def vanished_panels(self):
@@ -882,7 +888,12 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         if hit:
             count = sum(getattr(p, attr) for p in result)
             shown = ", ".join(hit[:5]) + (", ..." if len(hit) > 5 else "")
-            warnings.append(f"{count} {text} {len(hit)} panel{'s' * (len(hit) > 1)}: {shown}")
+            narrowest = res["narrowest_repaired_joint"]
+            width = (f"; the narrowest of those joints is {narrowest:.3g} wide across its "
+                     f"section (gap {gap:.3g})"
+                     if what == "squared" and narrowest >= 0.0 else "")
+            warnings.append(f"{count} {text} {len(hit)} panel{'s' * (len(hit) > 1)}: {shown}"
+                            + width)
     worst = res["worst_node"]
     return PanelSet(
         panels=result,
@@ -898,6 +909,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         planarity=out["planarity"],
         n_reversed=int(res["n_reversed"]),
         n_components=int(res["n_components"]),
+        narrowest_repaired_joint=(None if res["narrowest_repaired_joint"] < 0.0
+                                  else float(res["narrowest_repaired_joint"])),
         warnings=warnings,
         seconds=float(res["seconds"]),
         vanished_edges=vanished,
