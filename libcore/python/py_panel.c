@@ -43,8 +43,8 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     static char *keywords[] = {"xyz", "face_start", "face_vertices", "thickness", "offset",
                                "gap", "edge", "flip", "tol_abs", "tol_rel", "plane", "top",
                                "bottom", "frame", "reversed", "neighbor", "dihedral", "bevel",
-                               "node_deviation", "planarity", "nonplanar", "dropped", "squared", "progress",
-                               "repair_consumed", NULL};
+                               "node_deviation", "planarity", "nonplanar", "dropped", "squared",
+                               "progress", "repair_consumed", NULL};
     PyObject *xyz, *start, *faces, *progress = Py_None;
     PyObject *outs[N_OUT];
     for (int k = 0; k < N_OUT; ++k)
@@ -52,13 +52,13 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     facet_panel_options o;
     facet_panel_options_default(&o);
     const char *offset = "outer", *edge = "square";
-    int flip = 0, drop = 1;
+    int flip = 0, repair = 1;
     if (!PyArg_ParseTupleAndKeywords(
             args, kwargs, "OOO|$dsdspddOOOOOOOOOOOOOOp:panels", keywords, &xyz, &start, &faces,
             &o.thickness, &offset, &o.gap, &edge, &flip, &o.planarity_tol_abs,
             &o.planarity_tol_rel, &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
             &outs[6], &outs[7], &outs[8], &outs[9], &outs[10], &outs[11], &outs[12], &progress,
-            &drop))
+            &repair))
         return NULL;
     if (strcmp(offset, "outer") == 0)
         o.offset = FACET_PANEL_OFFSET_OUTER;
@@ -77,7 +77,7 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
         return PyErr_Format(PyExc_ValueError, "edge must be 'square' or 'bisector', not '%s'",
                             edge);
     o.flip = flip;
-    o.repair_consumed = drop;
+    o.repair_consumed = repair;
     if (progress != Py_None && !PyCallable_Check(progress)) {
         PyErr_SetString(PyExc_TypeError, "progress must be callable or None");
         return NULL;
@@ -125,12 +125,14 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
             py_raise_status(py_state(module), status, &error);
         } else {
             ret = Py_BuildValue(
-                "{s:L,s:L,s:L,s:i,s:L,s:d,s:d,s:L,s:L,s:L,s:d,s:d,s:s}", "n_nonplanar", (long long)r.n_nonplanar,
+                "{s:L,s:L,s:L,s:i,s:L,s:d,s:d,s:L,s:L,s:L,s:d,s:d,s:s}", "n_nonplanar",
+                (long long)r.n_nonplanar,
                 "n_non_manifold_edges", (long long)r.n_non_manifold_edges, "n_reversed",
                 (long long)r.n_reversed, "n_components", (int)r.n_components, "worst_node",
                 (long long)r.worst_node, "max_node_deviation", r.max_node_deviation,
                 "max_planarity", r.max_planarity, "n_dropped_edges", (long long)r.n_dropped_edges,
-                "n_squared_edges", (long long)r.n_squared_edges, "n_butt_edges", (long long)r.n_butt_edges,
+                "n_squared_edges", (long long)r.n_squared_edges, "n_butt_edges",
+                (long long)r.n_butt_edges,
                 "narrowest_repaired_joint", r.narrowest_repaired_joint,
                 "seconds", r.seconds, "warning",
                 status > 0 ? error.message : "");

@@ -586,9 +586,10 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
      * it: its two corners become the one where its neighbours' edge lines
      * meet, in both outlines (a quad becomes a triangle panel). A mitred
      * joint there cannot be cut (the mitre of a short edge, or two mitres of
-     * different angles meeting beyond a nearly straight corner): those three
-     * joints are cut square instead, on both panels, and the faces they touch
-     * are outlined again. With repair_consumed 0 either is an error. */
+     * different angles meeting beyond a nearly straight corner): the mitres
+     * beside the edge, then its own, become butt joints (square on this
+     * panel, the whole fold on the neighbour's), and the faces they touch are
+     * outlined again. With repair_consumed 0 either is an error. */
     const int repair = o->repair_consumed != 0;
     int32_t reported = 0; /* faces outlined, as progress told (a repair outlines some again) */
     for (int32_t f = 0; f < nf; ++f) {
@@ -741,6 +742,7 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
         }
     }
     /* what the repairs did; a joint cut square must not close on its panels */
+    double narrowest = INFINITY;
     for (int32_t f = 0; f < nf; ++f)
         for (int64_t c = m->face_start[f]; c < m->face_start[f + 1]; ++c) {
             r.n_dropped_edges += w.drop[c];
@@ -752,10 +754,7 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             if (t > c && (w.square[c] == CUT_SQUARED || w.square[t] == CUT_SQUARED)) {
                 double width;
                 const double depth = joint_overlap(&w, f, c, up, down, &width);
-                if (isfinite(width))
-                    r.narrowest_repaired_joint = r.narrowest_repaired_joint < 0.0
-                                                     ? width * scale
-                                                     : fmin(r.narrowest_repaired_joint, width * scale);
+                narrowest = fmin(narrowest, width);
                 if (depth > 1e-9) {
                     const int32_t other = w.corner_face[t];
                     work_free(&w);
@@ -770,6 +769,8 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                 }
             }
         }
+    if (isfinite(narrowest))
+        r.narrowest_repaired_joint = narrowest * scale;
 
     /* Node deviation from the bisector planes (the mesh's own property,
      * whatever the edge mode): each undirected edge once. */

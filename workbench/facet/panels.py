@@ -700,12 +700,13 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         Where the joint gap or a bevel turns an edge of a panel's outline
         around (a short edge, or two mitres of different angles meeting far
         beyond a nearly straight corner), repair it as a fabricator would:
-        mitred joints there are cut square on both panels, and an edge
+        mitred joints there become butt joints (square on this panel, the
+        whole fold on the neighbour's, the joint's width kept), and an edge
         still consumed is dropped from the outline as a CAD offset drops it
         (the panel has a corner fewer). ``Panel.squared_edges``,
-        ``Panel.dropped_edges``, the schedule and a warning say where. A
-        square joint that would make its panels overlap is an error. False:
-        any such edge is an error.
+        ``butt_edges``, ``dropped_edges``, the schedule and a warning say
+        where. A joint that must be square on both panels and would make
+        them overlap is an error. False: any such edge is an error.
     progress : callable, optional
         ``progress(done, total)``; returning True cancels (raises
         :class:`facet.Cancelled`).
@@ -878,22 +879,21 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             squared_edges=int(np.count_nonzero(squared[edges] == 1)),
             butt_edges=int(np.count_nonzero(squared[edges] == 2)),
         ))
-    for what, attr, text in (
-            ("dropped", "dropped_edges", "short edges that the joint gap or a bevel consumes "
-             "dropped from the outlines of"),
-            ("squared", "squared_edges", "mitred joints cut as butt joints instead, square on "
-             "one panel and with the whole fold on the other (the mitre would consume a short "
-             "edge or meet beyond a nearly straight corner); square on")):
+    narrowest = res["narrowest_repaired_joint"]
+    for attr, text, tail in (
+            ("dropped_edges", "short edges that the joint gap or a bevel consumes dropped from "
+             "the outlines of", ""),
+            ("squared_edges", "mitred joints cut as butt joints instead, square on one panel "
+             "and with the whole fold on the other (the mitre would consume a short edge or "
+             "meet beyond a nearly straight corner); square on",
+             f"; the narrowest of those joints is {narrowest:.3g} wide across its section "
+             f"(gap {gap:.3g})" if narrowest >= 0.0 else "")):
         hit = [p.id for p in result if getattr(p, attr)]
         if hit:
             count = sum(getattr(p, attr) for p in result)
             shown = ", ".join(hit[:5]) + (", ..." if len(hit) > 5 else "")
-            narrowest = res["narrowest_repaired_joint"]
-            width = (f"; the narrowest of those joints is {narrowest:.3g} wide across its "
-                     f"section (gap {gap:.3g})"
-                     if what == "squared" and narrowest >= 0.0 else "")
             warnings.append(f"{count} {text} {len(hit)} panel{'s' * (len(hit) > 1)}: {shown}"
-                            + width)
+                            + tail)
     worst = res["worst_node"]
     return PanelSet(
         panels=result,
@@ -909,8 +909,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         planarity=out["planarity"],
         n_reversed=int(res["n_reversed"]),
         n_components=int(res["n_components"]),
-        narrowest_repaired_joint=(None if res["narrowest_repaired_joint"] < 0.0
-                                  else float(res["narrowest_repaired_joint"])),
+        narrowest_repaired_joint=None if narrowest < 0.0 else float(narrowest),
         warnings=warnings,
         seconds=float(res["seconds"]),
         vanished_edges=vanished,
