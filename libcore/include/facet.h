@@ -781,6 +781,17 @@ typedef struct facet_panel_output {
                                could not be cut, 2 when it is the other half of
                                such a butt joint (cut with the whole fold), else
                                0 (see Consumed edges) */
+    double *joint;          /* nc: the narrowest width of the joint at edge k
+                               across its section, model units (the same along
+                               the edge): the gap where it is mitred or a butt
+                               joint; cut square across a fold, less on the
+                               fold's inner side, and negative where the gap is
+                               too small and the panels overlap (minus how deep a
+                               corner of one side face lies inside the other
+                               panel: its distance to the nearest of that
+                               panel's side, top and bottom planes); 0 on
+                               the boundary (neighbor -1) and where either panel
+                               dropped the edge (no joint there) */
 } facet_panel_output;
 
 typedef struct facet_panel_result {
@@ -798,6 +809,17 @@ typedef struct facet_panel_result {
                                         at its edge's midpoint, model units: the gap at a
                                         butt joint, less at one square on both panels
                                         across a fold; -1 when none */
+    double narrowest_joint;       /* the least of out->joint over the interior
+                                     edges (negative: the deepest overlap); 0
+                                     when there is none */
+    int64_t narrowest_joint_vertex; /* its edge's first vertex, or -1 */
+    int32_t narrowest_joint_faces[2]; /* the two faces it parts, or -1 -1 */
+    int64_t n_overlapping_joints; /* joints whose panels overlap: cut square on
+                                     the inner side of a fold with too small a
+                                     gap (a mitre never overlaps) */
+    double clearing_gap;          /* the least gap at which none of them would
+                                     overlap across its section, model units (0
+                                     when none does) */
     double seconds;
 } facet_panel_result;
 

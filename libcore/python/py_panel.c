@@ -36,7 +36,7 @@ static int count_progress(void *user, int64_t done, int64_t total)
     return cancel;
 }
 
-enum { N_OUT = 13 };
+enum { N_OUT = 14 };
 
 static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
 {
@@ -44,7 +44,7 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
                                "gap", "edge", "flip", "tol_abs", "tol_rel", "plane", "top",
                                "bottom", "frame", "reversed", "neighbor", "dihedral", "bevel",
                                "node_deviation", "planarity", "nonplanar", "dropped", "squared",
-                               "progress", "repair_consumed", NULL};
+                               "joint", "progress", "repair_consumed", NULL};
     PyObject *xyz, *start, *faces, *progress = Py_None;
     PyObject *outs[N_OUT];
     for (int k = 0; k < N_OUT; ++k)
@@ -54,10 +54,11 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     const char *offset = "outer", *edge = "square";
     int flip = 0, repair = 1;
     if (!PyArg_ParseTupleAndKeywords(
-            args, kwargs, "OOO|$dsdspddOOOOOOOOOOOOOOp:panels", keywords, &xyz, &start, &faces,
+            args, kwargs, "OOO|$dsdspddOOOOOOOOOOOOOOOp:panels", keywords, &xyz, &start, &faces,
             &o.thickness, &offset, &o.gap, &edge, &flip, &o.planarity_tol_abs,
             &o.planarity_tol_rel, &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
-            &outs[6], &outs[7], &outs[8], &outs[9], &outs[10], &outs[11], &outs[12], &progress,
+            &outs[6], &outs[7], &outs[8], &outs[9], &outs[10], &outs[11], &outs[12], &outs[13],
+            &progress,
             &repair))
         return NULL;
     if (strcmp(offset, "outer") == 0)
@@ -90,10 +91,11 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     static const char *names[N_OUT] = {"plane",    "top",      "bottom", "frame",
                                        "reversed", "neighbor", "dihedral", "bevel",
                                        "node_deviation", "planarity", "nonplanar", "dropped",
-                                       "squared"};
-    const char codes[N_OUT] = {'d', 'd', 'd', 'd', 'i', 'i', 'd', 'd', 'd', 'd', 'i', 'i', 'i'};
+                                       "squared", "joint"};
+    const char codes[N_OUT] = {'d', 'd', 'd', 'd', 'i', 'i', 'd',
+                               'd', 'd', 'd', 'i', 'i', 'i', 'd'};
     const Py_ssize_t sizes[N_OUT] = {4 * nf, 3 * nc, 3 * nc, 12 * nf, nf, nc,
-                                     nc,     nc,     nv,     nf,      nf, nc, nc};
+                                     nc,     nc,     nv,     nf,      nf, nc, nc, nc};
     Py_buffer views[N_OUT];
     void *ptrs[N_OUT];
     int got = 0;
@@ -108,7 +110,8 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     PyObject *ret = NULL;
     if (got == N_OUT) {
         facet_panel_output out = {ptrs[0], ptrs[1], ptrs[2], ptrs[3], ptrs[4], ptrs[5],
-                                  ptrs[6], ptrs[7], ptrs[8], ptrs[9], ptrs[10], ptrs[11], ptrs[12]};
+                                  ptrs[6], ptrs[7], ptrs[8], ptrs[9], ptrs[10], ptrs[11], ptrs[12],
+                                  ptrs[13]};
         count_progress_state ps = {progress == Py_None ? NULL : progress, NULL, NULL, NULL};
         o.progress = count_progress;
         o.progress_user = &ps;
@@ -125,8 +128,8 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
             py_raise_status(py_state(module), status, &error);
         } else {
             ret = Py_BuildValue(
-                "{s:L,s:L,s:L,s:i,s:L,s:d,s:d,s:L,s:L,s:L,s:d,s:d,s:s}", "n_nonplanar",
-                (long long)r.n_nonplanar,
+                "{s:L,s:L,s:L,s:i,s:L,s:d,s:d,s:L,s:L,s:L,s:d,s:d,s:L,s:(ii),s:L,s:d,s:d,s:s}",
+                "n_nonplanar", (long long)r.n_nonplanar,
                 "n_non_manifold_edges", (long long)r.n_non_manifold_edges, "n_reversed",
                 (long long)r.n_reversed, "n_components", (int)r.n_components, "worst_node",
                 (long long)r.worst_node, "max_node_deviation", r.max_node_deviation,
@@ -134,7 +137,11 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
                 "n_squared_edges", (long long)r.n_squared_edges, "n_butt_edges",
                 (long long)r.n_butt_edges,
                 "narrowest_repaired_joint", r.narrowest_repaired_joint,
-                "seconds", r.seconds, "warning",
+                "narrowest_joint", r.narrowest_joint, "narrowest_joint_vertex",
+                (long long)r.narrowest_joint_vertex, "narrowest_joint_faces",
+                (int)r.narrowest_joint_faces[0], (int)r.narrowest_joint_faces[1],
+                "n_overlapping_joints", (long long)r.n_overlapping_joints, "clearing_gap",
+                r.clearing_gap, "seconds", r.seconds, "warning",
                 status > 0 ? error.message : "");
         }
     }
@@ -151,7 +158,8 @@ static PyMethodDef panel_methods[] = {
      "       edge='square', flip=False, tol_abs=0, tol_rel=1e-6, plane=None, top=None,\n"
      "       bottom=None, frame=None, reversed=None, neighbor=None, dihedral=None,\n"
      "       bevel=None, node_deviation=None, planarity=None, nonplanar=None,\n"
-     "       dropped=None, squared=None, progress=None, repair_consumed=True) -> dict\n\n"
+     "       dropped=None, squared=None, joint=None, progress=None,\n"
+     "       repair_consumed=True) -> dict\n\n"
      "Panel geometry (facet_panels) into the given writable buffers (float64 or int32,\n"
      "sizes as in facet.h). progress(done, total) returning True cancels."},
     {NULL, NULL, 0, NULL}};

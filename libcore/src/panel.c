@@ -328,15 +328,35 @@ static double segment_distance(const double x[3], const double a[3], const doubl
     return norm3(d);
 }
 
-/* How deep the panels of edge c (face f) and of its twin overlap when both
- * are cut on their edge planes, normalised units (0 when they do not): in the
- * cross-section at the edge's midpoint, the deepest corner of one side face
- * inside the other panel. *narrowest: the joint's narrowest width there, the
- * least distance between the two side faces' sections (minus the depth
- * where they overlap). A mitred or butt joint keeps the gap; a square one on
- * a fold closes the joint on the fold's inner side. */
+/* The distance from x to a panel's cross-section at a joint: the half-strip
+ * bounded by its side face's section (lo to hi) and the rays from lo and hi
+ * into the panel along in (unit). x must lie outside it. */
+static double section_distance(const double x[3], const double lo[3], const double hi[3],
+                               const double in[3])
+{
+    double d = segment_distance(x, lo, hi);
+    for (int k = 0; k < 2; ++k) {
+        const double *a = k ? hi : lo;
+        const double ax[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
+        const double s = fmax(0.0, dot3(ax, in));
+        const double r[3] = {ax[0] - s * in[0], ax[1] - s * in[1], ax[2] - s * in[2]};
+        d = fmin(d, norm3(r));
+    }
+    return d;
+}
+
+/* How deep the panels of edge c (face f) and of its twin overlap, normalised
+ * units (0 when they do not), with both side planes moved widen farther into
+ * their panels (half of a wider gap): in the cross-section at the edge's
+ * midpoint, the deepest corner of one side face inside the other panel. The
+ * section is the same all along the edge, as every plane of the joint
+ * contains the edge's direction. *narrowest: the joint's narrowest width
+ * there, the least distance from a corner of one side face to the other
+ * panel's section (minus the depth where they overlap). A mitred or butt
+ * joint keeps the gap; a square one on a fold closes the joint on the
+ * fold's inner side, and with too small a gap the panels overlap there. */
 static double joint_overlap(const work *w, int32_t f, int64_t c, double up, double down,
-                            double *narrowest)
+                            double widen, double *narrowest)
 {
     const facet_mesh *m = w->mesh;
     const int64_t t = w->nbr_corner[c];
@@ -356,25 +376,51 @@ static double joint_overlap(const work *w, int32_t f, int64_t c, double up, doub
     const int32_t faces[2] = {f, h};
     const int64_t corners[2] = {c, t};
     double x[2][2][3]; /* [panel][bottom, top]: its side face's section's ends */
+    double in[2][3];   /* [panel]: into the panel, in its plane, across the edge */
     for (int i = 0; i < 2; ++i) {
         const double *n = w->plane + 4 * faces[i], *side = w->eplane + 4 * corners[i];
         for (int top = 0; top < 2; ++top)
-            if (solve3(e, mid, side, side[3], n, (top ? up : down) - n[3], x[i][top]) == 0.0)
+            if (solve3(e, mid, side, side[3] + widen, n, (top ? up : down) - n[3], x[i][top]) ==
+                0.0)
                 return 0.0;
+        cross3(n, e, in[i]);
+        const double li = norm3(in[i]), sg = dot3(in[i], side) < 0.0 ? -1.0 : 1.0;
+        for (int k = 0; k < 3; ++k)
+            in[i][k] *= sg / li;
     }
     double deepest = 0.0;
     for (int i = 0; i < 2; ++i) {
         const double *n2 = w->plane + 4 * faces[1 - i], *side2 = w->eplane + 4 * corners[1 - i];
         for (int top = 0; top < 2; ++top) {
             const double height = dot3(n2, x[i][top]) + n2[3];
-            const double inside = dot3(side2, x[i][top]) - side2[3];
+            const double inside = dot3(side2, x[i][top]) - side2[3] - widen;
             deepest = fmax(deepest, fmin(inside, fmin(height - down, up - height)));
-            *narrowest = fmin(*narrowest, segment_distance(x[i][top], x[1 - i][0], x[1 - i][1]));
+            *narrowest = fmin(*narrowest, section_distance(x[i][top], x[1 - i][0], x[1 - i][1],
+                                                           in[1 - i]));
         }
     }
     if (deepest > 0.0)
         *narrowest = -deepest;
     return deepest;
+}
+
+/* The gap at which the joint of edge c (face f), overlapping with half_gap,
+ * would clear, normalised units: the least widening that leaves no overlap,
+ * by bisection (the overlap shrinks as both side planes move apart). */
+static double clearing_gap(const work *w, int32_t f, int64_t c, double up, double down,
+                           double half_gap)
+{
+    double width, lo = 0.0, hi = fmax(half_gap, up - down);
+    for (int k = 0; k < 64 && joint_overlap(w, f, c, up, down, hi, &width) > 0.0; ++k)
+        lo = hi, hi *= 2.0;
+    for (int k = 0; k < 64 && hi - lo > 1e-12 * hi; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        if (joint_overlap(w, f, c, up, down, mid, &width) > 0.0)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return 2.0 * (half_gap + hi);
 }
 
 facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *options,
@@ -440,6 +486,8 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
     memset(&r, 0, sizeof r);
     r.worst_node = -1;
     r.narrowest_repaired_joint = -1.0;
+    r.narrowest_joint_vertex = -1;
+    r.narrowest_joint_faces[0] = r.narrowest_joint_faces[1] = -1;
 
     /* Centre and scale. */
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -741,8 +789,13 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
         }
     }
-    /* what the repairs did; a joint cut square must not close on its panels */
-    double narrowest = INFINITY;
+    /* What the repairs did, and every joint's narrowest width (joint_overlap).
+     * A repaired joint that had to be square on both panels must not close on
+     * them (an error: the repair is this function's); any other joint whose
+     * panels overlap (square cuts on the inner side of a fold, with too small
+     * a gap) is counted, with the gap that would clear it. */
+    double narrowest = INFINITY, narrowest_repaired = INFINITY, clearing = 0.0;
+    int64_t narrowest_c = -1;
     for (int32_t f = 0; f < nf; ++f)
         for (int64_t c = m->face_start[f]; c < m->face_start[f + 1]; ++c) {
             r.n_dropped_edges += w.drop[c];
@@ -751,10 +804,15 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             if (out->squared)
                 out->squared[c] = w.square[c] == CUT_SQUARED ? 1 : w.square[c] == CUT_BUTT ? 2 : 0;
             const int64_t t = w.nbr_corner[c];
-            if (t > c && (w.square[c] == CUT_SQUARED || w.square[t] == CUT_SQUARED)) {
-                double width;
-                const double depth = joint_overlap(&w, f, c, up, down, &width);
-                narrowest = fmin(narrowest, width);
+            if (t < 0 && out->joint)
+                out->joint[c] = 0.0;
+            if (t < c) /* the boundary, or measured from its twin */
+                continue;
+            double width;
+            const double depth = joint_overlap(&w, f, c, up, down, 0.0, &width);
+            const int repaired = w.square[c] == CUT_SQUARED || w.square[t] == CUT_SQUARED;
+            if (repaired) {
+                narrowest_repaired = fmin(narrowest_repaired, width);
                 if (depth > 1e-9) {
                     const int32_t other = w.corner_face[t];
                     work_free(&w);
@@ -768,9 +826,29 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                                       depth * scale);
                 }
             }
+            if (w.drop[c] || w.drop[t]) { /* a panel has no side there: no joint */
+                if (out->joint)
+                    out->joint[c] = out->joint[t] = 0.0;
+                continue;
+            }
+            if (out->joint)
+                out->joint[c] = out->joint[t] = width * scale;
+            if (width < narrowest)
+                narrowest = width, narrowest_c = c;
+            if (!repaired && depth > 1e-9) {
+                ++r.n_overlapping_joints;
+                clearing = fmax(clearing, clearing_gap(&w, f, c, up, down, half_gap));
+            }
         }
-    if (isfinite(narrowest))
-        r.narrowest_repaired_joint = narrowest * scale;
+    if (isfinite(narrowest_repaired))
+        r.narrowest_repaired_joint = narrowest_repaired * scale;
+    if (narrowest_c >= 0) {
+        r.narrowest_joint = narrowest * scale;
+        r.narrowest_joint_vertex = m->face_vertices[narrowest_c];
+        r.narrowest_joint_faces[0] = w.corner_face[narrowest_c];
+        r.narrowest_joint_faces[1] = w.corner_face[w.nbr_corner[narrowest_c]];
+    }
+    r.clearing_gap = clearing * scale;
 
     /* Node deviation from the bisector planes (the mesh's own property,
      * whatever the edge mode): each undirected edge once. */

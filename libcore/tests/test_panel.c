@@ -227,6 +227,77 @@ static void square_joint_overlap(void)
     CHECK_NEAR(r.narrowest_repaired_joint, width, 1e-9);
 }
 
+/* Every joint's narrowest width (facet_panel_output.joint): two 1000 mm
+ * quads folded by 30 degrees about their shared edge, 40 mm thick, at
+ * georeferenced coordinates. Valley (the second quad rising on the top
+ * side): square cuts close the joint on top, to g cos(fold/2) - 2 t
+ * sin(fold/2) between the two top corners, and overlap below the clearing
+ * gap 2 t tan(fold/2); a ridge opens it (g cos(fold/2) between the bottom
+ * corners); a mitre keeps g. */
+static void joint_widths(void)
+{
+    const double L = 1000.0, t = 40.0, fold = 30.0 * PI / 180.0;
+    const double clear = 2.0 * t * tan(0.5 * fold);
+    int32_t qs[3] = {0, 4, 8}, qf[8] = {0, 1, 2, 3, 1, 0, 4, 5};
+    for (int valley = 0; valley < 2; ++valley) {
+        const double up = valley ? 1.0 : -1.0;
+        const double y = -L * cos(fold), z = up * L * sin(fold);
+        double q[18] = {0, 0, 0, L, 0, 0, L, L, 0, 0, L, 0, 0, y, z, L, y, z};
+        for (int v = 0; v < 6; ++v)
+            q[3 * v] += 2.5e6, q[3 * v + 1] += 1.2e6, q[3 * v + 2] += 350.0;
+        facet_mesh qm = {6, 2, q, qs, qf};
+        double joint[8];
+        int32_t nbr[8];
+        facet_panel_output out;
+        memset(&out, 0, sizeof out);
+        out.joint = joint;
+        out.neighbor = nbr;
+        facet_panel_options o;
+        facet_panel_options_default(&o);
+        o.thickness = t;
+        o.gap = 10.0;
+        facet_panel_result r;
+        facet_error e;
+        CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+        CHECK(r.narrowest_joint_faces[0] == 0 && r.narrowest_joint_faces[1] == 1);
+        CHECK(r.narrowest_joint_vertex == 0 || r.narrowest_joint_vertex == 1);
+        for (int c = 0; c < 8; ++c)
+            if (nbr[c] < 0)
+                CHECK(joint[c] == 0.0);
+            else
+                CHECK(joint[c] == r.narrowest_joint);
+        CHECK(r.narrowest_repaired_joint == -1.0);
+        if (!valley) {
+            CHECK_NEAR(r.narrowest_joint, 10.0 * cos(0.5 * fold), 1e-9);
+            CHECK(r.n_overlapping_joints == 0 && r.clearing_gap == 0.0);
+        } else {
+            /* overlapping: how deep, and the gap that clears it */
+            CHECK(r.narrowest_joint < -1.0);
+            CHECK(r.n_overlapping_joints == 1);
+            CHECK_NEAR(r.clearing_gap, clear, 1e-9 * clear);
+            /* just above it the top corners almost touch; just below they overlap */
+            o.gap = clear * (1.0 + 1e-7);
+            CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+            CHECK(r.n_overlapping_joints == 0 && r.narrowest_joint >= 0.0 &&
+                  r.narrowest_joint < 1e-5);
+            o.gap = clear * (1.0 - 1e-5);
+            CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+            CHECK(r.n_overlapping_joints == 1 && r.narrowest_joint < 0.0);
+            o.gap = 30.0;
+            CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+            CHECK_NEAR(r.narrowest_joint, 30.0 * cos(0.5 * fold) - 2.0 * t * sin(0.5 * fold),
+                       1e-9);
+            CHECK(r.n_overlapping_joints == 0 && r.clearing_gap == 0.0);
+        }
+        /* mitred: the gap, both ways */
+        o.edge = FACET_PANEL_EDGE_BISECTOR;
+        o.gap = 10.0;
+        CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+        CHECK_NEAR(r.narrowest_joint, 10.0, 1e-9);
+        CHECK(r.n_overlapping_joints == 0);
+    }
+}
+
 int main(void)
 {
     const double R = 5000.0, da = 0.2, h = 800.0, t = 40.0;
@@ -239,7 +310,8 @@ int main(void)
     double top[3 * 4 * NU * NV], bottom[3 * 4 * NU * NV], plane[4 * NU * NV], frame[12 * NU * NV];
     double dih[4 * NU * NV], bev[4 * NU * NV], dev[(NU + 1) * (NV + 1)], pl[NU * NV];
     int32_t nbr[4 * NU * NV], rev[NU * NV], bad[NU * NV];
-    facet_panel_output out = {plane, top, bottom, frame, rev, nbr, dih, bev, dev, pl, bad, NULL, NULL};
+    facet_panel_output out = {plane, top, bottom, frame, rev,  nbr,
+                              dih,   bev, dev,    pl,    bad, NULL, NULL, NULL};
     facet_panel_options o;
     facet_panel_options_default(&o);
     o.thickness = t;
@@ -420,5 +492,6 @@ int main(void)
     consumed_edge();
     squared_mitre();
     square_joint_overlap();
+    joint_widths();
     return check_report("test_panel");
 }
