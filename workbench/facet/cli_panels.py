@@ -253,6 +253,10 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         "n_vanished_panels": len(ps.vanished_panels),
         "vanished_edges": ps.vanished_edges,
         "short_edges_kept": ps.short_edges_kept,
+        "narrowest_joint": ps.narrowest_joint,
+        "narrowest_joint_panels": ps.narrowest_joint_panels,
+        "overlapping_joints": ps.overlapping_joints,
+        "clearing_gap": ps.clearing_gap,
         "warnings": ps.warnings,
         "files": files,
         "seconds": times,
@@ -287,6 +291,15 @@ def run_panels(args):
               f"({len(ps.vanished_edges)} edges under min_edge merged to a corner"
               + (f"; {len(ps.short_edges_kept)} kept" if ps.short_edges_kept else "") + ")"
               + (f": {shown}" if shown else ""), file=out)
+    if ps.narrowest_joint is not None:
+        a, b = ps.narrowest_joint_panels
+        if ps.overlapping_joints:
+            print(f"  joints        {ps.overlapping_joints} overlap, the deepest by "
+                  f"{-ps.narrowest_joint:.4g} ({a} and {b}); a gap of {ps.clearing_gap:.4g} "
+                  "clears them", file=out)
+        else:
+            print(f"  joints        narrowest {ps.narrowest_joint:.4g} "
+                  f"(gap {ps.options['gap']:.4g}), between {a} and {b}", file=out)
     print(f"  nodes         largest deviation from a common axis "
           f"{ps.max_node_deviation_deg:.3g} degrees", file=out)
     if result is not None:

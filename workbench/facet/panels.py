@@ -114,6 +114,13 @@ class Panel:
     butt_edges : int
         ... edge cut on this panel's square plane, with the whole fold (the
         joint stays a slot of constant width).
+    joint_widths : list of float or None
+        Per edge, the narrowest width of its joint across the joint's section
+        (the same along the edge), model units: the gap where the joint is
+        mitred or a butt joint; cut square across a fold, less on the fold's
+        inner side, and negative where the gap is too small for the fold and
+        the two panels overlap (minus how deep a corner of one lies inside the
+        other). None on the boundary and where a panel dropped the edge.
     """
 
     id: str
@@ -135,10 +142,20 @@ class Panel:
     squared_edges: int = 0
     butt_edges: int = 0
     input_corners: int = None
+    joint_widths: list = None
 
     def __post_init__(self):
         if self.input_corners is None:
             self.input_corners = len(self.vertices) + self.dropped_edges
+        if self.joint_widths is None:
+            self.joint_widths = [None] * len(self.vertices)
+
+    @property
+    def narrowest_joint(self):
+        """The narrowest of its joints (negative: it overlaps a neighbour by
+        that much), or None when it has no neighbour."""
+        widths = [w for w in self.joint_widths if w is not None]
+        return min(widths) if widths else None
 
     @property
     def corners(self):
@@ -243,7 +260,25 @@ class Panel:
             "dropped_edges": int(self.dropped_edges),
             "squared_edges": int(self.squared_edges),
             "butt_edges": int(self.butt_edges),
+            "joint_widths": [None if x is None else float(x) for x in self.joint_widths],
+            "narrowest_joint": self.narrowest_joint,
         }
+
+
+def _edge_keys(start, fv, f, edges):
+    """The undirected vertex pair of each edge (its first corner's index) of face f."""
+    s, d = int(start[f]), int(start[f + 1] - start[f])
+    return [tuple(sorted((int(fv[c]), int(fv[s + (c - s + 1) % d])))) for c in edges]
+
+
+def _dropped_edge_keys(start, fv, dropped):
+    """The edges some panel dropped from its outline (no joint there), as
+    undirected vertex pairs."""
+    if not dropped.any():
+        return set()
+    corners = np.flatnonzero(dropped)
+    faces = np.searchsorted(start, corners, side="right") - 1
+    return {key for f, c in zip(faces, corners) for key in _edge_keys(start, fv, f, [c])}
 
 
 def _polygon_area(p):
@@ -294,6 +329,18 @@ class PanelSet:
         across its section at its edge's midpoint (model units): the gap at a
         butt joint, less where the joint had to be square on both panels
         across a fold. None when nothing was repaired.
+    narrowest_joint : float or None
+        The narrowest joint between any two neighbouring panels across its
+        section (see ``Panel.joint_widths``; negative: the deepest overlap).
+        None when no two panels share an edge.
+    narrowest_joint_panels : tuple of str or None
+        The IDs of the two panels it parts.
+    overlapping_joints : int
+        Joints whose panels overlap: cut square on the inner side of a fold
+        with too small a gap (a mitre never overlaps).
+    clearing_gap : float or None
+        The least gap at which none of those joints would overlap across its
+        section (None when none does).
     """
 
     panels: list
@@ -311,6 +358,10 @@ class PanelSet:
     vanished_edges: list = field(default_factory=list)
     short_edges_kept: list = field(default_factory=list)
     narrowest_repaired_joint: float = None
+    narrowest_joint: float = None
+    narrowest_joint_panels: tuple = None
+    overlapping_joints: int = 0
+    clearing_gap: float = None
 
     @property
     def vanished_panels(self):
@@ -765,6 +816,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         "nonplanar": np.full(nf, -1, dtype=np.int32),
         "dropped": np.zeros(nc, dtype=np.int32),
         "squared": np.zeros(nc, dtype=np.int32),
+        "joint": np.zeros(nc),
     }
     xyz = np.ascontiguousarray(mesh.vertices, dtype=np.float64).reshape(-1)
     try:
@@ -827,6 +879,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     bev = np.degrees(out["bevel"])
     dropped = out["dropped"]
     squared = out["squared"]
+    joint = out["joint"]
+    unjointed = _dropped_edge_keys(start, fv, dropped)
 
     # the input's faces (a merged quad is still a quad of the grid)
     grid = grid_positions(input_mesh, rev) if ids in ("auto", "grid") else None
@@ -878,6 +932,9 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             dropped_edges=int(gone.sum()),
             squared_edges=int(np.count_nonzero(squared[edges] == 1)),
             butt_edges=int(np.count_nonzero(squared[edges] == 2)),
+            joint_widths=[None if n < 0 or key in unjointed else float(x)
+                          for n, x, key in zip(nb, joint[edges], _edge_keys(start, fv, f, edges)
+                                                     if unjointed else [None] * len(nb))],
         ))
     narrowest = res["narrowest_repaired_joint"]
     for attr, text, tail in (
@@ -894,6 +951,15 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             shown = ", ".join(hit[:5]) + (", ..." if len(hit) > 5 else "")
             warnings.append(f"{count} {text} {len(hit)} panel{'s' * (len(hit) > 1)}: {shown}"
                             + tail)
+    overlapping = int(res["n_overlapping_joints"])
+    a, b = res["narrowest_joint_faces"]
+    if overlapping:
+        warnings.append(
+            f"{overlapping} joint{'s' * (overlapping > 1)} cut square on the inner side of a "
+            f"fold overlap{'s' * (overlapping == 1)}: the panels "
+            f"{result[a].id} and {result[b].id} by {-res['narrowest_joint']:.3g} (the deepest, "
+            f"at the edge from vertex {res['narrowest_joint_vertex']}); a gap of "
+            f"{res['clearing_gap']:.3g} (now {gap:.3g}) or bisector edges would clear them")
     worst = res["worst_node"]
     return PanelSet(
         panels=result,
@@ -910,6 +976,10 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         n_reversed=int(res["n_reversed"]),
         n_components=int(res["n_components"]),
         narrowest_repaired_joint=None if narrowest < 0.0 else float(narrowest),
+        narrowest_joint=None if a < 0 else float(res["narrowest_joint"]),
+        narrowest_joint_panels=None if a < 0 else (result[a].id, result[b].id),
+        overlapping_joints=overlapping,
+        clearing_gap=float(res["clearing_gap"]) if overlapping else None,
         warnings=warnings,
         seconds=float(res["seconds"]),
         vanished_edges=vanished,

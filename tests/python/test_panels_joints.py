@@ -1,0 +1,159 @@
+"""Every joint's narrowest width, and square joints that overlap on the inner
+side of a fold (facet_panel_output.joint; Panel.joint_widths,
+PanelSet.narrowest_joint, overlapping_joints, clearing_gap)."""
+import csv
+import math
+
+import numpy as np
+import pytest
+from panel_meshes import FOLDS, folded_grid, freecad_step
+
+from facet.panels import panels
+
+STEP = 1000.0
+THICKNESS = 200.0
+GAP = 10.0
+
+
+def _fold_angle(i):
+    """The fold (radians) at the line x = i * STEP of folded_grid: the change
+    of slope there, positive where the surface bends up (a valley on top)."""
+    before = math.atan(FOLDS[i] - FOLDS[i - 1])
+    after = math.atan(FOLDS[i + 1] - FOLDS[i])
+    return after - before
+
+
+def _corner_depth(fold, gap, t=THICKNESS):
+    """How deep a top corner of a square joint across a valley lies inside the
+    other panel: it is half the gap off the edge in its panel's plane and t above
+    it; its distances inside the other's side plane, below its top, above its
+    bottom."""
+    s, c = math.sin(fold), math.cos(fold)
+    return min(t * s - gap / 2 * (1 + c), t * (1 - c) - gap / 2 * s, gap / 2 * s + t * c)
+
+
+def _joint_line(mesh, panel, k):
+    """The fold line index i of a panel's edge k when it runs along x = i * STEP
+    (None for an edge across the rows, which is flat)."""
+    a, b = panel.vertices[k], panel.vertices[(k + 1) % len(panel.vertices)]
+    x0 = mesh.vertices[0][0]
+    xa, xb = mesh.vertices[a][0] - x0, mesh.vertices[b][0] - x0
+    return int(round(xa / STEP)) if abs(xa - xb) < 1e-9 else None
+
+
+def test_fold_lines_of_the_mesh_are_a_valley_between_two_ridges():
+    # the facts the tests below rely on, so that a change of the mesh shows here
+    assert _fold_angle(1) < 0 and _fold_angle(2) > 0 and _fold_angle(3) < 0
+
+
+@pytest.mark.parametrize("offset", [(0.0, 0.0, 0.0), (2.5e6, 1.2e6, 350.0)])
+def test_square_joints_narrow_on_the_inner_side_of_a_fold_and_overlap_in_the_valley(offset):
+    mesh = folded_grid()
+    mesh = type(mesh).from_faces(mesh.vertices + np.array(offset), mesh.faces())
+    ps = panels(mesh, THICKNESS, gap=GAP)
+    seen = set()
+    for p in ps:
+        assert len(p.joint_widths) == len(p.neighbors)
+        for k, (n, width) in enumerate(zip(p.neighbors, p.joint_widths)):
+            if n is None:
+                assert width is None
+                continue
+            line = _joint_line(mesh, p, k)
+            fold = 0.0 if line is None else _fold_angle(line)
+            if fold > 0:
+                # the top corners meet first; here each lies inside the other panel, as
+                # deep as its distance to that panel's nearest plane (side, top, bottom)
+                expected = -_corner_depth(fold, GAP)
+                assert expected < 0
+            else:
+                # a ridge opens the joint on top; it is narrowest between the bottoms
+                expected = GAP * math.cos(fold / 2)
+            assert width == pytest.approx(expected, abs=1e-9 * STEP)
+            seen.add(line)
+    assert seen == {None, 1, 2, 3}
+    valley = _fold_angle(2)
+    clearing = 2 * THICKNESS * math.tan(valley / 2)
+    assert ps.overlapping_joints == 2  # the valley's two edges, one per row
+    assert ps.clearing_gap == pytest.approx(clearing, rel=1e-9)
+    assert ps.narrowest_joint == pytest.approx(-_corner_depth(valley, GAP), abs=1e-9 * STEP)
+    a, b = ps.narrowest_joint_panels
+    assert {ps.by_id(a).face, ps.by_id(b).face} in ({1, 2}, {5, 6})
+    (warning,) = [w for w in ps.warnings if "overlap" in w]
+    assert warning.startswith("2 joints cut square on the inner side of a fold overlap: "
+                              f"the panels {a} and {b} by {-ps.narrowest_joint:.3g}")
+    assert f"a gap of {clearing:.3g} (now 10)" in warning and "bisector edges" in warning
+    # at the clearing gap they no longer overlap; just below, they do
+    wide = panels(mesh, THICKNESS, gap=clearing * (1 + 1e-7))
+    assert wide.overlapping_joints == 0 and wide.clearing_gap is None
+    assert 0.0 <= wide.narrowest_joint < 1e-6 * STEP
+    assert not [w for w in wide.warnings if "overlap" in w]
+    assert panels(mesh, THICKNESS, gap=clearing * (1 - 1e-5)).overlapping_joints == 2
+
+
+def test_mitred_joints_keep_the_gap():
+    ps = panels(folded_grid(), THICKNESS, gap=GAP, edge="bisector")
+    widths = [w for p in ps for w in p.joint_widths if w is not None]
+    assert len(widths) == 2 * (3 * 2 + 4 * 1)  # each interior edge from both sides
+    assert np.allclose(widths, GAP, rtol=0.0, atol=1e-9 * STEP)
+    assert ps.overlapping_joints == 0 and ps.clearing_gap is None
+    assert ps.narrowest_joint == pytest.approx(GAP)
+
+
+def test_occ_finds_the_same_overlaps_and_widths():
+    """The solids as OCC reads them: the valley's panels share volume exactly where
+    the joint width is negative, and elsewhere their distance is the width."""
+    step = freecad_step()
+    mesh = folded_grid()
+    for gap in (GAP, 2 * THICKNESS * math.tan(_fold_angle(2) / 2) * (1 + 1e-6)):
+        ps = panels(mesh, THICKNESS, gap=gap)
+        solids = dict(step.panel_solids(ps))
+        checked = 0
+        for p in ps:
+            for n, width in zip(p.neighbors, p.joint_widths):
+                if n is None or n < p.face:
+                    continue
+                a, b = solids[p.id], solids[ps.panels[n].id]
+                common = a.common(b).Volume
+                if width < 0:
+                    assert common > 1e-6 * a.Volume
+                else:
+                    assert common < 1e-9 * a.Volume
+                    assert a.distToShape(b)[0] == pytest.approx(width, abs=1e-6 * STEP)
+                checked += 1
+        assert checked == 3 * 2 + 4 * 1
+
+
+def test_schedule_has_each_panels_joint_widths(tmp_path):
+    from facet.cli_panels import run_pipeline
+
+    report, ps, _, _ = run_pipeline(folded_grid(), THICKNESS, gap=GAP,
+                                    schedule=str(tmp_path / "schedule.csv"))
+    with open(tmp_path / "schedule.csv", newline="") as f:
+        rows = {r["id"]: r for r in csv.DictReader(f)}
+    for p in ps:
+        row = rows[p.id]
+        cells = row["joint_widths"].split(";")
+        assert len(cells) == len(p.vertices)
+        for cell, width in zip(cells, p.joint_widths):
+            assert (cell == "") == (width is None)
+            if width is not None:
+                assert float(cell) == width  # full precision
+        assert float(row["narrowest_joint"]) == min(w for w in p.joint_widths if w is not None)
+    assert report["overlapping_joints"] == 2
+    assert report["clearing_gap"] == ps.clearing_gap
+    assert tuple(report["narrowest_joint_panels"]) == ps.narrowest_joint_panels
+
+
+def test_an_edge_a_panel_dropped_has_no_joint():
+    # the cut tip's short edge is consumed by the gap and dropped from face 0;
+    # face 1 keeps it, facing a corner of face 0, not a joint
+    mesh = type(folded_grid()).from_faces(
+        [(0, 0, 0), (10, 0, 0), (5.1, 20, 0), (4.9, 20, 0), (12, 24, 0), (-2, 24, 0)],
+        [[0, 1, 2, 3], [3, 2, 4, 5]])
+    ps = panels(mesh, 0.05, gap=0.4)
+    tip, top = ps.panels
+    assert tip.dropped_edges == 1
+    assert all(w is None for w in tip.joint_widths)
+    k = [list(top.vertices[[k, (k + 1) % 4]]) for k in range(4)].index([3, 2])
+    assert top.neighbors[k] == 0 and top.joint_widths[k] is None
+    assert ps.narrowest_joint is None and ps.overlapping_joints == 0
