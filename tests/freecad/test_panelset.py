@@ -276,6 +276,45 @@ class TestPanelSetOnPlanarized(DocumentTestCase):
             s.check(True)
 
 
+class TestPanelSetJoints(DocumentTestCase):
+    """Square joints that overlap on the inner side of a fold, in a document of their own."""
+
+    def test_square_joints_that_overlap_in_a_valley_are_reported_with_the_gap_that_clears(self):
+        # folded_grid (mm): a valley between two ridges; 200 mm panels cut square
+        # with a 10 mm gap overlap along the valley, and the ClearingGap clears them
+        mesh = folded_grid()
+        source = facetwb.make_polymesh(mesh, label="folded")
+        obj = facetwb.make_panelset(source, thickness=200.0, gap=10.0, name="Folded")
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.OverlappingJoints, 2)
+        self.assertLess(obj.NarrowestJoint.Value, -1.0)
+        a, b = obj.NarrowestJointPanels
+        solid = dict(zip(obj.PartIds, obj.Shape.Solids))
+        self.assertGreater(solid[a].common(solid[b]).Volume, 1e-6 * solid[a].Volume)
+        self.assertTrue(any("cut square on the inner side of a fold overlap" in w
+                            for w in obj.Warnings), obj.Warnings)
+        clearing = obj.ClearingGap.Value
+        self.assertGreater(clearing, 10.0)
+        obj.Gap = clearing * (1 + 1e-6)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.OverlappingJoints, 0)
+        self.assertEqual(obj.ClearingGap.Value, 0.0)
+        self.assertGreaterEqual(obj.NarrowestJoint.Value, 0.0)
+        self.assertFalse([w for w in obj.Warnings if "overlap" in w], obj.Warnings)
+        ps = panels(mesh, 200.0, gap=obj.Gap.Value)
+        solids = obj.Shape.Solids
+        for p in ps:
+            for h in p.neighbors:
+                if h is not None and h > p.face:
+                    self.assertLess(solids[p.face].common(solids[h]).Volume,
+                                    1e-9 * solids[p.face].Volume)
+        np.testing.assert_array_equal(bits(points_array(source)), bits(mesh.vertices))
+        self.doc.removeObject(obj.Name)
+        self.doc.removeObject(source.Name)
+
+
 class TestPanelSetVanishedEdge(DocumentTestCase):
     """A quad whose edge vanished (1e-6 of a 1000 mm grid) is built as a triangle panel."""
 

@@ -119,6 +119,16 @@ class PanelSet(_Proxy):
         _output(obj, "App::PropertyStringList", "VanishedEdgePanels",
                 "Part IDs of the panels built with fewer corners than their faces, because an "
                 "edge shorter than MinEdge vanished")
+        _output(obj, "App::PropertyDistance", "NarrowestJoint",
+                "The narrowest joint between two neighbouring panels, across its section "
+                "(negative: how deep they overlap)")
+        _output(obj, "App::PropertyStringList", "NarrowestJointPanels",
+                "The part IDs of the two panels at the narrowest joint")
+        _output(obj, "App::PropertyInteger", "OverlappingJoints",
+                "Joints whose panels overlap: cut square on the inner side of a fold with too "
+                "small a Gap (mitred joints never do)")
+        _output(obj, "App::PropertyLength", "ClearingGap",
+                "The least Gap at which no joint would overlap (0 when none does)")
         _output(obj, "App::PropertyStringList", "Warnings", "What was found worth telling")
 
     def panel_set(self, obj):
@@ -180,7 +190,19 @@ class PanelSet(_Proxy):
         obj.Corners = [p.corners for p in ps.panels]
         vanished = [p.id for p in ps.vanished_panels]
         obj.VanishedEdgePanels = vanished
+        obj.NarrowestJoint = ps.narrowest_joint or 0.0
+        obj.NarrowestJointPanels = list(ps.narrowest_joint_panels or ())
+        obj.OverlappingJoints = ps.overlapping_joints
+        obj.ClearingGap = ps.clearing_gap or 0.0
         obj.Warnings = list(ps.warnings)
+        if ps.overlapping_joints:
+            a, b = ps.narrowest_joint_panels
+            App.Console.PrintWarning(translate(
+                "Facet", "{0}: {1} joints overlap (cut square on the inner side of a fold): "
+                "{2} and {3} by {4:.4g} mm, the deepest; a Gap of {5:.4g} mm or EdgeMode "
+                "bisector clears them").format(
+                    obj.Label, ps.overlapping_joints, a, b, -ps.narrowest_joint,
+                    ps.clearing_gap) + "\n")
         if vanished:
             App.Console.PrintMessage(translate(
                 "Facet", "{0}: {1} panels built with fewer corners than their faces "
