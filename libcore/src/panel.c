@@ -318,29 +318,29 @@ static facet_status edge_plane(work *w, int32_t f, int64_t c, double half_gap, f
     return FACET_OK;
 }
 
-/* The distance from x to the segment from a to b. */
-static double segment_distance(const double x[3], const double a[3], const double b[3])
+/* The squared distance from x to the segment from a to b. */
+static double segment_distance2(const double x[3], const double a[3], const double b[3])
 {
     const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, ax[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
     const double l2 = dot3(ab, ab);
     const double t = l2 > 0.0 ? fmin(1.0, fmax(0.0, dot3(ax, ab) / l2)) : 0.0;
     const double d[3] = {ax[0] - t * ab[0], ax[1] - t * ab[1], ax[2] - t * ab[2]};
-    return norm3(d);
+    return dot3(d, d);
 }
 
-/* The distance from x to a panel's cross-section at a joint: the half-strip
- * bounded by its side face's section (lo to hi) and the rays from lo and hi
- * into the panel along in (unit). x must lie outside it. */
-static double section_distance(const double x[3], const double lo[3], const double hi[3],
-                               const double in[3])
+/* The squared distance from x to a panel's cross-section at a joint: the
+ * half-strip bounded by its side face's section (lo to hi) and the rays from lo
+ * and hi into the panel along in (unit). x must lie outside it. */
+static double section_distance2(const double x[3], const double lo[3], const double hi[3],
+                                const double in[3])
 {
-    double d = segment_distance(x, lo, hi);
+    double d = segment_distance2(x, lo, hi);
     for (int k = 0; k < 2; ++k) {
         const double *a = k ? hi : lo;
         const double ax[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
         const double s = fmax(0.0, dot3(ax, in));
         const double r[3] = {ax[0] - s * in[0], ax[1] - s * in[1], ax[2] - s * in[2]};
-        d = fmin(d, norm3(r));
+        d = fmin(d, dot3(r, r));
     }
     return d;
 }
@@ -388,19 +388,18 @@ static double joint_overlap(const work *w, int32_t f, int64_t c, double up, doub
         for (int k = 0; k < 3; ++k)
             in[i][k] *= sg / li;
     }
-    double deepest = 0.0;
+    double deepest = 0.0, nearest2 = INFINITY;
     for (int i = 0; i < 2; ++i) {
         const double *n2 = w->plane + 4 * faces[1 - i], *side2 = w->eplane + 4 * corners[1 - i];
         for (int top = 0; top < 2; ++top) {
             const double height = dot3(n2, x[i][top]) + n2[3];
             const double inside = dot3(side2, x[i][top]) - side2[3] - widen;
             deepest = fmax(deepest, fmin(inside, fmin(height - down, up - height)));
-            *narrowest = fmin(*narrowest, section_distance(x[i][top], x[1 - i][0], x[1 - i][1],
-                                                           in[1 - i]));
+            nearest2 = fmin(nearest2, section_distance2(x[i][top], x[1 - i][0], x[1 - i][1],
+                                                        in[1 - i]));
         }
     }
-    if (deepest > 0.0)
-        *narrowest = -deepest;
+    *narrowest = deepest > 0.0 ? -deepest : sqrt(nearest2);
     return deepest;
 }
 
