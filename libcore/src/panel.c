@@ -345,6 +345,10 @@ static double section_distance2(const double x[3], const double lo[3], const dou
     return d;
 }
 
+/* Panels that overlap by no more than this (normalised units, 1e-9 of the
+ * mesh's size) touch: their joint is 0 wide, not an overlap. */
+#define JOINT_TOUCH 1e-9
+
 /* How deep the panels of edge c (face f) and of its twin overlap, normalised
  * units (0 when they do not), with both side planes moved widen farther into
  * their panels (half of a wider gap): in the cross-section at the edge's
@@ -399,7 +403,7 @@ static double joint_overlap(const work *w, int32_t f, int64_t c, double up, doub
                                                         in[1 - i]));
         }
     }
-    *narrowest = deepest > 0.0 ? -deepest : sqrt(nearest2);
+    *narrowest = deepest > JOINT_TOUCH ? -deepest : sqrt(nearest2);
     return deepest;
 }
 
@@ -812,7 +816,7 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             const int repaired = w.square[c] == CUT_SQUARED || w.square[t] == CUT_SQUARED;
             if (repaired) {
                 narrowest_repaired = fmin(narrowest_repaired, width);
-                if (depth > 1e-9) {
+                if (depth > JOINT_TOUCH) {
                     const int32_t other = w.corner_face[t];
                     work_free(&w);
                     return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
@@ -834,7 +838,7 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                 out->joint[c] = out->joint[t] = width * scale;
             if (width < narrowest)
                 narrowest = width, narrowest_c = c;
-            if (!repaired && depth > 1e-9) {
+            if (!repaired && depth > JOINT_TOUCH) {
                 ++r.n_overlapping_joints;
                 clearing = fmax(clearing, clearing_gap(&w, f, c, up, down, half_gap));
             }
