@@ -22,6 +22,7 @@ static void alloc_out(panel_buffers *p, int32_t nv, int32_t nf, int32_t nc, uint
     if (mask & 8) p->o.neighbor = fz_calloc((size_t)nc, sizeof(int32_t));
     if (mask & 16) p->o.dihedral = fz_calloc((size_t)nc, sizeof(double));
     if (mask & 16) p->o.bevel = fz_calloc((size_t)nc, sizeof(double));
+    if (mask & 16) p->o.joint = fz_calloc((size_t)nc, sizeof(double));
     if (mask & 32) p->o.node_deviation = fz_calloc((size_t)nv, sizeof(double));
     if (mask & 64) p->o.planarity = fz_calloc((size_t)nf, sizeof(double));
     if (mask & 64) p->o.nonplanar = fz_calloc((size_t)nf, sizeof(int32_t));
@@ -31,7 +32,7 @@ static void free_out(panel_buffers *p)
 {
     free(p->o.plane); free(p->o.top); free(p->o.bottom); free(p->o.frame); free(p->o.reversed);
     free(p->o.neighbor); free(p->o.dihedral); free(p->o.bevel); free(p->o.node_deviation);
-    free(p->o.planarity); free(p->o.nonplanar);
+    free(p->o.planarity); free(p->o.nonplanar); free(p->o.joint);
 }
 
 typedef struct cancel_at {
@@ -89,6 +90,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fz_check_finite("facet_panels", "frame", o->frame, o->frame ? 12 * (int64_t)nf : 0);
         fz_check_finite("facet_panels", "dihedral", o->dihedral, o->dihedral ? nc : 0);
         fz_check_finite("facet_panels", "bevel", o->bevel, o->bevel ? nc : 0);
+        fz_check_finite("facet_panels", "joint", o->joint, o->joint ? nc : 0);
         fz_check_finite("facet_panels", "node_deviation", o->node_deviation, o->node_deviation ? nv : 0);
         fz_check_finite("facet_panels", "planarity", o->planarity, o->planarity ? nf : 0);
         if (o->neighbor)
@@ -97,8 +99,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (o->nonplanar)
             for (int64_t k = 0; k < p[0].r.n_nonplanar; k++)
                 if (o->nonplanar[k] < 0 || o->nonplanar[k] >= nf) FZ_FAIL("facet_panels: nonplanar[%d] out of range", (int)k);
-        double rv[2] = {p[0].r.max_node_deviation, p[0].r.max_planarity};
-        fz_check_finite("facet_panels", "result", rv, 2);
+        double rv[4] = {p[0].r.max_node_deviation, p[0].r.max_planarity, p[0].r.narrowest_joint,
+                        p[0].r.clearing_gap};
+        fz_check_finite("facet_panels", "result", rv, 4);
+        const facet_panel_result *r = &p[0].r;
+        if (r->n_overlapping_joints < 0 || !(r->clearing_gap >= 0.0) ||
+            (r->n_overlapping_joints > 0) != (r->clearing_gap > 0.0) ||
+            (r->n_overlapping_joints > 0 && !(r->narrowest_joint < 0.0)))
+            FZ_FAIL("facet_panels: %lld overlapping joints, clearing gap %g, narrowest %g",
+                    (long long)r->n_overlapping_joints, r->clearing_gap, r->narrowest_joint);
+        for (int k = 0; k < 2; k++)
+            if (r->narrowest_joint_faces[k] < -1 || r->narrowest_joint_faces[k] >= nf)
+                FZ_FAIL("facet_panels: narrowest_joint_faces[%d] = %d", k, (int)r->narrowest_joint_faces[k]);
         if (p[0].r.n_nonplanar != 0) FZ_FAIL("facet_panels: ok with %lld non-planar faces", (long long)p[0].r.n_nonplanar);
     }
     if (s[0] >= 0) {
@@ -108,6 +120,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fz_check_same("facet_panels", "bottom", a->bottom, c->bottom, 3 * (size_t)nc * sizeof(double));
         fz_check_same("facet_panels", "frame", a->frame, c->frame, 12 * (size_t)nf * sizeof(double));
         fz_check_same("facet_panels", "dihedral", a->dihedral, c->dihedral, (size_t)nc * sizeof(double));
+        fz_check_same("facet_panels", "joint", a->joint, c->joint, (size_t)nc * sizeof(double));
         fz_check_same("facet_panels", "node_deviation", a->node_deviation, c->node_deviation, (size_t)nv * sizeof(double));
     }
     free_out(&p[0]);
