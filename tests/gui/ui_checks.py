@@ -212,6 +212,11 @@ def run(check, out_dir, g):
                  "Facet_PanelSet made 72 mitred 30 mm panels"):
         return
     panels = sets[0]
+    gap = panels.Gap.Value
+    check(panels.OverlappingJoints == 0 and len(panels.NarrowestJointPanels) == 2
+          and abs(panels.NarrowestJoint.Value - gap) < 1e-6 * max(1.0, gap),
+          f"the mitred panels' narrowest joint is their gap ({panels.NarrowestJoint.Value} mm, "
+          f"Gap {panels.Gap.Value} mm)")
     planar.ViewObject.Visibility = False
     Gui.Selection.clearSelection()
     path = os.path.join(out_dir, "facade_panels.png")

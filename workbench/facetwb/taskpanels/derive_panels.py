@@ -244,8 +244,14 @@ class PanelsPanel(DerivePanel):
     def summary(self, obj):
         if not obj.isValid():
             return f"{obj.Label}: failed: {obj.getStatusString()}"
-        return (f"{obj.Label}: {obj.PanelCount} panels, node deviation up to "
+        text = (f"{obj.Label}: {obj.PanelCount} panels, node deviation up to "
                 f"{obj.MaxNodeDeviation.Value:.3g} degrees")
+        if obj.OverlappingJoints:
+            text += (f"; {obj.OverlappingJoints} joints overlap (a Gap of "
+                     f"{obj.ClearingGap.Value:.4g} mm clears them)")
+        elif obj.NarrowestJointPanels:
+            text += f"; narrowest joint {obj.NarrowestJoint.Value:.4g} mm"
+        return text
 
 
 class CutSheetsPanel(DerivePanel):
