@@ -127,7 +127,8 @@ def make_roof(path):
     corners = [(xs[0], ys[0], 3000.0), (xs[-1], ys[0], 3600.0), (xs[0], ys[-1], 4200.0),
                (xs[-1], ys[-1], 3300.0), (xs[1], ys[1], 4500.0)]
     lifting = facetwb.make_lifting(plan, pins=corners)
-    facetwb.make_panelset(lifting, thickness=30.0, gap=4.0)
+    # 20 mm joints: square-cut 30 mm panels overlap across the roof's valley below 18.3 mm
+    facetwb.make_panelset(lifting, thickness=30.0, gap=20.0)
     doc.recompute()
     _check(doc)
     doc.saveAs(path)

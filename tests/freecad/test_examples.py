@@ -109,6 +109,8 @@ class TestFacadeExample(ExampleChecks, unittest.TestCase):
         for solid in panels.Shape.Solids:
             self.assertTrue(solid.isValid())
             self.assertGreater(solid.Volume, 0.0)
+        self.assertEqual(panels.OverlappingJoints, 0)
+        self.assertGreater(panels.NarrowestJoint.Value, 0.0)
         self.assertGreaterEqual(sheets.SheetCount, 1)
         self.assertEqual(list(sheets.Unplaced), [])
         self.assertGreater(sheets.Utilisation, 0.2)
@@ -135,6 +137,13 @@ class TestRoofExample(ExampleChecks, unittest.TestCase):
         self.assertEqual(panels.PanelCount, 7)
         for solid in panels.Shape.Solids:
             self.assertTrue(solid.isValid())
+        # its square joints clear the valley: no two panels share volume
+        self.assertEqual(panels.OverlappingJoints, 0)
+        self.assertGreater(panels.NarrowestJoint.Value, 0.0)
+        solids = panels.Shape.Solids
+        for i, a in enumerate(solids):
+            for b in solids[i + 1:]:
+                self.assertLess(a.common(b).Volume, 1e-9 * a.Volume)
 
 
 if __name__ == "__main__":
