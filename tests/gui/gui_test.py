@@ -365,6 +365,19 @@ def check_color_by(check, view, result, out_dir):
     path = os.path.join(out_dir, "smallest_angle.png")
     save_view(view, path)
     check_screenshot(check, path, "smallest angle", legend=True)
+    vobj.ColorBy = "Straightest corner"
+    Gui.updateGui()
+    turns = facet.quality(facetwb.get_mesh(result)).straight_corner
+    expected = colormap.colors(turns, turns.max(), reverse=True)
+    check(np.allclose(np.array(vobj.Proxy.planarity_material.diffuseColor.getValues()), expected,
+                      atol=1e-6),
+          "faces coloured by how far their straightest corner turns, nearly straight red")
+    labels = legend_strings(vobj)
+    check(any(label.startswith("Straightest corner") for label in labels),
+          f"the legend is titled Straightest corner ({labels})")
+    path = os.path.join(out_dir, "straightest_corner.png")
+    save_view(view, path)
+    check_screenshot(check, path, "straightest corner", legend=True)
     vobj.ColorBy = "Distance to input"
     Gui.updateGui()
     labels = legend_strings(vobj)

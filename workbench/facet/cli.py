@@ -280,6 +280,15 @@ def _quality_lines(out, quality):
             f"{_g(100 * (quality.get('degenerate_short_edge') or 0))}% of the face's mean edge "
             f"(first: {first})",
         )
+    count = quality.get("straight_corner_faces") or 0
+    if count:
+        first = ", ".join(map(str, quality.get("straight_corner_face_indices") or ()))
+        text = (f"{_count(count, 'face')} with a corner within "
+                f"{_g(quality.get('straight_corner_deg'))} deg of straight (the straightest "
+                f"turns {_g(quality.get('straightest_corner_deg'))} deg")
+        if quality.get("input_straightest_corner_deg") is not None:
+            text += f"; input {_g(quality['input_straightest_corner_deg'])} deg"
+        _line(out, "straight", text + f"; first: {first})")
 
 
 def _compared_line(out, report):

@@ -18,6 +18,14 @@ was made from (same topology) and a `reference` surface:
   ``max_e |r_e(result) / r_e(input) - 1|`` (edges of zero input length left
   out), so 0 means the panel kept its proportions and a uniform scale
   changes nothing;
+- nearly straight corners: per face, how far its straightest corner turns
+  the outline (degrees, the angle between the edges in and out of it: 0 is
+  a corner on a straight line, whether the face is convex there or not);
+  faces whose straightest corner turns less than `straight_corner` degrees
+  are counted. Planarizing makes them where a skew quad is best made a
+  triangle with a vertex on one edge: to a fabricator the panel is that
+  triangle with a kink, and the mitres of its two edges there meet far
+  beyond the panel (facet.panels cuts them as butt joints);
 - degenerate faces: zero area (below ``1e-12`` times the squared mean edge
   of the face), smallest angle below `min_angle` degrees, or an edge shorter
   than :data:`DEFAULT_SHORT_EDGE` of the face's mean edge (a quad whose edge
@@ -37,13 +45,18 @@ from facet.mesh import PolyMesh, next_corners
 from facet.planarity import PlanarityReport, planarity
 from facet.surface import Surface
 
-__all__ = ["QualityReport", "quality", "DEFAULT_MIN_ANGLE", "DEFAULT_SHORT_EDGE"]
+__all__ = ["QualityReport", "quality", "DEFAULT_MIN_ANGLE", "DEFAULT_SHORT_EDGE",
+           "DEFAULT_STRAIGHT_CORNER"]
 
 #: Faces with a smaller interior angle (degrees) count as degenerate.
 DEFAULT_MIN_ANGLE = 5.0
 
 #: Faces with an edge shorter than this fraction of their mean edge count as degenerate.
 DEFAULT_SHORT_EDGE = 0.01
+
+#: Faces with a corner that turns the outline by less than this (degrees) have a
+#: nearly straight corner (an interior angle within this of 180 degrees).
+DEFAULT_STRAIGHT_CORNER = 5.0
 
 #: Relative area under which a face counts as having none.
 _ZERO_AREA = 1e-12
@@ -90,6 +103,13 @@ class QualityReport:
     short_edge_threshold : float
         The fraction of a face's mean edge under which an edge makes the face
         degenerate.
+    straight_corner : numpy.ndarray or None
+        How far each face's straightest corner turns its outline, degrees (0:
+        a corner on a straight line; 180 for a face with an edge of no length).
+    straight_corner_threshold : float
+        The turn (degrees) under which a corner counts as nearly straight.
+    input_straight_corner : numpy.ndarray or None
+        The input's, degrees.
     """
 
     planarity: PlanarityReport
@@ -103,10 +123,20 @@ class QualityReport:
     input_min_angle: object = None
     mesh: object = None
     short_edge_threshold: float = DEFAULT_SHORT_EDGE
+    straight_corner: object = None
+    straight_corner_threshold: float = DEFAULT_STRAIGHT_CORNER
+    input_straight_corner: object = None
 
     #: Names :meth:`per_face` knows.
     PER_FACE = ("planarity", "planarity_rel", "displacement", "distance", "min_angle",
-                "ratio_change")
+                "ratio_change", "straight_corner")
+
+    @property
+    def straight_corner_faces(self):
+        """Indices of the faces with a nearly straight corner."""
+        if self.straight_corner is None:
+            return np.zeros(0, dtype=np.int64)
+        return np.flatnonzero(self.straight_corner < self.straight_corner_threshold)
 
     def per_face(self, name):
         """One value per face, for colour maps.
@@ -116,7 +146,8 @@ class QualityReport:
         name : str
             ``planarity`` (model units), ``planarity_rel``, ``displacement`` and
             ``distance`` (per face the largest of its vertices', model units),
-            ``min_angle`` (degrees) or ``ratio_change``.
+            ``min_angle`` (degrees), ``ratio_change`` or ``straight_corner``
+            (degrees).
 
         Returns
         -------
@@ -136,6 +167,7 @@ class QualityReport:
             "planarity_rel": self.planarity.max_rel,
             "min_angle": self.min_angle,
             "ratio_change": self.ratio_change,
+            "straight_corner": self.straight_corner,
         }[name]
 
     def as_dict(self, worst=5):
@@ -148,7 +180,10 @@ class QualityReport:
         ``ratio_change_max``, ``ratio_change_rms``, ``degenerate_faces``
         (count), ``degenerate_face_indices`` (the first `worst` * 4),
         ``degenerate_min_angle_deg`` and ``degenerate_short_edge`` (the
-        thresholds), ``worst_planarity_faces``.
+        thresholds), ``straightest_corner_deg`` (the least turn over all
+        faces), ``input_straightest_corner_deg``, ``straight_corner_faces``
+        (count), ``straight_corner_face_indices`` (the first `worst` * 4),
+        ``straight_corner_deg`` (the threshold), ``worst_planarity_faces``.
         """
         from facet.report import json_safe
 
@@ -170,6 +205,12 @@ class QualityReport:
             "degenerate_face_indices": [int(f) for f in self.degenerate[: 4 * worst]],
             "degenerate_min_angle_deg": float(self.min_angle_threshold),
             "degenerate_short_edge": float(self.short_edge_threshold),
+            "straightest_corner_deg": _min(self.straight_corner),
+            "input_straightest_corner_deg": _min(self.input_straight_corner),
+            "straight_corner_faces": int(self.straight_corner_faces.size),
+            "straight_corner_face_indices": [int(f) for f in
+                                             self.straight_corner_faces[: 4 * worst]],
+            "straight_corner_deg": float(self.straight_corner_threshold),
             "worst_planarity_faces": p.worst_faces(worst),
         }
         return json_safe(report)
@@ -195,6 +236,22 @@ def _shape(mesh, xyz_input, threads):
     return np.degrees(angle), area, change
 
 
+def _straightest_corners(mesh):
+    """Per face, the least angle (degrees) between the edges into and out of one
+    of its corners: 0 at a corner on a straight line. A corner beside an edge of
+    no length turns 180 (the face is degenerate for its short edge)."""
+    fv, fs = mesh.face_vertices, mesh.face_start
+    x = mesh.vertices[fv]
+    after = mesh.vertices[fv[next_corners(fs)]] - x
+    before = np.empty_like(after)  # the edge into each corner: the previous corner's
+    before[1:] = after[:-1]
+    before[fs[:-1]] = after[fs[1:] - 1]
+    den = np.linalg.norm(before, axis=1) * np.linalg.norm(after, axis=1)
+    cos = np.einsum("ij,ij->i", before, after) / np.where(den > 0.0, den, 1.0)
+    turn = np.where(den > 0.0, np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))), 180.0)
+    return np.minimum.reduceat(turn, fs[:-1])
+
+
 def _shortest_edges(mesh):
     """The shortest edge of each face, model units."""
     fv, fs = mesh.face_vertices, mesh.face_start
@@ -204,7 +261,7 @@ def _shortest_edges(mesh):
 
 
 def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_MIN_ANGLE,
-            progress=None):
+            progress=None, straight_corner=DEFAULT_STRAIGHT_CORNER):
     """Measure the quality of `result` (a mesh, or what :func:`facet.planarize` returned).
 
     Parameters
@@ -223,6 +280,9 @@ def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_
     progress : callable, optional
         ``progress(done, total)`` while distances are measured (the long
         part); a true return value cancels (:class:`facet.Cancelled`).
+    straight_corner : float
+        Faces with a corner that turns the outline by less than this
+        (degrees) have a nearly straight corner.
 
     Returns
     -------
@@ -231,19 +291,20 @@ def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_
     Raises
     ------
     facet.InputError
-        When `input` has another topology, or `min_angle` is not a number in
-        [0, 180).
+        When `input` has another topology, or `min_angle` or `straight_corner`
+        is not a number in [0, 180).
     """
     mesh = getattr(result, "mesh", result)
     if not isinstance(mesh, PolyMesh):
         raise InputError(f"quality: result must be a PolyMesh or a PlanarizeResult, not "
                          f"{type(result).__name__}")
-    try:
-        angle_ok = 0.0 <= float(min_angle) < 180.0
-    except (TypeError, ValueError):
-        angle_ok = False
-    if not angle_ok:
-        raise InputError(f"min_angle must be a number in [0, 180) degrees, not {min_angle!r}")
+    for name, value in (("min_angle", min_angle), ("straight_corner", straight_corner)):
+        try:
+            angle_ok = 0.0 <= float(value) < 180.0
+        except (TypeError, ValueError):
+            angle_ok = False
+        if not angle_ok:
+            raise InputError(f"{name} must be a number in [0, 180) degrees, not {value!r}")
     if input is not None and not mesh.same_topology(input):
         raise InputError(
             f"input has another topology ({input.n_vertices} vertices, {input.n_faces} faces) "
@@ -254,11 +315,12 @@ def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_
         report = planarity(mesh, threads=threads)
     xyz_input = None if input is None else input.vertices
     angle, area, change = _shape(mesh, xyz_input, threads)
-    input_angle = None
+    input_angle = input_straight = None
     displacement = None
     if input is not None:
         displacement = np.linalg.norm(mesh.vertices - input.vertices, axis=1)
         input_angle, _, _ = _shape(input, None, threads)
+        input_straight = _straightest_corners(input)
     surface = reference
     if surface is None and input is not None:
         surface = Surface(input)
@@ -286,4 +348,7 @@ def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_
         min_angle_threshold=float(min_angle),
         input_min_angle=input_angle,
         mesh=mesh,
+        straight_corner=_straightest_corners(mesh),
+        straight_corner_threshold=float(straight_corner),
+        input_straight_corner=input_straight,
     )

@@ -10,7 +10,9 @@ object's Source, the mesh before planarization):
   source's surface (mm);
 - Smallest angle: a face's smallest interior angle (degrees; red = small);
 - Edge ratio change: a face's largest change of edge length over mean edge length
-  (a ratio; 0 = same proportions as the source).
+  (a ratio; 0 = same proportions as the source);
+- Straightest corner: how far a face's straightest corner turns its outline
+  (degrees; red = nearly straight: a quad that is a triangle with a kink).
 """
 
 import numpy as np
@@ -25,6 +27,7 @@ COLOR_BY = {
     "Distance to input": ("distance", "Distance to input", "length", False),
     "Smallest angle": ("min_angle", "Smallest angle", "angle", True),
     "Edge ratio change": ("ratio_change", "Edge ratio change", "ratio", False),
+    "Straightest corner": ("straight_corner", "Straightest corner", "angle", True),
 }
 
 
@@ -40,9 +43,15 @@ class ViewProviderPlanarized(ViewProviderPolyMesh):
         if compat.add_property(vobj, "App::PropertyEnumeration", "ColorBy", "Planarity",
                                "What the colours of Planarity mode show: planarity, vertex "
                                "displacement or distance from the source's surface (mm), "
-                               "smallest angle (degrees) or change of edge ratios"):
+                               "smallest angle (degrees), change of edge ratios or how far "
+                               "the straightest corner turns (degrees)"):
             vobj.ColorBy = list(COLOR_BY)
             vobj.ColorBy = "Planarity"
+        elif list(vobj.getEnumerationsOfProperty("ColorBy")) != list(COLOR_BY):
+            # a document from before a choice was added: the same choice, the new list
+            choice = vobj.ColorBy
+            vobj.ColorBy = list(COLOR_BY)
+            vobj.ColorBy = choice
 
     def updateData(self, obj, prop):
         super().updateData(obj, prop)
