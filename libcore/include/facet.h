@@ -792,6 +792,10 @@ typedef struct facet_panel_output {
                                panel's side, top and bottom planes); 0 on
                                the boundary (neighbor -1) and where either panel
                                dropped the edge (no joint there) */
+    double *node_clash;     /* n_vertices: how deep two panels that meet at the
+                               vertex but not across a joint there overlap (the
+                               deepest corner of one inside the other, model
+                               units), the deepest pair's; 0 when none do */
 } facet_panel_output;
 
 typedef struct facet_panel_result {
@@ -820,6 +824,13 @@ typedef struct facet_panel_result {
     double clearing_gap;          /* the least gap at which none of them would
                                      overlap across its section, model units (0
                                      when none does) */
+    int64_t n_node_clashes;       /* pairs of panels that meet at a vertex, not
+                                     across a joint there, and overlap (see
+                                     out->node_clash; a pair meeting at two
+                                     vertices counts at each) */
+    double deepest_node_clash;    /* model units, 0 when none */
+    int64_t node_clash_vertex;    /* its vertex, or -1 */
+    int32_t node_clash_faces[2];  /* its two faces, or -1 -1 */
     double seconds;
 } facet_panel_result;
 

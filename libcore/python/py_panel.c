@@ -36,7 +36,7 @@ static int count_progress(void *user, int64_t done, int64_t total)
     return cancel;
 }
 
-enum { N_OUT = 14 };
+enum { N_OUT = 15 };
 
 static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
 {
@@ -44,7 +44,7 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
                                "gap", "edge", "flip", "tol_abs", "tol_rel", "plane", "top",
                                "bottom", "frame", "reversed", "neighbor", "dihedral", "bevel",
                                "node_deviation", "planarity", "nonplanar", "dropped", "squared",
-                               "joint", "progress", "repair_consumed", NULL};
+                               "joint", "node_clash", "progress", "repair_consumed", NULL};
     PyObject *xyz, *start, *faces, *progress = Py_None;
     PyObject *outs[N_OUT];
     for (int k = 0; k < N_OUT; ++k)
@@ -54,11 +54,11 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     const char *offset = "outer", *edge = "square";
     int flip = 0, repair = 1;
     if (!PyArg_ParseTupleAndKeywords(
-            args, kwargs, "OOO|$dsdspddOOOOOOOOOOOOOOOp:panels", keywords, &xyz, &start, &faces,
+            args, kwargs, "OOO|$dsdspddOOOOOOOOOOOOOOOOp:panels", keywords, &xyz, &start, &faces,
             &o.thickness, &offset, &o.gap, &edge, &flip, &o.planarity_tol_abs,
             &o.planarity_tol_rel, &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
             &outs[6], &outs[7], &outs[8], &outs[9], &outs[10], &outs[11], &outs[12], &outs[13],
-            &progress,
+            &outs[14], &progress,
             &repair))
         return NULL;
     if (strcmp(offset, "outer") == 0)
@@ -91,11 +91,11 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     static const char *names[N_OUT] = {"plane",    "top",      "bottom", "frame",
                                        "reversed", "neighbor", "dihedral", "bevel",
                                        "node_deviation", "planarity", "nonplanar", "dropped",
-                                       "squared", "joint"};
+                                       "squared", "joint", "node_clash"};
     const char codes[N_OUT] = {'d', 'd', 'd', 'd', 'i', 'i', 'd',
-                               'd', 'd', 'd', 'i', 'i', 'i', 'd'};
+                               'd', 'd', 'd', 'i', 'i', 'i', 'd', 'd'};
     const Py_ssize_t sizes[N_OUT] = {4 * nf, 3 * nc, 3 * nc, 12 * nf, nf, nc,
-                                     nc,     nc,     nv,     nf,      nf, nc, nc, nc};
+                                     nc,     nc,     nv,     nf,      nf, nc, nc, nc, nv};
     Py_buffer views[N_OUT];
     void *ptrs[N_OUT];
     int got = 0;
@@ -111,7 +111,7 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     if (got == N_OUT) {
         facet_panel_output out = {ptrs[0], ptrs[1], ptrs[2], ptrs[3], ptrs[4], ptrs[5],
                                   ptrs[6], ptrs[7], ptrs[8], ptrs[9], ptrs[10], ptrs[11], ptrs[12],
-                                  ptrs[13]};
+                                  ptrs[13], ptrs[14]};
         count_progress_state ps = {progress == Py_None ? NULL : progress, NULL, NULL, NULL};
         o.progress = count_progress;
         o.progress_user = &ps;
@@ -128,7 +128,8 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
             py_raise_status(py_state(module), status, &error);
         } else {
             ret = Py_BuildValue(
-                "{s:L,s:L,s:L,s:i,s:L,s:d,s:d,s:L,s:L,s:L,s:d,s:d,s:L,s:(ii),s:L,s:d,s:d,s:s}",
+                "{s:L,s:L,s:L,s:i,s:L,s:d,s:d,s:L,s:L,s:L,s:d,s:d,s:L,s:(ii),s:L,s:d,s:L,s:d,s:L,"
+                "s:(ii),s:d,s:s}",
                 "n_nonplanar", (long long)r.n_nonplanar,
                 "n_non_manifold_edges", (long long)r.n_non_manifold_edges, "n_reversed",
                 (long long)r.n_reversed, "n_components", (int)r.n_components, "worst_node",
@@ -141,7 +142,10 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
                 (long long)r.narrowest_joint_vertex, "narrowest_joint_faces",
                 (int)r.narrowest_joint_faces[0], (int)r.narrowest_joint_faces[1],
                 "n_overlapping_joints", (long long)r.n_overlapping_joints, "clearing_gap",
-                r.clearing_gap, "seconds", r.seconds, "warning",
+                r.clearing_gap, "n_node_clashes", (long long)r.n_node_clashes,
+                "deepest_node_clash", r.deepest_node_clash, "node_clash_vertex",
+                (long long)r.node_clash_vertex, "node_clash_faces", (int)r.node_clash_faces[0],
+                (int)r.node_clash_faces[1], "seconds", r.seconds, "warning",
                 status > 0 ? error.message : "");
         }
     }
@@ -158,7 +162,7 @@ static PyMethodDef panel_methods[] = {
      "       edge='square', flip=False, tol_abs=0, tol_rel=1e-6, plane=None, top=None,\n"
      "       bottom=None, frame=None, reversed=None, neighbor=None, dihedral=None,\n"
      "       bevel=None, node_deviation=None, planarity=None, nonplanar=None,\n"
-     "       dropped=None, squared=None, joint=None, progress=None,\n"
+     "       dropped=None, squared=None, joint=None, node_clash=None, progress=None,\n"
      "       repair_consumed=True) -> dict\n\n"
      "Panel geometry (facet_panels) into the given writable buffers (float64 or int32,\n"
      "sizes as in facet.h). progress(done, total) returning True cancels."},

@@ -71,6 +71,7 @@ typedef struct {
     double *fold;         /* nc: signed fold angle at the edge (>0 convex on top) */
     int8_t *drop;         /* nc: the outline drops edge k (the gap consumes it) */
     int8_t *square;       /* nc: how edge k is cut: CUT_MITRE, CUT_SQUARE, ... */
+    double *ctop, *cbot;  /* 3*nc: the outlines' corners, normalized */
 } work;
 
 static void work_free(work *w)
@@ -85,6 +86,8 @@ static void work_free(work *w)
     free(w->fold);
     free(w->drop);
     free(w->square);
+    free(w->ctop);
+    free(w->cbot);
 }
 
 /* How an edge is cut (work.square): on the bisector plane; square to its
@@ -426,6 +429,167 @@ static double clearing_gap(const work *w, int32_t f, int64_t c, double up, doubl
     return 2.0 * (half_gap + hi);
 }
 
+/* How deep x lies inside face f's panel, normalised units (0 outside): the
+ * least of its distances from the top and bottom planes and, in the solid's
+ * slice through x parallel to them, from the slice's outline (each side face
+ * is planar, so the slice's corners lie between the bottom and top corners, at
+ * x's height). The outline may be concave; dropped edges are corners that
+ * coincide. */
+static double depth_in_panel(const work *w, int32_t f, const double x[3], double up, double down)
+{
+    const double *n = w->plane + 4 * f;
+    const double h = dot3(n, x) + n[3];
+    const double slab = fmin(h - down, up - h);
+    if (!(slab > JOINT_TOUCH))
+        return 0.0;
+    const double lambda = (h - down) / (up - down);
+    /* a basis of the plane */
+    double ex[3] = {fabs(n[0]) < 0.6 ? 1.0 : 0.0, fabs(n[0]) < 0.6 ? 0.0 : 1.0, 0.0}, ey[3];
+    in_plane_unit(ex, n);
+    cross3(n, ex, ey);
+    const double px = dot3(ex, x), py = dot3(ey, x);
+    const int64_t s = w->mesh->face_start[f], e = w->mesh->face_start[f + 1];
+    double u0 = 0.0, v0 = 0.0, nearest2 = INFINITY;
+    int inside = 0;
+    for (int64_t c = e - 1, k = 0; k <= e - s; c = s + k++) {
+        double p[3];
+        for (int i = 0; i < 3; ++i)
+            p[i] = w->cbot[3 * c + i] + lambda * (w->ctop[3 * c + i] - w->cbot[3 * c + i]);
+        const double u1 = dot3(ex, p), v1 = dot3(ey, p);
+        if (k > 0) { /* the slice's edge from (u0, v0) to (u1, v1) */
+            if ((v0 > py) != (v1 > py) && px < u0 + (py - v0) * (u1 - u0) / (v1 - v0))
+                inside = !inside;
+            const double du = u1 - u0, dv = v1 - v0, l2 = du * du + dv * dv;
+            const double t = l2 > 0.0 ? fmin(1.0, fmax(0.0, ((px - u0) * du + (py - v0) * dv) / l2)) : 0.0;
+            const double ru = px - u0 - t * du, rv = py - v0 - t * dv;
+            nearest2 = fmin(nearest2, ru * ru + rv * rv);
+        }
+        u0 = u1, v0 = v1;
+    }
+    return inside ? fmin(slab, sqrt(nearest2)) : 0.0;
+}
+
+/* Whether face f's panel and face h's meet across a joint at corner c (its
+ * edges from and into c), which the joints' widths measure: an edge either
+ * panel dropped is no joint. */
+static int joint_at(const work *w, int32_t f, int64_t c, int32_t h)
+{
+    const int64_t edges[2] = {c, prev_corner(w->mesh, f, c)};
+    for (int k = 0; k < 2; ++k) {
+        const int64_t t = w->nbr_corner[edges[k]];
+        if (w->nbr[edges[k]] == h && !w->drop[edges[k]] && t >= 0 && !w->drop[t])
+            return 1;
+    }
+    return 0;
+}
+
+/* Whether face f's panel is convex: every corner of its top and bottom
+ * outlines turns the same way about its normal (corners that coincide, where
+ * an edge was dropped, and straight ones left out). */
+static int panel_convex(const work *w, int32_t f)
+{
+    const facet_mesh *m = w->mesh;
+    const double *n = w->plane + 4 * f;
+    const int64_t s = m->face_start[f], e = m->face_start[f + 1];
+    int sign = 0;
+    for (int side = 0; side < 2; ++side) {
+        const double *x = side ? w->cbot : w->ctop;
+        for (int64_t c = s; c < e; ++c) {
+            const double *a = x + 3 * prev_corner(m, f, c), *b = x + 3 * c,
+                         *d = x + 3 * next_corner(m, f, c);
+            const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+            const double v[3] = {d[0] - b[0], d[1] - b[1], d[2] - b[2]};
+            double k[3];
+            cross3(u, v, k);
+            const double turn = dot3(k, n);
+            if (!(fabs(turn) > 1e-12 * (dot3(u, u) + dot3(v, v))))
+                continue;
+            if (sign == 0)
+                sign = turn > 0.0 ? 1 : -1;
+            else if ((turn > 0.0 ? 1 : -1) != sign)
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* How far the panels of faces f and h, both convex, overlap along the unit
+ * axis u (negative: that far apart). */
+static double axis_overlap(const work *w, int32_t f, int32_t h, const double u[3])
+{
+    const facet_mesh *m = w->mesh;
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    const int32_t faces[2] = {f, h};
+    for (int i = 0; i < 2; ++i)
+        for (int64_t c = m->face_start[faces[i]]; c < m->face_start[faces[i] + 1]; ++c)
+            for (int side = 0; side < 2; ++side) {
+                const double x = dot3(u, (side ? w->cbot : w->ctop) + 3 * c);
+                lo[i] = fmin(lo[i], x), hi[i] = fmax(hi[i], x);
+            }
+    return fmin(hi[0], hi[1]) - fmax(lo[0], lo[1]);
+}
+
+/* How deep the panels of faces f and h overlap where they meet at a node,
+ * normalised units (0 when they do not). Both convex: by separating axes,
+ * exactly (the planes of either solid and the cross products of their edges'
+ * directions; the least overlap along them, the distance that would part
+ * them). Else the deepest corner of one inside the other (depth_in_panel),
+ * which can miss two panels that cross without a corner inside. */
+static double node_overlap(const work *w, const int8_t *convex, int32_t f, int32_t h, double up,
+                           double down)
+{
+    const facet_mesh *m = w->mesh;
+    const int32_t faces[2] = {f, h};
+    double deepest = 0.0;
+    if (!convex[f] || !convex[h]) {
+        for (int i = 0; i < 2; ++i)
+            for (int64_t c = m->face_start[faces[i]]; c < m->face_start[faces[i] + 1]; ++c) {
+                deepest = fmax(deepest, depth_in_panel(w, faces[1 - i], w->ctop + 3 * c, up, down));
+                deepest = fmax(deepest, depth_in_panel(w, faces[1 - i], w->cbot + 3 * c, up, down));
+            }
+        return deepest;
+    }
+    double least = INFINITY;
+    /* the solids' planes: top and bottom, and each side face's (its edge's
+     * plane; a dropped edge has no side face) */
+    for (int i = 0; i < 2; ++i) {
+        least = fmin(least, axis_overlap(w, f, h, w->plane + 4 * faces[i]));
+        for (int64_t c = m->face_start[faces[i]]; c < m->face_start[faces[i] + 1]; ++c)
+            if (!w->drop[c])
+                least = fmin(least, axis_overlap(w, f, h, w->eplane + 4 * c));
+        if (!(least > JOINT_TOUCH))
+            return 0.0;
+    }
+    /* edge against edge: the top edges (the bottom edges are parallel to them)
+     * and the edges from bottom to top */
+    for (int64_t c = m->face_start[f]; c < m->face_start[f + 1]; ++c)
+        for (int ka = 0; ka < 2; ++ka) {
+            const int64_t cn = next_corner(m, f, c);
+            double a[3];
+            for (int k = 0; k < 3; ++k)
+                a[k] = ka ? w->ctop[3 * c + k] - w->cbot[3 * c + k]
+                          : w->ctop[3 * cn + k] - w->ctop[3 * c + k];
+            for (int64_t t = m->face_start[h]; t < m->face_start[h + 1]; ++t)
+                for (int kb = 0; kb < 2; ++kb) {
+                    const int64_t tn = next_corner(m, h, t);
+                    double b[3], u[3];
+                    for (int k = 0; k < 3; ++k)
+                        b[k] = kb ? w->ctop[3 * t + k] - w->cbot[3 * t + k]
+                                  : w->ctop[3 * tn + k] - w->ctop[3 * t + k];
+                    cross3(a, b, u);
+                    const double l = norm3(u);
+                    if (!(l > 1e-9 * sqrt(dot3(a, a) * dot3(b, b))))
+                        continue; /* parallel, or an edge of no length */
+                    for (int k = 0; k < 3; ++k)
+                        u[k] /= l;
+                    least = fmin(least, axis_overlap(w, f, h, u));
+                    if (!(least > JOINT_TOUCH))
+                        return 0.0;
+                }
+        }
+    return least;
+}
+
 facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *options,
                           facet_panel_output *out, facet_panel_result *result,
                           facet_error *error)
@@ -479,8 +643,10 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
     w.fold = malloc(nc * sizeof *w.fold);
     w.drop = malloc(nc * sizeof *w.drop);
     w.square = malloc(nc * sizeof *w.square);
+    w.ctop = malloc(3 * nc * sizeof *w.ctop);
+    w.cbot = malloc(3 * nc * sizeof *w.cbot);
     if (!w.corner_face || !w.nbr || !w.nbr_corner || !w.sign || !w.xyz || !w.plane ||
-        !w.eplane || !w.fold || !w.drop || !w.square) {
+        !w.eplane || !w.fold || !w.drop || !w.square || !w.ctop || !w.cbot) {
         work_free(&w);
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1,
                           "out of memory for %d faces", (int)nf);
@@ -491,6 +657,8 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
     r.narrowest_repaired_joint = -1.0;
     r.narrowest_joint_vertex = -1;
     r.narrowest_joint_faces[0] = r.narrowest_joint_faces[1] = -1;
+    r.node_clash_vertex = -1;
+    r.node_clash_faces[0] = r.node_clash_faces[1] = -1;
 
     /* Centre and scale. */
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -751,6 +919,8 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                                   (int)f, (int)m->face_vertices[c]);
             }
             for (int k = 0; k < 3; ++k) {
+                w.ctop[3 * c + k] = xt[k];
+                w.cbot[3 * c + k] = xb[k];
                 if (out->top)
                     out->top[3 * c + k] = xt[k] * scale + centre[k];
                 if (out->bottom)
@@ -852,6 +1022,64 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
         r.narrowest_joint_faces[1] = w.corner_face[w.nbr_corner[narrowest_c]];
     }
     r.clearing_gap = clearing * scale;
+
+    /* Nodes: panels that meet at a vertex but not across a joint there (a
+     * node's diagonal neighbours, or across an edge one of them dropped) must
+     * not overlap either. Where the node's edge planes miss a common axis, or
+     * with square cuts, a corner of one can lie inside the other. */
+    int64_t *node_start = calloc((size_t)nv + 1, sizeof *node_start);
+    int64_t *node_corner = malloc((nc ? nc : 1) * sizeof *node_corner);
+    if (!node_start || !node_corner) {
+        free(node_start);
+        free(node_corner);
+        work_free(&w);
+        return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory (nodes)");
+    }
+    for (int64_t c = 0; c < (int64_t)nc; ++c)
+        ++node_start[m->face_vertices[c] + 1];
+    for (int32_t v = 0; v < nv; ++v)
+        node_start[v + 1] += node_start[v];
+    for (int64_t c = 0; c < (int64_t)nc; ++c)
+        node_corner[node_start[m->face_vertices[c]]++] = c;
+    for (int32_t v = nv; v > 0; --v) /* back to the starts */
+        node_start[v] = node_start[v - 1];
+    node_start[0] = 0;
+    int8_t *convex = malloc((size_t)(nf ? nf : 1));
+    if (!convex) {
+        free(node_start);
+        free(node_corner);
+        work_free(&w);
+        return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory (nodes)");
+    }
+    for (int32_t f = 0; f < nf; ++f)
+        convex[f] = (int8_t)panel_convex(&w, f);
+    double deepest_node = 0.0;
+    for (int32_t v = 0; v < nv; ++v) {
+        if (out->node_clash)
+            out->node_clash[v] = 0.0;
+        for (int64_t i = node_start[v]; i < node_start[v + 1]; ++i)
+            for (int64_t j = i + 1; j < node_start[v + 1]; ++j) {
+                const int64_t ci = node_corner[i];
+                const int32_t f = w.corner_face[ci], h = w.corner_face[node_corner[j]];
+                if (f == h || joint_at(&w, f, ci, h))
+                    continue;
+                const double depth = node_overlap(&w, convex, f, h, up, down);
+                if (!(depth > JOINT_TOUCH))
+                    continue;
+                ++r.n_node_clashes;
+                if (out->node_clash)
+                    out->node_clash[v] = fmax(out->node_clash[v], depth * scale);
+                if (depth > deepest_node) {
+                    deepest_node = depth;
+                    r.node_clash_faces[0] = f, r.node_clash_faces[1] = h;
+                    r.node_clash_vertex = v;
+                }
+            }
+    }
+    r.deepest_node_clash = deepest_node * scale;
+    free(node_start);
+    free(node_corner);
+    free(convex);
 
     /* Node deviation from the bisector planes (the mesh's own property,
      * whatever the edge mode): each undirected edge once. */

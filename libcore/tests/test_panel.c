@@ -5,6 +5,7 @@
 #include "facet.h"
 
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define PI 3.14159265358979323846
@@ -298,6 +299,60 @@ static void joint_widths(void)
     }
 }
 
+/* Panels that meet only at a node (facet_panel_output.node_clash): a bowl of
+ * four planar quads, z = s (|x| + |y|) (translational, so its node is
+ * torsion-free), 200 thick on top. Cut square, the diagonal panels' top
+ * corners run into each other over the bowl's bottom until the gap clears
+ * the edges' joints (2 t tan(fold/2), cos fold = 1 / (1 + 2 s^2)); mitred,
+ * they never meet. */
+static void node_clashes(void)
+{
+    const double L = 1000.0, t = 200.0, sl = tan(30.0 * PI / 180.0);
+    double q[27];
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) {
+            double *p = q + 3 * (3 * j + i);
+            p[0] = (i - 1) * L + 2.5e6, p[1] = (j - 1) * L + 1.2e6;
+            p[2] = sl * L * (abs(i - 1) + abs(j - 1)) + 350.0;
+        }
+    int32_t qs[5] = {0, 4, 8, 12, 16};
+    int32_t qf[16] = {0, 1, 4, 3, 1, 2, 5, 4, 3, 4, 7, 6, 4, 5, 8, 7};
+    facet_mesh qm = {9, 4, q, qs, qf};
+    double clash[9];
+    facet_panel_output out;
+    memset(&out, 0, sizeof out);
+    out.node_clash = clash;
+    facet_panel_options o;
+    facet_panel_options_default(&o);
+    o.thickness = t;
+    o.gap = 10.0;
+    facet_panel_result r;
+    facet_error e;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    const double clear = 2.0 * t * tan(0.5 * acos(1.0 / (1.0 + 2.0 * sl * sl)));
+    CHECK(r.n_overlapping_joints == 4);
+    CHECK_NEAR(r.clearing_gap, clear, 1e-9 * clear);
+    CHECK(r.n_node_clashes == 2); /* faces 0 and 3, 1 and 2 */
+    CHECK(r.node_clash_vertex == 4 && r.deepest_node_clash > 1.0);
+    CHECK((r.node_clash_faces[0] == 0 && r.node_clash_faces[1] == 3) ||
+          (r.node_clash_faces[0] == 1 && r.node_clash_faces[1] == 2));
+    for (int v = 0; v < 9; ++v)
+        CHECK(v == 4 ? clash[v] == r.deepest_node_clash : clash[v] == 0.0);
+    /* a wider gap parts them less deep, the clearing gap parts them */
+    const double deep = r.deepest_node_clash;
+    o.gap = 100.0;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_node_clashes == 2 && r.deepest_node_clash < deep);
+    o.gap = clear * (1.0 + 1e-6);
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_overlapping_joints == 0 && r.n_node_clashes == 0 && r.node_clash_vertex == -1);
+    CHECK(r.node_clash_faces[0] == -1 && r.deepest_node_clash == 0.0 && clash[4] == 0.0);
+    o.edge = FACET_PANEL_EDGE_BISECTOR;
+    o.gap = 10.0;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.max_node_deviation < 1e-9 && r.n_node_clashes == 0);
+}
+
 int main(void)
 {
     const double R = 5000.0, da = 0.2, h = 800.0, t = 40.0;
@@ -311,7 +366,7 @@ int main(void)
     double dih[4 * NU * NV], bev[4 * NU * NV], dev[(NU + 1) * (NV + 1)], pl[NU * NV];
     int32_t nbr[4 * NU * NV], rev[NU * NV], bad[NU * NV];
     facet_panel_output out = {plane, top, bottom, frame, rev,  nbr,
-                              dih,   bev, dev,    pl,    bad, NULL, NULL, NULL};
+                              dih,   bev, dev,    pl,    bad, NULL, NULL, NULL, NULL};
     facet_panel_options o;
     facet_panel_options_default(&o);
     o.thickness = t;
@@ -493,5 +548,6 @@ int main(void)
     squared_mitre();
     square_joint_overlap();
     joint_widths();
+    node_clashes();
     return check_report("test_panel");
 }
