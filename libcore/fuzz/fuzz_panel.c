@@ -24,6 +24,7 @@ static void alloc_out(panel_buffers *p, int32_t nv, int32_t nf, int32_t nc, uint
     if (mask & 16) p->o.bevel = fz_calloc((size_t)nc, sizeof(double));
     if (mask & 16) p->o.joint = fz_calloc((size_t)nc, sizeof(double));
     if (mask & 32) p->o.node_deviation = fz_calloc((size_t)nv, sizeof(double));
+    if (mask & 32) p->o.node_clash = fz_calloc((size_t)nv, sizeof(double));
     if (mask & 64) p->o.planarity = fz_calloc((size_t)nf, sizeof(double));
     if (mask & 64) p->o.nonplanar = fz_calloc((size_t)nf, sizeof(int32_t));
 }
@@ -33,6 +34,7 @@ static void free_out(panel_buffers *p)
     free(p->o.plane); free(p->o.top); free(p->o.bottom); free(p->o.frame); free(p->o.reversed);
     free(p->o.neighbor); free(p->o.dihedral); free(p->o.bevel); free(p->o.node_deviation);
     free(p->o.planarity); free(p->o.nonplanar); free(p->o.joint);
+    free(p->o.node_clash);
 }
 
 typedef struct cancel_at {
@@ -91,6 +93,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fz_check_finite("facet_panels", "dihedral", o->dihedral, o->dihedral ? nc : 0);
         fz_check_finite("facet_panels", "bevel", o->bevel, o->bevel ? nc : 0);
         fz_check_finite("facet_panels", "joint", o->joint, o->joint ? nc : 0);
+        fz_check_finite("facet_panels", "node_clash", o->node_clash, o->node_clash ? nv : 0);
         fz_check_finite("facet_panels", "node_deviation", o->node_deviation, o->node_deviation ? nv : 0);
         fz_check_finite("facet_panels", "planarity", o->planarity, o->planarity ? nf : 0);
         if (o->neighbor)
@@ -99,15 +102,23 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (o->nonplanar)
             for (int64_t k = 0; k < p[0].r.n_nonplanar; k++)
                 if (o->nonplanar[k] < 0 || o->nonplanar[k] >= nf) FZ_FAIL("facet_panels: nonplanar[%d] out of range", (int)k);
-        double rv[4] = {p[0].r.max_node_deviation, p[0].r.max_planarity, p[0].r.narrowest_joint,
-                        p[0].r.clearing_gap};
-        fz_check_finite("facet_panels", "result", rv, 4);
+        double rv[5] = {p[0].r.max_node_deviation, p[0].r.max_planarity, p[0].r.narrowest_joint,
+                        p[0].r.clearing_gap, p[0].r.deepest_node_clash};
+        fz_check_finite("facet_panels", "result", rv, 5);
         const facet_panel_result *r = &p[0].r;
         if (r->n_overlapping_joints < 0 || !(r->clearing_gap >= 0.0) ||
             (r->n_overlapping_joints > 0) != (r->clearing_gap > 0.0) ||
             (r->n_overlapping_joints > 0 && !(r->narrowest_joint < 0.0)))
             FZ_FAIL("facet_panels: %lld overlapping joints, clearing gap %g, narrowest %g",
                     (long long)r->n_overlapping_joints, r->clearing_gap, r->narrowest_joint);
+        if ((r->n_node_clashes > 0) != (r->deepest_node_clash > 0.0) ||
+            (r->n_node_clashes > 0) != (r->node_clash_vertex >= 0) || r->node_clash_vertex >= nv)
+            FZ_FAIL("facet_panels: %lld node clashes, deepest %g at vertex %lld",
+                    (long long)r->n_node_clashes, r->deepest_node_clash,
+                    (long long)r->node_clash_vertex);
+        for (int k = 0; k < 2; k++)
+            if (r->node_clash_faces[k] < -1 || r->node_clash_faces[k] >= nf)
+                FZ_FAIL("facet_panels: node_clash_faces[%d] = %d", k, (int)r->node_clash_faces[k]);
         for (int k = 0; k < 2; k++)
             if (r->narrowest_joint_faces[k] < -1 || r->narrowest_joint_faces[k] >= nf)
                 FZ_FAIL("facet_panels: narrowest_joint_faces[%d] = %d", k, (int)r->narrowest_joint_faces[k]);
@@ -121,6 +132,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fz_check_same("facet_panels", "frame", a->frame, c->frame, 12 * (size_t)nf * sizeof(double));
         fz_check_same("facet_panels", "dihedral", a->dihedral, c->dihedral, (size_t)nc * sizeof(double));
         fz_check_same("facet_panels", "joint", a->joint, c->joint, (size_t)nc * sizeof(double));
+        fz_check_same("facet_panels", "node_clash", a->node_clash, c->node_clash, (size_t)nv * sizeof(double));
         fz_check_same("facet_panels", "node_deviation", a->node_deviation, c->node_deviation, (size_t)nv * sizeof(double));
     }
     free_out(&p[0]);

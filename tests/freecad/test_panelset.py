@@ -314,6 +314,30 @@ class TestPanelSetJoints(DocumentTestCase):
         self.doc.removeObject(obj.Name)
         self.doc.removeObject(source.Name)
 
+    def test_panels_that_clash_at_a_node_are_reported(self):
+        # the bowl of the Python tests (mm): four planar quads whose diagonal panels
+        # meet only at its bottom; cut square they run into each other there
+        from test_panels_nodes import _bowl, _clearing
+
+        source = facetwb.make_polymesh(_bowl(), label="bowl")
+        obj = facetwb.make_panelset(source, thickness=200.0, gap=10.0, name="Bowl")
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.NodeClashes, 2)
+        self.assertGreater(obj.DeepestNodeClash.Value, 1.0)
+        a, b = obj.NodeClashPanels
+        solid = dict(zip(obj.PartIds, obj.Shape.Solids))
+        self.assertGreater(solid[a].common(solid[b]).Volume, 1e-6 * solid[a].Volume)
+        self.assertTrue(any("meet at a node" in w for w in obj.Warnings), obj.Warnings)
+        obj.Gap = _clearing() * (1 + 1e-6)
+        self.doc.recompute()
+        self.assertEqual((obj.NodeClashes, obj.DeepestNodeClash.Value), (0, 0.0))
+        self.assertEqual(list(obj.NodeClashPanels), [])
+        solids = obj.Shape.Solids
+        self.assertLess(solids[0].common(solids[3]).Volume, 1e-9 * solids[0].Volume)
+        self.doc.removeObject(obj.Name)
+        self.doc.removeObject(source.Name)
+
 
 class TestPanelSetVanishedEdge(DocumentTestCase):
     """A quad whose edge vanished (1e-6 of a 1000 mm grid) is built as a triangle panel."""

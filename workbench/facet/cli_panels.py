@@ -257,6 +257,9 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         "narrowest_joint_panels": ps.narrowest_joint_panels,
         "overlapping_joints": ps.overlapping_joints,
         "clearing_gap": ps.clearing_gap,
+        "node_clash_pairs": ps.node_clash_pairs,
+        "deepest_node_clash_panels": ps.deepest_node_clash_panels,
+        "node_clashes": ps.node_clashes,
         "warnings": ps.warnings,
         "files": files,
         "seconds": times,
@@ -301,7 +304,12 @@ def run_panels(args):
             print(f"  joints        narrowest {ps.narrowest_joint:.4g} "
                   f"(gap {ps.options['gap']:.4g}), between {a} and {b}", file=out)
     print(f"  nodes         largest deviation from a common axis "
-          f"{ps.max_node_deviation_deg:.3g} degrees", file=out)
+          f"{ps.max_node_deviation_deg:.3g} degrees"
+          + (f"; {ps.node_clash_pairs} pair{'s' * (ps.node_clash_pairs > 1)} of panels "
+             f"overlap at {len(ps.node_clashes)} node{'s' * (len(ps.node_clashes) > 1)}, "
+             f"the deepest by {ps.node_clashes[0]['depth']:.4g} "
+             f"({' and '.join(ps.deepest_node_clash_panels)})" if ps.node_clashes else ""),
+          file=out)
     if result is not None:
         print(f"  sheets        {len(result.sheets)}, utilisation {100 * result.utilisation:.1f}%"
               f", {len(result.unplaced)} unplaced", file=out)

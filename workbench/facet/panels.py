@@ -271,6 +271,23 @@ def _edge_keys(start, fv, f, edges):
     return [tuple(sorted((int(fv[c]), int(fv[s + (c - s + 1) % d])))) for c in edges]
 
 
+def _node_clashes(result, depth):
+    """The nodes where panels overlap (the core's depth per vertex), deepest
+    first: vertex, depth and the IDs of the panels at the node."""
+    nodes = np.flatnonzero(depth > 0.0)
+    if not nodes.size:
+        return []
+    at = {int(v): [] for v in nodes}
+    for p in result:
+        for v in p.vertices:
+            if int(v) in at:
+                at[int(v)].append(p.id)
+    clashes = [{"vertex": v, "depth": float(depth[v]), "panels": tuple(ids)}
+               for v, ids in at.items()]
+    clashes.sort(key=lambda d: (-d["depth"], d["vertex"]))
+    return clashes
+
+
 def _dropped_edge_keys(start, fv, dropped):
     """The edges some panel dropped from its outline (no joint there), as
     undirected vertex pairs."""
@@ -341,6 +358,18 @@ class PanelSet:
     clearing_gap : float or None
         The least gap at which none of those joints would overlap across its
         section (None when none does).
+    node_clashes : list of dict
+        The nodes where panels that meet there but not across a joint (a
+        node's diagonal neighbours) overlap, deepest first: ``vertex``,
+        ``depth`` (of its deepest such pair, model units) and ``panels`` (the
+        IDs of every panel at the node). Where a node's edge planes miss a
+        common axis, or with square cuts over a valley, such panels can run
+        into each other. Two convex panels are tested exactly (separating
+        axes); a concave one by its corners inside the other.
+    node_clash_pairs : int
+        How many such pairs overlap.
+    deepest_node_clash_panels : tuple of str or None
+        The IDs of the deepest pair.
     """
 
     panels: list
@@ -362,6 +391,9 @@ class PanelSet:
     narrowest_joint_panels: tuple = None
     overlapping_joints: int = 0
     clearing_gap: float = None
+    node_clashes: list = field(default_factory=list)
+    node_clash_pairs: int = 0
+    deepest_node_clash_panels: tuple = None
 
     @property
     def vanished_panels(self):
@@ -817,6 +849,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         "dropped": np.zeros(nc, dtype=np.int32),
         "squared": np.zeros(nc, dtype=np.int32),
         "joint": np.zeros(nc),
+        "node_clash": np.zeros(nv),
     }
     xyz = np.ascontiguousarray(mesh.vertices, dtype=np.float64).reshape(-1)
     try:
@@ -960,6 +993,19 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             f"{result[a].id} and {result[b].id} by {-res['narrowest_joint']:.3g} (the deepest, "
             f"at the edge from vertex {res['narrowest_joint_vertex']}); a gap of "
             f"{res['clearing_gap']:.3g} (now {gap:.3g}) or bisector edges would clear them")
+    clashes = _node_clashes(result, out["node_clash"])
+    fa, fb = res["node_clash_faces"]
+    deepest_pair = None if fa < 0 else (result[fa].id, result[fb].id)
+    if clashes:
+        pairs = int(res["n_node_clashes"])
+        warnings.append(
+            f"{pairs} pair{'s' * (pairs > 1)} of panels that meet at a node but not across a "
+            f"joint overlap there (at {len(clashes)} node{'s' * (len(clashes) > 1)}): the "
+            f"panels {deepest_pair[0]} and {deepest_pair[1]} by "
+            f"{res['deepest_node_clash']:.3g} at vertex {res['node_clash_vertex']} (the "
+            "deepest); a larger gap or thinner panels clear them, and where the node's edge "
+            "planes miss a common axis (its node deviation) so does a mesh closer to "
+            "torsion-free")
     worst = res["worst_node"]
     return PanelSet(
         panels=result,
@@ -980,6 +1026,9 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         narrowest_joint_panels=None if a < 0 else (result[a].id, result[b].id),
         overlapping_joints=overlapping,
         clearing_gap=float(res["clearing_gap"]) if overlapping else None,
+        node_clashes=clashes,
+        node_clash_pairs=int(res["n_node_clashes"]),
+        deepest_node_clash_panels=deepest_pair,
         warnings=warnings,
         seconds=float(res["seconds"]),
         vanished_edges=vanished,

@@ -129,6 +129,12 @@ class PanelSet(_Proxy):
                 "small a Gap (mitred joints never do)")
         _output(obj, "App::PropertyLength", "ClearingGap",
                 "The least Gap at which no joint would overlap (0 when none does)")
+        _output(obj, "App::PropertyInteger", "NodeClashes",
+                "Pairs of panels that meet at a node but not across a joint and overlap there")
+        _output(obj, "App::PropertyLength", "DeepestNodeClash",
+                "How deep the deepest of them overlap (0 when none do)")
+        _output(obj, "App::PropertyStringList", "NodeClashPanels",
+                "The part IDs of the deepest pair")
         _output(obj, "App::PropertyStringList", "Warnings", "What was found worth telling")
 
     def panel_set(self, obj):
@@ -194,6 +200,9 @@ class PanelSet(_Proxy):
         obj.NarrowestJointPanels = list(ps.narrowest_joint_panels or ())
         obj.OverlappingJoints = ps.overlapping_joints
         obj.ClearingGap = ps.clearing_gap or 0.0
+        obj.NodeClashes = ps.node_clash_pairs
+        obj.DeepestNodeClash = ps.node_clashes[0]["depth"] if ps.node_clashes else 0.0
+        obj.NodeClashPanels = list(ps.deepest_node_clash_panels or ())
         obj.Warnings = list(ps.warnings)
         if ps.overlapping_joints:
             a, b = ps.narrowest_joint_panels
@@ -203,6 +212,12 @@ class PanelSet(_Proxy):
                 "bisector clears them").format(
                     obj.Label, ps.overlapping_joints, a, b, -ps.narrowest_joint,
                     ps.clearing_gap) + "\n")
+        if ps.node_clashes:
+            App.Console.PrintWarning(translate(
+                "Facet", "{0}: {1} pairs of panels overlap at nodes they share without a "
+                "joint: {2} and {3} by {4:.4g} mm, the deepest (see its Warnings)").format(
+                    obj.Label, ps.node_clash_pairs, *ps.deepest_node_clash_panels,
+                    ps.node_clashes[0]["depth"]) + "\n")
         if vanished:
             App.Console.PrintMessage(translate(
                 "Facet", "{0}: {1} panels built with fewer corners than their faces "

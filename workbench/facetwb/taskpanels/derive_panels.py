@@ -251,6 +251,8 @@ class PanelsPanel(DerivePanel):
                      f"{obj.ClearingGap.Value:.4g} mm clears them)")
         elif obj.NarrowestJointPanels:
             text += f"; narrowest joint {obj.NarrowestJoint.Value:.4g} mm"
+        if obj.NodeClashes:
+            text += f"; {obj.NodeClashes} pairs of panels overlap at nodes"
         return text
 
 

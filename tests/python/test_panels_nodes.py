@@ -1,0 +1,114 @@
+"""Panels that meet at a node but not across a joint there must not overlap
+(facet_panel_output.node_clash; PanelSet.node_clashes, node_clash_pairs,
+deepest_node_clash_panels)."""
+import math
+import os
+
+import numpy as np
+import pytest
+from panel_meshes import freecad_step
+
+import facet
+from facet.panels import panels
+
+DATA = os.path.join(os.path.dirname(os.path.dirname(__file__)), "data")
+SLOPE = math.tan(math.radians(30.0))
+T = 200.0
+
+
+def _bowl(offset=(0.0, 0.0, 0.0)):
+    """Four planar quads around vertex 4, z = s (|x| + |y|): a torsion-free node
+    at the bottom of a bowl; faces 0 and 3, 1 and 2 meet only there."""
+    pts = [((i - 1) * 1000.0, (j - 1) * 1000.0, SLOPE * 1000.0 * (abs(i - 1) + abs(j - 1)))
+           for j in range(3) for i in range(3)]
+    faces = [[j * 3 + i, j * 3 + i + 1, (j + 1) * 3 + i + 1, (j + 1) * 3 + i]
+             for j in range(2) for i in range(2)]
+    return facet.PolyMesh.from_faces(np.array(pts) + np.array(offset), faces)
+
+
+def _clearing():
+    # the edges' fold: cos(fold) = 1 / (1 + 2 s^2); square joints clear at 2 t tan(fold / 2)
+    return 2 * T * math.tan(math.acos(1 / (1 + 2 * SLOPE**2)) / 2)
+
+
+def _non_joint_pairs(ps):
+    """(vertex, face, face) for the panels that share a vertex but not an edge joint."""
+    joints = {(min(p.face, n), max(p.face, n)) for p in ps
+              for n, w in zip(p.neighbors, p.joint_widths) if n is not None and w is not None}
+    at = {}
+    for p in ps:
+        for v in p.vertices:
+            at.setdefault(int(v), []).append(p.face)
+    return [(v, a, b) for v, faces in at.items() for i, a in enumerate(sorted(faces))
+            for b in sorted(faces)[i + 1:] if (a, b) not in joints]
+
+
+@pytest.mark.parametrize("offset", [(0.0, 0.0, 0.0), (2.5e6, 1.2e6, 350.0)])
+def test_square_panels_over_a_valley_node_clash_until_the_joints_clear(offset):
+    mesh = _bowl(offset)
+    ps = panels(mesh, T, gap=10.0)
+    assert ps.node_clash_pairs == 2
+    (clash,) = ps.node_clashes
+    assert clash["vertex"] == 4 and clash["depth"] > 1.0
+    assert sorted(clash["panels"]) == sorted(p.id for p in ps)
+    ids = [p.id for p in ps]
+    assert set(ps.deepest_node_clash_panels) in ({ids[0], ids[3]}, {ids[1], ids[2]})
+    (warning,) = [w for w in ps.warnings if "meet at a node" in w]
+    assert warning.startswith("2 pairs of panels that meet at a node but not across a joint "
+                              "overlap there (at 1 node): the panels ")
+    assert f"by {clash['depth']:.3g} at vertex 4 (the deepest)" in warning
+    wide = panels(mesh, T, gap=_clearing() * (1 + 1e-6))
+    assert wide.node_clash_pairs == 0 and wide.node_clashes == []
+    assert wide.deepest_node_clash_panels is None
+    assert not [w for w in wide.warnings if "meet at a node" in w]
+    mitred = panels(mesh, T, gap=10.0, edge="bisector")
+    assert mitred.max_node_deviation_deg < 1e-6 and mitred.node_clash_pairs == 0
+
+
+def test_occ_finds_the_bowls_diagonal_panels_overlapping_exactly_when_reported():
+    step = freecad_step()
+    mesh = _bowl()
+    for gap in (10.0, 100.0, _clearing() * (1 + 1e-6)):
+        ps = panels(mesh, T, gap=gap)
+        solids = [s for _, s in step.panel_solids(ps)]
+        for a, b in ((0, 3), (1, 2)):
+            common = solids[a].common(solids[b]).Volume
+            assert (common > 1e-6 * solids[a].Volume) == (ps.node_clash_pairs > 0), gap
+
+
+def test_mitred_panels_clash_at_nodes_far_from_torsion_free_as_occ_finds():
+    """crossvault_form planarized: nodes up to 28 degrees from a common axis. At
+    thickness 5% and gap 1% of the mean edge no mitred joint overlaps, but 20
+    pairs of panels meet inside each other at 20 nodes; OCC finds the same
+    nodes (every such pair of solids, common volume)."""
+    mesh = facet.read_mesh(os.path.join(DATA, "crossvault_form_planar.obj"))
+    e = mesh.mean_edge_length()
+    ps = panels(mesh, 0.05 * e, gap=0.01 * e, edge="bisector")
+    assert ps.overlapping_joints == 0
+    assert ps.max_node_deviation_deg > 20.0
+    assert ps.node_clash_pairs == 20 and len(ps.node_clashes) == 20
+    step = freecad_step()
+    solids = [s for _, s in step.panel_solids(ps)]
+    occ = {v for v, a, b in _non_joint_pairs(ps)
+           if solids[a].common(solids[b]).Volume > 1e-9 * solids[a].Volume}
+    assert occ == {c["vertex"] for c in ps.node_clashes}
+    # thinner panels with a wider gap clear them
+    assert panels(mesh, 0.02 * e, gap=0.02 * e, edge="bisector").node_clash_pairs == 0
+
+
+def test_the_command_line_names_the_overlaps(facet_command, tmp_path):
+    import json
+
+    facet.write_mesh(_bowl(), tmp_path / "bowl.obj")
+    done = facet_command("panels", tmp_path / "bowl.obj", "--thickness", "200", "--gap", "10",
+                         "--report", tmp_path / "r.json")
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    (joints,) = [t for t in lines if t.strip().startswith("joints")]
+    assert joints.split()[1:3] == ["4", "overlap,"] and f"{_clearing():.4g} clears them" in joints
+    (nodes,) = [t for t in lines if t.strip().startswith("nodes")]
+    assert "2 pairs of panels overlap at 1 node, the deepest by" in nodes
+    assert "meet at a node but not across a joint" in done.stderr
+    r = json.load(open(tmp_path / "r.json"))
+    assert r["overlapping_joints"] == 4 and r["clearing_gap"] == pytest.approx(_clearing())
+    assert r["node_clash_pairs"] == 2 and [c["vertex"] for c in r["node_clashes"]] == [4]
