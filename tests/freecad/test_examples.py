@@ -111,6 +111,7 @@ class TestFacadeExample(ExampleChecks, unittest.TestCase):
             self.assertGreater(solid.Volume, 0.0)
         self.assertEqual(panels.OverlappingJoints, 0)
         self.assertGreater(panels.NarrowestJoint.Value, 0.0)
+        self.assertEqual(panels.NodeClashes, 0)
         self.assertGreaterEqual(sheets.SheetCount, 1)
         self.assertEqual(list(sheets.Unplaced), [])
         self.assertGreater(sheets.Utilisation, 0.2)
@@ -140,6 +141,7 @@ class TestRoofExample(ExampleChecks, unittest.TestCase):
         # its square joints clear the valley: no two panels share volume
         self.assertEqual(panels.OverlappingJoints, 0)
         self.assertGreater(panels.NarrowestJoint.Value, 0.0)
+        self.assertEqual(panels.NodeClashes, 0)
         solids = panels.Shape.Solids
         for i, a in enumerate(solids):
             for b in solids[i + 1:]:
