@@ -302,7 +302,7 @@ class TestPanelSetJoints(DocumentTestCase):
         self.assertEqual(obj.OverlappingJoints, 0)
         self.assertEqual(obj.ClearingGap.Value, 0.0)
         self.assertGreaterEqual(obj.NarrowestJoint.Value, 0.0)
-        self.assertFalse([w for w in obj.Warnings if "overlap" in w], obj.Warnings)
+        self.assertFalse([w for w in obj.Warnings if "inner side of a fold" in w], obj.Warnings)
         ps = panels(mesh, 200.0, gap=obj.Gap.Value)
         solids = obj.Shape.Solids
         for p in ps:

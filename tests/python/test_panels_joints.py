@@ -78,7 +78,7 @@ def test_square_joints_narrow_on_the_inner_side_of_a_fold_and_overlap_in_the_val
     assert ps.narrowest_joint == pytest.approx(-_corner_depth(valley, GAP), abs=1e-9 * STEP)
     a, b = ps.narrowest_joint_panels
     assert {ps.by_id(a).face, ps.by_id(b).face} in ({1, 2}, {5, 6})
-    (warning,) = [w for w in ps.warnings if "overlap" in w]
+    (warning,) = [w for w in ps.warnings if "on the inner side of a fold" in w]
     assert warning.startswith("2 joints cut square on the inner side of a fold overlap: "
                               f"the panels {a} and {b} by {-ps.narrowest_joint:.3g}")
     assert f"a gap of {clearing:.3g} (now 10)" in warning and "bisector edges" in warning
@@ -86,7 +86,7 @@ def test_square_joints_narrow_on_the_inner_side_of_a_fold_and_overlap_in_the_val
     wide = panels(mesh, THICKNESS, gap=clearing * (1 + 1e-7))
     assert wide.overlapping_joints == 0 and wide.clearing_gap is None
     assert 0.0 <= wide.narrowest_joint < 1e-6 * STEP
-    assert not [w for w in wide.warnings if "overlap" in w]
+    assert not [w for w in wide.warnings if "on the inner side of a fold" in w]
     assert panels(mesh, THICKNESS, gap=clearing * (1 - 1e-5)).overlapping_joints == 2
 
 
