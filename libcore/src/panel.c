@@ -999,7 +999,9 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                                       depth * scale);
                 }
             }
-            if (w.drop[c] || w.drop[t]) { /* a panel has no side there: no joint */
+            /* a panel has no side there (or the section has no corners: planes
+             * that do not meet, which the outlines would have refused): no joint */
+            if (w.drop[c] || w.drop[t] || !isfinite(width)) {
                 if (out->joint)
                     out->joint[c] = out->joint[t] = 0.0;
                 continue;
