@@ -117,6 +117,17 @@ static void consumed_edge(void)
 }
 
 /* p rotated by angle about the line through a and b. */
+/* The default options with this thickness, gap and edge cut. */
+static facet_panel_options panel_options(double thickness, double gap, facet_panel_edge edge)
+{
+    facet_panel_options o;
+    facet_panel_options_default(&o);
+    o.thickness = thickness;
+    o.gap = gap;
+    o.edge = edge;
+    return o;
+}
+
 static void rotate_about(double p[3], const double a[3], const double b[3], double angle)
 {
     double k[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
@@ -208,11 +219,7 @@ static void square_joint_overlap(void)
     facet_panel_output out;
     memset(&out, 0, sizeof out);
     out.squared = squared;
-    facet_panel_options o;
-    facet_panel_options_default(&o);
-    o.edge = FACET_PANEL_EDGE_BISECTOR;
-    o.thickness = 1.0;
-    o.gap = 0.02;
+    facet_panel_options o = panel_options(1.0, 0.02, FACET_PANEL_EDGE_BISECTOR);
     facet_panel_result r;
     facet_error e;
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
@@ -253,10 +260,7 @@ static void joint_widths(void)
         memset(&out, 0, sizeof out);
         out.joint = joint;
         out.neighbor = nbr;
-        facet_panel_options o;
-        facet_panel_options_default(&o);
-        o.thickness = t;
-        o.gap = 10.0;
+        facet_panel_options o = panel_options(t, 10.0, FACET_PANEL_EDGE_SQUARE);
         facet_panel_result r;
         facet_error e;
         CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
@@ -322,10 +326,7 @@ static void node_clashes(void)
     facet_panel_output out;
     memset(&out, 0, sizeof out);
     out.node_clash = clash;
-    facet_panel_options o;
-    facet_panel_options_default(&o);
-    o.thickness = t;
-    o.gap = 10.0;
+    facet_panel_options o = panel_options(t, 10.0, FACET_PANEL_EDGE_SQUARE);
     facet_panel_result r;
     facet_error e;
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
