@@ -796,6 +796,9 @@ typedef struct facet_panel_output {
                                vertex but not across a joint there overlap (the
                                deepest corner of one inside the other, model
                                units), the deepest pair's; 0 when none do */
+    double *clash;          /* n_faces: how deep the panel overlaps another, across
+                               a joint or at a node (model units, the deepest); 0
+                               when it overlaps none */
 } facet_panel_output;
 
 typedef struct facet_panel_result {

@@ -36,7 +36,7 @@ static int count_progress(void *user, int64_t done, int64_t total)
     return cancel;
 }
 
-enum { N_OUT = 15 };
+enum { N_OUT = 16 };
 
 static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
 {
@@ -44,7 +44,8 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
                                "gap", "edge", "flip", "tol_abs", "tol_rel", "plane", "top",
                                "bottom", "frame", "reversed", "neighbor", "dihedral", "bevel",
                                "node_deviation", "planarity", "nonplanar", "dropped", "squared",
-                               "joint", "node_clash", "progress", "repair_consumed", NULL};
+                               "joint", "node_clash", "clash", "progress", "repair_consumed",
+                               NULL};
     PyObject *xyz, *start, *faces, *progress = Py_None;
     PyObject *outs[N_OUT];
     for (int k = 0; k < N_OUT; ++k)
@@ -54,11 +55,11 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     const char *offset = "outer", *edge = "square";
     int flip = 0, repair = 1;
     if (!PyArg_ParseTupleAndKeywords(
-            args, kwargs, "OOO|$dsdspddOOOOOOOOOOOOOOOOp:panels", keywords, &xyz, &start, &faces,
+            args, kwargs, "OOO|$dsdspddOOOOOOOOOOOOOOOOOp:panels", keywords, &xyz, &start, &faces,
             &o.thickness, &offset, &o.gap, &edge, &flip, &o.planarity_tol_abs,
             &o.planarity_tol_rel, &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
             &outs[6], &outs[7], &outs[8], &outs[9], &outs[10], &outs[11], &outs[12], &outs[13],
-            &outs[14], &progress,
+            &outs[14], &outs[15], &progress,
             &repair))
         return NULL;
     if (strcmp(offset, "outer") == 0)
@@ -91,11 +92,11 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     static const char *names[N_OUT] = {"plane",    "top",      "bottom", "frame",
                                        "reversed", "neighbor", "dihedral", "bevel",
                                        "node_deviation", "planarity", "nonplanar", "dropped",
-                                       "squared", "joint", "node_clash"};
+                                       "squared", "joint", "node_clash", "clash"};
     const char codes[N_OUT] = {'d', 'd', 'd', 'd', 'i', 'i', 'd',
-                               'd', 'd', 'd', 'i', 'i', 'i', 'd', 'd'};
+                               'd', 'd', 'd', 'i', 'i', 'i', 'd', 'd', 'd'};
     const Py_ssize_t sizes[N_OUT] = {4 * nf, 3 * nc, 3 * nc, 12 * nf, nf, nc,
-                                     nc,     nc,     nv,     nf,      nf, nc, nc, nc, nv};
+                                     nc,     nc,     nv,     nf,      nf, nc, nc, nc, nv, nf};
     Py_buffer views[N_OUT];
     void *ptrs[N_OUT];
     int got = 0;
@@ -111,7 +112,7 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     if (got == N_OUT) {
         facet_panel_output out = {ptrs[0], ptrs[1], ptrs[2], ptrs[3], ptrs[4], ptrs[5],
                                   ptrs[6], ptrs[7], ptrs[8], ptrs[9], ptrs[10], ptrs[11], ptrs[12],
-                                  ptrs[13], ptrs[14]};
+                                  ptrs[13], ptrs[14], ptrs[15]};
         count_progress_state ps = {progress == Py_None ? NULL : progress, NULL, NULL, NULL};
         o.progress = count_progress;
         o.progress_user = &ps;
@@ -162,8 +163,8 @@ static PyMethodDef panel_methods[] = {
      "       edge='square', flip=False, tol_abs=0, tol_rel=1e-6, plane=None, top=None,\n"
      "       bottom=None, frame=None, reversed=None, neighbor=None, dihedral=None,\n"
      "       bevel=None, node_deviation=None, planarity=None, nonplanar=None,\n"
-     "       dropped=None, squared=None, joint=None, node_clash=None, progress=None,\n"
-     "       repair_consumed=True) -> dict\n\n"
+     "       dropped=None, squared=None, joint=None, node_clash=None, clash=None,\n"
+     "       progress=None, repair_consumed=True) -> dict\n\n"
      "Panel geometry (facet_panels) into the given writable buffers (float64 or int32,\n"
      "sizes as in facet.h). progress(done, total) returning True cancels."},
     {NULL, NULL, 0, NULL}};

@@ -969,6 +969,9 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
      * a gap) is counted, with the gap that would clear it. */
     double narrowest = INFINITY, narrowest_repaired = INFINITY, clearing = 0.0;
     int64_t narrowest_c = -1;
+    if (out->clash)
+        for (int32_t f = 0; f < nf; ++f)
+            out->clash[f] = 0.0;
     for (int32_t f = 0; f < nf; ++f)
         for (int64_t c = m->face_start[f]; c < m->face_start[f + 1]; ++c) {
             r.n_dropped_edges += w.drop[c];
@@ -1012,6 +1015,11 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                 narrowest = width, narrowest_c = c;
             if (!repaired && depth > JOINT_TOUCH) {
                 ++r.n_overlapping_joints;
+                if (out->clash) {
+                    const int32_t h = w.corner_face[t];
+                    out->clash[f] = fmax(out->clash[f], depth * scale);
+                    out->clash[h] = fmax(out->clash[h], depth * scale);
+                }
                 clearing = fmax(clearing, clearing_gap(&w, f, c, up, down, half_gap));
             }
         }
@@ -1071,6 +1079,10 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                 ++r.n_node_clashes;
                 if (out->node_clash)
                     out->node_clash[v] = fmax(out->node_clash[v], depth * scale);
+                if (out->clash) {
+                    out->clash[f] = fmax(out->clash[f], depth * scale);
+                    out->clash[h] = fmax(out->clash[h], depth * scale);
+                }
                 if (depth > deepest_node) {
                     deepest_node = depth;
                     r.node_clash_faces[0] = f, r.node_clash_faces[1] = h;

@@ -325,7 +325,9 @@ static void node_clashes(void)
     double clash[9];
     facet_panel_output out;
     memset(&out, 0, sizeof out);
+    double face_clash[4];
     out.node_clash = clash;
+    out.clash = face_clash;
     facet_panel_options o = panel_options(t, 10.0, FACET_PANEL_EDGE_SQUARE);
     facet_panel_result r;
     facet_error e;
@@ -339,6 +341,9 @@ static void node_clashes(void)
           (r.node_clash_faces[0] == 1 && r.node_clash_faces[1] == 2));
     for (int v = 0; v < 9; ++v)
         CHECK(v == 4 ? clash[v] == r.deepest_node_clash : clash[v] == 0.0);
+    /* each panel's deepest overlap: its joints' and the node's */
+    for (int f = 0; f < 4; ++f)
+        CHECK(face_clash[f] >= r.deepest_node_clash && face_clash[f] >= -r.narrowest_joint);
     /* a wider gap parts them less deep, the clearing gap parts them */
     const double deep = r.deepest_node_clash;
     o.gap = 100.0;
@@ -348,6 +353,8 @@ static void node_clashes(void)
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
     CHECK(r.n_overlapping_joints == 0 && r.n_node_clashes == 0 && r.node_clash_vertex == -1);
     CHECK(r.node_clash_faces[0] == -1 && r.deepest_node_clash == 0.0 && clash[4] == 0.0);
+    for (int f = 0; f < 4; ++f)
+        CHECK(face_clash[f] == 0.0);
     o.edge = FACET_PANEL_EDGE_BISECTOR;
     o.gap = 10.0;
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
@@ -367,7 +374,7 @@ int main(void)
     double dih[4 * NU * NV], bev[4 * NU * NV], dev[(NU + 1) * (NV + 1)], pl[NU * NV];
     int32_t nbr[4 * NU * NV], rev[NU * NV], bad[NU * NV];
     facet_panel_output out = {plane, top, bottom, frame, rev,  nbr,
-                              dih,   bev, dev,    pl,    bad, NULL, NULL, NULL, NULL};
+                              dih,   bev, dev,    pl,    bad, NULL, NULL, NULL, NULL, NULL};
     facet_panel_options o;
     facet_panel_options_default(&o);
     o.thickness = t;
