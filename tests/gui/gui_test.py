@@ -213,6 +213,7 @@ def run(out_dir):
     App.closeDocument(doc.Name)
     check_lifting(check, out_dir)
     check_panels(check, out_dir)
+    check_panel_clashes(check, out_dir)
     check_edit_control(check, out_dir)
     check_edit_region(check)
     check_edit_planarized(check, out_dir)
@@ -522,10 +523,17 @@ def check_panels(check, out_dir):
     colours = np.unique(pixels.reshape(-1, 3)[::7], axis=0).shape[0]
     check(colours > 50, f"panels: not a uniform image ({colours} colours)")
     middle = pixels[HEIGHT // 4: 3 * HEIGHT // 4, WIDTH // 4: 3 * WIDTH // 4].astype(int)
-    # the panels are grey to light blue-grey; FreeCAD's background gradient is a clearly
-    # blue-violet (blue channel 25+ above red) in the middle of the view
+    # the panels are grey to light blue-grey, or red where they overlap another (square
+    # cuts with the default gap 0 overlap across every valley: here all of them);
+    # FreeCAD's background gradient is a clearly blue-violet (blue channel 25+ above
+    # red) in the middle of the view
     greyish = int((np.abs(middle[..., 2] - middle[..., 0]) < 20).sum())
-    check(greyish > 0.15 * middle.size / 3, f"panels: the solids are drawn ({greyish} pixels)")
+    red = int(((middle[..., 0] > 2 * middle[..., 2]) & (middle[..., 0] > 40)).sum())
+    check(ps.Gap.Value == 0.0 and list(ps.ClashingPanels) == list(ps.PartIds),
+          f"with the default gap ({ps.Gap.Value} mm) every panel overlaps a neighbour "
+          f"({len(ps.ClashingPanels)} of 20)")
+    check(greyish + red > 0.15 * middle.size / 3,
+          f"panels: the solids are drawn ({greyish} grey and {red} red pixels)")
 
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(ps)
@@ -546,6 +554,56 @@ def check_panels(check, out_dir):
     pixels = image_pixels(path).astype(int)
     red = int(((pixels[..., 0] > 150) & (pixels[..., 1] < 90) & (pixels[..., 2] < 90)).sum())
     check(red > 500, f"cutsheets: the red cut outlines are drawn ({red} pixels)")
+    App.closeDocument(doc.Name)
+
+
+def check_panel_clashes(check, out_dir):
+    """A PanelSet whose square-cut panels overlap across a valley shows them in red
+    (ShowClashes), the others in its colour; panel_clashes.png."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import numpy as np
+
+    import facetwb
+    from facetwb.objects.panelset import CLASH_COLOR
+
+    sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
+    from panel_meshes import folded_grid
+
+    doc = App.newDocument("Clashes")
+    source = facetwb.make_polymesh(folded_grid(), label="folded")
+    ps = facetwb.make_panelset(source, thickness=200.0, gap=10.0)
+    doc.recompute()
+    source.ViewObject.Visibility = False
+    clashing = set(ps.ClashingPanels)
+    check(ps.OverlappingJoints == 2 and clashing == {"P-R01C02", "P-R01C03", "P-R02C02",
+                                                     "P-R02C03"},
+          f"the valley's four panels clash ({sorted(clashing)})")
+    colours = [tuple(round(c, 3) for c in col[:3]) for col in ps.ViewObject.DiffuseColor]
+    expected = []
+    for part_id, solid in zip(ps.PartIds, ps.Shape.Solids):
+        rgb = CLASH_COLOR if part_id in clashing else ps.ViewObject.ShapeColor[:3]
+        expected += [tuple(round(c, 3) for c in rgb)] * len(solid.Faces)
+    check(colours == expected, "the clashing panels' faces are red, the others the shape colour")
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    Gui.Selection.clearSelection()
+    path = os.path.join(out_dir, "panel_clashes.png")
+    save_view(view, path)
+    pixels = image_pixels(path).astype(int)
+    red = int(((pixels[..., 0] > 150) & (pixels[..., 1] < 90) & (pixels[..., 2] < 90)).sum())
+    grey = int((np.abs(pixels[..., 2] - pixels[..., 0]) < 20).sum())
+    check(red > 5000 and grey > 5000,
+          f"panel_clashes: red and grey panels are drawn ({red} and {grey} pixels)")
+    ps.ViewObject.ShowClashes = False
+    Gui.updateGui()
+    check(len(ps.ViewObject.DiffuseColor) == 1, "ShowClashes off: one colour for every face")
+    path = os.path.join(out_dir, "panel_clashes_off.png")
+    save_view(view, path)
+    pixels = image_pixels(path).astype(int)
+    red = int(((pixels[..., 0] > 150) & (pixels[..., 1] < 90) & (pixels[..., 2] < 90)).sum())
+    check(red < 100, f"panel_clashes: no red panel with ShowClashes off ({red} pixels)")
     App.closeDocument(doc.Name)
 
 

@@ -139,6 +139,7 @@ def test_schedule_has_each_panels_joint_widths(tmp_path):
             if width is not None:
                 assert float(cell) == width  # full precision
         assert float(row["narrowest_joint"]) == min(w for w in p.joint_widths if w is not None)
+        assert float(row["clash"]) == p.clash
     assert report["overlapping_joints"] == 2
     assert report["clearing_gap"] == ps.clearing_gap
     assert tuple(report["narrowest_joint_panels"]) == ps.narrowest_joint_panels

@@ -53,6 +53,13 @@ def test_square_panels_over_a_valley_node_clash_until_the_joints_clear(offset):
     assert sorted(clash["panels"]) == sorted(p.id for p in ps)
     ids = [p.id for p in ps]
     assert set(ps.deepest_node_clash_panels) in ({ids[0], ids[3]}, {ids[1], ids[2]})
+    # each panel overlaps its neighbours across the valley's joints and its diagonal at
+    # the node: its clash is the deepest of those
+    assert [p.id for p in ps.clashing_panels] == ids
+    for p in ps:
+        deepest_joint = -min(w for w in p.joint_widths if w is not None)
+        assert p.clash == pytest.approx(max(deepest_joint, clash["depth"]), rel=1e-12)
+        assert p.schedule_row()["clash"] == p.clash
     (warning,) = [w for w in ps.warnings if "meet at a node" in w]
     assert warning.startswith("2 pairs of panels that meet at a node but not across a joint "
                               "overlap there (at 1 node): the panels ")
@@ -60,6 +67,7 @@ def test_square_panels_over_a_valley_node_clash_until_the_joints_clear(offset):
     wide = panels(mesh, T, gap=_clearing() * (1 + 1e-6))
     assert wide.node_clash_pairs == 0 and wide.node_clashes == []
     assert wide.deepest_node_clash_panels is None
+    assert wide.clashing_panels == [] and all(p.clash == 0.0 for p in wide)
     assert not [w for w in wide.warnings if "meet at a node" in w]
     mitred = panels(mesh, T, gap=10.0, edge="bisector")
     assert mitred.max_node_deviation_deg < 1e-6 and mitred.node_clash_pairs == 0

@@ -171,8 +171,8 @@ def schedule_rows(panel_set, nest_result=None):
 _CSV_COLUMNS = ["id", "face", "corners", "input_corners", "area", "area_top", "perimeter",
                 "width", "height", "thickness",
                 "edge_lengths", "bevel_deg", "dihedral_deg", "dropped_edges",
-                "squared_edges", "butt_edges", "joint_widths", "narrowest_joint", "sheet", "x",
-                "y",
+                "squared_edges", "butt_edges", "joint_widths", "narrowest_joint", "clash",
+                "sheet", "x", "y",
                 "rotation_deg"]
 
 

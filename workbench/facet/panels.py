@@ -121,6 +121,9 @@ class Panel:
         inner side, and negative where the gap is too small for the fold and
         the two panels overlap (minus how deep a corner of one lies inside the
         other). None on the boundary and where a panel dropped the edge.
+    clash : float
+        How deep the panel overlaps another one, across a joint or at a node
+        (model units, the deepest); 0 when it overlaps none.
     """
 
     id: str
@@ -143,6 +146,7 @@ class Panel:
     butt_edges: int = 0
     input_corners: int = None
     joint_widths: list = None
+    clash: float = 0.0
 
     def __post_init__(self):
         if self.input_corners is None:
@@ -262,6 +266,7 @@ class Panel:
             "butt_edges": int(self.butt_edges),
             "joint_widths": [None if x is None else float(x) for x in self.joint_widths],
             "narrowest_joint": self.narrowest_joint,
+            "clash": float(self.clash),
         }
 
 
@@ -394,6 +399,11 @@ class PanelSet:
     node_clashes: list = field(default_factory=list)
     node_clash_pairs: int = 0
     deepest_node_clash_panels: tuple = None
+
+    @property
+    def clashing_panels(self):
+        """The panels that overlap another (across a joint or at a node)."""
+        return [p for p in self.panels if p.clash > 0.0]
 
     @property
     def vanished_panels(self):
@@ -850,6 +860,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         "squared": np.zeros(nc, dtype=np.int32),
         "joint": np.zeros(nc),
         "node_clash": np.zeros(nv),
+        "clash": np.zeros(nf),
     }
     xyz = np.ascontiguousarray(mesh.vertices, dtype=np.float64).reshape(-1)
     try:
@@ -968,6 +979,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             joint_widths=[None if n < 0 or key in unjointed else float(x)
                           for n, x, key in zip(nb, joint[edges], _edge_keys(start, fv, f, edges)
                                                      if unjointed else [None] * len(nb))],
+            clash=float(out["clash"][f]),
         ))
     narrowest = res["narrowest_repaired_joint"]
     for attr, text, tail in (

@@ -135,6 +135,9 @@ class PanelSet(_Proxy):
                 "How deep the deepest of them overlap (0 when none do)")
         _output(obj, "App::PropertyStringList", "NodeClashPanels",
                 "The part IDs of the deepest pair")
+        _output(obj, "App::PropertyStringList", "ClashingPanels",
+                "Part IDs of the panels that overlap another, across a joint or at a node "
+                "(shown in red while the view's ShowClashes is on)")
         _output(obj, "App::PropertyStringList", "Warnings", "What was found worth telling")
 
     def panel_set(self, obj):
@@ -203,6 +206,7 @@ class PanelSet(_Proxy):
         obj.NodeClashes = ps.node_clash_pairs
         obj.DeepestNodeClash = ps.node_clashes[0]["depth"] if ps.node_clashes else 0.0
         obj.NodeClashPanels = list(ps.deepest_node_clash_panels or ())
+        obj.ClashingPanels = [p.id for p in ps.clashing_panels]
         obj.Warnings = list(ps.warnings)
         if ps.overlapping_joints:
             a, b = ps.narrowest_joint_panels
@@ -355,15 +359,55 @@ def is_cutsheets(obj):
     return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE_CUTSHEETS
 
 
+#: The colour of panels that overlap another (ShowClashes).
+CLASH_COLOR = (0.9, 0.12, 0.1)
+
+
 class ViewProviderPanels:
-    """A Part view provider with Facet's icon (PanelSet and CutSheets)."""
+    """A Part view provider with Facet's icon (PanelSet and CutSheets). A PanelSet's
+    view shows the panels that overlap another in red (ShowClashes)."""
 
     def __init__(self, vobj, icon):
         self.icon = icon
         vobj.Proxy = self
+        self._init_properties(vobj)
 
     def attach(self, vobj):
         self.Object = vobj.Object
+        self.ViewObject = vobj
+        self._init_properties(vobj)
+
+    def _init_properties(self, vobj):
+        if getattr(self, "icon", "Facet_PanelSet") == "Facet_PanelSet":
+            compat.add_property(vobj, "App::PropertyBool", "ShowClashes", "Display",
+                                "Show the panels that overlap another (ClashingPanels) in red",
+                                value=True)
+
+    def updateData(self, obj, prop):  # noqa: N802 - FreeCAD's name
+        if prop in ("Shape", "ClashingPanels"):
+            self.show_clashes(obj)
+
+    def onChanged(self, vobj, prop):  # noqa: N802
+        if prop in ("ShowClashes", "ShapeColor"):
+            self.show_clashes(vobj.Object)
+
+    def show_clashes(self, obj):
+        """Per face: red for the solids of ClashingPanels (when ShowClashes), else the
+        shape's colour."""
+        vobj = getattr(obj, "ViewObject", None)
+        if vobj is None or "ShowClashes" not in vobj.PropertiesList:
+            return
+        clashing = set(getattr(obj, "ClashingPanels", None) or ())
+        solids = obj.Shape.Solids if not obj.Shape.isNull() else []
+        base = tuple(vobj.ShapeColor[:3])
+        if not (vobj.ShowClashes and clashing and len(solids) == len(obj.PartIds)):
+            if len(vobj.DiffuseColor) != 1 or tuple(vobj.DiffuseColor[0][:3]) != base:
+                vobj.DiffuseColor = [base]
+            return
+        colours = []
+        for part_id, solid in zip(obj.PartIds, solids):
+            colours += [CLASH_COLOR if part_id in clashing else base] * len(solid.Faces)
+        vobj.DiffuseColor = colours
 
     def getIcon(self):
         from facetwb import paths
