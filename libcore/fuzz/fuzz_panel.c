@@ -27,6 +27,7 @@ static void alloc_out(panel_buffers *p, int32_t nv, int32_t nf, int32_t nc, uint
     if (mask & 32) p->o.node_clash = fz_calloc((size_t)nv, sizeof(double));
     if (mask & 64) p->o.planarity = fz_calloc((size_t)nf, sizeof(double));
     if (mask & 64) p->o.nonplanar = fz_calloc((size_t)nf, sizeof(int32_t));
+    if (mask & 64) p->o.clash = fz_calloc((size_t)nf, sizeof(double));
 }
 
 static void free_out(panel_buffers *p)
@@ -35,6 +36,7 @@ static void free_out(panel_buffers *p)
     free(p->o.neighbor); free(p->o.dihedral); free(p->o.bevel); free(p->o.node_deviation);
     free(p->o.planarity); free(p->o.nonplanar); free(p->o.joint);
     free(p->o.node_clash);
+    free(p->o.clash);
 }
 
 typedef struct cancel_at {
@@ -94,6 +96,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fz_check_finite("facet_panels", "bevel", o->bevel, o->bevel ? nc : 0);
         fz_check_finite("facet_panels", "joint", o->joint, o->joint ? nc : 0);
         fz_check_finite("facet_panels", "node_clash", o->node_clash, o->node_clash ? nv : 0);
+        fz_check_finite("facet_panels", "clash", o->clash, o->clash ? nf : 0);
+        if (o->clash) {
+            int any = 0;
+            for (int32_t f = 0; f < nf; f++)
+                any |= o->clash[f] > 0.0;
+            if (any != (p[0].r.n_node_clashes > 0 || p[0].r.n_overlapping_joints > 0))
+                FZ_FAIL("facet_panels: clash per face %d, %lld node clashes, %lld joints",
+                        any, (long long)p[0].r.n_node_clashes, (long long)p[0].r.n_overlapping_joints);
+        }
         fz_check_finite("facet_panels", "node_deviation", o->node_deviation, o->node_deviation ? nv : 0);
         fz_check_finite("facet_panels", "planarity", o->planarity, o->planarity ? nf : 0);
         if (o->neighbor)
@@ -133,6 +144,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fz_check_same("facet_panels", "dihedral", a->dihedral, c->dihedral, (size_t)nc * sizeof(double));
         fz_check_same("facet_panels", "joint", a->joint, c->joint, (size_t)nc * sizeof(double));
         fz_check_same("facet_panels", "node_clash", a->node_clash, c->node_clash, (size_t)nv * sizeof(double));
+        fz_check_same("facet_panels", "clash", a->clash, c->clash, (size_t)nf * sizeof(double));
         fz_check_same("facet_panels", "node_deviation", a->node_deviation, c->node_deviation, (size_t)nv * sizeof(double));
     }
     free_out(&p[0]);
