@@ -352,6 +352,10 @@ static double section_distance2(const double x[3], const double lo[3], const dou
  * mesh's size) touch: their joint is 0 wide, not an overlap. */
 #define JOINT_TOUCH 1e-9
 
+/* The most corners a panel may have for the node test by convex pieces (more:
+ * its corners inside the other panel). */
+#define FACET_PIECE_MAX 32
+
 /* How deep the panels of edge c (face f) and of its twin overlap, normalised
  * units (0 when they do not), with both side planes moved widen farther into
  * their panels (half of a wider gap): in the cross-section at the edge's
@@ -529,12 +533,169 @@ static double axis_overlap(const work *w, int32_t f, int32_t h, const double u[3
     return fmin(hi[0], hi[1]) - fmax(lo[0], lo[1]);
 }
 
+/* A convex piece of a panel: the solid between the top and bottom corners
+ * of k of its corners (all of a convex panel's, or a triangle of a concave
+ * one's outline), as corner indices into work.ctop and work.cbot. */
+typedef struct {
+    int k;
+    const int64_t *corner;
+} piece;
+
+/* How far two pieces overlap along the unit axis u (negative: apart). */
+static double piece_axis_overlap(const work *w, const piece *a, const piece *b, const double u[3])
+{
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    const piece *pc[2] = {a, b};
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < pc[i]->k; ++j)
+            for (int side = 0; side < 2; ++side) {
+                const double x = dot3(u, (side ? w->cbot : w->ctop) + 3 * pc[i]->corner[j]);
+                lo[i] = fmin(lo[i], x), hi[i] = fmax(hi[i], x);
+            }
+    return fmin(hi[0], hi[1]) - fmax(lo[0], lo[1]);
+}
+
+/* The piece's edge directions (4 per side: its top edge, the edge from bottom
+ * to top at its start and the two diagonals of its side, which is twisted
+ * where an inner side of a mitred panel's piece is) into e[4 k][3]; its side
+ * planes' normals (both triangles of each diagonal: they cover the side
+ * whichever way its convex hull folds it) into n[4 k][3], unnormalised. */
+static void piece_directions(const work *w, const piece *p, double (*e)[3], double (*n)[3])
+{
+    for (int j = 0; j < p->k; ++j) {
+        const int64_t a = p->corner[j], b = p->corner[j + 1 < p->k ? j + 1 : 0];
+        const double *ta = w->ctop + 3 * a, *tb = w->ctop + 3 * b, *ba = w->cbot + 3 * a,
+                     *bb = w->cbot + 3 * b;
+        for (int i = 0; i < 3; ++i) {
+            e[4 * j][i] = tb[i] - ta[i];
+            e[4 * j + 1][i] = ta[i] - ba[i];
+            e[4 * j + 2][i] = tb[i] - ba[i];
+            e[4 * j + 3][i] = ta[i] - bb[i];
+        }
+        const double bottom[3] = {bb[0] - ba[0], bb[1] - ba[1], bb[2] - ba[2]};
+        const double up_b[3] = {tb[0] - bb[0], tb[1] - bb[1], tb[2] - bb[2]};
+        cross3(bottom, e[4 * j + 2], n[4 * j]);     /* ba bb tb */
+        cross3(e[4 * j + 2], e[4 * j + 1], n[4 * j + 1]); /* ba tb ta */
+        cross3(bottom, e[4 * j + 1], n[4 * j + 2]); /* ba bb ta */
+        cross3(up_b, e[4 * j + 3], n[4 * j + 3]);   /* bb tb ta */
+    }
+}
+
+/* How deep two convex pieces of the panels of faces f and h overlap (0 when
+ * a separating axis parts them): separating axes of their convex hulls (the
+ * panels' planes, the pieces' side planes and the cross products of their
+ * edges' directions). */
+static double piece_overlap(const work *w, int32_t f, int32_t h, const piece *a, const piece *b)
+{
+    double ea[4 * FACET_PIECE_MAX][3], na[4 * FACET_PIECE_MAX][3];
+    double eb[4 * FACET_PIECE_MAX][3], nb[4 * FACET_PIECE_MAX][3];
+    piece_directions(w, a, ea, na);
+    piece_directions(w, b, eb, nb);
+    double least = fmin(piece_axis_overlap(w, a, b, w->plane + 4 * f),
+                        piece_axis_overlap(w, a, b, w->plane + 4 * h));
+    double(*normals[2])[3] = {na, nb};
+    const int count[2] = {4 * a->k, 4 * b->k};
+    for (int i = 0; i < 2 && least > JOINT_TOUCH; ++i)
+        for (int j = 0; j < count[i] && least > JOINT_TOUCH; ++j) {
+            double u[3] = {normals[i][j][0], normals[i][j][1], normals[i][j][2]};
+            const double l = norm3(u);
+            if (!(l > 0.0))
+                continue;
+            for (int k = 0; k < 3; ++k)
+                u[k] /= l;
+            least = fmin(least, piece_axis_overlap(w, a, b, u));
+        }
+    for (int i = 0; i < count[0] && least > JOINT_TOUCH; ++i)
+        for (int j = 0; j < count[1] && least > JOINT_TOUCH; ++j) {
+            double u[3];
+            cross3(ea[i], eb[j], u);
+            const double l = norm3(u);
+            if (!(l > 1e-9 * sqrt(dot3(ea[i], ea[i]) * dot3(eb[j], eb[j]))))
+                continue; /* parallel, or an edge of no length */
+            for (int k = 0; k < 3; ++k)
+                u[k] /= l;
+            least = fmin(least, piece_axis_overlap(w, a, b, u));
+        }
+    return least > JOINT_TOUCH ? least : 0.0;
+}
+
+/* The triangles of face f's bottom outline (ear clipping in the face's plane;
+ * corners that coincide, where an edge was dropped, taken once), 3 corner
+ * indices each into tri; returns how many (0 when the outline has more than
+ * FACET_PIECE_MAX corners or no ear is found). */
+static int outline_triangles(const work *w, int32_t f, int64_t *tri)
+{
+    const facet_mesh *m = w->mesh;
+    const double *n = w->plane + 4 * f;
+    double ex[3] = {fabs(n[0]) < 0.6 ? 1.0 : 0.0, fabs(n[0]) < 0.6 ? 0.0 : 1.0, 0.0}, ey[3];
+    in_plane_unit(ex, n);
+    cross3(n, ex, ey);
+    int64_t c[FACET_PIECE_MAX];
+    double u[FACET_PIECE_MAX], v[FACET_PIECE_MAX];
+    int k = 0;
+    for (int64_t x = m->face_start[f]; x < m->face_start[f + 1]; ++x) {
+        const double *p = w->cbot + 3 * x;
+        const double px = dot3(ex, p), py = dot3(ey, p);
+        if (k > 0 && px == u[k - 1] && py == v[k - 1])
+            continue;
+        if (k == FACET_PIECE_MAX)
+            return 0;
+        c[k] = x, u[k] = px, v[k] = py, ++k;
+    }
+    if (k > 1 && u[k - 1] == u[0] && v[k - 1] == v[0])
+        --k;
+    double area = 0.0;
+    for (int i = 0; i < k; ++i) {
+        const int j = i + 1 < k ? i + 1 : 0;
+        area += u[i] * v[j] - u[j] * v[i];
+    }
+    const double sgn = area < 0.0 ? -1.0 : 1.0;
+    int count = 0;
+    while (k > 3) {
+        int ear = -1;
+        for (int i = 0; i < k && ear < 0; ++i) {
+            const int a = i > 0 ? i - 1 : k - 1, b = i + 1 < k ? i + 1 : 0;
+            const double turn = (u[i] - u[a]) * (v[b] - v[i]) - (v[i] - v[a]) * (u[b] - u[i]);
+            if (!(sgn * turn > 0.0))
+                continue;
+            int inside = 0;
+            for (int j = 0; j < k && !inside; ++j) {
+                if (j == a || j == i || j == b)
+                    continue;
+                const double d0 = (u[i] - u[a]) * (v[j] - v[a]) - (v[i] - v[a]) * (u[j] - u[a]);
+                const double d1 = (u[b] - u[i]) * (v[j] - v[i]) - (v[b] - v[i]) * (u[j] - u[i]);
+                const double d2 = (u[a] - u[b]) * (v[j] - v[b]) - (v[a] - v[b]) * (u[j] - u[b]);
+                inside = sgn * d0 >= 0.0 && sgn * d1 >= 0.0 && sgn * d2 >= 0.0;
+            }
+            if (!inside)
+                ear = i;
+        }
+        if (ear < 0)
+            return 0;
+        const int a = ear > 0 ? ear - 1 : k - 1, b = ear + 1 < k ? ear + 1 : 0;
+        tri[3 * count] = c[a], tri[3 * count + 1] = c[ear], tri[3 * count + 2] = c[b];
+        ++count;
+        for (int j = ear; j + 1 < k; ++j)
+            c[j] = c[j + 1], u[j] = u[j + 1], v[j] = v[j + 1];
+        --k;
+    }
+    if (k == 3) {
+        tri[3 * count] = c[0], tri[3 * count + 1] = c[1], tri[3 * count + 2] = c[2];
+        ++count;
+    }
+    return count;
+}
+
 /* How deep the panels of faces f and h overlap where they meet at a node,
  * normalised units (0 when they do not). Both convex: by separating axes,
  * exactly (the planes of either solid and the cross products of their edges'
  * directions; the least overlap along them, the distance that would part
- * them). Else the deepest corner of one inside the other (depth_in_panel),
- * which can miss two panels that cross without a corner inside. */
+ * them). A concave panel by convex pieces: its outline's triangles (each the
+ * convex hull of its six corners; piece_overlap), against the other panel's
+ * pieces, the deepest pair's overlap; one of more than FACET_PIECE_MAX
+ * corners (or whose outline has no ear) by its corners inside the other
+ * (depth_in_panel), which can miss two panels that cross without a corner
+ * inside. */
 static double node_overlap(const work *w, const int8_t *convex, int32_t f, int32_t h, double up,
                            double down)
 {
@@ -542,6 +703,31 @@ static double node_overlap(const work *w, const int8_t *convex, int32_t f, int32
     const int32_t faces[2] = {f, h};
     double deepest = 0.0;
     if (!convex[f] || !convex[h]) {
+        /* convex pieces: a concave panel's triangles, a convex one whole */
+        int64_t tri[2][3 * FACET_PIECE_MAX], all[2][FACET_PIECE_MAX];
+        int np[2] = {0, 0};
+        for (int i = 0; i < 2; ++i) {
+            const int64_t s = m->face_start[faces[i]], k = m->face_start[faces[i] + 1] - s;
+            if (convex[faces[i]] && k <= FACET_PIECE_MAX) {
+                for (int64_t j = 0; j < k; ++j)
+                    all[i][j] = s + j;
+                np[i] = 1;
+            } else {
+                np[i] = outline_triangles(w, faces[i], tri[i]);
+            }
+        }
+        if (np[0] > 0 && np[1] > 0) {
+            for (int i = 0; i < np[0]; ++i)
+                for (int j = 0; j < np[1]; ++j) {
+                    const int ka = convex[f] ? (int)(m->face_start[f + 1] - m->face_start[f]) : 3;
+                    const int kb = convex[h] ? (int)(m->face_start[h + 1] - m->face_start[h]) : 3;
+                    const piece a = {ka, convex[f] ? all[0] : tri[0] + 3 * i};
+                    const piece b = {kb, convex[h] ? all[1] : tri[1] + 3 * j};
+                    deepest = fmax(deepest, piece_overlap(w, f, h, &a, &b));
+                }
+            return deepest;
+        }
+        /* a panel of more corners than pieces take: its corners inside the other */
         for (int i = 0; i < 2; ++i)
             for (int64_t c = m->face_start[faces[i]]; c < m->face_start[faces[i] + 1]; ++c) {
                 deepest = fmax(deepest, depth_in_panel(w, faces[1 - i], w->ctop + 3 * c, up, down));

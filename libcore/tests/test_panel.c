@@ -359,6 +359,16 @@ static void node_clashes(void)
     o.gap = 10.0;
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
     CHECK(r.max_node_deviation < 1e-9 && r.n_node_clashes == 0);
+    /* face 0 a dart (its outer corner moved in along the diagonal, on its plane:
+     * concave there), tested by convex pieces: the same two pairs overlap, and
+     * none at the clearing gap */
+    q[0] = -0.3 * L + 2.5e6, q[1] = -0.3 * L + 1.2e6, q[2] = sl * 0.6 * L + 350.0;
+    o.edge = FACET_PANEL_EDGE_SQUARE;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_node_clashes == 2 && r.node_clash_vertex == 4 && face_clash[0] > 1.0);
+    o.gap = clear * (1.0 + 1e-6);
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_node_clashes == 0 && r.n_overlapping_joints == 0 && face_clash[0] == 0.0);
 }
 
 int main(void)

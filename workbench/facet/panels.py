@@ -370,7 +370,7 @@ class PanelSet:
         IDs of every panel at the node). Where a node's edge planes miss a
         common axis, or with square cuts over a valley, such panels can run
         into each other. Two convex panels are tested exactly (separating
-        axes); a concave one by its corners inside the other.
+        axes); a concave one as convex pieces (its outline's triangles).
     node_clash_pairs : int
         How many such pairs overlap.
     deepest_node_clash_panels : tuple of str or None
