@@ -604,6 +604,21 @@ def check_panel_clashes(check, out_dir):
     pixels = image_pixels(path).astype(int)
     red = int(((pixels[..., 0] > 150) & (pixels[..., 1] < 90) & (pixels[..., 2] < 90)).sum())
     check(red < 100, f"panel_clashes: no red panel with ShowClashes off ({red} pixels)")
+    # one object per panel: each clashing panel's own object red, the others not
+    ps.ViewObject.ShowClashes = True
+    ps.OnePerPanel = True
+    doc.recompute()
+    Gui.updateGui()
+    children = list(ps.PanelObjects)
+    shades = {c.Label: tuple(round(x, 3) for x in c.ViewObject.ShapeColor[:3]) for c in children}
+    red_ids = {label for label, rgb in shades.items()
+               if rgb == tuple(round(x, 3) for x in CLASH_COLOR)}
+    check(len(children) == 8 and red_ids == clashing,
+          f"OnePerPanel: the clashing panels' objects are red ({sorted(red_ids)})")
+    ps.ViewObject.ShowClashes = False
+    check(not any(tuple(round(x, 3) for x in c.ViewObject.ShapeColor[:3])
+                  == tuple(round(x, 3) for x in CLASH_COLOR) for c in children),
+          "OnePerPanel: none red with ShowClashes off")
     App.closeDocument(doc.Name)
 
 

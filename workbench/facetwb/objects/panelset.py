@@ -257,6 +257,8 @@ class PanelSet(_Proxy):
         obj.PanelObjects = keep
         if App.GuiUp:
             obj.ViewObject.Visibility = not keep
+            if hasattr(obj.ViewObject.Proxy, "show_clashes"):
+                obj.ViewObject.Proxy.show_clashes(obj)  # the new objects' colours
 
 
 class CutSheets(_Proxy):
@@ -393,14 +395,19 @@ class ViewProviderPanels:
 
     def show_clashes(self, obj):
         """Per face: red for the solids of ClashingPanels (when ShowClashes), else the
-        shape's colour."""
+        shape's colour; with OnePerPanel the panels' own objects likewise."""
         vobj = getattr(obj, "ViewObject", None)
         if vobj is None or "ShowClashes" not in vobj.PropertiesList:
             return
-        clashing = set(getattr(obj, "ClashingPanels", None) or ())
+        clashing = set(getattr(obj, "ClashingPanels", None) or ()) if vobj.ShowClashes else set()
         solids = obj.Shape.Solids if not obj.Shape.isNull() else []
         base = tuple(vobj.ShapeColor[:3])
-        if not (vobj.ShowClashes and clashing and len(solids) == len(obj.PartIds)):
+        for part_id, child in zip(obj.PartIds, getattr(obj, "PanelObjects", None) or []):
+            if child is not None and getattr(child, "ViewObject", None) is not None:
+                colour = CLASH_COLOR if part_id in clashing else base
+                if tuple(child.ViewObject.ShapeColor[:3]) != colour:
+                    child.ViewObject.ShapeColor = colour
+        if not (clashing and len(solids) == len(obj.PartIds)):
             if len(vobj.DiffuseColor) != 1 or tuple(vobj.DiffuseColor[0][:3]) != base:
                 vobj.DiffuseColor = [base]
             return
