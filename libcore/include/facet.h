@@ -793,9 +793,11 @@ typedef struct facet_panel_output {
                                the boundary (neighbor -1) and where either panel
                                dropped the edge (no joint there) */
     double *node_clash;     /* n_vertices: how deep two panels that meet at the
-                               vertex but not across a joint there overlap (the
-                               deepest corner of one inside the other, model
-                               units), the deepest pair's; 0 when none do */
+                               vertex but not across a joint there overlap, the
+                               deepest pair's, model units (the least distance
+                               along a direction that would part them: separating
+                               axes of the two solids, a concave one taken as
+                               triangle pieces); 0 when none do */
     double *clash;          /* n_faces: how deep the panel overlaps another, across
                                a joint or at a node (model units, the deepest); 0
                                when it overlaps none */
