@@ -329,7 +329,8 @@ class TestPanelSetJoints(DocumentTestCase):
         solid = dict(zip(obj.PartIds, obj.Shape.Solids))
         self.assertGreater(solid[a].common(solid[b]).Volume, 1e-6 * solid[a].Volume)
         self.assertTrue(any("meet at a node" in w for w in obj.Warnings), obj.Warnings)
-        obj.Gap = _clearing() * (1 + 1e-6)
+        self.assertAlmostEqual(obj.ClearingGap.Value / _clearing(), 1.0, delta=2e-4)
+        obj.Gap = obj.ClearingGap.Value
         self.doc.recompute()
         self.assertEqual((obj.NodeClashes, obj.DeepestNodeClash.Value), (0, 0.0))
         self.assertEqual(list(obj.NodeClashPanels), [])

@@ -64,6 +64,10 @@ def test_square_panels_over_a_valley_node_clash_until_the_joints_clear(offset):
     assert warning.startswith("2 pairs of panels that meet at a node but not across a joint "
                               "overlap there (at 1 node): the panels ")
     assert f"by {clash['depth']:.3g} at vertex 4 (the deepest)" in warning
+    # the gap that clears the node is the joints' (the bowl's overlaps end together)
+    assert ps.clearing_gap == pytest.approx(_clearing(), rel=2e-4)
+    assert ps.clearing_gap >= _clearing() * (1 - 1e-9)
+    assert f"a gap of {ps.clearing_gap:.3g} (now 10) clears every overlap" in warning
     wide = panels(mesh, T, gap=_clearing() * (1 + 1e-6))
     assert wide.node_clash_pairs == 0 and wide.node_clashes == []
     assert wide.deepest_node_clash_panels is None
@@ -100,8 +104,28 @@ def test_mitred_panels_clash_at_nodes_far_from_torsion_free_as_occ_finds():
     occ = {v for v, a, b in _non_joint_pairs(ps)
            if solids[a].common(solids[b]).Volume > 1e-9 * solids[a].Volume}
     assert occ == {c["vertex"] for c in ps.node_clashes}
-    # thinner panels with a wider gap clear them
+    # thinner panels with a wider gap clear them; so does the clearing gap alone, found
+    # by bisection to 1e-4 of itself
     assert panels(mesh, 0.02 * e, gap=0.02 * e, edge="bisector").node_clash_pairs == 0
+    gap = ps.clearing_gap
+    assert 0.01 * e < gap < 0.1 * e
+    assert panels(mesh, 0.05 * e, gap=gap, edge="bisector").node_clash_pairs == 0
+    assert panels(mesh, 0.05 * e, gap=gap * (1 - 2e-4), edge="bisector").node_clash_pairs > 0
+
+
+def test_the_search_for_the_clearing_gap_reports_progress_and_can_be_cancelled():
+    mesh = facet.read_mesh(os.path.join(DATA, "crossvault_form_planar.obj"))
+    e = mesh.mean_edge_length()
+    seen = []
+    panels(mesh, 0.05 * e, gap=0.01 * e, edge="bisector",
+           progress=lambda done, total: seen.append((done, total)) and False)
+    core = 2 * mesh.n_faces  # the core's own units come first
+    search = [(d, t) for d, t in seen if t > core]
+    assert search and all(t == core + 40 for _, t in search)
+    assert [d for d, _ in search] == list(range(core + 1, core + 1 + len(search)))
+    with pytest.raises(facet.Cancelled):
+        panels(mesh, 0.05 * e, gap=0.01 * e, edge="bisector",
+               progress=lambda done, total: total > core and done > core + 3)
 
 
 def test_the_command_line_names_the_overlaps(facet_command, tmp_path):

@@ -308,7 +308,9 @@ def run_panels(args):
           + (f"; {ps.node_clash_pairs} pair{'s' * (ps.node_clash_pairs > 1)} of panels "
              f"overlap at {len(ps.node_clashes)} node{'s' * (len(ps.node_clashes) > 1)}, "
              f"the deepest by {ps.node_clashes[0]['depth']:.4g} "
-             f"({' and '.join(ps.deepest_node_clash_panels)})" if ps.node_clashes else ""),
+             f"({' and '.join(ps.deepest_node_clash_panels)})"
+             + (f"; a gap of {ps.clearing_gap:.4g} clears every overlap"
+                if ps.clearing_gap is not None else "") if ps.node_clashes else ""),
           file=out)
     if result is not None:
         print(f"  sheets        {len(result.sheets)}, utilisation {100 * result.utilisation:.1f}%"

@@ -276,6 +276,47 @@ def _edge_keys(start, fv, f, edges):
     return [tuple(sorted((int(fv[c]), int(fv[s + (c - s + 1) % d])))) for c in edges]
 
 
+#: The gap that clears the nodes' overlaps is found to this fraction of itself...
+_CLEARING_REL = 1e-4
+#: ... in at most this many trials (each a whole panel computation).
+_CLEARING_TRIALS = 40
+
+
+def _clearing_gap(xyz, mesh, options, gap, joints, progress, done):
+    """The least gap (to _CLEARING_REL) at which no joint and no node overlaps, by
+    bisection over whole panel computations (a wider gap moves every outline, so
+    the nodes' overlaps have no closed form), from the joints' own clearing gap
+    `joints` (None when no joint overlaps) up; None when none up to 2^20 times the
+    first trial clears them, or the panels fail first. Reports
+    ``progress(done + trial, done + _CLEARING_TRIALS)``; a true return cancels."""
+    trials = 0
+
+    def clears(trial_gap):
+        nonlocal trials
+        trials += 1
+        if progress is not None and progress(done + trials, done + _CLEARING_TRIALS):
+            raise Cancelled("panels cancelled")
+        try:
+            r = _core.panels(xyz, mesh.face_start, mesh.face_vertices, gap=trial_gap, **options)
+        except _core.CoreError:
+            return False
+        return r["n_overlapping_joints"] == 0 and r["n_node_clashes"] == 0
+
+    lo = gap
+    hi = max(joints or 0.0, 2.0 * gap, 0.01 * options["thickness"])
+    while not clears(hi):
+        if trials >= 20:
+            return None
+        lo, hi = hi, 2.0 * hi
+    while hi - lo > _CLEARING_REL * hi and trials < _CLEARING_TRIALS:
+        mid = 0.5 * (lo + hi)
+        if clears(mid):
+            hi = mid
+        else:
+            lo = mid
+    return float(hi)
+
+
 def _node_clashes(result, depth):
     """The nodes where panels overlap (the core's depth per vertex), deepest
     first: vertex, depth and the IDs of the panels at the node."""
@@ -361,8 +402,10 @@ class PanelSet:
         Joints whose panels overlap: cut square on the inner side of a fold
         with too small a gap (a mitre never overlaps).
     clearing_gap : float or None
-        The least gap at which none of those joints would overlap across its
-        section (None when none does).
+        The least gap at which no panel would overlap another: with joints
+        only, exactly across their sections; with node clashes, found by
+        bisection over whole panel computations to 1e-4 of itself (a wider gap
+        moves every outline). None when none overlaps, or no gap was found.
     node_clashes : list of dict
         The nodes where panels that meet there but not across a joint (a
         node's diagonal neighbours) overlap, deepest first: ``vertex``,
@@ -863,11 +906,11 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         "clash": np.zeros(nf),
     }
     xyz = np.ascontiguousarray(mesh.vertices, dtype=np.float64).reshape(-1)
+    core_options = {"thickness": thickness, "offset": offset, "edge": edge, "flip": bool(flip),
+                    "tol_abs": tol_abs, "tol_rel": tol, "repair_consumed": bool(repair)}
     try:
-        res = _core.panels(xyz, mesh.face_start, mesh.face_vertices, thickness=thickness,
-                           offset=offset, gap=gap, edge=edge, flip=bool(flip), tol_abs=tol_abs,
-                           tol_rel=tol, repair_consumed=bool(repair),
-                           progress=_after(progress, n_groups), **out)
+        res = _core.panels(xyz, mesh.face_start, mesh.face_vertices, gap=gap,
+                           progress=_after(progress, n_groups), **core_options, **out)
     except _core.CoreError as exc:
         name = getattr(exc, "status_name", None)
         if name == "FACET_ERROR_CANCELLED" or isinstance(exc, _core.Cancelled):
@@ -1008,16 +1051,22 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     clashes = _node_clashes(result, out["node_clash"])
     fa, fb = res["node_clash_faces"]
     deepest_pair = None if fa < 0 else (result[fa].id, result[fb].id)
+    clearing = float(res["clearing_gap"]) if overlapping else None
     if clashes:
         pairs = int(res["n_node_clashes"])
+        # a wider gap moves every outline: the gap that clears the nodes too is searched
+        total = n_groups + 2 * nf
+        clearing = _clearing_gap(xyz, mesh, core_options, gap, clearing, progress, total)
         warnings.append(
             f"{pairs} pair{'s' * (pairs > 1)} of panels that meet at a node but not across a "
             f"joint overlap there (at {len(clashes)} node{'s' * (len(clashes) > 1)}): the "
             f"panels {deepest_pair[0]} and {deepest_pair[1]} by "
             f"{res['deepest_node_clash']:.3g} at vertex {res['node_clash_vertex']} (the "
-            "deepest); a larger gap or thinner panels clear them, and where the node's edge "
-            "planes miss a common axis (its node deviation) so does a mesh closer to "
-            "torsion-free")
+            "deepest); "
+            + (f"a gap of {clearing:.3g} (now {gap:.3g}) clears every overlap, as would "
+               "thinner panels" if clearing is not None else "thinner panels may clear them")
+            + ", and where the node's edge planes miss a common axis (its node deviation) "
+            "so does a mesh closer to torsion-free")
     worst = res["worst_node"]
     return PanelSet(
         panels=result,
@@ -1037,7 +1086,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         narrowest_joint=None if a < 0 else float(res["narrowest_joint"]),
         narrowest_joint_panels=None if a < 0 else (result[a].id, result[b].id),
         overlapping_joints=overlapping,
-        clearing_gap=float(res["clearing_gap"]) if overlapping else None,
+        clearing_gap=clearing,
         node_clashes=clashes,
         node_clash_pairs=int(res["n_node_clashes"]),
         deepest_node_clash_panels=deepest_pair,

@@ -128,7 +128,8 @@ class PanelSet(_Proxy):
                 "Joints whose panels overlap: cut square on the inner side of a fold with too "
                 "small a Gap (mitred joints never do)")
         _output(obj, "App::PropertyLength", "ClearingGap",
-                "The least Gap at which no joint would overlap (0 when none does)")
+                "The least Gap at which no panel would overlap another, across a joint or at "
+                "a node (0 when none does)")
         _output(obj, "App::PropertyInteger", "NodeClashes",
                 "Pairs of panels that meet at a node but not across a joint and overlap there")
         _output(obj, "App::PropertyLength", "DeepestNodeClash",
@@ -219,9 +220,10 @@ class PanelSet(_Proxy):
         if ps.node_clashes:
             App.Console.PrintWarning(translate(
                 "Facet", "{0}: {1} pairs of panels overlap at nodes they share without a "
-                "joint: {2} and {3} by {4:.4g} mm, the deepest (see its Warnings)").format(
+                "joint: {2} and {3} by {4:.4g} mm, the deepest; a Gap of {5:.4g} mm clears "
+                "every overlap (see its Warnings)").format(
                     obj.Label, ps.node_clash_pairs, *ps.deepest_node_clash_panels,
-                    ps.node_clashes[0]["depth"]) + "\n")
+                    ps.node_clashes[0]["depth"], ps.clearing_gap or 0.0) + "\n")
         if vanished:
             App.Console.PrintMessage(translate(
                 "Facet", "{0}: {1} panels built with fewer corners than their faces "
