@@ -248,6 +248,14 @@ static double in_plane_unit(double v[3], const double n[3])
     return l;
 }
 
+/* An orthonormal basis ex, ey of the plane of unit normal n. */
+static void plane_basis(const double n[3], double ex[3], double ey[3])
+{
+    ex[0] = fabs(n[0]) < 0.6 ? 1.0 : 0.0, ex[1] = fabs(n[0]) < 0.6 ? 0.0 : 1.0, ex[2] = 0.0;
+    in_plane_unit(ex, n);
+    cross3(n, ex, ey);
+}
+
 /* The plane of edge c (corner c to the next) of face f, its fold angle and
  * its outputs: as w->square[c] says (square: perpendicular to the face; a
  * mitre: the bisector of the two panels' planes; a butt: the neighbour's
@@ -447,27 +455,23 @@ static double depth_in_panel(const work *w, int32_t f, const double x[3], double
     if (!(slab > JOINT_TOUCH))
         return 0.0;
     const double lambda = (h - down) / (up - down);
-    /* a basis of the plane */
-    double ex[3] = {fabs(n[0]) < 0.6 ? 1.0 : 0.0, fabs(n[0]) < 0.6 ? 0.0 : 1.0, 0.0}, ey[3];
-    in_plane_unit(ex, n);
-    cross3(n, ex, ey);
+    double ex[3], ey[3];
+    plane_basis(n, ex, ey);
     const double px = dot3(ex, x), py = dot3(ey, x);
     const int64_t s = w->mesh->face_start[f], e = w->mesh->face_start[f + 1];
-    double u0 = 0.0, v0 = 0.0, nearest2 = INFINITY;
+    double prev[3], u0 = 0.0, v0 = 0.0, nearest2 = INFINITY;
     int inside = 0;
     for (int64_t c = e - 1, k = 0; k <= e - s; c = s + k++) {
         double p[3];
         for (int i = 0; i < 3; ++i)
             p[i] = w->cbot[3 * c + i] + lambda * (w->ctop[3 * c + i] - w->cbot[3 * c + i]);
         const double u1 = dot3(ex, p), v1 = dot3(ey, p);
-        if (k > 0) { /* the slice's edge from (u0, v0) to (u1, v1) */
+        if (k > 0) { /* the slice's edge from prev to p, in the plane of x */
             if ((v0 > py) != (v1 > py) && px < u0 + (py - v0) * (u1 - u0) / (v1 - v0))
                 inside = !inside;
-            const double du = u1 - u0, dv = v1 - v0, l2 = du * du + dv * dv;
-            const double t = l2 > 0.0 ? fmin(1.0, fmax(0.0, ((px - u0) * du + (py - v0) * dv) / l2)) : 0.0;
-            const double ru = px - u0 - t * du, rv = py - v0 - t * dv;
-            nearest2 = fmin(nearest2, ru * ru + rv * rv);
+            nearest2 = fmin(nearest2, segment_distance2(x, prev, p));
         }
+        memcpy(prev, p, sizeof prev);
         u0 = u1, v0 = v1;
     }
     return inside ? fmin(slab, sqrt(nearest2)) : 0.0;
@@ -517,29 +521,20 @@ static int panel_convex(const work *w, int32_t f)
     return 1;
 }
 
-/* How far the panels of faces f and h, both convex, overlap along the unit
- * axis u (negative: that far apart). */
-static double axis_overlap(const work *w, int32_t f, int32_t h, const double u[3])
-{
-    const facet_mesh *m = w->mesh;
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    const int32_t faces[2] = {f, h};
-    for (int i = 0; i < 2; ++i)
-        for (int64_t c = m->face_start[faces[i]]; c < m->face_start[faces[i] + 1]; ++c)
-            for (int side = 0; side < 2; ++side) {
-                const double x = dot3(u, (side ? w->cbot : w->ctop) + 3 * c);
-                lo[i] = fmin(lo[i], x), hi[i] = fmax(hi[i], x);
-            }
-    return fmin(hi[0], hi[1]) - fmax(lo[0], lo[1]);
-}
-
 /* A convex piece of a panel: the solid between the top and bottom corners
- * of k of its corners (all of a convex panel's, or a triangle of a concave
- * one's outline), as corner indices into work.ctop and work.cbot. */
+ * of k of its corners, as indices into work.ctop and work.cbot: a triangle of
+ * a concave panel's outline (corner), or a convex panel whole (corner NULL:
+ * first, first + 1, ...). */
 typedef struct {
-    int k;
+    int64_t k;
     const int64_t *corner;
+    int64_t first;
 } piece;
+
+static int64_t piece_corner(const piece *p, int64_t j)
+{
+    return p->corner ? p->corner[j] : p->first + j;
+}
 
 /* How far two pieces overlap along the unit axis u (negative: apart). */
 static double piece_axis_overlap(const work *w, const piece *a, const piece *b, const double u[3])
@@ -547,38 +542,72 @@ static double piece_axis_overlap(const work *w, const piece *a, const piece *b, 
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
     const piece *pc[2] = {a, b};
     for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < pc[i]->k; ++j)
+        for (int64_t j = 0; j < pc[i]->k; ++j)
             for (int side = 0; side < 2; ++side) {
-                const double x = dot3(u, (side ? w->cbot : w->ctop) + 3 * pc[i]->corner[j]);
+                const double x = dot3(u, (side ? w->cbot : w->ctop) + 3 * piece_corner(pc[i], j));
                 lo[i] = fmin(lo[i], x), hi[i] = fmax(hi[i], x);
             }
     return fmin(hi[0], hi[1]) - fmax(lo[0], lo[1]);
 }
 
-/* The piece's edge directions (4 per side: its top edge, the edge from bottom
- * to top at its start and the two diagonals of its side, which is twisted
- * where an inner side of a mitred panel's piece is) into e[4 k][3]; its side
- * planes' normals (both triangles of each diagonal: they cover the side
- * whichever way its convex hull folds it) into n[4 k][3], unnormalised. */
-static void piece_directions(const work *w, const piece *p, double (*e)[3], double (*n)[3])
+/* Direction kind of side j of the piece (its corners j and j + 1): 0 its top
+ * edge, 1 its edge from bottom to top at corner j, 2 and 3 the diagonals of the
+ * side (which is twisted where an inner side of a mitred panel's piece is). */
+static void piece_edge(const work *w, const piece *p, int64_t j, int kind, double d[3])
 {
-    for (int j = 0; j < p->k; ++j) {
-        const int64_t a = p->corner[j], b = p->corner[j + 1 < p->k ? j + 1 : 0];
-        const double *ta = w->ctop + 3 * a, *tb = w->ctop + 3 * b, *ba = w->cbot + 3 * a,
-                     *bb = w->cbot + 3 * b;
-        for (int i = 0; i < 3; ++i) {
-            e[4 * j][i] = tb[i] - ta[i];
-            e[4 * j + 1][i] = ta[i] - ba[i];
-            e[4 * j + 2][i] = tb[i] - ba[i];
-            e[4 * j + 3][i] = ta[i] - bb[i];
-        }
+    const int64_t a = piece_corner(p, j), b = piece_corner(p, j + 1 < p->k ? j + 1 : 0);
+    const double *from = 3 * (kind == 3 ? b : a) + (kind == 0 ? w->ctop : w->cbot);
+    const double *to = 3 * (kind == 0 || kind == 2 ? b : a) + w->ctop;
+    for (int i = 0; i < 3; ++i)
+        d[i] = to[i] - from[i];
+}
+
+/* The normals of the piece's sides into n[4 k][3], unnormalised: of each side
+ * both triangles of each diagonal (they cover the side whichever way its convex
+ * hull folds it). */
+static void piece_normals(const work *w, const piece *p, double (*n)[3])
+{
+    for (int64_t j = 0; j < p->k; ++j) {
+        const int64_t a = piece_corner(p, j), b = piece_corner(p, j + 1 < p->k ? j + 1 : 0);
+        const double *tb = w->ctop + 3 * b, *ba = w->cbot + 3 * a, *bb = w->cbot + 3 * b;
+        double up_a[3], diag_b[3], diag_a[3];
+        piece_edge(w, p, j, 1, up_a);   /* ba ta */
+        piece_edge(w, p, j, 2, diag_b); /* ba tb */
+        piece_edge(w, p, j, 3, diag_a); /* bb ta */
         const double bottom[3] = {bb[0] - ba[0], bb[1] - ba[1], bb[2] - ba[2]};
         const double up_b[3] = {tb[0] - bb[0], tb[1] - bb[1], tb[2] - bb[2]};
-        cross3(bottom, e[4 * j + 2], n[4 * j]);     /* ba bb tb */
-        cross3(e[4 * j + 2], e[4 * j + 1], n[4 * j + 1]); /* ba tb ta */
-        cross3(bottom, e[4 * j + 1], n[4 * j + 2]); /* ba bb ta */
-        cross3(up_b, e[4 * j + 3], n[4 * j + 3]);   /* bb tb ta */
+        cross3(bottom, diag_b, n[4 * j]);     /* ba bb tb */
+        cross3(diag_b, up_a, n[4 * j + 1]);   /* ba tb ta */
+        cross3(bottom, up_a, n[4 * j + 2]);   /* ba bb ta */
+        cross3(up_b, diag_a, n[4 * j + 3]);   /* bb tb ta */
     }
+}
+
+/* The least of `least` and the overlaps along the cross products of a's and
+ * b's edge directions (piece_edge; of each side's four kinds, the first use:
+ * 2, its top edge and its edge from bottom to top, are all a planar side has),
+ * until they are parted. */
+static double edge_axes_overlap(const work *w, const piece *a, const piece *b, int use,
+                                double least)
+{
+    for (int64_t i = 0; i < a->k && least > JOINT_TOUCH; ++i)
+        for (int ka = 0; ka < use && least > JOINT_TOUCH; ++ka) {
+            double da[3];
+            piece_edge(w, a, i, ka, da);
+            for (int64_t j = 0; j < b->k && least > JOINT_TOUCH; ++j)
+                for (int kb = 0; kb < use && least > JOINT_TOUCH; ++kb) {
+                    double db[3], u[3];
+                    piece_edge(w, b, j, kb, db);
+                    cross3(da, db, u);
+                    const double l = norm3(u);
+                    if (!(l > 1e-9 * sqrt(dot3(da, da) * dot3(db, db))))
+                        continue; /* parallel, or an edge of no length */
+                    for (int k = 0; k < 3; ++k)
+                        u[k] /= l;
+                    least = fmin(least, piece_axis_overlap(w, a, b, u));
+                }
+        }
+    return least;
 }
 
 /* How deep two convex pieces of the panels of faces f and h overlap (0 when
@@ -587,16 +616,15 @@ static void piece_directions(const work *w, const piece *p, double (*e)[3], doub
  * edges' directions). */
 static double piece_overlap(const work *w, int32_t f, int32_t h, const piece *a, const piece *b)
 {
-    double ea[4 * FACET_PIECE_MAX][3], na[4 * FACET_PIECE_MAX][3];
-    double eb[4 * FACET_PIECE_MAX][3], nb[4 * FACET_PIECE_MAX][3];
-    piece_directions(w, a, ea, na);
-    piece_directions(w, b, eb, nb);
+    double na[4 * FACET_PIECE_MAX][3], nb[4 * FACET_PIECE_MAX][3];
+    piece_normals(w, a, na);
+    piece_normals(w, b, nb);
     double least = fmin(piece_axis_overlap(w, a, b, w->plane + 4 * f),
                         piece_axis_overlap(w, a, b, w->plane + 4 * h));
     double(*normals[2])[3] = {na, nb};
-    const int count[2] = {4 * a->k, 4 * b->k};
+    const int64_t count[2] = {4 * a->k, 4 * b->k};
     for (int i = 0; i < 2 && least > JOINT_TOUCH; ++i)
-        for (int j = 0; j < count[i] && least > JOINT_TOUCH; ++j) {
+        for (int64_t j = 0; j < count[i] && least > JOINT_TOUCH; ++j) {
             double u[3] = {normals[i][j][0], normals[i][j][1], normals[i][j][2]};
             const double l = norm3(u);
             if (!(l > 0.0))
@@ -605,17 +633,7 @@ static double piece_overlap(const work *w, int32_t f, int32_t h, const piece *a,
                 u[k] /= l;
             least = fmin(least, piece_axis_overlap(w, a, b, u));
         }
-    for (int i = 0; i < count[0] && least > JOINT_TOUCH; ++i)
-        for (int j = 0; j < count[1] && least > JOINT_TOUCH; ++j) {
-            double u[3];
-            cross3(ea[i], eb[j], u);
-            const double l = norm3(u);
-            if (!(l > 1e-9 * sqrt(dot3(ea[i], ea[i]) * dot3(eb[j], eb[j]))))
-                continue; /* parallel, or an edge of no length */
-            for (int k = 0; k < 3; ++k)
-                u[k] /= l;
-            least = fmin(least, piece_axis_overlap(w, a, b, u));
-        }
+    least = edge_axes_overlap(w, a, b, 4, least);
     return least > JOINT_TOUCH ? least : 0.0;
 }
 
@@ -626,10 +644,8 @@ static double piece_overlap(const work *w, int32_t f, int32_t h, const piece *a,
 static int outline_triangles(const work *w, int32_t f, int64_t *tri)
 {
     const facet_mesh *m = w->mesh;
-    const double *n = w->plane + 4 * f;
-    double ex[3] = {fabs(n[0]) < 0.6 ? 1.0 : 0.0, fabs(n[0]) < 0.6 ? 0.0 : 1.0, 0.0}, ey[3];
-    in_plane_unit(ex, n);
-    cross3(n, ex, ey);
+    double ex[3], ey[3];
+    plane_basis(w->plane + 4 * f, ex, ey);
     int64_t c[FACET_PIECE_MAX];
     double u[FACET_PIECE_MAX], v[FACET_PIECE_MAX];
     int k = 0;
@@ -701,28 +717,22 @@ static double node_overlap(const work *w, const int8_t *convex, int32_t f, int32
 {
     const facet_mesh *m = w->mesh;
     const int32_t faces[2] = {f, h};
+    const piece whole[2] = {{m->face_start[f + 1] - m->face_start[f], NULL, m->face_start[f]},
+                            {m->face_start[h + 1] - m->face_start[h], NULL, m->face_start[h]}};
     double deepest = 0.0;
     if (!convex[f] || !convex[h]) {
         /* convex pieces: a concave panel's triangles, a convex one whole */
-        int64_t tri[2][3 * FACET_PIECE_MAX], all[2][FACET_PIECE_MAX];
+        int64_t tri[2][3 * FACET_PIECE_MAX];
         int np[2] = {0, 0};
-        for (int i = 0; i < 2; ++i) {
-            const int64_t s = m->face_start[faces[i]], k = m->face_start[faces[i] + 1] - s;
-            if (convex[faces[i]] && k <= FACET_PIECE_MAX) {
-                for (int64_t j = 0; j < k; ++j)
-                    all[i][j] = s + j;
-                np[i] = 1;
-            } else {
-                np[i] = outline_triangles(w, faces[i], tri[i]);
-            }
-        }
+        for (int i = 0; i < 2; ++i)
+            np[i] = convex[faces[i]] && whole[i].k <= FACET_PIECE_MAX
+                        ? 1
+                        : outline_triangles(w, faces[i], tri[i]);
         if (np[0] > 0 && np[1] > 0) {
             for (int i = 0; i < np[0]; ++i)
                 for (int j = 0; j < np[1]; ++j) {
-                    const int ka = convex[f] ? (int)(m->face_start[f + 1] - m->face_start[f]) : 3;
-                    const int kb = convex[h] ? (int)(m->face_start[h + 1] - m->face_start[h]) : 3;
-                    const piece a = {ka, convex[f] ? all[0] : tri[0] + 3 * i};
-                    const piece b = {kb, convex[h] ? all[1] : tri[1] + 3 * j};
+                    const piece a = convex[f] ? whole[0] : (piece){3, tri[0] + 3 * i, 0};
+                    const piece b = convex[h] ? whole[1] : (piece){3, tri[1] + 3 * j, 0};
                     deepest = fmax(deepest, piece_overlap(w, f, h, &a, &b));
                 }
             return deepest;
@@ -739,41 +749,17 @@ static double node_overlap(const work *w, const int8_t *convex, int32_t f, int32
     /* the solids' planes: top and bottom, and each side face's (its edge's
      * plane; a dropped edge has no side face) */
     for (int i = 0; i < 2; ++i) {
-        least = fmin(least, axis_overlap(w, f, h, w->plane + 4 * faces[i]));
+        least = fmin(least, piece_axis_overlap(w, &whole[0], &whole[1], w->plane + 4 * faces[i]));
         for (int64_t c = m->face_start[faces[i]]; c < m->face_start[faces[i] + 1]; ++c)
             if (!w->drop[c])
-                least = fmin(least, axis_overlap(w, f, h, w->eplane + 4 * c));
+                least = fmin(least, piece_axis_overlap(w, &whole[0], &whole[1], w->eplane + 4 * c));
         if (!(least > JOINT_TOUCH))
             return 0.0;
     }
     /* edge against edge: the top edges (the bottom edges are parallel to them)
      * and the edges from bottom to top */
-    for (int64_t c = m->face_start[f]; c < m->face_start[f + 1]; ++c)
-        for (int ka = 0; ka < 2; ++ka) {
-            const int64_t cn = next_corner(m, f, c);
-            double a[3];
-            for (int k = 0; k < 3; ++k)
-                a[k] = ka ? w->ctop[3 * c + k] - w->cbot[3 * c + k]
-                          : w->ctop[3 * cn + k] - w->ctop[3 * c + k];
-            for (int64_t t = m->face_start[h]; t < m->face_start[h + 1]; ++t)
-                for (int kb = 0; kb < 2; ++kb) {
-                    const int64_t tn = next_corner(m, h, t);
-                    double b[3], u[3];
-                    for (int k = 0; k < 3; ++k)
-                        b[k] = kb ? w->ctop[3 * t + k] - w->cbot[3 * t + k]
-                                  : w->ctop[3 * tn + k] - w->ctop[3 * t + k];
-                    cross3(a, b, u);
-                    const double l = norm3(u);
-                    if (!(l > 1e-9 * sqrt(dot3(a, a) * dot3(b, b))))
-                        continue; /* parallel, or an edge of no length */
-                    for (int k = 0; k < 3; ++k)
-                        u[k] /= l;
-                    least = fmin(least, axis_overlap(w, f, h, u));
-                    if (!(least > JOINT_TOUCH))
-                        return 0.0;
-                }
-        }
-    return least;
+    least = edge_axes_overlap(w, &whole[0], &whole[1], 2, least);
+    return least > JOINT_TOUCH ? least : 0.0;
 }
 
 facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *options,
