@@ -270,12 +270,6 @@ class Panel:
         }
 
 
-def _edge_keys(start, fv, f, edges):
-    """The undirected vertex pair of each edge (its first corner's index) of face f."""
-    s, d = int(start[f]), int(start[f + 1] - start[f])
-    return [tuple(sorted((int(fv[c]), int(fv[s + (c - s + 1) % d])))) for c in edges]
-
-
 #: The gap that clears the nodes' overlaps is found to this fraction of itself...
 _CLEARING_REL = 1e-4
 #: ... in at most this many trials (each a whole panel computation).
@@ -332,16 +326,6 @@ def _node_clashes(result, depth):
                for v, ids in at.items()]
     clashes.sort(key=lambda d: (-d["depth"], d["vertex"]))
     return clashes
-
-
-def _dropped_edge_keys(start, fv, dropped):
-    """The edges some panel dropped from its outline (no joint there), as
-    undirected vertex pairs."""
-    if not dropped.any():
-        return set()
-    corners = np.flatnonzero(dropped)
-    faces = np.searchsorted(start, corners, side="right") - 1
-    return {key for f, c in zip(faces, corners) for key in _edge_keys(start, fv, f, [c])}
 
 
 def _polygon_area(p):
@@ -967,7 +951,10 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     dropped = out["dropped"]
     squared = out["squared"]
     joint = out["joint"]
-    unjointed = _dropped_edge_keys(start, fv, dropped)
+    # edges a panel dropped have no joint (the core writes 0 there): by vertex pair
+    nxt = next_corners(start)
+    edge_lo, edge_hi = np.minimum(fv, fv[nxt]), np.maximum(fv, fv[nxt])
+    unjointed = {(int(edge_lo[c]), int(edge_hi[c])) for c in np.flatnonzero(dropped)}
 
     # the input's faces (a merged quad is still a quad of the grid)
     grid = grid_positions(input_mesh, rev) if ids in ("auto", "grid") else None
@@ -1019,9 +1006,9 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             dropped_edges=int(gone.sum()),
             squared_edges=int(np.count_nonzero(squared[edges] == 1)),
             butt_edges=int(np.count_nonzero(squared[edges] == 2)),
-            joint_widths=[None if n < 0 or key in unjointed else float(x)
-                          for n, x, key in zip(nb, joint[edges], _edge_keys(start, fv, f, edges)
-                                                     if unjointed else [None] * len(nb))],
+            joint_widths=[None if n < 0 or (unjointed and (int(edge_lo[c]), int(edge_hi[c]))
+                                             in unjointed) else float(x)
+                          for n, x, c in zip(nb, joint[edges], edges)],
             clash=float(out["clash"][f]),
         ))
     narrowest = res["narrowest_repaired_joint"]

@@ -236,13 +236,18 @@ def _shape(mesh, xyz_input, threads):
     return np.degrees(angle), area, change
 
 
-def _straightest_corners(mesh):
+def _edge_vectors(mesh):
+    """Each face corner's edge to the next corner of its face, model units."""
+    fv = mesh.face_vertices
+    return mesh.vertices[fv[next_corners(mesh.face_start)]] - mesh.vertices[fv]
+
+
+def _straightest_corners(mesh, after):
     """Per face, the least angle (degrees) between the edges into and out of one
-    of its corners: 0 at a corner on a straight line. A corner beside an edge of
-    no length turns 180 (the face is degenerate for its short edge)."""
-    fv, fs = mesh.face_vertices, mesh.face_start
-    x = mesh.vertices[fv]
-    after = mesh.vertices[fv[next_corners(fs)]] - x
+    of its corners (`after`: _edge_vectors): 0 at a corner on a straight line. A
+    corner beside an edge of no length turns 180 (the face is degenerate for its
+    short edge)."""
+    fs = mesh.face_start
     before = np.empty_like(after)  # the edge into each corner: the previous corner's
     before[1:] = after[:-1]
     before[fs[:-1]] = after[fs[1:] - 1]
@@ -252,12 +257,9 @@ def _straightest_corners(mesh):
     return np.minimum.reduceat(turn, fs[:-1])
 
 
-def _shortest_edges(mesh):
-    """The shortest edge of each face, model units."""
-    fv, fs = mesh.face_vertices, mesh.face_start
-    ends = mesh.vertices[fv[next_corners(fs)]]
-    lengths = np.linalg.norm(ends - mesh.vertices[fv], axis=1)
-    return np.minimum.reduceat(lengths, fs[:-1])
+def _shortest_edges(mesh, after):
+    """The shortest edge of each face (`after`: _edge_vectors), model units."""
+    return np.minimum.reduceat(np.linalg.norm(after, axis=1), mesh.face_start[:-1])
 
 
 def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_MIN_ANGLE,
@@ -320,7 +322,7 @@ def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_
     if input is not None:
         displacement = np.linalg.norm(mesh.vertices - input.vertices, axis=1)
         input_angle, _, _ = _shape(input, None, threads)
-        input_straight = _straightest_corners(input)
+        input_straight = _straightest_corners(input, _edge_vectors(input))
     surface = reference
     if surface is None and input is not None:
         surface = Surface(input)
@@ -335,7 +337,8 @@ def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_
     degrees = np.diff(mesh.face_start)
     # squared mean edge from the planarity report: zero area relative to the face's size
     size2 = report.mean_edge**2 * np.maximum(degrees, 3)
-    short = _shortest_edges(mesh) < DEFAULT_SHORT_EDGE * report.mean_edge
+    edges = _edge_vectors(mesh)
+    short = _shortest_edges(mesh, edges) < DEFAULT_SHORT_EDGE * report.mean_edge
     degenerate = np.flatnonzero((area <= _ZERO_AREA * size2) | (angle < float(min_angle)) | short)
     return QualityReport(
         planarity=report,
@@ -348,7 +351,7 @@ def quality(result, input=None, reference=None, threads=None, min_angle=DEFAULT_
         min_angle_threshold=float(min_angle),
         input_min_angle=input_angle,
         mesh=mesh,
-        straight_corner=_straightest_corners(mesh),
+        straight_corner=_straightest_corners(mesh, edges),
         straight_corner_threshold=float(straight_corner),
         input_straight_corner=input_straight,
     )
