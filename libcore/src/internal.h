@@ -93,6 +93,15 @@ int facet_face_measure8(int32_t na, int32_t nb, const double *xyz, const int32_t
                         double square_sum[8], double edge_mean[8], const double *floor, double *corner_cos,
                         uint8_t *guard);
 
+/* Sixteen faces of n corners, one after another in idx (the points
+ * xyz[idx[n l + k]]), in two vectors of eight side by side in the AVX-512
+ * copy, else as two facet_face_measure8; outputs as facet_face_measure4's,
+ * arrays of sixteen (normal: 48); floor, corner_cos: the faces' corners in
+ * order. */
+int facet_face_measure16(int32_t n, const double *xyz, const int32_t *idx, double normal[48],
+                         double offset[16], double max_distance[16], double square_sum[16],
+                         double edge_mean[16], const double *floor, double *corner_cos, uint8_t *guard);
+
 /* Sets the number of OpenMP threads for a parallel region: n <= 0 gives the
  * OpenMP default; n is clamped to max(64, 4 x processors, the default). */
 int facet_thread_count(int requested);

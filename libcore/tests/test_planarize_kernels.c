@@ -6,7 +6,8 @@
  * cosine, on a mesh with triangles, quads, hexagons and a 10-gon, with the
  * angle floor on and off (off, runs of four faces of one size take SIMD
  * lanes); and four faces of 3 to 8 corners at once (facet_face_measure4),
- * and two such fours (facet_face_measure8), against facet_face_measure on random, planar, collinear, coincident,
+ * two such fours (facet_face_measure8) and sixteen faces of one size
+ * (facet_face_measure16), against facet_face_measure on random, planar, collinear, coincident,
  * zero, huge and tiny faces. */
 #include "check.h"
 #include "planarize_internal.h"
@@ -234,18 +235,27 @@ static void test_face_measure4(void)
         memcpy(idx8, idx, sizeof(int32_t) * 4 * (size_t)n);
         for (int k = 0; k < 4 * n; ++k)
             idx8[4 * n + k] = (int32_t)((k * 5 + trial / 2) % (4 * n));
-        double normal[24], offset[8], dev[8], sq[8], edge[8];
-        for (int mode = 0; mode < 3; ++mode) {
-            const int32_t *first = mode == 2 ? idx8 : idx, *second = mode == 2 ? idx8 + 4 * n : idx_b;
-            const int size_b = mode == 2 ? n : nb;
-            if (mode)
+        /* and sixteen of one size (two vectors of eight side by side) */
+        int32_t idx16[16 * MAX];
+        memcpy(idx16, idx8, sizeof(int32_t) * 8 * (size_t)n);
+        for (int k = 0; k < 8 * n; ++k)
+            idx16[8 * n + k] = (int32_t)((k * 3 + trial / 7) % (4 * n));
+        double normal[48], offset[16], dev[16], sq[16], edge[16];
+        for (int mode = 0; mode < 4; ++mode) {
+            const int32_t *first = mode >= 2 ? idx8 : idx, *second = mode >= 2 ? idx8 + 4 * n : idx_b;
+            const int size_b = mode >= 2 ? n : nb;
+            if (mode == 3)
+                facet_face_measure16(n, xyz, idx16, normal, offset, dev, sq, edge, NULL, NULL, NULL);
+            else if (mode)
                 facet_face_measure8(n, size_b, xyz, first, second, normal, offset, dev, sq, edge, NULL, NULL,
                                     NULL);
             else
                 facet_face_measure4(n, xyz, idx, normal, offset, dev, sq, edge, NULL, NULL, NULL);
-            for (int l = 0; l < (mode ? 8 : 4); ++l) {
+            for (int l = 0; l < (mode == 3 ? 16 : mode ? 8 : 4); ++l) {
                 const int size = l < 4 ? n : size_b;
-                const int32_t *corners = l < 4 ? first + n * l : second + size_b * (l - 4);
+                const int32_t *corners = mode == 3 ? idx16 + n * l
+                                         : l < 4   ? first + n * l
+                                                   : second + size_b * (l - 4);
                 double n1[3], o1, d1, rms;
                 const double e1 = facet_face_measure(size, xyz, corners, n1, &o1, &d1, &rms);
                 const double sq1 = rms * rms * (double)size;
@@ -258,7 +268,7 @@ static void test_face_measure4(void)
             }
         }
     }
-    CHECK(compared == 60000);
+    CHECK(compared == 108000);
 }
 
 /* Whole solves with the SIMD lanes (four faces of one size, four vertices
