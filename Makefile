@@ -115,11 +115,14 @@ examples: deps-test build
 	$(FC_ENV) freecadcmd tools/make_examples.py
 
 # BENCH_ARGS: options of tools/bench/run_bench.py; BENCH_ARGS=--quick is a smoke run (< 1 min)
+# bench_planarize and bench_surface call no BLAS; OPENBLAS_NUM_THREADS=1 keeps OpenBLAS's
+# worker threads, which may spin for about 0.1 s after the library loads, off the cores
+# that the first two-thread solves measure (docs/benchmarks.md, "OpenBLAS's start-up spin").
 bench: build
 	mkdir -p $(OUT)/bench
-	$(BUILD)/libcore/bench/bench_planarize $(if $(findstring --quick,$(BENCH_ARGS)),--max-faces 10000 --runs 3,--runs 5) \
+	OPENBLAS_NUM_THREADS=1 $(BUILD)/libcore/bench/bench_planarize $(if $(findstring --quick,$(BENCH_ARGS)),--max-faces 10000 --runs 3,--runs 5) \
 	    --json $(OUT)/bench/bench_c.json
-	$(BUILD)/libcore/bench/bench_surface --runs 5 --json $(OUT)/bench/bench_surface.json
+	OPENBLAS_NUM_THREADS=1 $(BUILD)/libcore/bench/bench_surface --runs 5 --json $(OUT)/bench/bench_surface.json
 	$(BUILD)/libcore/bench/bench_lift --runs 5 --json $(OUT)/bench/bench_lift.json
 	PYTHONPATH=$(CURDIR)/workbench $(PYTHON) tools/bench/run_bench.py --out $(OUT)/bench $(BENCH_ARGS)
 	$(PYTHON) tools/bench/interactive.py --live --mesh quad_grid --mesh hex_torus --mesh level6 \

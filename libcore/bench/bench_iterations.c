@@ -15,7 +15,11 @@
  * reported apart; then the median and range of R timed solves, the CPU
  * seconds per solve, ns per face per iteration, and the peak RSS per face.
  * --check FILE writes the last result (17 significant digits) to compare
- * two builds bit for bit. */
+ * two builds bit for bit. Run it with OPENBLAS_NUM_THREADS=1 (as make
+ * bench runs bench_planarize): the library links OpenBLAS, whose worker
+ * threads may spin for about 0.1 s after it loads; a two-thread "first"
+ * solve of grid:100x100 then took 0.12 s instead of 0.02-0.025 s
+ * (docs/benchmarks.md). */
 #include "facet.h"
 #include "bench_common.h"
 #include "test_meshes.h"
