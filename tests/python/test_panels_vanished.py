@@ -181,7 +181,7 @@ def test_a_merge_that_would_bend_a_face_is_kept_and_reported():
     assert ps.short_edges_kept[0]["faces"] == [5, 6]
     assert ps.short_edges_kept[0]["planarity"] > 1e-6 * STEP
     assert ps.short_edges_kept[0]["reason"] == "planarity"
-    assert any("1 edges shorter than min_edge kept" in w and "edge 7-12" in w
+    assert any("1 edge shorter than min_edge kept: merging its ends" in w and "edge 7-12" in w
                for w in ps.warnings)
 
 
@@ -249,7 +249,7 @@ def test_dxf_audits_and_the_schedule_marks_exactly_the_triangles(tmp_path, facet
                          "--gap", "4", "--sheet", "3000x2000", "--dxf", tmp_path / "s.dxf",
                          "--schedule", tmp_path / "s.csv", "--report", report)
     assert done.returncode == 0, done.stderr
-    assert re.search(r"vanished +2 panels built with fewer corners \(1 edges under "
+    assert re.search(r"vanished +2 panels built with fewer corners \(1 edge under "
                      r"min_edge merged to a corner\): P-R01C02, P-R01C03", done.stdout)
     doc = ezdxf.readfile(tmp_path / "s.dxf")
     assert not doc.audit().has_errors

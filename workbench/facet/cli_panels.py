@@ -290,8 +290,10 @@ def run_panels(args):
     if ps.vanished_edges or ps.short_edges_kept:
         vanished = ps.vanished_panels
         shown = ", ".join(p.id for p in vanished[:4]) + (", ..." if len(vanished) > 4 else "")
-        print(f"  vanished      {len(vanished)} panels built with fewer corners "
-              f"({len(ps.vanished_edges)} edges under min_edge merged to a corner"
+        n_edges = len(ps.vanished_edges)
+        print(f"  vanished      {len(vanished)} {'panel' if len(vanished) == 1 else 'panels'} built "
+              f"with fewer corners ({n_edges} {'edge' if n_edges == 1 else 'edges'} under "
+              "min_edge merged to a corner"
               + (f"; {len(ps.short_edges_kept)} kept" if ps.short_edges_kept else "") + ")"
               + (f": {shown}" if shown else ""), file=out)
     if ps.narrowest_joint is not None:

@@ -912,15 +912,18 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         warnings.append(f"{report['n_non_manifold_edges']} non-manifold edges treated as "
                         "boundary")
     if res["n_reversed"]:
-        warnings.append(f"{res['n_reversed']} faces had the opposite winding and were "
-                        "reversed to make orientation consistent")
+        n = res['n_reversed']
+        warnings.append(f"{n} {'face' if n == 1 else 'faces'} had the opposite winding and "
+                        f"{'was' if n == 1 else 'were'} reversed to make orientation consistent")
     if res["n_components"] > 1:
         warnings.append(f"{res['n_components']} separate parts, each oriented on its own")
     if vanished:
         n_panels = len({f for d in vanished for f in d["faces"]})
-        warnings.append(f"{n_panels} panels built with fewer corners than their faces: "
-                        f"{len(vanished)} edges shorter than min_edge vanished (their ends "
-                        "merged into one corner)")
+        n_edges = len(vanished)
+        warnings.append(f"{n_panels} {'panel' if n_panels == 1 else 'panels'} built with fewer "
+                        f"corners than {'its face' if n_panels == 1 else 'their faces'}: {n_edges} "
+                        f"{'edge' if n_edges == 1 else 'edges'} shorter than min_edge vanished "
+                        f"({'its' if n_edges == 1 else 'their'} ends merged into one corner)")
     for reason, why, tail in (
             ("planarity", "would bend a face beyond the planarity tolerance",
              lambda d: f": face {d['face']} {d['planarity']:.3g} from its plane); facet cleanup "
@@ -930,7 +933,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         hit = [d for d in kept if d["reason"] == reason]
         if hit:
             d = hit[0]
-            warnings.append(f"{len(hit)} edges shorter than min_edge kept: merging their ends "
+            warnings.append(f"{len(hit)} {'edge' if len(hit) == 1 else 'edges'} shorter than "
+                            f"min_edge kept: merging {'its' if len(hit) == 1 else 'their'} ends "
                             f"{why} (edge {d['vertices'][0]}-{d['vertices'][1]}, "
                             f"{d['length']:.3g} long{tail(d)}")
     if rep_of is not None:
