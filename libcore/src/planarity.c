@@ -249,29 +249,6 @@ int facet_simd_max_level = 2;
 #include "fit_lanes.inc" /* which undefines them */
 #endif
 
-/* Two sets of four: their Newton steps (chains of dependent divisions)
- * side by side, so that the processor overlaps them; each lane takes exactly
- * the steps it takes alone. */
-static inline __attribute__((always_inline)) int face_measure8_lanes(
-    const int na, const int nb, const double *xyz, const int32_t *idx_a, const int32_t *idx_b,
-    double normal[24], double offset[8], double max_distance[8], double square_sum[8],
-    double edge_mean[8], const double *floor, double *corner_cos, uint8_t *guard)
-{
-    lanes_w4 A, B;
-    lanes_begin_w4(na, xyz, idx_a, &A);
-    lanes_begin_w4(nb, xyz, idx_b, &B);
-    for (int it = 0; it < 64 && (v4_any(A.run) || v4_any(B.run)); ++it) {
-        lanes_newton_step_w4(&A);
-        lanes_newton_step_w4(&B);
-    }
-    const int below = lanes_end_w4(na, &A, normal, offset, max_distance, square_sum, edge_mean, floor,
-                                corner_cos, guard);
-    return lanes_end_w4(nb, &B, normal + 12, offset + 4, max_distance + 4, square_sum + 4, edge_mean + 4,
-                     floor ? floor + 4 * na : NULL, floor ? corner_cos + 4 * na : NULL,
-                     floor ? guard + 4 : NULL) ||
-           below;
-}
-
 /* Quads get their own copy (n a constant: loops unrolled). */
 #define FACE_MEASURE4_ARGS                                                                         \
     const double *xyz, const int32_t *idx, double normal[12], double offset[4],                    \
@@ -321,9 +298,10 @@ int facet_face_measure4(int32_t n, FACE_MEASURE4_ARGS)
     const double *xyz, const int32_t *idx, double normal[48], double offset[16], double max_distance[16], \
         double square_sum[16], double edge_mean[16], const double *floor, double *corner_cos,          \
         uint8_t *guard
+/* two sets of four side by side (fit_lanes.inc) */
 #define FACE_MEASURE8_CALL(na_, nb_)                                                               \
-    face_measure8_lanes((na_), (nb_), xyz, idx_a, idx_b, normal, offset, max_distance, square_sum,  \
-                        edge_mean, floor, corner_cos, guard)
+    face_measure_pair_w4((na_), (nb_), xyz, idx_a, idx_b, normal, offset, max_distance, square_sum, \
+                         edge_mean, floor, corner_cos, guard)
 
 #if FACET_HAVE_AVX2_CLONE
 FACET_TARGET_AVX2 static int face_measure8_avx2(int na, int nb, FACE_MEASURE8_ARGS)
@@ -344,33 +322,13 @@ FACET_TARGET_AVX512 static int face_measure8_avx512(int na, int nb, FACE_MEASURE
     return na == 4 && nb == 4 ? FACE_MEASURE8_CALL(4, 4) : FACE_MEASURE8_CALL(na, nb);
 }
 
-/* Sixteen faces of n corners, one after another in idx, as two vectors of
- * eight whose Newton steps (chains of dependent divisions) run side by side,
- * so that the processor overlaps them; each lane takes exactly the steps it
- * takes alone. */
-static inline __attribute__((always_inline)) FACET_TARGET_AVX512 int face_measure16_lanes(const int n,
-                                                                                    FACE_MEASURE16_ARGS)
-{
-    lanes_w8 A, B;
-    lanes_begin_w8(n, xyz, idx, &A);
-    lanes_begin_w8(n, xyz, idx + 8 * n, &B);
-    for (int it = 0; it < 64 && (v8_any(A.run) || v8_any(B.run)); ++it) {
-        lanes_newton_step_w8(&A);
-        lanes_newton_step_w8(&B);
-    }
-    const int below = lanes_end_w8(n, &A, normal, offset, max_distance, square_sum, edge_mean, floor,
-                                   corner_cos, guard);
-    return lanes_end_w8(n, &B, normal + 24, offset + 8, max_distance + 8, square_sum + 8, edge_mean + 8,
-                        floor ? floor + 8 * n : NULL, floor ? corner_cos + 8 * n : NULL,
-                        floor ? guard + 8 : NULL) ||
-           below;
-}
-
+/* Sixteen faces of n corners, one after another in idx: two vectors of eight
+ * side by side. */
 FACET_TARGET_AVX512 static int face_measure16_avx512(int n, FACE_MEASURE16_ARGS)
 {
 #define FACE_MEASURE16_CALL(n_)                                                                    \
-    face_measure16_lanes((n_), xyz, idx, normal, offset, max_distance, square_sum, edge_mean, floor, \
-                         corner_cos, guard)
+    face_measure_pair_w8((n_), (n_), xyz, idx, idx + 8 * (n_), normal, offset, max_distance,        \
+                         square_sum, edge_mean, floor, corner_cos, guard)
     return n == 4 ? FACE_MEASURE16_CALL(4) : FACE_MEASURE16_CALL(n);
 #undef FACE_MEASURE16_CALL
 }

@@ -585,6 +585,12 @@ static inline int32_t same_size16(const int32_t *start, int32_t nf, int32_t f)
                : 0;
 }
 
+/* The SIMD lanes' outputs from face f_ on (facet_face_measure4/8/16) */
+#define LANE_OUTPUTS(f_)                                                                           \
+    s->normal + 3 * (size_t)(f_), s->offset + (f_), s->face_dev + (f_), s->face_sq + (f_),         \
+        s->face_edge + (f_), floor_on ? s->corner_floor + start[f_] : NULL,                        \
+        floor_on ? s->corner_cos + start[f_] : NULL, floor_on ? s->face_guard + (f_) : NULL
+
 /* The planes: best fit (the planarity measurement), then the regularised
  * normals when the face-normal Laplacian is on. With the angle floor on, the
  * same pass tests the corners against it (face_guard, corner_cos); returns
@@ -604,23 +610,13 @@ static inline int fit_group(facet_planarizer *s, int32_t f, int lanes, int floor
     const double *q = s->q;
     const int32_t na = lanes ? same_size4(start, nf, f) : 0;
     const int32_t nb = lanes ? same_size4(start, nf, f + 4) : 0;
-    if (na && nb) {
-        const int32_t b = start[f];
-        return facet_face_measure8(na, nb, q, fv + b, fv + start[f + 4], s->normal + 3 * (size_t)f,
-                                   s->offset + f, s->face_dev + f, s->face_sq + f, s->face_edge + f,
-                                   floor_on ? s->corner_floor + b : NULL, floor_on ? s->corner_cos + b : NULL,
-                                   floor_on ? s->face_guard + f : NULL);
-    }
+    if (na && nb)
+        return facet_face_measure8(na, nb, q, fv + start[f], fv + start[f + 4], LANE_OUTPUTS(f));
     int below = 0;
     for (int32_t h = f; h < f + 8 && h < nf; h += 4) {
-        const int32_t n = h == f ? na : nb, b = start[h];
+        const int32_t n = h == f ? na : nb;
         if (n) {
-            below = facet_face_measure4(n, q, fv + b, s->normal + 3 * (size_t)h, s->offset + h,
-                                        s->face_dev + h, s->face_sq + h, s->face_edge + h,
-                                        floor_on ? s->corner_floor + b : NULL,
-                                        floor_on ? s->corner_cos + b : NULL,
-                                        floor_on ? s->face_guard + h : NULL) ||
-                    below;
+            below = facet_face_measure4(n, q, fv + start[h], LANE_OUTPUTS(h)) || below;
             continue;
         }
         below = fit_pair(s, h, floor_on) || below;
@@ -659,17 +655,10 @@ static int fit_planes(facet_planarizer *s, double mu, int nthreads, int energy)
             const int32_t f = 8 * group;
             /* two groups at once where they are sixteen faces of one size */
             const int32_t n16 = lanes && group + 1 < last ? same_size16(start, nf, f) : 0;
-            if (n16) {
-                const int32_t b = start[f];
-                guard = facet_face_measure16(n16, q, fv + b, s->normal + 3 * (size_t)f, s->offset + f,
-                                             s->face_dev + f, s->face_sq + f, s->face_edge + f,
-                                             floor_on ? s->corner_floor + b : NULL,
-                                             floor_on ? s->corner_cos + b : NULL,
-                                             floor_on ? s->face_guard + f : NULL) ||
-                        guard;
-            } else {
+            if (n16)
+                guard = facet_face_measure16(n16, q, fv + start[f], LANE_OUTPUTS(f)) || guard;
+            else
                 guard = fit_group(s, f, lanes, floor_on) || guard;
-            }
             const int32_t end = f + (n16 ? 16 : 8) < nf ? f + (n16 ? 16 : 8) : nf;
             group += n16 ? 2 : 1;
             for (int32_t h = f; energy && h < end; ++h)
