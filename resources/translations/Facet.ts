@@ -92,7 +92,7 @@
 <context>
     <name>Facet</name>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="63"/>
+        <location filename="../../workbench/facetwb/progress.py" line="78"/>
         <source>Cancel</source>
         <translation type="unfinished"></translation>
     </message>
@@ -112,12 +112,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="253"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="261"/>
         <source>Cut sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="320"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="328"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
@@ -392,12 +392,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="277"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="285"/>
         <source>Choose the output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="286"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="294"/>
         <source>Folder for the cut files</source>
         <translation type="unfinished"></translation>
     </message>
@@ -412,38 +412,48 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="227"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="226"/>
         <source>Planarize {0}: solving by local/local too, for a result closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="230"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
         <source>Planarize {0}: solving by local/global again with a finer hold, closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="233"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="232"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="212"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="213"/>
         <source>planarity {0:.2g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="214"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="213"/>
         <source>planarity {0:.2g} (tolerance {1:.2g})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="185"/>
-        <source>{0}: {1} panels built with fewer corners than their faces ({2} edges shorter than MinEdge vanished): {3}</source>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="228"/>
+        <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="191"/>
-        <source>{0}: {1} edges shorter than MinEdge kept as they are (see its Warnings)</source>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="234"/>
+        <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="214"/>
+        <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm or EdgeMode bisector clears them</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="221"/>
+        <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -502,12 +512,12 @@
 <context>
     <name>Facet_Lift</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="70"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="65"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="71"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="66"/>
         <source>Select a plan (PlanGraph or Facet mesh), then a target surface (mesh or shape): every plan vertex gets a height so that every face is exactly planar, as close as possible to the surface straight above it.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -515,12 +525,12 @@
 <context>
     <name>Facet_LiftMix</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="104"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="99"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="105"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="100"/>
         <source>Sliders for the selected Lifting: add the smoothest other planar-faced shapes over the same plan; the result follows live and every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -541,12 +551,12 @@
 <context>
     <name>Facet_PlanGraph</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="33"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="28"/>
         <source>Plan graph</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="34"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="29"/>
         <source>Make a plan graph (faces seen from above) from the selected Sketches, Draft wires or Part edges, or, with nothing selected, from a drawing file (.dxf, .csv, plan mesh). Crossings are split, dangling edges dropped. It follows changes of the drawing.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -580,12 +590,12 @@
 <context>
     <name>Facet_ToPolyMesh</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/to_polymesh.py" line="32"/>
+        <location filename="../../workbench/facetwb/commands/to_polymesh.py" line="19"/>
         <source>To polygon mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/to_polymesh.py" line="33"/>
+        <location filename="../../workbench/facetwb/commands/to_polymesh.py" line="20"/>
         <source>Make a Facet polygon mesh from the selected Mesh or Part objects: a shape of planar polygons gives one panel per face, other shapes and meshes give triangles. It follows changes of its source.</source>
         <translation type="unfinished"></translation>
     </message>

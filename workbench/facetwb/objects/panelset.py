@@ -212,27 +212,27 @@ class PanelSet(_Proxy):
         if ps.overlapping_joints:
             a, b = ps.narrowest_joint_panels
             App.Console.PrintWarning(translate(
-                "Facet", "{0}: {1} joints overlap (cut square on the inner side of a fold): "
-                "{2} and {3} by {4:.4g} mm, the deepest; a Gap of {5:.4g} mm or EdgeMode "
+                "Facet", "{0}: joints that overlap (cut square on the inner side of a fold): "
+                "{1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm or EdgeMode "
                 "bisector clears them").format(
                     obj.Label, ps.overlapping_joints, a, b, -ps.narrowest_joint,
                     ps.clearing_gap) + "\n")
         if ps.node_clashes:
             App.Console.PrintWarning(translate(
-                "Facet", "{0}: {1} pairs of panels overlap at nodes they share without a "
-                "joint: {2} and {3} by {4:.4g} mm, the deepest; a Gap of {5:.4g} mm clears "
+                "Facet", "{0}: pairs of panels that overlap at nodes they share without a "
+                "joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears "
                 "every overlap (see its Warnings)").format(
                     obj.Label, ps.node_clash_pairs, *ps.deepest_node_clash_panels,
                     ps.node_clashes[0]["depth"], ps.clearing_gap or 0.0) + "\n")
         if vanished:
             App.Console.PrintMessage(translate(
-                "Facet", "{0}: {1} panels built with fewer corners than their faces "
-                "({2} edges shorter than MinEdge vanished): {3}").format(
+                "Facet", "{0}: panels built with fewer corners than their faces, because "
+                "edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}").format(
                     obj.Label, len(vanished), len(ps.vanished_edges),
                     ", ".join(vanished[:8]) + (", ..." if len(vanished) > 8 else "")) + "\n")
         if ps.short_edges_kept:
             App.Console.PrintWarning(translate(
-                "Facet", "{0}: {1} edges shorter than MinEdge kept as they are (see its "
+                "Facet", "{0}: edges shorter than MinEdge kept as they are: {1} (see its "
                 "Warnings)").format(
                     obj.Label, len(ps.short_edges_kept)) + "\n")
         self._update_panel_objects(obj, ps, solids)
