@@ -6,8 +6,12 @@ subprocess loads the mesh, creates one ``facet._core.Planarizer`` and runs the
 solve configurations (:data:`CONFIGS`): L/L x100, L/G x30 and the default
 to-tolerance solve, each with and without Anderson acceleration when the
 installed core knows the ``anderson`` keyword. The subprocess runs with
-``OPENBLAS_NUM_THREADS`` set to its thread count, because CHOLMOD's BLAS does
-not see the ``threads=`` option.
+``OPENBLAS_NUM_THREADS=1``: the solves call no BLAS (CHOLMOD's factorization
+is simplicial), and OpenBLAS's worker threads, which may spin for about 0.1 s
+after numpy loads it, would share the cores with the first two-thread solves
+(quad grid 10k, L/L x100 on 2 threads: 'first' 35 ms against 14 ms, medians
+13.5-15.1 against 13.1-13.2 ms). The full run's ``blas_check`` still compares
+unset, 1 and 2 on L/G x30.
 
 Recorded per (mesh, threads, configuration): the solve seconds measured in C
 (first "cold" run, which includes the symbolic analysis, then the median of
@@ -458,7 +462,7 @@ def main(argv=None):
             plan = plan_configs(mesh.n_faces, args, CONFIGS)
             for threads in thread_counts:
                 rep = run_worker(npz, json.dumps({"configs": plan, "time_cap": args.time_cap}),
-                                 threads, threads, args.timeout)
+                                 threads, 1, args.timeout)
                 entry["by_threads"].append(rep)
                 print(summary_line(entry, rep), flush=True)
             doc["meshes"].append(entry)
