@@ -1211,9 +1211,11 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
      * with square cuts, a corner of one can lie inside the other. */
     int64_t *node_start = calloc((size_t)nv + 1, sizeof *node_start);
     int64_t *node_corner = malloc((nc ? nc : 1) * sizeof *node_corner);
-    if (!node_start || !node_corner) {
+    int8_t *convex = malloc((size_t)(nf ? nf : 1));
+    if (!node_start || !node_corner || !convex) {
         free(node_start);
         free(node_corner);
+        free(convex);
         work_free(&w);
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory (nodes)");
     }
@@ -1226,13 +1228,6 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
     for (int32_t v = nv; v > 0; --v) /* back to the starts */
         node_start[v] = node_start[v - 1];
     node_start[0] = 0;
-    int8_t *convex = malloc((size_t)(nf ? nf : 1));
-    if (!convex) {
-        free(node_start);
-        free(node_corner);
-        work_free(&w);
-        return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory (nodes)");
-    }
     for (int32_t f = 0; f < nf; ++f)
         convex[f] = (int8_t)panel_convex(&w, f);
     double deepest_node = 0.0;
