@@ -20,6 +20,8 @@ import importlib
 import os
 import sys
 
+from facet.report import count_noun
+
 EXIT_OK = 0
 EXIT_NOT_CONVERGED = 1
 EXIT_FAILED = 1
@@ -224,17 +226,11 @@ def _g(value, digits=3):
     return f"{value:.{digits}g}"
 
 
-def _count(number, noun):
-    """'1 quad', '2 quads', '1 vertex', '2 vertices'."""
-    if number == 1:
-        return f"{number} {noun}"
-    return f"{number} {'vertices' if noun == 'vertex' else noun + 's'}"
-
-
 def _degrees_text(face_degrees):
     names = {"3": "triangle", "4": "quad", "5": "pentagon", "6": "hexagon"}
     ordered = sorted(face_degrees.items(), key=lambda item: int(item[0]))
-    return ", ".join(_count(count, names.get(degree, degree + "-gon")) for degree, count in ordered)
+    return ", ".join(count_noun(count, names.get(degree, degree + "-gon"))
+                     for degree, count in ordered)
 
 
 def _line(out, label, text):
@@ -246,10 +242,10 @@ def _source_lines(out, report):
         _line(out, "read", f"scene item {report['source_item']}")
     openings = report.get("source_openings_skipped")
     if openings:
-        _line(out, "openings", f"{_count(openings, 'face')} skipped (_is_loaded is false)")
+        _line(out, "openings", f"{count_noun(openings, 'face')} skipped (_is_loaded is false)")
     dropped = report.get("source_unused_vertices_dropped")
     if dropped:
-        _line(out, "dropped", f"{_count(dropped, 'vertex')} used by no face")
+        _line(out, "dropped", f"{count_noun(dropped, 'vertex')} used by no face")
 
 
 def _quality_lines(out, quality):
@@ -275,7 +271,7 @@ def _quality_lines(out, quality):
         _line(
             out,
             "degenerate",
-            f"{_count(count, 'face')} with no area, an angle under "
+            f"{count_noun(count, 'face')} with no area, an angle under "
             f"{_g(quality.get('degenerate_min_angle_deg'))} deg or an edge under "
             f"{_g(100 * (quality.get('degenerate_short_edge') or 0))}% of the face's mean edge "
             f"(first: {first})",
@@ -283,7 +279,7 @@ def _quality_lines(out, quality):
     count = quality.get("straight_corner_faces") or 0
     if count:
         first = ", ".join(map(str, quality.get("straight_corner_face_indices") or ()))
-        text = (f"{_count(count, 'face')} with a corner within "
+        text = (f"{count_noun(count, 'face')} with a corner within "
                 f"{_g(quality.get('straight_corner_deg'))} deg of straight (the straightest "
                 f"turns {_g(quality.get('straightest_corner_deg'))} deg")
         if quality.get("input_straightest_corner_deg") is not None:
@@ -297,7 +293,7 @@ def _compared_line(out, report):
     if not compared:
         return
     kept = report["method"]
-    text = f"local/local too ({_count(compared['iterations'], 'iteration')})"
+    text = f"local/local too ({count_noun(compared['iterations'], 'iteration')})"
     if compared.get(kept) and compared.get("lg") and compared.get("ll"):
         other = "ll" if kept == "lg" else "lg"
         a, b = compared[kept], compared[other]
@@ -309,7 +305,7 @@ def _compared_line(out, report):
         text += ": it did not reach the tolerance; kept lg's result"
     finer = compared.get("finer")
     if finer:
-        text += (f"; lg again with a finer hold ({_count(finer['iterations'], 'iteration')}): "
+        text += (f"; lg again with a finer hold ({count_noun(finer['iterations'], 'iteration')}): "
                  + ("its result kept" if finer["kept"] else "not closer, the first lg result kept"))
     _line(out, "compared", text)
 
@@ -329,7 +325,7 @@ def print_planarize_summary(report, out=None):
     _line(
         out,
         "mesh",
-        f"{_count(report['vertices'], 'vertex')}, {_count(report['faces'], 'face')} "
+        f"{count_noun(report['vertices'], 'vertex')}, {count_noun(report['faces'], 'face')} "
         f"({_degrees_text(report['face_degrees'])}), mean edge {_g(report['mean_edge_length'])}",
     )
     _source_lines(out, report)
@@ -352,9 +348,9 @@ def print_planarize_summary(report, out=None):
     _line(
         out,
         "solve",
-        f"{report['method']}, {_count(report['iterations'], 'iteration')} in "
+        f"{report['method']}, {count_noun(report['iterations'], 'iteration')} in "
         f"{report['solve_seconds']:.3g} s"
-        + (f" on {_count(report['threads'], 'thread')}" if report.get("threads") else "")
+        + (f" on {count_noun(report['threads'], 'thread')}" if report.get("threads") else "")
         + f": {reason}",
     )
     resolves = report.get("quality_resolves") or 0
@@ -362,7 +358,7 @@ def print_planarize_summary(report, out=None):
         outcome = ("the last kept every corner open" if report.get("quality_check") == "recovered"
                    else "none kept every corner open: the first solve's result")
         _line(out, "re-solves", f"{resolves} for panel quality after the first solve's "
-              f"{_count(report.get('first_iterations', 0), 'iteration')}: {outcome}")
+              f"{count_noun(report.get('first_iterations', 0), 'iteration')}: {outcome}")
     _compared_line(out, report)
     relative = report.get("displacement_max_rel")
     share = "" if relative is None else f" ({relative * 100:.3g}% of the mean edge)"
@@ -394,20 +390,20 @@ def print_check_summary(report, out=None):
     _line(
         out,
         "mesh",
-        f"{_count(report['vertices'], 'vertex')}, {_count(report['faces'], 'face')} "
-        f"({_degrees_text(report['face_degrees'])}), {_count(report['edges'], 'edge')} "
+        f"{count_noun(report['vertices'], 'vertex')}, {count_noun(report['faces'], 'face')} "
+        f"({_degrees_text(report['face_degrees'])}), {count_noun(report['edges'], 'edge')} "
         f"({report['boundary_edges']} on the boundary)",
     )
     _source_lines(out, report)
     if report.get("non_manifold_edges"):
         first = "-".join(map(str, report.get("first_non_manifold_edge") or ()))
         count = report["non_manifold_edges"]
-        text = f"{_count(count, 'edge')} shared by more than two faces (first: {first})"
+        text = f"{count_noun(count, 'edge')} shared by more than two faces (first: {first})"
         _line(out, "warning", text)
     if report.get("isolated_vertices"):
         first = report.get("first_isolated_vertex")
         count = report["isolated_vertices"]
-        _line(out, "warning", f"{_count(count, 'vertex')} used by no face (first: {first})")
+        _line(out, "warning", f"{count_noun(count, 'vertex')} used by no face (first: {first})")
     low, high = report["bounds"]["min"], report["bounds"]["max"]
     size = " x ".join(_g(b - a) for a, b in zip(low, high))
     _line(out, "size", f"{size}, mean edge {_g(report['mean_edge_length'])}")

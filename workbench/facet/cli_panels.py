@@ -21,6 +21,8 @@ import os
 import sys
 import time
 
+from facet.report import count_noun
+
 __all__ = ["add_commands", "run_panels", "run_pipeline"]
 
 
@@ -290,10 +292,8 @@ def run_panels(args):
     if ps.vanished_edges or ps.short_edges_kept:
         vanished = ps.vanished_panels
         shown = ", ".join(p.id for p in vanished[:4]) + (", ..." if len(vanished) > 4 else "")
-        n_edges = len(ps.vanished_edges)
-        print(f"  vanished      {len(vanished)} {'panel' if len(vanished) == 1 else 'panels'} built "
-              f"with fewer corners ({n_edges} {'edge' if n_edges == 1 else 'edges'} under "
-              "min_edge merged to a corner"
+        print(f"  vanished      {count_noun(len(vanished), 'panel')} built with fewer corners "
+              f"({count_noun(len(ps.vanished_edges), 'edge')} under min_edge merged to a corner"
               + (f"; {len(ps.short_edges_kept)} kept" if ps.short_edges_kept else "") + ")"
               + (f": {shown}" if shown else ""), file=out)
     if ps.narrowest_joint is not None:
@@ -307,8 +307,8 @@ def run_panels(args):
                   f"(gap {ps.options['gap']:.4g}), between {a} and {b}", file=out)
     print(f"  nodes         largest deviation from a common axis "
           f"{ps.max_node_deviation_deg:.3g} degrees"
-          + (f"; {ps.node_clash_pairs} pair{'s' * (ps.node_clash_pairs > 1)} of panels "
-             f"overlap at {len(ps.node_clashes)} node{'s' * (len(ps.node_clashes) > 1)}, "
+          + (f"; {count_noun(ps.node_clash_pairs, 'pair')} of panels "
+             f"overlap at {count_noun(len(ps.node_clashes), 'node')}, "
              f"the deepest by {ps.node_clashes[0]['depth']:.4g} "
              f"({' and '.join(ps.deepest_node_clash_panels)})"
              + (f"; a gap of {ps.clearing_gap:.4g} clears every overlap"

@@ -29,6 +29,7 @@ from facet import _core
 from facet.errors import Cancelled, InputError, from_core
 from facet.mesh import PolyMesh, next_corners
 from facet.quality import DEFAULT_SHORT_EDGE
+from facet.report import count_noun
 
 __all__ = ["PanelError", "Panel", "PanelSet", "panels", "OFFSETS", "EDGES", "ID_SCHEMES",
            "grid_positions", "DEFAULT_MIN_EDGE"]
@@ -913,16 +914,16 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
                         "boundary")
     if res["n_reversed"]:
         n = res['n_reversed']
-        warnings.append(f"{n} {'face' if n == 1 else 'faces'} had the opposite winding and "
+        warnings.append(f"{count_noun(n, 'face')} had the opposite winding and "
                         f"{'was' if n == 1 else 'were'} reversed to make orientation consistent")
     if res["n_components"] > 1:
         warnings.append(f"{res['n_components']} separate parts, each oriented on its own")
     if vanished:
         n_panels = len({f for d in vanished for f in d["faces"]})
         n_edges = len(vanished)
-        warnings.append(f"{n_panels} {'panel' if n_panels == 1 else 'panels'} built with fewer "
-                        f"corners than {'its face' if n_panels == 1 else 'their faces'}: {n_edges} "
-                        f"{'edge' if n_edges == 1 else 'edges'} shorter than min_edge vanished "
+        warnings.append(f"{count_noun(n_panels, 'panel')} built with fewer corners than "
+                        f"{'its face' if n_panels == 1 else 'their faces'}: "
+                        f"{count_noun(n_edges, 'edge')} shorter than min_edge vanished "
                         f"({'its' if n_edges == 1 else 'their'} ends merged into one corner)")
     for reason, why, tail in (
             ("planarity", "would bend a face beyond the planarity tolerance",
@@ -933,8 +934,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         hit = [d for d in kept if d["reason"] == reason]
         if hit:
             d = hit[0]
-            warnings.append(f"{len(hit)} {'edge' if len(hit) == 1 else 'edges'} shorter than "
-                            f"min_edge kept: merging {'its' if len(hit) == 1 else 'their'} ends "
+            warnings.append(f"{count_noun(len(hit), 'edge')} shorter than min_edge kept: "
+                            f"merging {'its' if len(hit) == 1 else 'their'} ends "
                             f"{why} (edge {d['vertices'][0]}-{d['vertices'][1]}, "
                             f"{d['length']:.3g} long{tail(d)}")
     if rep_of is not None:
@@ -1028,13 +1029,13 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         if hit:
             count = sum(getattr(p, attr) for p in result)
             shown = ", ".join(hit[:5]) + (", ..." if len(hit) > 5 else "")
-            warnings.append(f"{count} {text} {len(hit)} panel{'s' * (len(hit) > 1)}: {shown}"
+            warnings.append(f"{count} {text} {count_noun(len(hit), 'panel')}: {shown}"
                             + tail)
     overlapping = int(res["n_overlapping_joints"])
     a, b = res["narrowest_joint_faces"]
     if overlapping:
         warnings.append(
-            f"{overlapping} joint{'s' * (overlapping > 1)} cut square on the inner side of a "
+            f"{count_noun(overlapping, 'joint')} cut square on the inner side of a "
             f"fold overlap{'s' * (overlapping == 1)}: the panels "
             f"{result[a].id} and {result[b].id} by {-res['narrowest_joint']:.3g} (the deepest, "
             f"at the edge from vertex {res['narrowest_joint_vertex']}); a gap of "
@@ -1049,8 +1050,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         total = n_groups + 2 * nf
         clearing = _clearing_gap(xyz, mesh, core_options, gap, clearing, progress, total)
         warnings.append(
-            f"{pairs} pair{'s' * (pairs > 1)} of panels that meet at a node but not across a "
-            f"joint overlap there (at {len(clashes)} node{'s' * (len(clashes) > 1)}): the "
+            f"{count_noun(pairs, 'pair')} of panels that meet at a node but not across a "
+            f"joint overlap there (at {count_noun(len(clashes), 'node')}): the "
             f"panels {deepest_pair[0]} and {deepest_pair[1]} by "
             f"{res['deepest_node_clash']:.3g} at vertex {res['node_clash_vertex']} (the "
             "deepest); "

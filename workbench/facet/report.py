@@ -19,10 +19,18 @@ import numpy as np
 
 from facet.io.files import write_text
 
-__all__ = ["planarize_report", "check_report", "quality_figures", "json_safe", "write_json"]
+__all__ = ["planarize_report", "check_report", "quality_figures", "json_safe", "write_json",
+           "count_noun"]
 
 #: Keys of ``mesh.info`` copied into reports (lists of keys are left out).
 _INFO_KEYS = ("format", "header", "dtype", "item", "openings_skipped", "unused_vertices_dropped")
+
+
+def count_noun(number, noun):
+    """'1 quad', '2 quads', '0 quads', '1 vertex', '2 vertices': a count in a message."""
+    if number == 1:
+        return f"{number} {noun}"
+    return f"{number} {'vertices' if noun == 'vertex' else noun + 's'}"
 
 
 def _version():

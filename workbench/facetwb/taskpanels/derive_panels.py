@@ -247,12 +247,12 @@ class PanelsPanel(DerivePanel):
         text = (f"{obj.Label}: {obj.PanelCount} panels, node deviation up to "
                 f"{obj.MaxNodeDeviation.Value:.3g} degrees")
         if obj.OverlappingJoints:
-            text += (f"; {obj.OverlappingJoints} joints overlap (a Gap of "
+            text += (f"; joints that overlap: {obj.OverlappingJoints} (a Gap of "
                      f"{obj.ClearingGap.Value:.4g} mm clears them)")
         elif obj.NarrowestJointPanels:
             text += f"; narrowest joint {obj.NarrowestJoint.Value:.4g} mm"
         if obj.NodeClashes:
-            text += f"; {obj.NodeClashes} pairs of panels overlap at nodes"
+            text += f"; pairs of panels that overlap at nodes: {obj.NodeClashes}"
         return text
 
 
