@@ -67,8 +67,10 @@ class ExampleChecks:
     def test_recomputes_to_what_the_file_holds(self):
         self.assertEqual(set(self.recomputed), set(self.stored))
         for name, entry in self.stored.items():
-            # the file holds its shapes as BREP text
-            assert_entry_equal(self, self.recomputed[name], entry, name, shape_bits=False)
+            # the file holds its shapes as BREP text, and it was made on another machine,
+            # whose BLAS may round a Lifting's heights otherwise
+            assert_entry_equal(self, self.recomputed[name], entry, name, shape_bits=False,
+                               blas_bits=False)
 
     def test_reopens_in_a_fresh_process(self):
         """As a designer opens it: a new freecadcmd with the workbench from Mod/Facet."""
