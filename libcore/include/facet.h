@@ -170,10 +170,13 @@ typedef enum facet_method {
 } facet_method;
 
 /* The largest mesh (in face corners: 4 per quad) that FACET_METHOD_AUTO
- * solves by L/G: 50,000 quads or 33,000 hexagons. Above it L/G's CHOLMOD
- * factor takes 2-4 KB per face and a solve to 1e-6 minutes, L/L (with its
- * finish) under 1 KB per face and seconds (docs/solver-notes.md). */
-#define FACET_AUTO_LG_MAX_CORNERS 200000
+ * solves by L/G: 10,000 quads or 6,666 hexagons. Above it L/L (with its
+ * finish and quality re-solves) reaches 1e-6 10-40 times faster than L/G
+ * with the comparison, closer to the input surface than L/G and than the
+ * exact penalty path, in under 1 KB per face (L/G: 1.3-1.8 KB); on the
+ * benchmark meshes just above it auto already returned L/L's result
+ * (docs/solver-notes.md, "Method auto: L/L from 10,000 quads"). */
+#define FACET_AUTO_LG_MAX_CORNERS 40000
 
 typedef enum facet_stop_reason {
     FACET_STOP_NONE = 0,

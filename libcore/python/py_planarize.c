@@ -440,5 +440,7 @@ int py_add_planarize(PyObject *module)
         r = PyModule_AddIntConstant(module, "STAGE_COMPARE", FACET_STAGE_COMPARE);
     if (r == 0) /* stage(STAGE_FINER, stages): its L/G solve with a finer hold */
         r = PyModule_AddIntConstant(module, "STAGE_FINER", FACET_STAGE_FINER);
+    if (r == 0) /* method auto: L/G up to this many face corners, L/L above */
+        r = PyModule_AddIntConstant(module, "AUTO_LG_MAX_CORNERS", FACET_AUTO_LG_MAX_CORNERS);
     return r;
 }

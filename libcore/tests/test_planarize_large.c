@@ -20,10 +20,10 @@ static double max_abs_diff(const double *a, const double *b, size_t n)
 static void test_auto_choice(void)
 {
     facet_error e;
-    /* 100 x 100 quads: 40,000 corners; 230 x 230: 211,600 > 200,000 */
-    const int sides[2] = {100, 230};
+    /* 100 x 100 quads: 40,000 corners, the largest L/G mesh; 101 x 101: 40,804 */
+    const int sides[2] = {100, 101};
     const facet_method expect[2] = {FACET_METHOD_LOCAL_GLOBAL, FACET_METHOD_LOCAL_LOCAL};
-    CHECK(4 * 100 * 100 <= FACET_AUTO_LG_MAX_CORNERS && 4 * 230 * 230 > FACET_AUTO_LG_MAX_CORNERS);
+    CHECK(4 * 100 * 100 == FACET_AUTO_LG_MAX_CORNERS && 4 * 101 * 101 > FACET_AUTO_LG_MAX_CORNERS);
     for (int k = 0; k < 2; ++k) {
         test_mesh t = test_grid(sides[k], sides[k], 0.6, 1.0, 0.0);
         facet_planarizer *p = NULL;

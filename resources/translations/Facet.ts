@@ -402,11 +402,6 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="22"/>
-        <source>Automatic (the default): local/global up to about 50,000 quads, local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../ui/preferences.ui" line="23"/>
         <source>Automatic</source>
         <translation type="unfinished"></translation>
@@ -454,6 +449,11 @@
     <message>
         <location filename="../../workbench/facetwb/objects/panelset.py" line="221"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="22"/>
+        <source>Automatic (the default): local/global up to 10,000 quads, local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -779,13 +779,13 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/planarize.ui" line="22"/>
-        <source>Automatic (the default): local/global up to about 50,000 quads, local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
+        <location filename="../ui/planarize.ui" line="23"/>
+        <source>Automatic</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/planarize.ui" line="23"/>
-        <source>Automatic</source>
+        <location filename="../ui/planarize.ui" line="22"/>
+        <source>Automatic (the default): local/global up to 10,000 quads, local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

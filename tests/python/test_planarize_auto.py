@@ -1,16 +1,18 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """The large-mesh default: method "auto" (L/G on small meshes, compared with
-L/L, L/L above 200,000 face corners) and L/L's finish, through
+L/L, L/L above 40,000 face corners) and L/L's finish, through
 facet.planarize and the command line. The comparison's rule:
 test_planarize_compare.py."""
 
 import json
+import math
 import os
 
 import numpy as np
 import pytest
 
 import facet
+from facet import _core
 from facet.planarize import METHODS
 
 
@@ -40,11 +42,12 @@ def test_auto_is_the_default_and_solves_by_lg_and_ll_on_small_meshes(data_dir):
 
 
 def test_auto_picks_ll_above_the_threshold():
-    mesh = grid(230)  # 52,900 quads, 211,600 corners > 200,000
-    result = facet.planarize(mesh, iterations=2)
+    assert _core.AUTO_LG_MAX_CORNERS == 40_000  # 10,000 quads, as the docs say
+    largest = math.isqrt(_core.AUTO_LG_MAX_CORNERS // 4)  # 100 x 100 quads: the last L/G mesh
+    result = facet.planarize(grid(largest + 1), iterations=2)
     assert result.method == "ll"
-    small = facet.planarize(grid(20), iterations=2)
-    assert small.method == "lg"
+    at_limit = facet.planarize(grid(largest), iterations=2)
+    assert at_limit.method == "lg"
 
 
 def test_ll_default_reaches_the_tolerance():

@@ -63,7 +63,7 @@ class Planarized(PolyMesh):
         output = compat.PROP_OUTPUT
         if compat.add_property(
                 obj, "App::PropertyEnumeration", "Method", "Planarize",
-                "auto: local/global up to about 50,000 quads (200,000 corners), local/local "
+                "auto: local/global up to 10,000 quads (40,000 corners), local/local "
                 "above; lg: local/global (one sparse solve per iteration, converges in few "
                 "iterations); ll: local/local (cheap iterations, many of them, little memory)"):
             obj.Method = METHODS
