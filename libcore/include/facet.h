@@ -171,7 +171,7 @@ typedef enum facet_method {
 
 /* The largest mesh (in face corners: 4 per quad) that FACET_METHOD_AUTO
  * solves by L/G: 10,000 quads or 6,666 hexagons. Above it L/L (with its
- * finish and quality re-solves) reaches 1e-6 10-40 times faster than L/G
+ * finish and quality re-solves) reaches 1e-6 6-165 times faster than L/G
  * with the comparison, closer to the input surface than L/G and than the
  * exact penalty path, in under 1 KB per face (L/G: 1.3-1.8 KB); on the
  * benchmark meshes just above it auto already returned L/L's result

@@ -6,7 +6,7 @@ compiled core, as local/global (``"lg"``: one sparse solve per iteration) or
 local/local (``"ll"``: the cheapest iteration, no sparse factorization; it
 finishes with its data term anchored at the iterate, so it also reaches
 1e-6). ``"auto"``, the default, picks L/G up to 10,000 quads (40,000 face
-corners) and L/L above, where L/L reaches the tolerance 10-40 times faster, as
+corners) and L/L above, where L/L reaches the tolerance 6-165 times faster, as
 close to the design, in under 1 KB per face (L/G: 1.3-1.8 KB).
 
 >>> result = planarize(mesh)                   # doctest: +SKIP
