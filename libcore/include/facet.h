@@ -178,6 +178,12 @@ typedef enum facet_method {
  * (docs/solver-notes.md, "Method auto: L/L from 10,000 quads"). */
 #define FACET_AUTO_LG_MAX_CORNERS 40000
 
+/* The same when the options have a term with which L/L stops above the
+ * tolerance (facet_planarizer_choose_method): 50,000 quads or 33,000
+ * hexagons. Above it L/G's CHOLMOD factor takes 2-4 KB per face and a solve
+ * minutes (docs/solver-notes.md, "Large meshes"). */
+#define FACET_AUTO_LG_MAX_CORNERS_TERMS 200000
+
 typedef enum facet_stop_reason {
     FACET_STOP_NONE = 0,
     FACET_STOP_TOLERANCE = 1,   /* planarity (and constraints) reached tol_abs or tol_rel */
@@ -383,10 +389,16 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
 
 void facet_planarizer_free(facet_planarizer **planarizer);
 
-/* The method FACET_METHOD_AUTO chooses for this planarizer's mesh:
- * FACET_METHOD_LOCAL_GLOBAL up to FACET_AUTO_LG_MAX_CORNERS face corners,
- * FACET_METHOD_LOCAL_LOCAL above (NULL: L/G). */
-facet_method facet_planarizer_choose_method(const facet_planarizer *planarizer);
+/* The method FACET_METHOD_AUTO chooses for this planarizer's mesh and these
+ * options (NULL: the defaults): FACET_METHOD_LOCAL_GLOBAL up to
+ * FACET_AUTO_LG_MAX_CORNERS face corners, FACET_METHOD_LOCAL_LOCAL above.
+ * With a term that L/L does not finish with (a shape term, which plane and
+ * surface data carry in facet.planarize; the Laplacian; boundary fairness;
+ * circular or parallelogram faces) or without the staircase (hold_tol 0),
+ * L/L stalls above the tolerance, so L/G goes on up to
+ * FACET_AUTO_LG_MAX_CORNERS_TERMS. NULL planarizer: L/G. */
+facet_method facet_planarizer_choose_method(const facet_planarizer *planarizer,
+                                            const facet_planarize_options *options);
 
 /* Planarizes the control positions xyz_in[3*n_vertices] (same topology as at
  * create) into xyz_out[3*n_vertices] (may equal xyz_in). Coordinates are

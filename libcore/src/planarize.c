@@ -454,10 +454,29 @@ facet_status facet_planarizer_set_face_weights(facet_planarizer *s, const double
 
 /* ---- options ------------------------------------------------------------ */
 
-facet_method facet_planarizer_choose_method(const facet_planarizer *s)
+/* Whether L/L reaches the tolerance with these options' energy: its finish
+ * needs the staircase and no shape term, and with the Laplacian, boundary
+ * fairness or circular or parallelogram faces it stops on stagnation
+ * (110 x 110 quads: 1e-5 and 4e-3; docs/solver-notes.md, "Method auto: L/L
+ * from 10,000 quads"). */
+static int ll_reaches_tolerance(const facet_planarize_options *o)
 {
-    return s && s->nc > FACET_AUTO_LG_MAX_CORNERS ? FACET_METHOD_LOCAL_LOCAL
-                                                   : FACET_METHOD_LOCAL_GLOBAL;
+    return o->hold_tol > 0.0 && !(o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0) &&
+           o->laplacian == 0.0 && o->boundary_fairness == 0.0 && o->circular == 0.0 &&
+           o->parallelogram == 0.0;
+}
+
+facet_method facet_planarizer_choose_method(const facet_planarizer *s,
+                                            const facet_planarize_options *options)
+{
+    facet_planarize_options defaults;
+    if (!options) {
+        facet_planarize_options_default(FACET_METHOD_AUTO, &defaults);
+        options = &defaults;
+    }
+    const int32_t most = ll_reaches_tolerance(options) ? FACET_AUTO_LG_MAX_CORNERS
+                                                       : FACET_AUTO_LG_MAX_CORNERS_TERMS;
+    return s && s->nc > most ? FACET_METHOD_LOCAL_LOCAL : FACET_METHOD_LOCAL_GLOBAL;
 }
 
 static facet_status check_options(const facet_planarize_options *o, int has_reference, char *text,
@@ -960,7 +979,7 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
         return facet_pl_fail(s, error, status, text);
     facet_planarize_options chosen = *options;
     if (options->method == FACET_METHOD_AUTO) {
-        chosen.method = facet_planarizer_choose_method(s);
+        chosen.method = facet_planarizer_choose_method(s, options);
         if (chosen.method == FACET_METHOD_LOCAL_LOCAL)
             chosen.mu_min = facet_max(chosen.mu_min, FACET_LL_MU_MIN);
         options = &chosen;

@@ -305,8 +305,9 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
         result->anderson_accepted = sub_result.anderson_accepted;
         result->anderson_rejected = sub_result.anderson_rejected;
         result->method = n_changed ? sub_result.method
-                         : options->method == FACET_METHOD_AUTO ? facet_planarizer_choose_method(s->live ? s->live : s)
-                                                                : options->method;
+                         : options->method == FACET_METHOD_AUTO
+                             ? facet_planarizer_choose_method(s->live ? s->live : s, options)
+                             : options->method;
         /* the region solves are not checked (planarize_quality.c) */
         result->quality = FACET_QUALITY_NOT_CHECKED;
         result->narrow_corners = 0;

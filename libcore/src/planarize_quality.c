@@ -419,7 +419,7 @@ static int32_t compare_limit(const facet_planarize_options *options)
 static int compares(const facet_planarizer *s, const facet_planarize_options *options)
 {
     return s && options && options->method == FACET_METHOD_AUTO && options->hold_tol > 0.0 &&
-           facet_planarizer_choose_method(s) == FACET_METHOD_LOCAL_GLOBAL &&
+           facet_planarizer_choose_method(s, options) == FACET_METHOD_LOCAL_GLOBAL &&
            options->iterations <= 0 && !(options->warm && s->has_previous) &&
            options->shape == FACET_SHAPE_NONE && options->laplacian == 0.0 &&
            options->normal_laplacian == 0.0 && options->boundary_fairness == 0.0;

@@ -28,9 +28,10 @@ static void test_auto_choice(void)
         test_mesh t = test_grid(sides[k], sides[k], 0.6, 1.0, 0.0);
         facet_planarizer *p = NULL;
         CHECK_STATUS(facet_planarizer_create(&t.mesh, &p, &e), FACET_OK);
-        CHECK(facet_planarizer_choose_method(p) == expect[k]);
+        CHECK(facet_planarizer_choose_method(p, NULL) == expect[k]);
         facet_planarize_options o;
         facet_planarize_options_default(FACET_METHOD_AUTO, &o);
+        CHECK(facet_planarizer_choose_method(p, &o) == expect[k]);
         CHECK(o.method == FACET_METHOD_AUTO && o.mu_min == 1e-12 && o.max_iter == 1000);
         o.iterations = 3;
         facet_planarize_result r;
@@ -43,7 +44,53 @@ static void test_auto_choice(void)
         facet_planarizer_free(&p);
         test_mesh_free(&t);
     }
-    CHECK(facet_planarizer_choose_method(NULL) == FACET_METHOD_LOCAL_GLOBAL);
+    CHECK(facet_planarizer_choose_method(NULL, NULL) == FACET_METHOD_LOCAL_GLOBAL);
+}
+
+/* With a term that L/L stops above the tolerance with, AUTO keeps L/G up to
+ * FACET_AUTO_LG_MAX_CORNERS_TERMS corners: such a solve of a mesh just above
+ * FACET_AUTO_LG_MAX_CORNERS runs L/G; each term alone decides it. */
+static void test_auto_choice_terms(void)
+{
+    facet_error e;
+    CHECK(4 * 224 * 224 > FACET_AUTO_LG_MAX_CORNERS_TERMS &&
+          4 * 223 * 223 <= FACET_AUTO_LG_MAX_CORNERS_TERMS);
+    test_mesh t = test_grid(101, 101, 0.6, 1.0, 0.0);
+    facet_planarizer *p = NULL;
+    CHECK_STATUS(facet_planarizer_create(&t.mesh, &p, &e), FACET_OK);
+    facet_planarize_options o;
+    for (int term = 0; term < 6; ++term) {
+        facet_planarize_options_default(FACET_METHOD_AUTO, &o);
+        switch (term) {
+        case 0: o.shape = FACET_SHAPE_ASAP, o.shape_weight = 0.1; break;
+        case 1: o.laplacian = 0.1; break;
+        case 2: o.boundary_fairness = 0.1; break;
+        case 3: o.circular = 1.0; break;
+        case 4: o.parallelogram = 1.0; break;
+        default: o.hold_tol = 0.0; break; /* the paper's geometric schedule */
+        }
+        CHECK(facet_planarizer_choose_method(p, &o) == FACET_METHOD_LOCAL_GLOBAL);
+        o.iterations = 2;
+        facet_planarize_result r;
+        double *out = malloc(sizeof(double) * 3 * (size_t)t.mesh.n_vertices);
+        CHECK_STATUS(facet_planarizer_solve(p, t.xyz, &o, out, &r, &e), FACET_OK);
+        CHECK(r.method == FACET_METHOD_LOCAL_GLOBAL);
+        free(out);
+    }
+    /* a shape term of weight 0 is no term; terms L/L finishes with leave the choice */
+    facet_planarize_options_default(FACET_METHOD_AUTO, &o);
+    o.shape = FACET_SHAPE_ARAP, o.shape_weight = 0.0;
+    o.normal_laplacian = 0.1, o.data_tangent = 0.01, o.angle_floor = 5.0;
+    CHECK(facet_planarizer_choose_method(p, &o) == FACET_METHOD_LOCAL_LOCAL);
+    facet_planarizer_free(&p);
+    test_mesh_free(&t);
+    /* above FACET_AUTO_LG_MAX_CORNERS_TERMS: L/L whatever the terms */
+    t = test_grid(224, 224, 0.6, 1.0, 0.0);
+    CHECK_STATUS(facet_planarizer_create(&t.mesh, &p, &e), FACET_OK);
+    o.laplacian = 0.1;
+    CHECK(facet_planarizer_choose_method(p, &o) == FACET_METHOD_LOCAL_LOCAL);
+    facet_planarizer_free(&p);
+    test_mesh_free(&t);
 }
 
 /* L/L with the default schedule reaches 1e-6 (before the finish it stalled
@@ -125,6 +172,7 @@ static void test_auto_floor(void)
 int main(void)
 {
     test_auto_choice();
+    test_auto_choice_terms();
     test_ll_finish();
     test_auto_floor();
     printf("test_planarize_large: %d checks, %d failed\n", check_count, check_failures);

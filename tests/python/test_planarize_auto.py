@@ -50,6 +50,17 @@ def test_auto_picks_ll_above_the_threshold():
     assert at_limit.method == "lg"
 
 
+@pytest.mark.parametrize("terms", [dict(data="plane"), dict(data="surface"), dict(shape="arap"),
+                                   dict(laplacian=0.1), dict(boundary_fairness=0.1),
+                                   dict(circular=1.0), dict(parallelogram=1.0)])
+def test_auto_keeps_lg_where_ll_would_stall(terms):
+    """Plane and surface data carry a shape term; with it, the Laplacian, boundary fairness
+    or circular and parallelogram faces L/L stops above the tolerance, so auto keeps L/G up
+    to 200,000 corners (facet.h, FACET_AUTO_LG_MAX_CORNERS_TERMS)."""
+    mesh = grid(math.isqrt(_core.AUTO_LG_MAX_CORNERS // 4) + 1)
+    assert facet.planarize(mesh, iterations=2, **terms).method == "lg"
+
+
 def test_ll_default_reaches_the_tolerance():
     mesh = grid(60)  # 3,600 quads: L/L stalled near 1e-5 before its finish
     result = facet.planarize(mesh, method="ll")
