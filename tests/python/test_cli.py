@@ -199,6 +199,59 @@ def test_real_ctrl_c_during_a_solve_exits_130(tmp_path, facet_interrupt):
     assert not output.exists()
 
 
+class _DropsCtrlC:
+    """An object whose ``__del__`` receives a real SIGINT: Python raises the KeyboardInterrupt
+    inside the ``__del__`` and swallows it ("Exception ignored in ..."), as it did in
+    shapely's geometries while ``facet panels`` nested."""
+
+    def __del__(self):
+        import os
+        import signal
+
+        os.kill(os.getpid(), signal.SIGINT)
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="SIGINT is POSIX")
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
+@pytest.mark.parametrize("then", ["checks", "fails", "finishes"])
+def test_ctrl_c_that_python_swallows_still_interrupts(monkeypatch, capsys, data_dir, then):
+    """The lost Ctrl+C cancels at the command's next progress check; an error that follows it
+    or the command's end is reported as the interrupt (exit status 130)."""
+    import signal
+
+    import facet.cli_panels
+
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    went_on = []
+
+    def pipeline(mesh, thickness, progress=None, cancelled=None, **options):
+        _DropsCtrlC()  # freed at once: the Ctrl+C is lost in its __del__
+        went_on.append(True)
+        if then == "checks":
+            assert progress("nest", 1, 2) is True and cancelled() is True
+            raise Cancelled("nesting cancelled")
+        raise facet.errors.InputError("1576 of 3600 parts fit on no sheet")
+
+    def command(args):
+        _DropsCtrlC()
+        went_on.append(True)
+        return cli.EXIT_OK
+
+    monkeypatch.setattr(facet.cli_panels, "run_pipeline", pipeline)
+    monkeypatch.setattr(facet.cli_panels, "run_panels", command if then == "finishes" else
+                        facet.cli_panels.run_panels)
+    status = cli.main(["panels", str(data_dir / "hypar.obj"), "--thickness", "18"])
+    assert went_on == [True]  # the interrupt was swallowed, not raised
+    assert status == 130
+    assert capsys.readouterr().err.endswith("facet: error: interrupted\n")
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # put back
+
+
+def test_no_ctrl_c_no_interrupt(capsys, data_dir):
+    assert cli.main(["check", str(data_dir / "hypar.obj")]) == 0
+    assert not cli.interrupted("nest", 1, 2)
+
+
 def test_cancelled_solve_exits_130(monkeypatch, capsys, data_dir, tmp_path):
     def cancelled(*args, **kwargs):
         raise Cancelled("cancelled")

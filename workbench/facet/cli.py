@@ -18,7 +18,9 @@ wrong), 130 interrupted with Ctrl+C.
 import argparse
 import importlib
 import os
+import signal
 import sys
+import threading
 
 from facet.report import count_noun
 
@@ -545,6 +547,46 @@ def _fail(message):
     print(f"facet: error: {message}", file=sys.stderr)
 
 
+class _CtrlC:
+    """Ctrl+C while a command runs: KeyboardInterrupt as Python raises it by default, and
+    remembered. Python swallows an exception raised inside a ``__del__`` (it prints
+    "Exception ignored in ..."), and shapely's geometries run one whenever they are freed:
+    an interrupt that lands there was lost and the command went on to its end. Remembered,
+    it cancels the command at its next progress check (:func:`interrupted`)."""
+
+    def __init__(self):
+        self.seen = False
+        self._previous = None
+
+    def _handle(self, signum, frame):
+        self.seen = True
+        raise KeyboardInterrupt
+
+    def __enter__(self):
+        self.seen = False
+        # only where Python's own handler is in place (not when SIGINT is ignored, as for
+        # a background job, nor outside the main thread, where no handler can be set)
+        if (threading.current_thread() is threading.main_thread()
+                and signal.getsignal(signal.SIGINT) is signal.default_int_handler):
+            self._previous = signal.signal(signal.SIGINT, self._handle)
+        return self
+
+    def __exit__(self, *exc):
+        if self._previous is not None:
+            signal.signal(signal.SIGINT, self._previous)
+            self._previous = None
+        return False
+
+
+_CTRL_C = _CtrlC()
+
+
+def interrupted(*_progress):
+    """Whether Ctrl+C was pressed during the running command; takes and ignores any
+    progress arguments, so that it serves as a cancelling ``progress`` callable."""
+    return _CTRL_C.seen
+
+
 def main(argv=None):
     """Run the ``facet`` command.
 
@@ -563,7 +605,16 @@ def main(argv=None):
     parser = build_parser()
     try:
         args = parser.parse_args(argv)
-        return args.run(args)
+        with _CTRL_C:
+            try:
+                status = args.run(args)
+            except Exception:
+                if _CTRL_C.seen:  # what failed ran on after an interrupt Python swallowed
+                    raise KeyboardInterrupt from None
+                raise
+        if _CTRL_C.seen:  # swallowed after the command's last check
+            raise KeyboardInterrupt
+        return status
     except KeyboardInterrupt:
         _fail("interrupted")
         return EXIT_INTERRUPTED

@@ -107,11 +107,13 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
                  min_edge_abs=0.0, sheet=None, margin=0.0,
                  spacing=0.0, rotations="90", grain=None, dxf=None, per_sheet=False,
                  step=None, schedule=None, svg=None, png=None, progress=None,
-                 panel_set=None, solids=None, allow_unplaced=False):
+                 cancelled=None, panel_set=None, solids=None, allow_unplaced=False):
     """Everything ``facet panels`` does, as a function (also used by the
     benchmark). Returns (report dict, PanelSet, drawings, NestResult or None).
 
-    ``progress(stage, done, total)`` returning True cancels. With ``step``
+    ``progress(stage, done, total)`` returning True cancels, and so does ``cancelled()``
+    returning True before the unplaced parts are judged and before each file is written
+    (the command line's Ctrl+C, :func:`facet.cli.interrupted`). With ``step``
     (and no ``solids``) the solids and the STEP file are made in a worker
     process while the other stages run (:func:`facet.step.start_step`);
     their times in the report are the worker's, and ``total`` is the wall
@@ -161,7 +163,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
             mesh, ps, job, times, t_start, sheet=sheet, margin=margin, spacing=spacing,
             rotations=rotations, grain=grain, dxf=dxf, per_sheet=per_sheet, step=step,
             schedule=schedule, svg=svg, png=png, allow_unplaced=allow_unplaced,
-            solids=solids, stage_progress=stage_progress)
+            solids=solids, stage_progress=stage_progress, cancelled=cancelled)
     except BaseException:
         if job is not None:
             job.cancel()
@@ -170,12 +172,16 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
 
 def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,
                       dxf, per_sheet, step, schedule, svg, png, allow_unplaced, solids,
-                      stage_progress):
+                      stage_progress, cancelled):
     from facet.cutsheets import (schedule_rows, write_dxf, write_png, write_schedule_csv,
                                  write_schedule_json, write_svg)
-    from facet.errors import InputError
+    from facet.errors import Cancelled, InputError
     from facet.nest import nest
     from facet.unfold import unfold
+
+    def check():
+        if cancelled is not None and cancelled():
+            raise Cancelled("cancelled")
 
     t = time.perf_counter()
     drawings = unfold(ps, grain=grain)
@@ -186,6 +192,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         result = nest({d.id: d.footprint for d in drawings}, sheet, margin=margin,
                       spacing=spacing, rotations=rotations, progress=stage_progress("nest"))
         times["nest"] = time.perf_counter() - t
+        check()
         if result.unplaced and not allow_unplaced:
             source = mesh.info.get("source") if mesh.info else None
             shown = ", ".join(result.unplaced[:4]) + (", ..." if len(result.unplaced) > 4 else "")
@@ -195,11 +202,13 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
                 f"{shown}; use a larger --sheet")
     files = {}
     if dxf:
+        check()
         t = time.perf_counter()
         files["dxf"] = write_dxf(dxf, result, drawings, per_sheet=per_sheet)
         times["dxf"] = time.perf_counter() - t
     rows = None
     if schedule:
+        check()
         t = time.perf_counter()
         rows = schedule_rows(ps, result)
         if schedule.lower().endswith(".json"):
@@ -209,10 +218,12 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         files["schedule"] = [schedule]
         times["schedule"] = time.perf_counter() - t
     if svg:
+        check()
         t = time.perf_counter()
         files["svg"] = write_svg(svg, result, drawings)
         times["svg"] = time.perf_counter() - t
     if png:
+        check()
         t = time.perf_counter()
         files["png"] = write_png(png, result, drawings)
         times["png"] = time.perf_counter() - t
@@ -227,6 +238,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
     elif step:
         from facet.step import write_step
 
+        check()
         times["solids"] = 0.0  # reused
         t = time.perf_counter()
         write_step(step, solids)
@@ -271,7 +283,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
 
 def run_panels(args):
     """Run ``facet panels``; return the exit status."""
-    from facet.cli import EXIT_OK, _read
+    from facet.cli import EXIT_OK, _read, interrupted
     from facet.report import write_json
 
     mesh = _read(args)
@@ -281,7 +293,7 @@ def run_panels(args):
         min_edge=args.min_edge, min_edge_abs=args.min_edge_abs, sheet=args.sheet,
         margin=args.margin, spacing=args.spacing, rotations=args.rotations, grain=args.grain,
         dxf=args.dxf, per_sheet=args.per_sheet, step=args.step, schedule=args.schedule,
-        svg=args.svg, png=args.png)
+        svg=args.svg, png=args.png, progress=interrupted, cancelled=interrupted)
     report["input"] = args.input
     if args.report:
         write_json(report, args.report)
