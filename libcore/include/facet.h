@@ -178,10 +178,10 @@ typedef enum facet_method {
  * (docs/solver-notes.md, "Method auto: L/L from 10,000 quads"). */
 #define FACET_AUTO_LG_MAX_CORNERS 40000
 
-/* The same when the options have a term with which L/L stops above the
- * tolerance (facet_planarizer_choose_method): 50,000 quads or 33,000
- * hexagons. Above it L/G's CHOLMOD factor takes 2-4 KB per face and a solve
- * minutes (docs/solver-notes.md, "Large meshes"). */
+/* The same when the options ask for more than closeness
+ * (facet_planarizer_choose_method): 50,000 quads or 33,000 hexagons. Above
+ * it L/G's CHOLMOD factor takes 2-4 KB per face and a solve minutes
+ * (docs/solver-notes.md, "Large meshes"). */
 #define FACET_AUTO_LG_MAX_CORNERS_TERMS 200000
 
 typedef enum facet_stop_reason {
@@ -318,10 +318,10 @@ typedef struct facet_planarize_options {
  * AUTO solves by facet_planarizer_choose_method's choice with these
  * options, except that when it picks L/L its floor is at least
  * FACET_LL_MU_MIN; where it picks L/G it also solves by L/L and may return
- * that result (FACET_STAGE_COMPARE). With the staircase (hold_tol > 0) and no shape term,
+ * that result (FACET_STAGE_COMPARE). With the staircase (hold_tol > 0),
  * L/L finishes: once mu is at its floor and the step has settled above the
- * tolerance, the data terms pull towards the iterate itself instead of the
- * control mesh, so the planarity no longer stalls near 10 mu_min
+ * tolerance, the data, shape, Laplacian and boundary fairness terms pull
+ * towards the iterate itself instead of their own targets, so the planarity no longer stalls near 10 mu_min
  * (docs/solver-notes.md, "Large meshes"). */
 void facet_planarize_options_default(facet_method method, facet_planarize_options *options);
 
@@ -392,11 +392,12 @@ void facet_planarizer_free(facet_planarizer **planarizer);
 /* The method FACET_METHOD_AUTO chooses for this planarizer's mesh and these
  * options (NULL: the defaults): FACET_METHOD_LOCAL_GLOBAL up to
  * FACET_AUTO_LG_MAX_CORNERS face corners, FACET_METHOD_LOCAL_LOCAL above.
- * With a term that L/L does not finish with (a shape term, which plane and
- * surface data carry in facet.planarize; the Laplacian; boundary fairness;
- * circular or parallelogram faces) or without the staircase (hold_tol 0),
- * L/L stalls above the tolerance, so L/G goes on up to
- * FACET_AUTO_LG_MAX_CORNERS_TERMS. NULL planarizer: L/G. */
+ * With a shape term (which plane and surface data carry in facet.planarize),
+ * the Laplacian, boundary fairness, circular or parallelogram faces, or
+ * without the staircase (hold_tol 0), L/G goes on up to
+ * FACET_AUTO_LG_MAX_CORNERS_TERMS: L/L's panels came out narrower with the
+ * first three, and L/L finishes only with the staircase. NULL planarizer:
+ * L/G. */
 facet_method facet_planarizer_choose_method(const facet_planarizer *planarizer,
                                             const facet_planarize_options *options);
 

@@ -454,12 +454,16 @@ facet_status facet_planarizer_set_face_weights(facet_planarizer *s, const double
 
 /* ---- options ------------------------------------------------------------ */
 
-/* Whether L/L reaches the tolerance with these options' energy: its finish
- * needs the staircase and no shape term, and with the Laplacian, boundary
- * fairness or circular or parallelogram faces it stops on stagnation
- * (110 x 110 quads: 1e-5 and 4e-3; docs/solver-notes.md, "Method auto: L/L
- * from 10,000 quads"). */
-static int ll_reaches_tolerance(const facet_planarize_options *o)
+/* Whether the options' energy is one that AUTO's L/L from
+ * FACET_AUTO_LG_MAX_CORNERS was measured on: the staircase (L/L finishes
+ * only with it) and closeness alone. With a shape term (plane and surface
+ * data carry one), the Laplacian or boundary fairness L/L's panels were
+ * narrower than L/G's (Level 5 with plane data: a corner of 0 against 8.1
+ * degrees; a 60 x 60 grid with the Laplacian 5.1 against 17.2), and neither
+ * method reaches the tolerance with circular or parallelogram faces on a
+ * mesh that cannot have them (docs/solver-notes.md, "Method auto: L/L from
+ * 10,000 quads"). */
+static int closeness_alone(const facet_planarize_options *o)
 {
     return o->hold_tol > 0.0 && !(o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0) &&
            o->laplacian == 0.0 && o->boundary_fairness == 0.0 && o->circular == 0.0 &&
@@ -474,7 +478,7 @@ facet_method facet_planarizer_choose_method(const facet_planarizer *s,
         facet_planarize_options_default(FACET_METHOD_AUTO, &defaults);
         options = &defaults;
     }
-    const int32_t most = ll_reaches_tolerance(options) ? FACET_AUTO_LG_MAX_CORNERS
+    const int32_t most = closeness_alone(options) ? FACET_AUTO_LG_MAX_CORNERS
                                                        : FACET_AUTO_LG_MAX_CORNERS_TERMS;
     return s && s->nc > most ? FACET_METHOD_LOCAL_LOCAL : FACET_METHOD_LOCAL_GLOBAL;
 }
@@ -1089,11 +1093,13 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
      * and constraint energy alone. The iterate then moves by about its
      * planarity residual: 1e-5 edge lengths from where the staircase left
      * it. */
-    /* Not with the shape term: its targets combine the control positions
-     * with the control centroids (planarize_local.c), which an anchor at the
-     * iterate would mismatch. */
-    const int can_finish = options->method == FACET_METHOD_LOCAL_LOCAL && staircase &&
-                           !(options->shape != FACET_SHAPE_NONE && options->shape_weight > 0.0);
+    /* The shape term and the regularizers (Laplacian, boundary fairness) are
+     * anchored at the iterate too (s->finishing: planarize_local.c): with
+     * their own targets, at weight mu_min, they held the planarity at 1e-6 to
+     * 1e-4 (a 110 x 110 grid: ASAP 1.4e-4, plane data 7.3e-6, the Laplacian
+     * 9.6e-6), and the shape term's targets combine the control positions
+     * with the control centroids, which p = q would mismatch. */
+    const int can_finish = options->method == FACET_METHOD_LOCAL_LOCAL && staircase;
     int finish = 0;
     int32_t level_steps = 0;
     int32_t since = 0;       /* the stagnation window starts here */
@@ -1222,7 +1228,9 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
             double *control = s->p;
             if (finish) /* anchored at the iterate (the step only reads it) */
                 s->p = s->q;
+            s->finishing = finish;
             const int finite = facet_pl_vertex_step(s, mu, nthreads);
+            s->finishing = 0;
             s->p = control;
             before = s->q_next; /* swapped: the iterate the step started from */
             if (!finite) {

@@ -78,6 +78,8 @@ struct facet_planarizer {
     uint8_t *face_guard;
     double *guard_count, *guard_sum;
     int guard_on;                         /* some corner is below its floor now */
+    int finishing; /* L/L's finish (planarize.c): the vertex step's p is the iterate itself,
+                      and the shape term's target too */
     int scalar_kernels; /* tests: the plain per-face and per-vertex code, not the SIMD lanes */
     double *slide_target, *slide_tangent; /* per vertex (sliding boundary) */
     double *laplace_weight;               /* per vertex_adj entry: normalised weight */

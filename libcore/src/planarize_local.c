@@ -1255,7 +1255,11 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
             int32_t corner = 0;
             while (s->face_vertices[fb + corner] != v)
                 ++corner;
-            if (shape) { /* target: current centroid + s R (p - control centroid) */
+            if (shape && s->finishing) { /* anchored at the iterate (pv): a proximal pull */
+                const double lw = mu * o->shape_weight;
+                b[0] += lw * pv[0], b[1] += lw * pv[1], b[2] += lw * pv[2];
+                a[0] += lw, a[3] += lw, a[5] += lw;
+            } else if (shape) { /* target: current centroid + s R (p - control centroid) */
                 const double *sr = s->shape + 9 * (size_t)f, *cp = s->control_centroid + 3 * (size_t)f;
                 double cq[3] = {0.0, 0.0, 0.0};
                 for (int32_t m = 0; m < fn; ++m)
@@ -1286,14 +1290,16 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
                 a[0] += cw, a[3] += cw, a[5] += cw;
             }
         }
+        /* the regularizers' targets: their neighbours' average, or during L/L's
+         * finish the iterate itself (pv), like the data and shape terms */
         if (o->laplacian > 0.0 && !s->on_boundary[v]) {
             double avg[3] = {0.0, 0.0, 0.0};
-            for (int32_t k = s->vertex_adj_start[v]; k < s->vertex_adj_start[v + 1]; ++k)
+            for (int32_t k = s->vertex_adj_start[v]; !s->finishing && k < s->vertex_adj_start[v + 1]; ++k)
                 for (int c = 0; c < 3; ++c)
                     avg[c] += s->laplace_weight[k] * q_old[3 * (size_t)s->vertex_adj[k] + c];
             const double lw = mu * o->laplacian;
             for (int c = 0; c < 3; ++c)
-                b[c] += lw * avg[c];
+                b[c] += lw * (s->finishing ? pv[c] : avg[c]);
             a[0] += lw, a[3] += lw, a[5] += lw;
         }
         if (o->boundary_fairness > 0.0 && s->boundary_prev[v] >= 0) {
@@ -1301,7 +1307,7 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
             const double *yc = q_old + 3 * (size_t)s->boundary_next[v];
             const double lw = 4.0 * mu * o->boundary_fairness;
             for (int c = 0; c < 3; ++c)
-                b[c] += lw * 0.5 * (ya[c] + yc[c]);
+                b[c] += lw * (s->finishing ? pv[c] : 0.5 * (ya[c] + yc[c]));
             a[0] += lw, a[3] += lw, a[5] += lw;
         }
         if (sliding && s->boundary_prev[v] >= 0) { /* (I - t t^T)(q - target) */

@@ -144,6 +144,48 @@ static void test_ll_finish(void)
     test_mesh_free(&t);
 }
 
+/* L/L finishes with the shape term and the regularizers too: their targets
+ * are anchored at the iterate like the data term's, so each reaches the
+ * tolerance at the floor (before, they stopped on stagnation at 1e-6 to
+ * 1e-4), and the finish keeps the staircase's result. */
+static void test_ll_finish_terms(void)
+{
+    facet_error e;
+    test_mesh t = test_grid(40, 40, 0.6, 1.0, 0.0);
+    const size_t n3 = 3 * (size_t)t.mesh.n_vertices;
+    facet_planarizer *p = NULL;
+    CHECK_STATUS(facet_planarizer_create(&t.mesh, &p, &e), FACET_OK);
+    double *out = malloc(sizeof(double) * n3), *coarse_out = malloc(sizeof(double) * n3);
+    for (int term = 0; term < 5; ++term) {
+        facet_planarize_options o;
+        facet_planarize_options_default(FACET_METHOD_LOCAL_LOCAL, &o);
+        o.quality_angle = 0.0; /* the finish itself, no re-solve */
+        o.threads = 1;
+        switch (term) {
+        case 0: o.shape = FACET_SHAPE_ASAP, o.shape_weight = 0.1; break;
+        case 1: o.shape = FACET_SHAPE_ARAP, o.shape_weight = 0.1; break;
+        case 2: /* plane data with its shape term, as facet.planarize sets it */
+            o.data_tangent = 0.01, o.shape = FACET_SHAPE_ASAP, o.shape_weight = 0.1;
+            break;
+        case 3: o.laplacian = 0.1; break;
+        default: o.boundary_fairness = 0.1; break;
+        }
+        facet_planarize_result r, rc;
+        CHECK_STATUS(facet_planarizer_solve(p, t.xyz, &o, out, &r, &e), FACET_OK);
+        CHECK(r.stop_reason == FACET_STOP_TOLERANCE);
+        CHECK(r.planarity_max_rel <= 1e-6);
+        CHECK(r.mu == o.mu_min);
+        facet_planarize_options coarse = o;
+        coarse.tol_rel = 1e-4;
+        CHECK_STATUS(facet_planarizer_solve(p, t.xyz, &coarse, coarse_out, &rc, &e), FACET_OK);
+        CHECK(rc.iterations < r.iterations);
+        CHECK(max_abs_diff(out, coarse_out, n3) < 0.05);
+    }
+    free(out), free(coarse_out);
+    facet_planarizer_free(&p);
+    test_mesh_free(&t);
+}
+
 /* AUTO on the large side keeps L/L's floor: mu never goes below 1e-6. */
 static void test_auto_floor(void)
 {
@@ -174,6 +216,7 @@ int main(void)
     test_auto_choice();
     test_auto_choice_terms();
     test_ll_finish();
+    test_ll_finish_terms();
     test_auto_floor();
     printf("test_planarize_large: %d checks, %d failed\n", check_count, check_failures);
     return check_failures != 0;

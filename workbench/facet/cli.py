@@ -119,7 +119,7 @@ def build_parser():
         default="auto",
         help="auto (default): lg up to 10,000 quads (40,000 face corners; 50,000 with "
         "plane or surface data, --shape, --laplacian, --boundary-fairness, --circular or "
-        "--parallelogram, which ll does not finish with), ll above; lg: local normals, global solve; ll: "
+        "--parallelogram), ll above; lg: local normals, global solve; ll: "
         "local-local, the paper's algorithm",
     )
     planarize.add_argument(
