@@ -1293,13 +1293,16 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
         /* the regularizers' targets: their neighbours' average, or during L/L's
          * finish the iterate itself (pv), like the data and shape terms */
         if (o->laplacian > 0.0 && !s->on_boundary[v]) {
-            double avg[3] = {0.0, 0.0, 0.0};
-            for (int32_t k = s->vertex_adj_start[v]; !s->finishing && k < s->vertex_adj_start[v + 1]; ++k)
-                for (int c = 0; c < 3; ++c)
-                    avg[c] += s->laplace_weight[k] * q_old[3 * (size_t)s->vertex_adj[k] + c];
+            double t[3] = {pv[0], pv[1], pv[2]};
+            if (!s->finishing) {
+                t[0] = t[1] = t[2] = 0.0;
+                for (int32_t k = s->vertex_adj_start[v]; k < s->vertex_adj_start[v + 1]; ++k)
+                    for (int c = 0; c < 3; ++c)
+                        t[c] += s->laplace_weight[k] * q_old[3 * (size_t)s->vertex_adj[k] + c];
+            }
             const double lw = mu * o->laplacian;
             for (int c = 0; c < 3; ++c)
-                b[c] += lw * (s->finishing ? pv[c] : avg[c]);
+                b[c] += lw * t[c];
             a[0] += lw, a[3] += lw, a[5] += lw;
         }
         if (o->boundary_fairness > 0.0 && s->boundary_prev[v] >= 0) {
