@@ -178,11 +178,11 @@ typedef enum facet_method {
  * (docs/solver-notes.md, "Method auto: L/L from 10,000 quads"). */
 #define FACET_AUTO_LG_MAX_CORNERS 40000
 
-/* The same when the options ask for more than closeness
- * (facet_planarizer_choose_method): 50,000 quads or 33,000 hexagons. Above
- * it L/G's CHOLMOD factor takes 2-4 KB per face and a solve minutes
- * (docs/solver-notes.md, "Large meshes"). */
-#define FACET_AUTO_LG_MAX_CORNERS_TERMS 200000
+/* The same without the staircase schedule (hold_tol 0), with which L/L
+ * cannot finish (facet_planarizer_choose_method): 50,000 quads or 33,000
+ * hexagons. Above it L/G's CHOLMOD factor takes 2-4 KB per face and a
+ * solve minutes (docs/solver-notes.md, "Large meshes"). */
+#define FACET_AUTO_LG_MAX_CORNERS_STAIRCASE 200000
 
 typedef enum facet_stop_reason {
     FACET_STOP_NONE = 0,
@@ -391,13 +391,9 @@ void facet_planarizer_free(facet_planarizer **planarizer);
 
 /* The method FACET_METHOD_AUTO chooses for this planarizer's mesh and these
  * options (NULL: the defaults): FACET_METHOD_LOCAL_GLOBAL up to
- * FACET_AUTO_LG_MAX_CORNERS face corners, FACET_METHOD_LOCAL_LOCAL above.
- * With a shape term (which plane and surface data carry in facet.planarize),
- * the Laplacian, boundary fairness, circular or parallelogram faces, or
- * without the staircase (hold_tol 0), L/G goes on up to
- * FACET_AUTO_LG_MAX_CORNERS_TERMS: L/L's panels came out narrower with the
- * first three, and L/L finishes only with the staircase. NULL planarizer:
- * L/G. */
+ * FACET_AUTO_LG_MAX_CORNERS face corners, FACET_METHOD_LOCAL_LOCAL above;
+ * without the staircase (hold_tol 0), with which L/L cannot finish, L/G up
+ * to FACET_AUTO_LG_MAX_CORNERS_STAIRCASE. NULL planarizer: L/G. */
 facet_method facet_planarizer_choose_method(const facet_planarizer *planarizer,
                                             const facet_planarize_options *options);
 

@@ -454,20 +454,11 @@ facet_status facet_planarizer_set_face_weights(facet_planarizer *s, const double
 
 /* ---- options ------------------------------------------------------------ */
 
-/* Whether the options' energy is one that AUTO's L/L from
- * FACET_AUTO_LG_MAX_CORNERS was measured on: the staircase (L/L finishes
- * only with it) and closeness alone. With a shape term (plane and surface
- * data carry one), the Laplacian or boundary fairness L/L's panels were
- * narrower than L/G's (Level 5 with plane data: a corner of 0 against 8.1
- * degrees; a 60 x 60 grid with the Laplacian 5.1 against 17.2), and neither
- * method reaches the tolerance with circular or parallelogram faces on a
- * mesh that cannot have them (docs/solver-notes.md, "Method auto: L/L from
- * 10,000 quads"). */
-static int closeness_alone(const facet_planarize_options *o)
+/* L/L reaches the tolerance only with the staircase (its finish); the
+ * paper's schedule (hold_tol 0) stalls at its floor. */
+static int ll_finishes(const facet_planarize_options *o)
 {
-    return o->hold_tol > 0.0 && !(o->shape != FACET_SHAPE_NONE && o->shape_weight > 0.0) &&
-           o->laplacian == 0.0 && o->boundary_fairness == 0.0 && o->circular == 0.0 &&
-           o->parallelogram == 0.0;
+    return o->hold_tol > 0.0;
 }
 
 facet_method facet_planarizer_choose_method(const facet_planarizer *s,
@@ -478,8 +469,8 @@ facet_method facet_planarizer_choose_method(const facet_planarizer *s,
         facet_planarize_options_default(FACET_METHOD_AUTO, &defaults);
         options = &defaults;
     }
-    const int32_t most = closeness_alone(options) ? FACET_AUTO_LG_MAX_CORNERS
-                                                       : FACET_AUTO_LG_MAX_CORNERS_TERMS;
+    const int32_t most = ll_finishes(options) ? FACET_AUTO_LG_MAX_CORNERS
+                                              : FACET_AUTO_LG_MAX_CORNERS_STAIRCASE;
     return s && s->nc > most ? FACET_METHOD_LOCAL_LOCAL : FACET_METHOD_LOCAL_GLOBAL;
 }
 

@@ -47,18 +47,27 @@ static void test_auto_choice(void)
     CHECK(facet_planarizer_choose_method(NULL, NULL) == FACET_METHOD_LOCAL_GLOBAL);
 }
 
-/* With a term that L/L stops above the tolerance with, AUTO keeps L/G up to
- * FACET_AUTO_LG_MAX_CORNERS_TERMS corners: such a solve of a mesh just above
- * FACET_AUTO_LG_MAX_CORNERS runs L/G; each term alone decides it. */
-static void test_auto_choice_terms(void)
+/* Without the staircase L/L cannot finish, so AUTO keeps L/G up to
+ * FACET_AUTO_LG_MAX_CORNERS_STAIRCASE corners; every term (L/L finishes with
+ * each) leaves the choice to the mesh's size. */
+static void test_auto_choice_staircase(void)
 {
     facet_error e;
-    CHECK(4 * 224 * 224 > FACET_AUTO_LG_MAX_CORNERS_TERMS &&
-          4 * 223 * 223 <= FACET_AUTO_LG_MAX_CORNERS_TERMS);
+    CHECK(4 * 224 * 224 > FACET_AUTO_LG_MAX_CORNERS_STAIRCASE &&
+          4 * 223 * 223 <= FACET_AUTO_LG_MAX_CORNERS_STAIRCASE);
     test_mesh t = test_grid(101, 101, 0.6, 1.0, 0.0);
     facet_planarizer *p = NULL;
     CHECK_STATUS(facet_planarizer_create(&t.mesh, &p, &e), FACET_OK);
     facet_planarize_options o;
+    facet_planarize_options_default(FACET_METHOD_AUTO, &o);
+    o.hold_tol = 0.0; /* the paper's geometric schedule */
+    CHECK(facet_planarizer_choose_method(p, &o) == FACET_METHOD_LOCAL_GLOBAL);
+    o.iterations = 2;
+    facet_planarize_result r;
+    double *out = malloc(sizeof(double) * 3 * (size_t)t.mesh.n_vertices);
+    CHECK_STATUS(facet_planarizer_solve(p, t.xyz, &o, out, &r, &e), FACET_OK);
+    CHECK(r.method == FACET_METHOD_LOCAL_GLOBAL);
+    free(out);
     for (int term = 0; term < 6; ++term) {
         facet_planarize_options_default(FACET_METHOD_AUTO, &o);
         switch (term) {
@@ -67,27 +76,16 @@ static void test_auto_choice_terms(void)
         case 2: o.boundary_fairness = 0.1; break;
         case 3: o.circular = 1.0; break;
         case 4: o.parallelogram = 1.0; break;
-        default: o.hold_tol = 0.0; break; /* the paper's geometric schedule */
+        default: o.data_tangent = 0.01, o.normal_laplacian = 0.1, o.angle_floor = 5.0; break;
         }
-        CHECK(facet_planarizer_choose_method(p, &o) == FACET_METHOD_LOCAL_GLOBAL);
-        o.iterations = 2;
-        facet_planarize_result r;
-        double *out = malloc(sizeof(double) * 3 * (size_t)t.mesh.n_vertices);
-        CHECK_STATUS(facet_planarizer_solve(p, t.xyz, &o, out, &r, &e), FACET_OK);
-        CHECK(r.method == FACET_METHOD_LOCAL_GLOBAL);
-        free(out);
+        CHECK(facet_planarizer_choose_method(p, &o) == FACET_METHOD_LOCAL_LOCAL);
     }
-    /* a shape term of weight 0 is no term; terms L/L finishes with leave the choice */
-    facet_planarize_options_default(FACET_METHOD_AUTO, &o);
-    o.shape = FACET_SHAPE_ARAP, o.shape_weight = 0.0;
-    o.normal_laplacian = 0.1, o.data_tangent = 0.01, o.angle_floor = 5.0;
-    CHECK(facet_planarizer_choose_method(p, &o) == FACET_METHOD_LOCAL_LOCAL);
     facet_planarizer_free(&p);
     test_mesh_free(&t);
-    /* above FACET_AUTO_LG_MAX_CORNERS_TERMS: L/L whatever the terms */
+    /* above FACET_AUTO_LG_MAX_CORNERS_STAIRCASE: L/L whatever the schedule */
     t = test_grid(224, 224, 0.6, 1.0, 0.0);
     CHECK_STATUS(facet_planarizer_create(&t.mesh, &p, &e), FACET_OK);
-    o.laplacian = 0.1;
+    o.hold_tol = 0.0;
     CHECK(facet_planarizer_choose_method(p, &o) == FACET_METHOD_LOCAL_LOCAL);
     facet_planarizer_free(&p);
     test_mesh_free(&t);
@@ -214,7 +212,7 @@ static void test_auto_floor(void)
 int main(void)
 {
     test_auto_choice();
-    test_auto_choice_terms();
+    test_auto_choice_staircase();
     test_ll_finish();
     test_ll_finish_terms();
     test_auto_floor();

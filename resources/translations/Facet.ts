@@ -407,27 +407,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="227"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="226"/>
         <source>Planarize {0}: solving by local/local too, for a result closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="230"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
         <source>Planarize {0}: solving by local/global again with a finer hold, closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="233"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="232"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="214"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="213"/>
         <source>planarity {0:.2g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="214"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="213"/>
         <source>planarity {0:.2g} (tolerance {1:.2g})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -453,7 +453,7 @@
     </message>
     <message>
         <location filename="../ui/preferences.ui" line="22"/>
-        <source>Automatic (the default): local/global up to 10,000 quads (50,000 with plane or surface data, a shape term, regularizers or constraints), local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
+        <source>Automatic (the default): local/global up to 10,000 quads, local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -785,7 +785,7 @@
     </message>
     <message>
         <location filename="../ui/planarize.ui" line="22"/>
-        <source>Automatic (the default): local/global up to 10,000 quads (50,000 with plane or surface data, a shape term, regularizers or constraints), local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
+        <source>Automatic (the default): local/global up to 10,000 quads, local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

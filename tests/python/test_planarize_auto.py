@@ -50,15 +50,15 @@ def test_auto_picks_ll_above_the_threshold():
     assert at_limit.method == "lg"
 
 
-@pytest.mark.parametrize("terms", [dict(data="plane"), dict(data="surface"), dict(shape="arap"),
-                                   dict(laplacian=0.1), dict(boundary_fairness=0.1),
-                                   dict(circular=1.0), dict(parallelogram=1.0)])
-def test_auto_keeps_lg_where_ll_would_stall(terms):
-    """Plane and surface data carry a shape term; with it, the Laplacian, boundary fairness
-    or circular and parallelogram faces L/L stops above the tolerance, so auto keeps L/G up
-    to 200,000 corners (facet.h, FACET_AUTO_LG_MAX_CORNERS_TERMS)."""
+@pytest.mark.parametrize("terms", [dict(data="plane"), dict(laplacian=0.1), dict(hold_tol=0.0)])
+def test_auto_above_the_threshold_with_terms(terms):
+    """L/L finishes with every term (plane data carries a shape term), so auto takes it above
+    40,000 corners whatever the terms; not without the staircase (hold_tol 0), with which
+    L/L cannot finish: L/G up to 200,000 corners (facet.h,
+    FACET_AUTO_LG_MAX_CORNERS_STAIRCASE)."""
     mesh = grid(math.isqrt(_core.AUTO_LG_MAX_CORNERS // 4) + 1)
-    assert facet.planarize(mesh, iterations=2, **terms).method == "lg"
+    result = facet.planarize(mesh, iterations=2, **terms)
+    assert result.method == ("lg" if terms.get("hold_tol") == 0.0 else "ll")
 
 
 def test_ll_default_reaches_the_tolerance():

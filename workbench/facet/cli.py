@@ -117,10 +117,8 @@ def build_parser():
         "--method",
         choices=("auto", "ll", "lg"),
         default="auto",
-        help="auto (default): lg up to 10,000 quads (40,000 face corners; 50,000 with "
-        "plane or surface data, --shape, --laplacian, --boundary-fairness, --circular or "
-        "--parallelogram), ll above; lg: local normals, global solve; ll: "
-        "local-local, the paper's algorithm",
+        help="auto (default): lg up to 10,000 quads (40,000 face corners), ll above; "
+        "lg: local normals, global solve; ll: local-local, the paper's algorithm",
     )
     planarize.add_argument(
         "--tol",

@@ -37,8 +37,7 @@ def add_commands(commands):
                         help="--min-edge is a fraction of the mean edge length")
     parser.add_argument("--method", choices=("auto", "ll", "lg"), default="auto",
                         help="planarization method (default auto: lg up to 40,000 face "
-                        "corners, 200,000 with plane or surface data, a shape term, --laplacian, "
-                        "--boundary-fairness, --circular or --parallelogram; ll above)")
+                        "corners, ll above)")
     parser.add_argument("--tol", type=_non_negative_float, default=1e-6, metavar="T",
                         help="planarity tolerance relative to each face's mean edge "
                         "(default 1e-6)")

@@ -7,9 +7,9 @@ local/local (``"ll"``: the cheapest iteration, no sparse factorization; it
 finishes with its data term anchored at the iterate, so it also reaches
 1e-6). ``"auto"``, the default, picks L/G up to 10,000 quads (40,000 face
 corners) and L/L above, where L/L reaches the tolerance 6-165 times faster, as
-close to the design, in under 1 KB per face (L/G: 1.3-1.8 KB). With more than
-closeness (plane and surface data carry a shape term; the Laplacian, boundary
-fairness, circular and parallelogram faces) L/G goes on up to 50,000 quads.
+close to the design, in under 1 KB per face (L/G: 1.3-1.8 KB). Without the
+staircase schedule (``hold_tol`` 0), with which L/L cannot finish, L/G goes on
+up to 50,000 quads.
 
 >>> result = planarize(mesh)                   # doctest: +SKIP
 >>> result.planarity.max_rel_all <= 1e-6       # doctest: +SKIP
@@ -299,8 +299,8 @@ class Planarizer:
             Control positions (default: the mesh given at construction).
         method : {"auto", "lg", "ll"}
             Automatic (default: local/global up to 40,000 face corners, or
-            200,000 with more than closeness: see the module's text,
-            local/local above), local/global or local/local.
+            200,000 with ``hold_tol`` 0, local/local above), local/global or
+            local/local.
         tol : float or None
             Stop when every face's largest distance from its plane, divided by
             its mean edge length, is at most `tol` (default 1e-6). None or 0

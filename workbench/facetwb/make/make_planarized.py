@@ -17,9 +17,7 @@ def make_planarized(source, method="auto", tolerance=1e-6, tolerance_abs=0.0, ma
         hidden (the result takes its place in the view).
     method : {"auto", "lg", "ll"}
         Local/global or local/local iterations, or auto: local/global up to 40,000 face
-        corners (200,000 with a shape term, the Laplacian, boundary fairness or a
-        constraint), local/local above
-        (see facet.planarize).
+        corners, local/local above (see facet.planarize).
     tolerance : float
         Target planarity relative to each face's mean edge length.
     tolerance_abs : float

@@ -63,8 +63,7 @@ class Planarized(PolyMesh):
         output = compat.PROP_OUTPUT
         if compat.add_property(
                 obj, "App::PropertyEnumeration", "Method", "Planarize",
-                "auto: local/global up to 10,000 quads (40,000 corners; 50,000 with plane or "
-                "surface data, a shape term, regularizers or constraints), local/local above; "
+                "auto: local/global up to 10,000 quads (40,000 corners), local/local above; "
                 "lg: local/global (one sparse solve per iteration, converges in few "
                 "iterations); ll: local/local (cheap iterations, many of them, little memory)"):
             obj.Method = METHODS
