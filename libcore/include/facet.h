@@ -321,7 +321,8 @@ typedef struct facet_planarize_options {
  * that result (FACET_STAGE_COMPARE). With the staircase (hold_tol > 0),
  * L/L finishes: once mu is at its floor and the step has settled above the
  * tolerance, the data, shape, Laplacian and boundary fairness terms pull
- * towards the iterate itself instead of their own targets, so the planarity no longer stalls near 10 mu_min
+ * towards the iterate itself instead of their own targets, so the planarity
+ * no longer stalls near 10 mu_min
  * (docs/solver-notes.md, "Large meshes"). */
 void facet_planarize_options_default(facet_method method, facet_planarize_options *options);
 

@@ -16,6 +16,25 @@ static double max_abs_diff(const double *a, const double *b, size_t n)
     return d;
 }
 
+/* Term k of the options' energy beyond closeness, on top of the defaults:
+ * the first FINISHING_TERMS are those L/L reaches the tolerance with. */
+enum { FINISHING_TERMS = 5, TERMS = 8 };
+static void set_term(facet_planarize_options *o, int k)
+{
+    switch (k) {
+    case 0: o->shape = FACET_SHAPE_ASAP, o->shape_weight = 0.1; break;
+    case 1: o->shape = FACET_SHAPE_ARAP, o->shape_weight = 0.1; break;
+    case 2: /* plane data with its shape term, as facet.planarize sets it */
+        o->data_tangent = 0.01, o->shape = FACET_SHAPE_ASAP, o->shape_weight = 0.1;
+        break;
+    case 3: o->laplacian = 0.1; break;
+    case 4: o->boundary_fairness = 0.1; break;
+    case 5: o->circular = 1.0; break;
+    case 6: o->parallelogram = 1.0; break;
+    default: o->normal_laplacian = 0.1, o->angle_floor = 5.0; break;
+    }
+}
+
 /* AUTO picks L/G up to FACET_AUTO_LG_MAX_CORNERS corners and L/L above. */
 static void test_auto_choice(void)
 {
@@ -48,8 +67,8 @@ static void test_auto_choice(void)
 }
 
 /* Without the staircase L/L cannot finish, so AUTO keeps L/G up to
- * FACET_AUTO_LG_MAX_CORNERS_STAIRCASE corners; every term (L/L finishes with
- * each) leaves the choice to the mesh's size. */
+ * FACET_AUTO_LG_MAX_CORNERS_STAIRCASE corners; every term leaves the choice
+ * to the mesh's size. */
 static void test_auto_choice_staircase(void)
 {
     facet_error e;
@@ -68,16 +87,9 @@ static void test_auto_choice_staircase(void)
     CHECK_STATUS(facet_planarizer_solve(p, t.xyz, &o, out, &r, &e), FACET_OK);
     CHECK(r.method == FACET_METHOD_LOCAL_GLOBAL);
     free(out);
-    for (int term = 0; term < 6; ++term) {
+    for (int term = 0; term < TERMS; ++term) {
         facet_planarize_options_default(FACET_METHOD_AUTO, &o);
-        switch (term) {
-        case 0: o.shape = FACET_SHAPE_ASAP, o.shape_weight = 0.1; break;
-        case 1: o.laplacian = 0.1; break;
-        case 2: o.boundary_fairness = 0.1; break;
-        case 3: o.circular = 1.0; break;
-        case 4: o.parallelogram = 1.0; break;
-        default: o.data_tangent = 0.01, o.normal_laplacian = 0.1, o.angle_floor = 5.0; break;
-        }
+        set_term(&o, term);
         CHECK(facet_planarizer_choose_method(p, &o) == FACET_METHOD_LOCAL_LOCAL);
     }
     facet_planarizer_free(&p);
@@ -154,20 +166,12 @@ static void test_ll_finish_terms(void)
     facet_planarizer *p = NULL;
     CHECK_STATUS(facet_planarizer_create(&t.mesh, &p, &e), FACET_OK);
     double *out = malloc(sizeof(double) * n3), *coarse_out = malloc(sizeof(double) * n3);
-    for (int term = 0; term < 5; ++term) {
+    for (int term = 0; term < FINISHING_TERMS; ++term) {
         facet_planarize_options o;
         facet_planarize_options_default(FACET_METHOD_LOCAL_LOCAL, &o);
         o.quality_angle = 0.0; /* the finish itself, no re-solve */
         o.threads = 1;
-        switch (term) {
-        case 0: o.shape = FACET_SHAPE_ASAP, o.shape_weight = 0.1; break;
-        case 1: o.shape = FACET_SHAPE_ARAP, o.shape_weight = 0.1; break;
-        case 2: /* plane data with its shape term, as facet.planarize sets it */
-            o.data_tangent = 0.01, o.shape = FACET_SHAPE_ASAP, o.shape_weight = 0.1;
-            break;
-        case 3: o.laplacian = 0.1; break;
-        default: o.boundary_fairness = 0.1; break;
-        }
+        set_term(&o, term);
         facet_planarize_result r, rc;
         CHECK_STATUS(facet_planarizer_solve(p, t.xyz, &o, out, &r, &e), FACET_OK);
         CHECK(r.stop_reason == FACET_STOP_TOLERANCE);
