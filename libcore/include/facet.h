@@ -294,7 +294,11 @@ typedef struct facet_planarize_options {
                                  the first step at this mu, or after hold_max steps, and
                                  only while the tolerance is not met (0: fall every step) */
     int32_t hold_max;         /* longest stay at one mu in the staircase schedule */
-    int32_t anderson;         /* Anderson acceleration history depth (0 = off, max 16) */
+    int32_t anderson;         /* Anderson acceleration history depth (0 = off, max 16); on
+                                 a mesh of 32,768 vertices or more its least-squares
+                                 problem is formed over a fixed eighth of the entries
+                                 (docs/solver-notes.md, "Anderson's least squares on a
+                                 sample") */
     double time_budget;       /* stop after this many seconds (0 = no budget) */
     /* --- quality by default (facet_planarizer_solve; docs/solver-notes.md, "Quality by
      * default (branch quality5)") */

@@ -531,6 +531,49 @@ static facet_status check_options(const facet_planarize_options *o, int has_refe
     return FACET_OK;
 }
 
+/* Dot products are summed in blocks of ANDERSON_BLOCK entries, each block in
+ * index order, then the blocks' sums in block order: the bits do not depend
+ * on the thread count, and a mesh of up to ANDERSON_BLOCK / 3 vertices (one
+ * block) sums exactly as a plain serial loop. */
+enum {
+    ANDERSON_BLOCK = 32768,
+    ANDERSON_PIECE = 3 * 512, /* entries: whole vertices, 12 KB of each column */
+    ANDERSON_PARTIAL = 2 * FACET_ANDERSON_MAX + 2 /* per block: the sums, largest |f|, move */
+};
+
+static size_t anderson_blocks(size_t n)
+{
+    return (n + ANDERSON_BLOCK - 1) / ANDERSON_BLOCK;
+}
+
+/* Anderson's sketch (planarize_internal.h, FACET_ANDERSON_SKETCH_VERTICES):
+ * a block's pieces of ANDERSON_PIECE entries run from its first whole vertex,
+ * at most ANDERSON_BLOCK_PIECES of them, and with the sketch the residual
+ * differences are kept for every stride-th (0, 8, 16) only, packed block by
+ * block in ANDERSON_BLOCK_ROOM entries each. At a million faces the history
+ * is the iteration's largest stream through memory: the least-squares
+ * problem over an eighth of it takes 5 of its 19 streams of 24 MB, while its
+ * 5 unknowns are as well determined by 100,000 entries as by 3 million. */
+enum { ANDERSON_BLOCK_PIECES = (ANDERSON_BLOCK + ANDERSON_PIECE - 1) / ANDERSON_PIECE };
+
+static int anderson_stride(int32_t nv)
+{
+    return nv >= FACET_ANDERSON_SKETCH_VERTICES ? FACET_ANDERSON_SKETCH_STRIDE : 1;
+}
+
+static size_t anderson_block_room(int stride)
+{
+    return (size_t)((ANDERSON_BLOCK_PIECES + stride - 1) / stride) * ANDERSON_PIECE;
+}
+
+/* The entries of one column of the residuals' differences (aa_df). */
+size_t facet_pl_anderson_len(int32_t nv)
+{
+    const size_t n = 3 * (size_t)nv;
+    const int stride = anderson_stride(nv);
+    return stride == 1 ? n : anderson_blocks(n) * anderson_block_room(stride);
+}
+
 /* Allocates what the options need beyond the base workspace. */
 static int ensure_workspace(facet_planarizer *s)
 {
@@ -582,9 +625,10 @@ static int ensure_workspace(facet_planarizer *s)
          * target is 1 KB per face); the last step's f and g live in the
          * ring's next slot (anderson_prev_col), a column beside it at depth 1 */
         const size_t v3 = 3 * (size_t)s->nv, columns = o->anderson == 1 ? 2 : (size_t)o->anderson;
+        const size_t df = columns * facet_pl_anderson_len(s->nv);
         double *old = s->aa_df;
         free(s->aa_dg);
-        s->aa_df = malloc(sizeof(double) * v3 * columns);
+        s->aa_df = malloc(sizeof(double) * (df > 2 * v3 ? df : 2 * v3));
         s->aa_dg = malloc(sizeof(double) * v3 * columns);
         if (s->previous_in_history) { /* the last result moves with the history's memory */
             if (s->aa_df)
@@ -656,7 +700,8 @@ typedef struct {
     int have_previous;        /* the previous step's f and g are held (anderson_prev_col) */
     int plain_col;            /* the column where the last step left its g (kept by a restart) */
     int nthreads;
-    double gram[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX]; /* dF^T dF by slot */
+    int stride;               /* anderson_stride: 1, or the sketch's */
+    double gram[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX]; /* dF^T dF by slot (sampled) */
     double *partial;          /* per block: 2 m dot-product parts and the largest |f| */
 } anderson_state;
 
@@ -685,20 +730,6 @@ static const double *anderson_plain(const facet_planarizer *s, const anderson_st
     return s->aa_dg + (size_t)a->plain_col * 3 * (size_t)s->nv;
 }
 
-/* Dot products are summed in blocks of ANDERSON_BLOCK entries, each block in
- * index order, then the blocks' sums in block order: the bits do not depend
- * on the thread count, and a mesh of up to ANDERSON_BLOCK / 3 vertices (one
- * block) sums exactly as a plain serial loop. */
-enum {
-    ANDERSON_BLOCK = 32768,
-    ANDERSON_PIECE = 3 * 512, /* entries: whole vertices, 12 KB of each column */
-    ANDERSON_PARTIAL = 2 * FACET_ANDERSON_MAX + 2 /* per block: the sums, largest |f|, move */
-};
-
-static size_t anderson_blocks(size_t n)
-{
-    return (n + ANDERSON_BLOCK - 1) / ANDERSON_BLOCK;
-}
 
 /* The squared distance between a vertex's two positions. */
 static inline double vertex_move2(const double *g, const double *x)
@@ -713,41 +744,57 @@ typedef struct {
     const double *f_prev, *g_prev;
     double *f_to;
     const double *df_all;
-    size_t n;
+    size_t n, len;            /* entries of a column of g, of dF (facet_pl_anderson_len) */
     int m, have;
 } anderson_pass;
+
+/* anderson_piece's `at` for a piece outside the sketch's sample */
+#define ANDERSON_UNSAMPLED SIZE_MAX
 
 /* The first pass of anderson_step over entries [c0, c1): the new
  * differences, largest |f|, the new Gram row's and the right-hand side's
  * sums (in index order), f into its column and, given `moved` (c0 and c1
- * then at whole vertices), the largest squared move g - x of a vertex. */
-static inline void anderson_piece(const anderson_pass *c, size_t c0, size_t c1, double *largest,
+ * then at whole vertices), the largest squared move g - x of a vertex. The
+ * residual's entries are at `at` .. in dF's columns (c0 .. without the
+ * sketch); a piece the sketch leaves out (ANDERSON_UNSAMPLED) gives only
+ * dG's difference, largest |f| and the move. */
+static inline void anderson_piece(const anderson_pass *c, size_t c0, size_t c1, size_t at, double *largest,
                                   double *gsum, double *rsum, double *moved)
 {
     const double *g = c->g, *x = c->x, *f_prev = c->f_prev, *g_prev = c->g_prev, *df_all = c->df_all;
     double *df_new = c->df_new, *dg_new = c->dg_new, *f_to = c->f_to;
-    const size_t n = c->n;
+    const size_t len = c->len;
     const int m = c->m;
     double big = *largest; /* (locals: the stores below might alias the pointers) */
-    if (c->have) /* in place: each entry is read, then written */
-        for (size_t k = c0; k < c1; ++k) {
+    if (at == ANDERSON_UNSAMPLED) {
+        if (c->have)
+            for (size_t k = c0; k < c1; ++k) {
+                dg_new[k] = g[k] - g_prev[k];
+                big = facet_max(big, fabs(g[k] - x[k]));
+            }
+        else
+            for (size_t k = c0; k < c1; ++k)
+                big = facet_max(big, fabs(g[k] - x[k]));
+    } else if (c->have) { /* in place: each entry is read, then written */
+        for (size_t k = c0, i = at; k < c1; ++k, ++i) {
             const double f = g[k] - x[k];
-            df_new[k] = f - f_prev[k];
+            df_new[i] = f - f_prev[i];
             dg_new[k] = g[k] - g_prev[k];
             big = facet_max(big, fabs(f));
         }
-    else
+    } else {
         for (size_t k = c0; k < c1; ++k)
             big = facet_max(big, fabs(g[k] - x[k]));
+    }
     *largest = big;
-    if (m > 0) {
+    if (m > 0 && at != ANDERSON_UNSAMPLED) {
         double gs[FACET_ANDERSON_MAX], rs[FACET_ANDERSON_MAX];
         for (int j = 0; j < m; ++j)
             gs[j] = gsum[j], rs[j] = rsum[j];
-        for (size_t k = c0; k < c1; ++k) {
-            const double d = df_new[k], f = g[k] - x[k];
+        for (size_t k = c0, i = at; k < c1; ++k, ++i) {
+            const double d = df_new[i], f = g[k] - x[k];
             for (int j = 0; j < m; ++j) {
-                const double dfjk = df_all[(size_t)j * n + k];
+                const double dfjk = df_all[(size_t)j * len + i];
                 gs[j] += d * dfjk;
                 rs[j] += dfjk * f;
             }
@@ -762,8 +809,9 @@ static inline void anderson_piece(const anderson_pass *c, size_t c0, size_t c1, 
         *moved = most;
     }
     /* then f into its column, which (the ring full) the sums have read */
-    for (size_t k = c0; k < c1; ++k)
-        f_to[k] = g[k] - x[k];
+    if (at != ANDERSON_UNSAMPLED)
+        for (size_t k = c0, i = at; k < c1; ++k, ++i)
+            f_to[i] = g[k] - x[k];
 }
 
 /* The extrapolation over entries [k0, k1): g - dG theta into g, the plain g
@@ -815,12 +863,14 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     const int to = anderson_prev_col(a); /* this step's f and g: never slot */
     a->plain_col = to;
     const int m = have ? a->count : 0;
-    const size_t blocks = anderson_blocks(n), width = ANDERSON_PARTIAL;
-    double *df_new = s->aa_df + (size_t)slot * n, *dg_new = s->aa_dg + (size_t)slot * n;
-    const double *f_prev = s->aa_df + (size_t)from * n, *g_prev = s->aa_dg + (size_t)from * n;
-    double *f_to = s->aa_df + (size_t)to * n, *g_to = s->aa_dg + (size_t)to * n;
+    const size_t blocks = anderson_blocks(n), width = ANDERSON_PARTIAL, len = facet_pl_anderson_len(s->nv);
+    double *df_new = s->aa_df + (size_t)slot * len, *dg_new = s->aa_dg + (size_t)slot * n;
+    const double *f_prev = s->aa_df + (size_t)from * len, *g_prev = s->aa_dg + (size_t)from * n;
+    double *f_to = s->aa_df + (size_t)to * len, *g_to = s->aa_dg + (size_t)to * n;
     const double *df_all = s->aa_df;
-    const anderson_pass ctx = {g, x, df_new, dg_new, f_prev, g_prev, f_to, df_all, n, m, have};
+    const anderson_pass ctx = {g, x, df_new, dg_new, f_prev, g_prev, f_to, df_all, n, len, m, have};
+    const int stride = a->stride;
+    const size_t room = anderson_block_room(stride);
 #pragma omp parallel for schedule(static) num_threads(a->nthreads)
     for (size_t blk = 0; blk < blocks; ++blk) {
         const size_t k0 = blk * ANDERSON_BLOCK, k1 = k0 + ANDERSON_BLOCK < n ? k0 + ANDERSON_BLOCK : n;
@@ -835,11 +885,18 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
          * index order (the same bits). The pieces between the block's first
          * and last whole vertex also give the vertices' moves. */
         const size_t a0 = (k0 + 2) / 3 * 3, a1 = k1 / 3 * 3 > a0 ? k1 / 3 * 3 : a0;
-        anderson_piece(&ctx, k0, a0, &largest, gsum, rsum, NULL);
-        for (size_t c0 = a0; c0 < a1; c0 += ANDERSON_PIECE)
-            anderson_piece(&ctx, c0, c0 + ANDERSON_PIECE < a1 ? c0 + ANDERSON_PIECE : a1, &largest,
-                           gsum, rsum, move ? &moved : NULL);
-        anderson_piece(&ctx, a1, k1, &largest, gsum, rsum, NULL);
+        /* with the sketch: only every stride-th piece from a0 is sampled,
+         * the pieces' ends across vertices never */
+        const size_t edge = stride == 1 ? 0 : ANDERSON_UNSAMPLED;
+        anderson_piece(&ctx, k0, a0, edge ? edge : k0, &largest, gsum, rsum, NULL);
+        for (size_t c0 = a0, piece = 0; c0 < a1; c0 += ANDERSON_PIECE, ++piece) {
+            const size_t at = stride == 1                 ? c0
+                              : piece % (size_t)stride == 0 ? blk * room + piece / (size_t)stride * ANDERSON_PIECE
+                                                            : ANDERSON_UNSAMPLED;
+            anderson_piece(&ctx, c0, c0 + ANDERSON_PIECE < a1 ? c0 + ANDERSON_PIECE : a1, at, &largest, gsum,
+                           rsum, move ? &moved : NULL);
+        }
+        anderson_piece(&ctx, a1, k1, edge ? edge : a1, &largest, gsum, rsum, NULL);
         for (int j = 0; j < m; ++j)
             part[2 * j] = gsum[j], part[2 * j + 1] = rsum[j];
         part[width - 2] = largest;
@@ -1071,6 +1128,7 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
     memset(&aa, 0, sizeof aa);
     aa.m = options->anderson;
     aa.nthreads = nthreads;
+    aa.stride = anderson_stride(nv);
     int accelerated = 0;
     int32_t accepted = 0, rejected = 0;
     double energy_mu = 0.0, energy_con = 0.0, last_mu = 0.0, last_con = 0.0;

@@ -16,6 +16,15 @@
 
 enum { FACET_ANDERSON_MAX = 16 };
 
+/* Anderson's sketched least squares (planarize.c, anderson_step;
+ * docs/solver-notes.md, "Anderson's least squares on a sample"): on a mesh of
+ * at least FACET_ANDERSON_SKETCH_VERTICES vertices the history's
+ * least-squares problem is formed over one piece of 512 vertices in every
+ * FACET_ANDERSON_SKETCH_STRIDE of each block, and the residuals' differences
+ * (dF) are stored for those entries only. The extrapolation still combines
+ * the full plain iterates' differences (dG). */
+enum { FACET_ANDERSON_SKETCH_VERTICES = 32768, FACET_ANDERSON_SKETCH_STRIDE = 8 };
+
 /* Which coupled (vertex-vertex) terms are in the global matrix. */
 enum {
     COUPLE_LAPLACIAN = 1,
@@ -160,8 +169,10 @@ struct facet_planarizer {
     double *couple_diag_mu, *couple_diag_con; /* NULL without coupled terms */
 
     /* Anderson acceleration */
-    double *aa_df, *aa_dg;                /* m columns of 3 nv (2 if m = 1); the ring's
-                                             next slot holds the last f = g - x and g */
+    double *aa_df, *aa_dg;                /* m columns (2 if m = 1) of 3 nv (aa_dg) and of
+                                             facet_pl_anderson_len (aa_df, at least 2 x 3 nv
+                                             in all: the last result); the ring's next slot
+                                             holds the last f = g - x and g */
     int32_t aa_capacity;                  /* columns aa_df and aa_dg hold */
 
     char message[512];
@@ -193,6 +204,9 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
 facet_status facet_pl_fail(facet_planarizer *s, facet_error *error, facet_status status,
                            const char *text);
 void facet_pl_history_trim(facet_planarizer *s);
+/* Entries of one column of the Anderson history's residual differences:
+ * 3 nv, or fewer on a mesh whose least squares is sketched. */
+size_t facet_pl_anderson_len(int32_t nv);
 /* The threads a solve of this planarizer uses for options.threads = requested. */
 int facet_pl_threads(const facet_planarizer *s, int requested);
 

@@ -4,13 +4,21 @@
  * survives the history's reallocation, solves without a history and live
  * updates; the history ring at depths 1 (its f and g in a column beside the
  * ring), 2, 5 and 16 gives the same bits for 1 and 2 threads; L/G's matrix,
- * no longer stored, with held vertices and faces of more than 255 corners. */
+ * no longer stored, with held vertices and faces of more than 255 corners.
+ * The same for a mesh above FACET_ANDERSON_SKETCH_VERTICES, whose history
+ * keeps the residuals' differences for a sample of the entries only. */
 #include "check.h"
 #include "facet.h"
+#include "planarize_internal.h"
 #include "test_meshes.h"
 
 #include <stdlib.h>
 #include <string.h>
+
+/* Without the quality re-solves on the sketched grid, whose first solve
+ * leaves a corner under 5 degrees (re-solved without Anderson, 30 times the
+ * solve): these tests are about the history. */
+static int no_quality;
 
 static facet_planarize_options options(facet_method method, int anderson, int threads)
 {
@@ -18,6 +26,8 @@ static facet_planarize_options options(facet_method method, int anderson, int th
     facet_planarize_options_default(method, &o);
     o.anderson = anderson;
     o.threads = threads;
+    if (no_quality)
+        o.quality_angle = 0.0;
     return o;
 }
 
@@ -40,9 +50,19 @@ static void check_previous_is(facet_planarizer *s, const test_mesh *t, facet_met
     free(out);
 }
 
-static void test_previous_kept(facet_method method, int first_depth)
+/* A grid of nu x nv quads: small, or (SKETCHED) with just over
+ * FACET_ANDERSON_SKETCH_VERTICES vertices. */
+enum { SMALL = 0, SKETCHED = 1 };
+
+static test_mesh grid(int size, int nu, int nv)
 {
-    test_mesh t = test_grid(16, 12, 0.6, 1.0, 0.0);
+    no_quality = size == SKETCHED;
+    return size == SKETCHED ? test_grid(185, 180, 0.6, 1.0, 0.0) : test_grid(nu, nv, 0.6, 1.0, 0.0);
+}
+
+static void test_previous_kept(facet_method method, int first_depth, int size)
+{
+    test_mesh t = grid(size, 16, 12);
     const size_t n = 3 * (size_t)t.mesh.n_vertices;
     facet_planarizer *s = NULL;
     facet_error e;
@@ -80,9 +100,9 @@ static void test_previous_kept(facet_method method, int first_depth)
     test_mesh_free(&t);
 }
 
-static void test_depths(facet_method method, int depth)
+static void test_depths(facet_method method, int depth, int size)
 {
-    test_mesh t = test_grid(14, 10, 0.6, 1.0, 0.0);
+    test_mesh t = grid(size, 14, 10);
     const size_t n = 3 * (size_t)t.mesh.n_vertices;
     facet_planarizer *s = NULL;
     facet_error e;
@@ -99,6 +119,8 @@ static void test_depths(facet_method method, int depth)
     for (size_t k = 0; k < n; ++k)
         worst = fmax(worst, fabs(out1[k] - t.xyz[k]));
     CHECK(worst < 1.0); /* 0.51-0.53 here; 7.5 when a refusal took the wrong column */
+    if (size == SKETCHED) /* the sketch's extrapolations are as good as the full history's */
+        CHECK(r1.anderson_accepted >= r1.iterations * 3 / 4);
     o.threads = 2;
     CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &o, out2, &r2, &e), FACET_OK);
     CHECK(r1.iterations == r2.iterations);
@@ -172,16 +194,32 @@ static void test_big_face(int n, int held)
     test_mesh_free(&t);
 }
 
+/* The sketch's column: every entry below the threshold; from it, three
+ * pieces of 512 vertices per block of 32,768 entries (a seventh), at least
+ * every stride-th piece of each block. */
+static void test_sketch_length(void)
+{
+    const int32_t below = FACET_ANDERSON_SKETCH_VERTICES - 1, at = FACET_ANDERSON_SKETCH_VERTICES;
+    CHECK(facet_pl_anderson_len(below) == 3 * (size_t)below);
+    const size_t len = facet_pl_anderson_len(at), n = 3 * (size_t)at;
+    CHECK(len * 7 <= n && len * FACET_ANDERSON_SKETCH_STRIDE >= n);
+    CHECK(facet_pl_anderson_len(1000000) * 7 <= 3000000);
+}
+
 int main(void)
 {
-    test_previous_kept(FACET_METHOD_LOCAL_LOCAL, 5);
-    test_previous_kept(FACET_METHOD_LOCAL_GLOBAL, 5);
-    test_previous_kept(FACET_METHOD_LOCAL_GLOBAL, 1);
-    test_previous_kept(FACET_METHOD_LOCAL_LOCAL, 0);
+    test_sketch_length();
+    test_previous_kept(FACET_METHOD_LOCAL_LOCAL, 5, SMALL);
+    test_previous_kept(FACET_METHOD_LOCAL_GLOBAL, 5, SMALL);
+    test_previous_kept(FACET_METHOD_LOCAL_GLOBAL, 1, SMALL);
+    test_previous_kept(FACET_METHOD_LOCAL_LOCAL, 0, SMALL);
+    test_previous_kept(FACET_METHOD_LOCAL_LOCAL, 5, SKETCHED);
+    test_previous_kept(FACET_METHOD_LOCAL_LOCAL, 1, SKETCHED);
     const int depths[] = {1, 2, 5, 16};
     for (int k = 0; k < 4; ++k) {
-        test_depths(FACET_METHOD_LOCAL_LOCAL, depths[k]);
-        test_depths(FACET_METHOD_LOCAL_GLOBAL, depths[k]);
+        test_depths(FACET_METHOD_LOCAL_LOCAL, depths[k], SMALL);
+        test_depths(FACET_METHOD_LOCAL_GLOBAL, depths[k], SMALL);
+        test_depths(FACET_METHOD_LOCAL_LOCAL, depths[k], SKETCHED);
     }
     test_big_face(100, 0);
     test_big_face(300, 0);
