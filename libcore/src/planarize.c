@@ -549,11 +549,12 @@ static size_t anderson_blocks(size_t n)
 /* Anderson's sketch (planarize_internal.h, FACET_ANDERSON_SKETCH_VERTICES):
  * a block's pieces of ANDERSON_PIECE entries run from its first whole vertex,
  * at most ANDERSON_BLOCK_PIECES of them, and with the sketch the residual
- * differences are kept for every stride-th (0, 8, 16) only, packed block by
- * block in ANDERSON_BLOCK_ROOM entries each. At a million faces the history
- * is the iteration's largest stream through memory: the least-squares
- * problem over an eighth of it takes 5 of its 19 streams of 24 MB, while its
- * 5 unknowns are as well determined by 100,000 entries as by 3 million. */
+ * differences are kept for every stride-th piece (0, 8, 16) only, packed
+ * block by block in anderson_block_room entries each. At a million faces the
+ * history is the iteration's largest stream through memory; the least
+ * squares over a sample saves 7 of a step's 19 streams of 24 MB, and its
+ * (at most 5) unknowns are as well determined by 400,000 entries as by 3
+ * million. */
 enum { ANDERSON_BLOCK_PIECES = (ANDERSON_BLOCK + ANDERSON_PIECE - 1) / ANDERSON_PIECE };
 
 static int anderson_stride(int32_t nv)
@@ -730,7 +731,6 @@ static const double *anderson_plain(const facet_planarizer *s, const anderson_st
     return s->aa_dg + (size_t)a->plain_col * 3 * (size_t)s->nv;
 }
 
-
 /* The squared distance between a vertex's two positions. */
 static inline double vertex_move2(const double *g, const double *x)
 {
@@ -887,8 +887,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
         const size_t a0 = (k0 + 2) / 3 * 3, a1 = k1 / 3 * 3 > a0 ? k1 / 3 * 3 : a0;
         /* with the sketch: only every stride-th piece from a0 is sampled,
          * the pieces' ends across vertices never */
-        const size_t edge = stride == 1 ? 0 : ANDERSON_UNSAMPLED;
-        anderson_piece(&ctx, k0, a0, edge ? edge : k0, &largest, gsum, rsum, NULL);
+        anderson_piece(&ctx, k0, a0, stride == 1 ? k0 : ANDERSON_UNSAMPLED, &largest, gsum, rsum, NULL);
         for (size_t c0 = a0, piece = 0; c0 < a1; c0 += ANDERSON_PIECE, ++piece) {
             const size_t at = stride == 1                 ? c0
                               : piece % (size_t)stride == 0 ? blk * room + piece / (size_t)stride * ANDERSON_PIECE
@@ -896,7 +895,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
             anderson_piece(&ctx, c0, c0 + ANDERSON_PIECE < a1 ? c0 + ANDERSON_PIECE : a1, at, &largest, gsum,
                            rsum, move ? &moved : NULL);
         }
-        anderson_piece(&ctx, a1, k1, edge ? edge : a1, &largest, gsum, rsum, NULL);
+        anderson_piece(&ctx, a1, k1, stride == 1 ? a1 : ANDERSON_UNSAMPLED, &largest, gsum, rsum, NULL);
         for (int j = 0; j < m; ++j)
             part[2 * j] = gsum[j], part[2 * j + 1] = rsum[j];
         part[width - 2] = largest;
