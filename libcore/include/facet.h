@@ -990,6 +990,28 @@ int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stag
 #define FACET_FINER_HOLD 0.3
 #define FACET_FINER_WHEN 0.8
 
+/* ------------------------------------------------------------------------ */
+/* Method auto: L/G when L/L leaves a panel closed                          */
+/* ------------------------------------------------------------------------ */
+
+/* Where FACET_METHOD_AUTO picks L/L on a mesh of at most
+ * FACET_AUTO_LG_MAX_CORNERS_STAIRCASE face corners, a cold solve whose
+ * energy asks for closeness alone (as for the comparison above) and whose
+ * result, after its quality re-solves, still has a new narrow corner
+ * (FACET_QUALITY_NARROW) or that stopped on stagnation above the tolerance
+ * is solved once more from the input by L/G (the same options, no quality
+ * re-solve; facet_planarizer_stage returns FACET_STAGE_FALLBACK), and L/G's
+ * result is returned instead when it reaches the tolerance with fewer new
+ * narrow corners (or, L/L's having stalled, no more). L/L's local steps
+ * let vertices of nearly coplanar faces drift along them, where mu is
+ * small: a flat facade with a local saddle closes panels by L/L (0 degrees,
+ * or a stall at 1e-5) and none by L/G (docs/solver-notes.md, "Method auto:
+ * L/G when L/L closes a panel"). result.method says whose result was
+ * returned; the progress bound from the first call includes this solve's
+ * max_iter where it may run. Cancelling it returns FACET_ERROR_CANCELLED
+ * with L/L's result in xyz_out. */
+#define FACET_STAGE_FALLBACK (-3)
+
 #ifdef __cplusplus
 }
 #endif

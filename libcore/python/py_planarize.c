@@ -62,7 +62,8 @@ typedef struct {
     PyObject *exc_type, *exc_value, *exc_tb;
     PyObject *stage;    /* stage(stage, stages) when a quality re-solve or one of method
                            auto's comparison solves (stage FACET_STAGE_COMPARE or
-                           FACET_STAGE_FINER) starts; may be NULL */
+                           FACET_STAGE_FINER) or its fallback (FACET_STAGE_FALLBACK)
+                           starts; may be NULL */
     const facet_planarizer *handle;
     int32_t stage_seen;
 } progress_state;
@@ -398,8 +399,9 @@ static PyMethodDef planarizer_methods[] = {
      "the result's iterations, max_iter a bound of the whole solve that never grows);\n"
      "stage(stage, stages) is called when the stage-th of at most `stages` re-solves\n"
      "starts, stage(STAGE_COMPARE, stages) when method auto's comparison solve by L/L\n"
-     "starts and stage(STAGE_FINER, stages) when its L/G solve with a finer hold starts,\n"
-     "each before its first progress call (facet_planarizer_stage)."},
+     "starts, stage(STAGE_FINER, stages) when its L/G solve with a finer hold starts and\n"
+     "stage(STAGE_FALLBACK, stages) when its L/G solve after an L/L result with a closed\n"
+     "panel starts, each before its first progress call (facet_planarizer_stage)."},
     {"set_fixed", planarizer_set_fixed, METH_O,
      "set_fixed(vertices) -> None\n\nHard-fix these vertices (int32 indices) at their control\n"
      "positions in every later solve; None clears."},
@@ -440,6 +442,8 @@ int py_add_planarize(PyObject *module)
         r = PyModule_AddIntConstant(module, "STAGE_COMPARE", FACET_STAGE_COMPARE);
     if (r == 0) /* stage(STAGE_FINER, stages): its L/G solve with a finer hold */
         r = PyModule_AddIntConstant(module, "STAGE_FINER", FACET_STAGE_FINER);
+    if (r == 0) /* stage(STAGE_FALLBACK, stages): its L/G solve after L/L closed a panel */
+        r = PyModule_AddIntConstant(module, "STAGE_FALLBACK", FACET_STAGE_FALLBACK);
     if (r == 0) /* method auto: L/G up to this many face corners, L/L above */
         r = PyModule_AddIntConstant(module, "AUTO_LG_MAX_CORNERS", FACET_AUTO_LG_MAX_CORNERS);
     return r;

@@ -222,6 +222,10 @@ static int32_t compare_limit(const facet_planarize_options *options);
 static int32_t finer_bound(const facet_planarize_options *options);
 static facet_status compare_ll(facet_planarizer *s, const facet_planarize_options *options,
                                double *xyz_out, facet_planarize_result *result, facet_error *error);
+static int falls_back(const facet_planarizer *s, const facet_planarize_options *options);
+static facet_status fallback_lg(facet_planarizer *s, const facet_planarize_options *options,
+                                facet_status status, double *xyz_out, facet_planarize_result *result,
+                                facet_error *error);
 
 facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                                     const facet_planarize_options *options, double *xyz_out,
@@ -235,13 +239,17 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
                 s->quality_stages += stage_applies(options, k);
     }
     /* method AUTO's comparison solves may follow: their limits are in every bound */
-    const int compare = compares(s, options);
-    const int64_t after = compare ? (int64_t)compare_limit(options) + finer_bound(options) : 0;
+    const int compare = compares(s, options), fallback = falls_back(s, options);
+    const int64_t after = compare    ? (int64_t)compare_limit(options) + finer_bound(options)
+                          : fallback ? (int64_t)options->max_iter
+                                     : 0;
     facet_planarize_result r;
     memset(&r, 0, sizeof r);
     facet_status status = solve_checked(s, xyz_in, options, after, xyz_out, &r, error);
     if (compare && status == FACET_OK && r.stop_reason == FACET_STOP_TOLERANCE)
         status = compare_ll(s, options, xyz_out, &r, error);
+    else if (fallback)
+        status = fallback_lg(s, options, status, xyz_out, &r, error);
     if (result)
         *result = r;
     if (s) /* outside a solve: 0 and 0 */
@@ -423,6 +431,21 @@ static int compares(const facet_planarizer *s, const facet_planarize_options *op
            options->iterations <= 0 && !(options->warm && s->has_previous) &&
            options->shape == FACET_SHAPE_NONE && options->laplacian == 0.0 &&
            options->normal_laplacian == 0.0 && options->boundary_fairness == 0.0;
+}
+
+/* Whether AUTO may fall back on L/G (facet.h, FACET_STAGE_FALLBACK): where
+ * it picks L/L on a mesh L/G can still afford (at most the staircase's
+ * threshold: up to 50,000 quads), for a checked cold solve whose energy
+ * asks for closeness alone (with a shape term or a regularizer L/G takes
+ * minutes there: docs/solver-notes.md, "Method auto: L/L from 10,000
+ * quads"). */
+static int falls_back(const facet_planarizer *s, const facet_planarize_options *options)
+{
+    return s && options && options->method == FACET_METHOD_AUTO && options->hold_tol > 0.0 &&
+           facet_planarizer_choose_method(s, options) == FACET_METHOD_LOCAL_LOCAL &&
+           s->face_start[s->nf] <= FACET_AUTO_LG_MAX_CORNERS_STAIRCASE && checks_result(options) &&
+           !(options->warm && s->has_previous) && options->shape == FACET_SHAPE_NONE &&
+           options->laplacian == 0.0 && options->normal_laplacian == 0.0 && options->boundary_fairness == 0.0;
 }
 
 /* What the comparison measures of a result. */
@@ -692,4 +715,97 @@ static facet_status compare_ll(facet_planarizer *s, const facet_planarize_option
         return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
     }
     return FACET_OK;
+}
+
+/* Method AUTO's fallback (facet.h, FACET_STAGE_FALLBACK): L/L's result (in
+ * xyz_out, `result`, `status`) left a new narrow corner or stalled; L/G
+ * solves from the input, and its result replaces L/L's when it reaches the
+ * tolerance with fewer new narrow corners (no more, when L/L stalled). */
+static facet_status fallback_lg(facet_planarizer *s, const facet_planarize_options *options,
+                                facet_status status, double *xyz_out, facet_planarize_result *result,
+                                facet_error *error)
+{
+    const int stalled = status == FACET_WARNING_NOT_CONVERGED && result->stop_reason == FACET_STOP_STAGNATION;
+    if (!(status == FACET_OK && result->quality == FACET_QUALITY_NARROW) && !stalled)
+        return status;
+    const double t0 = facet_now();
+    double remaining = 0.0;
+    if (options->time_budget > 0.0) {
+        remaining = options->time_budget - result->seconds;
+        if (!(remaining > 0.0))
+            return status;
+    }
+    const int nthreads = facet_pl_threads(s, options->threads);
+    double narrowest = 180.0;
+    /* a stalled solve was not checked: its corners (s->q, s->p: its own) */
+    const int32_t ll_narrow =
+        stalled ? facet_pl_new_narrow(s, options->quality_angle, nthreads, &narrowest) : result->narrow_corners;
+    const size_t v3 = 3 * (size_t)s->nv;
+    /* the input (the last solve kept it), L/L's error and message, a buffer */
+    double *input = malloc(sizeof(double) * v3), *out = malloc(sizeof(double) * v3);
+    if (!input || !out) { /* L/L's result stands */
+        free(input), free(out);
+        return status;
+    }
+    memcpy(input, s->previous_control, sizeof(double) * v3);
+    char ll_message[sizeof s->message];
+    memcpy(ll_message, s->message, sizeof ll_message);
+    facet_error ll_error;
+    memset(&ll_error, 0, sizeof ll_error);
+    if (error)
+        ll_error = *error;
+    progress_relay relay;
+    facet_planarize_options o =
+        relayed(options, &relay, result->iterations, (int64_t)result->iterations + options->max_iter);
+    o.method = FACET_METHOD_LOCAL_GLOBAL;
+    o.warm = 0;
+    o.time_budget = remaining;
+    facet_planarize_result r;
+    memset(&r, 0, sizeof r);
+    s->quality_stage = FACET_STAGE_FALLBACK;
+    facet_status lg_status = facet_pl_solve_once(s, input, &o, out, &r, error);
+    facet_pl_global_free(s); /* its memory, until a solve by L/G needs it again */
+    result->iterations += r.iterations;
+    int take = 0;
+    int32_t lg_narrow = 0;
+    if (lg_status == FACET_OK && r.stop_reason == FACET_STOP_TOLERANCE) {
+        lg_narrow = facet_pl_new_narrow(s, options->quality_angle, nthreads, &narrowest);
+        take = stalled ? lg_narrow <= ll_narrow : lg_narrow < ll_narrow;
+    }
+    if (take) {
+        memcpy(xyz_out, out, sizeof(double) * v3);
+        result->method = FACET_METHOD_LOCAL_GLOBAL;
+        result->stop_reason = FACET_STOP_TOLERANCE;
+        result->mu = r.mu;
+        result->planarity_max_abs = r.planarity_max_abs;
+        result->planarity_max_rel = r.planarity_max_rel;
+        result->constraint_max_rel = r.constraint_max_rel;
+        result->anderson_accepted = r.anderson_accepted;
+        result->anderson_rejected = r.anderson_rejected;
+        result->narrow_corners = lg_narrow;
+        result->quality = lg_narrow ? FACET_QUALITY_NARROW : FACET_QUALITY_RECOVERED;
+        s->message[0] = '\0';
+        if (lg_narrow)
+            snprintf(s->message, sizeof s->message,
+                     "%d corners narrower than %g degrees that the input did not have remain after "
+                     "local/local and local/global (the smallest %.3g degrees)",
+                     (int)lg_narrow, options->quality_angle, narrowest);
+        facet_error_clear(error);
+        status = FACET_OK;
+    } else {
+        /* L/L's result stands: the handle's last result, its message and status */
+        memcpy(s->previous, xyz_out, sizeof(double) * v3);
+        memcpy(s->previous_control, input, sizeof(double) * v3);
+        s->has_previous = 1;
+        memcpy(s->message, ll_message, sizeof s->message);
+        if (error)
+            *error = ll_error;
+    }
+    free(input), free(out);
+    result->seconds += facet_now() - t0;
+    if (lg_status == FACET_ERROR_CANCELLED) {
+        snprintf(s->message, sizeof s->message, "cancelled");
+        return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
+    }
+    return status;
 }

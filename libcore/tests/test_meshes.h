@@ -62,6 +62,40 @@ static inline test_mesh test_grid(int nu, int nv, double amplitude, double scale
     return t;
 }
 
+/* An n x n grid of unit quads, flat but for a saddle of radius r in its
+ * middle, z = amplitude (x - c)(y - c) / r exp(-d^2 / r^2): a facade plane
+ * with a local feature. Its faces far from the saddle are planar to
+ * rounding, those near its axes nearly so (docs/solver-notes.md, "Method
+ * auto: L/G when L/L closes a panel"). */
+static inline test_mesh test_saddle(int n, double r, double amplitude)
+{
+    test_mesh t;
+    const int np = (n + 1) * (n + 1), nf = n * n;
+    const double c = 0.5 * n;
+    t.xyz = malloc(sizeof(double) * 3 * (size_t)np);
+    t.face_start = malloc(sizeof(int32_t) * (size_t)(nf + 1));
+    t.face_vertices = malloc(sizeof(int32_t) * 4 * (size_t)nf);
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const int v = j * (n + 1) + i;
+            const double x = i, y = j, d2 = (x - c) * (x - c) + (y - c) * (y - c);
+            t.xyz[3 * v] = x, t.xyz[3 * v + 1] = y;
+            t.xyz[3 * v + 2] = amplitude * (x - c) * (y - c) / r * exp(-d2 / (r * r));
+        }
+    for (int f = 0; f <= nf; ++f)
+        t.face_start[f] = 4 * f;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const int f = j * n + i, v = j * (n + 1) + i;
+            t.face_vertices[4 * f] = v;
+            t.face_vertices[4 * f + 1] = v + 1;
+            t.face_vertices[4 * f + 2] = v + n + 2;
+            t.face_vertices[4 * f + 3] = v + n + 1;
+        }
+    test_mesh_view(&t, np, nf);
+    return t;
+}
+
 /* An n x n quad grid on z = x y over [-1, 1]^2 (tools/bench/families.py's
  * hypar(n), the same vertices and faces): every quad is skew, every input
  * corner at least 60 degrees. */

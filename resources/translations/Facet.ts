@@ -407,17 +407,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="226"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="227"/>
         <source>Planarize {0}: solving by local/local too, for a result closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="230"/>
         <source>Planarize {0}: solving by local/global again with a finer hold, closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="232"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="235"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -454,6 +454,11 @@
     <message>
         <location filename="../ui/preferences.ui" line="22"/>
         <source>Automatic (the default): local/global up to 10,000 quads, local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="233"/>
+        <source>Planarize {0}: local/local closed a panel, solving by local/global</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

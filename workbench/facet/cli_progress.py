@@ -56,13 +56,15 @@ class ProgressLine:
     def stage(self, stage, stages):
         """facet's ``stage(stage, stages)``: a quality re-solve starts, or one of method
         auto's comparison solves (``stage`` is facet.planarize.STAGE_COMPARE or
-        STAGE_FINER)."""
-        from facet.planarize import STAGE_COMPARE, STAGE_FINER
+        STAGE_FINER) or its fallback (STAGE_FALLBACK)."""
+        from facet.planarize import STAGE_COMPARE, STAGE_FALLBACK, STAGE_FINER
 
         if stage == STAGE_COMPARE:
             self.stage_text = "solving by local/local too, for a result closer to the design"
         elif stage == STAGE_FINER:
             self.stage_text = "solving by local/global again with a finer hold, closer to the design"
+        elif stage == STAGE_FALLBACK:
+            self.stage_text = "local/local closed a panel: solving by local/global"
         else:
             self.stage_text = f"re-solving for panel quality (stage {stage} of {stages})"
         self._last = None  # the next iteration is shown at once

@@ -9,7 +9,9 @@ finishes with its data term anchored at the iterate, so it also reaches
 corners) and L/L above, where L/L reaches the tolerance 6-165 times faster, as
 close to the design, in under 1 KB per face (L/G: 1.3-1.8 KB). Without the
 staircase schedule (``hold_tol`` 0), with which L/L cannot finish, L/G goes on
-up to 50,000 quads.
+up to 50,000 quads. Up to 50,000 quads, when L/L's result keeps a closed panel
+or stalls above the tolerance, auto solves by L/G too and keeps that result if
+it is planar with fewer closed panels (``STAGE_FALLBACK``).
 
 >>> result = planarize(mesh)                   # doctest: +SKIP
 >>> result.planarity.max_rel_all <= 1e-6       # doctest: +SKIP
@@ -24,7 +26,7 @@ from facet import _core
 from facet.errors import FacetError, MeshError, from_core
 from facet.planarity import PlanarityReport, planarity
 
-__all__ = ["METHODS", "STAGE_COMPARE", "STAGE_FINER", "Planarizer", "PlanarizeResult", "planarize"]
+__all__ = ["METHODS", "STAGE_COMPARE", "STAGE_FINER", "STAGE_FALLBACK", "Planarizer", "PlanarizeResult", "planarize"]
 
 #: Solver schemes by name: what the command line and the workbench offer.
 #: "auto" solves by local/global up to 10,000 quads and also by local/local,
@@ -42,6 +44,12 @@ STAGE_COMPARE = _core.STAGE_COMPARE
 #: with a finer hold, which follows the comparison when L/L's result was
 #: closer but moved the vertices too far (facet.h, FACET_STAGE_FINER).
 STAGE_FINER = _core.STAGE_FINER
+
+#: The `stage` callable's first argument during method "auto"'s local/global
+#: solve after local/local's result kept a closed panel or stalled above the
+#: tolerance, on meshes of 10,000 to 50,000 quads (facet.h,
+#: FACET_STAGE_FALLBACK).
+STAGE_FALLBACK = _core.STAGE_FALLBACK
 
 #: Data-term presets: how strongly a vertex is held to its control position
 #: along the control surface (tangent) and across it (normal), and to the
@@ -339,9 +347,11 @@ class Planarizer:
             ``iteration / max_iter`` never falls.
         stage : callable, optional
             ``stage(STAGE_COMPARE, stages)`` when method "auto"'s comparison
-            solve by local/local starts and ``stage(STAGE_FINER, stages)``
+            solve by local/local starts, ``stage(STAGE_FINER, stages)``
             when its local/global solve with a finer hold starts (see
-            ``compared``); else
+            ``compared``) and ``stage(STAGE_FALLBACK, stages)`` when its
+            local/global solve after a local/local result with a closed panel
+            starts; else
             ``stage(stage, stages)``, called when a quality re-solve starts
             (before its first `progress` call): the `stage`-th of at most
             `stages` (4, or 2 when vertices slide along the design; they stop

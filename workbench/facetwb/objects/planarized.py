@@ -219,8 +219,9 @@ class _Follow:
 
     def stage(self, k, n):
         """facet.planarize's ``stage(k, n)``: the re-solve, or one of method auto's
-        comparison solves (k == facet.planarize.STAGE_COMPARE or STAGE_FINER), in the text."""
-        from facet.planarize import STAGE_COMPARE, STAGE_FINER
+        comparison solves (k == facet.planarize.STAGE_COMPARE or STAGE_FINER) or its
+        fallback (STAGE_FALLBACK), in the text."""
+        from facet.planarize import STAGE_COMPARE, STAGE_FALLBACK, STAGE_FINER
 
         if k == STAGE_COMPARE:
             text = translate(
@@ -228,6 +229,8 @@ class _Follow:
         elif k == STAGE_FINER:
             text = translate(
                 "Facet", "Planarize {0}: solving by local/global again with a finer hold, closer to the design")
+        elif k == STAGE_FALLBACK:
+            text = translate("Facet", "Planarize {0}: local/local closed a panel, solving by local/global")
         else:
             text = translate("Facet", "Planarize {0}: re-solving for panel quality (stage {1} of {2})")
         self.stage_text = text.format(self.obj.Label, k, n)

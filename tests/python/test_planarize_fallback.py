@@ -1,0 +1,64 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Method auto's fallback (facet.h, FACET_STAGE_FALLBACK): above 10,000 quads auto
+solves by local/local, which on a flat facade with a local saddle stalls above the
+tolerance or leaves a panel closed; auto then solves by local/global and returns
+that result. Through the Python API: the result, the stage callback, the CLI's
+progress text."""
+
+import io
+import math
+
+import numpy as np
+
+import facet
+from facet.cli_progress import ProgressLine
+from facet.planarize import STAGE_FALLBACK
+
+
+def _saddle(n, r, amplitude):
+    """n x n unit quads, flat but for a saddle of radius r in the middle
+    (libcore/tests/test_meshes.h, test_saddle)."""
+    c = 0.5 * n
+    y, x = np.meshgrid(np.arange(n + 1, dtype=float), np.arange(n + 1, dtype=float), indexing="ij")
+    d2 = (x - c) ** 2 + (y - c) ** 2
+    # math.exp, the C library's, as test_meshes.h (numpy's own exp may differ in
+    # the last bit, and the outcome of local/local here is chaotic in the bits)
+    e = np.array([math.exp(t) for t in (-d2 / (r * r)).ravel()]).reshape(d2.shape)
+    z = amplitude * (x - c) * (y - c) / r * e
+    vertices = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
+    j, i = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
+    v = (j * (n + 1) + i).ravel()
+    faces = np.stack([v, v + 1, v + n + 2, v + n + 1], axis=1).ravel()
+    return facet.PolyMesh(vertices, np.arange(0, 4 * n * n + 1, 4), faces)
+
+
+def _smallest_angle(mesh, vertices):
+    fs, fv = mesh.face_start, mesh.face_vertices
+    prev = np.concatenate([np.roll(fv[fs[f]:fs[f + 1]], 1) for f in range(len(fs) - 1)])
+    nxt = np.concatenate([np.roll(fv[fs[f]:fs[f + 1]], -1) for f in range(len(fs) - 1)])
+    u, w = vertices[prev] - vertices[fv], vertices[nxt] - vertices[fv]
+    cos = np.sum(u * w, axis=1) / (np.linalg.norm(u, axis=1) * np.linalg.norm(w, axis=1))
+    return float(np.degrees(np.min(np.arccos(np.clip(cos, -1.0, 1.0)))))
+
+
+def test_saddle_falls_back_on_local_global():
+    mesh = _saddle(101, 8.0, 0.4)
+    alone = facet.planarize(mesh, method="ll", threads=1)
+    assert not alone.converged  # local/local stalls above the tolerance here
+    stages = []
+    result = facet.planarize(mesh, threads=1, stage=lambda k, n: stages.append(k))
+    assert result.method == "lg"
+    assert result.converged and result.planarity.max_rel_all <= 1e-6
+    assert result.quality_check == "recovered"
+    assert _smallest_angle(mesh, result.mesh.vertices) > 5.0
+    assert stages and stages[-1] == STAGE_FALLBACK
+    assert np.all(np.isfinite(result.mesh.vertices))
+    # the source mesh is not touched
+    assert np.array_equal(mesh.vertices, _saddle(101, 8.0, 0.4).vertices)
+
+
+def test_cli_progress_names_the_fallback():
+    out = io.StringIO()
+    progress = ProgressLine(out=out, force=True)
+    progress.stage(STAGE_FALLBACK, 4)
+    assert "local/global" in progress.stage_text and "closed a panel" in progress.stage_text
