@@ -214,13 +214,17 @@ class _DropsCtrlC:
 @pytest.mark.skipif(sys.platform == "win32", reason="SIGINT is POSIX")
 @pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
 @pytest.mark.parametrize("then", ["checks", "fails", "finishes"])
-def test_ctrl_c_that_python_swallows_still_interrupts(monkeypatch, capsys, data_dir, then):
+def test_ctrl_c_that_python_swallows_still_interrupts(monkeypatch, capsys, data_dir, request, then):
     """The lost Ctrl+C cancels at the command's next progress check; an error that follows it
     or the command's end is reported as the interrupt (exit status 130)."""
     import signal
 
     import facet.cli_panels
 
+    # Python's own handler, as in a terminal: a suite run as a background job (sh's `cmd &`)
+    # inherits SIGINT ignored, and the CLI rightly leaves an ignored SIGINT alone
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    request.addfinalizer(lambda: signal.signal(signal.SIGINT, previous))
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
     went_on = []
 
