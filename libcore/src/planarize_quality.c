@@ -605,6 +605,44 @@ static int32_t finer_bound(const facet_planarize_options *options)
  * result's and the handle keeps it; else L/G's result stands and the handle
  * keeps that. *v is KEEP_LG also when the solve failed or stopped short of
  * the tolerance. Only cancelling returns an error. */
+/* One more solve, cold, from the input with o_in's options and the time
+ * budget left (`remaining`, 0 for none), its progress counted on from
+ * result->iterations within `bound` and named `stage`
+ * (facet_planarizer_stage); its iterations are added to result's, and L/G's
+ * system, if it made one, is freed after (a later L/G solve sets it up
+ * again). */
+static facet_status solve_more(facet_planarizer *s, const facet_planarize_options *o_in, int32_t stage,
+                               int64_t bound, double remaining, const double *input, double *out,
+                               facet_planarize_result *result, facet_planarize_result *r, facet_error *error)
+{
+    progress_relay relay;
+    facet_planarize_options o = relayed(o_in, &relay, result->iterations, bound);
+    o.warm = 0;
+    o.time_budget = remaining;
+    memset(r, 0, sizeof *r);
+    s->quality_stage = stage;
+    const facet_status status = facet_pl_solve_once(s, input, &o, out, r, error);
+    facet_pl_global_free(s);
+    result->iterations += r->iterations;
+    return status;
+}
+
+/* A later solve's result (`r`, by `method`, with `narrow` new narrow corners)
+ * becomes the one returned: its figures into `result`, which keeps the
+ * counts of the whole solve (iterations, time, the comparison's). */
+static void adopt(facet_planarize_result *result, const facet_planarize_result *r, facet_method method,
+                  int32_t narrow)
+{
+    result->method = method;
+    result->mu = r->mu;
+    result->planarity_max_abs = r->planarity_max_abs;
+    result->planarity_max_rel = r->planarity_max_rel;
+    result->constraint_max_rel = r->constraint_max_rel;
+    result->anderson_accepted = r->anderson_accepted;
+    result->anderson_rejected = r->anderson_rejected;
+    result->narrow_corners = narrow;
+}
+
 static facet_status solve_again(facet_planarizer *s, const facet_planarize_options *options,
                                 const facet_planarize_options *o_in, int32_t stage, int other,
                                 int64_t later, double *xyz_out, facet_planarize_result *result,
@@ -630,17 +668,9 @@ static facet_status solve_again(facet_planarizer *s, const facet_planarize_optio
      * no more memory than L/G took. A later L/G solve on this handle sets
      * its system up again (its analysis: about 5% of a cold solve's time). */
     facet_pl_global_free(s);
-    progress_relay relay;
-    facet_planarize_options o = relayed(o_in, &relay, result->iterations,
-                                        (int64_t)result->iterations + o_in->max_iter + later);
-    o.warm = 0;
-    o.time_budget = remaining;
     facet_planarize_result r;
-    memset(&r, 0, sizeof r);
-    s->quality_stage = stage;
-    facet_status status = facet_pl_solve_once(s, input, &o, out, &r, error);
-    facet_pl_global_free(s);
-    result->iterations += r.iterations;
+    facet_status status = solve_more(s, o_in, stage, (int64_t)result->iterations + o_in->max_iter + later,
+                                     remaining, input, out, result, &r, error);
     *iterations = r.iterations;
     if (status == FACET_OK && r.stop_reason == FACET_STOP_TOLERANCE) {
         /* the handle keeps the result and the input (s->previous,
@@ -656,14 +686,7 @@ static facet_status solve_again(facet_planarizer *s, const facet_planarize_optio
         *v = closer(s, options, other, xyz_out, narrow, result);
         if (*v == TAKE) {
             memcpy(xyz_out, s->previous, sizeof(double) * v3);
-            result->method = o.method;
-            result->mu = r.mu;
-            result->planarity_max_abs = r.planarity_max_abs;
-            result->planarity_max_rel = r.planarity_max_rel;
-            result->constraint_max_rel = r.constraint_max_rel;
-            result->anderson_accepted = r.anderson_accepted;
-            result->anderson_rejected = r.anderson_rejected;
-            result->narrow_corners = narrow;
+            adopt(result, &r, o_in->method, narrow);
             if (result->quality != FACET_QUALITY_NOT_CHECKED)
                 result->quality = narrow ? FACET_QUALITY_NARROW : FACET_QUALITY_OK;
             s->message[0] = '\0'; /* L/G's (its narrow corners) no longer applies */
@@ -754,18 +777,12 @@ static facet_status fallback_lg(facet_planarizer *s, const facet_planarize_optio
     memset(&ll_error, 0, sizeof ll_error);
     if (error)
         ll_error = *error;
-    progress_relay relay;
-    facet_planarize_options o =
-        relayed(options, &relay, result->iterations, (int64_t)result->iterations + options->max_iter);
-    o.method = FACET_METHOD_LOCAL_GLOBAL;
-    o.warm = 0;
-    o.time_budget = remaining;
+    facet_planarize_options lg = *options;
+    lg.method = FACET_METHOD_LOCAL_GLOBAL;
     facet_planarize_result r;
-    memset(&r, 0, sizeof r);
-    s->quality_stage = FACET_STAGE_FALLBACK;
-    facet_status lg_status = facet_pl_solve_once(s, input, &o, out, &r, error);
-    facet_pl_global_free(s); /* its memory, until a solve by L/G needs it again */
-    result->iterations += r.iterations;
+    const facet_status lg_status = solve_more(s, &lg, FACET_STAGE_FALLBACK,
+                                              (int64_t)result->iterations + options->max_iter, remaining,
+                                              input, out, result, &r, error);
     int take = 0;
     int32_t lg_narrow = 0;
     if (lg_status == FACET_OK && r.stop_reason == FACET_STOP_TOLERANCE) {
@@ -774,15 +791,8 @@ static facet_status fallback_lg(facet_planarizer *s, const facet_planarize_optio
     }
     if (take) {
         memcpy(xyz_out, out, sizeof(double) * v3);
-        result->method = FACET_METHOD_LOCAL_GLOBAL;
+        adopt(result, &r, FACET_METHOD_LOCAL_GLOBAL, lg_narrow);
         result->stop_reason = FACET_STOP_TOLERANCE;
-        result->mu = r.mu;
-        result->planarity_max_abs = r.planarity_max_abs;
-        result->planarity_max_rel = r.planarity_max_rel;
-        result->constraint_max_rel = r.constraint_max_rel;
-        result->anderson_accepted = r.anderson_accepted;
-        result->anderson_rejected = r.anderson_rejected;
-        result->narrow_corners = lg_narrow;
         result->quality = lg_narrow ? FACET_QUALITY_NARROW : FACET_QUALITY_RECOVERED;
         s->message[0] = '\0';
         if (lg_narrow)

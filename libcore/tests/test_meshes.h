@@ -28,6 +28,21 @@ static inline void test_mesh_view(test_mesh *t, int32_t nv, int32_t nf)
 /* An nu x nv quad grid over [0, nu] x [0, nv] (unit cells) with heights
  * z = amplitude * (bumps) plus a deterministic jitter, scaled by `scale` and
  * shifted by `offset` (georeferenced coordinates). */
+/* The faces of an nu x nv grid of quads over vertices numbered row by row. */
+static inline void grid_quads(test_mesh *t, int nu, int nv)
+{
+    for (int f = 0; f <= nu * nv; ++f)
+        t->face_start[f] = 4 * f;
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            const int f = j * nu + i, v = j * (nu + 1) + i;
+            t->face_vertices[4 * f] = v;
+            t->face_vertices[4 * f + 1] = v + 1;
+            t->face_vertices[4 * f + 2] = v + nu + 2;
+            t->face_vertices[4 * f + 3] = v + nu + 1;
+        }
+}
+
 static inline test_mesh test_grid(int nu, int nv, double amplitude, double scale, double offset)
 {
     test_mesh t;
@@ -48,16 +63,7 @@ static inline test_mesh test_grid(int nu, int nv, double amplitude, double scale
             t.xyz[3 * v + 1] = y * scale + offset;
             t.xyz[3 * v + 2] = z * scale;
         }
-    for (int f = 0; f <= nf; ++f)
-        t.face_start[f] = 4 * f;
-    for (int j = 0; j < nv; ++j)
-        for (int i = 0; i < nu; ++i) {
-            const int f = j * nu + i, v = j * (nu + 1) + i;
-            t.face_vertices[4 * f] = v;
-            t.face_vertices[4 * f + 1] = v + 1;
-            t.face_vertices[4 * f + 2] = v + nu + 2;
-            t.face_vertices[4 * f + 3] = v + nu + 1;
-        }
+    grid_quads(&t, nu, nv);
     test_mesh_view(&t, np, nf);
     return t;
 }
@@ -82,16 +88,7 @@ static inline test_mesh test_saddle(int n, double r, double amplitude)
             t.xyz[3 * v] = x, t.xyz[3 * v + 1] = y;
             t.xyz[3 * v + 2] = amplitude * (x - c) * (y - c) / r * exp(-d2 / (r * r));
         }
-    for (int f = 0; f <= nf; ++f)
-        t.face_start[f] = 4 * f;
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            const int f = j * n + i, v = j * (n + 1) + i;
-            t.face_vertices[4 * f] = v;
-            t.face_vertices[4 * f + 1] = v + 1;
-            t.face_vertices[4 * f + 2] = v + n + 2;
-            t.face_vertices[4 * f + 3] = v + n + 1;
-        }
+    grid_quads(&t, n, n);
     test_mesh_view(&t, np, nf);
     return t;
 }
