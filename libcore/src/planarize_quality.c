@@ -434,8 +434,8 @@ static int compares(const facet_planarizer *s, const facet_planarize_options *op
 }
 
 /* Whether AUTO may fall back on L/G (facet.h, FACET_STAGE_FALLBACK): where
- * it picks L/L on a mesh L/G can still afford (at most the staircase's
- * threshold: up to 50,000 quads), for a checked cold solve whose energy
+ * it picks L/L on a mesh L/G can still afford (FACET_AUTO_FALLBACK_MAX_CORNERS:
+ * up to 160,000 quads), for a checked cold solve whose energy
  * asks for closeness alone (with a shape term or a regularizer L/G takes
  * minutes there: docs/solver-notes.md, "Method auto: L/L from 10,000
  * quads"). */
@@ -443,7 +443,7 @@ static int falls_back(const facet_planarizer *s, const facet_planarize_options *
 {
     return s && options && options->method == FACET_METHOD_AUTO && options->hold_tol > 0.0 &&
            facet_planarizer_choose_method(s, options) == FACET_METHOD_LOCAL_LOCAL &&
-           s->face_start[s->nf] <= FACET_AUTO_LG_MAX_CORNERS_STAIRCASE && checks_result(options) &&
+           s->face_start[s->nf] <= FACET_AUTO_FALLBACK_MAX_CORNERS && checks_result(options) &&
            !(options->warm && s->has_previous) && options->shape == FACET_SHAPE_NONE &&
            options->laplacian == 0.0 && options->normal_laplacian == 0.0 && options->boundary_fairness == 0.0;
 }

@@ -118,7 +118,7 @@ def build_parser():
         choices=("auto", "ll", "lg"),
         default="auto",
         help="auto (default): lg up to 10,000 quads (40,000 face corners), ll above "
-        "(and lg again up to 50,000 quads if ll leaves a panel closed); "
+        "(and lg again up to 160,000 quads if ll leaves a panel closed); "
         "lg: local normals, global solve; ll: local-local, the paper's algorithm",
     )
     planarize.add_argument(

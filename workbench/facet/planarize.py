@@ -9,7 +9,7 @@ finishes with its data term anchored at the iterate, so it also reaches
 corners) and L/L above, where L/L reaches the tolerance 6-165 times faster, as
 close to the design, in under 1 KB per face (L/G: 1.3-1.8 KB). Without the
 staircase schedule (``hold_tol`` 0), with which L/L cannot finish, L/G goes on
-up to 50,000 quads. Up to 50,000 quads, when L/L's result keeps a closed panel
+up to 50,000 quads. Up to 160,000 quads, when L/L's result keeps a closed panel
 or stalls above the tolerance, auto solves by L/G too and keeps that result if
 it is planar with fewer closed panels (``STAGE_FALLBACK``).
 
@@ -47,7 +47,7 @@ STAGE_FINER = _core.STAGE_FINER
 
 #: The `stage` callable's first argument during method "auto"'s local/global
 #: solve after local/local's result kept a closed panel or stalled above the
-#: tolerance, on meshes of 10,000 to 50,000 quads (facet.h,
+#: tolerance, on meshes of 10,000 to 160,000 quads (facet.h,
 #: FACET_STAGE_FALLBACK).
 STAGE_FALLBACK = _core.STAGE_FALLBACK
 
