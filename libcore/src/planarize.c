@@ -701,7 +701,6 @@ typedef struct {
     int have_previous;        /* the previous step's f and g are held (anderson_prev_col) */
     int plain_col;            /* the column where the last step left its g (kept by a restart) */
     int nthreads;
-    int stride;               /* anderson_stride: 1, or the sketch's */
     double gram[FACET_ANDERSON_MAX][FACET_ANDERSON_MAX]; /* dF^T dF by slot (sampled) */
     double *partial;          /* per block: 2 m dot-product parts and the largest |f| */
 } anderson_state;
@@ -766,25 +765,21 @@ static inline void anderson_piece(const anderson_pass *c, size_t c0, size_t c1, 
     const size_t len = c->len;
     const int m = c->m;
     double big = *largest; /* (locals: the stores below might alias the pointers) */
-    if (at == ANDERSON_UNSAMPLED) {
-        if (c->have)
-            for (size_t k = c0; k < c1; ++k) {
-                dg_new[k] = g[k] - g_prev[k];
-                big = facet_max(big, fabs(g[k] - x[k]));
-            }
-        else
-            for (size_t k = c0; k < c1; ++k)
-                big = facet_max(big, fabs(g[k] - x[k]));
-    } else if (c->have) { /* in place: each entry is read, then written */
+    if (!c->have) {
+        for (size_t k = c0; k < c1; ++k)
+            big = facet_max(big, fabs(g[k] - x[k]));
+    } else if (at == ANDERSON_UNSAMPLED) {
+        for (size_t k = c0; k < c1; ++k) {
+            dg_new[k] = g[k] - g_prev[k];
+            big = facet_max(big, fabs(g[k] - x[k]));
+        }
+    } else { /* in place: each entry is read, then written */
         for (size_t k = c0, i = at; k < c1; ++k, ++i) {
             const double f = g[k] - x[k];
             df_new[i] = f - f_prev[i];
             dg_new[k] = g[k] - g_prev[k];
             big = facet_max(big, fabs(f));
         }
-    } else {
-        for (size_t k = c0; k < c1; ++k)
-            big = facet_max(big, fabs(g[k] - x[k]));
     }
     *largest = big;
     if (m > 0 && at != ANDERSON_UNSAMPLED) {
@@ -869,7 +864,7 @@ static int anderson_step(facet_planarizer *s, anderson_state *a, const double *x
     double *f_to = s->aa_df + (size_t)to * len, *g_to = s->aa_dg + (size_t)to * n;
     const double *df_all = s->aa_df;
     const anderson_pass ctx = {g, x, df_new, dg_new, f_prev, g_prev, f_to, df_all, n, len, m, have};
-    const int stride = a->stride;
+    const int stride = anderson_stride(s->nv);
     const size_t room = anderson_block_room(stride);
 #pragma omp parallel for schedule(static) num_threads(a->nthreads)
     for (size_t blk = 0; blk < blocks; ++blk) {
@@ -1127,7 +1122,6 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
     memset(&aa, 0, sizeof aa);
     aa.m = options->anderson;
     aa.nthreads = nthreads;
-    aa.stride = anderson_stride(nv);
     int accelerated = 0;
     int32_t accepted = 0, rejected = 0;
     double energy_mu = 0.0, energy_con = 0.0, last_mu = 0.0, last_con = 0.0;

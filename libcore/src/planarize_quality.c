@@ -420,32 +420,36 @@ static int32_t compare_limit(const facet_planarize_options *options)
     return options->max_iter;
 }
 
-/* Whether AUTO compares: where it picks L/G, for a cold solve to the
- * tolerance whose energy asks for closeness alone, with the staircase
- * schedule (L/L finishes only with it: without, it stalls above the
- * tolerance and the comparison would run to max_iter for nothing). */
-static int compares(const facet_planarizer *s, const facet_planarize_options *options)
+/* A cold AUTO solve to the tolerance (not a fixed iteration count or a warm
+ * start) with the staircase schedule (L/L finishes only with it), whose
+ * energy asks for closeness alone (no shape term, Laplacian, normal
+ * Laplacian or boundary fairness): the solves AUTO may follow with another
+ * (its comparison, its fallback). */
+static int auto_closeness(const facet_planarizer *s, const facet_planarize_options *options)
 {
     return s && options && options->method == FACET_METHOD_AUTO && options->hold_tol > 0.0 &&
-           facet_planarizer_choose_method(s, options) == FACET_METHOD_LOCAL_GLOBAL &&
            options->iterations <= 0 && !(options->warm && s->has_previous) &&
            options->shape == FACET_SHAPE_NONE && options->laplacian == 0.0 &&
            options->normal_laplacian == 0.0 && options->boundary_fairness == 0.0;
 }
 
+/* Whether AUTO compares: where it picks L/G, for such a solve (without the
+ * staircase L/L stalls above the tolerance, and the comparison would run to
+ * max_iter for nothing). */
+static int compares(const facet_planarizer *s, const facet_planarize_options *options)
+{
+    return auto_closeness(s, options) && facet_planarizer_choose_method(s, options) == FACET_METHOD_LOCAL_GLOBAL;
+}
+
 /* Whether AUTO may fall back on L/G (facet.h, FACET_STAGE_FALLBACK): where
  * it picks L/L on a mesh L/G can still afford (FACET_AUTO_FALLBACK_MAX_CORNERS:
- * up to 160,000 quads), for a checked cold solve whose energy
- * asks for closeness alone (with a shape term or a regularizer L/G takes
- * minutes there: docs/solver-notes.md, "Method auto: L/L from 10,000
- * quads"). */
+ * up to 160,000 quads), for such a solve that is checked (with a shape term
+ * or a regularizer L/G takes minutes there: docs/solver-notes.md, "Method
+ * auto: L/L from 10,000 quads"). */
 static int falls_back(const facet_planarizer *s, const facet_planarize_options *options)
 {
-    return s && options && options->method == FACET_METHOD_AUTO && options->hold_tol > 0.0 &&
-           facet_planarizer_choose_method(s, options) == FACET_METHOD_LOCAL_LOCAL &&
-           s->face_start[s->nf] <= FACET_AUTO_FALLBACK_MAX_CORNERS && checks_result(options) &&
-           !(options->warm && s->has_previous) && options->shape == FACET_SHAPE_NONE &&
-           options->laplacian == 0.0 && options->normal_laplacian == 0.0 && options->boundary_fairness == 0.0;
+    return auto_closeness(s, options) && facet_planarizer_choose_method(s, options) == FACET_METHOD_LOCAL_LOCAL &&
+           s->face_start[s->nf] <= FACET_AUTO_FALLBACK_MAX_CORNERS && checks_result(options);
 }
 
 /* What the comparison measures of a result. */
@@ -598,13 +602,6 @@ static int32_t finer_bound(const facet_planarize_options *options)
     return slides(options) ? 0 : compare_limit(options);
 }
 
-/* One solve from the input (the handle's: the last solve kept it) with the
- * options o, whose result is judged against L/G's (xyz_out) as `other`
- * (closer). `later`: the limits of the solves that may follow, for the
- * progress bound. On TAKE xyz_out and the result's figures are the new
- * result's and the handle keeps it; else L/G's result stands and the handle
- * keeps that. *v is KEEP_LG also when the solve failed or stopped short of
- * the tolerance. Only cancelling returns an error. */
 /* One more solve, cold, from the input with o_in's options and the time
  * budget left (`remaining`, 0 for none), its progress counted on from
  * result->iterations within `bound` and named `stage`
@@ -643,6 +640,13 @@ static void adopt(facet_planarize_result *result, const facet_planarize_result *
     result->narrow_corners = narrow;
 }
 
+/* One solve from the input (the handle's: the last solve kept it) with the
+ * options o, whose result is judged against L/G's (xyz_out) as `other`
+ * (closer). `later`: the limits of the solves that may follow, for the
+ * progress bound. On TAKE xyz_out and the result's figures are the new
+ * result's and the handle keeps it; else L/G's result stands and the handle
+ * keeps that. *v is KEEP_LG also when the solve failed or stopped short of
+ * the tolerance. Only cancelling returns an error. */
 static facet_status solve_again(facet_planarizer *s, const facet_planarize_options *options,
                                 const facet_planarize_options *o_in, int32_t stage, int other,
                                 int64_t later, double *xyz_out, facet_planarize_result *result,

@@ -32,26 +32,20 @@ static int record(void *user, int32_t iteration, int32_t max_iter, double planar
     return 0;
 }
 
-/* The smallest corner angle of the mesh at xyz, degrees. */
+/* The smallest corner angle of the mesh at xyz, degrees (facet_face_shape,
+ * as the quality check measures it). */
 static double smallest_angle(const test_mesh *g, const double *xyz)
 {
-    double smallest = 180.0;
-    for (int32_t f = 0; f < g->mesh.n_faces; ++f) {
-        const int32_t b = g->mesh.face_start[f], e = g->mesh.face_start[f + 1];
-        for (int32_t k = b; k < e; ++k) {
-            const int32_t prev = g->mesh.face_vertices[k > b ? k - 1 : e - 1], at = g->mesh.face_vertices[k],
-                          next = g->mesh.face_vertices[k + 1 < e ? k + 1 : b];
-            double u[3], w[3], uu = 0.0, ww = 0.0, uw = 0.0;
-            for (int c = 0; c < 3; ++c) {
-                u[c] = xyz[3 * prev + c] - xyz[3 * at + c], w[c] = xyz[3 * next + c] - xyz[3 * at + c];
-                uu += u[c] * u[c], ww += w[c] * w[c], uw += u[c] * w[c];
-            }
-            const double cosine = uu > 0.0 && ww > 0.0 ? uw / sqrt(uu * ww) : 1.0;
-            const double angle = acos(cosine > 1.0 ? 1.0 : cosine < -1.0 ? -1.0 : cosine) * 180.0 / 3.14159265358979323846;
-            smallest = angle < smallest ? angle : smallest;
-        }
-    }
-    return smallest;
+    facet_mesh at = g->mesh;
+    at.xyz = xyz;
+    double *angle = malloc(sizeof(double) * (size_t)g->mesh.n_faces);
+    facet_error err;
+    CHECK_STATUS(facet_face_shape(&at, NULL, 1, angle, NULL, NULL, &err), FACET_OK);
+    double least = 2.0 * M_PI;
+    for (int32_t f = 0; f < g->mesh.n_faces; ++f)
+        least = angle[f] < least ? angle[f] : least;
+    free(angle);
+    return least * 180.0 / M_PI;
 }
 
 /* AUTO on the saddle: L/L's own result (explicit method) is not planar or
