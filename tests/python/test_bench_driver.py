@@ -73,3 +73,32 @@ def test_bad_thread_list_is_an_input_error(tmp_path):
                        capture_output=True, text=True, timeout=60)
     assert p.returncode == 2
     assert "--threads" in p.stderr
+
+
+def test_each_configuration_has_its_own_peak(tmp_path):
+    """Issue 3's memory target is the default solve's: on Level 6 (12,288 quads) that
+    solve is L/L, and its peak must not include the factor of the L/G x30 run before
+    it (which a process-wide high-water mark, cumulative over the configurations, did)."""
+    p = subprocess.run(
+        [sys.executable, str(DRIVER), "--quick", "--no-public", "--no-plot", "--no-blas-check",
+         "--only", "Level 6", "--max-faces", "20000", "--lg-max-faces", "20000",
+         "--tol-max-faces", "20000", "--threads", "1", "--runs", "1", "--configs", "ll100,lg30,tol",
+         "--out", str(tmp_path)],
+        capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    doc = json.loads((tmp_path / "bench.json").read_text())
+    (mesh,) = doc["meshes"]
+    assert mesh["faces"] == 12288
+    by_config = {r["config"]: r for r in mesh["by_threads"][0]["results"]}
+    assert [r["status"] for r in by_config.values()] == ["ok", "ok", "ok"]
+    ll, lg, tol = (by_config[c]["peak_bytes_per_face"] for c in ("ll100", "lg30", "tol"))
+    # L/G holds CHOLMOD's factor of the offsets' system (about 400 B/face here) and
+    # more vectors; the default solve (L/L at this size) none of it
+    assert lg > ll + 200, (ll, lg, tol)
+    assert tol < lg - 200, (ll, lg, tol)
+
+    summary = subprocess.run([sys.executable, str(DRIVER.parent / "summarize.py"), str(tmp_path)],
+                             capture_output=True, text=True, timeout=60)
+    assert summary.returncode == 0, summary.stderr
+    row = next(line for line in summary.stdout.splitlines() if "default solve to tolerance" in line)
+    assert f"Level 6: {tol:.0f}" in row

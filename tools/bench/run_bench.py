@@ -2,8 +2,8 @@
 """Planarization benchmark driver: the paper's families and the public meshes.
 
 For every mesh (see ``families.py``) and every thread count, a fresh Python
-subprocess loads the mesh, creates one ``facet._core.Planarizer`` and runs the
-solve configurations (:data:`CONFIGS`): L/L x100, L/G x30 and the default
+subprocess loads the mesh and runs the solve configurations (:data:`CONFIGS`),
+each on a ``facet._core.Planarizer`` of its own: L/L x100, L/G x30 and the default
 to-tolerance solve, each with and without Anderson acceleration when the
 installed core knows the ``anderson`` keyword. The subprocess runs with
 ``OPENBLAS_NUM_THREADS=1``: the solves call no BLAS (CHOLMOD's factorization
@@ -17,10 +17,12 @@ Recorded per (mesh, threads, configuration): the solve seconds measured in C
 (first "cold" run, which includes the symbolic analysis, then the median of
 the timed runs), the process CPU seconds of the same runs, ns per face per
 iteration, iterations, stop reason, final planarity_max_rel, the peak
-resident-memory growth per face since the mesh was loaded (ru_maxrss, a
-high-water mark: cumulative over the configurations run so far in that
-process, in the order of CONFIGS), displacement and the smallest face angle
-before and after.
+resident-memory growth per face of the configuration alone (each has its own
+``Planarizer``, created after the previous one is freed and the heap trimmed;
+the kernel's high-water mark VmHWM is reset before it, and the mesh and the
+output arrays are resident before it: the figure is the planarizer's
+topology and its solves, every transient included), displacement and the
+smallest face angle before and after.
 
 Outputs: ``<out>/bench.json`` (every float in full precision), ``<out>/bench.png``
 (log-log time against faces) and a table beside the paper's Table 1 on stdout.
@@ -33,6 +35,8 @@ average before and after so a noisy run can be recognised.
 """
 
 import argparse
+import ctypes
+import gc
 import json
 import math
 import os
@@ -100,6 +104,16 @@ def reset_peak_rss():
         return False
 
 
+def trim_heap():
+    """Give freed heap back to the kernel (glibc's malloc_trim), so that the next
+    measurement's growth is not hidden by reused pages; a no-op elsewhere."""
+    gc.collect()
+    try:
+        ctypes.CDLL(None).malloc_trim(0)
+    except (OSError, AttributeError):
+        pass
+
+
 def peak_rss_bytes():
     """Peak resident set size: VmHWM (since the last reset), else ru_maxrss."""
     try:
@@ -157,15 +171,22 @@ def worker(args):
     spec = json.loads(args.spec)
     n_faces = fs.size - 1
     angle_in = data["angle_in"]  # computed by the parent: no big temporaries here
-    out = np.empty_like(v)
-    scratch = np.empty_like(v)  # output of the timed runs
-    peak_reset = reset_peak_rss()
-    rss0 = current_rss_bytes()
-    t0 = time.perf_counter()
-    planarizer = _core.Planarizer(fs, fv, v.shape[0])
-    create_seconds = time.perf_counter() - t0
+    out = np.zeros_like(v)  # written now: the caller's arrays are not the planarizer's memory
+    scratch = np.zeros_like(v)  # output of the timed runs
+    planarizer = None
+    create_seconds = None
     results = []
     for config in spec["configs"]:
+        # each configuration on a planarizer of its own, so that its peak is its own
+        # (an earlier L/G's factor would otherwise count in a later L/L's figure)
+        del planarizer
+        trim_heap()
+        peak_reset = reset_peak_rss()
+        rss0 = current_rss_bytes()
+        t0 = time.perf_counter()
+        planarizer = _core.Planarizer(fs, fv, v.shape[0])
+        if create_seconds is None:
+            create_seconds = time.perf_counter() - t0
         kwargs = dict(config["kwargs"], threads=args.threads)
         entry = {"config": config["name"], "kind": config["kind"], "kwargs": kwargs}
         runs = config["runs"]

@@ -86,20 +86,25 @@ def summarize(folder):
         else:
             rows.append((f"1M quads to tolerance < 5 s, 2 threads ({m['name']})",
                          f"not reached: {r.get('note')}, planarity {r.get('planarity_max_rel', float('nan')):.1e}"))
-    # peak memory
-    mem = []
-    for m in doc["meshes"]:
-        if m["faces"] < 10_000:
-            continue
-        peaks = [r.get("peak_bytes_per_face") for rep in m["by_threads"]
-                 for r in rep.get("results", []) if r.get("peak_bytes_per_face") is not None]
-        if peaks:
-            mem.append((max(peaks), m["name"]))
-    if mem:
-        worst = max(mem)
-        rows.append(("peak memory < 1 KB/face (meshes >= 10k faces, RSS growth)",
-                     f"largest {worst[0]:.0f} B/face ({worst[1]}); "
-                     + ", ".join(f"{n}: {b:.0f}" for b, n in sorted(mem, key=lambda t: t[1]))))
+    # peak memory: issue 3's target is the default solve to tolerance's; since
+    # run_bench measures each configuration on its own planarizer, that is the
+    # "tol" rows' figure (the L/G x30 rows give the factor's cost for comparison)
+    for config, label in (("tol", "default solve to tolerance"), ("lg30", "L/G x30 asked for")):
+        mem = []
+        for m in doc["meshes"]:
+            if m["faces"] < 3_000:  # below, the process's fixed costs dominate a per-face figure
+                continue
+            peaks = [r["peak_bytes_per_face"] for rep in m["by_threads"]
+                     for r in rep.get("results", []) if r["config"] == config
+                     and r.get("peak_bytes_per_face") is not None]
+            if peaks:
+                mem.append((max(peaks), m["faces"], m["name"]))
+        if mem:
+            over = [n for b, _, n in mem if b >= 1024]
+            rows.append((f"peak memory < 1 KB/face, {label} (meshes >= 3,000 faces, RSS growth)",
+                         f"{len(mem) - len(over)} of {len(mem)} under; largest {max(mem)[0]:.0f} B/face "
+                         f"({max(mem)[2]}); "
+                         + ", ".join(f"{n}: {b:.0f}" for b, _, n in sorted(mem, key=lambda t: t[1]))))
     # quality
     q = [(m, r) for m, r in tol if r.get("status") == "ok"]
     if q:
