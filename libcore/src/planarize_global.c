@@ -232,6 +232,13 @@ static facet_status build_coupling(facet_planarizer *s, facet_error *error)
     return FACET_OK;
 }
 
+/* A factorization that costs more than this many conjugate gradient steps
+ * (the analysis's flops against two triangular solves and a product) is
+ * costly: global_step keeps its factor longer. With the boundary's fairness
+ * alone a factorization costs 5-8 steps, with a shape term or the Laplacian
+ * 17-100 (Level 4 to the 1,008-hex torus). */
+#define FACTOR_COSTLY 12.0
+
 /* ---- the offsets' order ----------------------------------------------------- */
 
 /* Fills face_col with 3 nv + the rank of each face in a nested dissection
@@ -694,7 +701,11 @@ facet_status facet_pl_global_setup(facet_planarizer *s, facet_error *error)
     const double *px = s->pmatrix->x;
     for (size_t k = 0; k < at; ++k)
         s->pmap[k] = (int32_t)px[k];
-    return analyze_natural(s, s->pmatrix, key, error);
+    status = analyze_natural(s, s->pmatrix, key, error);
+    /* a conjugate gradient step: two triangular solves and the product */
+    const double step_flops = 4.0 * s->cm.lnz + 4.0 * (double)at;
+    s->factor_costly = status == FACET_OK && s->cm.fl > FACTOR_COSTLY * step_flops;
+    return status;
 }
 
 /* y = A^-1 b by the factorization, in the unknowns' own order (y and b
@@ -717,9 +728,10 @@ static int factor_solve(facet_planarizer *s, const double *b, double *y)
 /* ---- one global step ---------------------------------------------------- */
 
 enum {
-    FACTOR_AGE = 8, /* steps a factorization serves as a preconditioner */
-    PCG_MAX = 20,   /* conjugate gradient steps before refactorizing instead */
-    PCG_SLOW = 4    /* more steps than this: refactorize at the next step */
+    FACTOR_AGE = 8,     /* steps a factorization serves as a preconditioner */
+    PCG_MAX = 20,       /* conjugate gradient steps before refactorizing instead */
+    PCG_SLOW = 4,       /* more steps than this: refactorize at the next step */
+    PCG_SLOW_COSTLY = 8 /* the same for a costly factorization, whatever its age */
 };
 
 /* Residual of the increment, relative. 1e-4 instead of 1e-6: 2-3 steps
@@ -1023,13 +1035,23 @@ static facet_status stored_step(facet_planarizer *s, double mu, int nthreads, fa
      * preconditioner: conjugate gradients with it replace a refactorization
      * (each costs a sparse product and two triangular solves, against the
      * factorization's fill), and the factor is renewed when mu changed, when it
-     * is FACTOR_AGE steps old, or when the iteration needed many steps. */
+     * is FACTOR_AGE steps old, or when the iteration needed many steps. A shape
+     * term couples every vertex of a face, and its factor is 6-16 times the
+     * uncoupled offsets' system's (Level 5 with ASAP: 0.82M entries, a
+     * factorization 58 ms, a conjugate gradient step 1.4 ms): such a costly
+     * factor (factor_costly) serves whatever its age, until a solve needs more
+     * than PCG_SLOW_COSTLY steps. On the 2,006-hex torus with surface data:
+     * 16 factorizations in 243 steps instead of 37 (docs/solver-notes.md,
+     * "L/G with coupled terms: a costly factor serves longer"). */
     const double *y = NULL;
-    if (s->factor_ready && s->factor_mu == mu && s->factor_age < FACTOR_AGE) {
+    if (s->factor_ready && s->factor_mu == mu && (s->factor_costly || s->factor_age < FACTOR_AGE)) {
         const int steps = pcg_solve(s);
         if (steps > 0) {
-            s->factor_age += steps > PCG_SLOW ? FACTOR_AGE : 1;
             y = s->pcg_x->x;
+            if (s->factor_costly)
+                s->factor_ready = steps <= PCG_SLOW_COSTLY; /* else refactorize at the next step */
+            else
+                s->factor_age += steps > PCG_SLOW ? FACTOR_AGE : 1;
         }
     }
     if (!y) {
@@ -1047,6 +1069,7 @@ static facet_status stored_step(facet_planarizer *s, double mu, int nthreads, fa
                                  "the sparse factorization failed (matrix not positive definite)");
         }
         s->factor_ready = 1, s->factor_mu = mu, s->factor_age = 0;
+        s->factorizations++;
         if (!factor_solve(s, s->rhs->x, s->pcg_x->x))
             return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse solve failed");
         y = s->pcg_x->x;
@@ -1191,6 +1214,7 @@ static facet_status schur_step(facet_planarizer *s, double mu, int nthreads, fac
                                  "the sparse factorization failed (matrix not positive definite)");
         }
         s->factor_ready = 1, s->factor_mu = mu, s->factor_age = 0;
+        s->factorizations++;
         if (!schur_precondition(s))
             return facet_pl_fail(s, error, FACET_ERROR_NUMERICAL, "the sparse solve failed");
         dd = s->schur_x->x;

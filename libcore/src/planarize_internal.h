@@ -154,6 +154,11 @@ struct facet_planarizer {
     /* the factorization as a preconditioner (planarize_global.c, pcg_solve
      * and schur_pcg) */
     int factor_ready, factor_age;
+    /* the stored system's factorization costs more than FACTOR_COSTLY
+     * conjugate gradient steps (flops from the analysis): its factor serves
+     * for as long as the steps stay few, whatever its age */
+    int factor_costly;
+    int factorizations; /* numeric factorizations of the handle's life (tests) */
     double factor_mu;
     /* With couplings (matrix, rhs and pcg_p .. pcg_x of 3 nv + nf; NULL
      * without): pcg_p also holds [q; d] of the iterate (the step solves for
