@@ -373,8 +373,7 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
     if (result)
         *result = best;
     if (status == FACET_ERROR_CANCELLED) {
-        snprintf(s->message, sizeof s->message, "cancelled");
-        return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
+        return facet_pl_fail(s, error, FACET_ERROR_CANCELLED, "cancelled");
     }
     if (best_count > 0)
         snprintf(s->message, sizeof s->message,
@@ -738,8 +737,7 @@ static facet_status compare_ll(facet_planarizer *s, const facet_planarize_option
     }
     result->seconds += facet_now() - t0;
     if (status == FACET_ERROR_CANCELLED) {
-        snprintf(s->message, sizeof s->message, "cancelled");
-        return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
+        return facet_pl_fail(s, error, FACET_ERROR_CANCELLED, "cancelled");
     }
     return FACET_OK;
 }
@@ -818,8 +816,7 @@ static facet_status fallback_lg(facet_planarizer *s, const facet_planarize_optio
     free(input), free(out);
     result->seconds += facet_now() - t0;
     if (lg_status == FACET_ERROR_CANCELLED) {
-        snprintf(s->message, sizeof s->message, "cancelled");
-        return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
+        return facet_pl_fail(s, error, FACET_ERROR_CANCELLED, "cancelled");
     }
     return status;
 }
