@@ -257,6 +257,18 @@ facet_status facet_planarizer_solve(facet_planarizer *s, const double *xyz_in,
     return status;
 }
 
+/* xyz (solved from `input`, when not NULL) becomes the handle's last result,
+ * which warm starts and live updates start from: a later solve of this call
+ * overwrote it. */
+static void keep_as_last(facet_planarizer *s, const double *xyz, const double *input)
+{
+    const size_t v3 = 3 * (size_t)s->nv;
+    memcpy(s->previous, xyz, sizeof(double) * v3);
+    if (input)
+        memcpy(s->previous_control, input, sizeof(double) * v3);
+    s->has_previous = 1;
+}
+
 /* The solve with its quality re-solves; `after` more iterations may follow
  * it (method AUTO's comparison), which every progress bound includes. */
 static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
@@ -357,12 +369,8 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
             best = r, best_count = 0, best_is_last = 1;
         }
     }
-    if (!best_is_last) {
-        /* the handle's last result (warm starts, live updates) is the one returned */
-        memcpy(s->previous, xyz_out, sizeof(double) * v3);
-        memcpy(s->previous_control, input, sizeof(double) * v3);
-        s->has_previous = 1;
-    }
+    if (!best_is_last) /* the handle's last result is the one returned */
+        keep_as_last(s, xyz_out, input);
     free(input), free(out);
     best.iterations = total;
     best.seconds = facet_now() - t0;
@@ -698,12 +706,8 @@ static facet_status solve_again(facet_planarizer *s, const facet_planarize_optio
         facet_error_clear(error); /* a failed solve: L/G's result stands */
         status = FACET_OK;
     }
-    if (*v != TAKE && s->previous) { /* the handle's last result (warm starts, live updates) is L/G's */
-        memcpy(s->previous, xyz_out, sizeof(double) * v3);
-        if (input)
-            memcpy(s->previous_control, input, sizeof(double) * v3);
-        s->has_previous = 1;
-    }
+    if (*v != TAKE && s->previous) /* the handle's last result is L/G's */
+        keep_as_last(s, xyz_out, input);
     free(input), free(out);
     return status;
 }
@@ -806,9 +810,7 @@ static facet_status fallback_lg(facet_planarizer *s, const facet_planarize_optio
         status = FACET_OK;
     } else {
         /* L/L's result stands: the handle's last result, its message and status */
-        memcpy(s->previous, xyz_out, sizeof(double) * v3);
-        memcpy(s->previous_control, input, sizeof(double) * v3);
-        s->has_previous = 1;
+        keep_as_last(s, xyz_out, input);
         memcpy(s->message, ll_message, sizeof s->message);
         if (error)
             *error = ll_error;
