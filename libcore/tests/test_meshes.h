@@ -25,9 +25,6 @@ static inline void test_mesh_view(test_mesh *t, int32_t nv, int32_t nf)
     t->mesh.face_vertices = t->face_vertices;
 }
 
-/* An nu x nv quad grid over [0, nu] x [0, nv] (unit cells) with heights
- * z = amplitude * (bumps) plus a deterministic jitter, scaled by `scale` and
- * shifted by `offset` (georeferenced coordinates). */
 /* The faces of an nu x nv grid of quads over vertices numbered row by row. */
 static inline void grid_quads(test_mesh *t, int nu, int nv)
 {
@@ -43,6 +40,9 @@ static inline void grid_quads(test_mesh *t, int nu, int nv)
         }
 }
 
+/* An nu x nv quad grid over [0, nu] x [0, nv] (unit cells) with heights
+ * z = amplitude * (bumps) plus a deterministic jitter, scaled by `scale` and
+ * shifted by `offset` (georeferenced coordinates). */
 static inline test_mesh test_grid(int nu, int nv, double amplitude, double scale, double offset)
 {
     test_mesh t;
