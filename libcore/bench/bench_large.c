@@ -74,6 +74,8 @@ static int set_option(facet_planarize_options *o, const char *text)
         o->max_iter = (int32_t)value;
     else if (!strcmp(name, "iterations"))
         o->iterations = (int32_t)value;
+    else if (!strcmp(name, "quality_angle"))
+        o->quality_angle = value;
     else
         return 0;
     return 1;
