@@ -314,10 +314,9 @@ facet_status facet_planarizer_create(const facet_mesh *mesh, facet_planarizer **
     s->normal = malloc(3 * fd), s->offset = malloc(fd);
     s->face_dev = malloc(fd), s->face_edge = malloc(fd), s->face_sq = malloc(fd);
     s->face_residual = malloc(fd);
-    s->control_centroid = malloc(3 * fd);
     if (!s->face_start || !s->face_vertices || !s->vertex_start || !s->vertex_faces || !s->fixed ||
         !s->p || !s->q || !s->vertex_normal || !s->vertex_residual || !s->normal || !s->offset ||
-        !s->face_dev || !s->face_edge || !s->face_sq || !s->face_residual || !s->control_centroid) {
+        !s->face_dev || !s->face_edge || !s->face_sq || !s->face_residual) {
         facet_planarizer_free(&s);
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
     }
@@ -579,8 +578,14 @@ size_t facet_pl_anderson_len(int32_t nv)
 static int ensure_workspace(facet_planarizer *s)
 {
     const facet_planarize_options *o = &s->o;
+    /* the shape term's rotations and the control faces' centroids it is
+     * anchored at: only the shape term reads them (24 bytes per face that
+     * every solve wrote before) */
     if (o->shape != FACET_SHAPE_NONE && !s->shape &&
         !(s->shape = malloc(sizeof(double) * 9 * (size_t)s->nf)))
+        return 0;
+    if (o->shape != FACET_SHAPE_NONE && !s->control_centroid &&
+        !(s->control_centroid = malloc(sizeof(double) * 3 * (size_t)s->nf)))
         return 0;
     if (o->surface_weight > 0.0 && !s->surface_point) {
         s->surface_point = malloc(sizeof(double) * 3 * (size_t)s->nv);

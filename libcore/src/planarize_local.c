@@ -358,7 +358,7 @@ void facet_pl_prepare_solve(facet_planarizer *s)
             for (int a = 0; a < 3; ++a)
                 centroid[a] += x[a];
         }
-        for (int a = 0; a < 3; ++a)
+        for (int a = 0; s->control_centroid && a < 3; ++a) /* (the shape term's) */
             s->control_centroid[3 * (size_t)f + a] = centroid[a] / (double)(e - b);
         for (int32_t k = b; k < e; ++k)
             for (int a = 0; a < 3; ++a)

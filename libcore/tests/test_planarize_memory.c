@@ -206,9 +206,40 @@ static void test_sketch_length(void)
     CHECK(facet_pl_anderson_len(1000000) * 7 <= 3000000);
 }
 
+/* The control faces' centroids are the shape term's alone: a solve without
+ * it leaves them unallocated, and a handle that first solved without it
+ * then with it gives the bits of a fresh handle solved with it (they are
+ * computed when first asked for). */
+static void test_shape_arrays_on_demand(void)
+{
+    test_mesh t = test_grid(12, 9, 0.6, 1.0, 0.0);
+    const size_t n = 3 * (size_t)t.mesh.n_vertices;
+    double *reused = malloc(sizeof(double) * n), *fresh = malloc(sizeof(double) * n);
+    facet_planarize_options plain = options(FACET_METHOD_LOCAL_GLOBAL, 5, 1), shaped = plain;
+    shaped.shape = FACET_SHAPE_ASAP;
+    shaped.shape_weight = 0.1;
+    facet_planarize_result r;
+    facet_error e;
+    facet_planarizer *s = NULL, *other = NULL;
+    CHECK(facet_planarizer_create(&t.mesh, &s, &e) == FACET_OK);
+    CHECK(facet_planarizer_solve(s, t.xyz, &plain, reused, &r, &e) >= 0);
+    CHECK(s->control_centroid == NULL);
+    CHECK(facet_planarizer_solve(s, t.xyz, &shaped, reused, &r, &e) >= 0);
+    CHECK(s->control_centroid != NULL);
+    CHECK(facet_planarizer_create(&t.mesh, &other, &e) == FACET_OK);
+    CHECK(facet_planarizer_solve(other, t.xyz, &shaped, fresh, &r, &e) >= 0);
+    CHECK(r.iterations > 0);
+    CHECK(memcmp(reused, fresh, sizeof(double) * n) == 0);
+    facet_planarizer_free(&s);
+    facet_planarizer_free(&other);
+    free(reused), free(fresh);
+    test_mesh_free(&t);
+}
+
 int main(void)
 {
     test_sketch_length();
+    test_shape_arrays_on_demand();
     test_previous_kept(FACET_METHOD_LOCAL_LOCAL, 5, SMALL);
     test_previous_kept(FACET_METHOD_LOCAL_GLOBAL, 5, SMALL);
     test_previous_kept(FACET_METHOD_LOCAL_GLOBAL, 1, SMALL);
