@@ -91,6 +91,17 @@ int32_t facet_pl_new_narrow(const facet_planarizer *s, double angle_deg, int nth
     return count;
 }
 
+/* The handle's message for a result that keeps `count` new corners under
+ * `limit` degrees after `after` (what was tried). */
+static void narrow_message(facet_planarizer *s, int32_t count, double limit, const char *after,
+                           double smallest)
+{
+    snprintf(s->message, sizeof s->message,
+             "%d corners narrower than %g degrees that the input did not have remain after "
+             "%s (the smallest %.3g degrees)",
+             (int)count, limit, after, smallest);
+}
+
 /* The re-solves, in order, each from the input. The first two follow the
  * default's path without its jumps (no Anderson) and are tried only when
  * the data term holds vertices at their control points: measured, they
@@ -383,11 +394,11 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
     if (status == FACET_ERROR_CANCELLED) {
         return facet_pl_fail(s, error, FACET_ERROR_CANCELLED, "cancelled");
     }
-    if (best_count > 0)
-        snprintf(s->message, sizeof s->message,
-                 "%d corners narrower than %g degrees that the input did not have remain after "
-                 "%d re-solves (the smallest %.3g degrees)",
-                 (int)best_count, options->quality_angle, (int)resolves, best_angle);
+    if (best_count > 0) {
+        char tried[32];
+        snprintf(tried, sizeof tried, "%d re-solves", (int)resolves);
+        narrow_message(s, best_count, options->quality_angle, tried, best_angle);
+    }
     return FACET_OK;
 }
 
@@ -802,10 +813,8 @@ static facet_status fallback_lg(facet_planarizer *s, const facet_planarize_optio
         result->quality = lg_narrow ? FACET_QUALITY_NARROW : FACET_QUALITY_RECOVERED;
         s->message[0] = '\0';
         if (lg_narrow)
-            snprintf(s->message, sizeof s->message,
-                     "%d corners narrower than %g degrees that the input did not have remain after "
-                     "local/local and local/global (the smallest %.3g degrees)",
-                     (int)lg_narrow, options->quality_angle, narrowest);
+            narrow_message(s, lg_narrow, options->quality_angle, "local/local and local/global",
+                           narrowest);
         facet_error_clear(error);
         status = FACET_OK;
     } else {
