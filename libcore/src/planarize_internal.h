@@ -77,7 +77,7 @@ struct facet_planarizer {
     double *face_residual;                /* per face: constraint residual (circle, parallelogram) */
     double *vertex_residual;              /* per vertex: sliding residual */
     double *normal_fit;                   /* per face: best-fit normal (normal-Laplacian input) */
-    double *control_centroid;             /* per face, of p (shape term) */
+    double *control_centroid;             /* per face, of p (the shape term only: NULL until asked) */
     double *shape;                        /* per face: s R, 9 values (shape term) */
     double *circle_target;                /* per corner, 3 values (circular term) */
     /* angle floor: per corner the cosine of its floor and of its angle now; per
