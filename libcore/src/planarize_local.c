@@ -358,8 +358,9 @@ void facet_pl_prepare_solve(facet_planarizer *s)
             for (int a = 0; a < 3; ++a)
                 centroid[a] += x[a];
         }
-        for (int a = 0; s->control_centroid && a < 3; ++a) /* (the shape term's) */
-            s->control_centroid[3 * (size_t)f + a] = centroid[a] / (double)(e - b);
+        if (s->control_centroid) /* (the shape term's) */
+            for (int a = 0; a < 3; ++a)
+                s->control_centroid[3 * (size_t)f + a] = centroid[a] / (double)(e - b);
         for (int32_t k = b; k < e; ++k)
             for (int a = 0; a < 3; ++a)
                 s->vertex_normal[3 * (size_t)s->face_vertices[k] + a] += area[a];

@@ -391,9 +391,8 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
     best.quality = best_count ? FACET_QUALITY_NARROW : FACET_QUALITY_RECOVERED;
     if (result)
         *result = best;
-    if (status == FACET_ERROR_CANCELLED) {
+    if (status == FACET_ERROR_CANCELLED)
         return facet_pl_fail(s, error, FACET_ERROR_CANCELLED, "cancelled");
-    }
     if (best_count > 0) {
         char tried[32];
         snprintf(tried, sizeof tried, "%d re-solves", (int)resolves);
@@ -751,9 +750,8 @@ static facet_status compare_ll(facet_planarizer *s, const facet_planarize_option
         result->finer_kept = v == TAKE;
     }
     result->seconds += facet_now() - t0;
-    if (status == FACET_ERROR_CANCELLED) {
+    if (status == FACET_ERROR_CANCELLED)
         return facet_pl_fail(s, error, FACET_ERROR_CANCELLED, "cancelled");
-    }
     return FACET_OK;
 }
 
@@ -826,8 +824,7 @@ static facet_status fallback_lg(facet_planarizer *s, const facet_planarize_optio
     }
     free(input), free(out);
     result->seconds += facet_now() - t0;
-    if (lg_status == FACET_ERROR_CANCELLED) {
+    if (lg_status == FACET_ERROR_CANCELLED)
         return facet_pl_fail(s, error, FACET_ERROR_CANCELLED, "cancelled");
-    }
     return status;
 }
