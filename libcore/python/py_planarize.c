@@ -123,6 +123,32 @@ static const char *stop_reason_name(facet_stop_reason reason)
     return "none";
 }
 
+/* The solve's figures, as planarizer_solve returns them. */
+static PyObject *result_dict(const facet_planarize_result *r)
+{
+    static const char *const quality_names[] = {"not_checked", "ok", "recovered", "narrow"};
+    /* compare_*: (L/L, L/G), facet_method's order */
+    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:i,s:i,s:(dd),s:(dd),s:(dd),s:(dd),s:i,s:O,s:i}",
+                         "iterations",
+                         (int)r->iterations, "stop_reason", stop_reason_name(r->stop_reason), "mu",
+                         r->mu, "planarity_max_abs", r->planarity_max_abs, "planarity_max_rel",
+                         r->planarity_max_rel, "constraint_max_rel", r->constraint_max_rel,
+                         "seconds", r->seconds, "anderson_accepted", (int)r->anderson_accepted,
+                         "anderson_rejected", (int)r->anderson_rejected, "converged",
+                         (r->stop_reason == FACET_STOP_TOLERANCE) ? Py_True : Py_False, "method",
+                         r->method == FACET_METHOD_LOCAL_LOCAL ? "ll" : "lg", "quality",
+                         quality_names[r->quality >= 0 && r->quality <= 3 ? r->quality : 0],
+                         "narrow_corners", (int)r->narrow_corners, "quality_resolves",
+                         (int)r->quality_resolves, "first_iterations", (int)r->first_iterations,
+                         "compare_iterations", (int)r->compare_iterations, "compare_distance_rms",
+                         r->compare_distance_rms[0], r->compare_distance_rms[1], "compare_min_angle",
+                         r->compare_min_angle[0], r->compare_min_angle[1], "compare_displacement_rms",
+                         r->compare_displacement_rms[0], r->compare_displacement_rms[1],
+                         "compare_edge_ratio", r->compare_edge_ratio[0], r->compare_edge_ratio[1],
+                         "finer_iterations", (int)r->finer_iterations, "finer_kept",
+                         r->finer_kept ? Py_True : Py_False, "threads", (int)r->threads);
+}
+
 static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *kwargs)
 {
     planarizer_object *self = (planarizer_object *)self_obj;
@@ -278,29 +304,24 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
         PyErr_Restore(ps.exc_type, ps.exc_value, ps.exc_tb);
         return NULL;
     }
+    if (status == FACET_ERROR_CANCELLED && r.stop_reason == FACET_STOP_TOLERANCE) {
+        /* cancelled after a result that reached the tolerance (a quality
+         * re-solve, method auto's comparison or fallback: facet.h): xyz_out
+         * holds it, and the exception carries its figures as `result` */
+        py_raise_status(st, status, &error);
+        PyObject *type, *value, *tb;
+        PyErr_Fetch(&type, &value, &tb);
+        PyErr_NormalizeException(&type, &value, &tb);
+        if (value && py_set_attr(value, "result", result_dict(&r)) < 0) {
+            Py_XDECREF(type), Py_XDECREF(value), Py_XDECREF(tb);
+            return NULL;
+        }
+        PyErr_Restore(type, value, tb);
+        return NULL;
+    }
     if (status < 0)
         return py_raise_status(st, status, &error);
-    static const char *const quality_names[] = {"not_checked", "ok", "recovered", "narrow"};
-    /* compare_*: (L/L, L/G), facet_method's order */
-    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:i,s:i,s:(dd),s:(dd),s:(dd),s:(dd),s:i,s:O,s:i}",
-                         "iterations",
-                         (int)r.iterations, "stop_reason", stop_reason_name(r.stop_reason), "mu",
-                         r.mu, "planarity_max_abs", r.planarity_max_abs, "planarity_max_rel",
-                         r.planarity_max_rel, "constraint_max_rel", r.constraint_max_rel,
-                         "seconds", r.seconds, "anderson_accepted", (int)r.anderson_accepted,
-                         "anderson_rejected", (int)r.anderson_rejected, "converged",
-                         (r.stop_reason == FACET_STOP_TOLERANCE) ? Py_True : Py_False, "method",
-                         r.method == FACET_METHOD_LOCAL_LOCAL ? "ll" : "lg", "quality",
-                         quality_names[r.quality >= 0 && r.quality <= 3 ? r.quality : 0],
-                         "narrow_corners", (int)r.narrow_corners, "quality_resolves",
-                         (int)r.quality_resolves, "first_iterations", (int)r.first_iterations,
-                         "compare_iterations", (int)r.compare_iterations, "compare_distance_rms",
-                         r.compare_distance_rms[0], r.compare_distance_rms[1], "compare_min_angle",
-                         r.compare_min_angle[0], r.compare_min_angle[1], "compare_displacement_rms",
-                         r.compare_displacement_rms[0], r.compare_displacement_rms[1],
-                         "compare_edge_ratio", r.compare_edge_ratio[0], r.compare_edge_ratio[1],
-                         "finer_iterations", (int)r.finer_iterations, "finer_kept",
-                         r.finer_kept ? Py_True : Py_False, "threads", (int)r.threads);
+    return result_dict(&r);
 }
 
 /* The handle of a planarizer that may be configured now; NULL with an error set. */

@@ -173,9 +173,14 @@ def test_cancelled_in_the_finer_solve():
     def progress(iteration, max_iter, planarity):
         return bool(seen) and seen[-1] == STAGE_FINER
 
-    with pytest.raises(facet.Cancelled):
+    with pytest.raises(facet.Cancelled) as stopped:
         facet.planarize(mesh, threads=1, progress=progress, stage=lambda k, n: seen.append(k))
     assert seen[-2:] == [STAGE_COMPARE, STAGE_FINER]
+    # the first L/G result: the comparison refused L/L's, the finer one was not finished
+    lg = facet.planarize(mesh, threads=1, method="lg")
+    kept = stopped.value.result
+    assert kept is not None and kept.method == "lg" and kept.converged
+    assert np.array_equal(kept.mesh.vertices, lg.mesh.vertices)
 
 
 def test_cancelled_in_the_comparison():
@@ -185,9 +190,15 @@ def test_cancelled_in_the_comparison():
     def progress(iteration, max_iter, planarity):
         return bool(seen) and seen[-1] == STAGE_COMPARE
 
-    with pytest.raises(facet.Cancelled):
+    with pytest.raises(facet.Cancelled) as stopped:
         facet.planarize(mesh, threads=1, progress=progress, stage=lambda k, n: seen.append(k))
     assert seen[-1] == STAGE_COMPARE
+    # L/G's result, which the comparison had not yet replaced
+    lg = facet.planarize(mesh, threads=1, method="lg")
+    kept = stopped.value.result
+    assert kept is not None and kept.method == "lg" and kept.converged
+    assert np.array_equal(kept.mesh.vertices, lg.mesh.vertices)
+    assert kept.quality_check == lg.quality_check
 
 
 @pytest.mark.parametrize("options", [dict(method="lg"), dict(method="ll"), dict(iterations=20),

@@ -9,6 +9,7 @@ import io
 import math
 
 import numpy as np
+import pytest
 
 import facet
 from facet.cli_progress import ProgressLine
@@ -53,3 +54,14 @@ def test_cli_progress_names_the_fallback():
     progress = ProgressLine(out=out, force=True)
     progress.stage(STAGE_FALLBACK, 4)
     assert "local/global" in progress.stage_text and "closed a panel" in progress.stage_text
+
+
+def test_cancelled_in_the_fallback_after_a_stall_keeps_nothing():
+    # local/local stalled short of the tolerance: no result is worth keeping
+    mesh = _saddle(101, 8.0, 0.4)
+    stages = []
+    with pytest.raises(facet.Cancelled) as stopped:
+        facet.planarize(mesh, threads=1, stage=lambda k, n: stages.append(k),
+                        progress=lambda iteration, max_iter, rel: bool(stages))
+    assert stages == [STAGE_FALLBACK]
+    assert stopped.value.result is None

@@ -180,11 +180,29 @@ def test_cancel_in_a_resolve():
         seen.append(iteration)
         return bool(stages)  # cancel at the first step of the first re-solve
 
-    with pytest.raises(facet.Cancelled):
+    with pytest.raises(facet.Cancelled) as stopped:
         facet.planarize(mesh, threads=1, quality_angle=40.0, progress=progress,
                         stage=lambda k, n: stages.append(k))
     # one count through the re-solve (test_planarize_progress.py)
     assert stages == [1] and seen == list(range(1, len(seen) + 1))
+    # the result the first solve reached, with what the re-solve had yet to mend
+    first = facet.planarize(mesh, threads=1, quality_angle=0.0)
+    kept = stopped.value.result
+    assert kept is not None and np.array_equal(kept.mesh.vertices, first.mesh.vertices)
+    assert kept.converged and kept.stop_reason == "tolerance"
+    assert kept.planarity.max_rel_all <= 1e-6
+    assert (kept.quality_check, kept.iterations) == ("narrow", len(seen))
+    assert kept.narrow_corners > 0 and kept.warnings
+    assert np.array_equal(kept.displacement,
+                          np.linalg.norm(first.mesh.vertices - mesh.vertices, axis=1))
+
+
+def test_cancel_in_the_first_solve_keeps_nothing():
+    mesh = _mesh(families.hypar(8))
+    with pytest.raises(facet.Cancelled) as stopped:
+        facet.planarize(mesh, threads=1, quality_angle=40.0,
+                        progress=lambda iteration, max_iter, rel: iteration == 3)
+    assert stopped.value.result is None
 
 
 def test_quality_angle_is_checked():

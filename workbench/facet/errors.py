@@ -137,7 +137,13 @@ def _rebuild_mesh_error(message, source, line, face, vertex, status_name):
 
 
 class Cancelled(FacetError):
-    """A long computation was stopped by the designer (cancel button or Ctrl+C)."""
+    """A long computation was stopped by the designer (cancel button or Ctrl+C).
+
+    ``result`` is what was finished before the stop and may be kept (a planarization
+    cancelled in its quality re-solves: the planar result so far, see
+    :meth:`facet.Planarizer.solve`), or None."""
+
+    result = None
 
 
 def _index_or_none(value):

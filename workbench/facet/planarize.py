@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from facet import _core
-from facet.errors import FacetError, MeshError, from_core
+from facet.errors import Cancelled, FacetError, MeshError, from_core
 from facet.planarity import PlanarityReport, planarity
 
 __all__ = ["METHODS", "STAGE_COMPARE", "STAGE_FINER", "STAGE_FALLBACK", "Planarizer", "PlanarizeResult", "planarize"]
@@ -388,7 +388,13 @@ class Planarizer:
         Raises
         ------
         facet.Cancelled
-            When `progress` returned True.
+            When `progress` returned True. Cancelled after the solve had a
+            result at the tolerance (in a quality re-solve, or in method
+            "auto"'s comparison or fallback solve), its ``result`` is that
+            result: the one returned had the solve still running found
+            nothing better (a PlanarizeResult; its ``quality_check`` and
+            ``narrow_corners`` say what the re-solves had not yet
+            mended); else ``result`` is None.
         facet.FacetError
             When an option is out of range or the solve failed numerically.
         """
@@ -469,10 +475,19 @@ class Planarizer:
                 stage=stage, live=live, rings=int(rings or 0), **options
             )
         except _core.CoreError as exc:
-            raise from_core(exc, source=self._source) from None
+            error = from_core(exc, source=self._source)
+            kept = getattr(exc, "result", None)  # cancelled after a planar result (the core's)
+            if isinstance(error, Cancelled) and kept is not None:
+                self._solved = True
+                error.result = self._result(control, xyz_out, kept, options, threads, surface)
+            raise error from None
         self._solved = True
+        return self._result(control, xyz_out, stats, options, threads, surface)
+
+    def _result(self, control, xyz_out, stats, options, threads, surface):
+        """The PlanarizeResult of the core's figures `stats` for the vertices xyz_out."""
         result_mesh = control.with_vertices(xyz_out)
-        displacement = np.linalg.norm(xyz_out - xyz_in, axis=1)
+        displacement = np.linalg.norm(xyz_out - control.vertices, axis=1)
         return PlanarizeResult(
             mesh=result_mesh,
             method=stats["method"],
