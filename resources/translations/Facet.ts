@@ -92,7 +92,7 @@
 <context>
     <name>Facet</name>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="78"/>
+        <location filename="../../workbench/facetwb/progress.py" line="138"/>
         <source>Cancel</source>
         <translation type="unfinished"></translation>
     </message>
@@ -407,27 +407,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="227"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="243"/>
         <source>Planarize {0}: solving by local/local too, for a result closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="230"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="246"/>
         <source>Planarize {0}: solving by local/global again with a finer hold, closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="235"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="251"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="213"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
         <source>planarity {0:.2g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="213"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
         <source>planarity {0:.2g} (tolerance {1:.2g})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -457,8 +457,18 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="233"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="249"/>
         <source>Planarize {0}: local/local closed a panel, solving by local/global</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/progress.py" line="132"/>
+        <source>Stop and keep</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/progress.py" line="132"/>
+        <source>Stop here and keep the result that reached the tolerance</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -103,19 +103,56 @@ class TestPlanarizeProgress(DocumentTestCase):
         self.assertTrue(compare and finer and finer[0] > compare[-1], reporter.texts[-3:])
         self.assertEqual(reporter.calls, result.Iterations)
 
-    def test_cancel_in_a_resolve(self):
+    def test_stop_in_a_resolve_keeps_the_first_result(self):
+        # once the first solve reached the tolerance the button reads "Stop and keep":
+        # pressed in a re-solve, the object keeps the first solve's result, and the rest
+        # of the recompute is not cancelled
         source = self._hypar()
         result = facetwb.make_planarized(source, method="lg")
         self.doc.recompute()
         first = facet.planarize(facetwb.get_mesh(source), method="lg", quality_angle=0.0)
         if result.QualityCheck == "ok":
             self.skipTest("the first solve of the 32 x 32 hypar no longer closes a corner")
+        finished = (result.Iterations, result.QualityCheck)
+        # recomputed after it: a Planarized object of the Planarized one (the kept result
+        # has narrow corners, which panels may refuse), to a tolerance that takes iterations
+        after = facetwb.make_planarized(result, method="lg", tolerance=1e-9)
+        self.doc.recompute()
+        self.assertTrue(after.isValid(), after.getStatusString())
         result.touch()
         progress.cancel_after(first.iterations + 3)  # the third iteration of the first re-solve
         with progress.reporting("Planarize ...") as reporter:
             self.doc.recompute()
-        self.assertTrue(reporter.cancelled)
-        self.assertEqual(reporter.calls, first.iterations + 3)
+            self.assertFalse(reporter.keeps or reporter.cancelled)
+        # the stop at the planarizer's call first.iterations + 3, then the next one's calls
+        self.assertGreater(reporter.calls, first.iterations + 3)
         self.assertIn("stage 1 of 4", "".join(reporter.texts))
+        self.assertTrue(result.isValid(), result.getStatusString())
+        self.assertEqual(result.QualityCheck, "narrow")
+        self.assertGreater(result.NarrowCorners, 0)  # what the re-solves had yet to mend
+        self.assertEqual(result.Iterations, first.iterations + 3)
+        self.assertNotEqual((result.Iterations, result.QualityCheck), finished)
+        self.assertTrue(result.Converged)
+        self.assertLessEqual(result.PlanarityMaxRel, result.Tolerance)
+        kept = facetwb.get_mesh(result).vertices
+        self.assertTrue((kept == first.mesh.vertices).all())
+        # the rest of the recompute ran, on the kept result
+        self.assertTrue(after.isValid(), after.getStatusString())
+        self.assertNotIn("Touched", after.State)
+        self.assertTrue((facetwb.get_mesh(after.Source).vertices == kept).all())
+
+    def test_cancel_in_the_first_solve(self):
+        # before any result reached the tolerance the button is Cancel: nothing is kept
+        source = self._hypar()
+        result = facetwb.make_planarized(source, method="lg")
+        self.doc.recompute()
+        before = facetwb.get_mesh(result).vertices.copy()
+        result.Tolerance = 1e-9
+        progress.cancel_after(5)
+        with progress.reporting("Planarize ...") as reporter:
+            self.doc.recompute()
+        self.assertTrue(reporter.cancelled)
+        self.assertFalse(reporter.keeps)
         self.assertFalse(result.isValid())
         self.assertIn("ancel", result.getStatusString())
+        self.assertTrue((facetwb.get_mesh(result).vertices == before).all())

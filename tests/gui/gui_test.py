@@ -218,6 +218,7 @@ def run(out_dir):
     check_edit_region(check)
     check_edit_planarized(check, out_dir)
     check_planarize_progress(check, out_dir)
+    check_stop_and_keep(check)
     check_planarize_progress_finer(check, out_dir)
     import ui_checks
 
@@ -225,12 +226,13 @@ def run(out_dir):
     return check
 
 
-def recompute_recording_dialog(doc, out_dir, shots):
+def recompute_recording_dialog(doc, out_dir, shots, buttons=None):
     """Recompute `doc` under a progress dialog shown at once; returns the (dialog text,
     bar value) pairs whenever the text changed, and the screenshots saved: for each
     (key, file name) of `shots`, the dialog the first time its text holds the key and a
-    planarity line."""
+    planarity line. `buttons`, a list, gets the dialog's button text with each pair."""
     from facetwb import progress
+    from facetwb.compat import qt_gui
 
     shown, saved = [], []
     with progress.reporting("Planarize ...", minimum_seconds=0) as reporter:
@@ -239,6 +241,9 @@ def recompute_recording_dialog(doc, out_dir, shots):
         def recording_say(text=None):
             say(text)
             shown.append((reporter.dialog.labelText(), reporter.dialog.value()))
+            if buttons is not None:
+                button = reporter.dialog.findChild(qt_gui().QPushButton)
+                buttons.append(None if button is None else button.text())
             for key, name in shots:
                 path = os.path.join(out_dir, name)
                 if key in shown[-1][0] and "planarity" in shown[-1][0] and path not in saved:
@@ -269,9 +274,10 @@ def check_planarize_progress(check, out_dir):
     source = facetwb.make_polymesh(facet.PolyMesh(b.vertices, b.face_start, b.face_vertices),
                                    doc=doc, label="hypar 32")
     result = facetwb.make_planarized(source)
+    buttons = []
     shown, saved = recompute_recording_dialog(
         doc, out_dir, (("re-solving", "progress_resolve.png"),
-                       ("local/local too", "progress_compare.png")))
+                       ("local/local too", "progress_compare.png")), buttons)
     check(result.isValid(), f"the hypar 32 planarizes ({result.getStatusString()})")
     resolving = [(text, value) for text, value in shown if "re-solving" in text]
     comparing = [(text, value) for text, value in shown if "local/local too" in text]
@@ -281,6 +287,12 @@ def check_planarize_progress(check, out_dir):
               f"the progress dialog says it re-solves ({resolving[:1]})")
         check(any("\nplanarity " in text for text, _value in resolving),
               "the dialog shows the re-solve's planarity under its name")
+        # the first solve's result reached the tolerance: the button keeps it
+        first = shown.index(resolving[0])
+        check(buttons[0] == "Cancel" and "re-solving" not in shown[0][0]
+              and set(buttons[first:first + len(resolving)]) == {"Stop and keep"},
+              f"the button reads Cancel, then Stop and keep in the re-solves "
+              f"({buttons[0]}, {buttons[first]})")
     # method auto (the default) then solves by L/L too: named after the re-solves
     check(bool(comparing) and comparing[0][0] == "Planarize ...\nPlanarize "
           f"{result.Label}: solving by local/local too, for a result closer to the design"
@@ -294,6 +306,47 @@ def check_planarize_progress(check, out_dir):
     check(len(saved) == 1 + bool(resolving) and all(os.path.getsize(p) > 1000 for p in saved),
           f"the dialog's screenshots ({saved})")
     check(shown and shown[-1][0] == "Planarize ...", "the title alone after the solve")
+    App.closeDocument(doc.Name)
+
+
+def check_stop_and_keep(check):
+    """The dialog's button pressed in the first re-solve of the 32 x 32 hypar (L/G), when it
+    reads Stop and keep: the object keeps the first solve's planar result."""
+    import FreeCAD as App
+
+    import facet
+    import facetwb
+    from facetwb import progress
+    from facetwb.compat import qt_gui
+
+    sys.path.insert(0, os.path.join(ROOT, "tools", "bench"))
+    import families
+
+    b = families.hypar(32)
+    mesh = facet.PolyMesh(b.vertices, b.face_start, b.face_vertices)
+    first = facet.planarize(mesh, method="lg", quality_angle=0.0)
+    doc = App.newDocument("StopCheck")
+    source = facetwb.make_polymesh(mesh, doc=doc, label="hypar 32")
+    result = facetwb.make_planarized(source, method="lg")
+    pressed = []
+    with progress.reporting("Planarize ...", minimum_seconds=0) as reporter:
+        say = reporter.say
+
+        def pressing_say(text=None):
+            say(text)
+            if text and "re-solving" in text and not pressed:
+                button = reporter.dialog.findChild(qt_gui().QPushButton)
+                pressed.append(button.text())
+                button.click()
+
+        reporter.say = pressing_say
+        doc.recompute()
+    check(pressed == ["Stop and keep"], f"the button in the re-solve reads Stop and keep ({pressed})")
+    kept = facetwb.get_mesh(result).vertices
+    check(result.isValid() and result.QualityCheck == "narrow" and result.Converged
+          and (kept == first.mesh.vertices).all() and not reporter.cancelled,
+          f"Stop and keep: the first solve's planar result is kept ({result.getStatusString()}, "
+          f"{result.QualityCheck}, {result.NarrowCorners} narrow corners)")
     App.closeDocument(doc.Name)
 
 

@@ -13,6 +13,13 @@ callable returning True cancels: the ``facet`` function raises ``facet.Cancelled
 What the operation is doing now (a planarization re-solving for panel quality) goes in the
 dialog's text through :func:`say_hook`; the bar keeps counting (the planarizer's count and
 bound run on through its re-solves, so the bar never runs backwards).
+
+Once the operation holds a result worth keeping (a planarization that reached its
+tolerance and re-solves for panel quality) it calls :func:`keep_hook`'s
+``offer_keep()``: the button then reads "Stop and keep". Pressed, the ``facet`` function
+still raises ``facet.Cancelled``, with the result on it; the object keeps that result and
+calls ``reporter.resume()``, so that the rest of the recompute runs as if nothing had been
+pressed (``reporter.cancelled`` is False again).
 """
 
 import contextlib
@@ -35,6 +42,12 @@ def say_hook():
     """``say(text)`` showing what the operation is doing now under the title (None: the
     title alone again), or None when nobody is listening."""
     return _stack[-1].say if _stack else None
+
+
+def keep_hook():
+    """The reporter when somebody is listening (its ``offer_keep()`` and ``resume()``),
+    else None."""
+    return _stack[-1] if _stack else None
 
 
 @contextlib.contextmanager
@@ -70,6 +83,8 @@ class _Reporter:
         self.done = self.total = 0
         #: For tests: cancel at this call number (0: never).
         self.cancel_at = _cancel_at
+        #: True while the button reads "Stop and keep" (offer_keep).
+        self.keeps = False
         if App.GuiUp:
             from facetwb.compat import qt_gui
             import FreeCADGui as Gui
@@ -110,6 +125,36 @@ class _Reporter:
 
             self.dialog.setLabelText(self.text)
             qt_gui().QApplication.processEvents()
+
+    def offer_keep(self):
+        """The operation holds a result it would keep if stopped now: the button says so."""
+        self.keeps = True
+        self._button(translate("Facet", "Stop and keep"),
+                     translate("Facet", "Stop here and keep the result that reached the tolerance"))
+
+    def withdraw_keep(self):
+        """The operation that offered to keep is over: the button is Cancel again."""
+        if self.keeps:
+            self._button(translate("Facet", "Cancel"), "")
+        self.keeps = False
+
+    def _button(self, text, tip):
+        if self.dialog is not None:
+            from facetwb.compat import qt_gui
+
+            self.dialog.setCancelButtonText(text)
+            button = self.dialog.findChild(qt_gui().QPushButton)
+            if button is not None:
+                button.setToolTip(tip)
+
+    def resume(self):
+        """The stop was taken as "keep": the rest of the recompute is not cancelled (the
+        dialog shows again, with Cancel, if the rest takes long)."""
+        self.withdraw_keep()
+        self.cancelled = False
+        self.cancel_at = 0
+        if self.dialog is not None:
+            self.dialog.reset()
 
     def close(self):
         if self.dialog is not None:

@@ -169,9 +169,17 @@ class Planarized(PolyMesh):
                 stage=follow and follow.stage,
                 **term_options(obj, mesh),
             )
+        except facet.Cancelled as stopped:
+            # "Stop and keep" (offered once a result reached the tolerance): that result
+            if follow is None or not follow.reporter.keeps or stopped.result is None:
+                raise
+            result = stopped.result
+            follow.reporter.resume()
+            App.Console.PrintWarning(_stopped_text(obj, result) + "\n")
         finally:
             if follow is not None:
                 follow.say(None)
+                follow.reporter.withdraw_keep()  # a later object's stop keeps nothing
         set_mesh(obj, result.mesh)
         set_planarity(obj, result.planarity)
         self.method_ran = result.method  # what "auto" chose; for the report, not saved
@@ -185,6 +193,14 @@ class Planarized(PolyMesh):
         obj.DisplacementRms = float(result.displacement_rms)
 
 
+def _stopped_text(obj, result):
+    """The console's line when "Stop and keep" kept a result that reached the tolerance."""
+    n = int(result.narrow_corners)
+    corners = (f" ({n} panel corner{'s' if n != 1 else ''} under 5 degrees that the source "
+               "did not have)" if n else "")
+    return f"Facet: {obj.Label}: stopped; kept the result that reached the tolerance{corners}"
+
+
 class _Follow:
     """The progress dialog while a Planarized object solves (None without one): the bar
     counts the iterations, through the quality re-solves; the text says which re-solve
@@ -196,11 +212,11 @@ class _Follow:
 
     @classmethod
     def of(cls, obj):
-        report, say = progress.hook(), progress.say_hook()
-        return None if report is None or say is None else cls(obj, report, say)
+        report, say, reporter = progress.hook(), progress.say_hook(), progress.keep_hook()
+        return None if report is None or say is None else cls(obj, report, say, reporter)
 
-    def __init__(self, obj, report, say):
-        self.obj, self.report, self.say = obj, report, say
+    def __init__(self, obj, report, say, reporter):
+        self.obj, self.report, self.say, self.reporter = obj, report, say, reporter
         # (a tolerance in model units stops the solve instead: no relative one to show)
         self.tolerance = None if obj.ToleranceAbs.Value > 0 else float(obj.Tolerance)
         self.stage_text = None
@@ -233,6 +249,10 @@ class _Follow:
             text = translate("Facet", "Planarize {0}: local/local closed a panel, solving by local/global")
         else:
             text = translate("Facet", "Planarize {0}: re-solving for panel quality (stage {1} of {2})")
+        if k != STAGE_FALLBACK:
+            # a result at the tolerance is in hand (the fallback's L/L result may have
+            # stalled short of it)
+            self.reporter.offer_keep()
         self.stage_text = text.format(self.obj.Label, k, n)
         self.say(self.stage_text)
         self.shown = None  # and its planarity at its first iteration
