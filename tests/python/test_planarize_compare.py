@@ -199,6 +199,8 @@ def test_cancelled_in_the_comparison():
     assert kept is not None and kept.method == "lg" and kept.converged
     assert np.array_equal(kept.mesh.vertices, lg.mesh.vertices)
     assert kept.quality_check == lg.quality_check
+    # the comparison did not finish: no figures of it
+    assert kept.stopped and kept.compared is None and not lg.stopped
 
 
 @pytest.mark.parametrize("options", [dict(method="lg"), dict(method="ll"), dict(iterations=20),

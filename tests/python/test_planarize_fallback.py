@@ -65,3 +65,20 @@ def test_cancelled_in_the_fallback_after_a_stall_keeps_nothing():
                         progress=lambda iteration, max_iter, rel: bool(stages))
     assert stages == [STAGE_FALLBACK]
     assert stopped.value.result is None
+
+
+def test_stopped_in_the_fallback_keeps_the_local_local_result():
+    # local/local reached the tolerance with a closed panel (its re-solves did not open
+    # it): stopped in the fallback, that result is the one kept
+    mesh = _saddle(101, 10.0, 0.15)
+    stages = []
+    with pytest.raises(facet.Cancelled) as stopped:
+        facet.planarize(mesh, threads=1, stage=lambda k, n: stages.append(k),
+                        progress=lambda i, n, rel: bool(stages) and stages[-1] == STAGE_FALLBACK)
+    assert stages[-1] == STAGE_FALLBACK and len(stages) > 1
+    kept = stopped.value.result
+    alone = facet.planarize(mesh, threads=1, method="ll")
+    assert alone.quality_check == "narrow"
+    assert kept is not None and kept.stopped and kept.method == "ll"
+    assert (kept.stop_reason, kept.quality_check) == ("tolerance", "narrow")
+    assert np.array_equal(kept.mesh.vertices, alone.mesh.vertices)

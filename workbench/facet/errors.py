@@ -140,8 +140,8 @@ class Cancelled(FacetError):
     """A long computation was stopped by the designer (cancel button or Ctrl+C).
 
     ``result`` is what was finished before the stop and may be kept (a planarization
-    cancelled in its quality re-solves: the planar result so far, see
-    :meth:`facet.Planarizer.solve`), or None."""
+    stopped after a result at the tolerance, in its quality re-solves or method auto's
+    comparison or fallback: that result, see :meth:`facet.Planarizer.solve`), or None."""
 
     result = None
 

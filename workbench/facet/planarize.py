@@ -142,7 +142,8 @@ class PlanarizeResult:
         live, a fixed iteration count, the angle floor on, or not
         converged), ``"ok"`` (none), ``"recovered"`` (the first result had
         one; a re-solve along the penalty path has none) or ``"narrow"``
-        (every re-solve left one; the best result is returned).
+        (every re-solve left one, or the solve was stopped before one kept
+        them open: ``stopped``; the best result is returned).
     narrow_corners : int
         New narrow corners in the result.
     quality_resolves : int
@@ -174,6 +175,11 @@ class PlanarizeResult:
         None. None when no comparison ran
         (another method, a warm start, a fixed iteration count, the paper's
         schedule (``hold_tol`` 0), a shape term or a regularizer).
+    stopped : bool
+        True for the result a stopped solve had reached
+        (:class:`facet.Cancelled`'s ``result``): what was still running (a
+        quality re-solve, the comparison) did not finish; ``iterations``
+        and ``quality_resolves`` count it too, and ``compared`` is None.
     control : facet.PolyMesh or None
         The control mesh the result was solved from.
     reference : facet.Surface or None
@@ -198,6 +204,7 @@ class PlanarizeResult:
     first_iterations: int = 0
     threads: int = 0
     compared: object = None
+    stopped: bool = False
     control: object = None
     reference: object = None
     _quality: object = field(default=None, repr=False)
@@ -479,13 +486,15 @@ class Planarizer:
             kept = getattr(exc, "result", None)  # cancelled after a planar result (the core's)
             if isinstance(error, Cancelled) and kept is not None:
                 self._solved = True
-                error.result = self._result(control, xyz_out, kept, options, threads, surface)
+                error.result = self._result(control, xyz_out, kept, options, threads, surface,
+                                            stopped=True)
             raise error from None
         self._solved = True
         return self._result(control, xyz_out, stats, options, threads, surface)
 
-    def _result(self, control, xyz_out, stats, options, threads, surface):
-        """The PlanarizeResult of the core's figures `stats` for the vertices xyz_out."""
+    def _result(self, control, xyz_out, stats, options, threads, surface, stopped=False):
+        """The PlanarizeResult of the core's figures `stats` for the vertices xyz_out
+        (`stopped`: what a stopped solve had reached)."""
         result_mesh = control.with_vertices(xyz_out)
         displacement = np.linalg.norm(xyz_out - control.vertices, axis=1)
         return PlanarizeResult(
@@ -498,7 +507,7 @@ class Planarizer:
             planarity=planarity(result_mesh, threads=threads),
             displacement=displacement,
             options=options,
-            warnings=list(self._warnings) + _quality_warnings(stats, options),
+            warnings=list(self._warnings) + _quality_warnings(stats, options, stopped),
             constraint_max_rel=stats["constraint_max_rel"],
             anderson=(stats["anderson_accepted"], stats["anderson_rejected"]),
             quality_check=stats["quality"],
@@ -506,7 +515,8 @@ class Planarizer:
             quality_resolves=stats["quality_resolves"],
             first_iterations=stats["first_iterations"],
             threads=int(stats.get("threads", 0)),
-            compared=_compared(stats),
+            compared=None if stopped else _compared(stats),
+            stopped=stopped,
             control=control,
             reference=surface,
         )
@@ -528,16 +538,18 @@ def _compared(stats):
                for k, name in enumerate(("ll", "lg"))}}
 
 
-def _quality_warnings(stats, options):
+def _quality_warnings(stats, options, stopped=False):
     """A warning when the solve kept corners under ``quality_angle`` that the input did not
-    have (no re-solve kept them open; see PlanarizeResult.quality_check)."""
+    have (no re-solve kept them open, or the solve was stopped first; see
+    PlanarizeResult.quality_check)."""
     if stats.get("quality") != "narrow":
         return []
     n = int(stats["narrow_corners"])
     angle = float(options.get("quality_angle", 5.0))
+    why = ("the solve was stopped before a re-solve kept {} open" if stopped else
+           f"{int(stats['quality_resolves'])} re-solves did not keep {{}} open")
     return [f"{n} panel corner{'s' if n != 1 else ''} under {angle:g} degrees that the input "
-            f"did not have ({int(stats['quality_resolves'])} re-solves did not keep "
-            f"{'them' if n != 1 else 'it'} open)"]
+            f"did not have ({why.format('them' if n != 1 else 'it')})"]
 
 
 def planarize(mesh, method="auto", tol=1e-6, tol_abs=None, max_iter=None, iterations=None,
