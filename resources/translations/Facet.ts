@@ -92,7 +92,7 @@
 <context>
     <name>Facet</name>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="138"/>
+        <location filename="../../workbench/facetwb/progress.py" line="144"/>
         <source>Cancel</source>
         <translation type="unfinished"></translation>
     </message>
@@ -407,27 +407,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="243"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="239"/>
         <source>Planarize {0}: solving by local/local too, for a result closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="246"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="242"/>
         <source>Planarize {0}: solving by local/global again with a finer hold, closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="251"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="247"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="225"/>
         <source>planarity {0:.2g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="225"/>
         <source>planarity {0:.2g} (tolerance {1:.2g})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -457,17 +457,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="249"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="245"/>
         <source>Planarize {0}: local/local closed a panel, solving by local/global</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="132"/>
+        <location filename="../../workbench/facetwb/progress.py" line="130"/>
         <source>Stop and keep</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="132"/>
+        <location filename="../../workbench/facetwb/progress.py" line="130"/>
         <source>Stop here and keep the result that reached the tolerance</source>
         <translation type="unfinished"></translation>
     </message>

@@ -114,6 +114,8 @@ class TestPlanarizeProgress(DocumentTestCase):
         if result.QualityCheck == "ok":
             self.skipTest("the first solve of the 32 x 32 hypar no longer closes a corner")
         finished = (result.Iterations, result.QualityCheck)
+        from facetwb.objects.planarized import planarize_summary
+        self.assertNotIn("stopped (Stop and keep)", planarize_summary(result))
         # recomputed after it: a Planarized object of the Planarized one (the kept result
         # has narrow corners, which panels may refuse), to a tolerance that takes iterations
         after = facetwb.make_planarized(result, method="lg", tolerance=1e-9)
@@ -136,6 +138,9 @@ class TestPlanarizeProgress(DocumentTestCase):
         self.assertLessEqual(result.PlanarityMaxRel, result.Tolerance)
         kept = facetwb.get_mesh(result).vertices
         self.assertTrue((kept == first.mesh.vertices).all())
+        summary = planarize_summary(result)
+        self.assertIn("stopped (Stop and keep)", summary)
+        self.assertIn(f"{result.NarrowCorners} panel corners under 5 degrees", summary)
         # the rest of the recompute ran, on the kept result
         self.assertTrue(after.isValid(), after.getStatusString())
         self.assertNotIn("Touched", after.State)

@@ -219,6 +219,7 @@ def run(out_dir):
     check_edit_planarized(check, out_dir)
     check_planarize_progress(check, out_dir)
     check_stop_and_keep(check)
+    check_keep_press_order(check)
     check_planarize_progress_finer(check, out_dir)
     import ui_checks
 
@@ -306,7 +307,39 @@ def check_planarize_progress(check, out_dir):
     check(len(saved) == 1 + bool(resolving) and all(os.path.getsize(p) > 1000 for p in saved),
           f"the dialog's screenshots ({saved})")
     check(shown and shown[-1][0] == "Planarize ...", "the title alone after the solve")
+    check(buttons and buttons[-1] == "Cancel",
+          f"the button reads Cancel again after the solve ({buttons[-1:]})")
     App.closeDocument(doc.Name)
+
+
+def check_keep_press_order(check):
+    """A press not yet seen when the button's label changes counts as what it read: Cancel
+    pressed before the offer to keep cancels; Stop and keep pressed before the operation
+    ended (which then finished with its result) is spent, and nothing is cancelled."""
+    from facetwb import progress
+    from facetwb.compat import qt_gui
+
+    with progress.reporting("Press order ...", minimum_seconds=0) as reporter:
+        reporter(1, 10)
+        reporter.dialog.cancel()  # the button, as its click does; not yet seen
+        reporter.offer_keep()
+        button = reporter.dialog.findChild(qt_gui().QPushButton)
+        check(reporter.cancelled and not reporter.keeps and button.text() == "Cancel",
+              f"Cancel pressed before the offer to keep cancels ({button.text()})")
+    with progress.reporting("Press order ...", minimum_seconds=0) as reporter:
+        reporter(1, 10)
+        reporter.offer_keep()
+        reporter.dialog.cancel()
+        reporter.withdraw_keep(True)
+        check(not reporter.cancelled and not reporter(2, 10) and not reporter.keeps,
+              "Stop and keep pressed as the operation finished: spent, nothing cancelled")
+    with progress.reporting("Press order ...", minimum_seconds=0) as reporter:
+        reporter(1, 10)
+        reporter.offer_keep()
+        reporter.dialog.cancel()
+        reporter.withdraw_keep(False)
+        check(reporter.cancelled and reporter(2, 10),
+              "Stop and keep pressed when nothing could be kept: cancelled")
 
 
 def check_stop_and_keep(check):

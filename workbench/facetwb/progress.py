@@ -15,11 +15,11 @@ dialog's text through :func:`say_hook`; the bar keeps counting (the planarizer's
 bound run on through its re-solves, so the bar never runs backwards).
 
 Once the operation holds a result worth keeping (a planarization that reached its
-tolerance and re-solves for panel quality) it calls :func:`keep_hook`'s
-``offer_keep()``: the button then reads "Stop and keep". Pressed, the ``facet`` function
+tolerance and re-solves for panel quality) it calls the reporter's ``offer_keep()``
+(:func:`hook`): the button then reads "Stop and keep". Pressed, the ``facet`` function
 still raises ``facet.Cancelled``, with the result on it; the object keeps that result and
-calls ``reporter.resume()``, so that the rest of the recompute runs as if nothing had been
-pressed (``reporter.cancelled`` is False again).
+calls ``reporter.withdraw_keep(finished=True)``, so that the rest of the recompute runs
+as if nothing had been pressed (``reporter.cancelled`` is False again).
 """
 
 import contextlib
@@ -31,7 +31,8 @@ _stack = []
 
 
 def hook():
-    """The progress callable for ``facet`` functions, or None when nobody is listening."""
+    """The progress callable for ``facet`` functions, or None when nobody is listening: the
+    innermost reporter (also its ``keeps``, ``offer_keep()`` and ``withdraw_keep()``)."""
     if not _stack:
         return None
     reporter = _stack[-1]
@@ -42,12 +43,6 @@ def say_hook():
     """``say(text)`` showing what the operation is doing now under the title (None: the
     title alone again), or None when nobody is listening."""
     return _stack[-1].say if _stack else None
-
-
-def keep_hook():
-    """The reporter when somebody is listening (its ``offer_keep()`` and ``resume()``),
-    else None."""
-    return _stack[-1] if _stack else None
 
 
 @contextlib.contextmanager
@@ -127,16 +122,37 @@ class _Reporter:
             qt_gui().QApplication.processEvents()
 
     def offer_keep(self):
-        """The operation holds a result it would keep if stopped now: the button says so."""
+        """The operation holds a result it would keep if stopped now: the button says so.
+        A press of Cancel not yet seen is a Cancel (it is seen first)."""
+        if self._pressed():
+            return
         self.keeps = True
         self._button(translate("Facet", "Stop and keep"),
                      translate("Facet", "Stop here and keep the result that reached the tolerance"))
 
-    def withdraw_keep(self):
-        """The operation that offered to keep is over: the button is Cancel again."""
+    def withdraw_keep(self, finished):
+        """The operation that offered to keep is over: the button is Cancel again. When it
+        `finished` with a result (the one kept after a press of Stop and keep, or its
+        complete one, the press not yet seen), the press is spent: the rest of the recompute
+        is not cancelled (the dialog shows again, with Cancel, if the rest takes long)."""
         if self.keeps:
+            if self._pressed() and finished:
+                self.cancelled = False
+                self.cancel_at = 0
+                if self.dialog is not None:
+                    self.dialog.reset()
             self._button(translate("Facet", "Cancel"), "")
         self.keeps = False
+
+    def _pressed(self):
+        """Whether the button was pressed (events handled first); sets ``cancelled``."""
+        if self.dialog is not None:
+            from facetwb.compat import qt_gui
+
+            qt_gui().QApplication.processEvents()
+            if self.dialog.wasCanceled():
+                self.cancelled = True
+        return self.cancelled
 
     def _button(self, text, tip):
         if self.dialog is not None:
@@ -146,15 +162,6 @@ class _Reporter:
             button = self.dialog.findChild(qt_gui().QPushButton)
             if button is not None:
                 button.setToolTip(tip)
-
-    def resume(self):
-        """The stop was taken as "keep": the rest of the recompute is not cancelled (the
-        dialog shows again, with Cancel, if the rest takes long)."""
-        self.withdraw_keep()
-        self.cancelled = False
-        self.cancel_at = 0
-        if self.dialog is not None:
-            self.dialog.reset()
 
     def close(self):
         if self.dialog is not None:

@@ -139,7 +139,8 @@ class Planarized(PolyMesh):
         compat.add_property(obj, "App::PropertyString", "QualityCheck", "Result",
                             "Whether the last solve left a corner under 5 degrees that the "
                             "source did not have, and what it did: ok (none), recovered (solved "
-                            "again without one), narrow (every re-solve left one), not_checked",
+                            "again without one), narrow (every re-solve left one, or the solve "
+                            "was stopped before one kept them open), not_checked",
                             attr=output, editor_mode=read_only)
         compat.add_property(obj, "App::PropertyInteger", "NarrowCorners", "Result",
                             "Corners under 5 degrees in the result that the source did not have",
@@ -157,6 +158,7 @@ class Planarized(PolyMesh):
             raise ValueError(f"{obj.Label}: Source is empty, nothing to planarize")
         mesh = conversion.mesh_from_object(obj.Source)
         follow = _Follow.of(obj)
+        finished = False
         try:
             result = facet.planarize(
                 mesh,
@@ -169,21 +171,23 @@ class Planarized(PolyMesh):
                 stage=follow and follow.stage,
                 **term_options(obj, mesh),
             )
+            finished = True
         except facet.Cancelled as stopped:
             # "Stop and keep" (offered once a result reached the tolerance): that result
-            if follow is None or not follow.reporter.keeps or stopped.result is None:
+            if follow is None or not follow.report.keeps or stopped.result is None:
                 raise
             result = stopped.result
-            follow.reporter.resume()
-            App.Console.PrintWarning(_stopped_text(obj, result) + "\n")
+            finished = True
         finally:
             if follow is not None:
+                # Cancel again, for what follows; a press that kept is spent
+                follow.report.withdraw_keep(finished)
                 follow.say(None)
-                follow.reporter.withdraw_keep()  # a later object's stop keeps nothing
         set_mesh(obj, result.mesh)
         set_planarity(obj, result.planarity)
         self.method_ran = result.method  # what "auto" chose; for the report, not saved
         self.compared = result.compared  # and what it compared (the same)
+        self.stopped = result.stopped  # Stop and keep (the same)
         obj.Iterations = int(result.iterations)
         obj.StopReason = str(result.stop_reason)
         obj.Converged = bool(result.converged)
@@ -191,14 +195,6 @@ class Planarized(PolyMesh):
         obj.NarrowCorners = int(result.narrow_corners)
         obj.DisplacementMax = float(result.displacement_max)
         obj.DisplacementRms = float(result.displacement_rms)
-
-
-def _stopped_text(obj, result):
-    """The console's line when "Stop and keep" kept a result that reached the tolerance."""
-    n = int(result.narrow_corners)
-    corners = (f" ({n} panel corner{'s' if n != 1 else ''} under 5 degrees that the source "
-               "did not have)" if n else "")
-    return f"Facet: {obj.Label}: stopped; kept the result that reached the tolerance{corners}"
 
 
 class _Follow:
@@ -212,11 +208,11 @@ class _Follow:
 
     @classmethod
     def of(cls, obj):
-        report, say, reporter = progress.hook(), progress.say_hook(), progress.keep_hook()
-        return None if report is None or say is None else cls(obj, report, say, reporter)
+        report, say = progress.hook(), progress.say_hook()
+        return None if report is None or say is None else cls(obj, report, say)
 
-    def __init__(self, obj, report, say, reporter):
-        self.obj, self.report, self.say, self.reporter = obj, report, say, reporter
+    def __init__(self, obj, report, say):
+        self.obj, self.report, self.say = obj, report, say
         # (a tolerance in model units stops the solve instead: no relative one to show)
         self.tolerance = None if obj.ToleranceAbs.Value > 0 else float(obj.Tolerance)
         self.stage_text = None
@@ -250,9 +246,10 @@ class _Follow:
         else:
             text = translate("Facet", "Planarize {0}: re-solving for panel quality (stage {1} of {2})")
         if k != STAGE_FALLBACK:
-            # a result at the tolerance is in hand (the fallback's L/L result may have
-            # stalled short of it)
-            self.reporter.offer_keep()
+            # a result at the tolerance is in hand. The fallback's L/L result may have
+            # stalled short of it; when it had re-solves it had reached it, and their
+            # offer stands.
+            self.report.offer_keep()
         self.stage_text = text.format(self.obj.Label, k, n)
         self.say(self.stage_text)
         self.shown = None  # and its planarity at its first iteration
@@ -349,6 +346,9 @@ def planarize_summary(obj):
         f"  vertices moved: max {format_length(obj.DisplacementMax.Value)}, "
         f"rms {format_length(obj.DisplacementRms.Value)}",
     ]
+    if getattr(getattr(obj, "Proxy", None), "stopped", False):
+        lines.append("  stopped (Stop and keep): the result that had reached the tolerance is "
+                     "kept; what ran after it did not finish")
     compared = getattr(getattr(obj, "Proxy", None), "compared", None)
     if obj.Method == "auto" and compared:
         lines.append(_compared_text(compared, getattr(obj.Proxy, "method_ran", None)))
