@@ -359,7 +359,9 @@ typedef struct facet_planarize_result {
     /* quality by default (options.quality_angle; facet_quality_outcome) */
     int32_t quality;           /* FACET_QUALITY_*: checked? recovered? */
     int32_t narrow_corners;    /* new narrow corners in xyz_out (0 unless quality is
-                                  FACET_QUALITY_NARROW or NOT_CHECKED) */
+                                  FACET_QUALITY_NARROW or NOT_CHECKED; with the check
+                                  on, a result short of the tolerance has them counted,
+                                  not re-solved) */
     int32_t quality_resolves;  /* re-solves run (0: the first solve's result) */
     int32_t first_iterations;  /* iterations of the first solve; `iterations` counts every
                                   solve's, `seconds` their time */

@@ -304,6 +304,13 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
     facet_status status = facet_pl_solve_once(s, xyz_in, first_options, xyz_out, &first, error);
     first.quality = FACET_QUALITY_NOT_CHECKED;
     first.first_iterations = first.iterations;
+    if (status == FACET_WARNING_NOT_CONVERGED && checks_result(options) && first.iterations > 0) {
+        /* short of the tolerance: not re-solved, but a panel it closed is
+         * counted (s->q, s->p: the solve's own), so that the result says so */
+        double angle;
+        first.narrow_corners = facet_pl_new_narrow(s, options->quality_angle,
+                                                   facet_pl_threads(s, options->threads), &angle);
+    }
     if (status != FACET_OK || first.stop_reason != FACET_STOP_TOLERANCE || !checks_result(options) ||
         first.iterations == 0) {
         if (result)
@@ -775,9 +782,8 @@ static facet_status fallback_lg(facet_planarizer *s, const facet_planarize_optio
     }
     const int nthreads = facet_pl_threads(s, options->threads);
     double narrowest = 180.0;
-    /* a stalled solve was not checked: its corners (s->q, s->p: its own) */
-    const int32_t ll_narrow =
-        stalled ? facet_pl_new_narrow(s, options->quality_angle, nthreads, &narrowest) : result->narrow_corners;
+    /* (a stalled solve's were counted too, without re-solves: solve_checked) */
+    const int32_t ll_narrow = result->narrow_corners;
     const size_t v3 = 3 * (size_t)s->nv;
     /* the input (the last solve kept it), L/L's error and message, a buffer */
     double *input = malloc(sizeof(double) * v3), *out = malloc(sizeof(double) * v3);

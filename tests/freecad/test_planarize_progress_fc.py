@@ -161,3 +161,20 @@ class TestPlanarizeProgress(DocumentTestCase):
         self.assertFalse(result.isValid())
         self.assertIn("ancel", result.getStatusString())
         self.assertTrue((facetwb.get_mesh(result).vertices == before).all())
+
+    def test_a_stalled_result_names_its_narrow_corners(self):
+        # local/local alone stalls short of the tolerance on this saddle with a corner
+        # under 5 degrees: not re-solved, but counted in NarrowCorners and the summary
+        sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
+        from test_planarize_fallback import _saddle
+        from facetwb.objects.planarized import planarize_summary
+
+        source = facetwb.make_polymesh(_saddle(101, 8.0, 0.4), doc=self.doc, label="saddle")
+        result = facetwb.make_planarized(source, method="ll")
+        self.doc.recompute()
+        self.assertTrue(result.isValid(), result.getStatusString())
+        self.assertFalse(result.Converged)
+        self.assertEqual(result.QualityCheck, "not_checked")
+        self.assertGreater(result.NarrowCorners, 0)
+        self.assertIn(f"{result.NarrowCorners} panel corners under 5 degrees that the source "
+                      "did not have, not re-solved", planarize_summary(result))

@@ -82,3 +82,16 @@ def test_stopped_in_the_fallback_keeps_the_local_local_result():
     assert kept is not None and kept.stopped and kept.method == "ll"
     assert (kept.stop_reason, kept.quality_check) == ("tolerance", "narrow")
     assert np.array_equal(kept.mesh.vertices, alone.mesh.vertices)
+
+
+def test_a_stalled_result_counts_its_narrow_corners():
+    # local/local alone stalls above the tolerance here with a corner under 5 degrees:
+    # not re-solved, but counted and said
+    mesh = _saddle(101, 8.0, 0.4)
+    stalled = facet.planarize(mesh, method="ll", threads=1)
+    assert not stalled.converged and stalled.quality_check == "not_checked"
+    new = (stalled.quality.min_angle < 5.0) & (stalled.quality.input_min_angle >= 5.0)
+    assert stalled.narrow_corners > 0 and np.any(new)
+    assert [w for w in stalled.warnings if "stopped short of the tolerance" in w]
+    # with the check off, nothing is counted
+    assert facet.planarize(mesh, method="ll", threads=1, quality_angle=0.0).narrow_corners == 0

@@ -145,7 +145,9 @@ class PlanarizeResult:
         (every re-solve left one, or the solve was stopped before one kept
         them open: ``stopped``; the best result is returned).
     narrow_corners : int
-        New narrow corners in the result.
+        New narrow corners in the result (also counted, with the check on,
+        when the solve stopped short of the tolerance, which is not
+        re-solved: ``quality_check`` is then ``"not_checked"``).
     quality_resolves : int
         Re-solves run after the first solve (``iterations`` counts them all).
     first_iterations : int
@@ -539,17 +541,20 @@ def _compared(stats):
 
 
 def _quality_warnings(stats, options, stopped=False):
-    """A warning when the solve kept corners under ``quality_angle`` that the input did not
-    have (no re-solve kept them open, or the solve was stopped first; see
-    PlanarizeResult.quality_check)."""
-    if stats.get("quality") != "narrow":
+    """A warning when the result has corners under ``quality_angle`` that the input did not
+    have: no re-solve kept them open, the solve was stopped first, or it stopped short of
+    the tolerance, and is not re-solved (see PlanarizeResult.quality_check)."""
+    n = int(stats.get("narrow_corners", 0))
+    if not n or stats.get("quality") not in ("narrow", "not_checked"):
         return []
-    n = int(stats["narrow_corners"])
     angle = float(options.get("quality_angle", 5.0))
-    why = ("the solve was stopped before a re-solve kept {} open" if stopped else
-           f"{int(stats['quality_resolves'])} re-solves did not keep {{}} open")
+    it = "them" if n != 1 else "it"
+    why = ("the solve stopped short of the tolerance, and such a result is not re-solved"
+           if stats.get("quality") == "not_checked" else
+           f"the solve was stopped before a re-solve kept {it} open" if stopped else
+           f"{int(stats['quality_resolves'])} re-solves did not keep {it} open")
     return [f"{n} panel corner{'s' if n != 1 else ''} under {angle:g} degrees that the input "
-            f"did not have ({why.format('them' if n != 1 else 'it')})"]
+            f"did not have ({why})"]
 
 
 def planarize(mesh, method="auto", tol=1e-6, tol_abs=None, max_iter=None, iterations=None,

@@ -358,4 +358,8 @@ def planarize_summary(obj):
     elif check == "narrow":
         lines.append(f"  {obj.NarrowCorners} panel corners under 5 degrees that the source "
                      "did not have (see the quality report)")
+    elif obj.NarrowCorners:  # a result short of the tolerance is not re-solved
+        lines.append(f"  {obj.NarrowCorners} panel corners under 5 degrees that the source "
+                     "did not have, not re-solved: the solve stopped short of the tolerance "
+                     "(see the quality report)")
     return "\n".join(lines)
