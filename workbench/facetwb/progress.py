@@ -99,17 +99,12 @@ class _Reporter:
         if self.cancel_at and self.calls >= self.cancel_at:
             self.cancelled = True
         if self.dialog is not None:
-            from facetwb.compat import qt_gui
-
             try:
                 fraction = float(done) / float(total) if total else 0.0
             except (TypeError, ValueError, ZeroDivisionError):
                 fraction = 0.0
             self.dialog.setValue(int(1000 * min(max(fraction, 0.0), 1.0)))
-            qt_gui().QApplication.processEvents()
-            if self.dialog.wasCanceled():
-                self.cancelled = True
-        return self.cancelled
+        return self._pressed()
 
     def say(self, text=None):
         """Show ``text`` (what the operation does now) below the title; None: the title alone."""
@@ -145,7 +140,8 @@ class _Reporter:
         self.keeps = False
 
     def _pressed(self):
-        """Whether the button was pressed (events handled first); sets ``cancelled``."""
+        """Whether the operation is cancelled: the button pressed (events handled first) or
+        ``cancel_at`` reached; sets ``cancelled``."""
         if self.dialog is not None:
             from facetwb.compat import qt_gui
 

@@ -346,20 +346,21 @@ def planarize_summary(obj):
         f"  vertices moved: max {format_length(obj.DisplacementMax.Value)}, "
         f"rms {format_length(obj.DisplacementRms.Value)}",
     ]
-    if getattr(getattr(obj, "Proxy", None), "stopped", False):
+    proxy = getattr(obj, "Proxy", None)
+    if getattr(proxy, "stopped", False):
         lines.append("  stopped (Stop and keep): the result that had reached the tolerance is "
                      "kept; what ran after it did not finish")
-    compared = getattr(getattr(obj, "Proxy", None), "compared", None)
+    compared = getattr(proxy, "compared", None)
     if obj.Method == "auto" and compared:
-        lines.append(_compared_text(compared, getattr(obj.Proxy, "method_ran", None)))
+        lines.append(_compared_text(compared, getattr(proxy, "method_ran", None)))
     check = getattr(obj, "QualityCheck", "")
     if check == "recovered":
         lines.append("  a panel corner closed below 5 degrees; solved again without it")
-    elif check == "narrow":
+    elif check == "narrow" or obj.NarrowCorners:
+        # narrow: no re-solve kept them open; else the solve stopped short of the
+        # tolerance, and such a result is not re-solved
+        why = ("" if check == "narrow" else
+               ", not re-solved: the solve stopped short of the tolerance")
         lines.append(f"  {obj.NarrowCorners} panel corners under 5 degrees that the source "
-                     "did not have (see the quality report)")
-    elif obj.NarrowCorners:  # a result short of the tolerance is not re-solved
-        lines.append(f"  {obj.NarrowCorners} panel corners under 5 degrees that the source "
-                     "did not have, not re-solved: the solve stopped short of the tolerance "
-                     "(see the quality report)")
+                     f"did not have{why} (see the quality report)")
     return "\n".join(lines)
