@@ -382,6 +382,10 @@ typedef struct facet_planarize_result {
     int32_t finer_kept;              /* 1 when that solve's result was returned: then
                                         compare_*[FACET_METHOD_LOCAL_GLOBAL] are its figures */
     int32_t threads;                 /* threads the (last) solve ran on (options.threads) */
+    double data_tangent;             /* the data_tangent xyz_out was solved with:
+                                        options.data_tangent, unless a quality re-solve
+                                        held sliding vertices more firmly along the design
+                                        (3 or 10 times; facet_quality_outcome) */
 } facet_planarize_result;
 
 /* A planarization solver for one mesh topology. It copies the topology and
@@ -904,7 +908,12 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
  * data_normal and surface_weight is 0: vertices held at their control
  * points), then along the exact penalty path (hold_tol 1e-9, hold_max 200,
  * max_iter at least 4000), then with Anderson, hold_tol 0.003 and the angle
- * floor at 1.2 quality_angle,
+ * floor at 1.2 quality_angle; and when vertices slide along the design
+ * (data_tangent < data_normal, or surface_weight > 0), held more firmly
+ * along it: with Anderson and the default hold at three times data_tangent,
+ * then the angle floor's recipe at three and at ten times (each at most
+ * data_normal or surface_weight, whichever is larger, and skipped when it
+ * would repeat an earlier stage; result.data_tangent says which returned),
  * stopping at the first result that reaches the tolerance with no new
  * narrow corner, which is returned. If none does, the first solve's result
  * is returned (FACET_QUALITY_NARROW, narrow_corners > 0; the message says

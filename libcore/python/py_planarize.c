@@ -128,7 +128,7 @@ static PyObject *result_dict(const facet_planarize_result *r)
 {
     static const char *const quality_names[] = {"not_checked", "ok", "recovered", "narrow"};
     /* compare_*: (L/L, L/G), facet_method's order */
-    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:i,s:i,s:(dd),s:(dd),s:(dd),s:(dd),s:i,s:O,s:i}",
+    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:i,s:i,s:(dd),s:(dd),s:(dd),s:(dd),s:i,s:O,s:i,s:d}",
                          "iterations",
                          (int)r->iterations, "stop_reason", stop_reason_name(r->stop_reason), "mu",
                          r->mu, "planarity_max_abs", r->planarity_max_abs, "planarity_max_rel",
@@ -146,7 +146,8 @@ static PyObject *result_dict(const facet_planarize_result *r)
                          r->compare_displacement_rms[0], r->compare_displacement_rms[1],
                          "compare_edge_ratio", r->compare_edge_ratio[0], r->compare_edge_ratio[1],
                          "finer_iterations", (int)r->finer_iterations, "finer_kept",
-                         r->finer_kept ? Py_True : Py_False, "threads", (int)r->threads);
+                         r->finer_kept ? Py_True : Py_False, "threads", (int)r->threads,
+                         "data_tangent", r->data_tangent);
 }
 
 static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *kwargs)

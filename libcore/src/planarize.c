@@ -1382,6 +1382,7 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
         result->anderson_rejected = rejected;
         result->method = options->method;
         result->threads = nthreads;
+        result->data_tangent = options->data_tangent;
     }
     if (status == FACET_ERROR_CANCELLED)
         return status;

@@ -114,18 +114,30 @@ static void narrow_message(facet_planarizer *s, int32_t count, double limit, con
  * data: 4.3 and 2.3 degrees) the angle floor does, set a fifth above
  * quality_angle (a corner it holds ends at the floor to the tolerance),
  * with the finer hold it is meant for (docs/solver-notes.md, "Quality by
- * default (branch quality5)"). */
+ * default (branch quality5)"). The last three hold sliding vertices more
+ * firmly along the design, where every stage before them closed a panel:
+ * on five of 40 meshes with the plane and surface presets (cmc1, pillow_1
+ * and the 48 x 48 hypar with surface data, heart and the 40 x 40 hypar with
+ * plane data: 0.4-4.0 degrees) they kept every corner open, at 6.0-10.6
+ * degrees (docs/solver-notes.md, "Sliding vertices held more firmly when
+ * every re-solve closed a panel"). */
 static const struct {
     double hold_tol;
     int32_t hold_max, max_iter;
     int anderson; /* keep the options' Anderson depth */
     int floor;    /* the angle floor at 1.2 quality_angle */
     int sliding;  /* also when vertices slide along the design */
+    double firmer; /* > 1: only then, with data_tangent times this */
 } STAGES[] = {
-    {0.01, 40, 0, 0, 0, 0},     /* the default's hold without the jumps (Anderson's steps) */
-    {0.003, 40, 0, 0, 0, 0},    /* a finer hold */
-    {1e-9, 200, 4000, 0, 0, 1}, /* the exact penalty path: 200 steps at every mu */
-    {0.003, 40, 0, 1, 1, 1},    /* the opt-in angle floor's recipe */
+    {0.01, 40, 0, 0, 0, 0, 1.0},     /* the default's hold without the jumps (Anderson's steps) */
+    {0.003, 40, 0, 0, 0, 0, 1.0},    /* a finer hold */
+    {1e-9, 200, 4000, 0, 0, 1, 1.0}, /* the exact penalty path: 200 steps at every mu */
+    {0.003, 40, 0, 1, 1, 1, 1.0},    /* the opt-in angle floor's recipe */
+    /* sliding vertices held more firmly along the design (the presets'
+     * data_tangent 0.01 becomes 0.03, then 0.1) */
+    {0.01, 40, 0, 1, 0, 1, 3.0},     /* the default's schedule */
+    {0.003, 40, 0, 1, 1, 1, 3.0},    /* the angle floor's recipe */
+    {0.003, 40, 0, 1, 1, 1, 10.0},   /* the same, ten times */
 };
 
 /* ---- progress across the re-solves (facet.h: facet_progress_fn,
@@ -162,11 +174,32 @@ static int slides(const facet_planarize_options *options)
     return options->data_tangent < options->data_normal || options->surface_weight > 0.0;
 }
 
+/* data_tangent held `times` more firmly, at most as firmly as the vertices
+ * are held across the design (data_normal, or the design surface's weight):
+ * sliding, never more than held at the control point. */
+static double firmer_tangent(const facet_planarize_options *options, double times)
+{
+    const double most = facet_max(options->data_normal, options->surface_weight);
+    return facet_max(options->data_tangent, facet_min(times * options->data_tangent, most));
+}
+
 /* Whether a stage runs for these options (vertices sliding along the design
- * skip the first two). */
+ * skip the first two; held at their control points, the last three). */
 static int stage_applies(const facet_planarize_options *options, size_t k)
 {
-    return !slides(options) || STAGES[k].sliding;
+    if (!(STAGES[k].firmer > 1.0))
+        return !slides(options) || STAGES[k].sliding;
+    /* held more firmly: not when data_tangent is already as large as it
+     * can be, nor when an earlier stage of the same recipe held as firmly */
+    const double tangent = firmer_tangent(options, STAGES[k].firmer);
+    if (!slides(options) || !(tangent > options->data_tangent))
+        return 0;
+    for (size_t j = 0; j < k; ++j)
+        if (STAGES[j].firmer > 1.0 && STAGES[j].hold_tol == STAGES[k].hold_tol &&
+            STAGES[j].anderson == STAGES[k].anderson && STAGES[j].floor == STAGES[k].floor &&
+            firmer_tangent(options, STAGES[j].firmer) == tangent)
+            return 0;
+    return 1;
 }
 
 /* a + b, at most INT32_MAX (the counts are int32; a bound may not wrap) */
@@ -360,6 +393,8 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
             o.angle_floor = facet_min(1.2 * options->quality_angle, 59.0);
         o.hold_tol = STAGES[k].hold_tol;
         o.hold_max = STAGES[k].hold_max;
+        if (STAGES[k].firmer > 1.0)
+            o.data_tangent = firmer_tangent(options, STAGES[k].firmer);
         o.max_iter = stage_limit(options, k);
         o.warm = 0;
         if (options->time_budget > 0.0) {
@@ -661,6 +696,7 @@ static void adopt(facet_planarize_result *result, const facet_planarize_result *
     result->constraint_max_rel = r->constraint_max_rel;
     result->anderson_accepted = r->anderson_accepted;
     result->anderson_rejected = r->anderson_rejected;
+    result->data_tangent = r->data_tangent;
     result->narrow_corners = narrow;
 }
 

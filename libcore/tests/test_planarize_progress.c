@@ -81,14 +81,20 @@ static void fixture_free(fixture *x)
 }
 
 /* The re-solves' limits from stage k (1-based) on, as facet.h documents
- * them for point data (four stages: max_iter, max_iter, at least 4000,
- * max_iter) or sliding data (the last two). */
-static int32_t limits_from(int32_t k, int32_t stages, int32_t max_iter)
+ * them: four stages for point data (max_iter, max_iter, at least 4000,
+ * max_iter), five for sliding data (at least 4000, then max_iter: the exact
+ * path, the angle floor's recipe, and the last three held more firmly). */
+static int32_t stages_of(int sliding)
 {
-    const int32_t all[4] = {max_iter, max_iter, max_iter > 4000 ? max_iter : 4000, max_iter};
+    return sliding ? 5 : 4;
+}
+
+static int32_t limits_from(int32_t k, int sliding, int32_t max_iter)
+{
+    const int32_t exact = max_iter > 4000 ? max_iter : 4000;
     int32_t sum = 0;
-    for (int32_t j = k + (4 - stages); j <= 4; ++j)
-        sum += all[j - 1];
+    for (int32_t j = k; j <= stages_of(sliding); ++j) /* the exact path: the third, or the first */
+        sum += j == (sliding ? 1 : 3) ? exact : max_iter;
     return sum;
 }
 
@@ -96,8 +102,9 @@ static int32_t limits_from(int32_t k, int32_t stages, int32_t max_iter)
  * a bound that never grows and never falls below it, the documented bound
  * at each stage start, stages in order. */
 static void check_one_solve(const recorder *rec, const facet_planarize_result *r,
-                            int32_t max_iter, int32_t stages)
+                            int32_t max_iter, int sliding)
 {
+    const int32_t stages = stages_of(sliding);
     CHECK(rec->n == r->iterations && rec->n <= MAX_CALLS);
     int monotone = 1, bounded = 1, counted = 1, ordered = 1, stages_same = 1, starts = 1;
     int32_t top_stage = 0;
@@ -115,8 +122,8 @@ static void check_one_solve(const recorder *rec, const facet_planarize_result *r
         if (k == 0 || rec->stage[k] != rec->stage[k - 1]) {
             /* a stage starts: done so far plus the limits from here */
             const int32_t done = rec->iteration[k] - 1;
-            const int32_t expect = rec->stage[k] == 0 ? max_iter + limits_from(1, stages, max_iter)
-                                                      : done + limits_from(rec->stage[k], stages, max_iter);
+            const int32_t expect = rec->stage[k] == 0 ? max_iter + limits_from(1, sliding, max_iter)
+                                                      : done + limits_from(rec->stage[k], sliding, max_iter);
             if (rec->max_iter[k] != expect) {
                 printf("stage %d starts at iteration %d: max_iter %d, expected %d\n",
                        (int)rec->stage[k], (int)rec->iteration[k], (int)rec->max_iter[k], (int)expect);
@@ -166,7 +173,7 @@ static void test_all_four_stages(void)
     printf("hypar 8, quality_angle 40: %d calls, first %d, max_iter %d -> %d\n", (int)rec->n,
            (int)r.first_iterations, (int)rec->max_iter[0], (int)rec->max_iter[rec->n - 1]);
     CHECK(rec->max_iter[0] == 8000); /* 1000 + 1000 + 1000 + 4000 + 1000 */
-    check_one_solve(rec, &r, o.max_iter, 4);
+    check_one_solve(rec, &r, o.max_iter, 0);
 
     /* a smaller limit: the exact penalty path's 4000 stays */
     memset(rec, 0, sizeof *rec), rec->s = s;
@@ -174,7 +181,7 @@ static void test_all_four_stages(void)
     CHECK_STATUS(facet_planarizer_solve(s, x.g.xyz, &o, x.out, &r, &err), FACET_OK);
     CHECK(rec->max_iter[0] == 600 + 600 + 600 + 4000 + 600);
     if (r.quality_resolves > 0)
-        check_one_solve(rec, &r, 600, 4);
+        check_one_solve(rec, &r, 600, 0);
     o.max_iter = 1000;
 
     /* cancelled at the third call of the second re-solve: the first
@@ -196,9 +203,13 @@ static void test_all_four_stages(void)
     fixture_free(&x);
 }
 
-/* Vertices sliding along the design (data_tangent 0.01): two stages (the
- * exact penalty path and the angle floor's recipe), numbered 1 and 2 of 2. */
-static void test_sliding_two_stages(void)
+/* Vertices sliding along the design (data_tangent 0.01): five stages (the
+ * exact penalty path and the angle floor's recipe, then the default's
+ * schedule and the angle floor's recipe with the vertices held three times
+ * more firmly, and the latter ten times), numbered 1 to 5 of 5. No re-solve
+ * reaches 40 degrees: the first result, with the options' own data_tangent,
+ * is returned. */
+static void test_sliding_stages(void)
 {
     fixture x = fixture_new(8);
     facet_error err;
@@ -206,9 +217,10 @@ static void test_sliding_two_stages(void)
     x.o.data_tangent = 0.01;
     facet_planarize_result r;
     CHECK_STATUS(facet_planarizer_solve(x.s, x.g.xyz, &x.o, x.out, &r, &err), FACET_OK);
-    CHECK(r.quality_resolves == 2);
-    CHECK(x.rec->max_iter[0] == 1000 + 4000 + 1000);
-    check_one_solve(x.rec, &r, x.o.max_iter, 2);
+    CHECK(r.quality_resolves == 5 && r.quality == FACET_QUALITY_NARROW);
+    CHECK(r.data_tangent == 0.01);
+    CHECK(x.rec->max_iter[0] == 1000 + 4000 + 1000 + 1000 + 1000 + 1000);
+    check_one_solve(x.rec, &r, x.o.max_iter, 1);
     fixture_free(&x);
 }
 
@@ -224,7 +236,7 @@ static void test_recovered_default(void)
     printf("hypar 32, default: %d iterations, %d re-solves, %s\n", (int)r.iterations,
            (int)r.quality_resolves, r.quality == FACET_QUALITY_RECOVERED ? "recovered" : "other");
     if (r.quality_resolves > 0) {
-        check_one_solve(x.rec, &r, x.o.max_iter, 4);
+        check_one_solve(x.rec, &r, x.o.max_iter, 0);
     } else { /* the first solve kept its corners open (a change of schedule) */
         CHECK(x.rec->n == r.iterations && x.rec->max_iter[0] == 8000);
     }
@@ -284,7 +296,7 @@ int main(void)
 {
     test_no_resolve();
     test_all_four_stages();
-    test_sliding_two_stages();
+    test_sliding_stages();
     test_recovered_default();
     return check_report("test_planarize_progress");
 }
