@@ -77,11 +77,25 @@ def test_progress_counts_through_all_four_stages():
     assert result.iterations == plain.iterations and _digest(result) == _digest(plain)
 
 
-def test_sliding_data_has_two_stages():
+def test_sliding_data_has_five_stages():
+    # the exact penalty path and the angle floor's recipe, then the vertices held more
+    # firmly along the design: the default's schedule and the floor's recipe at three
+    # times the preset's data_tangent, the floor's at ten times
     result, events = _solve(_hypar(8), quality_angle=40.0, data="plane")
-    assert result.quality_resolves == 2
-    _check_one_solve(result, events, 2)
-    assert events[0] == ("progress", 1, 1000 + 4000 + 1000)
+    assert result.quality_resolves == 5 and result.quality_check == "narrow"
+    assert result.data_tangent == 0.01  # none kept the corners: the first result
+    _check_one_solve(result, events, 5)
+    assert events[0] == ("progress", 1, 1000 + 4000 + 1000 + 1000 + 1000 + 1000)
+
+
+def test_a_firmer_stage_that_would_repeat_one_is_skipped():
+    # data_tangent 0.5 of data_normal 1: held three times or ten times as firmly is
+    # held as firmly as across the design (1.0) either way, so the floor's recipe at
+    # ten times would repeat the one at three times: four stages
+    result, events = _solve(_hypar(8), quality_angle=40.0, data_tangent=0.5)
+    assert result.quality_resolves == 4
+    _check_one_solve(result, events, 4)
+    assert events[0] == ("progress", 1, 1000 + 4000 + 1000 + 1000 + 1000)
 
 
 def test_no_resolve_no_stage():

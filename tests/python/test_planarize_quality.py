@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 import facet
+from facet.planarize import DATA_TERMS
 from facet.report import planarize_report
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "tools", "bench"))
@@ -112,6 +113,44 @@ def test_hypar32_default_has_no_new_narrow_corner(hypar32):
     assert report["narrow_corners"] == 0
     assert report["quality_resolves"] == r.quality_resolves
     assert report["first_iterations"] == r.first_iterations
+
+
+@pytest.mark.parametrize("name, data, stage", [
+    ("heart.obj", "plane", {}),  # the default's schedule, held more firmly
+    ("cmc1.obj", "surface", {"hold_tol": 0.003, "angle_floor": 6.0}),  # the floor's recipe
+])
+def test_sliding_vertices_held_more_firmly_when_every_resolve_closed_a_panel(
+        data_dir, name, data, stage):
+    """Vertices sliding along the design (the plane and surface presets): on these two
+    meshes the first solve and every re-solve along the penalty path closed panels
+    (1.8 and 0.4 degrees when this was written), and the result was returned with them.
+    The last re-solves hold the vertices three times more firmly along the design
+    (data_tangent 0.01 -> 0.03): every corner stays open, and the result says how it
+    was solved. It is the same result as a solve asked for with that weight and that
+    stage's schedule."""
+    mesh = facet.read_mesh(os.path.join(data_dir, name))
+    asked = DATA_TERMS[data]["data_tangent"]
+    r = facet.planarize(mesh, data=data, threads=1)
+    assert r.converged and np.max(r.planarity.max_rel) <= 1e-6
+    assert new_narrow(mesh, r.mesh.vertices) == 0 and r.narrow_corners == 0
+    assert r.quality_check == "recovered" and not r.warnings
+    assert r.data_tangent == pytest.approx(3 * asked) and r.options["data_tangent"] == asked
+    # the re-solves at the preset's own weight do not keep the panels open
+    first = facet.planarize(mesh, data=data, threads=1, quality_angle=0)
+    assert new_narrow(mesh, first.mesh.vertices) > 0 and first.data_tangent == asked
+    direct = facet.planarize(mesh, data=data, threads=1, quality_angle=0,
+                             data_tangent=r.data_tangent, **stage)
+    assert np.array_equal(direct.mesh.vertices, r.mesh.vertices)
+    report = planarize_report(mesh, r)
+    assert report["data_tangent"] == r.data_tangent and report["quality_check"] == "recovered"
+
+
+def test_point_data_is_never_held_more_firmly(hypar32):
+    """Held at their control points (data_tangent = data_normal), the vertices have
+    nothing to be held more firmly against: the result keeps the options' weight."""
+    r = facet.planarize(hypar32, method="lg", threads=1, quality_angle=40.0)
+    assert r.quality_check == "narrow" and r.quality_resolves == 4
+    assert r.data_tangent == 1.0
 
 
 def test_level6_default_has_no_new_narrow_corner():

@@ -360,6 +360,10 @@ def print_planarize_summary(report, out=None):
     if resolves:
         outcome = ("the last kept every corner open" if report.get("quality_check") == "recovered"
                    else "none kept every corner open: the first solve's result")
+        asked, used = report.get("options", {}).get("data_tangent"), report.get("data_tangent")
+        if asked is not None and used is not None and used > asked:
+            outcome += (f", holding the vertices more firmly along the design (data_tangent "
+                        f"{_g(used)} instead of {_g(asked)})")
         _line(out, "re-solves", f"{resolves} for panel quality after the first solve's "
               f"{count_noun(report.get('first_iterations', 0), 'iteration')}: {outcome}")
     _compared_line(out, report)

@@ -182,6 +182,13 @@ class PlanarizeResult:
         (:class:`facet.Cancelled`'s ``result``): what was still running (a
         quality re-solve, the comparison) did not finish; ``iterations``
         and ``quality_resolves`` count it too, and ``compared`` is None.
+    data_tangent : float or None
+        The ``data_tangent`` the result was solved with: the options' own,
+        unless every re-solve along the penalty path closed a panel while
+        vertices slid along the design (plane or surface data) and a last
+        re-solve kept every corner open by holding them three or ten times
+        more firmly along it (at most as firmly as ``data_normal`` or
+        ``surface_weight``); ``quality_check`` is then ``"recovered"``.
     control : facet.PolyMesh or None
         The control mesh the result was solved from.
     reference : facet.Surface or None
@@ -207,6 +214,7 @@ class PlanarizeResult:
     threads: int = 0
     compared: object = None
     stopped: bool = False
+    data_tangent: float = None
     control: object = None
     reference: object = None
     _quality: object = field(default=None, repr=False)
@@ -519,6 +527,7 @@ class Planarizer:
             threads=int(stats.get("threads", 0)),
             compared=None if stopped else _compared(stats),
             stopped=stopped,
+            data_tangent=float(stats["data_tangent"]),
             control=control,
             reference=surface,
         )

@@ -105,7 +105,9 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         surface, smallest angles, edge ratio change, degenerate faces;
         ``quality_check``, ``narrow_corners``, ``quality_resolves`` and
         ``first_iterations`` say whether the solve re-solved a result with a
-        new narrow corner, ``compared`` what method auto compared before it
+        new narrow corner, ``data_tangent`` the weight the result was solved
+        with (larger than the options' when a re-solve held sliding vertices
+        more firmly along the design), ``compared`` what method auto compared before it
         picked ``method``'s result, or None: see :class:`facet.PlanarizeResult`).
         Already JSON-safe.
     """
@@ -137,6 +139,7 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         "quality_check": str(getattr(result, "quality_check", "not_checked")),
         "narrow_corners": int(getattr(result, "narrow_corners", 0)),
         "quality_resolves": int(getattr(result, "quality_resolves", 0)),
+        "data_tangent": getattr(result, "data_tangent", None),
         "first_iterations": int(getattr(result, "first_iterations", result.iterations)),
         "threads": int(getattr(result, "threads", 0)),
         "compared": getattr(result, "compared", None),
