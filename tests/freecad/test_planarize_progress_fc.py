@@ -162,6 +162,29 @@ class TestPlanarizeProgress(DocumentTestCase):
         self.assertIn("ancel", result.getStatusString())
         self.assertTrue((facetwb.get_mesh(result).vertices == before).all())
 
+    def test_a_firmer_hold_is_named_in_the_summary(self):
+        # heart.obj with plane data: every re-solve at the preset's own weight closes a
+        # panel; the one holding the vertices more firmly along the design keeps them
+        # open, and the report view says with which weight
+        from facetwb import importer
+        from facetwb.objects.planarized import planarize_summary
+
+        source = importer.import_mesh(os.path.join(ROOT, "tests", "data", "heart.obj"), self.doc)
+        before = facetwb.get_mesh(source).vertices.copy()
+        result = facetwb.make_planarized(source)
+        result.Data = "plane"
+        self.doc.recompute()
+        self.assertTrue(result.isValid(), result.getStatusString())
+        self.assertEqual(result.QualityCheck, "recovered")
+        self.assertEqual(result.NarrowCorners, 0)
+        self.assertIn("solved again without it, holding the vertices more firmly along the "
+                      "design (data tangent 0.03 instead of 0.01)", planarize_summary(result))
+        self.assertTrue((facetwb.get_mesh(source).vertices == before).all())
+        # point data: nothing to hold more firmly, and the summary says nothing of it
+        result.Data = "point"
+        self.doc.recompute()
+        self.assertNotIn("more firmly", planarize_summary(result))
+
     def test_a_stalled_result_names_its_narrow_corners(self):
         # local/local alone stalls short of the tolerance on this saddle with a corner
         # under 5 degrees: not re-solved, but counted in NarrowCorners and the summary

@@ -188,6 +188,11 @@ class Planarized(PolyMesh):
         self.method_ran = result.method  # what "auto" chose; for the report, not saved
         self.compared = result.compared  # and what it compared (the same)
         self.stopped = result.stopped  # Stop and keep (the same)
+        # a re-solve that held sliding vertices more firmly (the same): (asked, used)
+        asked = result.options.get("data_tangent")
+        used = result.data_tangent
+        self.firmer = (asked, used) if asked is not None and used is not None and used > asked \
+            else None
         obj.Iterations = int(result.iterations)
         obj.StopReason = str(result.stop_reason)
         obj.Converged = bool(result.converged)
@@ -355,7 +360,10 @@ def planarize_summary(obj):
         lines.append(_compared_text(compared, getattr(proxy, "method_ran", None)))
     check = getattr(obj, "QualityCheck", "")
     if check == "recovered":
-        lines.append("  a panel corner closed below 5 degrees; solved again without it")
+        firmer = getattr(proxy, "firmer", None)
+        lines.append("  a panel corner closed below 5 degrees; solved again without it"
+                     + (f", holding the vertices more firmly along the design (data tangent "
+                        f"{firmer[1]:g} instead of {firmer[0]:g})" if firmer else ""))
     elif check == "narrow" or obj.NarrowCorners:
         # narrow: no re-solve kept them open; else the solve stopped short of the
         # tolerance, and such a result is not re-solved
