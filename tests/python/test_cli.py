@@ -58,6 +58,22 @@ def test_planarize_report_and_options(facet_command, data_dir, tmp_path):
     assert "NaN" not in report_path.read_text()
 
 
+def test_a_firmer_hold_is_said_and_reported(facet_command, data_dir, tmp_path):
+    # heart.obj with plane data: every re-solve at the preset's data_tangent closes a
+    # panel; the one that held the vertices more firmly along the design is returned,
+    # and the summary and the report say with which weight
+    report_path = tmp_path / "r.json"
+    done = facet_command("planarize", data_dir / "heart.obj", "-o", tmp_path / "h.obj",
+                         "--data", "plane", "--threads", "1", "--report", report_path)
+    assert done.returncode == 0, done.stderr
+    report = json.loads(report_path.read_text())
+    assert report["quality_check"] == "recovered" and report["narrow_corners"] == 0
+    assert report["options"]["data_tangent"] == 0.01 and report["data_tangent"] == 0.03
+    assert ("the last kept every corner open, holding the vertices more firmly along the "
+            "design (data_tangent 0.03 instead of 0.01)") in done.stdout
+    assert "warning" not in done.stdout
+
+
 def test_thread_count_does_not_change_the_result(facet_command, data_dir, tmp_path):
     one, two = tmp_path / "one.obj", tmp_path / "two.obj"
     assert facet_command("planarize", data_dir / "tubemesh.off", "-o", one,
