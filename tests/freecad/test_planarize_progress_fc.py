@@ -177,12 +177,14 @@ class TestPlanarizeProgress(DocumentTestCase):
         self.assertTrue(result.isValid(), result.getStatusString())
         self.assertEqual(result.QualityCheck, "recovered")
         self.assertEqual(result.NarrowCorners, 0)
+        self.assertEqual(result.DataTangentUsed, 0.03)  # kept in the document
         self.assertIn("solved again without it, holding the vertices more firmly along the "
                       "design (data tangent 0.03 instead of 0.01)", planarize_summary(result))
         self.assertTrue((facetwb.get_mesh(source).vertices == before).all())
         # point data: nothing to hold more firmly, and the summary says nothing of it
         result.Data = "point"
         self.doc.recompute()
+        self.assertEqual(result.DataTangentUsed, 1.0)
         self.assertNotIn("more firmly", planarize_summary(result))
 
     def test_a_stalled_result_names_its_narrow_corners(self):

@@ -12,6 +12,7 @@ import time
 import FreeCAD as App
 
 import facet
+from facet.planarize import DATA_TERMS as _PRESETS
 from facetwb import compat, progress
 from facetwb.translation import translate
 from facetwb.recompute import guarded
@@ -36,6 +37,9 @@ STOP_REASONS = {
 
 #: Enumerations of the solver's terms (first value is the default).
 DATA_TERMS = ["point", "plane", "surface"]
+#: Each Data preset's tangential weight (facet.planarize.DATA_TERMS), which a result's
+#: DataTangentUsed exceeds when a quality re-solve held the vertices more firmly.
+DATA_TERMS_TANGENT = {name: terms["data_tangent"] for name, terms in _PRESETS.items()}
 BOUNDARY_MODES = ["free", "fixed", "sliding"]
 SHAPE_MODES = ["none", "asap", "arap"]
 
@@ -145,6 +149,12 @@ class Planarized(PolyMesh):
         compat.add_property(obj, "App::PropertyInteger", "NarrowCorners", "Result",
                             "Corners under 5 degrees in the result that the source did not have",
                             attr=output, editor_mode=read_only)
+        compat.add_property(obj, "App::PropertyFloat", "DataTangentUsed", "Result",
+                            "The tangential data weight the last result was solved with: the "
+                            "Data preset's (0.01 for plane and surface, 1 for point), or 3 or 10 "
+                            "times it when a quality re-solve held the vertices more firmly "
+                            "along the design to keep every corner open",
+                            attr=output, editor_mode=read_only)
         compat.add_property(obj, "App::PropertyLength", "DisplacementMax", "Result",
                             "Largest distance a vertex moved from the source", attr=output,
                             editor_mode=read_only)
@@ -188,16 +198,12 @@ class Planarized(PolyMesh):
         self.method_ran = result.method  # what "auto" chose; for the report, not saved
         self.compared = result.compared  # and what it compared (the same)
         self.stopped = result.stopped  # Stop and keep (the same)
-        # a re-solve that held sliding vertices more firmly (the same): (asked, used)
-        asked = result.options.get("data_tangent")
-        used = result.data_tangent
-        self.firmer = (asked, used) if asked is not None and used is not None and used > asked \
-            else None
         obj.Iterations = int(result.iterations)
         obj.StopReason = str(result.stop_reason)
         obj.Converged = bool(result.converged)
         obj.QualityCheck = str(result.quality_check)
         obj.NarrowCorners = int(result.narrow_corners)
+        obj.DataTangentUsed = float(result.data_tangent)
         obj.DisplacementMax = float(result.displacement_max)
         obj.DisplacementRms = float(result.displacement_rms)
 
@@ -360,10 +366,13 @@ def planarize_summary(obj):
         lines.append(_compared_text(compared, getattr(proxy, "method_ran", None)))
     check = getattr(obj, "QualityCheck", "")
     if check == "recovered":
-        firmer = getattr(proxy, "firmer", None)
+        # held more firmly than the Data preset asks (DataTangentUsed: 0 in a document
+        # from before it, which never says so)
+        asked = DATA_TERMS_TANGENT.get(obj.Data)
+        used = getattr(obj, "DataTangentUsed", 0.0)
         lines.append("  a panel corner closed below 5 degrees; solved again without it"
                      + (f", holding the vertices more firmly along the design (data tangent "
-                        f"{firmer[1]:g} instead of {firmer[0]:g})" if firmer else ""))
+                        f"{used:g} instead of {asked:g})" if asked and used > asked else ""))
     elif check == "narrow" or obj.NarrowCorners:
         # narrow: no re-solve kept them open; else the solve stopped short of the
         # tolerance, and such a result is not re-solved
