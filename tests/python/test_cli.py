@@ -23,6 +23,14 @@ def assert_one_line_error(done, *parts):
     return lines[0]
 
 
+def planarize_with_report(facet_command, tmp_path, *arguments):
+    """Run ``facet planarize ... --report``: the finished process and its report."""
+    report_path = tmp_path / "r.json"
+    done = facet_command("planarize", *arguments, "--report", report_path)
+    assert done.returncode == 0, done.stderr
+    return done, json.loads(report_path.read_text())
+
+
 def test_version(facet_command):
     done = facet_command("--version")
     assert done.returncode == 0
@@ -62,11 +70,8 @@ def test_a_firmer_hold_is_said_and_reported(facet_command, data_dir, tmp_path):
     # heart.obj with plane data: every re-solve at the preset's data_tangent closes a
     # panel; the one that held the vertices more firmly along the design is returned,
     # and the summary and the report say with which weight
-    report_path = tmp_path / "r.json"
-    done = facet_command("planarize", data_dir / "heart.obj", "-o", tmp_path / "h.obj",
-                         "--data", "plane", "--threads", "1", "--report", report_path)
-    assert done.returncode == 0, done.stderr
-    report = json.loads(report_path.read_text())
+    done, report = planarize_with_report(facet_command, tmp_path, data_dir / "heart.obj", "-o",
+                                         tmp_path / "h.obj", "--data", "plane", "--threads", "1")
     assert report["quality_check"] == "recovered" and report["narrow_corners"] == 0
     assert report["options"]["data_tangent"] == 0.01 and report["data_tangent"] == 0.03
     assert ("the last kept every corner open, holding the vertices more firmly along the "
@@ -84,11 +89,9 @@ def test_thread_count_does_not_change_the_result(facet_command, data_dir, tmp_pa
 
 
 def test_absolute_tolerance(facet_command, data_dir, tmp_path):
-    report_path = tmp_path / "r.json"
-    done = facet_command("planarize", data_dir / "tubemesh.off", "-o", tmp_path / "t.obj",
-                         "--tol", "0", "--tol-abs", "1e-3", "--report", report_path)
-    assert done.returncode == 0, done.stderr
-    report = json.loads(report_path.read_text())
+    _done, report = planarize_with_report(facet_command, tmp_path, data_dir / "tubemesh.off",
+                                          "-o", tmp_path / "t.obj", "--tol", "0",
+                                          "--tol-abs", "1e-3")
     assert report["converged"] is True
     assert report["planarity_max_abs"] <= 1e-3
     assert report["planarity_max_rel"] > 1e-6  # the relative test was off

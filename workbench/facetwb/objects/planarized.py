@@ -53,6 +53,28 @@ TERM_WEIGHTS = [
 ]
 
 
+#: The Result group's read-only outputs of the last solve: property type, name, tooltip.
+RESULT_OUTPUTS = [
+    ("App::PropertyInteger", "Iterations", "Iterations the last solve ran"),
+    ("App::PropertyString", "StopReason",
+     "Why the last solve stopped: tolerance, max_iter, iterations, stagnation"),
+    ("App::PropertyBool", "Converged", "True if the last solve reached the tolerance"),
+    ("App::PropertyString", "QualityCheck",
+     "Whether the last solve left a corner under 5 degrees that the source did not have, and "
+     "what it did: ok (none), recovered (solved again without one), narrow (every re-solve "
+     "left one, or the solve was stopped before one kept them open), not_checked"),
+    ("App::PropertyInteger", "NarrowCorners",
+     "Corners under 5 degrees in the result that the source did not have"),
+    ("App::PropertyFloat", "DataTangentUsed",
+     "The tangential data weight the last result was solved with: the Data preset's (0.01 "
+     "for plane and surface, 1 for point), or 3 or 10 times it when a quality re-solve held "
+     "the vertices more firmly along the design to keep every corner open"),
+    ("App::PropertyLength", "DisplacementMax", "Largest distance a vertex moved from the source"),
+    ("App::PropertyLength", "DisplacementRms",
+     "Root mean square of the distances the vertices moved"),
+]
+
+
 class Planarized(PolyMesh):
     """Proxy of a planarized polygon mesh (App::FeaturePython)."""
 
@@ -132,35 +154,8 @@ class Planarized(PolyMesh):
         compat.add_property(
             obj, "App::PropertyFloat", "TimeBudget", "Planarize",
             "Stop after this many seconds (0: no limit)")
-        compat.add_property(obj, "App::PropertyInteger", "Iterations", "Result",
-                            "Iterations the last solve ran", attr=output, editor_mode=read_only)
-        compat.add_property(obj, "App::PropertyString", "StopReason", "Result",
-                            "Why the last solve stopped: tolerance, max_iter, iterations, "
-                            "stagnation", attr=output, editor_mode=read_only)
-        compat.add_property(obj, "App::PropertyBool", "Converged", "Result",
-                            "True if the last solve reached the tolerance", attr=output,
-                            editor_mode=read_only)
-        compat.add_property(obj, "App::PropertyString", "QualityCheck", "Result",
-                            "Whether the last solve left a corner under 5 degrees that the "
-                            "source did not have, and what it did: ok (none), recovered (solved "
-                            "again without one), narrow (every re-solve left one, or the solve "
-                            "was stopped before one kept them open), not_checked",
-                            attr=output, editor_mode=read_only)
-        compat.add_property(obj, "App::PropertyInteger", "NarrowCorners", "Result",
-                            "Corners under 5 degrees in the result that the source did not have",
-                            attr=output, editor_mode=read_only)
-        compat.add_property(obj, "App::PropertyFloat", "DataTangentUsed", "Result",
-                            "The tangential data weight the last result was solved with: the "
-                            "Data preset's (0.01 for plane and surface, 1 for point), or 3 or 10 "
-                            "times it when a quality re-solve held the vertices more firmly "
-                            "along the design to keep every corner open",
-                            attr=output, editor_mode=read_only)
-        compat.add_property(obj, "App::PropertyLength", "DisplacementMax", "Result",
-                            "Largest distance a vertex moved from the source", attr=output,
-                            editor_mode=read_only)
-        compat.add_property(obj, "App::PropertyLength", "DisplacementRms", "Result",
-                            "Root mean square of the distances the vertices moved",
-                            attr=output, editor_mode=read_only)
+        for kind, name, tip in RESULT_OUTPUTS:
+            compat.add_property(obj, kind, name, "Result", tip, attr=output, editor_mode=read_only)
 
     @guarded
     def execute(self, obj):
