@@ -385,7 +385,8 @@ typedef struct facet_planarize_result {
     double data_tangent;             /* the data_tangent xyz_out was solved with:
                                         options.data_tangent, unless a quality re-solve
                                         held sliding vertices more firmly along the design
-                                        (3 or 10 times; facet_quality_outcome) */
+                                        (3 or 10 times; facet_quality_outcome); a live
+                                        update: options.data_tangent, its region's */
 } facet_planarize_result;
 
 /* A planarization solver for one mesh topology. It copies the topology and
@@ -942,8 +943,10 @@ typedef enum facet_quality_outcome {
  * hold (below); *stages (may be NULL) receives how many
  * re-solves this solve may run: 0 when it cannot re-solve (quality_angle 0,
  * a fixed iteration count, an angle floor, a warm start), else 4 (vertices
- * held at their control points) or 2 (vertices sliding along the design:
- * data_tangent < data_normal or surface_weight > 0). Re-solves end at the
+ * held at their control points) or 2 to 5 (vertices sliding along the
+ * design: data_tangent < data_normal or surface_weight > 0; 5 unless a
+ * firmer hold would not raise data_tangent or would repeat a stage: the
+ * presets have 5). Re-solves end at the
  * first that recovers, so k = *stages is not always reached. Outside a
  * solve, in a live update (facet_planarizer_update) and for NULL: 0 and 0. */
 int32_t facet_planarizer_stage(const facet_planarizer *planarizer, int32_t *stages);

@@ -196,6 +196,7 @@ static int stage_applies(const facet_planarize_options *options, size_t k)
         return 0;
     for (size_t j = 0; j < k; ++j)
         if (STAGES[j].firmer > 1.0 && STAGES[j].hold_tol == STAGES[k].hold_tol &&
+            STAGES[j].hold_max == STAGES[k].hold_max && STAGES[j].max_iter == STAGES[k].max_iter &&
             STAGES[j].anderson == STAGES[k].anderson && STAGES[j].floor == STAGES[k].floor &&
             firmer_tangent(options, STAGES[j].firmer) == tangent)
             return 0;

@@ -79,6 +79,29 @@ def test_a_firmer_hold_is_said_and_reported(facet_command, data_dir, tmp_path):
     assert "warning" not in done.stdout
 
 
+@pytest.mark.parametrize("check, options, used, says", [
+    ("recovered", {"data_tangent": 0.01}, 0.03,
+     "the last kept every corner open, holding the vertices more firmly along the design "
+     "(data_tangent 0.03 instead of 0.01)"),
+    ("recovered", {}, 3.0, "(data_tangent 3 instead of 1)"),  # the core's default asked
+    ("recovered", {"data_tangent": 0.01}, 0.01, "the last kept every corner open\n"),
+    ("ok", {}, 1.0, "then the comparison's result, with every corner open, was kept"),
+    ("narrow", {}, 1.0, "none kept every corner open: the first solve's result"),
+])
+def test_the_resolves_line(capsys, data_dir, check, options, used, says):
+    # the summary's re-solves line for each outcome, from a real report with its
+    # quality figures set: "ok" after re-solves is method auto's comparison keeping
+    # local/local's result
+    from facet.report import planarize_report
+
+    mesh = facet.read_mesh(data_dir / "hypar.obj")
+    report = planarize_report(mesh, facet.planarize(mesh, threads=1), output_path="h.obj")
+    report.update(quality_check=check, quality_resolves=2, data_tangent=used, options=options)
+    cli.print_planarize_summary(report)
+    out = capsys.readouterr().out
+    assert "re-solves" in out and says in out, out
+
+
 def test_thread_count_does_not_change_the_result(facet_command, data_dir, tmp_path):
     one, two = tmp_path / "one.obj", tmp_path / "two.obj"
     assert facet_command("planarize", data_dir / "tubemesh.off", "-o", one,

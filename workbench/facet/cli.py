@@ -358,10 +358,15 @@ def print_planarize_summary(report, out=None):
     )
     resolves = report.get("quality_resolves") or 0
     if resolves:
-        outcome = ("the last kept every corner open" if report.get("quality_check") == "recovered"
-                   else "none kept every corner open: the first solve's result")
-        asked, used = report.get("options", {}).get("data_tangent"), report.get("data_tangent")
-        if asked is not None and used is not None and used > asked:
+        check = report.get("quality_check")
+        outcome = ("the last kept every corner open" if check == "recovered" else
+                   # method auto's comparison then kept local/local's result, with none
+                   "then the comparison's result, with every corner open, was kept"
+                   if check == "ok" else "none kept every corner open: the first solve's result")
+        # (the core's default when the options leave it out)
+        asked = (report.get("options") or {}).get("data_tangent", 1.0)
+        used = report.get("data_tangent")
+        if used is not None and used > asked:
             outcome += (f", holding the vertices more firmly along the design (data_tangent "
                         f"{_g(used)} instead of {_g(asked)})")
         _line(out, "re-solves", f"{resolves} for panel quality after the first solve's "

@@ -371,8 +371,9 @@ class Planarizer:
             starts; else
             ``stage(stage, stages)``, called when a quality re-solve starts
             (before its first `progress` call): the `stage`-th of at most
-            `stages` (4, or 2 when vertices slide along the design; they stop
-            at the first that recovers), for a progress text such as
+            `stages` (4, or up to 5 when vertices slide along the design: 5
+            with the presets; they stop at the first that recovers), for a
+            progress text such as
             "re-solving for panel quality (stage 2 of 4)". Exceptions it
             raises stop the solve and propagate.
         mu0, ratio, mu_min : float, optional
