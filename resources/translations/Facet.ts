@@ -407,27 +407,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="245"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="242"/>
         <source>Planarize {0}: solving by local/local too, for a result closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="248"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="245"/>
         <source>Planarize {0}: solving by local/global again with a finer hold, closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="253"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="250"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="231"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="228"/>
         <source>planarity {0:.2g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="231"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="228"/>
         <source>planarity {0:.2g} (tolerance {1:.2g})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -457,7 +457,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="251"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="248"/>
         <source>Planarize {0}: local/local closed a panel, solving by local/global</source>
         <translation type="unfinished"></translation>
     </message>

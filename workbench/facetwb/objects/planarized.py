@@ -37,9 +37,6 @@ STOP_REASONS = {
 
 #: Enumerations of the solver's terms (first value is the default).
 DATA_TERMS = ["point", "plane", "surface"]
-#: Each Data preset's tangential weight (facet.planarize.DATA_TERMS), which a result's
-#: DataTangentUsed exceeds when a quality re-solve held the vertices more firmly.
-DATA_TERMS_TANGENT = {name: terms["data_tangent"] for name, terms in _PRESETS.items()}
 BOUNDARY_MODES = ["free", "fixed", "sliding"]
 SHAPE_MODES = ["none", "asap", "arap"]
 
@@ -363,7 +360,7 @@ def planarize_summary(obj):
     if check == "recovered":
         # held more firmly than the Data preset asks (DataTangentUsed: 0 in a document
         # from before it, which never says so)
-        asked = DATA_TERMS_TANGENT.get(obj.Data)
+        asked = _PRESETS.get(obj.Data, {}).get("data_tangent")
         used = getattr(obj, "DataTangentUsed", 0.0)
         lines.append("  a panel corner closed below 5 degrees; solved again without it"
                      + (f", holding the vertices more firmly along the design (data tangent "
