@@ -721,6 +721,13 @@ static facet_status solve_again(facet_planarizer *s, const facet_planarize_optio
         if (!(remaining > 0.0))
             return FACET_OK;
     }
+    /* L/G's system goes first, so that the copies below, an L/L solve and
+     * the measures (the input surface's tree: about 150 bytes per triangle
+     * while it is built) take no more memory than L/G took (the copies
+     * beside the system were the peak of method auto's solve at 10,000
+     * quads: 24 bytes per face). A later L/G solve on this handle sets its
+     * system up again (its analysis: about 5% of a cold solve's time). */
+    facet_pl_global_free(s);
     /* the input (the last solve kept it; xyz_in may be xyz_out), the result */
     double *input = malloc(sizeof(double) * v3), *out = malloc(sizeof(double) * v3);
     if (!input || !out) { /* L/G's result stands */
@@ -728,11 +735,6 @@ static facet_status solve_again(facet_planarizer *s, const facet_planarize_optio
         return FACET_OK;
     }
     memcpy(input, s->previous_control, sizeof(double) * v3);
-    /* L/G's system goes, so that an L/L solve and the measures (the input
-     * surface's tree: about 150 bytes per triangle while it is built) take
-     * no more memory than L/G took. A later L/G solve on this handle sets
-     * its system up again (its analysis: about 5% of a cold solve's time). */
-    facet_pl_global_free(s);
     facet_planarize_result r;
     facet_status status = solve_more(s, o_in, stage, (int64_t)result->iterations + o_in->max_iter + later,
                                      remaining, input, out, result, &r, error);
