@@ -241,6 +241,69 @@ def test_real_ctrl_c_during_a_solve_exits_130(tmp_path, facet_interrupt):
     assert not output.exists()
 
 
+@pytest.mark.skipif(sys.platform == "win32", reason="SIGINT is POSIX")
+def test_ctrl_c_in_a_resolve_writes_the_result_at_the_tolerance(
+        monkeypatch, capsys, data_dir, tmp_path, request):
+    """A real Ctrl+C at the first iteration of the first quality re-solve (heart.obj with
+    plane data: its first solve closes panels): the solve stops there, and the result its
+    first solve had reached at the tolerance is written, said to be stopped, with its
+    narrow corners; exit status 130."""
+    import os
+    import signal
+
+    import facet.cli_progress
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)  # as in a terminal
+    request.addfinalizer(lambda: signal.signal(signal.SIGINT, previous))
+    source = str(data_dir / "heart.obj")
+    mesh = facet.read_mesh(source)
+    first = facet.planarize(mesh, data="plane", threads=1, quality_angle=0)
+    assert first.converged and first.data_tangent == 0.01
+    shown = facet.cli_progress.ProgressLine.progress
+    sent = []
+
+    def progress(line, iteration, max_iter, planarity):
+        if iteration == first.iterations + 1 and not sent:  # the re-solve's first step
+            sent.append(iteration)
+            os.kill(os.getpid(), signal.SIGINT)
+        return shown(line, iteration, max_iter, planarity)
+
+    monkeypatch.setattr(facet.cli_progress.ProgressLine, "progress", progress)
+    output, report_path = tmp_path / "out.obj", tmp_path / "r.json"
+    status = cli.main(["planarize", source, "-o", str(output), "--data", "plane",
+                       "--threads", "1", "--report", str(report_path)])
+    out, err = capsys.readouterr()
+    assert sent and status == 130
+    assert err == f"facet: interrupted: {output} holds the result the solve had reached\n"
+    assert "  stopped" in out and "before the solve had finished" in out
+    report = json.loads(report_path.read_text())
+    assert report["stopped"] is True and report["converged"] is True
+    assert report["quality_check"] == "narrow" and report["narrow_corners"] > 0
+    assert report["iterations"] == first.iterations + 1
+    assert report["data_tangent"] == 0.01  # the first solve's weight, not a firmer stage's
+    written = facet.read_mesh(output)
+    assert np.array_equal(written.vertices, first.mesh.vertices)
+    assert cli.interrupted() is False  # told, and not again by main
+
+
+def test_a_second_ctrl_c_interrupts_at_once():
+    """Within stop_gently the first Ctrl+C is remembered for the progress check, the next
+    raises; outside it, the first raises."""
+    ctrl_c = cli._CtrlC()
+    with ctrl_c.stop_gently():
+        try:
+            ctrl_c._handle(2, None)
+        except KeyboardInterrupt:  # (not let out: it would stop the whole test run)
+            pytest.fail("the first Ctrl+C within stop_gently raised")
+        assert ctrl_c.seen
+        with pytest.raises(KeyboardInterrupt):
+            ctrl_c._handle(2, None)
+    ctrl_c.seen = False
+    with pytest.raises(KeyboardInterrupt):
+        ctrl_c._handle(2, None)
+    assert ctrl_c.seen
+
+
 class _DropsCtrlC:
     """An object whose ``__del__`` receives a real SIGINT: Python raises the KeyboardInterrupt
     inside the ``__del__`` and swallows it ("Exception ignored in ..."), as it did in

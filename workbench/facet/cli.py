@@ -12,10 +12,14 @@
 Exit status: 0 done (also when the tolerance was not reached, which is said;
 ``--strict`` makes that 1), 1 the solver failed, 2 bad input or bad command
 line (one line on stderr naming the file, the line or face and what is
-wrong), 130 interrupted with Ctrl+C.
+wrong), 130 interrupted with Ctrl+C. Ctrl+C stops ``planarize`` at its next
+iteration: when the solve had already reached the tolerance (it was re-solving
+for panel quality, or comparing methods), that result is written and said, else
+nothing is; a second Ctrl+C interrupts at once.
 """
 
 import argparse
+import contextlib
 import importlib
 import os
 import signal
@@ -372,6 +376,9 @@ def print_planarize_summary(report, out=None):
         _line(out, "re-solves", f"{resolves} for panel quality after the first solve's "
               f"{count_noun(report.get('first_iterations', 0), 'iteration')}: {outcome}")
     _compared_line(out, report)
+    if report.get("stopped"):
+        _line(out, "stopped", "before the solve had finished: this is the result it had reached "
+              "at the tolerance before the stop")
     relative = report.get("displacement_max_rel")
     share = "" if relative is None else f" ({relative * 100:.3g}% of the mean edge)"
     _line(
@@ -478,6 +485,7 @@ def _term_options(args, mesh):
 def run_planarize(args):
     """Run ``facet planarize``; return the exit status."""
     from facet import planarity, planarize
+    from facet.errors import Cancelled
     from facet.io import write_mesh, writer_for
     from facet.report import planarize_report, write_json
 
@@ -488,21 +496,36 @@ def run_planarize(args):
     from facet.cli_progress import ProgressLine
 
     line = ProgressLine(sys.stderr)  # a terminal only; says when it re-solves for quality
+
+    def progress(iteration, max_iter, planarity):
+        line.progress(iteration, max_iter, planarity)
+        return interrupted()
+
     try:
-        result = planarize(
-            mesh,
-            method=args.method,
-            tol=args.tol,
-            tol_abs=args.tol_abs,
-            max_iter=args.max_iter,
-            iterations=args.iterations,
-            threads=args.threads,
-            progress=line.progress if line.enabled else None,
-            stage=line.stage if line.enabled else None,
-            **options,
-        )
+        # Ctrl+C stops the solve at its next iteration; a result it had reached at the
+        # tolerance before (a quality re-solve or method auto's comparison was running) is
+        # written, as the workbench's Stop keeps it
+        with _CTRL_C.stop_gently():
+            result = planarize(
+                mesh,
+                method=args.method,
+                tol=args.tol,
+                tol_abs=args.tol_abs,
+                max_iter=args.max_iter,
+                iterations=args.iterations,
+                threads=args.threads,
+                progress=progress,
+                stage=line.stage if line.enabled else None,
+                **options,
+            )
+    except Cancelled as error:
+        if error.result is None or not _CTRL_C.seen:
+            raise
+        result = error.result
     finally:
         line.close()
+    # (also when Ctrl+C came after the solve's last progress check: its result is whole)
+    stopped = _CTRL_C.seen
     write_mesh(result.mesh, args.output)
     report = planarize_report(
         mesh, result, input_path=args.input, output_path=args.output, input_planarity=before
@@ -511,6 +534,11 @@ def run_planarize(args):
         report["report"] = args.report
         write_json(report, args.report)
     print_planarize_summary(report)
+    if stopped:
+        print(f"facet: interrupted: {report['output']} holds the result the solve had reached",
+              file=sys.stderr)
+        _CTRL_C.seen = False  # told: the command ends as interrupted, with its result written
+        return EXIT_INTERRUPTED
     if not report["converged"]:
         if report["stop_reason"] != "iterations":
             print(
@@ -564,11 +592,25 @@ class _CtrlC:
 
     def __init__(self):
         self.seen = False
+        self.gentle = False
         self._previous = None
 
     def _handle(self, signum, frame):
+        first = not self.seen
         self.seen = True
-        raise KeyboardInterrupt
+        if not (self.gentle and first):
+            raise KeyboardInterrupt
+
+    @contextlib.contextmanager
+    def stop_gently(self):
+        """Within: the first Ctrl+C is only remembered, for a progress check to stop a
+        computation that can keep what it finished (:func:`interrupted`); a second one
+        raises KeyboardInterrupt as usual."""
+        self.gentle = True
+        try:
+            yield
+        finally:
+            self.gentle = False
 
     def __enter__(self):
         self.seen = False

@@ -108,7 +108,8 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         new narrow corner, ``data_tangent`` the weight the result was solved
         with (larger than the options' when a re-solve held sliding vertices
         more firmly along the design), ``compared`` what method auto compared before it
-        picked ``method``'s result, or None: see :class:`facet.PlanarizeResult`).
+        picked ``method``'s result, or None, ``stopped`` whether the solve was stopped
+        after this result, before it had finished: see :class:`facet.PlanarizeResult`).
         Already JSON-safe.
     """
     if input_planarity is None:
@@ -143,6 +144,7 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         "first_iterations": int(getattr(result, "first_iterations", result.iterations)),
         "threads": int(getattr(result, "threads", 0)),
         "compared": getattr(result, "compared", None),
+        "stopped": bool(getattr(result, "stopped", False)),
         "solve_seconds": float(result.solve_seconds),
         "input_planarity_max_rel": input_planarity.max_rel_all,
         "input_planarity_max_abs": input_planarity.max_abs_all,
