@@ -48,3 +48,18 @@ def test_first_live_call_is_a_full_solve():
     a = facet.Planarizer(mesh).solve(live=True)
     b = facet.Planarizer(mesh).solve()
     assert a.converged and np.array_equal(a.mesh.vertices, b.mesh.vertices)
+
+
+@pytest.mark.parametrize("data, weight", [("point", 1.0), ("plane", 0.01)])
+def test_live_update_says_the_weight_it_was_solved_with(data, weight):
+    """A live update says the weight it was solved with: the options' (its region's solve
+    is not re-solved for panel quality, so nothing holds the vertices more firmly)."""
+    mesh = grid(12)
+    solver = facet.Planarizer(mesh)
+    first = solver.solve(data=data, method="lg")
+    assert first.converged and first.data_tangent == weight
+    control = mesh.vertices.copy()
+    control[6 * 13 + 6, 2] += 0.015
+    live = solver.solve(control, data=data, method="lg", live=True)
+    assert live.converged and live.data_tangent == weight
+    assert live.options["data_tangent"] == weight
