@@ -185,6 +185,36 @@ def test_cli_cleanup(tmp_path, capsys):
     assert "min_edge" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("kept", [True, False])
+def test_cli_cleanup_stopped_by_ctrl_c(tmp_path, capsys, monkeypatch, kept):
+    """Ctrl+C stops the planarization after the collapse as it stops ``facet planarize``:
+    the result reached at the tolerance before the stop is written, else nothing is."""
+    source = tmp_path / "squeezed.obj"
+    facet.write_mesh(_grid(6, 4, squeeze=3), source)
+    solve = facet.planarize
+
+    def stopped(mesh, progress=None, **options):
+        result = solve(mesh, **options)
+        cli._CTRL_C.seen = True  # Ctrl+C, as its handler remembers it
+        assert progress(1, 2, 1e-3) is True  # the progress check stops the solve
+        error = facet.Cancelled("cancelled")
+        error.result = result if kept else None
+        raise error
+
+    monkeypatch.setattr(facet, "planarize", stopped)
+    monkeypatch.setattr(cli._CTRL_C, "seen", False)  # (and False again after the test)
+    out = tmp_path / "out.obj"
+    status = cli.main(["cleanup", str(source), "-o", str(out), "--min-edge", "0.1"])
+    err = capsys.readouterr().err
+    assert status == 130
+    if kept:
+        assert not cli.interrupted()  # told once, by the command
+        assert err == f"facet: interrupted: {out} holds the result the solve had reached\n"
+        assert facet.read_mesh(out).n_faces == 20
+    else:
+        assert err == "facet: error: interrupted\n" and not out.exists()
+
+
 def test_cli_reports_have_quality(tmp_path, capsys):
     out, report_path = tmp_path / "p.obj", tmp_path / "p.json"
     assert cli.main(["planarize", os.path.join(DATA, "hypar.obj"), "-o", str(out),

@@ -482,10 +482,54 @@ def _term_options(args, mesh):
     return options
 
 
+def planarize_stoppable(mesh, prefix="facet planarize", **options):
+    """:func:`facet.planarize` for a command: its progress line on a terminal, and Ctrl+C
+    stopping it at its next iteration. A result the solve had reached at the tolerance
+    before the stop (a quality re-solve or method auto's comparison was running) is kept,
+    as the workbench's Stop keeps it; else the stop raises :class:`facet.Cancelled`.
+
+    Returns
+    -------
+    (PlanarizeResult, bool)
+        The result, and whether Ctrl+C stopped the solve (also when it came after the
+        solve's last progress check: the result is then whole). A stopped command writes
+        its result and ends with :func:`stopped_with_result`.
+    """
+    from facet import planarize
+    from facet.cli_progress import ProgressLine
+    from facet.errors import Cancelled
+
+    line = ProgressLine(sys.stderr, prefix=prefix)  # a terminal only; says when it re-solves
+
+    def progress(iteration, max_iter, planarity):
+        line.progress(iteration, max_iter, planarity)
+        return interrupted()
+
+    try:
+        with _CTRL_C.stop_gently():
+            result = planarize(mesh, progress=progress,
+                               stage=line.stage if line.enabled else None, **options)
+    except Cancelled as error:
+        if error.result is None or not _CTRL_C.seen:
+            raise
+        result = error.result
+    finally:
+        line.close()
+    return result, _CTRL_C.seen
+
+
+def stopped_with_result(output):
+    """The end of a command that Ctrl+C stopped after it wrote `output`: says so on
+    stderr; the exit status (interrupted)."""
+    print(f"facet: interrupted: {output} holds the result the solve had reached",
+          file=sys.stderr)
+    _CTRL_C.seen = False  # told: main need not say it again
+    return EXIT_INTERRUPTED
+
+
 def run_planarize(args):
     """Run ``facet planarize``; return the exit status."""
-    from facet import planarity, planarize
-    from facet.errors import Cancelled
+    from facet import planarity
     from facet.io import write_mesh, writer_for
     from facet.report import planarize_report, write_json
 
@@ -493,39 +537,16 @@ def run_planarize(args):
     mesh = _read(args)
     options = _term_options(args, mesh)
     before = planarity(mesh, threads=args.threads)
-    from facet.cli_progress import ProgressLine
-
-    line = ProgressLine(sys.stderr)  # a terminal only; says when it re-solves for quality
-
-    def progress(iteration, max_iter, planarity):
-        line.progress(iteration, max_iter, planarity)
-        return interrupted()
-
-    try:
-        # Ctrl+C stops the solve at its next iteration; a result it had reached at the
-        # tolerance before (a quality re-solve or method auto's comparison was running) is
-        # written, as the workbench's Stop keeps it
-        with _CTRL_C.stop_gently():
-            result = planarize(
-                mesh,
-                method=args.method,
-                tol=args.tol,
-                tol_abs=args.tol_abs,
-                max_iter=args.max_iter,
-                iterations=args.iterations,
-                threads=args.threads,
-                progress=progress,
-                stage=line.stage if line.enabled else None,
-                **options,
-            )
-    except Cancelled as error:
-        if error.result is None or not _CTRL_C.seen:
-            raise
-        result = error.result
-    finally:
-        line.close()
-    # (also when Ctrl+C came after the solve's last progress check: its result is whole)
-    stopped = _CTRL_C.seen
+    result, stopped = planarize_stoppable(
+        mesh,
+        method=args.method,
+        tol=args.tol,
+        tol_abs=args.tol_abs,
+        max_iter=args.max_iter,
+        iterations=args.iterations,
+        threads=args.threads,
+        **options,
+    )
     write_mesh(result.mesh, args.output)
     report = planarize_report(
         mesh, result, input_path=args.input, output_path=args.output, input_planarity=before
@@ -535,10 +556,7 @@ def run_planarize(args):
         write_json(report, args.report)
     print_planarize_summary(report)
     if stopped:
-        print(f"facet: interrupted: {report['output']} holds the result the solve had reached",
-              file=sys.stderr)
-        _CTRL_C.seen = False  # told: the command ends as interrupted, with its result written
-        return EXIT_INTERRUPTED
+        return stopped_with_result(report["output"])
     if not report["converged"]:
         if report["stop_reason"] != "iterations":
             print(

@@ -51,8 +51,9 @@ def add_commands(commands):
 
 def run_cleanup(args):
     """Run ``facet cleanup``; return the exit status."""
-    from facet import cleanup, planarity, planarize
-    from facet.cli import EXIT_OK, _line, _read, print_planarize_summary
+    from facet import cleanup, planarity
+    from facet.cli import (EXIT_OK, _line, _read, planarize_stoppable, print_planarize_summary,
+                           stopped_with_result)
     from facet.io import write_mesh, writer_for
     from facet.quality import quality
     from facet.report import planarize_report, write_json
@@ -62,7 +63,9 @@ def run_cleanup(args):
     mesh = _read(args)
     cleaned = cleanup(mesh, args.min_edge, relative=args.relative)
     before = planarity(cleaned.mesh, threads=args.threads)
-    result = planarize(cleaned.mesh, method=args.method, tol=args.tol, threads=args.threads)
+    result, stopped = planarize_stoppable(cleaned.mesh, prefix="facet cleanup",
+                                          method=args.method, tol=args.tol,
+                                          threads=args.threads)
     write_mesh(result.mesh, args.output)
     report = planarize_report(
         cleaned.mesh, result, input_path=args.input, output_path=args.output,
@@ -91,4 +94,6 @@ def run_cleanup(args):
               f"{c['skipped_edges']} short edges kept: collapsing them would make the mesh "
               "non-manifold")
     print_planarize_summary(report)
+    if stopped:
+        return stopped_with_result(args.output)
     return EXIT_OK
