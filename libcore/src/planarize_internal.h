@@ -88,7 +88,8 @@ struct facet_planarizer {
     double *guard_count, *guard_sum;
     int guard_on;                         /* some corner is below its floor now */
     int finishing; /* L/L's finish (planarize.c): the vertex step's p is the iterate itself,
-                      and so are the shape, Laplacian and boundary fairness targets */
+                      and so are the shape, Laplacian, boundary fairness and
+                      reference surface targets */
     int scalar_kernels; /* tests: the plain per-face and per-vertex code, not the SIMD lanes */
     double *slide_target, *slide_tangent; /* per vertex (sliding boundary) */
     double *laplace_weight;               /* per vertex_adj entry: normalised weight */

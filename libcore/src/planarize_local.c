@@ -1243,7 +1243,11 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
             add_outer(m, mu * o->surface_weight, sn);
             for (int c = 0; c < 6; ++c)
                 a[c] += m[c];
-            add_matvec(b, m, sp);
+            /* during L/L's finish anchored at the iterate (pv), like the data
+             * term: with its point on the surface, at mu_min, it held the
+             * planarity at 1e-7 to 2e-6 (docs/solver-notes.md, "L/L's finish
+             * with surface data") */
+            add_matvec(b, m, s->finishing ? pv : sp);
         }
         for (int32_t k = s->vertex_start[v]; k < s->vertex_start[v + 1]; ++k) {
             const int32_t f = s->vertex_faces[k];
