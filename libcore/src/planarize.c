@@ -1145,7 +1145,10 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
      * their own targets, at weight mu_min, they held the planarity at 1e-6 to
      * 1e-4 (a 110 x 110 grid: ASAP 1.4e-4, plane data 7.3e-6, the Laplacian
      * 9.6e-6), and the shape term's targets combine the control positions
-     * with the control centroids, which p = q would mismatch. */
+     * with the control centroids, which p = q would mismatch. So is the
+     * reference surface's pull (surface data), whose point on the surface
+     * held the planarity at 1e-7 to 5e-6 (docs/solver-notes.md, "L/L's
+     * finish with surface data"). */
     const int can_finish = options->method == FACET_METHOD_LOCAL_LOCAL && staircase;
     int finish = 0;
     int32_t level_steps = 0;

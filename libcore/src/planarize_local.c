@@ -1245,7 +1245,7 @@ int facet_pl_vertex_step(facet_planarizer *s, double mu, int nthreads)
                 a[c] += m[c];
             /* during L/L's finish anchored at the iterate (pv), like the data
              * term: with its point on the surface, at mu_min, it held the
-             * planarity at 1e-7 to 2e-6 (docs/solver-notes.md, "L/L's finish
+             * planarity at 1e-7 to 5e-6 (docs/solver-notes.md, "L/L's finish
              * with surface data") */
             add_matvec(b, m, s->finishing ? pv : sp);
         }

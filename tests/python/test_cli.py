@@ -276,6 +276,7 @@ def test_ctrl_c_in_a_resolve_writes_the_result_at_the_tolerance(
     assert sent and status == 130
     assert err == f"facet: interrupted: {output} holds the result the solve had reached\n"
     assert "  stopped" in out and "before the solve had finished" in out
+    assert "stopped before one kept every corner open: the first solve's result" in out
     report = json.loads(report_path.read_text())
     assert report["stopped"] is True and report["converged"] is True
     assert report["quality_check"] == "narrow" and report["narrow_corners"] > 0

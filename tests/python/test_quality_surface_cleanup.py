@@ -185,10 +185,16 @@ def test_cli_cleanup(tmp_path, capsys):
     assert "min_edge" in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("kept", [True, False])
-def test_cli_cleanup_stopped_by_ctrl_c(tmp_path, capsys, monkeypatch, kept):
+@pytest.mark.parametrize("when", ["in a re-solve", "after the last check", "short", "before",
+                                  "unwritable"])
+def test_cli_cleanup_stopped_by_ctrl_c(tmp_path, capsys, monkeypatch, when):
     """Ctrl+C stops the planarization after the collapse as it stops ``facet planarize``:
-    the result reached at the tolerance before the stop is written, else nothing is."""
+    a result reached at the tolerance before the stop (in a re-solve: Cancelled.result) or
+    just before it (after the solve's last progress check) is written; a result short of
+    the tolerance, or none, is not. A file that cannot be written then is that error, not
+    an interrupt."""
+    import dataclasses
+
     source = tmp_path / "squeezed.obj"
     facet.write_mesh(_grid(6, 4, squeeze=3), source)
     solve = facet.planarize
@@ -197,20 +203,27 @@ def test_cli_cleanup_stopped_by_ctrl_c(tmp_path, capsys, monkeypatch, kept):
         result = solve(mesh, **options)
         cli._CTRL_C.seen = True  # Ctrl+C, as its handler remembers it
         assert progress(1, 2, 1e-3) is True  # the progress check stops the solve
+        if when == "after the last check":
+            return result
+        if when == "short":
+            return dataclasses.replace(result, converged=False, stop_reason="max_iter")
         error = facet.Cancelled("cancelled")
-        error.result = result if kept else None
+        error.result = dataclasses.replace(result, stopped=True) if when != "before" else None
         raise error
 
     monkeypatch.setattr(facet, "planarize", stopped)
     monkeypatch.setattr(cli._CTRL_C, "seen", False)  # (and False again after the test)
-    out = tmp_path / "out.obj"
+    out = tmp_path / ("missing/out.obj" if when == "unwritable" else "out.obj")
     status = cli.main(["cleanup", str(source), "-o", str(out), "--min-edge", "0.1"])
-    err = capsys.readouterr().err
+    text, err = capsys.readouterr()
+    if when == "unwritable":
+        assert status == 2 and "No such file or directory" in err and "interrupted" not in err
+        return
     assert status == 130
-    if kept:
-        assert not cli.interrupted()  # told once, by the command
+    if when in ("in a re-solve", "after the last check"):
         assert err == f"facet: interrupted: {out} holds the result the solve had reached\n"
         assert facet.read_mesh(out).n_faces == 20
+        assert ("  stopped" in text) == (when == "in a re-solve")
     else:
         assert err == "facet: error: interrupted\n" and not out.exists()
 

@@ -12,10 +12,11 @@
 Exit status: 0 done (also when the tolerance was not reached, which is said;
 ``--strict`` makes that 1), 1 the solver failed, 2 bad input or bad command
 line (one line on stderr naming the file, the line or face and what is
-wrong), 130 interrupted with Ctrl+C. Ctrl+C stops ``planarize`` at its next
-iteration: when the solve had already reached the tolerance (it was re-solving
-for panel quality, or comparing methods), that result is written and said, else
-nothing is; a second Ctrl+C interrupts at once.
+wrong), 130 interrupted with Ctrl+C. Ctrl+C stops ``planarize`` (and
+``cleanup``'s planarization) at its next iteration: when the solve had already
+reached the tolerance (it was re-solving for panel quality, or comparing
+methods), that result is written and said, else nothing is; a second Ctrl+C
+before it is written discards it.
 """
 
 import argparse
@@ -366,7 +367,10 @@ def print_planarize_summary(report, out=None):
         outcome = ("the last kept every corner open" if check == "recovered" else
                    # method auto's comparison then kept local/local's result, with none
                    "then the comparison's result, with every corner open, was kept"
-                   if check == "ok" else "none kept every corner open: the first solve's result")
+                   if check == "ok" else
+                   "stopped before one kept every corner open: the first solve's result"
+                   if report.get("stopped") else
+                   "none kept every corner open: the first solve's result")
         # (the core's default when the options leave it out)
         asked = (report.get("options") or {}).get("data_tangent", 1.0)
         used = report.get("data_tangent")
@@ -492,8 +496,9 @@ def planarize_stoppable(mesh, prefix="facet planarize", **options):
     -------
     (PlanarizeResult, bool)
         The result, and whether Ctrl+C stopped the solve (also when it came after the
-        solve's last progress check: the result is then whole). A stopped command writes
-        its result and ends with :func:`stopped_with_result`.
+        solve's last progress check and the solve reached the tolerance: the result is
+        then whole; short of the tolerance that raises KeyboardInterrupt). A stopped
+        command writes its result and ends with :func:`stopped_with_result`.
     """
     from facet import planarize
     from facet.cli_progress import ProgressLine
@@ -515,7 +520,15 @@ def planarize_stoppable(mesh, prefix="facet planarize", **options):
         result = error.result
     finally:
         line.close()
-    return result, _CTRL_C.seen
+    stopped = _CTRL_C.seen
+    if stopped and not result.converged:
+        # Ctrl+C after the solve's last progress check, which ended short of the
+        # tolerance: as any interrupt, nothing is written
+        raise KeyboardInterrupt
+    # taken: the command writes the result, then says it was interrupted; an error
+    # while it writes is that error, not an interrupt
+    _CTRL_C.seen = False
+    return result, stopped
 
 
 def stopped_with_result(output):
@@ -523,7 +536,6 @@ def stopped_with_result(output):
     stderr; the exit status (interrupted)."""
     print(f"facet: interrupted: {output} holds the result the solve had reached",
           file=sys.stderr)
-    _CTRL_C.seen = False  # told: main need not say it again
     return EXIT_INTERRUPTED
 
 
@@ -606,7 +618,8 @@ class _CtrlC:
     remembered. Python swallows an exception raised inside a ``__del__`` (it prints
     "Exception ignored in ..."), and shapely's geometries run one whenever they are freed:
     an interrupt that lands there was lost and the command went on to its end. Remembered,
-    it cancels the command at its next progress check (:func:`interrupted`)."""
+    it cancels the command at its next progress check (:func:`interrupted`). Within
+    :meth:`stop_gently` the first Ctrl+C is only remembered."""
 
     def __init__(self):
         self.seen = False
@@ -623,7 +636,8 @@ class _CtrlC:
     def stop_gently(self):
         """Within: the first Ctrl+C is only remembered, for a progress check to stop a
         computation that can keep what it finished (:func:`interrupted`); a second one
-        raises KeyboardInterrupt as usual."""
+        raises KeyboardInterrupt as usual (at the next progress check while the core
+        solves: the kept result is then discarded)."""
         self.gentle = True
         try:
             yield
