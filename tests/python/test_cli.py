@@ -287,7 +287,7 @@ def test_ctrl_c_in_a_resolve_writes_the_result_at_the_tolerance(
     assert cli.interrupted() is False  # told, and not again by main
 
 
-def test_a_second_ctrl_c_interrupts_at_once():
+def test_a_second_ctrl_c_raises():
     """Within stop_gently the first Ctrl+C is remembered for the progress check, the next
     raises; outside it, the first raises."""
     ctrl_c = cli._CtrlC()
