@@ -171,3 +171,16 @@ def test_repeated_vertex_names_the_compas_face_key(write_file):
     assert caught.value.face == 1
     assert "face key 8" in str(caught.value)
     assert caught.value.status_name == "FACET_ERROR_REPEATED_VERTEX"
+
+
+@pytest.mark.parametrize("section", ["vertex", "face"])
+def test_keys_that_name_the_same_element_are_refused(write_file, section):
+    # "1" and "01" (or 1.0) are one key once normalised: one record would replace the other
+    vertices = {"0": {}, "1": {"x": 1}, "2": {"y": 1}, "3": {"x": 1, "y": 1}}
+    faces = {"0": [0, 1, 3], "1": [0, 3, 2]}
+    if section == "vertex":
+        vertices["01"] = {"x": 5, "y": 5, "z": 5}
+    else:
+        faces["01"] = [0, 1, 2]
+    with pytest.raises(MeshError, match=rf"{section} keys '1' and '01' both name {section} 1"):
+        read_compas_json(write_file("x.json", compas2(vertices, faces)))

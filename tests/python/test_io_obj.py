@@ -186,3 +186,20 @@ def test_index_beyond_64_bits(write_file):
     path = write_file("x.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999999\n")
     with pytest.raises(MeshError, match=r"line 4: face 0 has vertex index 99999999999999999999999"):
         read_obj(path)
+
+
+def test_a_comment_ending_in_a_backslash_joins_nothing(write_file):
+    # a Windows folder in a comment; the next statement must not vanish into it
+    text = ("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+            "# exported to C:\\work\\facade\\\nf 1 2 3 4\nf 2 5 6 \\\n 3  # continued\n")
+    mesh = read_obj(write_file("x.obj", text))
+    assert mesh.faces() == [[0, 1, 2, 3], [1, 4, 5, 2]]
+
+
+@pytest.mark.parametrize("line, token", [("v 1_5 0 0", "1_5"), ("v 0 \u0663 0", "\u0663"),
+                                         ("f 1 2 \u0663", "\u0663")])
+def test_numbers_only_as_mesh_files_write_them(write_file, line, token):
+    # Python's float() and int() read '1_5' as 15 and Arabic-Indic digits as digits
+    text = "v 0 0 0\nv 1 0 0\nv 0 1 0\n" + line + "\n"
+    with pytest.raises(MeshError, match=f"line 4: cannot read '{token}' as"):
+        read_obj(write_file("x.obj", text))

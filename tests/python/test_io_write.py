@@ -115,3 +115,31 @@ def test_mixed_degrees_round_trip_through_off(tmp_path, data_dir):
     back = read_off(path)
     assert back.faces() == mesh.faces()
     assert back.vertices.tobytes() == mesh.vertices.tobytes()
+
+
+def test_a_file_named_like_the_temporary_one_is_kept(tmp_path):
+    # the text goes to a temporary file of a name no other file has, not to NAME.part
+    mine = tmp_path / "out.obj.part"
+    mine.write_text("the designer's notes\n")
+    write_mesh(awkward_mesh(), tmp_path / "out.obj")
+    assert mine.read_text() == "the designer's notes\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.obj", "out.obj.part"]
+
+
+def test_a_missing_folder_is_named_by_the_path_asked_for(tmp_path):
+    path = tmp_path / "no" / "out.obj"
+    with pytest.raises(FileNotFoundError) as caught:
+        write_mesh(awkward_mesh(), path)
+    assert caught.value.filename == str(path)
+
+
+def test_a_written_file_gets_the_usual_mode(tmp_path):
+    import os
+    import stat
+
+    mask = os.umask(0o022)
+    try:
+        write_mesh(awkward_mesh(), tmp_path / "out.obj")
+    finally:
+        os.umask(mask)
+    assert stat.S_IMODE((tmp_path / "out.obj").stat().st_mode) == 0o644

@@ -126,6 +126,19 @@ def _key(value):
         return text
 
 
+def _keyed(records, what, source):
+    """`records` by normalised key; two keys that name the same one ("1" and "01") are
+    refused rather than one record silently replacing the other."""
+    keyed, given = {}, {}
+    for key, record in records.items():
+        name = _key(key)
+        if name in keyed:
+            raise MeshError(f"{what} keys {given[name]!r} and {key!r} both name {what} "
+                            f"{_shown_key(name)!r}", source=source)
+        keyed[name], given[name] = record, key
+    return keyed
+
+
 def _ordered_keys(keys):
     """Keys in numeric order when all are integers, else in file order."""
     keys = list(keys)
@@ -225,9 +238,9 @@ def read_compas_json(path, *, item=None, validate=True):
     if not isinstance(face_data, dict):
         face_data = {}
 
-    vertex_records = {_key(key): record for key, record in data["vertex"].items()}
-    face_records = {_key(key): record for key, record in data["face"].items()}
-    face_data = {_key(key): record for key, record in face_data.items()}
+    vertex_records = _keyed(data["vertex"], "vertex", source)
+    face_records = _keyed(data["face"], "face", source)
+    face_data = _keyed(face_data, "facedata", source)
 
     kept_faces = []
     opening_keys = []

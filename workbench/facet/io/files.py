@@ -7,6 +7,7 @@ came from in the error, and writing that never leaves half a file behind.
 """
 
 import os
+import tempfile
 
 import numpy as np
 
@@ -80,9 +81,11 @@ def parse_float(token, source, line):
         ``"bad.obj: line 4: cannot read 'abc' as a number"``.
     """
     try:
-        return float(token)
+        if _plain(token):
+            return float(token)
     except ValueError:
-        raise MeshError(f"cannot read {_shown(token)!r} as a number", source=source, line=line)
+        pass
+    raise MeshError(f"cannot read {_shown(token)!r} as a number", source=source, line=line)
 
 
 def parse_int(token, source, line, what="an integer"):
@@ -106,9 +109,17 @@ def parse_int(token, source, line, what="an integer"):
         ``"x.off: line 9: cannot read '2.5' as a vertex index"``.
     """
     try:
-        return int(token)
+        if _plain(token):
+            return int(token)
     except ValueError:
-        raise MeshError(f"cannot read {_shown(token)!r} as {what}", source=source, line=line)
+        pass
+    raise MeshError(f"cannot read {_shown(token)!r} as {what}", source=source, line=line)
+
+
+def _plain(token):
+    """Whether a number is written as mesh files write them: ASCII, no digit separators
+    (Python's float() and int() would read '1_5' as 15 and other scripts' digits too)."""
+    return token.isascii() and "_" not in token
 
 
 def check_writable_mesh(mesh, path):
@@ -147,18 +158,31 @@ def format_float(value):
 def write_text(path, chunks):
     """Write text to `path` so that a failure leaves no half-written file.
 
-    The text goes to ``path + ".part"`` first, which then replaces `path`.
+    The text goes to a new temporary file beside `path` (``NAME.*.part``, a name no other
+    file has), which then replaces `path`.
 
     Parameters
     ----------
     path : str or os.PathLike
     chunks : iterable of str
         Pieces of the file, written one after the other.
+
+    Raises
+    ------
+    OSError
+        Naming `path` (not the temporary file) when its folder is missing or not
+        writable.
     """
     path = os.fspath(path)
-    partial = path + ".part"
+    folder, name = os.path.split(os.path.abspath(path))
     try:
-        with open(partial, "w", encoding="utf-8", newline="\n") as stream:
+        handle, partial = tempfile.mkstemp(prefix=name + ".", suffix=".part", dir=folder)
+    except OSError as error:
+        raise type(error)(error.errno, error.strerror, path) from None
+    try:
+        with open(handle, "w", encoding="utf-8", newline="\n") as stream:
+            # mkstemp makes the file private (0600); the result gets the usual mode
+            os.fchmod(stream.fileno(), 0o666 & ~_umask())
             for chunk in chunks:
                 stream.write(chunk)
         os.replace(partial, path)
@@ -168,6 +192,12 @@ def write_text(path, chunks):
         except OSError:
             pass
         raise
+
+
+def _umask():
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
 
 
 def write_mesh_records(path, mesh, header, vertex_prefix, face_record):

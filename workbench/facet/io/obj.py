@@ -30,10 +30,15 @@ _FACE_KEYWORDS = frozenset({"f", "fo"})
 
 
 def _statements(lines):
-    """Yield (line number, text) with continuation lines joined and comments cut."""
+    """Yield (line number, text) with comments cut and continuation lines joined. A
+    backslash at the end of a statement joins the next line to it; one at the end of a
+    comment (a Windows folder) is part of the comment and joins nothing."""
     pending = None
     pending_line = 0
     for number, line in enumerate(lines, start=1):
+        hash_at = line.find("#")
+        if hash_at >= 0:
+            line = line[:hash_at]
         if pending is not None:
             line = pending + " " + line
             number = pending_line
@@ -43,13 +48,9 @@ def _statements(lines):
             pending = stripped[:-1]
             pending_line = number
             continue
-        hash_at = line.find("#")
-        if hash_at >= 0:
-            line = line[:hash_at]
         yield number, line
     if pending is not None:
-        hash_at = pending.find("#")
-        yield pending_line, pending if hash_at < 0 else pending[:hash_at]
+        yield pending_line, pending
 
 
 def read_obj(path, *, validate=True):
