@@ -184,6 +184,9 @@ typedef enum facet_method {
  * solve minutes (docs/solver-notes.md, "Large meshes"). */
 #define FACET_AUTO_LG_MAX_CORNERS_STAIRCASE 200000
 
+/* The deepest Anderson history (facet_planarize_options.anderson). */
+#define FACET_ANDERSON_MAX 16
+
 typedef enum facet_stop_reason {
     FACET_STOP_NONE = 0,
     FACET_STOP_TOLERANCE = 1,   /* planarity (and constraints) reached tol_abs or tol_rel */
@@ -294,9 +297,10 @@ typedef struct facet_planarize_options {
                                  the first step at this mu, or after hold_max steps, and
                                  only while the tolerance is not met (0: fall every step) */
     int32_t hold_max;         /* longest stay at one mu in the staircase schedule */
-    int32_t anderson;         /* Anderson acceleration history depth (0 = off, max 16); on
-                                 a mesh of 32,768 vertices or more its least-squares
-                                 problem is formed over a fixed eighth of the entries
+    int32_t anderson;         /* Anderson acceleration history depth (0 = off, at most
+                                 FACET_ANDERSON_MAX); on a mesh of 32,768 vertices or
+                                 more its least-squares problem is formed over a fixed
+                                 eighth of the entries
                                  (docs/solver-notes.md, "Anderson's least squares on a
                                  sample") */
     double time_budget;       /* stop after this many seconds (0 = no budget) */

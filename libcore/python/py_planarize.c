@@ -162,20 +162,30 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
                                "live", "rings", "angle_floor", "quality_angle", "stage", NULL};
     PyObject *in_obj, *out_obj, *progress = Py_None, *stage = Py_None;
     const char *method = "auto", *lap_weights = NULL, *shape = NULL, *boundary = NULL;
-    double mu0 = NAN, ratio = NAN, mu_min = NAN, tol_abs = NAN, tol_rel = NAN;
-    double data_tangent = NAN, data_normal = NAN, laplacian = NAN, normal_laplacian = NAN;
-    double fairness = NAN, shape_weight = NAN, circular = NAN, parallelogram = NAN;
-    double time_budget = NAN, hold_tol = NAN, surface_weight = NAN, angle_floor = NAN;
-    double quality_angle = NAN;
-    int hold_max = -1, live = 0, rings = 0;
-    int max_iter = -1, iterations = 0, threads = 0, warm = 0, anderson = -1;
+    /* The method's defaults first, so that what the caller did not pass keeps
+     * them and what it passed reaches the core as given, to be checked there:
+     * a NaN weight or a negative count is refused, not taken for "not given". */
+    PyObject *method_obj = kwargs ? PyDict_GetItemString(kwargs, "method") : NULL;
+    if (method_obj && PyUnicode_Check(method_obj) && !(method = PyUnicode_AsUTF8(method_obj)))
+        return NULL;
+    facet_method m;
+    if (strcmp(method, "ll") == 0)
+        m = FACET_METHOD_LOCAL_LOCAL;
+    else if (strcmp(method, "lg") == 0)
+        m = FACET_METHOD_LOCAL_GLOBAL;
+    else
+        m = FACET_METHOD_AUTO; /* "auto", or a bad name that the parse below refuses */
+    facet_planarize_options o;
+    facet_planarize_options_default(m, &o);
+    int hold_max = o.hold_max, live = 0, rings = 0;
+    int max_iter = o.max_iter, iterations = 0, threads = 0, warm = 0, anderson = o.anderson;
     if (!PyArg_ParseTupleAndKeywords(
             args, kwargs, "OO|$sdddddiiipOdddzddzdzddiddidpiddO:solve", keywords, &in_obj, &out_obj,
-            &method, &mu0, &ratio, &mu_min, &tol_abs, &tol_rel, &max_iter, &iterations, &threads,
-            &warm, &progress, &data_tangent, &data_normal, &laplacian, &lap_weights,
-            &normal_laplacian, &fairness, &shape, &shape_weight, &boundary, &circular,
-            &parallelogram, &anderson, &time_budget, &hold_tol, &hold_max, &surface_weight,
-            &live, &rings, &angle_floor, &quality_angle, &stage))
+            &method, &o.mu0, &o.ratio, &o.mu_min, &o.tol_abs, &o.tol_rel, &max_iter, &iterations,
+            &threads, &warm, &progress, &o.data_tangent, &o.data_normal, &o.laplacian, &lap_weights,
+            &o.normal_laplacian, &o.boundary_fairness, &shape, &o.shape_weight, &boundary,
+            &o.circular, &o.parallelogram, &anderson, &o.time_budget, &o.hold_tol, &hold_max,
+            &o.surface_weight, &live, &rings, &o.angle_floor, &o.quality_angle, &stage))
         return NULL;
     module_state *st = py_state(PyType_GetModule(Py_TYPE(self_obj)));
     if (!self->handle) {
@@ -186,14 +196,7 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
         PyErr_SetString(PyExc_RuntimeError, "Planarizer is already solving in another thread");
         return NULL;
     }
-    facet_method m;
-    if (strcmp(method, "ll") == 0)
-        m = FACET_METHOD_LOCAL_LOCAL;
-    else if (strcmp(method, "lg") == 0)
-        m = FACET_METHOD_LOCAL_GLOBAL;
-    else if (strcmp(method, "auto") == 0)
-        m = FACET_METHOD_AUTO;
-    else {
+    if (strcmp(method, "ll") != 0 && strcmp(method, "lg") != 0 && strcmp(method, "auto") != 0) {
         PyErr_Format(PyExc_ValueError, "method must be 'auto', 'll' or 'lg', not '%s'", method);
         return NULL;
     }
@@ -205,40 +208,17 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
         PyErr_SetString(PyExc_TypeError, "stage must be callable or None");
         return NULL;
     }
-    facet_planarize_options o;
-    facet_planarize_options_default(m, &o);
-    if (!isnan(mu0))
-        o.mu0 = mu0;
-    if (!isnan(ratio))
-        o.ratio = ratio;
-    if (!isnan(mu_min))
-        o.mu_min = mu_min;
-    if (!isnan(tol_abs))
-        o.tol_abs = tol_abs;
-    if (!isnan(tol_rel))
-        o.tol_rel = tol_rel;
-    if (max_iter >= 0)
-        o.max_iter = max_iter;
+    if (threads < 0 || rings < 0) {
+        PyErr_Format(PyExc_ValueError, "%s must be >= 0, not %d", threads < 0 ? "threads" : "rings",
+                     threads < 0 ? threads : rings);
+        return NULL;
+    }
+    o.max_iter = max_iter;
     o.iterations = iterations;
     o.threads = threads;
     o.warm = warm;
-    const struct {
-        double value;
-        double *field;
-    } weights[] = {{data_tangent, &o.data_tangent}, {data_normal, &o.data_normal},
-                   {laplacian, &o.laplacian}, {normal_laplacian, &o.normal_laplacian},
-                   {fairness, &o.boundary_fairness}, {shape_weight, &o.shape_weight},
-                   {circular, &o.circular}, {parallelogram, &o.parallelogram},
-                   {time_budget, &o.time_budget}, {hold_tol, &o.hold_tol},
-                   {surface_weight, &o.surface_weight}, {angle_floor, &o.angle_floor},
-                   {quality_angle, &o.quality_angle}};
-    for (size_t k = 0; k < sizeof weights / sizeof weights[0]; ++k)
-        if (!isnan(weights[k].value))
-            *weights[k].field = weights[k].value;
-    if (anderson >= 0)
-        o.anderson = anderson;
-    if (hold_max >= 0)
-        o.hold_max = hold_max;
+    o.anderson = anderson;
+    o.hold_max = hold_max;
     if (lap_weights) {
         if (strcmp(lap_weights, "uniform") == 0)
             o.laplacian_weights = FACET_LAPLACIAN_UNIFORM;
@@ -468,5 +448,7 @@ int py_add_planarize(PyObject *module)
         r = PyModule_AddIntConstant(module, "STAGE_FALLBACK", FACET_STAGE_FALLBACK);
     if (r == 0) /* method auto: L/G up to this many face corners, L/L above */
         r = PyModule_AddIntConstant(module, "AUTO_LG_MAX_CORNERS", FACET_AUTO_LG_MAX_CORNERS);
+    if (r == 0) /* the deepest Anderson history (option anderson) */
+        r = PyModule_AddIntConstant(module, "ANDERSON_MAX", FACET_ANDERSON_MAX);
     return r;
 }

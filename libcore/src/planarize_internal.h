@@ -14,8 +14,6 @@
 #include <cholmod.h>
 #include <stdint.h>
 
-enum { FACET_ANDERSON_MAX = 16 };
-
 /* Anderson's sketched least squares (planarize.c, anderson_step;
  * docs/solver-notes.md, "Anderson's least squares on a sample"): on a mesh of
  * at least FACET_ANDERSON_SKETCH_VERTICES vertices the history's

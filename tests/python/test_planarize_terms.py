@@ -131,6 +131,54 @@ def test_bad_options_are_named(tube):
     assert "anderson" in TERMS
 
 
+NAN = float("nan")
+
+
+@pytest.mark.parametrize("options, message", [
+    # the core read NaN and -1 as "not given" and solved with its defaults
+    ({"tol": NAN}, "tol must be a finite number"),
+    ({"tol_abs": NAN}, "tol_abs must be a finite number"),
+    ({"mu0": NAN}, "mu0 must be in"),
+    ({"mu_min": NAN}, "mu_min must be in"),
+    ({"data_tangent": NAN}, "data_tangent must be finite"),
+    ({"laplacian": NAN}, "laplacian must be finite"),
+    ({"time_budget": NAN}, "time_budget must be finite"),
+    ({"hold_tol": NAN}, "hold_tol must be finite"),
+    ({"quality_angle": NAN}, "quality_angle must be in"),
+    ({"max_iter": -5}, "max_iter must be from 0"),
+    ({"threads": -1}, "threads must be from 0"),
+    ({"anderson": -1}, "anderson must be from 0 to 16"),
+    ({"anderson": 17}, "anderson must be from 0 to 16"),
+    ({"hold_max": -1}, "hold_max must be from 0"),
+    ({"hold_max": 0}, "hold_max must be >= 1"),
+    # cut or wrapped around by a cast
+    ({"max_iter": 6.5}, "max_iter must be a whole number"),
+    ({"max_iter": 2**40}, "max_iter must be from 0 to 2147483647"),
+    ({"anderson": True}, "anderson must be a whole number"),
+])
+def test_option_values_are_refused_not_replaced(tube, options, message):
+    with pytest.raises(facet.FacetError, match=message):
+        facet.planarize(tube, **options)
+
+
+@pytest.mark.parametrize("fixed, message", [
+    ([6.9], "whole numbers"),
+    ([2**32 + 3], "beyond the 32-bit range"),  # was vertex 3
+    (["3"], "whole numbers"),
+    (np.zeros(8, dtype=bool), "not a mask"),  # was vertices 0 and 1
+])
+def test_fixed_takes_vertex_indices_only(tube, fixed, message):
+    with pytest.raises(facet.FacetError, match=message):
+        facet.planarize(tube, fixed=fixed)
+
+
+def test_fixed_accepts_whole_floats_and_wide_integers(tube):
+    held = facet.planarize(tube, fixed=np.array([3, 7], dtype=np.int64), threads=1)
+    same = facet.planarize(tube, fixed=[3.0, 7.0], threads=1)
+    assert np.array_equal(held.mesh.vertices, same.mesh.vertices)
+    assert np.array_equal(held.mesh.vertices[[3, 7]], tube.vertices[[3, 7]])
+
+
 def test_time_budget_returns_the_best_so_far(tube):
     result = facet.planarize(tube, time_budget=1e-9)
     assert result.stop_reason == "time" and not result.converged
@@ -162,9 +210,16 @@ def test_command_line_terms(tmp_path, data_dir):
         (["--fixed", "1,x"], "--fixed"),
         (["--fixed", "100000"], "out of range"),
         (["--reference", "nowhere.obj"], "--reference needs --data surface"),
+        (["--anderson", "17"], "'17' must be from 0 to 16"),
+        (["--threads", "99999999999"], "must be from 0 to 2147483647"),
+        (["--max-iter", "99999999999"], "must be from 1 to 2147483647"),
     ],
 )
 def test_command_line_term_errors(tmp_path, data_dir, capsys, argv, message):
-    code = main(["planarize", str(data_dir / "hypar.obj"), "-o", str(tmp_path / "o.obj")] + argv)
+    try:
+        code = main(["planarize", str(data_dir / "hypar.obj"), "-o", str(tmp_path / "o.obj")]
+                    + argv)
+    except SystemExit as exit:  # argparse's own refusal
+        code = exit.code
     assert code == 2
     assert message in capsys.readouterr().err

@@ -26,6 +26,9 @@ from facet import _core
 from facet.errors import Cancelled, FacetError, MeshError, from_core
 from facet.planarity import PlanarityReport, planarity
 
+_INT32_MAX = 2**31 - 1
+_ANDERSON_MAX = _core.ANDERSON_MAX
+
 __all__ = ["METHODS", "STAGE_COMPARE", "STAGE_FINER", "STAGE_FALLBACK", "Planarizer", "PlanarizeResult", "planarize"]
 
 #: Solver schemes by name: what the command line and the workbench offer.
@@ -428,7 +431,7 @@ class Planarizer:
             control = vertices
         else:
             control = self._topology.with_vertices(vertices)
-        if iterations is not None and int(iterations) <= 0:
+        if iterations is not None and _count("iterations", iterations) <= 0:
             raise FacetError(f"iterations must be a positive count, not {iterations}")
         options = {"method": method}
         for name, value in (("mu0", mu0), ("ratio", ratio), ("mu_min", mu_min)):
@@ -441,13 +444,17 @@ class Planarizer:
             for name, value in _LIVE_SCHEDULE.items():
                 if name not in options and name not in terms:
                     options[name] = value
+        for name, value in (("tol", tol), ("tol_abs", tol_abs)):
+            if value is not None and not 0.0 <= float(value) < float("inf"):
+                raise FacetError(f"{name} must be a finite number >= 0 (0 or None: not "
+                                 f"used), not {value!r}")
         options["tol_rel"] = float(tol) if tol else 0.0
         options["tol_abs"] = float(tol_abs) if tol_abs else 0.0
         if max_iter is not None:
-            options["max_iter"] = int(max_iter)
+            options["max_iter"] = _count("max_iter", max_iter)
         if iterations is not None:
-            options["iterations"] = int(iterations)
-        options["threads"] = int(threads or 0)
+            options["iterations"] = _count("iterations", iterations)
+        options["threads"] = _count("threads", threads or 0)
         unknown = set(terms) - set(TERMS)
         if unknown:
             raise TypeError(f"unknown solver option(s): {', '.join(sorted(unknown))}")
@@ -461,6 +468,8 @@ class Planarizer:
                 if value not in kind:
                     raise FacetError(f"{name} must be one of {', '.join(kind)}, not {value!r}")
                 options[name] = value
+            elif kind is int:
+                options[name] = _count(name, value, _ANDERSON_MAX if name == "anderson" else None)
             else:
                 options[name] = kind(value)
         surface = None
@@ -474,9 +483,7 @@ class Planarizer:
         else:
             self._core.set_reference(None)
         try:
-            self._core.set_fixed(
-                None if fixed is None else np.ascontiguousarray(fixed, dtype=np.int32).ravel()
-            )
+            self._core.set_fixed(None if fixed is None else _vertex_indices("fixed", fixed))
             self._core.set_face_weights(
                 None if face_weights is None
                 else np.ascontiguousarray(face_weights, dtype=np.float64).ravel()
@@ -490,7 +497,7 @@ class Planarizer:
         try:
             stats = self._core.solve(
                 xyz_in, xyz_out, warm=bool(warm and self._solved), progress=progress,
-                stage=stage, live=live, rings=int(rings or 0), **options
+                stage=stage, live=live, rings=_count("rings", rings or 0), **options
             )
         except _core.CoreError as exc:
             error = from_core(exc, source=self._source)
@@ -532,6 +539,45 @@ class Planarizer:
             control=control,
             reference=surface,
         )
+
+
+def _count(name, value, most=None):
+    """A whole-number option as given: refused (FacetError naming it) when it is not a whole
+    number from 0 to `most` (default 2**31 - 1), rather than cut (6.9 -> 6) or wrapped
+    around."""
+    most = _INT32_MAX if most is None else most
+    if isinstance(value, (bool, np.bool_)):
+        raise FacetError(f"{name} must be a whole number, not {value!r}")
+    try:
+        number = int(value)
+        whole = number == value
+    except (TypeError, ValueError, OverflowError):
+        whole = False
+    if not whole:
+        raise FacetError(f"{name} must be a whole number, not {value!r}")
+    if not 0 <= number <= most:
+        raise FacetError(f"{name} must be from 0 to {most}, not {number}")
+    return number
+
+
+def _vertex_indices(name, values):
+    """Vertex indices for the core (int32, 1-D), refused unless they are whole numbers in
+    the 32-bit range (the core then refuses one beyond the mesh): a cast would pin other
+    vertices than the ones meant (6.9 -> 6, 2**32 + 3 -> 3, a mask -> 0 and 1)."""
+    array = np.asarray(values)
+    if array.size == 0:
+        return np.zeros(0, dtype=np.int32)
+    if array.dtype.kind == "b":
+        raise FacetError(f"{name} takes vertex indices, not a mask of booleans "
+                         "(np.flatnonzero(mask) gives the indices)")
+    if array.dtype.kind not in "iu":
+        if array.dtype.kind != "f" or not np.all(np.isfinite(array)) or np.any(array % 1):
+            raise FacetError(f"{name} takes vertex indices (whole numbers), not {array.dtype} "
+                             "values")
+    if array.min() < -_INT32_MAX - 1 or array.max() > _INT32_MAX:
+        raise FacetError(f"{name} holds indices beyond the 32-bit range "
+                         f"({array.min()} .. {array.max()})")
+    return np.ascontiguousarray(array, dtype=np.int32).ravel()
 
 
 def _compared(stats):
