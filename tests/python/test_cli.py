@@ -178,6 +178,41 @@ def test_out_of_range_index(facet_command, write_file):
     assert_one_line_error(done, str(path), "line 6", "face 0 has vertex index 7 out of range")
 
 
+@pytest.mark.parametrize("argv, says", [
+    (["planarize", "in.obj", "-o", "in.obj"], "-o in.obj is the input IN"),
+    (["planarize", "in.obj", "-o", "sub/../in.obj"], "is the input IN"),
+    (["planarize", "in.obj", "-o", "link.obj"], "-o link.obj is the input IN"),
+    (["planarize", "in.obj", "-o", "out.obj", "--report", "in.obj"],
+     "--report in.obj is the input IN"),
+    (["planarize", "in.obj", "-o", "out.obj", "--report", "out.obj"],
+     "--report out.obj is also the output -o"),
+    (["planarize", "in.obj", "-o", "ref.obj", "--data", "surface", "--reference", "ref.obj"],
+     "-o ref.obj is the input --reference"),
+    (["planarize", "in.obj", "-o", "out.obj", "--report", "nowhere/r.json"],
+     "--report nowhere/r.json: the folder"),
+    (["cleanup", "in.obj", "-o", "in.obj", "--min-edge", "0.01"], "-o in.obj is the input IN"),
+    (["check", "in.obj", "--report", "in.obj"], "--report in.obj is the input IN"),
+    (["panels", "in.obj", "--thickness", "0.01", "--schedule", "in.obj"],
+     "--schedule in.obj is the input MESH"),
+])
+def test_no_file_is_written_over_and_nothing_is_written(data_dir, tmp_path, monkeypatch, capsys,
+                                                        argv, says):
+    # before: the input, the reference or the result itself was replaced, exit status 0;
+    # a missing report folder failed after the result was written
+    source = (data_dir / "hypar.obj").read_bytes()
+    for name in ("in.obj", "ref.obj"):
+        (tmp_path / name).write_bytes(source)
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "link.obj").symlink_to(tmp_path / "in.obj")
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(argv) == 2
+    error = capsys.readouterr().err.strip().splitlines()
+    assert len(error) == 1 and error[0].startswith("facet: error: ") and says in error[0], error
+    assert (tmp_path / "in.obj").read_bytes() == source
+    assert (tmp_path / "ref.obj").read_bytes() == source
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["in.obj", "link.obj", "ref.obj", "sub"]
+
+
 def test_unknown_output_format_fails_before_solving(facet_command, data_dir, tmp_path):
     done = facet_command("planarize", data_dir / "tubemesh.off", "-o", tmp_path / "t.stl")
     assert_one_line_error(done, "t.stl", "cannot write .stl files")

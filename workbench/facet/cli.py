@@ -70,24 +70,28 @@ def _positive_float(text):
     return value
 
 
-def _positive_int(text):
+def _int_in(text, least, most=2**31 - 1):
     try:
         value = int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{text!r} must be at least 1")
+    if not least <= value <= most:
+        raise argparse.ArgumentTypeError(f"{text!r} must be from {least} to {most}")
     return value
+
+
+def _positive_int(text):
+    return _int_in(text, 1)
 
 
 def _non_negative_int(text):
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"{text!r} must be at least 0")
-    return value
+    return _int_in(text, 0)
+
+
+def _anderson_depth(text):
+    from facet import _core
+
+    return _int_in(text, 0, _core.ANDERSON_MAX)
 
 
 def build_parser():
@@ -97,7 +101,7 @@ def build_parser():
     -------
     argparse.ArgumentParser
     """
-    from facet import __version__
+    from facet import __version__, _core
 
     parser = argparse.ArgumentParser(
         prog="facet",
@@ -197,8 +201,9 @@ def build_parser():
                        help="make every face's vertices concyclic (weight; default off)")
     terms.add_argument("--parallelogram", type=_non_negative_float, metavar="W",
                        help="make every quad a parallelogram (weight; default off)")
-    terms.add_argument("--anderson", type=_non_negative_int, metavar="M",
-                       help="Anderson acceleration depth (default 5; 0 off)")
+    terms.add_argument("--anderson", type=_anderson_depth, metavar="M",
+                       help=f"Anderson acceleration depth (default 5; 0 off; at most "
+                       f"{_core.ANDERSON_MAX})")
     terms.add_argument("--time-budget", type=_positive_float, metavar="S",
                        help="stop after S seconds (the result so far is written)")
     planarize.add_argument(
@@ -546,6 +551,8 @@ def run_planarize(args):
     from facet.report import planarize_report, write_json
 
     writer_for(args.output)  # refuse an unknown output format before the solve
+    check_files(reads=[("IN", args.input), ("--reference", args.reference)],
+                writes=[("-o", args.output), ("--report", args.report)])
     mesh = _read(args)
     options = _term_options(args, mesh)
     before = planarity(mesh, threads=args.threads)
@@ -589,6 +596,7 @@ def run_check(args):
     from facet import planarity
     from facet.report import check_report, write_json
 
+    check_files(reads=[("IN", args.input)], writes=[("--report", args.report)])
     mesh = _read(args)
     validation = mesh.validate()
     report = check_report(mesh, planarity(mesh), validation, path=args.input)
@@ -601,6 +609,44 @@ def run_check(args):
 
 class _UsageError(Exception):
     """A command-line option that does not fit the input."""
+
+
+def _same_file(a, b):
+    if os.path.normcase(os.path.realpath(a)) == os.path.normcase(os.path.realpath(b)):
+        return True
+    try:
+        return os.path.samefile(a, b)  # hard links
+    except OSError:
+        return False
+
+
+def check_files(reads=(), writes=()):
+    """Refuse, before any work, a command that would write over a file it reads or write
+    two of its outputs to one file, or whose output folder does not exist.
+
+    Parameters
+    ----------
+    reads, writes : iterable of (str, str or None)
+        Each file as (how the command line names it, path); a path None was not given.
+
+    Raises
+    ------
+    _UsageError
+        ``"-o in.obj is the input IN: the result would replace it; write it to another
+        file"``.
+    """
+    taken = [(option, path, "is the input") for option, path in reads if path]
+    for option, path in writes:
+        if not path:
+            continue
+        folder = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(folder):
+            raise _UsageError(f"{option} {path}: the folder {folder} does not exist")
+        for other_option, other, role in taken:
+            if _same_file(path, other):
+                raise _UsageError(f"{option} {path} {role} {other_option}: it would be "
+                                  "written over; give another file")
+        taken.append((option, path, "is also the output"))
 
 
 def _os_error_text(error):

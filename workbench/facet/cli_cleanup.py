@@ -52,14 +52,15 @@ def add_commands(commands):
 def run_cleanup(args):
     """Run ``facet cleanup``; return the exit status."""
     from facet import cleanup, planarity
-    from facet.cli import (EXIT_OK, _line, _read, planarize_stoppable, print_planarize_summary,
-                           stopped_with_result)
+    from facet.cli import (EXIT_OK, _line, _read, check_files, planarize_stoppable,
+                           print_planarize_summary, stopped_with_result)
     from facet.io import write_mesh, writer_for
     from facet.quality import quality
     from facet.report import planarize_report, write_json
     from facet.surface import Surface
 
     writer_for(args.output)
+    check_files(reads=[("IN", args.input)], writes=[("-o", args.output), ("--report", args.report)])
     mesh = _read(args)
     cleaned = cleanup(mesh, args.min_edge, relative=args.relative)
     before = planarity(cleaned.mesh, threads=args.threads)

@@ -98,7 +98,7 @@ def _pins(texts):
 def run_lift(args):
     import numpy as np
 
-    from facet.cli import EXIT_OK
+    from facet.cli import EXIT_OK, check_files
     from facet.errors import InputError
     from facet.io import write_mesh, writer_for
     from facet.lift import lift
@@ -106,6 +106,9 @@ def run_lift(args):
     from facet.report import write_json
 
     writer_for(args.output)  # bad output suffix: fail before the work
+    check_files(reads=[("PLAN", args.plan), ("--targets", args.targets),
+                       ("--weights", args.weights)],
+                writes=[("-o", args.output), ("--report", args.report)])
     if (args.targets is None) == (not args.pin):
         raise InputError("give either --targets FILE or --pin VERTEX=HEIGHT (not both)")
     plan = _read_plan(args)
@@ -165,7 +168,7 @@ def run_lift(args):
 def run_lifting_space(args):
     import numpy as np
 
-    from facet.cli import EXIT_OK
+    from facet.cli import EXIT_OK, check_files
     from facet.errors import InputError
     from facet.io import write_mesh
     from facet.lift import Lifter
@@ -173,6 +176,7 @@ def run_lifting_space(args):
 
     if args.count is not None and args.count < 1:
         raise InputError(f"--count {args.count}: must be at least 1")
+    check_files(reads=[("PLAN", args.plan)], writes=[("--report", args.report)])
     plan = _read_plan(args)
     lifter = Lifter(plan, rank_tol=args.rank_tol)
     limit = plan.n_vertices if args.basis == "fundamental" else lifter.dimension

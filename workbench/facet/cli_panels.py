@@ -283,9 +283,12 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
 
 def run_panels(args):
     """Run ``facet panels``; return the exit status."""
-    from facet.cli import EXIT_OK, _read, interrupted
+    from facet.cli import EXIT_OK, _read, check_files, interrupted
     from facet.report import write_json
 
+    check_files(reads=[("MESH", args.input)],
+                writes=[("--dxf", args.dxf), ("--step", args.step),
+                        ("--schedule", args.schedule), ("--report", args.report)])
     mesh = _read(args)
     report, ps, drawings, result = run_pipeline(
         mesh, args.thickness, offset=args.offset, gap=args.gap, edge=args.edge, flip=args.flip,
