@@ -92,12 +92,12 @@
 <context>
     <name>Facet</name>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="139"/>
+        <location filename="../../workbench/facetwb/progress.py" line="156"/>
         <source>Cancel</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="147"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="169"/>
         <source>Surface to control mesh</source>
         <translation type="unfinished"></translation>
     </message>
@@ -107,17 +107,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="222"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="244"/>
         <source>Panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="261"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="283"/>
         <source>Cut sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="328"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="350"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
@@ -392,12 +392,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="285"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="307"/>
         <source>Choose the output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="294"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="316"/>
         <source>Folder for the cut files</source>
         <translation type="unfinished"></translation>
     </message>
@@ -407,27 +407,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="242"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="243"/>
         <source>Planarize {0}: solving by local/local too, for a result closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="245"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="246"/>
         <source>Planarize {0}: solving by local/global again with a finer hold, closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="250"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="251"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="228"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
         <source>planarity {0:.2g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="228"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
         <source>planarity {0:.2g} (tolerance {1:.2g})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -457,18 +457,23 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="248"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="249"/>
         <source>Planarize {0}: local/local closed a panel, solving by local/global</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="125"/>
+        <location filename="../../workbench/facetwb/progress.py" line="142"/>
         <source>Stop and keep</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="125"/>
+        <location filename="../../workbench/facetwb/progress.py" line="142"/>
         <source>Stop here and keep the result that reached the tolerance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/recompute.py" line="113"/>
+        <source>Recomputing {0} ...</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -16,6 +16,7 @@ the test itself broke). It does not run without a GUI: freecadcmd prints SKIP an
 
 import os
 import sys
+import time
 import traceback
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -217,6 +218,7 @@ def run(out_dir):
     check_edit_control(check, out_dir)
     check_edit_region(check)
     check_edit_planarized(check, out_dir)
+    check_recompute_cancel_and_failed_create(check)
     check_planarize_progress(check, out_dir)
     check_stop_and_keep(check)
     check_keep_press_order(check)
@@ -1093,6 +1095,76 @@ def check_edit_planarized(check, out_dir):
     wait_for_live_resolve(result)
     check(result.Tolerance == 1e-3 and result.MaxIterations == 0,
           "undo restores the parameters of before the panel")
+    # a value above the old spin box's 100,000 is kept by OK, not clamped
+    result.MaxIterations = 250000
+    wait_for_live_resolve(result)
+    vobj.Proxy.doubleClicked(vobj)
+    check(edit_panels.active.accept() and result.MaxIterations == 250000,
+          f"OK keeps MaxIterations 250000 (now {result.MaxIterations})")
+    App.closeDocument(doc.Name)
+
+
+def check_recompute_cancel_and_failed_create(check):
+    """A re-solve that no command reports on (a changed property's live re-solve) shows
+    progress with Cancel, which keeps the previous result; the Planarize panel's OK on a
+    source that cannot be planarized leaves the document as it was and says why."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import numpy as np
+
+    import facet
+    import facetwb
+    from facetwb import progress
+    from facetwb.objects.polymesh import get_mesh
+    from facetwb.taskpanels import derive_panels
+
+    mesh = facet.read_mesh(MESH)
+    doc = App.newDocument("CancelAndFail")
+    control = facetwb.make_polymesh(mesh, label="control")
+    result = facetwb.make_planarized(control, tolerance=1e-3)
+    doc.recompute()
+    before = get_mesh(result).vertices.copy()
+    from facetwb import live_parameters
+
+    progress.cancel_after(2)  # Cancel pressed at the dialog's second progress call
+    try:
+        result.Tolerance = 1e-9
+        end = time.monotonic() + 120
+        while live_parameters.pending() and time.monotonic() < end:  # then it has run
+            Gui.updateGui()
+            time.sleep(0.02)
+    finally:
+        progress.cancel_after(0)
+    check(not result.isValid() and "cancel" in result.getStatusString().lower()
+          and np.array_equal(get_mesh(result).vertices, before),
+          f"Cancel in a live re-solve's dialog keeps the previous result "
+          f"({result.getStatusString()!r})")
+    doc.recompute()
+    check(result.isValid() and result.PlanarityMaxRel <= 1e-9, "a recompute then solves it")
+
+    collapsed = facetwb.make_polymesh(mesh.with_vertices(np.zeros_like(mesh.vertices)),
+                                      label="collapsed")
+    doc.recompute()
+    names = sorted(obj.Name for obj in doc.Objects)
+    undo = list(doc.UndoNames)
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(collapsed)
+    Gui.runCommand("Facet_Planarize")
+    Gui.updateGui()
+    panel = derive_panels.active
+    accepted = panel.accept() if panel is not None else None
+    Gui.updateGui()
+    from facetwb.taskpanels import forms
+
+    message = forms.widget(panel.form, "message").text() if panel is not None else ""
+    check(accepted is False and derive_panels.active is panel
+          and sorted(obj.Name for obj in doc.Objects) == names and list(doc.UndoNames) == undo
+          and collapsed.ViewObject.Visibility and message.startswith("collapsed planarized: ")
+          and message.count("collapsed planarized") == 1,
+          f"OK on a source that fails: nothing added, the source shown, the panel open "
+          f"saying why ({message!r})")
+    if panel is not None:
+        panel.reject()
     App.closeDocument(doc.Name)
 
 

@@ -61,6 +61,23 @@ def reporting(title, minimum_seconds=0.5):
         reporter.close()
 
 
+@contextlib.contextmanager
+def unless_reporting(title):
+    """:func:`reporting` for a recompute that no command opened a reporter for (the property
+    editor, Recompute, Ctrl+R, a live re-solve, an edit panel's OK): progress and Cancel
+    there too. Inside a reporter already, or without the GUI, nothing is added.
+
+    Yields the reporter, or None when none was opened.
+    """
+    import FreeCAD as App
+
+    if _stack or not App.GuiUp:
+        yield None
+        return
+    with reporting(title) as reporter:
+        yield reporter
+
+
 class _Reporter:
     """A progress callable backed by a QProgressDialog when the GUI is up."""
 

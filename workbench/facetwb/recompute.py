@@ -25,7 +25,10 @@ whichever comes first. Nothing else in FreeCAD is changed.
 import functools
 import sys
 
-__all__ = ["RecomputeError", "guarded", "one_line"]
+from facetwb import progress
+from facetwb.translation import translate
+
+__all__ = ["RecomputeError", "failure", "guarded", "one_line"]
 
 _saved_limit = []
 _observer = []
@@ -91,6 +94,13 @@ def one_line(obj, error):
     return text
 
 
+def failure(obj):
+    """The one line of an object in FreeCAD's error state: its status string, which names
+    the object (:func:`one_line`), or the label then FreeCAD's own status."""
+    text = " ".join(obj.getStatusString().split())
+    return text if text.startswith(obj.Label + ":") else f"{obj.Label}: {text}"
+
+
 def guarded(execute):
     """Decorate a proxy's ``execute(self, obj)`` (see the module's docstring)."""
 
@@ -99,7 +109,10 @@ def guarded(execute):
         _restore_traceback_limit()
         _observe()
         try:
-            return execute(self, obj)
+            # a long recompute that no command reports on gets a dialog with Cancel too
+            with progress.unless_reporting(translate("Facet", "Recomputing {0} ...").format(
+                    obj.Label)):
+                return execute(self, obj)
         except _expected() as error:
             if isinstance(error, RecomputeError):
                 raise
