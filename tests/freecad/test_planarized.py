@@ -174,6 +174,29 @@ class TestPlanarizedErrors(DocumentTestCase):
         with self.assertRaises(ValueError):
             facetwb.make_planarized(source, method="newton")
 
+    def test_bad_parameter_values_are_refused_and_the_result_kept(self):
+        # a NaN weight was taken for 0 (the term off), saved with the document and solved
+        source = importer.import_mesh(data_path("hypar.obj"), self.doc)
+        result = facetwb.make_planarized(source, tolerance=1e-3)
+        self.doc.recompute()
+        solved = facetwb.get_mesh(result).vertices.copy()
+        for name, value, says in (("Laplacian", float("nan"), "Laplacian is nan"),
+                                  ("ShapeWeight", -1.0, "ShapeWeight is -1.0"),
+                                  ("TimeBudget", float("nan"), "TimeBudget is nan"),
+                                  ("Tolerance", float("nan"), "Tolerance is nan"),
+                                  ("MaxIterations", -5, "MaxIterations is -5"),
+                                  ("Anderson", 17, "Anderson is 17; it must be from 0 to 16")):
+            with self.subTest(name=name):
+                good = getattr(result, name)
+                setattr(result, name, value)
+                self.doc.recompute()
+                self.assertFalse(result.isValid())
+                self.assertIn(f"{result.Label}: {says}", result.getStatusString())
+                self.assertTrue(np.array_equal(facetwb.get_mesh(result).vertices, solved))
+                setattr(result, name, good)
+                self.doc.recompute()
+                self.assertTrue(result.isValid(), result.getStatusString())
+
     def test_planarized_of_planarized(self):
         source = importer.import_mesh(data_path("hypar.obj"), self.doc)
         first = facetwb.make_planarized(source, tolerance=1e-3)

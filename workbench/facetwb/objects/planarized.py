@@ -7,15 +7,16 @@ source's mesh again. The source is never modified. The result is stored like a P
 mesh (so it can be the source of the next step) with the solver's report in ``Result``.
 """
 
+import math
 import time
 
 import FreeCAD as App
 
 import facet
-from facet.planarize import DATA_TERMS as _PRESETS
+from facet.planarize import ANDERSON_MAX, DATA_TERMS as _PRESETS
 from facetwb import compat, progress
 from facetwb.translation import translate
-from facetwb.recompute import guarded
+from facetwb.recompute import failure, guarded
 from facetwb import conversion
 from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
 
@@ -165,10 +166,10 @@ class Planarized(PolyMesh):
             result = facet.planarize(
                 mesh,
                 method=obj.Method,
-                tol=obj.Tolerance,
-                tol_abs=obj.ToleranceAbs.Value or None,
-                max_iter=obj.MaxIterations or None,
-                threads=obj.Threads or None,
+                tol=non_negative(obj, "Tolerance"),
+                tol_abs=non_negative(obj, "ToleranceAbs", obj.ToleranceAbs.Value) or None,
+                max_iter=count(obj, "MaxIterations") or None,
+                threads=count(obj, "Threads") or None,
                 progress=follow and follow.progress,
                 stage=follow and follow.stage,
                 **term_options(obj, mesh),
@@ -263,18 +264,17 @@ def term_options(obj, mesh):
 
     Raises ValueError naming the object and the property when one does not fit the mesh.
     """
-    options = {"data": obj.Data, "boundary": obj.Boundary, "anderson": int(obj.Anderson)}
+    options = {"data": obj.Data, "boundary": obj.Boundary,
+               "anderson": count(obj, "Anderson", most=ANDERSON_MAX)}
     if obj.Shape != "default":
         options["shape"] = obj.Shape
-    if obj.ShapeWeight > 0:
+    if non_negative(obj, "ShapeWeight") > 0:
         options["shape_weight"] = float(obj.ShapeWeight)
     for name, option, _tip in TERM_WEIGHTS:
-        value = float(getattr(obj, name))
-        if value < 0:
-            raise ValueError(f"{obj.Label}: {name} is {value}; it must be 0 or more")
+        value = non_negative(obj, name)
         if value > 0:
             options[option] = value
-    if obj.TimeBudget > 0:
+    if non_negative(obj, "TimeBudget") > 0:
         options["time_budget"] = float(obj.TimeBudget)
     fixed = list(obj.FixedVertices)
     bad = [v for v in fixed if not 0 <= v < mesh.n_vertices]
@@ -292,6 +292,24 @@ def term_options(obj, mesh):
     if obj.Data == "surface" and obj.Reference is not None:
         options["reference"] = conversion.mesh_from_object(obj.Reference)
     return options
+
+
+def non_negative(obj, name, value=None):
+    """Property `name` of `obj` (or its `value`), refused unless a finite number >= 0: a NaN
+    weight was taken for 0 (term off) and saved with the document."""
+    value = float(getattr(obj, name) if value is None else value)
+    if not 0.0 <= value < math.inf:
+        raise ValueError(f"{obj.Label}: {name} is {value}; it must be a finite number, 0 or "
+                         "more")
+    return value
+
+
+def count(obj, name, most=2**31 - 1):
+    """Integer property `name` of `obj`, refused unless from 0 to `most`."""
+    value = int(getattr(obj, name))
+    if not 0 <= value <= most:
+        raise ValueError(f"{obj.Label}: {name} is {value}; it must be from 0 to {most}")
+    return value
 
 
 def is_planarized(obj):
@@ -336,7 +354,7 @@ def _compared_text(compared, kept):
 def planarize_summary(obj):
     """A few lines for the report view about a recomputed Planarized object."""
     if not obj.isValid():
-        return f"{obj.Label}: planarize failed: {obj.getStatusString()}"
+        return failure(obj)
     source = obj.Source
     lines = [
         f"{obj.Label}: {obj.FaceCount} panels, {obj.VertexCount} vertices, "

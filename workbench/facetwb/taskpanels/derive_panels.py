@@ -13,6 +13,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb import preferences, progress
+from facetwb.recompute import failure
 from facetwb.commands.macro import object_expression
 from facetwb.objects.planarized import METHODS
 from facetwb.taskpanels import forms
@@ -58,7 +59,7 @@ class DerivePanel:
 
     def summary(self, obj):
         return f"{obj.Label}: made" if obj.isValid() else (
-            f"{obj.Label}: failed: {obj.getStatusString()}")
+            failure(obj))
 
     def read(self):
         """Read every field into ``self.values``; False (message shown) when one is bad."""
@@ -88,6 +89,8 @@ class DerivePanel:
             return False
         doc = self.doc
         before = set(doc.Objects)
+        shown = {obj.Name: obj.ViewObject.Visibility for obj in before
+                 if getattr(obj, "ViewObject", None) is not None}
         doc.openTransaction(self.TITLE)
         try:
             Gui.addModule("facetwb")
@@ -96,13 +99,21 @@ class DerivePanel:
             with progress.reporting(progress.translate("Facet", self.TITLE) + " ...") as r:
                 doc.recompute()
             if r.cancelled:
-                doc.abortTransaction()
-                doc.recompute()
+                _abort(doc, shown)
                 App.Console.PrintWarning(f"Facet: {self.TITLE} cancelled; nothing changed\n")
                 self._close()
                 return True
+            failed = [obj for obj in doc.Objects
+                      if obj not in before and self.is_result(obj) and not obj.isValid()]
+            if failed:
+                # bad input: the document as it was, the panel open with the reason, for
+                # another try (the error is in the report view too)
+                message = failure(failed[0])
+                _abort(doc, shown)
+                self.show_message(message)
+                return False
         except Exception as error:  # noqa: BLE001 - leave the document as it was
-            doc.abortTransaction()
+            _abort(doc, shown)
             self.show_message(f"{self.TITLE} failed: {error}")
             return False
         self.after(doc)
@@ -131,6 +142,17 @@ class DerivePanel:
 
     def getStandardButtons(self):
         return forms.ok_cancel_buttons()
+
+
+def _abort(doc, shown):
+    """Undo what a panel's OK did: the transaction, and the sources it hid (a view
+    provider's Visibility is not always in the transaction)."""
+    doc.abortTransaction()
+    doc.recompute()
+    for name, visible in shown.items():
+        obj = doc.getObject(name)
+        if obj is not None and obj.ViewObject.Visibility != visible:
+            obj.ViewObject.Visibility = visible
 
 
 def _legend_max(doc, made):
@@ -173,7 +195,7 @@ class SurfaceMeshPanel(DerivePanel):
 
     def summary(self, obj):
         if not obj.isValid():
-            return f"{obj.Label}: failed: {obj.getStatusString()}"
+            return failure(obj)
         return f"{obj.Label}: {obj.FaceCount} panels, {obj.VertexCount} vertices"
 
     def after(self, doc):
@@ -243,7 +265,7 @@ class PanelsPanel(DerivePanel):
 
     def summary(self, obj):
         if not obj.isValid():
-            return f"{obj.Label}: failed: {obj.getStatusString()}"
+            return failure(obj)
         text = (f"{obj.Label}: {obj.PanelCount} panels, node deviation up to "
                 f"{obj.MaxNodeDeviation.Value:.3g} degrees")
         if obj.OverlappingJoints:
@@ -316,7 +338,7 @@ class CutSheetsPanel(DerivePanel):
 
     def summary(self, obj):
         if not obj.isValid():
-            return f"{obj.Label}: failed: {obj.getStatusString()}"
+            return failure(obj)
         return (f"{obj.Label}: {obj.SheetCount} sheets, utilisation "
                 f"{100 * obj.Utilisation:.1f}%, {len(obj.Unplaced)} unplaced")
 
