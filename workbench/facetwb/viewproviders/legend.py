@@ -125,10 +125,11 @@ class PlanarityLegend:
         self.root.whichChild = coin.SO_SWITCH_ALL if visible else coin.SO_SWITCH_NONE
 
     def update(self, vmax, actual_max=None, title="Planarity", kind="length", reverse=False,
-               extreme_name="max"):
+               extreme_name="max", note=None):
         """Label the bar for the scale 0 .. ``vmax`` (mm, degrees or a ratio: ``kind``);
         ``actual_max`` is the worst value, written under the bar as "``extreme_name`` value";
-        ``reverse`` puts 0 at the top (red) end."""
+        ``reverse`` puts 0 at the top (red) end. ``note`` (instead of ``actual_max``) goes
+        under the bar too, not after the title, which is as wide as the panel allows."""
         self.labels.removeAllChildren()
         self.labels.addChild(_material(TEXT_COLOR))
         labels = tick_labels(vmax, kind=kind)
@@ -140,8 +141,9 @@ class PlanarityLegend:
             self.labels.addChild(_text(TEXT_X, y - 0.012, label))
         self.labels.addChild(_text(BAR_X[1], BAR_Y[1] + 0.07, title))
         if actual_max is not None:
-            text = f"{extreme_name} " + tick_labels(actual_max, 2, kind=kind)[-1]
-            self.labels.addChild(_text(BAR_X[1], BAR_Y[0] - 0.09, text))
+            note = f"{extreme_name} " + tick_labels(actual_max, 2, kind=kind)[-1]
+        if note:
+            self.labels.addChild(_text(BAR_X[1], BAR_Y[0] - 0.09, note))
 
     @staticmethod
     def _panel():

@@ -203,7 +203,8 @@ class ViewProviderPolyMesh:
         if values is None or self.face_count == 0 or values.size != self.face_count:
             count = max(self.face_count, 1)
             _set_mfield(self.planarity_material.diffuseColor, [colormap.NO_VALUE] * count)
-            self.legend.update(0.0, title=f"{title} (not computed)", kind=kind)
+            self.legend.update(0.0, title=title, kind=kind,
+                               note="not computed")
         else:
             actual_max = float(values.max()) if values.size else 0.0
             legend_max = vobj.LegendMax.Value if kind == "length" else 0.0
