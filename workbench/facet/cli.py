@@ -89,9 +89,9 @@ def _non_negative_int(text):
 
 
 def _anderson_depth(text):
-    from facet import _core
+    from facet.planarize import ANDERSON_MAX
 
-    return _int_in(text, 0, _core.ANDERSON_MAX)
+    return _int_in(text, 0, ANDERSON_MAX)
 
 
 def build_parser():
@@ -101,7 +101,8 @@ def build_parser():
     -------
     argparse.ArgumentParser
     """
-    from facet import __version__, _core
+    from facet import __version__
+    from facet.planarize import ANDERSON_MAX
 
     parser = argparse.ArgumentParser(
         prog="facet",
@@ -203,7 +204,7 @@ def build_parser():
                        help="make every quad a parallelogram (weight; default off)")
     terms.add_argument("--anderson", type=_anderson_depth, metavar="M",
                        help=f"Anderson acceleration depth (default 5; 0 off; at most "
-                       f"{_core.ANDERSON_MAX})")
+                       f"{ANDERSON_MAX})")
     terms.add_argument("--time-budget", type=_positive_float, metavar="S",
                        help="stop after S seconds (the result so far is written)")
     planarize.add_argument(

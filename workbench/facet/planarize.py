@@ -27,9 +27,12 @@ from facet.errors import Cancelled, FacetError, MeshError, from_core
 from facet.planarity import PlanarityReport, planarity
 
 _INT32_MAX = 2**31 - 1
-_ANDERSON_MAX = _core.ANDERSON_MAX
 
-__all__ = ["METHODS", "STAGE_COMPARE", "STAGE_FINER", "STAGE_FALLBACK", "Planarizer", "PlanarizeResult", "planarize"]
+#: The deepest Anderson history (the ``anderson`` option).
+ANDERSON_MAX = _core.ANDERSON_MAX
+
+__all__ = ["METHODS", "STAGE_COMPARE", "STAGE_FINER", "STAGE_FALLBACK", "ANDERSON_MAX", "Planarizer",
+           "PlanarizeResult", "planarize"]
 
 #: Solver schemes by name: what the command line and the workbench offer.
 #: "auto" solves by local/global up to 10,000 quads and also by local/local,
@@ -469,7 +472,7 @@ class Planarizer:
                     raise FacetError(f"{name} must be one of {', '.join(kind)}, not {value!r}")
                 options[name] = value
             elif kind is int:
-                options[name] = _count(name, value, _ANDERSON_MAX if name == "anderson" else None)
+                options[name] = _count(name, value, ANDERSON_MAX if name == "anderson" else None)
             else:
                 options[name] = kind(value)
         surface = None
