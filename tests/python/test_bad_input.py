@@ -133,3 +133,18 @@ def test_catalogue_document_lists_every_row():
     documented = set(re.findall(r"^\| `([a-z0-9_]+)` \|", text, re.MULTILINE))
     extra = documented - set(ROWS)
     assert not extra, f"docs/bad-input.md lists rows with no test: {sorted(extra)}"
+
+
+def test_coordinates_too_far_from_the_origin_for_the_panels_are_named():
+    """At 1e12 model units a unit panel keeps about 1e-4 of its size in float64: the solve
+    reaches its tolerance in its centred coordinates, the result cannot hold it, and the
+    result says so (it said nothing); at 2.6e6 (georeferenced) it holds and says nothing."""
+    rng = np.random.default_rng(0)
+    vertices = np.array([[i, j, 0.1 * rng.standard_normal()] for j in range(5) for i in range(5)])
+    faces = [[5 * j + i, 5 * j + i + 1, 5 * (j + 1) + i + 1, 5 * (j + 1) + i]
+             for j in range(4) for i in range(4)]
+    near = facet.planarize(facet.PolyMesh.from_faces(vertices + 2.6e6, faces), threads=1)
+    assert near.converged and near.planarity.max_rel_all <= 1e-6 and not near.warnings
+    far = facet.planarize(facet.PolyMesh.from_faces(vertices + 1e12, faces), threads=1)
+    assert far.converged and far.planarity.max_rel_all > 1e-5
+    assert any("move the model near the origin" in w and "1e+12" in w for w in far.warnings)

@@ -518,6 +518,7 @@ class Planarizer:
         (`stopped`: what a stopped solve had reached)."""
         result_mesh = control.with_vertices(xyz_out)
         displacement = np.linalg.norm(xyz_out - control.vertices, axis=1)
+        measured = planarity(result_mesh, threads=threads)
         return PlanarizeResult(
             mesh=result_mesh,
             method=stats["method"],
@@ -525,10 +526,11 @@ class Planarizer:
             stop_reason=stats["stop_reason"],
             converged=stats["converged"],
             solve_seconds=stats["seconds"],
-            planarity=planarity(result_mesh, threads=threads),
+            planarity=measured,
             displacement=displacement,
             options=options,
-            warnings=list(self._warnings) + _quality_warnings(stats, options, stopped),
+            warnings=(list(self._warnings) + _quality_warnings(stats, options, stopped)
+                      + _precision_warnings(stats, options, result_mesh, measured)),
             constraint_max_rel=stats["constraint_max_rel"],
             anderson=(stats["anderson_accepted"], stats["anderson_rejected"]),
             quality_check=stats["quality"],
@@ -581,6 +583,28 @@ def _vertex_indices(name, values):
         raise FacetError(f"{name} holds indices beyond the 32-bit range "
                          f"({array.min()} .. {array.max()})")
     return np.ascontiguousarray(array, dtype=np.int32).ravel()
+
+
+def _precision_warnings(stats, options, mesh, measured):
+    """A warning when the solve reached its tolerance (in the solver's centred and scaled
+    coordinates) but the result, in the model's own coordinates, is well above it: float64
+    cannot hold these panels planar so far from the origin (a 1 m panel at 1e12 m
+    carries about 1e-4 of its size in rounding)."""
+    if not stats["converged"] or not mesh.n_faces:
+        return []
+    over = []
+    if options["tol_rel"] > 0 and measured.max_rel_all > 2.0 * options["tol_rel"]:
+        over.append(f"{measured.max_rel_all:.2g} of the edge (tolerance {options['tol_rel']:g})")
+    if options["tol_abs"] > 0 and measured.max_abs_all > 2.0 * options["tol_abs"]:
+        over.append(f"{measured.max_abs_all:.2g} model units (tolerance "
+                    f"{options['tol_abs']:g})")
+    if not over:
+        return []
+    reach = float(np.abs(mesh.vertices).max())
+    return [f"the solve reached its tolerance, but in the model's coordinates the result's "
+            f"planarity is {' and '.join(over)}: coordinates up to {reach:.3g} leave too few "
+            f"digits for panels of {mesh.mean_edge_length():.3g}; move the model near the "
+            "origin"]
 
 
 def _compared(stats):
