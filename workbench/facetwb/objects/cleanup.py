@@ -9,7 +9,7 @@ modified.
 """
 
 import facet
-from facetwb import compat
+from facetwb import compat, progress
 from facetwb.recompute import guarded
 from facetwb import conversion
 from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
@@ -58,7 +58,8 @@ class Cleanup(PolyMesh):
         cleaned = facet.cleanup(mesh, obj.MinEdge, relative=obj.Relative)
         result_mesh, converged = cleaned.mesh, False
         if obj.Planarize:
-            result = facet.planarize(cleaned.mesh, tol=obj.Tolerance)
+            # progress and Cancel: the creation panel's dialog, or the recompute's own
+            result = facet.planarize(cleaned.mesh, tol=obj.Tolerance, progress=progress.hook())
             result_mesh, converged = result.mesh, bool(result.converged)
         set_mesh(obj, result_mesh)
         set_planarity(obj, facet.planarity(result_mesh))
