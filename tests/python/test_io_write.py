@@ -143,3 +143,12 @@ def test_a_written_file_gets_the_usual_mode(tmp_path):
     finally:
         os.umask(mask)
     assert stat.S_IMODE((tmp_path / "out.obj").stat().st_mode) == 0o644
+
+
+def test_a_folder_in_the_way_is_named_by_the_path_asked_for(tmp_path):
+    path = tmp_path / "out.obj"
+    path.mkdir()
+    with pytest.raises(IsADirectoryError) as caught:
+        write_mesh(awkward_mesh(), path)
+    assert caught.value.filename == str(path)
+    assert [p.name for p in tmp_path.iterdir()] == ["out.obj"]  # no temporary file left

@@ -185,7 +185,10 @@ def write_text(path, chunks):
             os.fchmod(stream.fileno(), 0o666 & ~_umask())
             for chunk in chunks:
                 stream.write(chunk)
-        os.replace(partial, path)
+        try:
+            os.replace(partial, path)
+        except OSError as error:  # (a folder of that name): the path asked for, not ours
+            raise type(error)(error.errno, error.strerror, path) from None
     except BaseException:
         try:
             os.remove(partial)
