@@ -208,9 +208,8 @@ static PyObject *planarizer_solve(PyObject *self_obj, PyObject *args, PyObject *
         PyErr_SetString(PyExc_TypeError, "stage must be callable or None");
         return NULL;
     }
-    if (threads < 0 || rings < 0) {
-        PyErr_Format(PyExc_ValueError, "%s must be >= 0, not %d", threads < 0 ? "threads" : "rings",
-                     threads < 0 ? threads : rings);
+    if (rings < 0) {
+        PyErr_Format(PyExc_ValueError, "rings must be >= 0, not %d", rings);
         return NULL;
     }
     o.max_iter = max_iter;

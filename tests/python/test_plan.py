@@ -180,7 +180,10 @@ def test_lift_command(facet_command, tmp_path):
 
 def test_lifting_space_command(facet_command, tmp_path):
     plan = write_nested_dxf(tmp_path / "nested.dxf")
-    folder, report = tmp_path / "space", tmp_path / "s.json"
+    # the report inside the folder the command makes (the check of the outputs' folders
+    # must not refuse it)
+    folder = tmp_path / "space"
+    report = folder / "s.json"
     done = facet_command("lifting-space", plan, "--basis", "eigen", "-o", folder,
                          "--report", report)
     assert done.returncode == 0, done.stderr

@@ -146,7 +146,8 @@ NAN = float("nan")
     ({"hold_tol": NAN}, "hold_tol must be finite"),
     ({"quality_angle": NAN}, "quality_angle must be in"),
     ({"max_iter": -5}, "max_iter must be from 0"),
-    ({"threads": -1}, "threads must be from 0"),
+    ({"threads": 1.5}, "threads must be a whole number"),
+    ({"tol": "tight"}, "tol must be a number"),
     ({"anderson": -1}, "anderson must be from 0 to 16"),
     ({"anderson": 17}, "anderson must be from 0 to 16"),
     ({"hold_max": -1}, "hold_max must be from 0"),
@@ -170,6 +171,15 @@ def test_option_values_are_refused_not_replaced(tube, options, message):
 def test_fixed_takes_vertex_indices_only(tube, fixed, message):
     with pytest.raises(facet.FacetError, match=message):
         facet.planarize(tube, fixed=fixed)
+
+
+def test_any_whole_thread_count_is_taken(tube):
+    # docs/CONTRACTS.md: every threads argument takes any value; <= 0 by mesh size
+    by_size = facet.planarize(tube, threads=0)
+    for threads in (-1, -(2**40)):
+        assert np.array_equal(facet.planarize(tube, threads=threads).mesh.vertices,
+                              by_size.mesh.vertices)
+    assert facet.planarize(tube, threads=2**40).converged
 
 
 def test_fixed_accepts_whole_floats_and_wide_integers(tube):

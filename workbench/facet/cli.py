@@ -621,7 +621,7 @@ def _same_file(a, b):
         return False
 
 
-def check_files(reads=(), writes=()):
+def check_files(reads=(), writes=(), creates=()):
     """Refuse, before any work, a command that would write over a file it reads or write
     two of its outputs to one file, or whose output folder does not exist.
 
@@ -629,6 +629,8 @@ def check_files(reads=(), writes=()):
     ----------
     reads, writes : iterable of (str, str or None)
         Each file as (how the command line names it, path); a path None was not given.
+    creates : iterable of str or None
+        Folders the command makes (``-o DIR``, ``--svg DIR``): an output may go into one.
 
     Raises
     ------
@@ -637,11 +639,12 @@ def check_files(reads=(), writes=()):
         file"``.
     """
     taken = [(option, path, "is the input") for option, path in reads if path]
+    made = {os.path.abspath(folder) for folder in creates if folder}
     for option, path in writes:
         if not path:
             continue
         folder = os.path.dirname(os.path.abspath(path))
-        if not os.path.isdir(folder):
+        if not os.path.isdir(folder) and folder not in made:
             raise _UsageError(f"{option} {path}: the folder {folder} does not exist")
         for other_option, other, role in taken:
             if _same_file(path, other):

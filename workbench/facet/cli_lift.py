@@ -176,7 +176,8 @@ def run_lifting_space(args):
 
     if args.count is not None and args.count < 1:
         raise InputError(f"--count {args.count}: must be at least 1")
-    check_files(reads=[("PLAN", args.plan)], writes=[("--report", args.report)])
+    check_files(reads=[("PLAN", args.plan)], writes=[("--report", args.report)],
+                creates=[args.output])
     plan = _read_plan(args)
     lifter = Lifter(plan, rank_tol=args.rank_tol)
     limit = plan.n_vertices if args.basis == "fundamental" else lifter.dimension

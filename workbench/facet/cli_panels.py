@@ -288,7 +288,8 @@ def run_panels(args):
 
     check_files(reads=[("MESH", args.input)],
                 writes=[("--dxf", args.dxf), ("--step", args.step),
-                        ("--schedule", args.schedule), ("--report", args.report)])
+                        ("--schedule", args.schedule), ("--report", args.report)],
+                creates=[args.svg, args.png])
     mesh = _read(args)
     report, ps, drawings, result = run_pipeline(
         mesh, args.thickness, offset=args.offset, gap=args.gap, edge=args.edge, flip=args.flip,

@@ -448,7 +448,7 @@ class Planarizer:
                 if name not in options and name not in terms:
                     options[name] = value
         for name, value in (("tol", tol), ("tol_abs", tol_abs)):
-            if value is not None and not 0.0 <= float(value) < float("inf"):
+            if value is not None and not 0.0 <= _number(name, value) < float("inf"):
                 raise FacetError(f"{name} must be a finite number >= 0 (0 or None: not "
                                  f"used), not {value!r}")
         options["tol_rel"] = float(tol) if tol else 0.0
@@ -457,7 +457,8 @@ class Planarizer:
             options["max_iter"] = _count("max_iter", max_iter)
         if iterations is not None:
             options["iterations"] = _count("iterations", iterations)
-        options["threads"] = _count("threads", threads or 0)
+        # any whole number: <= 0 by mesh size (docs/CONTRACTS.md), the rest capped by the core
+        threads = options["threads"] = max(0, min(_whole("threads", threads or 0), _INT32_MAX))
         unknown = set(terms) - set(TERMS)
         if unknown:
             raise TypeError(f"unknown solver option(s): {', '.join(sorted(unknown))}")
@@ -551,6 +552,21 @@ def _count(name, value, most=None):
     number from 0 to `most` (default 2**31 - 1), rather than cut (6.9 -> 6) or wrapped
     around."""
     most = _INT32_MAX if most is None else most
+    number = _whole(name, value)
+    if not 0 <= number <= most:
+        raise FacetError(f"{name} must be from 0 to {most}, not {number}")
+    return number
+
+
+def _number(name, value):
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise FacetError(f"{name} must be a number, not {value!r}") from None
+
+
+def _whole(name, value):
+    """`value` as an int, refused (FacetError naming `name`) unless it is a whole number."""
     if isinstance(value, (bool, np.bool_)):
         raise FacetError(f"{name} must be a whole number, not {value!r}")
     try:
@@ -560,8 +576,6 @@ def _count(name, value, most=None):
         whole = False
     if not whole:
         raise FacetError(f"{name} must be a whole number, not {value!r}")
-    if not 0 <= number <= most:
-        raise FacetError(f"{name} must be from 0 to {most}, not {number}")
     return number
 
 

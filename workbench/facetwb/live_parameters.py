@@ -27,6 +27,7 @@ DELAY_MS = 400
 ENABLED = True
 
 _timers = {}  # (document name, object name) -> QTimer
+_late = set()  # keys whose change came while their document recomputed
 
 
 def parameter_changed(obj, prop):
@@ -36,9 +37,12 @@ def parameter_changed(obj, prop):
     doc = getattr(obj, "Document", None)
     if doc is None or getattr(doc, "Restoring", False):
         return
+    _schedule((doc.Name, obj.Name))
+
+
+def _schedule(key):
     from PySide import QtCore
 
-    key = (doc.Name, obj.Name)
     timer = _timers.get(key)
     if timer is None:
         timer = QtCore.QTimer()
@@ -57,8 +61,17 @@ def _fire(key):
     _timers.pop(key, None)
     doc = App.listDocuments().get(key[0])
     obj = doc.getObject(key[1]) if doc is not None else None
-    if obj is None or getattr(doc, "Restoring", False) or getattr(doc, "Recomputing", False):
+    if obj is None or getattr(doc, "Restoring", False):
         return
+    if getattr(doc, "Recomputing", False):
+        # a change made while the document recomputes: solved after it, even though the
+        # recompute clears the object's Touched mark when it ends
+        _late.add(key)
+        _schedule(key)
+        return
+    if key in _late:
+        _late.discard(key)
+        obj.touch()
     from facetwb import edit_control
 
     session = edit_control.active_session()

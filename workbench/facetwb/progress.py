@@ -106,6 +106,11 @@ class _Reporter:
                                                 Gui.getMainWindow())
             self.dialog.setWindowTitle("Facet")
             self.dialog.setMinimumDuration(int(1000 * minimum_seconds))
+            # nothing else in the window while it runs: an edit made during a recompute
+            # would be lost (the object's Touched mark is cleared when it ends)
+            from PySide import QtCore
+
+            self.dialog.setWindowModality(QtCore.Qt.WindowModal)
             self.dialog.setAutoClose(False)
             self.dialog.setAutoReset(False)
             self.dialog.setValue(0)
@@ -131,7 +136,7 @@ class _Reporter:
             from facetwb.compat import qt_gui
 
             self.dialog.setLabelText(self.text)
-            qt_gui().QApplication.processEvents()
+            self._events()
 
     def offer_keep(self):
         """The operation holds a result it would keep if stopped now: the button says so.
@@ -160,12 +165,23 @@ class _Reporter:
         """Whether the operation is cancelled: the button pressed (events handled first) or
         ``cancel_at`` reached; sets ``cancelled``."""
         if self.dialog is not None:
-            from facetwb.compat import qt_gui
-
-            qt_gui().QApplication.processEvents()
+            self._events()
             if self.dialog.wasCanceled():
                 self.cancelled = True
         return self.cancelled
+
+    def _events(self):
+        """Let Qt draw and time: the dialog, once shown (modal), takes the clicks and keys;
+        before it shows (``minimum_seconds``) no click or key is handled, so none reaches
+        the document while it recomputes."""
+        from PySide import QtCore
+
+        from facetwb.compat import qt_gui
+
+        if self.dialog.isVisible():
+            qt_gui().QApplication.processEvents()
+        else:
+            qt_gui().QApplication.processEvents(QtCore.QEventLoop.ExcludeUserInputEvents)
 
     def _button(self, text, tip):
         if self.dialog is not None:

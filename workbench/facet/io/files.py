@@ -6,8 +6,9 @@ never fails on a stray byte in a comment, numbers parsed with the line they
 came from in the error, and writing that never leaves half a file behind.
 """
 
+import errno
 import os
-import tempfile
+import secrets
 
 import numpy as np
 
@@ -158,8 +159,8 @@ def format_float(value):
 def write_text(path, chunks):
     """Write text to `path` so that a failure leaves no half-written file.
 
-    The text goes to a new temporary file beside `path` (``NAME.*.part``, a name no other
-    file has), which then replaces `path`.
+    The text goes to a new temporary file beside `path` (``NAME.<random>.part``, a name no
+    other file has), which then replaces `path`.
 
     Parameters
     ----------
@@ -174,15 +175,9 @@ def write_text(path, chunks):
         writable.
     """
     path = os.fspath(path)
-    folder, name = os.path.split(os.path.abspath(path))
-    try:
-        handle, partial = tempfile.mkstemp(prefix=name + ".", suffix=".part", dir=folder)
-    except OSError as error:
-        raise type(error)(error.errno, error.strerror, path) from None
+    handle, partial = _create_beside(path)
     try:
         with open(handle, "w", encoding="utf-8", newline="\n") as stream:
-            # mkstemp makes the file private (0600); the result gets the usual mode
-            os.fchmod(stream.fileno(), 0o666 & ~_umask())
             for chunk in chunks:
                 stream.write(chunk)
         try:
@@ -197,10 +192,21 @@ def write_text(path, chunks):
         raise
 
 
-def _umask():
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return mask
+def _create_beside(path):
+    """A new file ``NAME.<random>.part`` beside `path`, created exclusively (never another
+    file of that name) with the mode new files get (the umask applies): (descriptor, name).
+    An error names `path`."""
+    folder, name = os.path.split(os.path.abspath(path))
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
+    for _attempt in range(100):
+        partial = os.path.join(folder, f"{name}.{secrets.token_hex(4)}.part")
+        try:
+            return os.open(partial, flags, 0o666), partial
+        except FileExistsError:
+            continue
+        except OSError as error:
+            raise type(error)(error.errno, error.strerror, path) from None
+    raise FileExistsError(errno.EEXIST, "no free name for a temporary file beside it", path)
 
 
 def write_mesh_records(path, mesh, header, vertex_prefix, face_record):

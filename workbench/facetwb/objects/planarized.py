@@ -169,7 +169,7 @@ class Planarized(PolyMesh):
                 tol=non_negative(obj, "Tolerance"),
                 tol_abs=non_negative(obj, "ToleranceAbs", obj.ToleranceAbs.Value) or None,
                 max_iter=count(obj, "MaxIterations") or None,
-                threads=count(obj, "Threads") or None,
+                threads=obj.Threads or None,  # any value: <= 0 by mesh size
                 progress=follow and follow.progress,
                 stage=follow and follow.stage,
                 **term_options(obj, mesh),
