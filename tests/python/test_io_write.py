@@ -88,9 +88,10 @@ def test_write_into_missing_folder_raises_os_error(tmp_path):
         write_mesh(awkward_mesh(), tmp_path / "no" / "such" / "out.obj")
 
 
-@pytest.mark.parametrize("name", ["out.stl", "out"])
-def test_unknown_extension_cannot_be_written(tmp_path, name):
-    with pytest.raises(MeshError, match=r"cannot write .* files \(Facet writes \.obj, \.off\)"):
+@pytest.mark.parametrize("name, kind", [("out.stl", ".stl files"),
+                                        ("out", "files without an extension")])
+def test_unknown_extension_cannot_be_written(tmp_path, name, kind):
+    with pytest.raises(MeshError, match=rf"cannot write {kind} \(Facet writes \.obj, \.off\)"):
         write_mesh(awkward_mesh(), tmp_path / name)
     assert not (tmp_path / name).exists()
 

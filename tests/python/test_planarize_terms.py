@@ -233,3 +233,10 @@ def test_command_line_term_errors(tmp_path, data_dir, capsys, argv, message):
         code = exit.code
     assert code == 2
     assert message in capsys.readouterr().err
+
+
+def test_a_reference_without_surface_data_is_refused(hypar):
+    # it was ignored (the command line refused it already)
+    with pytest.raises(facet.FacetError, match="reference is the design surface"):
+        facet.planarize(hypar, reference=hypar)
+    assert facet.planarize(hypar, data="surface", reference=hypar, threads=1).converged

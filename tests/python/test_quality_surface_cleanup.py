@@ -333,3 +333,12 @@ def test_cleanup_triangles():
     assert result.mesh.n_faces == 30 and result.mesh.n_vertices == 24
     assert set(np.diff(result.mesh.face_start)) == {3}
     assert result.mesh.validate()["n_non_manifold_edges"] == 0
+
+
+def test_a_threshold_that_collapses_everything_names_the_file(data_dir):
+    mesh = facet.read_mesh(data_dir / "hypar.obj")
+    with pytest.raises(InputError) as caught:
+        facet.cleanup(mesh, 100.0, relative=False)
+    message = str(caught.value)
+    assert message.startswith(f"{data_dir / 'hypar.obj'}: min_edge 100 ")
+    assert "every face would collapse" in message and "min_edge: min_edge" not in message

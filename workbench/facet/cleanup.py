@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from facet import _core
-from facet.errors import InputError, from_core
+from facet.errors import InputError, MeshError, from_core
 from facet.mesh import PolyMesh
 
 __all__ = ["CleanupResult", "cleanup"]
@@ -110,7 +110,7 @@ def cleanup(mesh, min_edge, relative=True):
         )
     except _core.CoreError as exc:
         if getattr(exc, "status_name", None) == "FACET_ERROR_NOTHING_LEFT":
-            raise InputError(f"min_edge: {exc}") from None
+            raise MeshError(str(exc), source=source) from None
         raise from_core(exc, source=source) from None
     xyz = np.frombuffer(out["xyz"], dtype=np.float64).reshape(-1, 3)
     face_start = np.frombuffer(out["face_start"], dtype=np.int32)

@@ -477,6 +477,9 @@ class Planarizer:
             else:
                 options[name] = kind(value)
         surface = None
+        if reference is not None and not options.get("surface_weight", 0.0) > 0.0:
+            raise FacetError("reference is the design surface of data='surface' (or a "
+                             "surface_weight > 0); with these options it would be ignored")
         if options.get("surface_weight", 0.0) > 0.0:
             from facet.surface import Surface
 

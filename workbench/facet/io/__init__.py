@@ -53,9 +53,9 @@ def _suffix(path):
 def _chosen(table, path, verb):
     function = table.get(_suffix(path))
     if function is None:
+        kind = f"{_suffix(path)} files" if _suffix(path) else "files without an extension"
         raise MeshError(
-            f"cannot {verb} {_suffix(path) or 'files without an extension'!s} files "
-            f"(Facet {verb}s {', '.join(sorted(table))})",
+            f"cannot {verb} {kind} (Facet {verb}s {', '.join(sorted(table))})",
             source=path,
         )
     return function
