@@ -7,7 +7,12 @@ hull. libnest2d works on integer coordinates (Clipper): outlines are scaled so
 that the sheet's longer side spans about 2**20 units, and the spacing and
 margin are rounded up by two units (a few micrometres on a 3 m sheet), so
 the true outlines keep at least the spacing asked for. :func:`verify` checks
-the result independently with shapely (GEOS).
+the result independently with shapely (GEOS), and :func:`nest` runs that check
+itself: a part libnest2d left closer to another than the spacing (it does, for
+parts with short edges and at some of the free rotations) is nested again on
+sheets of its own, and nothing is returned that fails the check. A part that
+fits a sheet only turned a quarter is handed to libnest2d turned (it refuses
+such a part before it tries a rotation).
 
 Parts are nested in batches so that progress can be reported and the work
 cancelled between batches; the parts of each batch's last, partly filled
@@ -25,7 +30,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from facet.errors import Cancelled, InputError
+from facet.errors import Cancelled, FacetError, InputError
 
 __all__ = ["NestError", "Placement", "Sheet", "NestResult", "nest", "verify", "ROTATIONS"]
 
@@ -191,6 +196,8 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
     per_sheet = max(1.0, (width - 2 * margin) * (height - 2 * margin) / max(mean_area, 1e-300))
     batch_size = int(min(_BATCH, max(_BATCH_MIN, _BATCH_SHEETS * per_sheet)))
     items = {}
+    box = (inner_w + dist, inner_h + dist)
+    turned = {}  # parts given to libnest2d a quarter turn round: degrees
     for pid in order:
         # collinear vertices dropped (the same outline; libnest2d's no-fit
         # polygons cost more with every vertex)
@@ -205,8 +212,12 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
         simple = orient(simple, sign=-1.0)
         coords = np.asarray(simple.exterior.coords)
         ring = [(int(round(x * scale)), int(round(y * scale))) for x, y in coords]
+        if rotations != "none" and not _fits(ring, box, dist) and _fits(ring, box[::-1], dist):
+            # libnest2d refuses a part that does not fit unturned before it tries a
+            # rotation: a tall panel on a wide sheet is given to it turned
+            ring = [(-y, x) for x, y in ring]
+            turned[pid] = 90.0
         items[pid] = (ring, _half_turn_symmetric(ring))
-    box = (inner_w + dist, inner_h + dist)
     settings = (box, dist, list(ROTATIONS[rotations]), float(accuracy), batch_size)
     # Chunks of the size order (round robin, so each has large and small
     # parts) are nested independently, each leaving its last, partly filled
@@ -259,13 +270,62 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
             # the translation applies to scaled, rotated coordinates
             x = (tx + 0.5 * box_w + 1.0 - 0.5 * dist) / scale + margin
             y = (ty + 0.5 * box_h + 1.0 - 0.5 * dist) / scale + margin
-            placements[pid] = Placement(pid, sheet_obj.index, math.degrees(angle), x, y)
+            placements[pid] = Placement(pid, sheet_obj.index,
+                                        (math.degrees(angle) + turned.get(pid, 0.0)) % 360.0,
+                                        x, y)
             sheet_obj.parts.append(pid)
             sheet_obj.used_area += polys[pid].area
         sheets.append(sheet_obj)
-    return NestResult(sheet_size=(width, height), margin=margin, spacing=spacing,
-                      rotations=rotations, sheets=sheets, placements=placements,
-                      unplaced=unplaced, seconds=time.perf_counter() - t0)
+    result = NestResult(sheet_size=(width, height), margin=margin, spacing=spacing,
+                        rotations=rotations, sheets=sheets, placements=placements,
+                        unplaced=unplaced, seconds=time.perf_counter() - t0)
+    # libnest2d can leave parts closer than the spacing, or overlapping (parts with short
+    # edges, some rotations): every such part goes again, on sheets of its own
+    crowded = {pid for _message, pids in _problems(result, polys) for pid in pids[-1:]}
+    if crowded:
+        again = nest({pid: polys[pid] for pid in crowded}, (width, height), margin, spacing,
+                     rotations, accuracy, workers=1)
+        _replace(result, crowded, again, {pid: poly.area for pid, poly in polys.items()})
+    problems = verify(result, polys)
+    if problems:  # never a cut sheet with parts too close
+        raise FacetError(f"nesting failed its own check ({len(problems)} problems; nothing "
+                         f"written): {problems[0]}")
+    result.seconds = time.perf_counter() - t0
+    return result
+
+
+def _replace(result, moved, again, areas):
+    """Take the parts `moved` off `result`'s sheets, add the sheets of `again` (their own
+    nesting) and number the sheets anew (a sheet left empty goes)."""
+    index, sheets = {}, []
+    for sheet in result.sheets:
+        if any(pid in moved for pid in sheet.parts):
+            sheet.parts = [pid for pid in sheet.parts if pid not in moved]
+            sheet.used_area = sum(areas[pid] for pid in sheet.parts)
+        if sheet.parts:
+            index[sheet.index] = sheet.index = len(sheets)
+            sheets.append(sheet)
+    placements = {}
+    for pid, placement in result.placements.items():
+        if pid not in moved:
+            placement.sheet = index[placement.sheet]
+            placements[pid] = placement
+    base = len(sheets)
+    for sheet in again.sheets:
+        sheet.index += base
+        sheets.append(sheet)
+    for pid, placement in again.placements.items():
+        placement.sheet += base
+        placements[pid] = placement
+    result.sheets, result.placements = sheets, placements
+    result.unplaced.extend(again.unplaced)
+
+
+def _fits(ring, box, dist):
+    """Whether an integer outline's bounding box fits in libnest2d's box as it is."""
+    xs = [x for x, _ in ring]
+    ys = [y for _, y in ring]
+    return max(xs) - min(xs) + dist <= box[0] and max(ys) - min(ys) + dist <= box[1]
 
 
 def _config(rotations, accuracy):
@@ -380,6 +440,11 @@ def verify(result, parts, tolerance=None):
         margin, and every two parts on a sheet are at least the spacing
         apart).
     """
+    return [message for message, _pids in _problems(result, parts, tolerance)]
+
+
+def _problems(result, parts, tolerance=None):
+    """:func:`verify`'s findings as (message, the parts it names)."""
     from shapely.geometry import Polygon, box
     from shapely.strtree import STRtree
 
@@ -393,7 +458,8 @@ def verify(result, parts, tolerance=None):
         poly = parts[pid] if isinstance(parts[pid], Polygon) else Polygon(parts[pid])
         placed = Polygon(pl.transform(np.asarray(poly.exterior.coords)))
         if not inner.contains(placed):
-            problems.append(f"part {pid} on sheet {pl.sheet} leaves the sheet less its margin")
+            problems.append((f"part {pid} on sheet {pl.sheet} leaves the sheet less its margin",
+                             (pid,)))
         by_sheet.setdefault(pl.sheet, []).append((pid, placed))
     for sheet, items in by_sheet.items():
         geoms = [g for _, g in items]
@@ -408,6 +474,7 @@ def verify(result, parts, tolerance=None):
                     continue
                 d = g.distance(other)
                 if d < result.spacing - tol:
-                    problems.append(f"parts {pid} and {items[j][0]} on sheet {sheet} are "
-                                    f"{d:.6g} apart (spacing {result.spacing:g})")
+                    problems.append((f"parts {pid} and {items[j][0]} on sheet {sheet} are "
+                                     f"{d:.6g} apart (spacing {result.spacing:g})",
+                                     (pid, items[j][0])))
     return problems
