@@ -261,7 +261,9 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
             gl = p.frame[:, :3] @ g
             if math.hypot(gl[0], gl[1]) < 1e-6:
                 raise PanelError(f"panel {p.id}: the grain direction is perpendicular to it")
-            angle = math.atan2(gl[1], gl[0])
+            # the grain lies at this angle in the panel's frame: turned back by it, it
+            # runs along +x
+            angle = -math.atan2(gl[1], gl[0])
         angles.append(angle)
     labels = label_points([_rot(p.flat_bottom, a) for p, a in zip(panel_set.panels, angles)])
     convex_feet = _convex_footprints(panel_set.panels)
