@@ -34,12 +34,40 @@ LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "SHEET": 8, "GRAIN": 6}
 
 
 def _atomic_write(path, data, binary=False):
-    path = os.fspath(path)
-    tmp = f"{path}.tmp{os.getpid()}"
-    with open(tmp, "wb" if binary else "w", **({} if binary else {"encoding": "utf-8",
-                                                                  "newline": ""})) as f:
-        f.write(data)
-    os.replace(tmp, path)
+    def write(tmp):
+        with open(tmp, "wb" if binary else "w", **({} if binary else {"encoding": "utf-8",
+                                                                      "newline": ""})) as f:
+            f.write(data)
+
+    _write_then_replace(os.fspath(path), write)
+
+
+def _write_then_replace(target, write, suffix=""):
+    """``write(tmp)`` a temporary file beside `target`, then put it in `target`'s place;
+    a failure or Ctrl+C on the way leaves no temporary file."""
+    tmp = f"{target}.tmp{os.getpid()}{suffix}"
+    try:
+        write(tmp)
+        os.replace(tmp, target)
+    except BaseException:
+        try:
+            os.remove(tmp)
+        except OSError:
+            pass
+        raise
+
+
+def _remove_stale(numbered, count):
+    """Remove ``numbered(k)`` for k = count + 1, count + 2, ... while such a file exists:
+    the sheets of an earlier, longer run written to the same names, which would otherwise
+    be cut again. Returns the files removed."""
+    removed = []
+    k = count + 1
+    while os.path.isfile(numbered(k)):
+        os.remove(numbered(k))
+        removed.append(numbered(k))
+        k += 1
+    return removed
 
 
 def sheet_offsets(nest_result, sheet_gap=None):
@@ -66,7 +94,9 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None):
     ----------
     path : str or os.PathLike
         The file; with ``per_sheet`` a pattern whose ``{sheet}`` is replaced
-        by the sheet number (1-based), or ``name.dxf`` -> ``name_01.dxf``.
+        by the sheet number (1-based), or ``name.dxf`` -> ``name_01.dxf``. Numbered
+        files of an earlier run beyond this run's last sheet are removed (they would be
+        cut again); so are write_svg's and write_png's.
     nest_result : facet.nest.NestResult
     drawings : list of facet.unfold.PartDrawing
     per_sheet : bool
@@ -131,24 +161,24 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None):
                              dxfattribs={"layer": "GRAIN"})
     if not docs:  # nothing placed: still a valid (empty) drawing, so no stale file remains
         docs[0] = new_doc()
+
+    def numbered(k):
+        if "{sheet}" in path:
+            return path.replace("{sheet}", f"{k:02d}")
+        root, ext = os.path.splitext(path)
+        return f"{root}_{k:02d}{ext or '.dxf'}"
+
     written = []
     for key in sorted(docs):
         doc = docs[key]
         auditor = doc.audit()
         if auditor.has_errors:
             raise RuntimeError(f"ezdxf audit found {len(auditor.errors)} errors in the DXF")
-        if per_sheet:
-            if "{sheet}" in path:
-                target = path.replace("{sheet}", f"{key + 1:02d}")
-            else:
-                root, ext = os.path.splitext(path)
-                target = f"{root}_{key + 1:02d}{ext or '.dxf'}"
-        else:
-            target = path
-        tmp = f"{target}.tmp{os.getpid()}"
-        doc.saveas(tmp)
-        os.replace(tmp, target)
+        target = numbered(key + 1) if per_sheet else path
+        _write_then_replace(target, doc.saveas)
         written.append(target)
+    if per_sheet:
+        _remove_stale(numbered, len(docs))
     return written
 
 
@@ -244,6 +274,7 @@ def write_svg(directory, nest_result, drawings, stem="sheet"):
         target = os.path.join(directory, f"{stem}_{i + 1:02d}.svg")
         _atomic_write(target, "\n".join(out))
         written.append(target)
+    _remove_stale(lambda k: os.path.join(directory, f"{stem}_{k:02d}.svg"), len(written))
     return written
 
 
@@ -282,9 +313,10 @@ def write_png(directory, nest_result, drawings, stem="sheet", dpi=100):
         ax.set_title(f"sheet {i + 1}: {len(sheet.parts)} parts, "
                      f"{100 * sheet.utilisation:.1f}% used")
         target = os.path.join(directory, f"{stem}_{i + 1:02d}.png")
-        tmp = target + f".tmp{os.getpid()}.png"
-        fig.savefig(tmp, dpi=dpi)
-        plt.close(fig)
-        os.replace(tmp, target)
+        try:
+            _write_then_replace(target, lambda tmp: fig.savefig(tmp, dpi=dpi), ".png")
+        finally:
+            plt.close(fig)
         written.append(target)
+    _remove_stale(lambda k: os.path.join(directory, f"{stem}_{k:02d}.png"), len(written))
     return written
