@@ -268,6 +268,23 @@ def test_grain_turns_parts_and_is_checked():
         unfold(ps, grain=(0, 0, 0))
 
 
+@pytest.mark.parametrize("grain", [(1, 0, 1), (1, 0, 2), (-2, 0, 1), (0, 0, 1), (1, 0, 0)])
+def test_grain_runs_along_x_at_any_angle_to_the_panels_edges(grain):
+    # a square panel in the XZ plane; the grain at an angle to its edges (the cylinder's
+    # vertical grain is parallel to an edge, where a part turned the wrong way round
+    # only came out reversed: at 45 degrees it came out at 90)
+    mesh = facet.PolyMesh.from_faces(
+        np.array([[0, 0, 0], [1000, 0, 0], [1000, 0, 1000], [0, 0, 1000.0]]), [[0, 1, 2, 3]])
+    ps = panels(mesh, 10.0)
+    part = unfold(ps, grain=grain)[0]
+    # the drawing as a map of the panel's 3D corners: where does the grain go?
+    fit, *_ = np.linalg.lstsq(np.c_[ps.panels[0].bottom, np.ones(4)], part.cut, rcond=None)
+    along = np.asarray(grain, float) @ fit[:3]
+    assert abs(along[1]) < 1e-9 * np.linalg.norm(along) and along[0] > 0
+    arrow = np.subtract(part.grain[1], part.grain[0])
+    assert arrow[0] > 0 and arrow[1] == 0
+
+
 # ---- nesting ---------------------------------------------------------------
 
 def _parts():
@@ -295,6 +312,37 @@ def test_nesting_holds_margin_and_spacing(rotations):
         minx, miny, maxx, maxy = placed.bounds
         assert minx >= 15 - 1e-6 and miny >= 15 - 1e-6
         assert maxx <= 1300 - 15 + 1e-6 and maxy <= 900 - 15 + 1e-6
+
+
+@pytest.mark.parametrize("mesh, thickness, edge, gap, sheet, margin, spacing, rotations", [
+    # footprints with short edges (the bevels' sides seen from above): libnest2d left
+    # parts touching, 0 apart for a 3 mm kerf
+    ("crossvault_form_planar.obj", 0.05, "bisector", 0.01, (2, 2), 0.02, 0.003, "none"),
+])
+def test_nesting_of_real_parts_keeps_the_spacing(data_dir, mesh, thickness, edge, gap, sheet,
+                                                 margin, spacing, rotations):
+    from facet.nest import nest, verify
+
+    ps = panels(facet.read_mesh(data_dir / mesh), thickness, edge=edge, gap=gap)
+    parts = {d.id: d.footprint for d in unfold(ps)}
+    r = nest(parts, sheet, margin=margin, spacing=spacing, rotations=rotations)
+    assert not r.unplaced and sorted(r.placements) == sorted(parts)
+    assert verify(r, parts) == []
+    assert [s.index for s in r.sheets] == list(range(len(r.sheets)))
+    assert sorted(pid for s in r.sheets for pid in s.parts) == sorted(parts)
+    assert all(r.placements[pid].sheet == s.index for s in r.sheets for pid in s.parts)
+
+
+def test_a_part_that_fits_only_turned_is_turned():
+    # a 1000 x 2000 panel on a 3000 x 1500 sheet: libnest2d refused it before it tried a
+    # quarter turn, so the command said it fit on no sheet
+    from facet.nest import nest, verify
+
+    tall = {"T": np.array([[0, 0], [1000, 0], [1000, 2000], [0, 2000.0]])}
+    r = nest(tall, (3000, 1500), margin=10, spacing=5, rotations="90")
+    assert not r.unplaced and r.placements["T"].angle_deg in (90.0, 270.0)
+    assert verify(r, tall) == []
+    assert nest(tall, (3000, 1500), margin=10, spacing=5, rotations="none").unplaced == ["T"]
 
 
 def test_verify_catches_overlap():
@@ -411,6 +459,42 @@ def test_schedule_csv_and_json(tmp_path):
     assert len(svgs) == len(pngs) == len(result.sheets)
     assert svgs[0].read_text().count("<path") == len(result.sheets[0].parts)
     assert pngs[0].read_bytes()[:4] == b"\x89PNG"
+
+
+def test_sheets_of_an_earlier_longer_run_are_removed(tmp_path):
+    # run 1 on small sheets, run 2 on large ones into the same names: run 1's extra
+    # numbered sheets stayed, and their parts would be cut twice
+    from facet.cli_panels import run_pipeline
+
+    mesh = translational(nu=6, nv=5, step=400.0)
+    names = dict(dxf=str(tmp_path / "cut.dxf"), per_sheet=True, svg=str(tmp_path / "svg"),
+                 png=str(tmp_path / "png"))
+    (tmp_path / "cut_99.dxf").write_text("not ours\n")  # not in the run's sequence: kept
+    _, _, _, first = run_pipeline(mesh, 18.0, sheet=(1300, 900), margin=15, spacing=8, **names)
+    _, _, _, second = run_pipeline(mesh, 18.0, sheet=(4000, 3000), margin=15, spacing=8, **names)
+    assert len(first.sheets) > len(second.sheets) >= 1
+    count = len(second.sheets)
+    assert sorted(p.name for p in tmp_path.glob("cut_*.dxf")) == (
+        [f"cut_{k:02d}.dxf" for k in range(1, count + 1)] + ["cut_99.dxf"])
+    assert len(list((tmp_path / "svg").iterdir())) == len(list((tmp_path / "png").iterdir())) \
+        == count
+
+
+def test_a_failed_preview_leaves_no_temporary_file(tmp_path, monkeypatch):
+    import matplotlib.figure
+
+    from facet.cli_panels import run_pipeline
+
+    def interrupted(self, fname, *args, **kwargs):
+        with open(fname, "wb") as half:  # Ctrl+C half way through writing the preview
+            half.write(b"\x89PNG")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        run_pipeline(translational(nu=3, nv=2, step=400.0), 18.0, sheet=(1300, 900),
+                     png=str(tmp_path / "png"))
+    assert list((tmp_path / "png").iterdir()) == []
 
 
 # ---- command line ----------------------------------------------------------
@@ -811,3 +895,17 @@ def test_a_joint_square_on_both_panels_reports_its_width_or_its_overlap():
     assert a.distToShape(b)[0] == pytest.approx(width, rel=1e-6)
     with pytest.raises(PanelError, match=r"faces 0 and 1: .* overlap by"):
         panels(mesh, 1.0, gap=0.02, edge="bisector")
+
+
+def test_cli_panels_says_when_no_gap_clears_the_overlaps(data_dir, tmp_path, capsys):
+    # thick stone panels on the cross vault: joints and nodes overlap and no gap clears
+    # every overlap (clearing_gap None); the summary formatted None and the command
+    # ended in a traceback after it had written its files
+    from facet import cli
+
+    status = cli.main(["panels", str(data_dir / "crossvault_form_planar.obj"), "--thickness",
+                       "0.5", "--schedule", str(tmp_path / "s.csv")])
+    out, err = capsys.readouterr()
+    assert status == 0, err
+    assert "no gap found that clears every overlap" in out
+    assert "joints cut square on the inner side of a fold overlap" in err

@@ -11,9 +11,10 @@
         [--step OUT.step] [--schedule OUT.csv|OUT.json] [--svg DIR] [--png DIR]
         [--report R.json]
 
-Exit status 0 done (parts that fit on no sheet are listed as unplaced, not an
-error), 1 failed (also: --step without FreeCAD), 2 bad input (a zero
-thickness, faces not planar, a gap that consumes a panel...), 130 Ctrl+C.
+Exit status 0 done, 1 failed (also: --step without FreeCAD), 2 bad input (a zero
+thickness, faces not planar, a gap that consumes a panel, a part that fits on no
+sheet: nothing written...), 130 Ctrl+C (the files written before it stay; a file
+being written is not left half-written).
 """
 
 import math
@@ -315,9 +316,10 @@ def run_panels(args):
     if ps.narrowest_joint is not None:
         a, b = ps.narrowest_joint_panels
         if ps.overlapping_joints:
+            clears = (f"a gap of {ps.clearing_gap:.4g} clears them"
+                      if ps.clearing_gap is not None else "no gap found that clears every overlap")
             print(f"  joints        {ps.overlapping_joints} overlap, the deepest by "
-                  f"{-ps.narrowest_joint:.4g} ({a} and {b}); a gap of {ps.clearing_gap:.4g} "
-                  "clears them", file=out)
+                  f"{-ps.narrowest_joint:.4g} ({a} and {b}); {clears}", file=out)
         else:
             print(f"  joints        narrowest {ps.narrowest_joint:.4g} "
                   f"(gap {ps.options['gap']:.4g}), between {a} and {b}", file=out)
