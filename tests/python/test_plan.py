@@ -242,3 +242,41 @@ def test_csv_text_with_stray_bytes_and_binary_data(tmp_path):
     binary.write_bytes(b"1,2\x00\x01\xff\xfe")
     with pytest.raises(PlanError, match=r"binary\.csv: not a text file: byte 6 is not UTF-8"):
         read_plan(binary)
+
+
+def test_plan_meshes_whose_faces_meet_without_sharing_vertices_are_named():
+    # two unit squares side by side: joined, with their own copies of the shared corners
+    # (an export that writes each face on its own), and with a T (the left square's right
+    # edge is one edge where the right side has two squares): each was lifted apart,
+    # silently, a roof torn along the shared edge
+    from facet.lift import lift
+
+    joined = PolyMesh.from_faces([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (2, 0, 0),
+                                  (2, 1, 0)], [[0, 1, 2, 3], [1, 4, 5, 2]])
+    assert plan_from_mesh(joined).warnings == []
+    copies = PolyMesh.from_faces([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (1, 0, 0),
+                                  (2, 0, 0), (2, 1, 0), (1, 1, 0)], [[0, 1, 2, 3], [4, 5, 6, 7]])
+    warned = plan_from_mesh(copies).warnings
+    assert len(warned) == 1 and "but not one vertex: 2 pairs (vertices 1 and 4" in warned[0]
+    tee = PolyMesh.from_faces([(0, 0, 0), (1, 0, 0), (1, 2, 0), (0, 2, 0), (2, 0, 0),
+                               (2, 1, 0), (1, 1, 0), (2, 2, 0)],
+                              [[0, 1, 2, 3], [1, 4, 5, 6], [6, 5, 7, 2]])
+    plan = plan_from_mesh(tee)
+    assert len(plan.warnings) == 1 and "(vertex 6 on the edge 1-2 of face 0)" in plan.warnings[0]
+    result = lift(plan, [0, 0, 0, 0, 0, 0, 1, 0])
+    assert plan.warnings[0] in result.warnings
+
+
+@pytest.mark.parametrize("short, exact", [
+    # a line drawn 1e-11 short of the edge it meets (a drawing's rounding): dropped as
+    # dangling, a face lost
+    ([(5, 0, 5, 10 - 1e-11), (0, 3, 10, 7 + 1e-11)], [(5, 0, 5, 10), (0, 3, 10, 7)]),
+    # two ridges meeting the eaves 1e-9 apart: snapped to their mean, off the eaves line
+    ([(5, 0, 2, 10), (5, 1e-9, 8, 10)], [(5, 0, 2, 10), (5, 0, 8, 10)]),
+])
+def test_a_line_within_the_snap_distance_of_another_meets_it(short, exact):
+    square = [(0, 0, 10, 0), (10, 0, 10, 10), (10, 10, 0, 10), (0, 10, 0, 0)]
+    drawn = plan_from_segments([((a, b), (c, d)) for a, b, c, d in square + short])
+    meant = plan_from_segments([((a, b), (c, d)) for a, b, c, d in square + exact])
+    assert drawn.dangling == [] and drawn.n_faces == meant.n_faces
+    assert drawn.snapped >= 1

@@ -198,6 +198,7 @@ class Lifter:
         mesh = _plan_mesh(plan)
         self._source = mesh.info.get("source") if mesh.info else None
         self._plan = mesh
+        self._plan_warnings = list(getattr(plan, "warnings", None) or [])
         n = mesh.n_vertices
         self._weights = np.ones(n) if weights is None else _vector(weights, n, "weight")
         bad = np.flatnonzero(~(self._weights > 0))
@@ -245,7 +246,7 @@ class Lifter:
             info = self._core.solve(t, z)
         except _core.CoreError as exc:
             raise _core_error(exc, self._source) from None
-        warnings = []
+        warnings = list(self._plan_warnings)
         if info["status"] != "FACET_OK":
             warnings.append(info["message"])
         if not np.all(np.isfinite(z)):  # the core refuses this; never let a NaN out

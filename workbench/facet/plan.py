@@ -84,7 +84,11 @@ class PlanGraph:
     openings : int
         Faces dropped as openings.
     snapped : int
-        Endpoints moved by snapping (to the mean of their cluster).
+        Endpoints moved by snapping (to the mean of their cluster), or splitting a
+        segment they lay within the snap distance of.
+    warnings : list of str
+        What the lifting should know about the plan (a plan mesh whose faces meet in
+        plan without sharing their vertices: lifted apart).
     """
 
     mesh: PolyMesh
@@ -93,6 +97,7 @@ class PlanGraph:
     dangling: list = field(default_factory=list)
     openings: int = 0
     snapped: int = 0
+    warnings: list = field(default_factory=list)
 
     @property
     def n_vertices(self):
@@ -110,6 +115,7 @@ class PlanGraph:
             "openings": int(self.openings),
             "snapped_endpoints": int(self.snapped),
             "snap": float(self.snap),
+            "warnings": list(self.warnings),
         }
 
 
@@ -314,6 +320,35 @@ def _snap_points(points, tolerance):
     return roots
 
 
+def _split_at_endpoints(array, tolerance):
+    """Segments (n, 2, 2) split at every endpoint within `tolerance` of their inside (not of
+    their ends); returns the new segments and how many endpoints split one."""
+    from scipy.spatial import cKDTree
+
+    ends = np.unique(array.reshape(-1, 2), axis=0)
+    tree = cKDTree(ends)
+    pieces, splitters = [], set()
+    for p, q in array:
+        d = q - p
+        length = float(np.hypot(*d))
+        cuts = []
+        if length > 2 * tolerance:
+            for k in tree.query_ball_point(0.5 * (p + q), 0.5 * length + tolerance):
+                e = ends[k]
+                t = float(np.dot(e - p, d)) / length**2
+                if not tolerance / length < t < 1.0 - tolerance / length:
+                    continue
+                if abs(float(np.cross(d, e - p))) / length <= tolerance:
+                    cuts.append((t, k))
+        if not cuts:
+            pieces.append((p, q))
+            continue
+        corners = [p] + [ends[k] for _t, k in sorted(cuts)] + [q]
+        pieces.extend(zip(corners[:-1], corners[1:]))
+        splitters.update(k for _t, k in cuts)
+    return np.asarray(pieces, dtype=np.float64).reshape(-1, 2, 2), len(splitters)
+
+
 def plan_from_segments(segments, *, snap=None, openings=(), source=None):
     """A plan graph from straight segments.
 
@@ -321,7 +356,8 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
     ----------
     segments : iterable of ((x1, y1), (x2, y2))
     snap : float, optional
-        Endpoints closer than this are merged (default 1e-6 of the
+        Endpoints closer than this are merged, and an endpoint this close to
+        another segment's inside splits it there (default 1e-6 of the
         drawing's bounding-box diagonal).
     openings : iterable of (x, y)
         Points inside faces that are openings (no panel).
@@ -371,6 +407,12 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
         snapped = int(np.count_nonzero(np.any(moved != points, axis=1)))
         points = moved
     array = points.reshape(-1, 2, 2)
+    if snap > 0:
+        # an endpoint within the snap distance of another segment's inside (a line
+        # drawn just short of the one it meets, or moved off it by the merge above)
+        # splits that segment there: otherwise the two never meet and a face is lost
+        array, joined = _split_at_endpoints(array, snap)
+        snapped += joined
     keep = np.any(array[:, 0] != array[:, 1], axis=1)
     lines = [LineString(s) for s in array[keep]]
     if not lines:
@@ -469,7 +511,63 @@ def plan_from_mesh(mesh, *, source=None, check_overlap=True):
                     if p.intersection(q).area > 1e-9 * min(p.area, q.area):
                         raise PlanError(f"{where}faces {i} and {int(j)} overlap in plan")
             raise PlanError(f"{where}faces overlap in plan")
-    return PlanGraph(plan, source=source)
+    return PlanGraph(plan, source=source, warnings=_unjoined(plan))
+
+
+def _count(n, one, many=None):
+    return f"{n} {one if n == 1 else (many or one + 's')}"
+
+
+def _unjoined(plan):
+    """Warnings for faces that meet in plan without sharing a vertex there: a vertex where
+    another one is (an export that gives each face its own copies), or one on another
+    face's edge (a T-junction). The lifting lifts such faces apart, as at a step in the
+    roof: right for a step, a tear where they should meet. The plan mesh's numbering is
+    kept (pins and per-vertex targets use it), so nothing is welded here."""
+    from scipy.spatial import cKDTree
+
+    xy = np.asarray(plan.vertices, dtype=np.float64)[:, :2]
+    used = np.unique(plan.face_vertices)
+    if used.size < 2:
+        return []
+    size = float(np.ptp(xy[used], axis=0).max())
+    tol = 1e-9 * size
+    warnings = []
+    tree = cKDTree(xy[used])
+    pairs = sorted(tree.query_pairs(tol))
+    if pairs:
+        i, j = (int(used[k]) for k in pairs[0])
+        warnings.append(
+            f"vertices at one point in plan but not one vertex: {_count(len(pairs), 'pair')} "
+            f"(vertices {i} and {j} at ({xy[i, 0]:.6g}, {xy[i, 1]:.6g})); the faces there are "
+            "lifted apart, as at a step in the roof: weld them where the faces should meet")
+    coincident = {int(used[k]) for pair in pairs for k in pair}
+    on_edge = []
+    for f, face in enumerate(plan.faces()):
+        for a, b in zip(face, face[1:] + face[:1]):
+            pa, pb = xy[a], xy[b]
+            length = float(np.hypot(*(pb - pa)))
+            if length <= 2 * tol:
+                continue
+            near = tree.query_ball_point(0.5 * (pa + pb), 0.5 * length + tol)
+            for k in near:
+                v = int(used[k])
+                if v in (a, b) or v in coincident:
+                    continue
+                t = float(np.dot(xy[v] - pa, pb - pa)) / length**2
+                if not tol / length < t < 1.0 - tol / length:
+                    continue
+                d = abs(float(np.cross(pb - pa, xy[v] - pa))) / length
+                if d <= tol:
+                    on_edge.append((v, a, b, f))
+    if on_edge:
+        v, a, b, f = on_edge[0]
+        warnings.append(
+            f"vertices on another face's edge but not its corner: {len(on_edge)} (vertex {v} "
+            f"on the edge {a}-{b} of face {f}); the faces there are lifted apart: split the "
+            "edge at the vertex where they should meet, or draw the plan as lines (.dxf, "
+            ".csv), whose meeting points are joined")
+    return warnings
 
 
 def read_plan(path, *, snap=None, arc_tolerance=None, openings=()):
