@@ -280,3 +280,34 @@ def test_a_line_within_the_snap_distance_of_another_meets_it(short, exact):
     meant = plan_from_segments([((a, b), (c, d)) for a, b, c, d in square + exact])
     assert drawn.dangling == [] and drawn.n_faces == meant.n_faces
     assert drawn.snapped >= 1
+
+
+def test_dxf_blocks_and_mirrored_polylines_are_read_where_they_are_drawn(tmp_path):
+    # a 2 x 2 grid of 10 m squares drawn three ways: LINEs; the inner lines in a block
+    # placed by an INSERT (its content was ignored beside other lines); the outline as a
+    # mirrored LWPOLYLINE (extrusion 0, 0, -1: its points in a system with z down, read
+    # as if they were world coordinates)
+    import ezdxf
+    from ezdxf.math import OCS
+
+    outline = [(0, 0), (20, 0), (20, 20), (0, 20)]
+    inner = [((10, 0), (10, 20)), ((0, 10), (20, 10))]
+    plain = ezdxf.new()
+    for a, b in zip(outline, outline[1:] + outline[:1]):
+        plain.modelspace().add_line(a, b)
+    for a, b in inner:
+        plain.modelspace().add_line(a, b)
+    plain.saveas(tmp_path / "plain.dxf")
+    drawn = ezdxf.new()
+    block = drawn.blocks.new("INNER")
+    for a, b in inner:
+        block.add_line((a[0] - 5, a[1] - 5), (b[0] - 5, b[1] - 5))
+    drawn.modelspace().add_blockref("INNER", (5, 5))
+    ocs = OCS((0, 0, -1))
+    drawn.modelspace().add_lwpolyline([tuple(ocs.from_wcs((x, y, 0)))[:2] for x, y in outline],
+                                      close=True, dxfattribs={"extrusion": (0, 0, -1)})
+    drawn.saveas(tmp_path / "drawn.dxf")
+    meant, got = read_plan(tmp_path / "plain.dxf"), read_plan(tmp_path / "drawn.dxf")
+    assert meant.n_faces == got.n_faces == 4 and got.dangling == []
+    assert sorted(map(tuple, got.mesh.vertices.tolist())) == \
+        sorted(map(tuple, meant.mesh.vertices.tolist()))

@@ -183,41 +183,62 @@ def _exception_line(exc):
 
 def _dxf_model_segments(path, document, arc_tolerance, ezpath):
     segments = []
-    curved = ("ARC", "CIRCLE", "ELLIPSE", "SPLINE")
     skipped = {}
-    for entity in document.modelspace():
+    _dxf_entity_segments(path, document.modelspace(), arc_tolerance, ezpath, segments, skipped)
+    if not segments:
+        found = ", ".join(f"{n} {k}" for k, n in sorted(skipped.items())) or "nothing"
+        raise PlanError(f"{path}: no LINE, LWPOLYLINE or POLYLINE in the model space ({found})")
+    return segments
+
+
+#: Blocks inside blocks deeper than this are refused (a block that holds itself).
+_DXF_BLOCK_DEPTH = 16
+
+
+def _dxf_entity_segments(path, entities, arc_tolerance, ezpath, segments, skipped, depth=0):
+    """Append the straight segments of `entities` (in world coordinates) to `segments`;
+    the block references' contents too (INSERT, placed as drawn)."""
+    curved = ("ARC", "CIRCLE", "ELLIPSE", "SPLINE")
+    for entity in entities:
         kind = entity.dxftype()
         handle = entity.dxf.get("handle", "?")
-        if kind == "LINE":
+        if kind == "INSERT":
+            if depth >= _DXF_BLOCK_DEPTH:
+                raise PlanError(f"{path}: INSERT {handle}: blocks nested more than "
+                                f"{_DXF_BLOCK_DEPTH} deep (a block that holds itself?)")
+            _dxf_entity_segments(path, entity.virtual_entities(), arc_tolerance, ezpath,
+                                 segments, skipped, depth + 1)
+        elif kind == "LINE":
             s, e = entity.dxf.start, entity.dxf.end
             segments.append(((float(s.x), float(s.y)), (float(e.x), float(e.y))))
-        elif kind == "LWPOLYLINE":
-            has_bulge = any(abs(b[0]) > 0 for b in entity.get_points("b"))
-            if has_bulge:
-                if arc_tolerance is None:
-                    raise PlanError(
-                        f"{path}: LWPOLYLINE {handle} has arc segments (bulges): "
-                        "give an arc tolerance to split arcs into straight segments"
-                    )
-                segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance))
-                continue
-            points = [(float(x), float(y)) for x, y in entity.get_points("xy")]
-            if entity.closed and len(points) > 1:
-                points.append(points[0])
-            segments.extend(zip(points[:-1], points[1:]))
-        elif kind == "POLYLINE":
-            if entity.is_polygon_mesh or entity.is_poly_face_mesh:
+        elif kind in ("LWPOLYLINE", "POLYLINE"):
+            if kind == "POLYLINE" and (entity.is_polygon_mesh or entity.is_poly_face_mesh):
                 raise PlanError(f"{path}: POLYLINE {handle} is a mesh, not a line drawing")
-            if any(abs(v.dxf.get("bulge", 0.0)) > 0 for v in entity.vertices):
+            bulges = ([b[0] for b in entity.get_points("b")] if kind == "LWPOLYLINE" else
+                      [v.dxf.get("bulge", 0.0) for v in entity.vertices])
+            if any(abs(b) > 0 for b in bulges):
                 if arc_tolerance is None:
                     raise PlanError(
-                        f"{path}: POLYLINE {handle} has arc segments (bulges): "
+                        f"{path}: {kind} {handle} has arc segments (bulges): "
                         "give an arc tolerance to split arcs into straight segments"
                     )
                 segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance))
                 continue
-            points = [(float(v.dxf.location.x), float(v.dxf.location.y)) for v in entity.vertices]
-            if entity.is_closed and len(points) > 1:
+            extrusion = entity.dxf.get("extrusion", (0.0, 0.0, 1.0))
+            if not (abs(extrusion[0]) < 1e-12 and abs(extrusion[1]) < 1e-12
+                    and extrusion[2] > 0):
+                # drawn in its own coordinate system (a mirrored polyline's points are
+                # in a system with z down): the path is in world coordinates
+                segments.extend(_flatten(ezpath.make_path(entity), 1.0))
+                continue
+            if kind == "LWPOLYLINE":
+                points = [(float(x), float(y)) for x, y in entity.get_points("xy")]
+                closed = entity.closed
+            else:
+                points = [(float(v.dxf.location.x), float(v.dxf.location.y))
+                          for v in entity.vertices]
+                closed = entity.is_closed
+            if closed and len(points) > 1:
                 points.append(points[0])
             segments.extend(zip(points[:-1], points[1:]))
         elif kind in curved:
@@ -229,10 +250,6 @@ def _dxf_model_segments(path, document, arc_tolerance, ezpath):
             segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance))
         else:
             skipped[kind] = skipped.get(kind, 0) + 1
-    if not segments:
-        found = ", ".join(f"{n} {k}" for k, n in sorted(skipped.items())) or "nothing"
-        raise PlanError(f"{path}: no LINE, LWPOLYLINE or POLYLINE in the model space ({found})")
-    return segments
 
 
 def _csv_rows(path, error):
