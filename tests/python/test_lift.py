@@ -252,3 +252,22 @@ def test_sparse_liftings_are_local_independent_liftings():
     vor = voronoi_plan(1)
     basis, _ = Lifter(vor).basis("sparse")
     assert basis.shape[0] == Lifter(vor).dimension
+
+
+def test_the_misses_count_only_vertices_given_a_target():
+    # four pins that a planar lifting meets, on a 2 x 2 grid of squares: the free vertices'
+    # filler targets (the pins' plane) counted too, and the report said "max 2 at vertex
+    # 3", an unpinned vertex
+    from facet.plan import pinned_targets, plan_from_segments
+
+    lines = [((0, 0), (20, 0)), ((20, 0), (20, 20)), ((20, 20), (0, 20)), ((0, 20), (0, 0)),
+             ((10, 0), (10, 20)), ((0, 10), (20, 10))]
+    plan = plan_from_segments(lines)
+    corners = [int(np.argmin(np.hypot(*(plan.mesh.vertices[:, :2] - c).T)))
+               for c in ((0, 0), (20, 0), (0, 20), (10, 10))]
+    heights = {corners[0]: 0.0, corners[1]: 1.0, corners[2]: 0.0, corners[3]: 3.0}
+    targets, weights = pinned_targets(plan, heights)
+    result = lift(plan, targets, weights)
+    assert result.target_max_vertex in heights
+    assert result.target_max < 1e-4 and result.target_rms < 1e-4
+    assert {v for v, _d in result.far_targets()} <= set(heights)

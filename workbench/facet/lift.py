@@ -105,7 +105,9 @@ class LiftResult:
         and relative to the face's mean edge length (<= 1e-9 unless a warning
         says otherwise).
     target_rms, target_max : float
-        RMS and largest ``|height - target|``; target_max_vertex is where.
+        RMS and largest ``|height - target|`` over the vertices given a target (a
+        weight above :data:`facet.plan.FREE_WEIGHT`: the free vertices of pins, and
+        those no target point fell on, do not count); target_max_vertex is where.
     solve_seconds, factor_seconds : float
         Wall time of the solve and of the factorization.
     warnings : list of str
@@ -143,7 +145,8 @@ class LiftResult:
         list of (vertex, height - target), largest miss first.
         """
         dev = self.deviation
-        order = np.argsort(-np.abs(dev), kind="stable")[:count]
+        given = np.flatnonzero(_given(self.weights))
+        order = given[np.argsort(-np.abs(dev[given]), kind="stable")[:count]]
         return [(int(v), float(dev[v])) for v in order]
 
     def report(self):
@@ -164,6 +167,25 @@ class LiftResult:
             "far_targets": [[v, d] for v, d in self.far_targets(10)],
             "warnings": list(self.warnings),
         }
+
+
+def _given(weights):
+    """Which vertices were given a target (not the free ones of pins or points)."""
+    from facet.plan import FREE_WEIGHT
+
+    given = np.asarray(weights) > FREE_WEIGHT
+    return given if given.any() else np.ones(len(given), dtype=bool)
+
+
+def _misses(heights, targets, weights):
+    """(RMS, largest, its vertex) of ``|heights - targets|`` over the vertices given a
+    target."""
+    given = np.flatnonzero(_given(weights))
+    miss = np.abs(np.asarray(heights) - np.asarray(targets))[given]
+    if not miss.size:
+        return 0.0, 0.0, -1
+    k = int(np.argmax(miss))
+    return float(np.sqrt(np.mean(miss**2))), float(miss[k]), int(given[k])
 
 
 class Lifter:
@@ -254,6 +276,7 @@ class Lifter:
         xyz = np.array(self._plan.vertices, dtype=np.float64)
         xyz[:, 2] = z
         mesh = self._plan.with_vertices(xyz)
+        rms, largest, where = _misses(z, t, self._weights)
         return LiftResult(
             mesh=mesh,
             heights=z,
@@ -263,9 +286,9 @@ class Lifter:
             trivial_dimension=info["trivial_dimension"],
             planarity_max_abs=info["planarity_max_abs"],
             planarity_max_rel=info["planarity_max_rel"],
-            target_rms=info["target_rms"],
-            target_max=info["target_max"],
-            target_max_vertex=info["target_max_vertex"],
+            target_rms=rms,
+            target_max=largest,
+            target_max_vertex=where,
             solve_seconds=info["seconds"],
             factor_seconds=self._core.factor_seconds,
             warnings=warnings,
@@ -626,21 +649,20 @@ def lift_nearly(plan, targets, weights=None, *, tolerance, progress=None):
     method = "exact"
     result = exact
     planar_heights = flat.mesh.vertices[:, 2] / _HEIGHT_SCALE + centre
-    planar_miss = float(np.max(np.abs(planar_heights - t)))
+    planar_miss = _misses(planar_heights, t, exact.weights)[1]
     if exact.target_max > planar_miss and flat.planarity.max_rel_all <= 1e-10:
         method = "planarized"
         lifted = moved_plan.with_vertices(np.column_stack([moved_xy, planar_heights]))
         from facet.planarity import planarity
 
         report = planarity(lifted)
-        dev = planar_heights - t
+        rms, largest, where = _misses(planar_heights, t, exact.weights)
         result = LiftResult(
             mesh=lifted, heights=planar_heights, targets=t, weights=exact.weights,
             dimension=exact.dimension, trivial_dimension=3,
             planarity_max_abs=float(report.max_abs_all),
             planarity_max_rel=float(report.max_rel_all),
-            target_rms=float(np.sqrt(np.mean(dev**2))), target_max=planar_miss,
-            target_max_vertex=int(np.argmax(np.abs(dev))),
+            target_rms=rms, target_max=largest, target_max_vertex=where,
             solve_seconds=float(flat.solve_seconds), factor_seconds=exact.factor_seconds,
             warnings=[])
     if result.target_max >= base.target_max:
