@@ -311,3 +311,17 @@ def test_dxf_blocks_and_mirrored_polylines_are_read_where_they_are_drawn(tmp_pat
     assert meant.n_faces == got.n_faces == 4 and got.dangling == []
     assert sorted(map(tuple, got.mesh.vertices.tolist())) == \
         sorted(map(tuple, meant.mesh.vertices.tolist()))
+
+
+@pytest.mark.parametrize("tolerance, says", [
+    (0.0, "the arc tolerance must be a finite number > 0, not 0.0"),
+    (-1.0, "the arc tolerance must be a finite number > 0, not -1.0"),
+    (float("nan"), "the arc tolerance must be a finite number > 0, not nan"),
+    # millions of segments: ten minutes and 6 GB before it was stopped
+    (1e-9, "ARC .*: the arc tolerance 1e-09 would split it into more than 2000 straight"),
+])
+def test_arc_tolerance_is_checked(tmp_path, tolerance, says):
+    # a bad tolerance was reported as "a malformed entity", blaming the drawing
+    arc = write_nested_dxf(tmp_path / "arc.dxf", arc=True)
+    with pytest.raises(PlanError, match=says):
+        read_plan(arc, arc_tolerance=tolerance)

@@ -30,6 +30,7 @@ Targets (:func:`targets_from_mesh`, :func:`targets_from_points`,
 """
 
 import csv
+import math
 import os
 from dataclasses import dataclass, field
 
@@ -126,8 +127,19 @@ def _where(source):
 # ------------------------------------------------------------------ segments
 
 
-def _flatten(path_obj, tolerance):
-    points = [(float(p.x), float(p.y)) for p in path_obj.flattening(tolerance)]
+#: The most straight segments one curve of a drawing is split into: a face's lifting costs
+#: about the cube of its corners (2,000 corners take seconds), and a tiny arc tolerance
+#: asked for millions (1e-8 on one arc: ten minutes and 6 GB before it was stopped).
+MAX_CURVE_SEGMENTS = 2000
+
+
+def _flatten(path_obj, tolerance, what="a curve"):
+    points = []
+    for p in path_obj.flattening(tolerance):
+        points.append((float(p.x), float(p.y)))
+        if len(points) > MAX_CURVE_SEGMENTS + 1:
+            raise PlanError(f"{what}: the arc tolerance {tolerance:g} would split it into more "
+                            f"than {MAX_CURVE_SEGMENTS} straight segments; give a larger one")
     return list(zip(points[:-1], points[1:]))
 
 
@@ -222,14 +234,16 @@ def _dxf_entity_segments(path, entities, arc_tolerance, ezpath, segments, skippe
                         f"{path}: {kind} {handle} has arc segments (bulges): "
                         "give an arc tolerance to split arcs into straight segments"
                     )
-                segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance))
+                segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance,
+                                         f"{path}: {kind} {handle}"))
                 continue
             extrusion = entity.dxf.get("extrusion", (0.0, 0.0, 1.0))
             if not (abs(extrusion[0]) < 1e-12 and abs(extrusion[1]) < 1e-12
                     and extrusion[2] > 0):
                 # drawn in its own coordinate system (a mirrored polyline's points are
                 # in a system with z down): the path is in world coordinates
-                segments.extend(_flatten(ezpath.make_path(entity), 1.0))
+                segments.extend(_flatten(ezpath.make_path(entity), 1.0,
+                                         f"{path}: {kind} {handle}"))
                 continue
             if kind == "LWPOLYLINE":
                 points = [(float(x), float(y)) for x, y in entity.get_points("xy")]
@@ -247,7 +261,8 @@ def _dxf_entity_segments(path, entities, arc_tolerance, ezpath, segments, skippe
                     f"{path}: {kind} {handle} is curved: give an arc tolerance to split it "
                     "into straight segments"
                 )
-            segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance))
+            segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance,
+                                     f"{path}: {kind} {handle}"))
         else:
             skipped[kind] = skipped.get(kind, 0) + 1
 
@@ -306,6 +321,14 @@ def _csv_segments(path):
 def read_segments(path, *, arc_tolerance=None):
     """The straight segments of a DXF or CSV drawing, ``[((x1, y1), (x2, y2)), ...]``."""
     suffix = os.path.splitext(os.fspath(path))[1].lower()
+    if arc_tolerance is not None:
+        try:
+            tolerance = float(arc_tolerance)
+        except (TypeError, ValueError):
+            tolerance = math.nan
+        if not 0.0 < tolerance < math.inf:
+            raise PlanError(f"{path}: the arc tolerance must be a finite number > 0, not "
+                            f"{arc_tolerance!r}")
     if suffix == ".dxf":
         return _dxf_segments(path, arc_tolerance)
     if suffix == ".csv":
