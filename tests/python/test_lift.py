@@ -271,3 +271,23 @@ def test_the_misses_count_only_vertices_given_a_target():
     assert result.target_max_vertex in heights
     assert result.target_max < 1e-4 and result.target_rms < 1e-4
     assert {v for v, _d in result.far_targets()} <= set(heights)
+
+
+def test_a_plan_in_separate_pieces_counts_their_affine_liftings():
+    # two unjoined squares: "dimension 6 (3 trivial)", as if the plan had three liftings
+    # beyond the affine ones, where each square admits only a plane
+    from facet.plan import plan_from_segments
+
+    def square(x):
+        return [((x, 0), (x + 1, 0)), ((x + 1, 0), (x + 1, 1)), ((x + 1, 1), (x, 1)),
+                ((x, 1), (x, 0))]
+
+    plan = plan_from_segments(square(0) + square(3))
+    result = lift(plan, np.arange(plan.n_vertices, dtype=float))
+    assert result.dimension == 6 and result.trivial_dimension == 6
+    assert result.liftable_only_trivially
+    assert any("2 separate pieces" in w for w in result.warnings)
+    assert lifting_space(plan).trivial_dimension == 6
+    one = plan_from_segments(square(0))
+    assert Lifter(one).trivial_dimension == 3
+    assert not any("pieces" in w for w in lift(one, np.zeros(4)).warnings)

@@ -75,6 +75,10 @@ def test_openings_and_holes():
              ((0.5, 1.5), (0.5, 0.5))]
     with pytest.raises(PlanError, match="hole"):
         plan_from_segments(SQUARE + inner)
+    # one edge to the hole does not split the ring: the advice says two (it said the hole
+    # was joined by no edge, and to draw one)
+    with pytest.raises(PlanError, match="draw two or more edges from the hole"):
+        plan_from_segments(SQUARE + inner + [((0, 0), (0.5, 0.5))])
     joins = [((0, 0), (0.5, 0.5)), ((2, 0), (1.5, 0.5)), ((2, 2), (1.5, 1.5)), ((0, 2), (0.5, 1.5))]
     plan = plan_from_segments(SQUARE + inner + joins, openings=[(1, 1)])
     assert plan.n_faces == 4 and plan.openings == 1

@@ -138,7 +138,8 @@ def run_lift(args):
     print(f"  plan          {plan.n_vertices} vertices, {plan.n_faces} faces"
           + (f", {len(plan.dangling)} dangling edges dropped" if plan.dangling else "")
           + (f", {plan.openings} openings" if plan.openings else ""))
-    print(f"  liftings      dimension {result.dimension} (3 trivial)")
+    print(f"  liftings      dimension {result.dimension} "
+          f"({result.trivial_dimension} trivial)")
     if nearly is not None:
         if nearly.method == "unmoved":
             print("  plan          kept as drawn: moving its vertices did not bring the "
@@ -149,7 +150,8 @@ def run_lift(args):
                   f" the tolerance {args.move_tolerance:g}); every move is in the report")
     if result.liftable_only_trivially:
         print("  note          the plan admits only the trivial (affine) liftings: "
-              "the result is the best-fitting plane")
+              "the result is the best-fitting plane"
+              + (" of each piece" if result.trivial_dimension > 3 else ""))
     print(f"  planarity     {result.planarity_max_rel:.3g} of the mean edge length (max)")
     print(f"  targets       RMS miss {result.target_rms:.3g}, max {result.target_max:.3g} "
           f"at vertex {result.target_max_vertex} ({result.target_max / size:.3g} of the plan "
@@ -207,7 +209,7 @@ def run_lifting_space(args):
         "vertices": int(plan.n_vertices),
         "faces": int(plan.n_faces),
         "dimension": int(lifter.dimension),
-        "trivial_dimension": 3,
+        "trivial_dimension": lifter.trivial_dimension,
         "basis": args.basis,
         "count": int(count),
         "energies": [float(e) for e in energies],
@@ -220,8 +222,12 @@ def run_lifting_space(args):
     }
     if args.report:
         write_json(report, args.report)
-    print(f"facet lifting-space: {args.plan}: dimension {lifter.dimension} (3 trivial); "
-          f"{count} {args.basis} liftings written to {args.output}")
+    print(f"facet lifting-space: {args.plan}: dimension {lifter.dimension} "
+          f"({lifter.trivial_dimension} trivial); {count} {args.basis} liftings written to "
+          f"{args.output}")
+    if lifter.pieces > 1:
+        print(f"  warning       the plan is in {lifter.pieces} separate pieces that share no "
+              "vertex")
     return EXIT_OK
 
 

@@ -169,6 +169,26 @@ class LiftResult:
         }
 
 
+def _pieces(mesh):
+    """Connected pieces of a plan's faces (through shared vertices)."""
+    parent = np.arange(mesh.n_vertices)
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for face in mesh.faces():
+        root = find(face[0])
+        for v in face[1:]:
+            other = find(v)
+            if other != root:
+                parent[other] = root
+    used = np.unique(mesh.face_vertices)
+    return len({find(int(v)) for v in used}) if used.size else 0
+
+
 def _given(weights):
     """Which vertices were given a target (not the free ones of pins or points)."""
     from facet.plan import FREE_WEIGHT
@@ -239,6 +259,12 @@ class Lifter:
             )
         except _core.CoreError as exc:
             raise _core_error(exc, self._source) from None
+        self._pieces = _pieces(mesh)  # (the core checked the faces)
+        if self._pieces > 1:
+            self._plan_warnings.append(
+                f"the plan is in {self._pieces} separate pieces that share no vertex: each is "
+                f"lifted on its own, with 3 affine liftings of its own ({3 * self._pieces} "
+                "in all)")
 
     @property
     def plan(self):
@@ -249,6 +275,16 @@ class Lifter:
     def dimension(self):
         """Dimension of the lifting space (>= 3)."""
         return self._core.dimension
+
+    @property
+    def pieces(self):
+        """How many separate pieces the plan is in (faces joined through their vertices)."""
+        return self._pieces
+
+    @property
+    def trivial_dimension(self):
+        """The affine liftings' share of the dimension: 3 for each piece."""
+        return 3 * self._pieces
 
     @property
     def factor_seconds(self):
@@ -283,7 +319,7 @@ class Lifter:
             targets=t,
             weights=self._weights.copy(),
             dimension=info["dimension"],
-            trivial_dimension=info["trivial_dimension"],
+            trivial_dimension=self.trivial_dimension,
             planarity_max_abs=info["planarity_max_abs"],
             planarity_max_rel=info["planarity_max_rel"],
             target_rms=rms,
@@ -549,7 +585,7 @@ def lifting_space(plan, kind="eigen", count=None, weights=None, *, rank_tol=None
     """
     lifter = Lifter(plan, weights, rank_tol=rank_tol)
     basis, energies = lifter.basis(kind, count)
-    return LiftingSpace(lifter.dimension, 3, kind, basis, energies)
+    return LiftingSpace(lifter.dimension, lifter.trivial_dimension, kind, basis, energies)
 
 
 @dataclass
@@ -659,7 +695,7 @@ def lift_nearly(plan, targets, weights=None, *, tolerance, progress=None):
         rms, largest, where = _misses(planar_heights, t, exact.weights)
         result = LiftResult(
             mesh=lifted, heights=planar_heights, targets=t, weights=exact.weights,
-            dimension=exact.dimension, trivial_dimension=3,
+            dimension=exact.dimension, trivial_dimension=exact.trivial_dimension,
             planarity_max_abs=float(report.max_abs_all),
             planarity_max_rel=float(report.max_rel_all),
             target_rms=rms, target_max=largest, target_max_vertex=where,

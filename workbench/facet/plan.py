@@ -481,9 +481,10 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
             x, y = polygon.interiors[0].coords[0]
             raise PlanError(
                 f"{where}the face around ({polygon.representative_point().x:.6g}, "
-                f"{polygon.representative_point().y:.6g}) has a hole at ({x:.6g}, {y:.6g}) "
-                "joined to its outline by no edge: draw an edge from the hole to the outline, "
-                "or mark the face as an opening"
+                f"{polygon.representative_point().y:.6g}) has a hole at ({x:.6g}, {y:.6g}), "
+                "and a face must be a simple polygon: draw two or more edges from the hole "
+                "to the outline, which split the ring into faces (one edge is not enough), or "
+                "mark the face around the hole as an opening"
             )
     if not kept:
         raise PlanError(
