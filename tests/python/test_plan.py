@@ -329,3 +329,33 @@ def test_arc_tolerance_is_checked(tmp_path, tolerance, says):
     arc = write_nested_dxf(tmp_path / "arc.dxf", arc=True)
     with pytest.raises(PlanError, match=says):
         read_plan(arc, arc_tolerance=tolerance)
+
+
+def test_an_opening_in_no_face_and_a_vertex_pinned_twice_are_refused(tmp_path):
+    # both did nothing, silently: the face meant to stay open got a panel; the first pin
+    # was dropped
+    from facet import cli
+
+    with pytest.raises(PlanError, match=r"the opening at \(5, 5\) lies in no face"):
+        plan_from_segments(SQUARE, openings=[(5, 5)])
+    with pytest.raises(PlanError, match="lies in no face"):
+        plan_from_segments(SQUARE, openings=[(0, 1)])  # on an edge
+    plan = tmp_path / "square.csv"
+    plan.write_text("".join(f"{a},{b},{c},{d}\n" for (a, b), (c, d) in SQUARE))
+    assert cli.main(["lift", str(plan), "-o", str(tmp_path / "o.obj"), "--pin", "0=0",
+                     "--pin", "0=1"]) == 2
+    assert not (tmp_path / "o.obj").exists()
+
+
+def test_pins_that_no_planar_lifting_meets_are_named(tmp_path, capsys):
+    from facet import cli
+
+    plan = tmp_path / "square.csv"
+    plan.write_text("".join(f"{a},{b},{c},{d}\n" for (a, b), (c, d) in SQUARE))
+    pins = ["--pin", "0=0", "--pin", "1=0", "--pin", "2=1", "--pin", "3=0"]  # a twisted quad
+    assert cli.main(["lift", str(plan), "-o", str(tmp_path / "o.obj"), *pins]) == 0
+    assert "no planar lifting meets every pin: the closest misses vertex" in \
+        capsys.readouterr().out
+    flat = ["--pin", "0=0", "--pin", "1=1", "--pin", "2=2"]
+    assert cli.main(["lift", str(plan), "-o", str(tmp_path / "o.obj"), *flat]) == 0
+    assert "meets every pin" not in capsys.readouterr().out

@@ -89,9 +89,13 @@ def _pins(texts):
     for text in texts:
         try:
             vertex, height = text.split("=")
-            pins[int(vertex)] = float(height)
+            vertex, height = int(vertex), float(height)
         except ValueError:
             raise InputError(f"--pin {text!r}: expected VERTEX=HEIGHT") from None
+        if pins.get(vertex, height) != height:
+            raise InputError(f"--pin {text!r}: vertex {vertex} is pinned at {pins[vertex]:g} "
+                             "already")
+        pins[vertex] = height
     return pins
 
 
@@ -160,6 +164,10 @@ def run_lift(args):
     for text in result.warnings:
         if "trivial" not in text:
             print(f"  warning       {text}")
+    if args.pin and result.target_max > 1e-6 * size:
+        # pins read as exact heights; the lifting meets them in least squares
+        print(f"  warning       no planar lifting meets every pin: the closest misses vertex "
+              f"{result.target_max_vertex} by {result.target_max:.3g}")
     if nearly is not None and not nearly.within_tolerance:
         from facet.cli import EXIT_FAILED
 

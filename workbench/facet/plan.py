@@ -476,6 +476,11 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
             n_openings += 1
             continue
         kept.append(polygon)
+    for point in opening_points:
+        if not any(polygon.contains(point) for polygon in faces):
+            raise PlanError(f"{where}the opening at ({point.x:.6g}, {point.y:.6g}) lies in no "
+                            "face of the drawing (outside it, or on an edge): give a point "
+                            "inside the face to leave open")
     for polygon in kept:
         if len(polygon.interiors):
             x, y = polygon.interiors[0].coords[0]
@@ -670,8 +675,9 @@ def pinned_targets(plan, pins):
         if not 0 <= v < n:
             raise InputError(f"pinned vertex {v} is out of range ({n} vertices)")
         h = float(height)
-        if not np.isfinite(h):
-            raise InputError(f"pinned height of vertex {v} is not finite")
+        if not abs(h) <= COORDINATE_MAX:
+            raise InputError(f"pinned height of vertex {v} is {h!r}: not a finite number up "
+                             f"to {COORDINATE_MAX:g} in magnitude")
         targets[v] = h
         given[v] = True
     return _with_free(xy, targets, given)
