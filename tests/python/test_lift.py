@@ -291,3 +291,17 @@ def test_a_plan_in_separate_pieces_counts_their_affine_liftings():
     one = plan_from_segments(square(0))
     assert Lifter(one).trivial_dimension == 3
     assert not any("pieces" in w for w in lift(one, np.zeros(4)).warnings)
+
+
+def test_lift_nearly_takes_the_rank_tolerance():
+    # --rank-tol with --move-tolerance was ignored
+    from facet.lift import lift_nearly
+    from facet.plan import plan_from_segments
+
+    lines = [((0, 0), (20, 0)), ((20, 0), (20, 20)), ((20, 20), (0, 20)), ((0, 20), (0, 0)),
+             ((10, 0), (10, 20)), ((0, 10), (20, 10))]
+    plan = plan_from_segments(lines)
+    t = np.arange(plan.n_vertices, dtype=float)
+    loose = lift(plan, t, rank_tol=0.9).dimension
+    assert loose != lift(plan, t).dimension
+    assert lift_nearly(plan, t, tolerance=1e-3, rank_tol=0.9).result.dimension == loose

@@ -126,7 +126,8 @@ def run_lift(args):
     if args.move_tolerance is not None:
         from facet.lift import lift_nearly
 
-        nearly = lift_nearly(plan, targets, weights, tolerance=args.move_tolerance)
+        nearly = lift_nearly(plan, targets, weights, tolerance=args.move_tolerance,
+                             rank_tol=args.rank_tol)
         result = nearly.result
     else:
         result = lift(plan, targets, weights, rank_tol=args.rank_tol)
@@ -179,13 +180,10 @@ def run_lifting_space(args):
     import numpy as np
 
     from facet.cli import EXIT_OK, check_files
-    from facet.errors import InputError
     from facet.io import write_mesh
     from facet.lift import Lifter
     from facet.report import write_json
 
-    if args.count is not None and args.count < 1:
-        raise InputError(f"--count {args.count}: must be at least 1")
     check_files(reads=[("PLAN", args.plan)], writes=[("--report", args.report)],
                 creates=[args.output])
     plan = _read_plan(args)
@@ -240,6 +238,8 @@ def run_lifting_space(args):
 
 
 def add_commands(commands):
+    from facet.cli import _positive_int
+
     lift = commands.add_parser(
         "lift",
         help="give a plan drawing heights so that every face is planar, close to targets",
@@ -269,6 +269,6 @@ def add_commands(commands):
     space.add_argument("-o", "--output", metavar="DIR", required=True, help="output folder")
     space.add_argument("--basis", choices=("fundamental", "eigen", "orthonormal", "sparse"),
                        default="eigen", help="basis kind (default eigen: smoothest first)")
-    space.add_argument("--count", type=int, metavar="K", help="how many basis functions "
-                       "(default all)")
+    space.add_argument("--count", type=_positive_int, metavar="K",
+                       help="how many basis functions (default all)")
     space.set_defaults(run=run_lifting_space)

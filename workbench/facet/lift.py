@@ -637,7 +637,7 @@ class NearlyLiftResult:
 _HEIGHT_SCALE = 0.1
 
 
-def lift_nearly(plan, targets, weights=None, *, tolerance, progress=None):
+def lift_nearly(plan, targets, weights=None, *, tolerance, progress=None, rank_tol=None):
     """Lift a plan that is liftable only up to rounding: move its vertices a little first.
 
     A plan drawn and rounded to a few digits usually admits only the planes, far from the
@@ -657,6 +657,8 @@ def lift_nearly(plan, targets, weights=None, *, tolerance, progress=None):
         Largest move of a plan vertex, model units.
     progress : callable, optional
         As for ``facet.planarize``; returning True cancels.
+    rank_tol : float, optional
+        As :func:`lift`, for the liftings of the plan and of the moved plan.
 
     Returns
     -------
@@ -671,7 +673,7 @@ def lift_nearly(plan, targets, weights=None, *, tolerance, progress=None):
     t = _vector(targets, n, "target height")
     if not (tolerance >= 0 and np.isfinite(tolerance)):
         raise InputError(f"move tolerance must be a finite number >= 0, not {tolerance!r}")
-    base = lift(mesh, t, weights)
+    base = lift(mesh, t, weights, rank_tol=rank_tol)
     xy = np.asarray(mesh.vertices, dtype=np.float64)[:, :2]
     size = float(np.ptp(xy, axis=0).max()) or 1.0
     centre = t.mean()
@@ -681,7 +683,7 @@ def lift_nearly(plan, targets, weights=None, *, tolerance, progress=None):
     moves = moved_xy - xy
     distance = np.hypot(moves[:, 0], moves[:, 1])
     moved_plan = mesh.with_vertices(np.column_stack([moved_xy, np.zeros(n)]))
-    exact = lift(moved_plan, t, weights)
+    exact = lift(moved_plan, t, weights, rank_tol=rank_tol)
     method = "exact"
     result = exact
     planar_heights = flat.mesh.vertices[:, 2] / _HEIGHT_SCALE + centre
