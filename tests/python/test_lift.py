@@ -305,3 +305,12 @@ def test_lift_nearly_takes_the_rank_tolerance():
     loose = lift(plan, t, rank_tol=0.9).dimension
     assert loose != lift(plan, t).dimension
     assert lift_nearly(plan, t, tolerance=1e-3, rank_tol=0.9).result.dimension == loose
+
+
+def test_a_vertex_in_no_face_is_a_trivial_lifting():
+    # its free height adds one to the dimension; it was not counted as trivial
+    square = PolyMesh.from_faces([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (5, 5, 0)],
+                                 [[0, 1, 2, 3]])
+    lifter = Lifter(square)
+    assert lifter.dimension == 4 and lifter.trivial_dimension == 4
+    assert lift(square, np.zeros(5)).liftable_only_trivially

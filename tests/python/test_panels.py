@@ -333,6 +333,22 @@ def test_nesting_of_real_parts_keeps_the_spacing(data_dir, mesh, thickness, edge
     assert all(r.placements[pid].sheet == s.index for s in r.sheets for pid in s.parts)
 
 
+def test_a_part_libnest2d_keeps_misplacing_ends_in_an_error(monkeypatch):
+    # the re-nest of crowded parts recursed until Python's recursion limit when the same
+    # part kept failing the check
+    import facet.nest
+    from facet.errors import FacetError
+
+    def always(result, parts, tolerance=None):
+        return [(f"part {pid} leaves the sheet less its margin", (pid,))
+                for pid in result.placements]
+
+    monkeypatch.setattr(facet.nest, "_problems", always)
+    square = {"A": np.array([[0, 0], [100, 0], [100, 100], [0, 100.0]])}
+    with pytest.raises(FacetError, match="nesting failed its own check"):
+        facet.nest.nest(square, (1000, 1000), margin=10, spacing=5)
+
+
 def test_a_part_that_fits_only_turned_is_turned():
     # a 1000 x 2000 panel on a 3000 x 1500 sheet: libnest2d refused it before it tried a
     # quarter turn, so the command said it fit on no sheet

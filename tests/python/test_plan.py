@@ -2,6 +2,7 @@
 """Plan graphs from drawings, targets, and the lift / lifting-space commands."""
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -15,6 +16,7 @@ from facet.plan import (
     plan_from_mesh,
     plan_from_segments,
     read_plan,
+    read_segments,
     targets_from_mesh,
     targets_from_points,
 )
@@ -359,3 +361,34 @@ def test_pins_that_no_planar_lifting_meets_are_named(tmp_path, capsys):
     flat = ["--pin", "0=0", "--pin", "1=1", "--pin", "2=2"]
     assert cli.main(["lift", str(plan), "-o", str(tmp_path / "o.obj"), *flat]) == 0
     assert "meets every pin" not in capsys.readouterr().out
+
+
+def test_long_polylines_are_not_taken_for_fine_curves(tmp_path):
+    # the cap on a curve's segments counted a polyline's own vertices: a mirrored
+    # 2,500-vertex outline, or one with a single bulge, was refused
+    import ezdxf
+
+    ring = [(math.cos(2 * math.pi * k / 2500), math.sin(2 * math.pi * k / 2500))
+            for k in range(2500)]
+    mirrored = ezdxf.new()
+    mirrored.modelspace().add_lwpolyline(ring, close=True, dxfattribs={"extrusion": (0, 0, -1)})
+    mirrored.saveas(tmp_path / "mirrored.dxf")
+    segments = read_segments(tmp_path / "mirrored.dxf")
+    assert len(segments) == 2500
+    assert min(a[0] for a, _b in segments) == pytest.approx(-1.0)
+    bulged = ezdxf.new()
+    bulged.modelspace().add_lwpolyline([(x, y, 0, 0, 0.1 if k == 0 else 0)
+                                        for k, (x, y) in enumerate(ring)],
+                                       format="xyseb", close=True)
+    bulged.saveas(tmp_path / "bulged.dxf")
+    assert len(read_segments(tmp_path / "bulged.dxf", arc_tolerance=0.01)) > 2500
+
+
+def test_a_nan_pin_is_refused_by_name(tmp_path, capsys):
+    from facet import cli
+
+    plan = tmp_path / "square.csv"
+    plan.write_text("".join(f"{a},{b},{c},{d}\n" for (a, b), (c, d) in SQUARE))
+    assert cli.main(["lift", str(plan), "-o", str(tmp_path / "o.obj"), "--pin", "0=0",
+                     "--pin", "1=nan"]) == 2
+    assert "pinned height of vertex 1 is nan" in capsys.readouterr().err

@@ -92,7 +92,7 @@ def _pins(texts):
             vertex, height = int(vertex), float(height)
         except ValueError:
             raise InputError(f"--pin {text!r}: expected VERTEX=HEIGHT") from None
-        if pins.get(vertex, height) != height:
+        if vertex in pins and pins[vertex] != height:
             raise InputError(f"--pin {text!r}: vertex {vertex} is pinned at {pins[vertex]:g} "
                              "already")
         pins[vertex] = height

@@ -149,6 +149,16 @@ class LiftResult:
         order = given[np.argsort(-np.abs(dev[given]), kind="stable")[:count]]
         return [(int(v), float(dev[v])) for v in order]
 
+    def against(self, targets):
+        """This lifting measured against other targets (the weights as they are): a copy
+        with ``targets`` and the misses recomputed (over the vertices given a target)."""
+        import dataclasses
+
+        t = np.array(targets, dtype=np.float64)
+        rms, largest, where = _misses(self.heights, t, self.weights)
+        return dataclasses.replace(self, targets=t, target_rms=rms, target_max=largest,
+                                   target_max_vertex=where)
+
     def report(self):
         """The JSON-ready summary (keys of the command line's report)."""
         return {
@@ -260,6 +270,7 @@ class Lifter:
         except _core.CoreError as exc:
             raise _core_error(exc, self._source) from None
         self._pieces = _pieces(mesh)  # (the core checked the faces)
+        self._isolated = int(mesh.n_vertices - np.unique(mesh.face_vertices).size)
         if self._pieces > 1:
             self._plan_warnings.append(
                 f"the plan is in {self._pieces} separate pieces that share no vertex: each is "
@@ -283,8 +294,9 @@ class Lifter:
 
     @property
     def trivial_dimension(self):
-        """The affine liftings' share of the dimension: 3 for each piece."""
-        return 3 * self._pieces
+        """The trivial liftings' share of the dimension: 3 affine ones for each piece, and
+        the free height of each vertex in no face."""
+        return 3 * self._pieces + self._isolated
 
     @property
     def factor_seconds(self):

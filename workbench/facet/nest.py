@@ -282,7 +282,7 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
     # libnest2d can leave parts closer than the spacing, or overlapping (parts with short
     # edges, some rotations): every such part goes again, on sheets of its own
     crowded = {pid for _message, pids in _problems(result, polys) for pid in pids[-1:]}
-    if crowded:
+    if crowded and len(crowded) < len(polys):  # (else it would not end: the check refuses)
         again = nest({pid: polys[pid] for pid in crowded}, (width, height), margin, spacing,
                      rotations, accuracy, workers=1)
         _replace(result, crowded, again, {pid: poly.area for pid, poly in polys.items()})

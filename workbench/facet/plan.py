@@ -133,11 +133,13 @@ def _where(source):
 MAX_CURVE_SEGMENTS = 2000
 
 
-def _flatten(path_obj, tolerance, what="a curve"):
+def _flatten(path_obj, tolerance, what="a curve", corners=0):
+    """The straight segments of a path; at most MAX_CURVE_SEGMENTS of them besides its
+    `corners` (a polyline's own vertices)."""
     points = []
     for p in path_obj.flattening(tolerance):
         points.append((float(p.x), float(p.y)))
-        if len(points) > MAX_CURVE_SEGMENTS + 1:
+        if len(points) > MAX_CURVE_SEGMENTS + corners + 1:
             raise PlanError(f"{what}: the arc tolerance {tolerance:g} would split it into more "
                             f"than {MAX_CURVE_SEGMENTS} straight segments; give a larger one")
     return list(zip(points[:-1], points[1:]))
@@ -235,23 +237,20 @@ def _dxf_entity_segments(path, entities, arc_tolerance, ezpath, segments, skippe
                         "give an arc tolerance to split arcs into straight segments"
                     )
                 segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance,
-                                         f"{path}: {kind} {handle}"))
-                continue
-            extrusion = entity.dxf.get("extrusion", (0.0, 0.0, 1.0))
-            if not (abs(extrusion[0]) < 1e-12 and abs(extrusion[1]) < 1e-12
-                    and extrusion[2] > 0):
-                # drawn in its own coordinate system (a mirrored polyline's points are
-                # in a system with z down): the path is in world coordinates
-                segments.extend(_flatten(ezpath.make_path(entity), 1.0,
-                                         f"{path}: {kind} {handle}"))
+                                         f"{path}: {kind} {handle}", corners=len(bulges)))
                 continue
             if kind == "LWPOLYLINE":
-                points = [(float(x), float(y)) for x, y in entity.get_points("xy")]
+                elevation = float(entity.dxf.get("elevation", 0.0))
+                points = [(float(x), float(y), elevation) for x, y in entity.get_points("xy")]
                 closed = entity.closed
             else:
-                points = [(float(v.dxf.location.x), float(v.dxf.location.y))
-                          for v in entity.vertices]
+                points = [tuple(v.dxf.location) for v in entity.vertices]
                 closed = entity.is_closed
+            if kind == "LWPOLYLINE" or entity.is_2d_polyline:
+                # in the polyline's own coordinate system (a mirrored one has z down):
+                # to world coordinates
+                points = list(entity.ocs().points_to_wcs(points))
+            points = [(float(p[0]), float(p[1])) for p in points]
             if closed and len(points) > 1:
                 points.append(points[0])
             segments.extend(zip(points[:-1], points[1:]))
@@ -371,21 +370,24 @@ def _split_at_endpoints(array, tolerance):
     for p, q in array:
         d = q - p
         length = float(np.hypot(*d))
-        cuts = []
+        cuts = None
         if length > 2 * tolerance:
-            for k in tree.query_ball_point(0.5 * (p + q), 0.5 * length + tolerance):
-                e = ends[k]
-                t = float(np.dot(e - p, d)) / length**2
-                if not tolerance / length < t < 1.0 - tolerance / length:
-                    continue
-                if abs(float(np.cross(d, e - p))) / length <= tolerance:
-                    cuts.append((t, k))
-        if not cuts:
+            near = np.asarray(tree.query_ball_point(0.5 * (p + q), 0.5 * length + tolerance,
+                                                    return_sorted=False), dtype=np.int64)
+            if near.size:
+                rel = ends[near] - p
+                t = (rel @ d) / length**2
+                off = np.abs(rel[:, 0] * d[1] - rel[:, 1] * d[0]) / length
+                hit = (t > tolerance / length) & (t < 1.0 - tolerance / length) & (
+                    off <= tolerance)
+                if hit.any():
+                    cuts = near[hit][np.argsort(t[hit], kind="stable")]
+        if cuts is None:
             pieces.append((p, q))
             continue
-        corners = [p] + [ends[k] for _t, k in sorted(cuts)] + [q]
+        corners = [p] + [ends[k] for k in cuts] + [q]
         pieces.extend(zip(corners[:-1], corners[1:]))
-        splitters.update(k for _t, k in cuts)
+        splitters.update(int(k) for k in cuts)
     return np.asarray(pieces, dtype=np.float64).reshape(-1, 2, 2), len(splitters)
 
 
@@ -588,9 +590,21 @@ def _unjoined(plan):
             f"(vertices {i} and {j} at ({xy[i, 0]:.6g}, {xy[i, 1]:.6g})); the faces there are "
             "lifted apart, as at a step in the roof: weld them where the faces should meet")
     coincident = {int(used[k]) for pair in pairs for k in pair}
+    # a vertex on another face's edge without being its corner leaves that edge to one
+    # face (the faces on its other side have the vertex): only such edges are searched
+    starts = plan.face_vertices
+    ends = np.roll(starts, -1)
+    last = plan.face_start[1:] - 1
+    ends[last] = starts[plan.face_start[:-1]]
+    keys = np.sort(np.column_stack([starts, ends]), axis=1)
+    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+    lone = counts[inverse.reshape(-1)] == 1
     on_edge = []
     for f, face in enumerate(plan.faces()):
-        for a, b in zip(face, face[1:] + face[:1]):
+        b0 = int(plan.face_start[f])
+        for c, (a, b) in enumerate(zip(face, face[1:] + face[:1])):
+            if not lone[b0 + c]:
+                continue
             pa, pb = xy[a], xy[b]
             length = float(np.hypot(*(pb - pa)))
             if length <= 2 * tol:

@@ -134,13 +134,8 @@ class Lifting(PolyMesh):
                 raise ValueError(f"{obj.Label}: vertex {v} cannot be raised on its own: "
                                  "every lifting of this plan keeps it where the planes put it")
             heights = heights + drag.z * fundamental / fundamental[v]
-        dragged = lifter.solve(heights)  # a lifting: returned as it is, planarity measured
-        dragged.targets = targets
-        dev = dragged.heights - targets
-        dragged.target_rms = float(np.sqrt(np.mean(dev**2)))
-        dragged.target_max_vertex = int(np.argmax(np.abs(dev)))
-        dragged.target_max = float(abs(dev[dragged.target_max_vertex]))
-        return dragged
+        # a lifting: returned as it is, planarity measured, the misses against the targets
+        return lifter.solve(heights).against(targets)
 
     @guarded
     def execute(self, obj):
@@ -159,12 +154,8 @@ class Lifting(PolyMesh):
         if mix.size and np.any(mix != 0):
             basis = self.mix_basis(plan, weights, mix.size)
             extra = mix[: basis.shape[0]] @ basis
-            result = lifter.solve(result.heights + extra)  # a lifting: returned as it is
-            result.targets = targets
-            dev = result.heights - targets
-            result.target_rms = float(np.sqrt(np.mean(dev**2)))
-            result.target_max_vertex = int(np.argmax(np.abs(dev)))
-            result.target_max = float(abs(dev[result.target_max_vertex]))
+            # a lifting: returned as it is, the misses against the targets
+            result = lifter.solve(result.heights + extra).against(targets)
         if obj.Drags:
             result = self._dragged(obj, plan, weights, lifter, result, targets)
         set_mesh(obj, result.mesh)
