@@ -133,8 +133,6 @@ class _Reporter:
         self.text = self.title if not text else f"{self.title}\n{text}"
         self.texts.append(self.text)
         if self.dialog is not None:
-            from facetwb.compat import qt_gui
-
             self.dialog.setLabelText(self.text)
             self._events()
 
