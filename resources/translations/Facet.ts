@@ -92,7 +92,7 @@
 <context>
     <name>Facet</name>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="156"/>
+        <location filename="../../workbench/facetwb/progress.py" line="159"/>
         <source>Cancel</source>
         <translation type="unfinished"></translation>
     </message>
@@ -462,12 +462,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="142"/>
+        <location filename="../../workbench/facetwb/progress.py" line="145"/>
         <source>Stop and keep</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="142"/>
+        <location filename="../../workbench/facetwb/progress.py" line="145"/>
         <source>Stop here and keep the result that reached the tolerance</source>
         <translation type="unfinished"></translation>
     </message>
