@@ -24,6 +24,7 @@ import os
 
 import numpy as np
 
+from facet.io.files import write_replacing
 from facet.report import json_safe
 
 __all__ = ["LAYERS", "write_dxf", "schedule_rows", "write_schedule_csv",
@@ -39,22 +40,7 @@ def _atomic_write(path, data, binary=False):
                                                                       "newline": ""})) as f:
             f.write(data)
 
-    _write_then_replace(os.fspath(path), write)
-
-
-def _write_then_replace(target, write, suffix=""):
-    """``write(tmp)`` a temporary file beside `target`, then put it in `target`'s place;
-    a failure or Ctrl+C on the way leaves no temporary file."""
-    tmp = f"{target}.tmp{os.getpid()}{suffix}"
-    try:
-        write(tmp)
-        os.replace(tmp, target)
-    except BaseException:
-        try:
-            os.remove(tmp)
-        except OSError:
-            pass
-        raise
+    write_replacing(path, write)
 
 
 def _remove_stale(numbered, count):
@@ -175,7 +161,7 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None):
         if auditor.has_errors:
             raise RuntimeError(f"ezdxf audit found {len(auditor.errors)} errors in the DXF")
         target = numbered(key + 1) if per_sheet else path
-        _write_then_replace(target, doc.saveas)
+        write_replacing(target, doc.saveas)
         written.append(target)
     if per_sheet:
         _remove_stale(numbered, len(docs))
@@ -314,7 +300,7 @@ def write_png(directory, nest_result, drawings, stem="sheet", dpi=100):
                      f"{100 * sheet.utilisation:.1f}% used")
         target = os.path.join(directory, f"{stem}_{i + 1:02d}.png")
         try:
-            _write_then_replace(target, lambda tmp: fig.savefig(tmp, dpi=dpi), ".png")
+            write_replacing(target, lambda tmp: fig.savefig(tmp, dpi=dpi), ".png")
         finally:
             plt.close(fig)
         written.append(target)

@@ -21,6 +21,7 @@ __all__ = [
     "parse_int",
     "check_writable_mesh",
     "write_text",
+    "write_replacing",
     "format_float",
 ]
 
@@ -157,10 +158,8 @@ def format_float(value):
 
 
 def write_text(path, chunks):
-    """Write text to `path` so that a failure leaves no half-written file.
-
-    The text goes to a new temporary file beside `path` (``NAME.<random>.part``, a name no
-    other file has), which then replaces `path`.
+    """Write text to `path` so that a failure leaves no half-written file
+    (:func:`write_replacing`).
 
     Parameters
     ----------
@@ -174,12 +173,33 @@ def write_text(path, chunks):
         Naming `path` (not the temporary file) when its folder is missing or not
         writable.
     """
-    path = os.fspath(path)
-    handle, partial = _create_beside(path)
-    try:
-        with open(handle, "w", encoding="utf-8", newline="\n") as stream:
+    def write(partial):
+        with open(partial, "w", encoding="utf-8", newline="\n") as stream:
             for chunk in chunks:
                 stream.write(chunk)
+
+    write_replacing(path, write)
+
+
+def write_replacing(path, write, suffix=""):
+    """Call ``write(partial)`` to write a new temporary file beside `path`
+    (``NAME.<random>.part`` + `suffix`, a name no other file has, with the mode new files
+    get), then put it in `path`'s place. A failure or Ctrl+C on the way leaves no
+    temporary file and no half-written `path`; an error of the file system names `path`.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    write : callable
+        Writes the whole file to the path it is given (``doc.saveas``, ``fig.savefig``).
+    suffix : str
+        Ends the temporary name, for writers that choose the format by it (``".png"``).
+    """
+    path = os.fspath(path)
+    handle, partial = _create_beside(path, suffix)
+    os.close(handle)
+    try:
+        write(partial)
         try:
             os.replace(partial, path)
         except OSError as error:  # (a folder of that name): the path asked for, not ours
@@ -192,14 +212,14 @@ def write_text(path, chunks):
         raise
 
 
-def _create_beside(path):
-    """A new file ``NAME.<random>.part`` beside `path`, created exclusively (never another
-    file of that name) with the mode new files get (the umask applies): (descriptor, name).
-    An error names `path`."""
+def _create_beside(path, suffix=""):
+    """A new file ``NAME.<random>.part`` + `suffix` beside `path`, created exclusively
+    (never another file of that name) with the mode new files get (the umask applies):
+    (descriptor, name). An error names `path`."""
     folder, name = os.path.split(os.path.abspath(path))
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
     for _attempt in range(100):
-        partial = os.path.join(folder, f"{name}.{secrets.token_hex(4)}.part")
+        partial = os.path.join(folder, f"{name}.{secrets.token_hex(4)}.part{suffix}")
         try:
             return os.open(partial, flags, 0o666), partial
         except FileExistsError:
