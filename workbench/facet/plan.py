@@ -359,6 +359,24 @@ def _snap_points(points, tolerance):
     return roots
 
 
+def _points_inside(tree, points, p, q, tolerance):
+    """Indices of `points` (the KD-tree `tree` holds them) within `tolerance` of the inside
+    of the segment p-q, not of its ends, in order along it."""
+    d = q - p
+    length = float(np.hypot(*d))
+    if length <= 2 * tolerance:
+        return np.zeros(0, dtype=np.int64)
+    near = np.asarray(tree.query_ball_point(0.5 * (p + q), 0.5 * length + tolerance,
+                                            return_sorted=False), dtype=np.int64)
+    if not near.size:
+        return near
+    rel = points[near] - p
+    t = (rel @ d) / length**2
+    off = np.abs(rel[:, 0] * d[1] - rel[:, 1] * d[0]) / length
+    hit = (t > tolerance / length) & (t < 1.0 - tolerance / length) & (off <= tolerance)
+    return near[hit][np.argsort(t[hit], kind="stable")]
+
+
 def _split_at_endpoints(array, tolerance):
     """Segments (n, 2, 2) split at every endpoint within `tolerance` of their inside (not of
     their ends); returns the new segments and how many endpoints split one."""
@@ -368,21 +386,8 @@ def _split_at_endpoints(array, tolerance):
     tree = cKDTree(ends)
     pieces, splitters = [], set()
     for p, q in array:
-        d = q - p
-        length = float(np.hypot(*d))
-        cuts = None
-        if length > 2 * tolerance:
-            near = np.asarray(tree.query_ball_point(0.5 * (p + q), 0.5 * length + tolerance,
-                                                    return_sorted=False), dtype=np.int64)
-            if near.size:
-                rel = ends[near] - p
-                t = (rel @ d) / length**2
-                off = np.abs(rel[:, 0] * d[1] - rel[:, 1] * d[0]) / length
-                hit = (t > tolerance / length) & (t < 1.0 - tolerance / length) & (
-                    off <= tolerance)
-                if hit.any():
-                    cuts = near[hit][np.argsort(t[hit], kind="stable")]
-        if cuts is None:
+        cuts = _points_inside(tree, ends, p, q, tolerance)
+        if not cuts.size:
             pieces.append((p, q))
             continue
         corners = [p] + [ends[k] for k in cuts] + [q]
@@ -562,10 +567,6 @@ def plan_from_mesh(mesh, *, source=None, check_overlap=True):
     return PlanGraph(plan, source=source, warnings=_unjoined(plan))
 
 
-def _count(n, one, many=None):
-    return f"{n} {one if n == 1 else (many or one + 's')}"
-
-
 def _unjoined(plan):
     """Warnings for faces that meet in plan without sharing a vertex there: a vertex where
     another one is (an export that gives each face its own copies), or one on another
@@ -574,6 +575,8 @@ def _unjoined(plan):
     kept (pins and per-vertex targets use it), so nothing is welded here."""
     from scipy.spatial import cKDTree
 
+    from facet.report import count_noun
+
     xy = np.asarray(plan.vertices, dtype=np.float64)[:, :2]
     used = np.unique(plan.face_vertices)
     if used.size < 2:
@@ -581,13 +584,14 @@ def _unjoined(plan):
     size = float(np.ptp(xy[used], axis=0).max())
     tol = 1e-9 * size
     warnings = []
-    tree = cKDTree(xy[used])
+    points = xy[used]
+    tree = cKDTree(points)
     pairs = sorted(tree.query_pairs(tol))
     if pairs:
         i, j = (int(used[k]) for k in pairs[0])
         warnings.append(
-            f"vertices at one point in plan but not one vertex: {_count(len(pairs), 'pair')} "
-            f"(vertices {i} and {j} at ({xy[i, 0]:.6g}, {xy[i, 1]:.6g})); the faces there are "
+            "vertices at one point in plan but not one vertex: "
+            f"{count_noun(len(pairs), 'pair')} (vertices {i} and {j} at ({xy[i, 0]:.6g}, {xy[i, 1]:.6g})); the faces there are "
             "lifted apart, as at a step in the roof: weld them where the faces should meet")
     coincident = {int(used[k]) for pair in pairs for k in pair}
     # a vertex on another face's edge without being its corner leaves that edge to one
@@ -603,23 +607,10 @@ def _unjoined(plan):
     for f, face in enumerate(plan.faces()):
         b0 = int(plan.face_start[f])
         for c, (a, b) in enumerate(zip(face, face[1:] + face[:1])):
-            if not lone[b0 + c]:
-                continue
-            pa, pb = xy[a], xy[b]
-            length = float(np.hypot(*(pb - pa)))
-            if length <= 2 * tol:
-                continue
-            near = tree.query_ball_point(0.5 * (pa + pb), 0.5 * length + tol)
-            for k in near:
-                v = int(used[k])
-                if v in (a, b) or v in coincident:
-                    continue
-                t = float(np.dot(xy[v] - pa, pb - pa)) / length**2
-                if not tol / length < t < 1.0 - tol / length:
-                    continue
-                d = abs(float(np.cross(pb - pa, xy[v] - pa))) / length
-                if d <= tol:
-                    on_edge.append((v, a, b, f))
+            if lone[b0 + c]:
+                on_edge.extend((int(used[k]), a, b, f)
+                               for k in _points_inside(tree, points, xy[a], xy[b], tol)
+                               if int(used[k]) not in coincident)
     if on_edge:
         v, a, b, f = on_edge[0]
         warnings.append(
