@@ -181,22 +181,19 @@ class LiftResult:
 
 def _pieces(mesh):
     """Connected pieces of a plan's faces (through shared vertices)."""
-    parent = np.arange(mesh.n_vertices)
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
 
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for face in mesh.faces():
-        root = find(face[0])
-        for v in face[1:]:
-            other = find(v)
-            if other != root:
-                parent[other] = root
     used = np.unique(mesh.face_vertices)
-    return len({find(int(v)) for v in used}) if used.size else 0
+    if not used.size:
+        return 0
+    # each corner joined to the next one of its face
+    nxt = np.roll(mesh.face_vertices, -1)
+    nxt[mesh.face_start[1:] - 1] = mesh.face_vertices[mesh.face_start[:-1]]
+    n = mesh.n_vertices
+    graph = coo_matrix((np.ones(len(nxt)), (mesh.face_vertices, nxt)), shape=(n, n))
+    _count, labels = connected_components(graph, directed=False)
+    return int(np.unique(labels[used]).size)
 
 
 def _given(weights):
