@@ -281,15 +281,16 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
                         unplaced=unplaced, seconds=time.perf_counter() - t0)
     # libnest2d can leave parts closer than the spacing, or overlapping (parts with short
     # edges, some rotations): every such part goes again, on sheets of its own
-    crowded = {pid for _message, pids in _problems(result, polys) for pid in pids[-1:]}
+    problems = _problems(result, polys)
+    crowded = {pid for _message, pids in problems for pid in pids[-1:]}
     if crowded and len(crowded) < len(polys):  # (else it would not end: the check refuses)
         again = nest({pid: polys[pid] for pid in crowded}, (width, height), margin, spacing,
                      rotations, accuracy, workers=1)
         _replace(result, crowded, again, {pid: poly.area for pid, poly in polys.items()})
-    problems = verify(result, polys)
+        problems = _problems(result, polys)
     if problems:  # never a cut sheet with parts too close
         raise FacetError(f"nesting failed its own check ({len(problems)} problems; nothing "
-                         f"written): {problems[0]}")
+                         f"written): {problems[0][0]}")
     result.seconds = time.perf_counter() - t0
     return result
 
