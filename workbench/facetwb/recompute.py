@@ -87,6 +87,11 @@ def one_line(obj, error):
         text = f"{error.filename}: {error.strerror}" if error.filename else error.strerror
     else:
         text = str(error) or type(error).__name__
+    return _named(obj, text)
+
+
+def _named(obj, text):
+    """`text` on one line, starting with the object's label (once)."""
     text = " ".join(text.split())
     label = getattr(obj, "Label", "")
     if label and not text.startswith(label + ":"):
@@ -97,8 +102,7 @@ def one_line(obj, error):
 def failure(obj):
     """The one line of an object in FreeCAD's error state: its status string, which names
     the object (:func:`one_line`), or the label then FreeCAD's own status."""
-    text = " ".join(obj.getStatusString().split())
-    return text if text.startswith(obj.Label + ":") else f"{obj.Label}: {text}"
+    return _named(obj, obj.getStatusString())
 
 
 def guarded(execute):

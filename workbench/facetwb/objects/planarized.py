@@ -268,14 +268,16 @@ def term_options(obj, mesh):
                "anderson": count(obj, "Anderson", most=ANDERSON_MAX)}
     if obj.Shape != "default":
         options["shape"] = obj.Shape
-    if non_negative(obj, "ShapeWeight") > 0:
-        options["shape_weight"] = float(obj.ShapeWeight)
+    shape_weight = non_negative(obj, "ShapeWeight")
+    if shape_weight > 0:
+        options["shape_weight"] = shape_weight
     for name, option, _tip in TERM_WEIGHTS:
         value = non_negative(obj, name)
         if value > 0:
             options[option] = value
-    if non_negative(obj, "TimeBudget") > 0:
-        options["time_budget"] = float(obj.TimeBudget)
+    time_budget = non_negative(obj, "TimeBudget")
+    if time_budget > 0:
+        options["time_budget"] = time_budget
     fixed = list(obj.FixedVertices)
     bad = [v for v in fixed if not 0 <= v < mesh.n_vertices]
     if bad:
