@@ -635,8 +635,7 @@ def check_files(reads=(), writes=(), creates=()):
     Raises
     ------
     _UsageError
-        ``"-o in.obj is the input IN: the result would replace it; write it to another
-        file"``.
+        ``"-o in.obj is the input IN: it would be written over; give another file"``.
     """
     taken = [(option, path, "is the input") for option, path in reads if path]
     made = {os.path.abspath(folder) for folder in creates if folder}

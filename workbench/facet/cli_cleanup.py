@@ -60,7 +60,8 @@ def run_cleanup(args):
     from facet.surface import Surface
 
     writer_for(args.output)
-    check_files(reads=[("IN", args.input)], writes=[("-o", args.output), ("--report", args.report)])
+    check_files(reads=[("IN", args.input)],
+                writes=[("-o", args.output), ("--report", args.report)])
     mesh = _read(args)
     cleaned = cleanup(mesh, args.min_edge, relative=args.relative)
     before = planarity(cleaned.mesh, threads=args.threads)

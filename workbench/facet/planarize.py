@@ -434,8 +434,10 @@ class Planarizer:
             control = vertices
         else:
             control = self._topology.with_vertices(vertices)
-        if iterations is not None and _count("iterations", iterations) <= 0:
-            raise FacetError(f"iterations must be a positive count, not {iterations}")
+        if iterations is not None:
+            iterations = _count("iterations", iterations)
+            if iterations <= 0:
+                raise FacetError(f"iterations must be a positive count, not {iterations}")
         options = {"method": method}
         for name, value in (("mu0", mu0), ("ratio", ratio), ("mu_min", mu_min)):
             if value is not None:
@@ -456,7 +458,7 @@ class Planarizer:
         if max_iter is not None:
             options["max_iter"] = _count("max_iter", max_iter)
         if iterations is not None:
-            options["iterations"] = _count("iterations", iterations)
+            options["iterations"] = iterations
         # any whole number: <= 0 by mesh size (docs/CONTRACTS.md), the rest capped by the core
         threads = options["threads"] = max(0, min(_whole("threads", threads or 0), _INT32_MAX))
         unknown = set(terms) - set(TERMS)
