@@ -925,3 +925,31 @@ def test_cli_panels_says_when_no_gap_clears_the_overlaps(data_dir, tmp_path, cap
     assert status == 0, err
     assert "no gap found that clears every overlap" in out
     assert "joints cut square on the inner side of a fold overlap" in err
+
+
+def test_the_re_nest_of_crowded_parts_reports_progress_and_can_be_cancelled(monkeypatch):
+    # the crowded parts' second nesting took no progress callback: Cancel did nothing
+    # until it ended, and the bar stood at the end meanwhile
+    import facet.nest
+    from facet.errors import Cancelled
+
+    checked = []
+    real = facet.nest._problems
+
+    def once(result, parts, tolerance=None):  # part "B" crowded on the first check only
+        checked.append(1)
+        if len(checked) == 1:
+            return [("part B is closer than the spacing", ("B",))]
+        return real(result, parts, tolerance)
+
+    monkeypatch.setattr(facet.nest, "_problems", once)
+    parts = {k: np.array([[0, 0], [100, 0], [100, 100], [0, 100.0]]) for k in "ABC"}
+    during = []  # (done, total) reported while the re-nest runs (after the first check)
+    r = facet.nest.nest(parts, (1000, 1000), margin=10, spacing=5,
+                        progress=lambda d, t: checked and during.append((d, t)) and False)
+    assert sorted(r.placements) == ["A", "B", "C"] and facet.nest.verify(r, parts) == []
+    assert during and all(2 <= d <= 3 and t == 3 for d, t in during)  # from the 2 that stay
+    checked.clear()
+    with pytest.raises(Cancelled, match="nesting cancelled"):
+        facet.nest.nest(parts, (1000, 1000), margin=10, spacing=5,
+                        progress=lambda d, t: len(checked) > 0)  # Cancel once the re-nest runs

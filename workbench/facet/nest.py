@@ -284,8 +284,10 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
     problems = _problems(result, polys)
     crowded = {pid for _message, pids in problems for pid in pids[-1:]}
     if crowded and len(crowded) < len(polys):  # (else it would not end: the check refuses)
+        settled = total - len(crowded)  # the bar goes on from the parts that stay; Cancel works
+        step = None if progress is None else (lambda d, _t: progress(settled + d, total))
         again = nest({pid: polys[pid] for pid in crowded}, (width, height), margin, spacing,
-                     rotations, accuracy, workers=1)
+                     rotations, accuracy, progress=step, workers=1)
         _replace(result, crowded, again, {pid: poly.area for pid, poly in polys.items()})
         problems = _problems(result, polys)
     if problems:  # never a cut sheet with parts too close
