@@ -254,6 +254,25 @@ def test_sparse_liftings_are_local_independent_liftings():
     assert basis.shape[0] == Lifter(vor).dimension
 
 
+def test_sparse_and_fundamental_bases_report_progress_and_can_be_cancelled():
+    # the sparse search took 24 s on a 100 x 100 grid plan with no word and no way to
+    # stop it but Ctrl+C; the fundamental basis is a solve per vertex
+    from facet.errors import Cancelled
+
+    mesh = straight_grid([0, 1, 2.5, 3, 4.5, 6, 7], [0, 1, 2, 3.5, 4, 5])
+    lifter = Lifter(mesh)
+    for kind, total in (("sparse", mesh.n_vertices), ("fundamental", 5)):
+        seen = []
+        count = None if kind == "sparse" else 5
+        basis, _ = lifter.basis(kind, count, progress=lambda d, t: seen.append((d, t)) and False)
+        quiet, _ = lifter.basis(kind, count)
+        assert np.array_equal(basis, quiet)  # the same result with a progress callback
+        assert seen[0][0] == 0 and seen[-1] == (total, total)
+        assert all(t == total for _, t in seen) and [d for d, _ in seen] == sorted(d for d, _ in seen)
+        with pytest.raises(Cancelled, match=f"{kind} liftings cancelled"):
+            lifter.basis(kind, count, progress=lambda d, t: d >= 2)
+
+
 def test_the_misses_count_only_vertices_given_a_target():
     # four pins that a planar lifting meets, on a 2 x 2 grid of squares: the free vertices'
     # filler targets (the pins' plane) counted too, and the report said "max 2 at vertex
@@ -314,3 +333,22 @@ def test_a_vertex_in_no_face_is_a_trivial_lifting():
     lifter = Lifter(square)
     assert lifter.dimension == 4 and lifter.trivial_dimension == 4
     assert lift(square, np.zeros(5)).liftable_only_trivially
+
+
+def test_the_lifting_space_progress_line():
+    # `facet lifting-space --basis sparse` showed nothing while it searched (ProgressLine.steps)
+    import io
+
+    from facet.cli_progress import ProgressLine
+
+    out = io.StringIO()
+    line = ProgressLine(out, prefix="facet lifting-space", interval=60.0, force=True)
+    mesh = straight_grid([0, 1, 2.5, 3, 4.5, 6, 7], [0, 1, 2, 3.5, 4, 5])
+    Lifter(mesh).basis("sparse", progress=lambda d, t: line.steps(d, t, "vertices searched"))
+    line.close()
+    shown = out.getvalue().split("\r")
+    n = mesh.n_vertices
+    # the first at once, then none within the interval but the last
+    assert shown[1:3] == ["facet lifting-space: vertices searched 0 of %d" % n,
+                          "facet lifting-space: vertices searched %d of %d" % (n, n)]
+    assert shown[-1] == "" and shown[-2].strip() == ""  # erased at the end

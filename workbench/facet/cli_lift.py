@@ -19,6 +19,7 @@ more was needed (the result is written all the same).
 """
 
 import os
+import sys
 
 __all__ = ["add_commands"]
 
@@ -180,6 +181,7 @@ def run_lifting_space(args):
     import numpy as np
 
     from facet.cli import EXIT_OK, check_files
+    from facet.cli_progress import ProgressLine
     from facet.io import write_mesh
     from facet.lift import Lifter
     from facet.report import write_json
@@ -190,17 +192,27 @@ def run_lifting_space(args):
     lifter = Lifter(plan, rank_tol=args.rank_tol)
     limit = plan.n_vertices if args.basis == "fundamental" else lifter.dimension
     count = limit if args.count is None else min(args.count, limit)
-    basis, energies = lifter.basis(args.basis, count)
+    line = ProgressLine(sys.stderr, prefix="facet lifting-space")  # a terminal only
+    searched = "vertices searched" if args.basis == "sparse" else "liftings"
+    try:
+        basis, energies = lifter.basis(
+            args.basis, count, progress=lambda done, total: line.steps(done, total, searched))
+    finally:
+        line.close()
     os.makedirs(args.output, exist_ok=True)
     xyz = np.array(plan.mesh.vertices, dtype=np.float64)
     size = float(np.ptp(xyz[:, :2], axis=0).max())
     files = []
-    for k, heights in enumerate(basis):
-        peak = float(np.max(np.abs(heights)))
-        xyz[:, 2] = heights * (0.2 * size / peak) if peak > 0 else 0.0
-        name = f"{args.basis}_{k:04d}.obj"
-        write_mesh(plan.mesh.with_vertices(xyz), os.path.join(args.output, name))
-        files.append(name)
+    try:
+        for k, heights in enumerate(basis):
+            line.steps(k, count, "OBJ files written")
+            peak = float(np.max(np.abs(heights)))
+            xyz[:, 2] = heights * (0.2 * size / peak) if peak > 0 else 0.0
+            name = f"{args.basis}_{k:04d}.obj"
+            write_mesh(plan.mesh.with_vertices(xyz), os.path.join(args.output, name))
+            files.append(name)
+    finally:
+        line.close()
     table = os.path.join(args.output, f"{args.basis}.csv")
     from facet.io.files import format_float, write_text
 

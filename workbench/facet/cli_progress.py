@@ -53,6 +53,18 @@ class ProgressLine:
         self._show(f"iteration {iteration} of at most {max_iter}, planarity {planarity:.2g}")
         return False
 
+    def steps(self, done, total, what):
+        """A count of steps: ``what done of total``; never cancels (the last one is shown
+        at once)."""
+        if not self.enabled:
+            return False
+        now = time.monotonic()
+        if done < total and self._last is not None and now - self._last < self.interval:
+            return False
+        self._last = now
+        self._show(f"{what} {done} of {total}")
+        return False
+
     def stage(self, stage, stages):
         """facet's ``stage(stage, stages)``: a quality re-solve starts, or one of method
         auto's comparison solves (``stage`` is facet.planarize.STAGE_COMPARE or

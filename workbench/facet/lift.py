@@ -350,10 +350,10 @@ class Lifter:
             raise _core_error(exc, self._source) from None
         return z
 
-    def _sparse_basis(self, count):
-        return _sparse_liftings(self, count)
+    def _sparse_basis(self, count, progress=None):
+        return _sparse_liftings(self, count, progress)
 
-    def basis(self, kind="eigen", count=None):
+    def basis(self, kind="eigen", count=None, progress=None):
         """The first `count` functions of a basis of the lifting space.
 
         Parameters
@@ -369,6 +369,11 @@ class Lifter:
         count : int, optional
             Default: the dimension (eigen, orthonormal) or every vertex
             (fundamental).
+        progress : callable, optional
+            ``progress(done, total)`` as the sparse liftings are searched
+            (vertices) or the fundamental ones computed; True cancels
+            (:class:`facet.Cancelled`). The eigen and orthonormal bases are
+            one computation each and report nothing.
 
         Returns
         -------
@@ -386,7 +391,7 @@ class Lifter:
             count = d if count is None else int(count)
             if not 0 <= count <= d:
                 raise InputError(f"count {count} is not between 0 and the dimension {d}")
-            basis = self._sparse_basis(count)
+            basis = self._sparse_basis(count, progress)
             edges = self._plan.edges()
             energies = np.array([np.sum((b[edges[:, 0]] - b[edges[:, 1]]) ** 2) for b in basis])
             return basis, energies
@@ -396,7 +401,9 @@ class Lifter:
                 raise InputError(f"count {count} is not between 0 and {n} vertices")
             basis = np.empty((count, n))
             for v in range(count):
+                _report(progress, v, count, "fundamental liftings")
                 self.fundamental(v, basis[v])
+            _report(progress, count, count, "fundamental liftings")
             edges = self._plan.edges()
             energies = np.array([np.sum((b[edges[:, 0]] - b[edges[:, 1]]) ** 2) for b in basis])
             return basis, energies
@@ -452,11 +459,20 @@ def _echelon(rows):
     return a[:r]
 
 
-def _sparse_liftings(lifter, count):
+def _report(progress, done, total, what):
+    """Call ``progress(done, total)``; raise Cancelled when it says so."""
+    if progress is not None and progress(done, total):
+        from facet.errors import Cancelled
+
+        raise Cancelled(f"{what} cancelled")
+
+
+def _sparse_liftings(lifter, count, progress=None):
     """Sparse liftings (see Lifter.basis): the trivial three, then liftings supported on
     rings of faces around each vertex in turn, kept when independent of those found so far,
     until `count`; any still missing (liftings with no local support) come from the
-    orthonormal basis. Each non-trivial one is scaled to peak 1."""
+    orthonormal basis. Each non-trivial one is scaled to peak 1. ``progress(done, n)``
+    between vertices (n: the plan's vertices); True cancels."""
     mesh = lifter.plan
     n = mesh.n_vertices
     d = lifter.dimension
@@ -480,6 +496,7 @@ def _sparse_liftings(lifter, count):
     for v in range(n):
         if len(found) >= wanted:
             break
+        _report(progress, v, n, "sparse liftings")
         support = {v}
         for _ in range(SPARSE_MAX_RINGS):
             ring_faces = {f for u in support for f in vertex_faces[u]}
@@ -533,6 +550,7 @@ def _sparse_liftings(lifter, count):
             if np.linalg.norm(r) > 1e-6:
                 span.append(r / np.linalg.norm(r))
                 found.append(b / np.max(np.abs(b)))
+    _report(progress, n, n, "sparse liftings")
     signs = [1.0 if z[np.argmax(np.abs(z))] > 0 else -1.0 for z in found]
     return np.vstack([trivial[:3]] + [s * z for s, z in zip(signs, found)])
 
