@@ -271,6 +271,8 @@ def test_sparse_and_fundamental_bases_report_progress_and_can_be_cancelled():
         assert all(t == total for _, t in seen) and [d for d, _ in seen] == sorted(d for d, _ in seen)
         with pytest.raises(Cancelled, match=f"{kind} liftings cancelled"):
             lifter.basis(kind, count, progress=lambda d, t: d >= 2)
+        with pytest.raises(Cancelled, match=f"{kind} liftings cancelled"):
+            lifting_space(mesh, kind, count, progress=lambda d, t: d >= 2)
 
 
 def test_the_misses_count_only_vertices_given_a_target():

@@ -603,15 +603,17 @@ def lift(plan, targets, weights=None, *, rank_tol=None):
     return Lifter(plan, weights, rank_tol=rank_tol).solve(targets)
 
 
-def lifting_space(plan, kind="eigen", count=None, weights=None, *, rank_tol=None):
-    """The lifting space of a plan and `count` functions of a basis.
+def lifting_space(plan, kind="eigen", count=None, weights=None, *, rank_tol=None,
+                  progress=None):
+    """The lifting space of a plan and `count` functions of a basis (``progress``: as
+    :meth:`Lifter.basis` takes it).
 
     Returns
     -------
     LiftingSpace
     """
     lifter = Lifter(plan, weights, rank_tol=rank_tol)
-    basis, energies = lifter.basis(kind, count)
+    basis, energies = lifter.basis(kind, count, progress=progress)
     return LiftingSpace(lifter.dimension, lifter.trivial_dimension, kind, basis, energies)
 
 
