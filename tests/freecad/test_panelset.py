@@ -209,7 +209,37 @@ class TestPanelSet(DocumentTestCase):
         self.doc.recompute()
         self.assertEqual(list(obj.PanelObjects), [])
         self.assertTrue(all(self.doc.getObject(n) is None for n in names))
+        # on again: the objects come back under their names and stay. FreeCAD 0.20 removed
+        # every object made later under a name removed during a recompute, at the end of
+        # each recompute after: the PanelSet had no panel objects, valid and silent
+        obj.OnePerPanel = True
+        self.doc.recompute()
+        self.assertEqual([c.Name for c in obj.PanelObjects], names)
+        obj.touch()
+        self.doc.recompute()
+        self.assertEqual([c.Name for c in obj.PanelObjects], names)
+        self.assertTrue(all(self.doc.getObject(n) is not None for n in names))
+        # a copy (without its dependencies) links the original's panel objects: it makes
+        # its own and leaves the original's alone (it rewrote and deleted them)
+        volume = obj.PanelObjects[0].Shape.Volume
+        copy = self.doc.copyObject(obj, False)
+        copy.Thickness = 3 * T
+        self.doc.recompute()
+        self.assertTrue(copy.isValid(), copy.getStatusString())
+        own = [c.Name for c in copy.PanelObjects]
+        self.assertEqual(len(own), len(names))
+        self.assertFalse(set(own) & set(names))
+        self.assertAlmostEqual(copy.PanelObjects[0].Shape.Volume / volume, 1.5, places=9)
+        self.assertEqual(obj.PanelObjects[0].Shape.Volume, volume)
+        copy.OnePerPanel = False
+        self.doc.recompute()
+        self.assertTrue(all(self.doc.getObject(n) is None for n in own))
+        self.assertEqual([c.Name for c in obj.PanelObjects], names)
+        self.assertTrue(all(self.doc.getObject(n) is not None for n in names))
+        self.doc.removeObject(copy.Name)
         self.doc.removeObject(obj.Name)
+        for name in names:
+            self.doc.removeObject(name)
 
     def test_cutsheets_reuse_the_panelsets_panels_and_solids(self):
         import facet.step  # noqa: F401

@@ -28,10 +28,11 @@ import sys
 from facetwb import progress
 from facetwb.translation import translate
 
-__all__ = ["RecomputeError", "failure", "guarded", "one_line"]
+__all__ = ["RecomputeError", "after_recompute", "failure", "guarded", "one_line"]
 
 _saved_limit = []
 _observer = []
+_after = []  # (document name, action) to run once that document has recomputed
 
 
 def _restore_traceback_limit():
@@ -47,6 +48,35 @@ def _restore_traceback_limit():
 class _DocumentObserver:
     def slotRecomputedDocument(self, doc):  # noqa: N802 - FreeCAD's name
         _restore_traceback_limit()
+        _run_after(doc)
+
+
+def _run_after(doc):
+    name = getattr(doc, "Name", None)
+    due = [action for owner, action in _after if owner == name]
+    _after[:] = [(owner, action) for owner, action in _after if owner != name]
+    for action in due:
+        try:
+            action()
+        except Exception as error:  # noqa: BLE001 - one failed action must not stop the rest
+            import FreeCAD as App
+
+            App.Console.PrintError(f"Facet: after recomputing {name}: {error}\n")
+
+
+def after_recompute(doc, action):
+    """Run ``action()`` once ``doc`` has finished recomputing, or now when it is not
+    recomputing (an ``execute`` called by ``obj.recompute()``).
+
+    For removing objects from an ``execute``: FreeCAD 0.20 defers a ``removeObject`` made
+    while the document recomputes and keeps the name on its list afterwards, so that an
+    object made later under the same name is removed at the end of every recompute that
+    follows (fixed in FreeCAD 0.21). Removed after the recompute, the name stays free."""
+    if not getattr(doc, "Recomputing", False):
+        action()
+        return
+    _observe()
+    _after.append((doc.Name, action))
 
 
 def _observe():

@@ -240,14 +240,24 @@ class PanelSet(_Proxy):
 
     def _update_panel_objects(self, obj, ps, solids):
         """Keep one plain Part::Feature per panel (OnePerPanel), reusing the existing ones
-        in order and removing the rest."""
+        in order and removing the rest (after the recompute: recompute.after_recompute).
+        Only the PanelSet's own are used: a copy of a PanelSet links its original's until
+        it makes its own, and leaves those alone."""
+        from facetwb.recompute import after_recompute
+
         doc = obj.Document
-        have = [o for o in obj.PanelObjects if o is not None]
+        have = [o for o in obj.PanelObjects if o is not None and _owns(obj, o)]
         want = len(ps.panels) if obj.OnePerPanel else 0
         keep = have[:want]
-        for extra in have[want:]:
-            if doc.getObject(extra.Name) is not None:
-                doc.removeObject(extra.Name)
+        extras = [o.Name for o in have[want:]]
+
+        def remove():
+            for name in extras:
+                if doc.getObject(name) is not None:
+                    doc.removeObject(name)
+
+        if extras:
+            after_recompute(doc, remove)
         for k in range(len(keep), want):
             # a name of its own: FreeCAD finds a free "Panel..." by scanning every object
             keep.append(doc.addObject("Part::Feature", f"{obj.Name}_Panel{k:05d}"))
@@ -261,6 +271,13 @@ class PanelSet(_Proxy):
             obj.ViewObject.Visibility = not keep
             if hasattr(obj.ViewObject.Proxy, "show_clashes"):
                 obj.ViewObject.Proxy.show_clashes(obj)  # the new objects' colours
+
+
+def _owns(obj, child):
+    """Whether a per-panel object is the PanelSet's own: made by it, so named after it
+    (``NAME_Panel00012``, or FreeCAD's variant of that name with more digits)."""
+    prefix = obj.Name + "_Panel"
+    return child.Name.startswith(prefix) and child.Name[len(prefix):].isdigit()
 
 
 class CutSheets(_Proxy):
@@ -428,11 +445,12 @@ class ViewProviderPanels:
         return list(getattr(obj, "PanelObjects", None) or [])
 
     def onDelete(self, vobj, subelements):
-        """The per-panel objects belong to the PanelSet: they go with it."""
+        """The per-panel objects belong to the PanelSet: they go with it (its own only, not
+        the original's that a copy still links)."""
         obj = vobj.Object
         doc = obj.Document
         for child in list(getattr(obj, "PanelObjects", None) or []):
-            if child is not None and doc.getObject(child.Name) is not None:
+            if child is not None and _owns(obj, child) and doc.getObject(child.Name) is not None:
                 doc.removeObject(child.Name)
         return True
 
