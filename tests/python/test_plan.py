@@ -349,6 +349,15 @@ def test_an_opening_in_no_face_and_a_vertex_pinned_twice_are_refused(tmp_path):
     assert not (tmp_path / "o.obj").exists()
 
 
+def test_an_opening_that_is_not_a_finite_point_is_refused_by_its_index():
+    # (nan, nan) failed inside shapely with "index out of range" and a traceback in FreeCAD
+    for bad, shown in (((math.nan, math.nan), "nan, nan"), ((1.0, math.inf), "1, inf")):
+        with pytest.raises(PlanError, match=rf"opening 1 at \({shown}\) is not a finite point"):
+            plan_from_segments(SQUARE, openings=[(0.5, 0.5), bad])
+    with pytest.raises(PlanError, match=r"openings must be \(x, y\) points"):
+        plan_from_segments(SQUARE, openings=[(0.5, 0.5, 0.0)])
+
+
 def test_pins_that_no_planar_lifting_meets_are_named(tmp_path, capsys):
     from facet import cli
 

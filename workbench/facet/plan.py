@@ -434,6 +434,15 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
         # overflowed first (found by fuzzing: a CSV segment at 1e308)
         bad = int(np.flatnonzero(beyond.any(axis=(1, 2)))[0])
         raise PlanError(f"{where}segment {bad} has a coordinate beyond {COORDINATE_MAX:g} in magnitude")
+    try:
+        opening_xy = np.array([(float(x), float(y)) for x, y in openings],
+                              dtype=np.float64).reshape(-1, 2)
+    except (TypeError, ValueError):
+        raise PlanError(f"{where}openings must be (x, y) points") from None
+    if not np.all(np.isfinite(opening_xy)):
+        bad = int(np.flatnonzero(~np.all(np.isfinite(opening_xy), axis=1))[0])
+        x, y = opening_xy[bad]
+        raise PlanError(f"{where}opening {bad} at ({x:.6g}, {y:.6g}) is not a finite point")
     points = array.reshape(-1, 2)
     lower, upper = points.min(axis=0), points.max(axis=0)
     size = float(np.hypot(*(upper - lower)))
@@ -475,7 +484,7 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
         x, y = g.coords[0]
         raise PlanError(f"{where}the edges near ({x:.6g}, {y:.6g}) form a self-crossing ring")
     faces = list(getattr(polygons, "geoms", []))
-    opening_points = [Point(float(x), float(y)) for x, y in openings]
+    opening_points = [Point(x, y) for x, y in opening_xy]
     kept = []
     n_openings = 0
     for polygon in faces:
