@@ -120,6 +120,25 @@ class TestPlanGraphAndLifting(DocumentTestCase):
             self.doc.recompute()
         np.testing.assert_allclose(points_array(lifting), before, rtol=0, atol=1e-9)
 
+    def test_bad_weights_are_refused_as_given(self):
+        # the check ran on the weights times the pins' own (1e-6 on a free vertex): a -1
+        # typed by the designer was reported as -1e-06, and Weights was not named
+        lifting = self.lifting
+        before = points_array(lifting)
+        n = len(before)
+        try:
+            for value, shown in ((-1.0, "-1"), (float("nan"), "nan"), (0.0, "0")):
+                lifting.Weights = [1.0] * (n - 1) + [value]
+                self.doc.recompute()
+                self.assertFalse(lifting.isValid())
+                self.assertIn(f"Weights: the weight of vertex {n - 1} is {shown}: weights must "
+                              "be finite and > 0", lifting.getStatusString())
+                np.testing.assert_array_equal(points_array(lifting), before)
+        finally:
+            lifting.Weights = []
+            self.doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+
     def test_downstream_planarize_takes_it(self):
         result = facetwb.make_planarized(self.lifting, tolerance=1e-6)
         self.doc.recompute()

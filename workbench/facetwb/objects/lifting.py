@@ -147,7 +147,12 @@ class Lifting(PolyMesh):
             if len(obj.Weights) != plan.n_vertices:
                 raise ValueError(f"{obj.Label}: {len(obj.Weights)} weights but the plan has "
                                  f"{plan.n_vertices} vertices")
-            weights = weights * np.asarray(obj.Weights, dtype=np.float64)
+            given = np.asarray(obj.Weights, dtype=np.float64)
+            bad = np.flatnonzero(~(np.isfinite(given) & (given > 0)))
+            if bad.size:  # (checked as given: the pins' weights multiply them below)
+                raise ValueError(f"{obj.Label}: Weights: the weight of vertex {bad[0]} is "
+                                 f"{given[bad[0]]:g}: weights must be finite and > 0")
+            weights = weights * given
         lifter, _ = self._lifter(plan, weights)
         result = lifter.solve(targets)
         mix = np.asarray(obj.Mix, dtype=np.float64)
