@@ -307,7 +307,8 @@ def _panel_rows():
     panel_row("panels_negative_thickness", ["--thickness", "-1"], ["thickness", "-1"])
     panel_row("panels_nan_thickness", ["--thickness", "nan"], ["thickness", "nan"])
     panel_row("panels_sheet_smaller_than_panel", ["--thickness", "0.01", "--sheet", "0.5x0.5"],
-              ["{dir}/flat.obj", "fit on no 0.5 x 0.5 sheet", "P-"])
+              ["{dir}/flat.obj", "fit on no 0.5 x 0.5 sheet", "P-",
+               "use a larger sheet or a smaller margin"])  # (the workbench says it too)
     panel_row("panels_gap_larger_than_panel", ["--thickness", "0.01", "--gap", "3"],
               ["{dir}/flat.obj", "face 0", "gap 3"])
     panel_row("panels_zero_area_face", ["--thickness", "0.01"],
