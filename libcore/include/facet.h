@@ -437,12 +437,15 @@ facet_status facet_planarizer_solve(facet_planarizer *planarizer, const double *
  * result bit for bit. The region's control positions are the previous
  * result moved by the edit, so it follows the edit instead of being pulled
  * back to the original control mesh. If the held rim keeps the region from
- * the tolerance, the region grows (rings doubled) up to the whole mesh. The
- * region's topology (and symbolic factorization) is kept while the same
- * vertices are edited. result->planarity_* are over all faces. A full solve
- * (facet_planarizer_solve) afterwards gives the globally optimal result.
- * After the fixed vertices, face weights or reference changed, the next
- * update is a full warm solve. Needs a previous solve on this handle (else FACET_ERROR_INVALID_ARGUMENT). */
+ * the tolerance, the region grows (rings doubled) up to the whole mesh, or
+ * all of it the edit reaches (a mesh in pieces). A moved vertex of no face
+ * moves by its edit. The region's topology (and symbolic factorization) is
+ * kept while the same vertices are edited. result->planarity_* are over all
+ * faces. A full solve (facet_planarizer_solve) afterwards gives the globally
+ * optimal result. After the fixed vertices, face weights or reference
+ * changed, the next update is a full warm solve. options are checked as a
+ * solve checks them, also when no vertex moved. xyz_out may be xyz_in.
+ * Needs a previous solve on this handle (else FACET_ERROR_INVALID_ARGUMENT). */
 facet_status facet_planarizer_update(facet_planarizer *planarizer, const double *xyz_in,
                                      const facet_planarize_options *options, int32_t rings,
                                      double *xyz_out, facet_planarize_result *result,

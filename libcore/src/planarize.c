@@ -530,6 +530,14 @@ static facet_status check_options(const facet_planarize_options *o, int has_refe
     return FACET_OK;
 }
 
+facet_status facet_pl_check_options(facet_planarizer *s, const facet_planarize_options *options,
+                                   facet_error *error)
+{
+    char text[256];
+    const facet_status status = check_options(options, s->reference != NULL, text, sizeof text);
+    return status == FACET_OK ? FACET_OK : facet_pl_fail(s, error, status, text);
+}
+
 /* Dot products are summed in blocks of ANDERSON_BLOCK entries, each block in
  * index order, then the blocks' sums in block order: the bits do not depend
  * on the thread count, and a mesh of up to ANDERSON_BLOCK / 3 vertices (one
@@ -1024,10 +1032,9 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
                           "planarizer, input, output and options must not be NULL");
     s->message[0] = '\0';
     const double t0 = facet_now();
-    char text[256];
-    facet_status status = check_options(options, s->reference != NULL, text, sizeof text);
+    facet_status status = facet_pl_check_options(s, options, error);
     if (status != FACET_OK)
-        return facet_pl_fail(s, error, status, text);
+        return status;
     facet_planarize_options chosen = *options;
     if (options->method == FACET_METHOD_AUTO) {
         chosen.method = facet_planarizer_choose_method(s, options);

@@ -207,6 +207,9 @@ facet_status facet_pl_solve_once(facet_planarizer *s, const double *xyz_in,
                                  facet_planarize_result *result, facet_error *error);
 facet_status facet_pl_fail(facet_planarizer *s, facet_error *error, facet_status status,
                            const char *text);
+/* FACET_OK, or FACET_ERROR_INVALID_ARGUMENT naming the first bad option (as a solve). */
+facet_status facet_pl_check_options(facet_planarizer *s, const facet_planarize_options *options,
+                                   facet_error *error);
 void facet_pl_history_trim(facet_planarizer *s);
 /* Entries of one column of the Anderson history's residual differences:
  * 3 nv, or fewer on a mesh whose least squares is sketched. */

@@ -187,6 +187,10 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
     }
     if (rings == 0)
         rings = 4;
+    /* checked whether or not a vertex moved (a region solve would check them too) */
+    facet_status status = facet_pl_check_options(s, options, error);
+    if (status < 0)
+        return status;
     const int32_t nv = s->nv;
     for (int32_t v = 0; v < nv; ++v) {
         const double *p = xyz_in + 3 * (size_t)v;
@@ -196,14 +200,15 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
             return facet_fail(error, FACET_ERROR_NONFINITE, -1, v, "%s", s->message);
         }
     }
-    /* the edited vertices */
+    /* the edited vertices; a vertex of no face has no region (it has nothing to keep
+     * planar: it goes where it was moved, as in a solve) */
     int32_t n_changed = 0;
     int32_t *changed = malloc(sizeof(int32_t) * (size_t)nv);
     if (!changed)
         return facet_pl_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, "out of memory");
     for (int32_t v = 0; v < nv; ++v) {
         const double *a = xyz_in + 3 * (size_t)v, *b = s->previous_control + 3 * (size_t)v;
-        if (a[0] != b[0] || a[1] != b[1] || a[2] != b[2])
+        if ((a[0] != b[0] || a[1] != b[1] || a[2] != b[2]) && s->vertex_start[v + 1] > s->vertex_start[v])
             changed[n_changed++] = v;
     }
     if (s->live_stale) { /* held vertices, weights or reference changed: all of it */
@@ -217,9 +222,9 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
     o.quality_angle = 0.0; /* no re-solve within a frame (planarize_quality.c) */
     facet_planarize_result sub_result;
     memset(&sub_result, 0, sizeof sub_result);
-    facet_status status = FACET_OK;
     int32_t iterations = 0;
     if (n_changed > 0) {
+        int32_t last_nv = -1, last_nf = -1; /* the region of the pass before */
         for (;;) {
             if (!s->live || s->live_rings != rings || s->live_n_changed != n_changed ||
                 memcmp(s->live_changed, changed, sizeof(int32_t) * (size_t)n_changed) != 0) {
@@ -244,17 +249,30 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
                 snprintf(s->message, sizeof s->message, "%s", facet_planarizer_message(s->live));
                 break;
             }
-            const int whole = m == nv && s->live->nf == s->nf;
+            /* the whole mesh, or all of it the edit reaches (a mesh in pieces, vertices of
+             * no face): no larger region would do better */
+            const int whole = (m == nv && s->live->nf == s->nf) || (m == last_nv && s->live->nf == last_nf);
             if (sub_result.stop_reason == FACET_STOP_TOLERANCE || sub_result.stop_reason == FACET_STOP_ITERATIONS ||
                 sub_result.stop_reason == FACET_STOP_TIME || whole)
                 break;
-            rings *= 2; /* the rim held it back: a larger region */
+            last_nv = m, last_nf = s->live->nf;
+            rings = rings > nv / 2 ? nv : 2 * rings; /* the rim held it back: a larger region */
         }
     }
     free(changed);
     if (status < 0)
         return status;
-    /* the result: the previous one, with the region replaced */
+    /* the result: the previous one moved by the edit at the vertices of no face (nothing
+     * holds them: as in a solve), with the region replaced. The control positions are
+     * kept before xyz_out is written, which may be xyz_in */
+    for (int32_t v = 0; v < nv; ++v)
+        if (s->vertex_start[v + 1] == s->vertex_start[v])
+            for (int a = 0; a < 3; ++a) {
+                const size_t k = 3 * (size_t)v + a;
+                if (xyz_in[k] != s->previous_control[k])
+                    s->previous[k] += xyz_in[k] - s->previous_control[k];
+            }
+    memmove(s->previous_control, xyz_in, sizeof(double) * 3 * (size_t)nv);
     if (xyz_out != s->previous)
         memmove(xyz_out, s->previous, sizeof(double) * 3 * (size_t)nv);
     if (n_changed > 0) {
@@ -265,7 +283,6 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
                 memcpy(xyz_out + 3 * (size_t)v, out + 3 * (size_t)i, 3 * sizeof(double));
         }
     }
-    memmove(s->previous_control, xyz_in, sizeof(double) * 3 * (size_t)nv);
     if (s->previous != xyz_out)
         memmove(s->previous, xyz_out, sizeof(double) * 3 * (size_t)nv);
     /* planarity per face: the region's faces changed, the others kept theirs */

@@ -288,8 +288,77 @@ static void test_live_update(facet_method method, double tol)
     test_mesh_free(&t);
 }
 
+/* Live updates at the edges: a mesh in two pieces with a vertex of no face,
+ * bad options with nothing moved, and the result written over the input. */
+static void test_live_update_edges(void)
+{
+    /* two twisted quads apart, and vertex 8 in no face */
+    const double xyz[] = {0, 0, 0, 1, 0, 0.1, 1, 1, 0, 0, 1, 0.1, 3, 0, 0, 4, 0, 0.1,
+                          4, 1, 0, 3, 1, 0.1, 9, 9, 9};
+    const int32_t face_start[] = {0, 4, 8}, face_vertices[] = {0, 1, 2, 3, 4, 5, 6, 7};
+    const facet_mesh mesh = {9, 2, xyz, face_start, face_vertices};
+    facet_planarizer *s = NULL;
+    facet_error e;
+    CHECK_STATUS(facet_planarizer_create(&mesh, &s, &e), FACET_OK);
+    facet_planarize_options o;
+    facet_planarize_options_default(FACET_METHOD_LOCAL_GLOBAL, &o);
+    double control[27], first[27], out[27];
+    memcpy(control, xyz, sizeof control);
+    facet_planarize_result r;
+    CHECK_STATUS(facet_planarizer_solve(s, control, &o, first, &r, &e), FACET_OK);
+    /* a tolerance no solve reaches: the region, one quad, cannot grow into the other
+     * piece; the update never ended (ring counts doubled until they overflowed) */
+    facet_planarize_options stuck = o;
+    stuck.tol_rel = 0.0, stuck.tol_abs = 1e-300;
+    control[2] += 0.05;
+    const facet_status status = facet_planarizer_update(s, control, &stuck, 0, out, &r, &e);
+    CHECK(status >= 0 && r.stop_reason != FACET_STOP_TOLERANCE);
+    CHECK(memcmp(out + 12, first + 12, 12 * sizeof(double)) == 0); /* the other piece kept */
+    control[2] -= 0.05;
+    CHECK_STATUS(facet_planarizer_solve(s, control, &o, first, &r, &e), FACET_OK);
+    /* only the vertex of no face moved: it goes there; it failed with "empty mesh" */
+    control[24] += 1.0;
+    CHECK_STATUS(facet_planarizer_update(s, control, &o, 0, out, &r, &e), FACET_OK);
+    CHECK(out[24] == first[24] + 1.0 && out[25] == first[25] && out[26] == first[26]);
+    CHECK(memcmp(out, first, 24 * sizeof(double)) == 0 && r.iterations == 0);
+    /* bad options are refused whether or not a vertex moved (nothing moved: FACET_OK) */
+    facet_planarize_options bad = o;
+    bad.mu0 = NAN;
+    CHECK_STATUS(facet_planarizer_update(s, control, &bad, 0, out, &r, &e), FACET_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(e.message, "mu0") != NULL);
+    bad = o, bad.method = (facet_method)7;
+    CHECK_STATUS(facet_planarizer_update(s, control, &bad, 0, out, &r, &e), FACET_ERROR_INVALID_ARGUMENT);
+    facet_planarizer_free(&s);
+
+    /* the result written over the input (as facet_planarizer_solve allows): the stored
+     * control positions took the result, so the next drag moved every vertex */
+    test_mesh t = test_grid(8, 8, 0.6, 1.0, 0.0);
+    const size_t m = 3 * (size_t)t.mesh.n_vertices;
+    facet_planarizer *a = NULL, *b = NULL;
+    CHECK_STATUS(facet_planarizer_create(&t.mesh, &a, &e), FACET_OK);
+    CHECK_STATUS(facet_planarizer_create(&t.mesh, &b, &e), FACET_OK);
+    double *in = malloc(sizeof(double) * m), *io = malloc(sizeof(double) * m);
+    double *res = malloc(sizeof(double) * m);
+    memcpy(in, t.xyz, sizeof(double) * m);
+    o.threads = 1;
+    CHECK_STATUS(facet_planarizer_solve(a, in, &o, res, &r, &e), FACET_OK);
+    CHECK_STATUS(facet_planarizer_solve(b, in, &o, io, &r, &e), FACET_OK);
+    for (int step = 0; step < 2; ++step) {
+        in[3 * 40 + 2] += 0.02;
+        memcpy(io, in, sizeof(double) * m);
+        CHECK_STATUS(facet_planarizer_update(a, in, &o, 0, res, &r, &e), FACET_OK);
+        CHECK_STATUS(facet_planarizer_update(b, io, &o, 0, io, &r, &e), FACET_OK);
+        CHECK(memcmp(res, io, sizeof(double) * m) == 0);
+    }
+    facet_planarizer_free(&a);
+    facet_planarizer_free(&b);
+    free(in), free(io), free(res);
+    test_mesh_free(&t);
+}
+
 int main(void)
 {
+    test_live_update_edges();
     test_live_update(FACET_METHOD_LOCAL_GLOBAL, 1e-6);
     test_live_update(FACET_METHOD_LOCAL_LOCAL, 1e-3);
     test_planar_input_unchanged(FACET_METHOD_LOCAL_LOCAL);
