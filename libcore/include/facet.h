@@ -187,6 +187,15 @@ typedef enum facet_method {
 /* The deepest Anderson history (facet_planarize_options.anderson). */
 #define FACET_ANDERSON_MAX 16
 
+/* The largest a term's weight may be, as a multiple of data_tangent (every
+ * weight of facet_planarize_options but data_tangent and time_budget): beside
+ * a larger one the data term is lost to rounding and the vertices drift. */
+#define FACET_WEIGHT_SPAN 1e12
+
+/* The largest per-face planarity weight (facet_planarizer_set_face_weights):
+ * the planarity term's own weight grows to 1 / mu_min over the schedule. */
+#define FACET_FACE_WEIGHT_MAX 1e6
+
 typedef enum facet_stop_reason {
     FACET_STOP_NONE = 0,
     FACET_STOP_TOLERANCE = 1,   /* planarity (and constraints) reached tol_abs or tol_rel */
@@ -461,7 +470,7 @@ const char *facet_planarizer_message(const facet_planarizer *planarizer);
 facet_status facet_planarizer_set_fixed(facet_planarizer *planarizer, int32_t n,
                                         const int32_t *vertices, facet_error *error);
 
-/* Per-face planarity weights, n_faces values >= 0 (0: the face is exempt, an
+/* Per-face planarity weights, n_faces values in [0, FACET_FACE_WEIGHT_MAX] (0: the face is exempt, an
  * opening or a door); NULL restores 1 for every face. */
 facet_status facet_planarizer_set_face_weights(facet_planarizer *planarizer,
                                                const double *weights, facet_error *error);

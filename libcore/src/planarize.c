@@ -438,9 +438,9 @@ facet_status facet_planarizer_set_face_weights(facet_planarizer *s, const double
         return FACET_OK;
     }
     for (int32_t f = 0; f < s->nf; ++f)
-        if (!(weights[f] >= 0.0) || !isfinite(weights[f]))
+        if (!(weights[f] >= 0.0) || !(weights[f] <= FACET_FACE_WEIGHT_MAX))
             return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, f, -1,
-                              "face %d has planarity weight %g; weights must be finite and >= 0",
+                              "face %d has planarity weight %g; weights must be in [0, 1e6]",
                               (int)f, weights[f]);
     if (!s->face_weight) {
         s->face_weight = malloc(sizeof(double) * (size_t)s->nf);
@@ -505,6 +505,15 @@ static facet_status check_options(const facet_planarize_options *o, int has_refe
     if (!(o->data_tangent > 0.0))
         BAD("data_tangent must be > 0: a vertex with no pull along the surface could drift "
             "without bound");
+    /* beside a weight FACET_WEIGHT_SPAN times data_tangent's the data term is lost to
+     * rounding and the vertices drift (fuzzing: parallelogram 1e16 moved a unit grid's
+     * vertices by 900, and boundary_fairness 1e16 by 1,300, with FACET_OK) */
+    for (size_t k = 1; k + 1 < sizeof weights / sizeof weights[0]; ++k)
+        if (weights[k].value > FACET_WEIGHT_SPAN * o->data_tangent &&
+            !(k == 6 && o->shape == FACET_SHAPE_NONE)) /* 6: shape_weight, unread with no shape */
+            BAD("%s %g is more than %g times data_tangent (%g): beside it the data term is "
+                "lost to rounding", weights[k].name, weights[k].value, FACET_WEIGHT_SPAN,
+                o->data_tangent);
     if (o->laplacian_weights != FACET_LAPLACIAN_UNIFORM &&
         o->laplacian_weights != FACET_LAPLACIAN_INVERSE_EDGE)
         BAD("unknown laplacian_weights %d", (int)o->laplacian_weights);

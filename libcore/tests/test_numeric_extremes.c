@@ -196,10 +196,16 @@ static void test_planarize_extremes(void)
                                 CHECK((s == FACET_OK) == (r.stop_reason == FACET_STOP_TOLERANCE));
                             }
                         }
-                /* face weights: huge, tiny and zero side by side */
+                /* face weights: the largest allowed, tiny and zero side by side (above
+                 * FACET_FACE_WEIGHT_MAX refused, naming the face: 1e10 beside 1 moved a
+                 * unit grid's vertices by 6,600) */
                 double fw[GRID_U * GRID_V];
                 for (int f = 0; f < GRID_U * GRID_V; ++f)
                     fw[f] = f % 3 == 0 ? 1e12 : (f % 3 == 1 ? 1e-12 : 0.0);
+                CHECK_STATUS(facet_planarizer_set_face_weights(p, fw, &e), FACET_ERROR_INVALID_ARGUMENT);
+                CHECK(e.face == 0 && strstr(e.message, "face 0 has planarity weight 1e+12") != NULL);
+                for (int f = 0; f < GRID_U * GRID_V; f += 3)
+                    fw[f] = FACET_FACE_WEIGHT_MAX;
                 CHECK_STATUS(facet_planarizer_set_face_weights(p, fw, &e), FACET_OK);
                 for (int method = 0; method < 2; ++method) {
                     facet_planarize_options o;

@@ -158,6 +158,25 @@ static void test_converges(facet_method method, double tol)
     bad = o;
     bad.ratio = 1.5;
     CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &bad, out1, &r1, &e), FACET_ERROR_INVALID_ARGUMENT);
+    /* a weight more than FACET_WEIGHT_SPAN times data_tangent: refused by name
+     * (parallelogram 1e16 gave FACET_OK with vertices 900 units off a unit grid) */
+    bad = o;
+    bad.parallelogram = 2e12;
+    CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &bad, out1, &r1, &e), FACET_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(e.message, "parallelogram 2e+12 is more than 1e+12 times data_tangent (1)") != NULL);
+    bad = o;
+    bad.data_tangent = 1e-3, bad.boundary_fairness = 1e10;
+    CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &bad, out1, &r1, &e), FACET_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(e.message, "boundary_fairness") != NULL);
+    bad.boundary_fairness = 1e9; /* at the span: taken */
+    bad.max_iter = 1;
+    CHECK(facet_planarizer_solve(s, t.xyz, &bad, out1, &r1, &e) >= 0);
+    bad = o;
+    bad.shape_weight = 1e20; /* with no shape term it is not read: taken */
+    bad.max_iter = 1;
+    CHECK(facet_planarizer_solve(s, t.xyz, &bad, out1, &r1, &e) >= 0);
+    bad.shape = FACET_SHAPE_ARAP;
+    CHECK_STATUS(facet_planarizer_solve(s, t.xyz, &bad, out1, &r1, &e), FACET_ERROR_INVALID_ARGUMENT);
     memcpy(edited, t.xyz, sizeof(double) * n);
     edited[3 * 17 + 1] = NAN;
     memcpy(out2, out1, sizeof(double) * n);

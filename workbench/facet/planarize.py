@@ -394,9 +394,10 @@ class Planarizer:
         fixed : array_like of int, optional
             Vertices held exactly at their control positions.
         face_weights : array_like of float, optional
-            Per-face planarity weights (0 exempts a face: an opening).
+            Per-face planarity weights in [0, 1e6] (0 exempts a face: an opening).
         **terms
-            Any of :data:`TERMS`: regularizers (``laplacian``,
+            Any of :data:`TERMS` (each weight at most 1e12 times ``data_tangent``:
+            beside a larger one the data term is lost to rounding): regularizers (``laplacian``,
             ``laplacian_weights``, ``normal_laplacian``,
             ``boundary_fairness``, ``shape`` "asap"/"arap" with
             ``shape_weight``), constraints (``boundary``
