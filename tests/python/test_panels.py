@@ -285,6 +285,28 @@ def test_grain_runs_along_x_at_any_angle_to_the_panels_edges(grain):
     assert arrow[0] > 0 and arrow[1] == 0
 
 
+@pytest.mark.parametrize("grain", [None, (0, 0, 1), (1, 0, 1)])
+def test_the_schedules_placement_rebuilds_the_cut_outline_on_the_sheet(grain):
+    # with a grain every row said rotation 0 while each part lay turned by its grain angle
+    from facet.cutsheets import schedule_rows
+    from facet.nest import nest
+
+    ps = panels(cylinder(), 10.0)
+    drawings = unfold(ps, grain=grain)
+    result = nest({d.id: d.footprint for d in drawings}, (3000, 3000), margin=10, spacing=5,
+                  rotations="none" if grain else "90")
+    rows = {r["id"]: r for r in schedule_rows(ps, result, drawings)}
+    turned = 0
+    for p, d in zip(ps, drawings):
+        row, placed = rows[p.id], result.placements[p.id].transform(d.cut)
+        a = math.radians(row["rotation_deg"])
+        rebuilt = p.flat_bottom @ np.array([[math.cos(a), math.sin(a)], [-math.sin(a), math.cos(a)]])
+        assert np.allclose(rebuilt + (row["x"], row["y"]), placed, atol=1e-9 * 3000)
+        assert 0 <= row["rotation_deg"] < 360
+        turned += abs(d.rotation_deg) > 1e-9
+    assert turned == (0 if grain is None else len(ps))
+
+
 # ---- nesting ---------------------------------------------------------------
 
 def _parts():

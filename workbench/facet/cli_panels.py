@@ -211,7 +211,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
     if schedule:
         check()
         t = time.perf_counter()
-        rows = schedule_rows(ps, result)
+        rows = schedule_rows(ps, result, drawings)
         if schedule.lower().endswith(".json"):
             write_schedule_json(schedule, rows, meta=ps.options)
         else:
@@ -255,7 +255,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         "n_panels": len(ps),
         "id_scheme": ps.id_scheme,
         "grid_shape": ps.grid_shape,
-        "panels": schedule_rows(ps, result) if rows is None else rows,
+        "panels": schedule_rows(ps, result, drawings) if rows is None else rows,
         "sheets": [] if result is None else [
             {"index": s.index + 1, "parts": s.parts, "utilisation": s.utilisation}
             for s in result.sheets],

@@ -168,10 +168,14 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None):
     return written
 
 
-def schedule_rows(panel_set, nest_result=None):
+def schedule_rows(panel_set, nest_result=None, drawings=None):
     """The schedule: one dict per panel (see :meth:`facet.panels.Panel.schedule_row`)
     with sheet (1-based, None when not nested or unplaced), x, y and
-    rotation_deg on the sheet."""
+    rotation_deg on the sheet: ``sheet_xy = rotate(rotation_deg) @ flat_xy + (x, y)``
+    for the panel's flat outline (``Panel.flat_bottom``). ``drawings``
+    (:func:`facet.unfold.unfold`'s) carry the turn that lays each part's grain along x,
+    which the rotation includes; without them it is the nesting's alone."""
+    turned = {d.id: d.rotation_deg for d in drawings or ()}
     rows = []
     for p in panel_set.panels:
         row = p.schedule_row()
@@ -179,7 +183,8 @@ def schedule_rows(panel_set, nest_result=None):
         row["sheet"] = None if pl is None else pl.sheet + 1
         row["x"] = None if pl is None else pl.x
         row["y"] = None if pl is None else pl.y
-        row["rotation_deg"] = None if pl is None else pl.angle_deg
+        row["rotation_deg"] = (None if pl is None
+                               else (pl.angle_deg + turned.get(p.id, 0.0)) % 360.0)
         rows.append(row)
     return rows
 

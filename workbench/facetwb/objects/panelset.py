@@ -346,7 +346,7 @@ class CutSheets(_Proxy):
             from facet.cutsheets import schedule_rows, write_schedule_json
 
             path = os.path.join(out, "schedule.json")
-            write_schedule_json(path, schedule_rows(ps, result), meta=ps.options)
+            write_schedule_json(path, schedule_rows(ps, result, drawings), meta=ps.options)
             report["files"]["schedule"].append(path)
         # the layout: sheets side by side, flat in the xy plane
         from facet.cutsheets import sheet_offsets
