@@ -285,6 +285,23 @@ def test_grain_runs_along_x_at_any_angle_to_the_panels_edges(grain):
     assert arrow[0] > 0 and arrow[1] == 0
 
 
+def test_a_gap_that_closes_a_notch_is_refused_by_face():
+    # a 1 m square panel with a slot 20 mm wide at its mouth and 700 mm deep: with a 10 mm
+    # gap the slot's sides crossed, and the self-crossing outline went to the schedule
+    # (area, perimeter, corners measured on it) with exit 0
+    from shapely.geometry import LinearRing
+
+    slot = facet.PolyMesh.from_faces(
+        np.array([[0, 0, 0], [1000, 0, 0], [1000, 1000, 0], [510, 1000, 0], [500, 300, 0],
+                  [490, 1000, 0], [0, 1000, 0.0]]), [[0, 1, 2, 3, 4, 5, 6]])
+    ok = panels(slot, 8.0, gap=6.0).panels[0]
+    assert LinearRing(ok.flat_bottom).is_simple and LinearRing(ok.flat_top).is_simple
+    with pytest.raises(PanelError, match=r"face 0: its cut \(bottom\) outline crosses itself "
+                       r"once the joint gap \(10\)") as caught:
+        panels(slot, 8.0, gap=10.0)
+    assert caught.value.faces == [0]
+
+
 @pytest.mark.parametrize("grain", [None, (0, 0, 1), (1, 0, 1)])
 def test_the_schedules_placement_rebuilds_the_cut_outline_on_the_sheet(grain):
     # with a grain every row said rotation 0 while each part lay turned by its grain angle

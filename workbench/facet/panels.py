@@ -978,6 +978,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         if len(set(names)) != nf:
             raise PanelError("ids are not unique")
 
+    from shapely.geometry import LinearRing
+
     result = []
     for f in range(nf):
         s, e = int(start[f]), int(start[f + 1])
@@ -998,6 +1000,16 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         tp, bt = top[corners], bottom[corners]
         ft = (tp @ R.T + t)[:, :2]
         fb = (bt @ R.T + t)[:, :2]
+        for outline, which in ((fb, "cut (bottom)"), (ft, "top")):
+            if not LinearRing(outline).is_simple:
+                # the core moves each edge by half the gap (and the bevels by the
+                # thickness) and drops edges consumed: a notch narrower than that closes
+                # up and the far edges cross (a 20 mm slot with a 10 mm gap)
+                raise PanelError(
+                    f"{source + ': ' if source else ''}face {f}: its {which} outline crosses "
+                    f"itself once the joint gap ({gap:g}) and the bevels are cut back: a notch "
+                    "or slot in it is narrower than that; use a smaller gap or thinner panels, "
+                    "or split the face at the notch", faces=[f])
         lengths = np.linalg.norm(np.roll(fb, -1, axis=0) - fb, axis=1)
         nb = nbr[edges]
         result.append(Panel(
