@@ -256,6 +256,42 @@ def test_unfold_labels_inside_and_bevel_texts():
         assert Polygon(d.footprint).buffer(1e-6).contains(Polygon(d.cut))
 
 
+def _text_box(x, y, h, n, angle=0.0):
+    from shapely import affinity
+    from shapely.geometry import box
+
+    w = 0.6 * h * n  # the width the drawings assume (a plain CAD font)
+    return affinity.rotate(box(x - w / 2, y - h / 2, x + w / 2, y + h / 2), angle, origin=(x, y))
+
+
+@pytest.mark.parametrize("prefix", ["P-", "NORTH-FACADE-L2-"])
+def test_ids_and_bevel_texts_stay_inside_their_parts(prefix, data_dir):
+    # strips 3000 x 150: the ID (text as high as the depth allowed) was centred 83 from
+    # the strip's end and ran past it, off the sheet; on square panels a long prefix made
+    # the ID wider than the panel; a bevel angle beside a short edge at a sharp corner
+    # was written outside its part
+    from shapely.geometry import Point, Polygon
+
+    strips = facet.PolyMesh.from_faces(
+        np.array([[x, 0.0, y] for y in range(0, 1000, 150) for x in (0.0, 3000.0)]),
+        [[2 * i, 2 * i + 1, 2 * i + 3, 2 * i + 2] for i in range(6)])
+    heart = facet.read_mesh(data_dir / "heart_planar.obj")
+    for ps in (panels(strips, 10.0, gap=4.0, prefix=prefix),
+               panels(translational(), 30.0, edge="bisector", gap=4, prefix=prefix),
+               panels(heart, 0.005, gap=0.01, edge="bisector", prefix=prefix)):
+        for d in unfold(ps):
+            part = Polygon(d.cut)
+            label = _text_box(*d.label_position, d.label_height, len(d.id))
+            assert part.contains(label), (d.id, d.label_position, d.label_height)
+            assert d.label_height > 0.02 * math.sqrt(part.area)  # not shrunk to nothing
+            for text, x, y, angle, h in d.bevels:
+                assert part.contains(Point(x, y)), (d.id, text)
+                assert 0.6 * h * len(text) <= 0.8 * max(np.hypot(*np.diff(d.cut, axis=0,
+                                                                           append=d.cut[:1]).T))
+    strip = unfold(panels(strips, 10.0, gap=4.0))[0]
+    assert strip.label_height > 50  # room for it along the strip: not crushed to its end
+
+
 def test_grain_turns_parts_and_is_checked():
     ps = panels(cylinder(), 10.0)
     drawings = unfold(ps, grain=(0, 0, 1))

@@ -174,6 +174,46 @@ def label_points(outlines, rounds=4, n=16):
     return out
 
 
+#: A character's width as a fraction of the text height (a plain CAD font; DXF, SVG, PNG).
+_CHAR_WIDTH = 0.6
+
+
+def _fit_label(polygon, inside, pole, height, n_chars):
+    """Where an ID of ``n_chars`` characters goes and how high, at most ``height``: its box
+    (``_CHAR_WIDTH`` of the height per character wide, centred, with a tenth of the height
+    around it) inside the outline. At the pole of inaccessibility or the centroid,
+    whichever takes the larger text: the pole of a long strip lies near one end, where a
+    text as high as the strip ran past the end, and off the sheet. ``polygon``: the
+    outline's shapely Polygon, ``inside``: the same prepared."""
+    from shapely.geometry import Point, box
+
+    centroid = polygon.centroid
+    candidates = [pole] + ([(centroid.x, centroid.y)] if inside.contains(Point(centroid)) else [])
+
+    def fits(point, h):
+        half_w, half_h = 0.5 * (_CHAR_WIDTH * n_chars + 0.2) * h, 0.6 * h
+        return inside.contains(box(point[0] - half_w, point[1] - half_h,
+                                   point[0] + half_w, point[1] + half_h))
+
+    best = (pole, 0.0)
+    for point in candidates:
+        if fits(point, height):
+            h = height
+        else:  # the largest height that fits, by bisection
+            lo, hi = 0.0, height
+            for _ in range(12):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if fits(point, mid) else (lo, mid)
+            h = lo
+        if h > best[1]:
+            best = ((float(point[0]), float(point[1])), h)
+        if h == height:
+            break
+    if best[1] == 0.0:  # (no box fits even 4096 times smaller: the pole is on an edge)
+        best = (pole, height / 4096.0)
+    return best
+
+
 def label_point(outline, rounds=4, n=16):
     """:func:`label_points` for one outline: ((x, y), depth)."""
     return label_points([outline], rounds, n)[0]
@@ -247,6 +287,9 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
     PanelError
         A grain direction that is zero or perpendicular to a panel.
     """
+    from shapely.geometry import Point, Polygon
+    from shapely.prepared import prep
+
     g = None
     if grain is not None:
         g = np.asarray(grain, dtype=float).reshape(-1)
@@ -279,11 +322,11 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
         area = 0.5 * abs(np.dot(cut[:, 0], np.roll(cut[:, 1], -1)) -
                          np.dot(cut[:, 1], np.roll(cut[:, 0], -1)))
         h = label_height if label_height is not None else 0.1 * math.sqrt(area)
-        # fit the text: width about 0.6 h per character, height within the depth
-        h = min(h, 1.2 * depth, 1.6 * depth / max(1.0, 0.3 * len(p.id)))
+        shape = Polygon(cut)
+        inside = prep(shape)
+        (lx, ly), h = _fit_label(shape, inside, (lx, ly), min(h, 1.2 * depth), len(p.id))
         bevels = []
         k = len(cut)
-        bh = 0.6 * h
         for i in range(k):
             b = p.bevel_deg[i]
             if abs(b) < bevel_tolerance_deg:
@@ -295,8 +338,17 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
                 continue
             u = d / length
             n_in = np.array([-u[1], u[0]])  # inside of a counter-clockwise outline
-            mid = 0.5 * (a + c) + n_in * (1.5 * bh)
             text = f"{b:+.1f}\u00b0"
+            # no longer than its edge (0.6 of the height per character), inside the part
+            # (beside a short edge at a sharp corner 1.5 times the height from it is not)
+            bh = min(0.6 * h, 0.8 * length / (_CHAR_WIDTH * len(text)))
+            for _ in range(4):
+                mid = 0.5 * (a + c) + n_in * (1.5 * bh)
+                if inside.contains(Point(*mid)):
+                    break
+                bh *= 0.5
+            else:
+                bh *= 2.0  # none inside (a sliver): the last one tried
             bevels.append((text, float(mid[0]), float(mid[1]),
                            math.degrees(math.atan2(u[1], u[0])), bh))
         arrow = None
