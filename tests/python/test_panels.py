@@ -353,7 +353,8 @@ def test_the_schedules_placement_rebuilds_the_cut_outline_on_the_sheet(grain):
     for p, d in zip(ps, drawings):
         row, placed = rows[p.id], result.placements[p.id].transform(d.cut)
         a = math.radians(row["rotation_deg"])
-        rebuilt = p.flat_bottom @ np.array([[math.cos(a), math.sin(a)], [-math.sin(a), math.cos(a)]])
+        turn = np.array([[math.cos(a), math.sin(a)], [-math.sin(a), math.cos(a)]])
+        rebuilt = p.flat_bottom @ turn
         assert np.allclose(rebuilt + (row["x"], row["y"]), placed, atol=1e-9 * 3000)
         assert 0 <= row["rotation_deg"] < 360
         turned += abs(d.rotation_deg) > 1e-9
