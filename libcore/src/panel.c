@@ -1084,7 +1084,18 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             const double dt = solve3(n, up - n[3], a, a[3], b, b[3], xt);
             const double db = solve3(n, down - n[3], a, a[3], b, b[3], xb);
             if (dt == 0.0 || db == 0.0) {
+                /* the input's edges, or two that the gap brought together by consuming
+                 * those between (an L's arm): then the gap is what to change */
+                int dropped = 0;
+                for (int64_t k = s; k < s + d; ++k)
+                    dropped |= w.drop[k];
                 work_free(&w);
+                if (dropped)
+                    return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
+                                      "face %d: the gap %.6g consumes edges of its outline until "
+                                      "two parallel ones meet (at vertex %d); use a smaller gap "
+                                      "or split the face",
+                                      (int)f, o->gap, (int)m->face_vertices[c]);
                 return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
                                   "face %d: the edges at vertex %d are collinear; remove the "
                                   "vertex or split the face",

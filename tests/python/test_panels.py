@@ -338,6 +338,18 @@ def test_a_gap_that_closes_a_notch_is_refused_by_face():
     assert caught.value.faces == [0]
 
 
+def test_a_gap_that_eats_an_arm_says_so():
+    # an L with 300 mm arms and a 301 mm gap: "the edges at vertex 1 are collinear; remove
+    # the vertex" (a square corner), where a convex panel is told the gap consumes it
+    ell = facet.PolyMesh.from_faces(
+        np.array([[0, 0, 0], [1000, 0, 0], [1000, 300, 0], [300, 300, 0], [300, 1000, 0],
+                  [0, 1000, 0.0]]), [[0, 1, 2, 3, 4, 5]])
+    with pytest.raises(PanelError, match=r"face 0: the gap 301 consumes edges of its outline "
+                       r"until two parallel ones meet \(at vertex \d\); use a smaller gap"):
+        panels(ell, 8.0, gap=301.0)
+    assert len(panels(ell, 8.0, gap=290.0)) == 1
+
+
 @pytest.mark.parametrize("grain", [None, (0, 0, 1), (1, 0, 1)])
 def test_the_schedules_placement_rebuilds_the_cut_outline_on_the_sheet(grain):
     # with a grain every row said rotation 0 while each part lay turned by its grain angle
