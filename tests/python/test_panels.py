@@ -674,6 +674,21 @@ def test_panel_solids_are_valid_closed_polyhedra_in_chunks(monkeypatch):
         step.panel_solids(ps, progress=lambda d, t: True)
 
 
+def test_panel_solids_at_map_coordinates_in_millimetres():
+    # a facade at UTM-like coordinates in mm (E 512 km, N 5,712 km): every solid failed
+    # BRepCheck ("its solid is not valid"), since 1e-7 mm is below the coordinates' last place
+    step = freecad_step()
+    mesh = translational(nu=4, nv=3, step=1000.0)
+    far = facet.PolyMesh(mesh.vertices + (512345678.0, 5712345678.0, 100000.0),
+                         mesh.face_start, mesh.face_vertices)
+    near_ps, far_ps = (panels(m, 8.0, edge="bisector", gap=6) for m in (mesh, far))
+    solids = step.panel_solids(far_ps)
+    for (_, s), (_, n), p in zip(solids, step.panel_solids(near_ps), far_ps.panels):
+        assert s.isValid() and s.Shells[0].isClosed()
+        assert s.Volume == pytest.approx(n.Volume, rel=1e-6)
+        assert s.BoundBox.XMin > 5e8
+
+
 def test_panel_solids_of_reversed_rings_still_face_outwards():
     step = freecad_step()
     ps = panels(translational(nu=3, nv=2, step=400.0), 18.0, edge="bisector", gap=4)

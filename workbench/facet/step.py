@@ -230,8 +230,11 @@ def _solids_text(ids, tops, bottoms):
         start = v[:, [a for a, _ in edges]]
         d = v[:, [b for _, b in edges]] - start
         length = np.sqrt(_dot(d, d))
-        # an edge lies within its tolerance of both its faces' planes
-        edge_tol = np.maximum(_TOL, 2.0 * dev[:, np.array(edge_faces)].max(axis=2))
+        # an edge lies within its tolerance of both its faces' planes; and no tolerance is
+        # below the rounding of the panel's coordinates (far from the origin, as map
+        # coordinates in mm, 1e-7 is below one unit in the last place)
+        floor = np.maximum(_TOL, 64.0 * np.finfo(float).eps * np.abs(v).max(axis=(1, 2)))
+        edge_tol = np.maximum(floor[:, None], 2.0 * dev[:, np.array(edge_faces)].max(axis=2))
         bad = ~(length > 10.0 * edge_tol)
         if bad.any():
             m, e = np.argwhere(bad)[0]
