@@ -817,6 +817,50 @@ def test_cli_panels_writes_step_next_to_the_other_files(tmp_path, facet_command)
     assert not [f for f in os.listdir(tmp_path) if ".part" in f]
 
 
+def test_cli_panels_whose_step_fails_leaves_the_last_whole_run(tmp_path, facet_command):
+    # the DXF, schedule and previews were written before the STEP worker failed: exit 1
+    # with this run's cut sheets beside the last run's STEP file
+    from facet import write_mesh
+
+    freecad_step()
+    mesh_path = tmp_path / "m.obj"
+    write_mesh(translational(nu=4, nv=3, step=400.0), mesh_path)
+    out = ["--sheet", "2000x1000", "--dxf", tmp_path / "s.dxf", "--schedule",
+           tmp_path / "s.csv", "--svg", tmp_path / "svg", "--step", tmp_path / "p.step"]
+    done = facet_command("panels", mesh_path, "--thickness", "18", *out)
+    assert done.returncode == 0, done.stderr
+    files = sorted(str(p.relative_to(tmp_path)) for p in tmp_path.rglob("*") if p.is_file())
+    before = {f: (tmp_path / f).read_bytes() for f in files}
+    failed = facet_command("panels", mesh_path, "--thickness", "1e-7", *out)  # no solid
+    assert failed.returncode == 1 and "has no length" in failed.stderr
+    after = sorted(str(p.relative_to(tmp_path)) for p in tmp_path.rglob("*") if p.is_file())
+    assert after == files and all((tmp_path / f).read_bytes() == before[f] for f in files)
+
+
+def test_staged_files_take_their_places_together_or_not_at_all(tmp_path):
+    from facet.io.files import staged, when_staged, write_text
+
+    write_text(tmp_path / "a.txt", "old a")
+    removed = []
+    with pytest.raises(RuntimeError):
+        with staged():
+            write_text(tmp_path / "a.txt", "new a")
+            write_text(tmp_path / "b.txt", "new b")
+            when_staged(lambda: removed.append(1))
+            assert (tmp_path / "a.txt").read_text() == "old a"  # not yet
+            raise RuntimeError("the STEP failed")
+    assert sorted(os.listdir(tmp_path)) == ["a.txt"] and removed == []
+    assert (tmp_path / "a.txt").read_text() == "old a"
+    with staged():
+        write_text(tmp_path / "a.txt", "new a")
+        with staged():  # nested: the outer block decides
+            write_text(tmp_path / "b.txt", "new b")
+        assert not (tmp_path / "b.txt").exists()
+        when_staged(lambda: removed.append(1))
+    assert (tmp_path / "a.txt").read_text() == "new a" and (tmp_path / "b.txt").exists()
+    assert removed == [1] and not [f for f in os.listdir(tmp_path) if ".part" in f]
+
+
 def test_step_job_without_a_worker_interpreter_runs_in_this_process(tmp_path, monkeypatch):
     import facet.parallel
 

@@ -159,12 +159,17 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
         # solids and STEP do not depend on the rest: a worker process makes
         # them while this one unfolds, nests and writes the DXF
         job = start_step(step, ps)
+    from facet.io.files import staged
+
     try:
-        return _rest_of_pipeline(
-            mesh, ps, job, times, t_start, sheet=sheet, margin=margin, spacing=spacing,
-            rotations=rotations, grain=grain, dxf=dxf, per_sheet=per_sheet, step=step,
-            schedule=schedule, svg=svg, png=png, allow_unplaced=allow_unplaced,
-            solids=solids, stage_progress=stage_progress, cancelled=cancelled)
+        # the DXF, schedule and previews take their places only once the STEP file is
+        # written too: a STEP that fails leaves the files of the last whole run
+        with staged():
+            return _rest_of_pipeline(
+                mesh, ps, job, times, t_start, sheet=sheet, margin=margin, spacing=spacing,
+                rotations=rotations, grain=grain, dxf=dxf, per_sheet=per_sheet, step=step,
+                schedule=schedule, svg=svg, png=png, allow_unplaced=allow_unplaced,
+                solids=solids, stage_progress=stage_progress, cancelled=cancelled)
     except BaseException:
         if job is not None:
             job.cancel()

@@ -46,14 +46,16 @@ def _atomic_write(path, data, binary=False):
 def _remove_stale(numbered, count):
     """Remove ``numbered(k)`` for k = count + 1, count + 2, ... while such a file exists:
     the sheets of an earlier, longer run written to the same names, which would otherwise
-    be cut again. Returns the files removed."""
-    removed = []
-    k = count + 1
-    while os.path.isfile(numbered(k)):
-        os.remove(numbered(k))
-        removed.append(numbered(k))
-        k += 1
-    return removed
+    be cut again; when the new ones take their places (:func:`facet.io.files.staged`)."""
+    from facet.io.files import when_staged
+
+    def remove():
+        k = count + 1
+        while os.path.isfile(numbered(k)):
+            os.remove(numbered(k))
+            k += 1
+
+    when_staged(remove)
 
 
 def sheet_offsets(nest_result, sheet_gap=None):

@@ -6,6 +6,7 @@ never fails on a stray byte in a comment, numbers parsed with the line they
 came from in the error, and writing that never leaves half a file behind.
 """
 
+import contextlib
 import errno
 import os
 import secrets
@@ -22,8 +23,14 @@ __all__ = [
     "check_writable_mesh",
     "write_text",
     "write_replacing",
+    "staged",
+    "when_staged",
     "format_float",
 ]
+
+#: While :func:`staged` runs: [(temporary file, its path)] and clean-ups, in order.
+_STAGE = []
+_staging = []
 
 
 def read_lines(path):
@@ -200,16 +207,61 @@ def write_replacing(path, write, suffix=""):
     os.close(handle)
     try:
         write(partial)
-        try:
-            os.replace(partial, path)
-        except OSError as error:  # (a folder of that name): the path asked for, not ours
-            raise type(error)(error.errno, error.strerror, path) from None
+        if _staging:
+            _STAGE.append((partial, path))
+            return
+        _put_in_place(partial, path)
     except BaseException:
         try:
             os.remove(partial)
         except OSError:
             pass
         raise
+
+
+def _put_in_place(partial, path):
+    try:
+        os.replace(partial, path)
+    except OSError as error:  # (a folder of that name): the path asked for, not ours
+        raise type(error)(error.errno, error.strerror, path) from None
+
+
+@contextlib.contextmanager
+def staged():
+    """Files written with :func:`write_replacing` in the block take their places together
+    when it ends without an error, and the clean-ups given to :func:`when_staged` run
+    then; after an error or Ctrl+C their temporary files are removed and every file is as
+    it was. For outputs that belong together: a run's cut sheets, schedule and previews,
+    which a failure of its STEP file must not leave beside an older one. Nested: the
+    outermost block decides."""
+    if _staging:
+        yield
+        return
+    _staging.append(True)
+    try:
+        yield
+        for item in _STAGE:
+            if callable(item):
+                item()
+            else:
+                _put_in_place(*item)
+    finally:
+        for item in _STAGE:
+            if not callable(item) and os.path.exists(item[0]):
+                try:
+                    os.remove(item[0])
+                except OSError:
+                    pass
+        _STAGE.clear()
+        _staging.clear()
+
+
+def when_staged(action):
+    """Run ``action()`` now, or inside :func:`staged` when its files take their places."""
+    if _staging:
+        _STAGE.append(action)
+    else:
+        action()
 
 
 def _create_beside(path, suffix=""):
