@@ -210,6 +210,16 @@ class TestBadInputFreeCAD(unittest.TestCase):
                 sheets.SheetWidth, sheets.SheetHeight = width, height
 
             self.recompute_fails(sheets, smaller, expected[1:], sources=[source, panels])
+        elif row.name == "panels_gap_closes_a_notch":  # the mesh with its thickness and gap
+            bad = importer.insert(os.path.join(folder, row.mesh), self.doc.Name)
+            bad.Label = "notched mesh"
+
+            def notched():
+                panels.Source = bad
+                panels.Thickness = float(value["--thickness"])
+                panels.Gap = float(value["--gap"])
+
+            self.recompute_fails(panels, notched, expected, sources=[source, bad])
         else:  # the mesh itself: zero-area face, not planar, non-manifold
             bad = importer.insert(os.path.join(folder, row.mesh), self.doc.Name)
             bad.Label = "bad mesh"
