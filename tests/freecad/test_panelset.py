@@ -237,6 +237,22 @@ class TestPanelSet(DocumentTestCase):
         self.assertEqual([c.Name for c in obj.PanelObjects], names)
         self.assertTrue(all(self.doc.getObject(n) is not None for n in names))
         self.doc.removeObject(copy.Name)
+        # a copy with its dependencies: the copied panel objects are its own (they were
+        # left in the document, linked by nothing, and it made another set)
+        made = self.doc.copyObject(obj, True)
+        twin = [o for o in (made if isinstance(made, list) else [made])
+                if facetwb.is_panelset(o)][-1]
+        copied = [c.Name for c in twin.PanelObjects]
+        self.assertFalse(set(copied) & set(names))
+        twin.touch()
+        self.doc.recompute()
+        self.assertEqual([c.Name for c in twin.PanelObjects], copied)
+        panels_in_doc = [o.Name for o in self.doc.Objects if o.TypeId == "Part::Feature"
+                         and "_Panel" in o.Name]
+        self.assertEqual(sorted(panels_in_doc), sorted(names + copied))
+        self.doc.removeObject(twin.Name)
+        for name in copied:
+            self.doc.removeObject(name)
         self.doc.removeObject(obj.Name)
         for name in names:
             self.doc.removeObject(name)

@@ -274,8 +274,15 @@ class PanelSet(_Proxy):
 
 
 def _owns(obj, child):
-    """Whether a per-panel object is the PanelSet's own: made by it, so named after it
-    (``NAME_Panel00012``, or FreeCAD's variant of that name with more digits)."""
+    """Whether a per-panel object is the PanelSet's own: no other PanelSet links it (a
+    copy made with its dependencies, a document of an older version whose objects are
+    named ``Panel001``), or several do and it is named after this one (``NAME_Panel00012``,
+    or FreeCAD's variant of that name with more digits): a copy made without its
+    dependencies links its original's objects until it makes its own."""
+    others = [o for o in getattr(child, "InList", ()) if o is not obj and is_panelset(o)
+              and child in (getattr(o, "PanelObjects", None) or [])]
+    if not others:
+        return True
     prefix = obj.Name + "_Panel"
     return child.Name.startswith(prefix) and child.Name[len(prefix):].isdigit()
 
