@@ -1085,10 +1085,8 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             const double db = solve3(n, down - n[3], a, a[3], b, b[3], xb);
             if (dt == 0.0 || db == 0.0) {
                 /* the input's edges, or two that the gap brought together by consuming
-                 * those between (an L's arm): then the gap is what to change */
-                int dropped = 0;
-                for (int64_t k = s; k < s + d; ++k)
-                    dropped |= w.drop[k];
+                 * those between them (an L's arm): then the gap is what to change */
+                const int dropped = w.drop[c] || active_before(&w, f, c) != prev_corner(m, f, c);
                 work_free(&w);
                 if (dropped)
                     return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],

@@ -348,6 +348,14 @@ def test_a_gap_that_eats_an_arm_says_so():
                        r"until two parallel ones meet \(at vertex \d\); use a smaller gap"):
         panels(ell, 8.0, gap=301.0)
     assert len(panels(ell, 8.0, gap=290.0)) == 1
+    # a vertex truly on a straight edge is still named as such when the gap consumes a
+    # chamfer elsewhere on the face
+    chamfered = facet.PolyMesh.from_faces(
+        np.array([[0, 0, 0], [10, 0, 0], [20, 0, 0], [20, 9.9, 0], [19.9, 10, 0],
+                  [0, 10, 0.0]]), [[0, 1, 2, 3, 4, 5]])
+    for gap in (0.0, 1.0):
+        with pytest.raises(PanelError, match="the edges at vertex 1 are collinear"):
+            panels(chamfered, 0.5, gap=gap)
 
 
 @pytest.mark.parametrize("grain", [None, (0, 0, 1), (1, 0, 1)])
