@@ -110,6 +110,7 @@ struct facet_planarizer {
     struct facet_planarizer *live;        /* handle of the region's submesh; NULL: none */
     int32_t *live_vertex;                 /* submesh vertex -> vertex */
     int32_t live_nv, live_rings;          /* submesh vertices; rings of the region */
+    int live_complete;                    /* the region holds every vertex the edit reaches */
     int32_t *live_changed;                /* the edited vertices the region was built for */
     int32_t live_n_changed;
     uint8_t *live_mark;                   /* per vertex: 1 in the region, 2 its fixed rim */

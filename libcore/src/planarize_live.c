@@ -63,6 +63,7 @@ static int32_t mark_region(facet_planarizer *s, const int32_t *changed, int32_t 
         }
     }
     free(queue);
+    s->live_complete = head == tail; /* the last ring added no vertex: nothing left to reach */
     const int32_t inside = tail;
     for (int32_t v = 0; v < nv; ++v)
         if (s->live_mark[v] == 1)
@@ -224,7 +225,6 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
     memset(&sub_result, 0, sizeof sub_result);
     int32_t iterations = 0;
     if (n_changed > 0) {
-        int32_t last_nv = -1, last_nf = -1; /* the region of the pass before */
         for (;;) {
             if (!s->live || s->live_rings != rings || s->live_n_changed != n_changed ||
                 memcmp(s->live_changed, changed, sizeof(int32_t) * (size_t)n_changed) != 0) {
@@ -249,13 +249,12 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
                 snprintf(s->message, sizeof s->message, "%s", facet_planarizer_message(s->live));
                 break;
             }
-            /* the whole mesh, or all of it the edit reaches (a mesh in pieces, vertices of
-             * no face): no larger region would do better */
-            const int whole = (m == nv && s->live->nf == s->nf) || (m == last_nv && s->live->nf == last_nf);
+            /* the whole mesh, or all of it the edit reaches (a mesh in pieces): no larger
+             * region would do better, nor solving this one again */
+            const int whole = (m == nv && s->live->nf == s->nf) || s->live_complete;
             if (sub_result.stop_reason == FACET_STOP_TOLERANCE || sub_result.stop_reason == FACET_STOP_ITERATIONS ||
                 sub_result.stop_reason == FACET_STOP_TIME || whole)
                 break;
-            last_nv = m, last_nf = s->live->nf;
             rings = rings > nv / 2 ? nv : 2 * rings; /* the rim held it back: a larger region */
         }
     }

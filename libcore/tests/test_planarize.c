@@ -328,10 +328,11 @@ static void test_live_update_edges(void)
     /* a tolerance no solve reaches: the region, one quad, cannot grow into the other
      * piece; the update never ended (ring counts doubled until they overflowed) */
     facet_planarize_options stuck = o;
-    stuck.tol_rel = 0.0, stuck.tol_abs = 1e-300;
+    stuck.tol_rel = 0.0, stuck.tol_abs = 1e-300, stuck.max_iter = 50;
     control[2] += 0.05;
     const facet_status status = facet_planarizer_update(s, control, &stuck, 0, out, &r, &e);
     CHECK(status >= 0 && r.stop_reason != FACET_STOP_TOLERANCE);
+    CHECK(r.iterations <= 50); /* one solve of the piece: the same region was solved again */
     CHECK(memcmp(out + 12, first + 12, 12 * sizeof(double)) == 0); /* the other piece kept */
     control[2] -= 0.05;
     CHECK_STATUS(facet_planarizer_solve(s, control, &o, first, &r, &e), FACET_OK);
