@@ -5,6 +5,7 @@ import csv
 import os
 import sys
 import json
+import functools
 import math
 
 import numpy as np
@@ -256,12 +257,26 @@ def test_unfold_labels_inside_and_bevel_texts():
         assert Polygon(d.footprint).buffer(1e-6).contains(Polygon(d.cut))
 
 
-def _text_box(x, y, h, n, angle=0.0):
+@functools.lru_cache(maxsize=None)
+def _text_size(text):
+    """(width, whole height) of a DXF TEXT of capital height 1, as ezdxf measures it."""
+    import ezdxf
+    from ezdxf.tools.text_size import text_size
+
+    size = text_size(ezdxf.new().modelspace().add_text(text, dxfattribs={"height": 1.0}))
+    return size.width, size.total_height
+
+
+def _text_box(x, y, h, text, angle=0.0):
+    """The box of a DXF TEXT of capital height h centred at (x, y): its width, and its
+    whole height with descenders."""
     from shapely import affinity
     from shapely.geometry import box
 
-    w = 0.6 * h * n  # the width the drawings assume (a plain CAD font)
-    return affinity.rotate(box(x - w / 2, y - h / 2, x + w / 2, y + h / 2), angle, origin=(x, y))
+    width, height = _text_size(text)
+    w, below = width * h, (height - 0.5) * h
+    return affinity.rotate(box(x - w / 2, y - below, x + w / 2, y + 0.5 * h), angle,
+                           origin=(x, y))
 
 
 @pytest.mark.parametrize("prefix", ["P-", "NORTH-FACADE-L2-"])
@@ -281,13 +296,13 @@ def test_ids_and_bevel_texts_stay_inside_their_parts(prefix, data_dir):
                panels(heart, 0.005, gap=0.01, edge="bisector", prefix=prefix)):
         for d in unfold(ps):
             part = Polygon(d.cut)
-            label = _text_box(*d.label_position, d.label_height, len(d.id))
+            label = _text_box(*d.label_position, d.label_height, d.id)
             assert part.contains(label), (d.id, d.label_position, d.label_height)
             assert d.label_height > 0.02 * math.sqrt(part.area)  # not shrunk to nothing
+            edges = np.hypot(*np.diff(d.cut, axis=0, append=d.cut[:1]).T)
             for text, x, y, angle, h in d.bevels:
                 assert part.contains(Point(x, y)), (d.id, text)
-                assert 0.6 * h * len(text) <= 0.8 * max(np.hypot(*np.diff(d.cut, axis=0,
-                                                                           append=d.cut[:1]).T))
+                assert _text_box(x, y, h, text).bounds[2] - x <= 0.5 * max(edges)
     strip = unfold(panels(strips, 10.0, gap=4.0))[0]
     assert strip.label_height > 50  # room for it along the strip: not crushed to its end
 

@@ -175,8 +175,10 @@ def label_points(outlines, rounds=4, n=16):
     return out
 
 
-#: A character's width as a fraction of the text height (a plain CAD font; DXF, SVG, PNG).
-_CHAR_WIDTH = 0.6
+#: A character's width as a fraction of the text height, generously: a DXF text's height
+#: is its capitals' (an ID measures 0.78-0.85 of it per character in ezdxf's font, the
+#: fallback for AutoCAD's txt.shx); SVG and PNG text is narrower.
+_CHAR_WIDTH = 0.9
 
 
 def _fit_label(polygon, inside, pole, height, n_chars):
@@ -191,8 +193,8 @@ def _fit_label(polygon, inside, pole, height, n_chars):
     centroid = polygon.centroid
     candidates = [pole] + ([(centroid.x, centroid.y)] if inside.contains(Point(centroid)) else [])
 
-    def fits(point, h):
-        half_w, half_h = 0.5 * (_CHAR_WIDTH * n_chars + 0.2) * h, 0.6 * h
+    def fits(point, h):  # (below the capitals' middle: 0.5 of them and the descenders)
+        half_w, half_h = 0.5 * (_CHAR_WIDTH * n_chars + 0.2) * h, 0.9 * h
         return inside.contains(box(point[0] - half_w, point[1] - half_h,
                                    point[0] + half_w, point[1] + half_h))
 
