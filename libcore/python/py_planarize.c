@@ -449,5 +449,14 @@ int py_add_planarize(PyObject *module)
         r = PyModule_AddIntConstant(module, "AUTO_LG_MAX_CORNERS", FACET_AUTO_LG_MAX_CORNERS);
     if (r == 0) /* the deepest Anderson history (option anderson) */
         r = PyModule_AddIntConstant(module, "ANDERSON_MAX", FACET_ANDERSON_MAX);
+    const struct {
+        const char *name;
+        double value;
+    } limits[] = {{"WEIGHT_SPAN", FACET_WEIGHT_SPAN}, {"FACE_WEIGHT_MAX", FACET_FACE_WEIGHT_MAX}};
+    for (size_t k = 0; r == 0 && k < sizeof limits / sizeof limits[0]; ++k) {
+        PyObject *value = PyFloat_FromDouble(limits[k].value);
+        r = value ? PyModule_AddObjectRef(module, limits[k].name, value) : -1;
+        Py_XDECREF(value);
+    }
     return r;
 }

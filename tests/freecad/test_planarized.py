@@ -185,7 +185,13 @@ class TestPlanarizedErrors(DocumentTestCase):
                                   ("TimeBudget", float("nan"), "TimeBudget is nan"),
                                   ("Tolerance", float("nan"), "Tolerance is nan"),
                                   ("MaxIterations", -5, "MaxIterations is -5"),
-                                  ("Anderson", 17, "Anderson is 17; it must be from 0 to 16")):
+                                  ("Anderson", 17, "Anderson is 17; it must be from 0 to 16"),
+                                  # above the core's limits: named by property (the core
+                                  # said "face 0 has planarity weight 1e+07")
+                                  ("FaceWeights", [1e7] + [1.0] * 63,
+                                   "FaceWeights: face 0 has weight 1e+07; weights must be in "
+                                   "[0, 1e+06]"),
+                                  ("Parallelogram", 2e12, "parallelogram 2e+12 is too large")):
             with self.subTest(name=name):
                 good = getattr(result, name)
                 setattr(result, name, value)

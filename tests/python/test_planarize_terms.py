@@ -240,3 +240,27 @@ def test_a_reference_without_surface_data_is_refused(hypar):
     with pytest.raises(facet.FacetError, match="reference is the design surface"):
         facet.planarize(hypar, reference=hypar)
     assert facet.planarize(hypar, data="surface", reference=hypar, threads=1).converged
+
+
+@pytest.mark.parametrize("options, message", [
+    ({"parallelogram": 2e12}, r"parallelogram 2e\+12 is too large: at most 1e\+12 times "
+                              r"data_tangent \(with data_tangent 1\)"),
+    ({"data": "plane", "boundary_fairness": 2e10},
+     r"boundary_fairness 2e\+10 is too large: .*\(data='plane' sets data_tangent 0.01\), so "
+     r"at most 1e\+10"),
+    ({"data_tangent": 1e-3, "laplacian": 1e10}, r"laplacian 1e\+10 is too large"),
+    ({"face_weights": [1e7, 1, 1, 1]}, r"face_weights: face 0 has weight 1e\+07; at most "
+                                       r"1e\+06"),
+])
+def test_weights_too_far_apart_are_refused_by_name(options, message):
+    # parallelogram or boundary fairness at 1e16 solved to "converged" with a unit grid's
+    # vertices 900-1,300 units away; the core's refusal named data_tangent, which a
+    # --data plane user never set
+    mesh = facet.PolyMesh.from_faces(
+        np.array([[x, y, 0.05 * ((x + y) % 2)] for y in range(3) for x in range(3)], float),
+        [[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6], [4, 5, 8, 7]])
+    with pytest.raises(facet.errors.InputError, match=message):
+        facet.planarize(mesh, **options)
+    # at the limit: taken; a shape weight with no shape term is not read
+    facet.planarize(mesh, max_iter=1, data_tangent=1e-3, laplacian=1e9)
+    facet.planarize(mesh, max_iter=1, shape_weight=1e20)

@@ -18,12 +18,13 @@ it is planar with fewer closed panels (``STAGE_FALLBACK``).
 True
 """
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from facet import _core
-from facet.errors import Cancelled, FacetError, MeshError, from_core
+from facet.errors import Cancelled, FacetError, InputError, MeshError, from_core
 from facet.planarity import PlanarityReport, planarity
 
 _INT32_MAX = 2**31 - 1
@@ -96,6 +97,42 @@ TERMS = {
     "hold_max": int,
     "time_budget": float,
 }
+
+#: A term's weight may be at most this many times data_tangent (facet.h,
+#: FACET_WEIGHT_SPAN); a face weight at most FACE_WEIGHT_MAX.
+WEIGHT_SPAN = _core.WEIGHT_SPAN
+FACE_WEIGHT_MAX = _core.FACE_WEIGHT_MAX
+
+
+def _check_weight_span(options, data, face_weights):
+    """The core's limits on weights (facet.h, FACET_WEIGHT_SPAN and FACET_FACE_WEIGHT_MAX),
+    said with the names the designer set them by: the preset's data_tangent, not its own
+    name, is what a --data plane or surface user never typed."""
+    tangent = options.get("data_tangent", 1.0)
+    if not (isinstance(tangent, float) and tangent > 0.0 and math.isfinite(tangent)):
+        return  # (the core names it)
+    for name in ("data_normal", "surface_weight", "laplacian", "normal_laplacian",
+                 "boundary_fairness", "shape_weight", "circular", "parallelogram"):
+        value = options.get(name)
+        if name == "shape_weight" and options.get("shape", "none") == "none":
+            continue  # not read
+        if isinstance(value, float) and math.isfinite(value) and value > WEIGHT_SPAN * tangent:
+            source = f"data={data!r} sets" if data is not None and "data_tangent" in \
+                DATA_TERMS.get(data, {}) else "with"
+            raise InputError(
+                f"{name} {value:g} is too large: at most {WEIGHT_SPAN:g} times data_tangent "
+                f"({source} data_tangent {tangent:g}), so at most {WEIGHT_SPAN * tangent:g}; "
+                "beside a larger weight the data term is lost to rounding")
+    if face_weights is not None:
+        try:
+            w = np.asarray(face_weights, dtype=np.float64).ravel()
+        except (TypeError, ValueError):
+            return  # (the core names it)
+        over = np.flatnonzero(w > FACE_WEIGHT_MAX)
+        if over.size:
+            raise InputError(f"face_weights: face {over[0]} has weight {w[over[0]]:g}; at "
+                             f"most {FACE_WEIGHT_MAX:g}")
+
 
 #: First penalty weight of a warm re-solve: small, so the previous (planar)
 #: result is not pulled back to the edited control mesh first.
@@ -479,6 +516,7 @@ class Planarizer:
                 options[name] = _count(name, value, ANDERSON_MAX if name == "anderson" else None)
             else:
                 options[name] = kind(value)
+        _check_weight_span(options, data, face_weights)
         surface = None
         if reference is not None and not options.get("surface_weight", 0.0) > 0.0:
             raise FacetError("reference is the design surface of data='surface' (or a "

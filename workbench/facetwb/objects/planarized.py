@@ -290,6 +290,12 @@ def term_options(obj, mesh):
         if len(weights) != mesh.n_faces:
             raise ValueError(f"{obj.Label}: FaceWeights has {len(weights)} values for "
                              f"{mesh.n_faces} faces")
+        from facet.planarize import FACE_WEIGHT_MAX
+
+        bad = [f for f, w in enumerate(weights) if not 0.0 <= w <= FACE_WEIGHT_MAX]
+        if bad:
+            raise ValueError(f"{obj.Label}: FaceWeights: face {bad[0]} has weight "
+                             f"{weights[bad[0]]:g}; weights must be in [0, {FACE_WEIGHT_MAX:g}]")
         options["face_weights"] = weights
     if obj.Data == "surface" and obj.Reference is not None:
         options["reference"] = conversion.mesh_from_object(obj.Reference)
