@@ -879,8 +879,20 @@ def test_staged_files_take_their_places_together_or_not_at_all(tmp_path):
         with staged():  # nested: the outer block decides
             write_text(tmp_path / "b.txt", "new b")
         assert not (tmp_path / "b.txt").exists()
+        with pytest.raises(RuntimeError):
+            with staged():  # a nested block that fails drops its own files only
+                write_text(tmp_path / "c.txt", "new c")
+                raise RuntimeError
         when_staged(lambda: removed.append(1))
+        # another thread's writes are its own, not this block's
+        import threading
+
+        other = threading.Thread(target=write_text, args=(tmp_path / "d.txt", "d"))
+        other.start()
+        other.join()
+        assert (tmp_path / "d.txt").read_text() == "d"
     assert (tmp_path / "a.txt").read_text() == "new a" and (tmp_path / "b.txt").exists()
+    assert not (tmp_path / "c.txt").exists()
     assert removed == [1] and not [f for f in os.listdir(tmp_path) if ".part" in f]
 
 

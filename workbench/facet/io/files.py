@@ -10,6 +10,7 @@ import contextlib
 import errno
 import os
 import secrets
+import threading
 
 import numpy as np
 
@@ -28,9 +29,15 @@ __all__ = [
     "format_float",
 ]
 
-#: While :func:`staged` runs: [(temporary file, its path)] and clean-ups, in order.
-_STAGE = []
-_staging = []
+#: Per thread, while :func:`staged` runs: ``stage``, [(temporary file, its path)] and
+#: clean-ups in order, and ``depth``, the blocks open.
+_local = threading.local()
+
+
+def _stage():
+    if not hasattr(_local, "stage"):
+        _local.stage, _local.depth = [], 0
+    return _local.stage
 
 
 def read_lines(path):
@@ -207,8 +214,8 @@ def write_replacing(path, write, suffix=""):
     os.close(handle)
     try:
         write(partial)
-        if _staging:
-            _STAGE.append((partial, path))
+        if getattr(_local, "depth", 0):
+            _stage().append((partial, path))
             return
         _put_in_place(partial, path)
     except BaseException:
@@ -228,38 +235,52 @@ def _put_in_place(partial, path):
 
 @contextlib.contextmanager
 def staged():
-    """Files written with :func:`write_replacing` in the block take their places together
-    when it ends without an error, and the clean-ups given to :func:`when_staged` run
-    then; after an error or Ctrl+C their temporary files are removed and every file is as
-    it was. For outputs that belong together: a run's cut sheets, schedule and previews,
-    which a failure of its STEP file must not leave beside an older one. Nested: the
-    outermost block decides."""
-    if _staging:
-        yield
-        return
-    _staging.append(True)
+    """Files this thread writes with :func:`write_replacing` in the block take their places
+    together when it ends without an error, and the clean-ups given to
+    :func:`when_staged` run then; after an error or Ctrl+C their temporary files are
+    removed and the files are as they were. For outputs that belong together: a run's cut
+    sheets, schedule and previews, which a failure of its STEP file must not leave beside
+    an older one. A nested block that fails drops its own files; one that ends well leaves
+    them to the outermost. (Putting the files in place is a rename each: if one of those
+    fails, as on a folder of that name, the ones before it stay replaced.)"""
+    stage = _stage()
+    start = len(stage)
+    _local.depth += 1
     try:
         yield
-        for item in _STAGE:
+    except BaseException:
+        _drop(stage[start:])
+        del stage[start:]
+        raise
+    finally:
+        _local.depth -= 1
+    if _local.depth:
+        return
+    try:
+        for item in stage:
             if callable(item):
                 item()
             else:
                 _put_in_place(*item)
     finally:
-        for item in _STAGE:
-            if not callable(item) and os.path.exists(item[0]):
-                try:
-                    os.remove(item[0])
-                except OSError:
-                    pass
-        _STAGE.clear()
-        _staging.clear()
+        _drop(stage)
+        stage.clear()
+
+
+def _drop(items):
+    """Remove the temporary files of `items` that are still there."""
+    for item in items:
+        if not callable(item) and os.path.exists(item[0]):
+            try:
+                os.remove(item[0])
+            except OSError:
+                pass
 
 
 def when_staged(action):
     """Run ``action()`` now, or inside :func:`staged` when its files take their places."""
-    if _staging:
-        _STAGE.append(action)
+    if getattr(_local, "depth", 0):
+        _stage().append(action)
     else:
         action()
 
