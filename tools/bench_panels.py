@@ -93,7 +93,7 @@ def main():
         write_dxf(os.path.join(args.out, "sheets.dxf"), result, drawings)
         times["DXF (ezdxf, audited)"] = time.perf_counter() - t
         t = time.perf_counter()
-        write_schedule_csv(os.path.join(args.out, "schedule.csv"), schedule_rows(ps, result))
+        write_schedule_csv(os.path.join(args.out, "schedule.csv"), schedule_rows(ps, result, drawings))
         times["schedule CSV"] = time.perf_counter() - t
         if job is not None:
             t = time.perf_counter()
