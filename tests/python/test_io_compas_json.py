@@ -184,3 +184,28 @@ def test_keys_that_name_the_same_element_are_refused(write_file, section):
         faces["01"] = [0, 1, 2]
     with pytest.raises(MeshError, match=rf"{section} keys '1' and '01' both name {section} 1"):
         read_compas_json(write_file("x.json", compas2(vertices, faces)))
+
+
+@pytest.mark.parametrize("x, shown", [("1_000", "1_000"), ("\u0661", "\u0661"), (10**400, "1000")])
+def test_coordinates_only_as_mesh_files_write_numbers(write_file, x, shown):
+    # "1_000" was read as 1000 and an Arabic-Indic digit as 1 (the OBJ reader refuses them);
+    # a 401-digit integer ended in an OverflowError traceback
+    text = compas2({"0": {"x": x}, "1": {"x": 1}, "2": {"y": 1}}, {"0": [0, 1, 2]})
+    with pytest.raises(MeshError, match=f"vertex key '0': cannot read '{shown}"):
+        read_compas_json(write_file("x.json", text))
+
+
+def test_a_byte_order_mark_is_read_past(tmp_path):
+    # .NET tools, Grasshopper's C# and PowerShell 5 write UTF-8 JSON with a BOM: refused with
+    # "Unexpected UTF-8 BOM"
+    text = compas2({"0": {}, "1": {"x": 1}, "2": {"y": 1}}, {"0": [0, 1, 2]})
+    path = tmp_path / "bom.json"
+    path.write_bytes(b"\xef\xbb\xbf" + text.encode())
+    assert read_compas_json(path).n_faces == 1
+
+
+def test_keys_with_digit_separators_are_not_numbers(write_file):
+    # key "1_0" became "10"
+    text = compas2({"0": {}, "1_0": {"x": 1}, "2": {"y": 1}}, {"0": [0, "1_0", 2]})
+    mesh = read_compas_json(write_file("x.json", text))
+    assert "1_0" in mesh.info["vertex_keys"] and "10" not in mesh.info["vertex_keys"]

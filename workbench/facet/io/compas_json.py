@@ -28,6 +28,7 @@ import json
 
 from facet.errors import MeshError
 from facet.io.checks import build_mesh
+from facet.io.files import _plain
 
 __all__ = ["read_compas_json", "PREFERRED_SCENE_ITEM"]
 
@@ -121,7 +122,7 @@ def _key(value):
         return str(int(value))
     text = str(value).strip()
     try:
-        return str(int(text))
+        return str(_int(text))
     except ValueError:
         return text
 
@@ -139,18 +140,26 @@ def _keyed(records, what, source):
     return keyed
 
 
+def _int(key):
+    """A key as an integer (ValueError when it is not one as JSON writes them: "1_0" is
+    not 10)."""
+    if not _plain(str(key)):
+        raise ValueError(key)
+    return int(key)
+
+
 def _ordered_keys(keys):
     """Keys in numeric order when all are integers, else in file order."""
     keys = list(keys)
     try:
-        return sorted(keys, key=int)
+        return sorted(keys, key=_int)
     except ValueError:
         return keys
 
 
 def _shown_key(key):
     try:
-        return int(key)
+        return _int(key)
     except ValueError:
         return key
 
@@ -174,11 +183,14 @@ def _coordinate(record, defaults, axis, key, source):
     if isinstance(value, bool):
         raise MeshError(f"vertex key {key!r}: {axis} is {value}, not a number", source=source)
     try:
-        return float(value)
-    except (TypeError, ValueError):
+        if isinstance(value, str) and not _plain(value.strip()):
+            raise ValueError  # ("1_000" and other scripts' digits, as the OBJ reader)
+        number = float(value)
+    except (TypeError, ValueError, OverflowError):
         raise MeshError(
             f"vertex key {key!r}: cannot read {str(value)[:40]!r} as a number", source=source
         ) from None
+    return number
 
 
 def read_compas_json(path, *, item=None, validate=True):
@@ -214,7 +226,7 @@ def read_compas_json(path, *, item=None, validate=True):
         When the file cannot be read.
     """
     source = path
-    with open(path, encoding="utf-8", errors="replace") as stream:
+    with open(path, encoding="utf-8-sig", errors="replace") as stream:  # (a BOM: .NET tools)
         text = stream.read()
     if not text.strip():
         raise MeshError("file is empty", source=source)
