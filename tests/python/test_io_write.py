@@ -153,3 +153,31 @@ def test_a_folder_in_the_way_is_named_by_the_path_asked_for(tmp_path):
         write_mesh(awkward_mesh(), path)
     assert caught.value.filename == str(path)
     assert [p.name for p in tmp_path.iterdir()] == ["out.obj"]  # no temporary file left
+
+
+def _small():
+    return PolyMesh.from_faces([[0.1, 0.0, 0.0], [1.0, 0.0, 1e-17], [0.0, 1.0, 0.5]], [[0, 1, 2]])
+
+
+def test_a_symbolic_link_is_written_through(tmp_path):
+    # the link was replaced by a file of its own: the file it named, in a project folder,
+    # kept the old mesh
+    project = tmp_path / "project"
+    project.mkdir()
+    linked = project / "facade.obj"
+    linked.write_text("old\n")
+    link = tmp_path / "link.obj"
+    link.symlink_to(linked)
+    write_mesh(_small(), link)
+    assert link.is_symlink() and linked.read_text().startswith(("v ", "#"))
+    assert np.array_equal(read_mesh(linked).vertices, _small().vertices)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["link.obj", "project"]
+    assert [p.name for p in project.iterdir()] == ["facade.obj"]
+
+
+def test_a_name_near_the_length_limit_can_be_written(tmp_path):
+    # the temporary file's name (NAME.<8 hex>.part) went past 255 bytes: "File name too long"
+    path = tmp_path / ("f" * 250 + ".obj")
+    write_mesh(_small(), path)
+    assert np.array_equal(read_mesh(path).vertices, _small().vertices)
+    assert [p.name for p in tmp_path.iterdir()] == [path.name]

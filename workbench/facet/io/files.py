@@ -210,14 +210,17 @@ def write_replacing(path, write, suffix=""):
         Ends the temporary name, for writers that choose the format by it (``".png"``).
     """
     path = os.fspath(path)
-    handle, partial = _create_beside(path, suffix)
+    # through a symbolic link to the file it names (replacing the link by a file of its
+    # own left the linked file, in a project folder, as it was)
+    target = os.path.realpath(path) if os.path.islink(path) else path
+    handle, partial = _create_beside(target, suffix)
     os.close(handle)
     try:
         write(partial)
         if getattr(_local, "depth", 0):
-            _stage().append((partial, path))
+            _stage().append((partial, target))
             return
-        _put_in_place(partial, path)
+        _put_in_place(partial, target)
     except BaseException:
         try:
             os.remove(partial)
@@ -290,6 +293,8 @@ def _create_beside(path, suffix=""):
     (never another file of that name) with the mode new files get (the umask applies):
     (descriptor, name). An error names `path`."""
     folder, name = os.path.split(os.path.abspath(path))
+    if len(os.fsencode(f"{name}.12345678.part{suffix}")) > 255:  # (a name near the limit)
+        name = ".facet"
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
     for _attempt in range(100):
         partial = os.path.join(folder, f"{name}.{secrets.token_hex(4)}.part{suffix}")
