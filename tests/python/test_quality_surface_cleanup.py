@@ -342,3 +342,24 @@ def test_a_threshold_that_collapses_everything_names_the_file(data_dir):
     message = str(caught.value)
     assert message.startswith(f"{data_dir / 'hypar.obj'}: min_edge 100 ")
     assert "every face would collapse" in message and "min_edge: min_edge" not in message
+
+
+def test_cleanup_carries_the_compas_keys_to_the_new_topology(data_dir):
+    # the cleaned mesh kept the input's 225 vertex keys and 224 face keys, and support
+    # vertices by index past its last vertex: results written back by key went to the
+    # wrong compas vertices
+    mesh = facet.read_mesh(data_dir / "crossvault_form.json")
+    result = facet.cleanup(mesh, 0.9, relative=True)
+    new, info = result.mesh, result.mesh.info
+    assert new.n_vertices < mesh.n_vertices and new.n_faces < mesh.n_faces
+    assert len(info["vertex_keys"]) == new.n_vertices and len(info["face_keys"]) == new.n_faces
+    old = mesh.info
+    assert info["face_keys"] == [old["face_keys"][f] for f in result.face_map]
+    for v, key in enumerate(info["vertex_keys"]):
+        first = int(np.flatnonzero(result.vertex_map == v)[0])
+        assert key == old["vertex_keys"][first]
+    merged = sum(len(k) for k in info.get("merged_vertex_keys", {}).values())
+    assert merged == int(np.count_nonzero(result.vertex_map >= 0)) - new.n_vertices
+    assert all(0 <= v < new.n_vertices for v in info["support_vertices"])
+    assert info["support_vertices"] == sorted({int(result.vertex_map[v])
+                                               for v in old["support_vertices"]})

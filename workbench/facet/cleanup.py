@@ -31,7 +31,10 @@ class CleanupResult:
     Attributes
     ----------
     mesh : PolyMesh
-        The new mesh.
+        The new mesh. Its ``info`` is the input's, with the compas reader's
+        ``vertex_keys``, ``face_keys`` and ``support_vertices`` mapped to the new
+        vertices and faces (a merged vertex keeps its first key; the others are in
+        ``merged_vertex_keys``).
     collapsed_edges : numpy.ndarray of int32, shape (k, 2)
         The input vertex pairs collapsed, in order.
     removed_faces : numpy.ndarray of int32
@@ -116,17 +119,45 @@ def cleanup(mesh, min_edge, relative=True):
     face_start = np.frombuffer(out["face_start"], dtype=np.int32)
     face_vertices = np.frombuffer(out["face_vertices"], dtype=np.int32)
     removed = np.frombuffer(out["removed_faces"], dtype=np.int32).copy()
-    info = dict(mesh.info or {})
-    info["cleanup"] = {"threshold": out["threshold"], "collapsed": len(out["collapsed_edges"]) // 8}
-    new_mesh = PolyMesh(xyz, face_start, face_vertices, info=info)
     keep = np.ones(mesh.n_faces, dtype=bool)
     keep[removed] = False
+    vertex_map = np.frombuffer(out["vertex_map"], dtype=np.int32).copy()
+    info = _remapped(dict(mesh.info or {}), vertex_map, np.flatnonzero(keep), mesh.n_faces,
+                     len(xyz))
+    info["cleanup"] = {"threshold": out["threshold"], "collapsed": len(out["collapsed_edges"]) // 8}
+    new_mesh = PolyMesh(xyz, face_start, face_vertices, info=info)
     return CleanupResult(
         mesh=new_mesh,
         collapsed_edges=np.frombuffer(out["collapsed_edges"], dtype=np.int32).reshape(-1, 2).copy(),
         removed_faces=np.sort(removed),
-        vertex_map=np.frombuffer(out["vertex_map"], dtype=np.int32).copy(),
+        vertex_map=vertex_map,
         threshold=float(out["threshold"]),
         skipped=int(out["skipped"]),
         face_map=np.flatnonzero(keep).astype(np.int32),
     )
+
+
+def _remapped(info, vertex_map, face_map, n_faces, n_vertices):
+    """A reader's per-vertex and per-face lists (the compas reader's ``vertex_keys``,
+    ``face_keys`` and ``support_vertices``) for the new topology, so that results written
+    back by key land on the right elements: a face keeps its key; a vertex takes the key
+    of the first input vertex merged into it (``merged_vertex_keys`` lists the others)."""
+    if isinstance(info.get("face_keys"), list) and len(info["face_keys"]) == n_faces:
+        keys = info["face_keys"]
+        info["face_keys"] = [keys[f] for f in face_map.tolist()]
+    if isinstance(info.get("vertex_keys"), list) and len(info["vertex_keys"]) == len(vertex_map):
+        keys, first, merged = info["vertex_keys"], [None] * n_vertices, {}
+        for old, new in enumerate(vertex_map.tolist()):
+            if new < 0:
+                continue
+            if first[new] is None:
+                first[new] = keys[old]
+            else:
+                merged.setdefault(first[new], []).append(keys[old])
+        info["vertex_keys"] = first
+        if merged:
+            info["merged_vertex_keys"] = merged
+    if isinstance(info.get("support_vertices"), list):
+        info["support_vertices"] = sorted({int(vertex_map[v]) for v in info["support_vertices"]
+                                           if 0 <= v < len(vertex_map) and vertex_map[v] >= 0})
+    return info
