@@ -530,9 +530,10 @@ facet_status facet_cleanup(const facet_mesh *mesh, const facet_cleanup_options *
         }
     if (n_faces_out == 0) {
         status = facet_fail(error, FACET_ERROR_NOTHING_LEFT, -1, -1,
-                            "every face would collapse: min_edge %g (%g model units) is longer "
-                            "than the mesh's edges",
-                            options->min_edge, threshold);
+                            "every face would collapse: collapsing %d edge%s shorter than "
+                            "min_edge %g (%g model units) leaves no face of three corners",
+                            (int)n_collapsed, n_collapsed == 1 ? "" : "s", options->min_edge,
+                            threshold);
         goto done;
     }
     for (int32_t v = 0; v < nv; ++v)

@@ -363,3 +363,15 @@ def test_cleanup_carries_the_compas_keys_to_the_new_topology(data_dir):
     assert all(0 <= v < new.n_vertices for v in info["support_vertices"])
     assert info["support_vertices"] == sorted({int(result.vertex_map[v])
                                                for v in old["support_vertices"]})
+
+
+def test_cleanup_of_a_fin_says_what_collapses():
+    # three triangles on one 0.1-long edge (a non-manifold fin): "min_edge 0.2 is longer
+    # than the mesh's edges", where only that edge is short
+    fin = facet.PolyMesh.from_faces(
+        np.array([[0, 0, 0], [0.1, 0, 0], [0.05, 1, 0], [0.05, -1, 0], [0.05, 0, 1.0]]),
+        [[0, 1, 2], [1, 0, 3], [0, 1, 4]])
+    with pytest.raises(facet.FacetError, match=r"every face would collapse: collapsing 1 "
+                                               r"edge shorter than min_edge 0.2 \(0.2 model "
+                                               r"units\) leaves no face of three corners"):
+        facet.cleanup(fin, 0.2, relative=False)
