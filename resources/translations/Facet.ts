@@ -452,11 +452,6 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="22"/>
-        <source>Automatic (the default): local/global up to 10,000 quads, local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../../workbench/facetwb/objects/planarized.py" line="249"/>
         <source>Planarize {0}: local/local closed a panel, solving by local/global</source>
         <translation type="unfinished"></translation>
@@ -472,8 +467,13 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/recompute.py" line="113"/>
+        <location filename="../../workbench/facetwb/recompute.py" line="147"/>
         <source>Recomputing {0} ...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="22"/>
+        <source>Automatic (the default): local/global and local/local up to 10,000 quads, keeping the result closer to the design; local/local alone above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -805,7 +805,7 @@
     </message>
     <message>
         <location filename="../ui/planarize.ui" line="22"/>
-        <source>Automatic (the default): local/global up to 10,000 quads, local/local above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
+        <source>Automatic (the default): local/global and local/local up to 10,000 quads, keeping the result closer to the design; local/local alone above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

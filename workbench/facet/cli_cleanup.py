@@ -42,7 +42,7 @@ def add_commands(commands):
                         help="planarity tolerance relative to each face's mean edge "
                         "(default 1e-6)")
     parser.add_argument("--threads", type=_non_negative_int, metavar="N",
-                        help="threads to use (0: all cores)")
+                        help="threads to use (0: one per 25,000 quads, at most all cores)")
     parser.add_argument("--report", metavar="R.json", help="write a JSON report")
     parser.add_argument("--item", metavar="NAME",
                         help="mesh to read from a RhinoVAULT .json session")
