@@ -66,6 +66,7 @@ def window_shot(path):
     # solve): not what the tutorial's screenshot is about
     for report in window.findChildren(QtGui.QTextEdit, "Report view"):
         report.clear()
+    window.statusBar().clearMessage()
     Gui.updateGui()
     shot = window.grab()
     view = Gui.ActiveDocument.ActiveView if Gui.ActiveDocument else None
