@@ -376,6 +376,8 @@ typedef struct facet_planarize_result {
                                   on, a result short of the tolerance has them counted,
                                   not re-solved) */
     int32_t quality_resolves;  /* re-solves run (0: the first solve's result) */
+    int32_t quality_timed_out; /* 1: options.time_budget ended the re-solves before one
+                                  kept every corner open (quality FACET_QUALITY_NARROW) */
     int32_t first_iterations;  /* iterations of the first solve; `iterations` counts every
                                   solve's, `seconds` their time */
     /* method AUTO's comparison of L/G's result with L/L's (facet_planarizer_solve;

@@ -128,7 +128,7 @@ static PyObject *result_dict(const facet_planarize_result *r)
 {
     static const char *const quality_names[] = {"not_checked", "ok", "recovered", "narrow"};
     /* compare_*: (L/L, L/G), facet_method's order */
-    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:i,s:i,s:(dd),s:(dd),s:(dd),s:(dd),s:i,s:O,s:i,s:d}",
+    return Py_BuildValue("{s:i,s:s,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:O,s:s,s:s,s:i,s:i,s:O,s:i,s:i,s:(dd),s:(dd),s:(dd),s:(dd),s:i,s:O,s:i,s:d}",
                          "iterations",
                          (int)r->iterations, "stop_reason", stop_reason_name(r->stop_reason), "mu",
                          r->mu, "planarity_max_abs", r->planarity_max_abs, "planarity_max_rel",
@@ -139,7 +139,9 @@ static PyObject *result_dict(const facet_planarize_result *r)
                          r->method == FACET_METHOD_LOCAL_LOCAL ? "ll" : "lg", "quality",
                          quality_names[r->quality >= 0 && r->quality <= 3 ? r->quality : 0],
                          "narrow_corners", (int)r->narrow_corners, "quality_resolves",
-                         (int)r->quality_resolves, "first_iterations", (int)r->first_iterations,
+                         (int)r->quality_resolves, "quality_timed_out",
+                         r->quality == FACET_QUALITY_NARROW && r->quality_timed_out ? Py_True : Py_False,
+                         "first_iterations", (int)r->first_iterations,
                          "compare_iterations", (int)r->compare_iterations, "compare_distance_rms",
                          r->compare_distance_rms[0], r->compare_distance_rms[1], "compare_min_angle",
                          r->compare_min_angle[0], r->compare_min_angle[1], "compare_displacement_rms",

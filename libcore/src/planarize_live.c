@@ -328,6 +328,7 @@ facet_status facet_planarizer_update(facet_planarizer *s, const double *xyz_in,
         result->quality = FACET_QUALITY_NOT_CHECKED;
         result->narrow_corners = 0;
         result->quality_resolves = 0;
+        result->quality_timed_out = 0;
         result->first_iterations = iterations;
         result->data_tangent = options->data_tangent;
         result->threads = n_changed ? sub_result.threads : 0; /* the region's (0: none solved) */

@@ -382,6 +382,7 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
     facet_planarize_result best = first;
     int best_is_last = 1;
     int32_t total = first.iterations, resolves = 0;
+    int timed_out = 0; /* the time budget ended a re-solve, or left none for the next */
     for (size_t k = 0; k < sizeof STAGES / sizeof STAGES[0] && best_count > 0; ++k) {
         if (!stage_applies(options, k))
             continue;
@@ -400,8 +401,10 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
         o.warm = 0;
         if (options->time_budget > 0.0) {
             o.time_budget = options->time_budget - (facet_now() - t0);
-            if (!(o.time_budget > 0.0))
+            if (!(o.time_budget > 0.0)) {
+                timed_out = 1;
                 break;
+            }
         }
         facet_planarize_result r;
         memset(&r, 0, sizeof r);
@@ -413,6 +416,7 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
         if (status == FACET_ERROR_CANCELLED)
             break;
         if (status != FACET_OK || r.stop_reason != FACET_STOP_TOLERANCE) {
+            timed_out |= status >= 0 && r.stop_reason == FACET_STOP_TIME;
             facet_error_clear(error); /* a failed attempt: the best so far stands */
             status = FACET_OK;
             continue;
@@ -432,13 +436,16 @@ static facet_status solve_checked(facet_planarizer *s, const double *xyz_in,
     best.quality_resolves = resolves;
     best.narrow_corners = best_count;
     best.quality = best_count ? FACET_QUALITY_NARROW : FACET_QUALITY_RECOVERED;
+    best.quality_timed_out = best_count > 0 && timed_out;
     if (result)
         *result = best;
     if (status == FACET_ERROR_CANCELLED)
         return facet_pl_fail(s, error, FACET_ERROR_CANCELLED, "cancelled");
     if (best_count > 0) {
-        char tried[32];
-        snprintf(tried, sizeof tried, "%d re-solves", (int)resolves);
+        char tried[64];
+        snprintf(tried, sizeof tried, best.quality_timed_out ? "%d re-solves (the time budget ended them)"
+                                                             : "%d re-solves",
+                 (int)resolves);
         narrow_message(s, best_count, options->quality_angle, tried, best_angle);
     }
     return FACET_OK;

@@ -266,3 +266,24 @@ def test_live_update_is_not_checked_and_warm_solve_is_checked():
     assert live.first_iterations == live.iterations
     warm = p.solve(edited, warm=True, threads=1)
     assert warm.quality_check == "ok" and warm.quality_resolves == 0
+
+
+def test_a_time_budget_that_ends_the_re_solves_is_said(data_dir):
+    # the report said "narrow" and "none kept every corner open", as if every re-solve had
+    # failed, when the time budget had ended them (without it they recover this mesh)
+    import time
+
+    mesh = facet.read_mesh(data_dir / "heart.obj")
+    slept = []
+
+    def stage(k, n):  # the budget runs out while the first re-solve starts
+        if not slept:
+            slept.append(k)
+            time.sleep(1.2)
+
+    cut = facet.planarize(mesh, data="plane", time_budget=1.0, stage=stage, threads=1)
+    assert slept == [1] and cut.quality_check == "narrow" and cut.quality_timed_out
+    assert any("the time budget ended the re-solves before one kept them open" in w
+               for w in cut.warnings)
+    full = facet.planarize(mesh, data="plane", threads=1)
+    assert full.quality_check == "recovered" and not full.quality_timed_out

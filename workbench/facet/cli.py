@@ -376,6 +376,8 @@ def print_planarize_summary(report, out=None):
                    if check == "ok" else
                    "stopped before one kept every corner open: the first solve's result"
                    if report.get("stopped") else
+                   "the time budget ended them before one kept every corner open: the first "
+                   "solve's result" if report.get("quality_timed_out") else
                    "none kept every corner open: the first solve's result")
         # (the core's default when the options leave it out)
         asked = (report.get("options") or {}).get("data_tangent", 1.0)

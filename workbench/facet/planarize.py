@@ -185,14 +185,18 @@ class PlanarizeResult:
         live, a fixed iteration count, the angle floor on, or not
         converged), ``"ok"`` (none), ``"recovered"`` (the first result had
         one; a re-solve along the penalty path has none) or ``"narrow"``
-        (every re-solve left one, or the solve was stopped before one kept
-        them open: ``stopped``; the best result is returned).
+        (every re-solve left one, the solve was stopped before one kept
+        them open: ``stopped``, or the time budget ended the re-solves:
+        ``quality_timed_out``; the best result is returned).
     narrow_corners : int
         New narrow corners in the result (also counted, with the check on,
         when the solve stopped short of the tolerance, which is not
         re-solved: ``quality_check`` is then ``"not_checked"``).
     quality_resolves : int
         Re-solves run after the first solve (``iterations`` counts them all).
+    quality_timed_out : bool
+        ``quality_check`` is ``"narrow"`` because ``time_budget`` ended the
+        re-solves, not because they all left a narrow corner.
     first_iterations : int
         Iterations of the first solve.
     threads : int
@@ -257,6 +261,7 @@ class PlanarizeResult:
     threads: int = 0
     compared: object = None
     stopped: bool = False
+    quality_timed_out: bool = False
     data_tangent: float = None
     control: object = None
     reference: object = None
@@ -585,6 +590,7 @@ class Planarizer:
             threads=int(stats.get("threads", 0)),
             compared=None if stopped else _compared(stats),
             stopped=stopped,
+            quality_timed_out=bool(stats.get("quality_timed_out", False)),
             data_tangent=float(stats["data_tangent"]),
             control=control,
             reference=surface,
@@ -693,6 +699,8 @@ def _quality_warnings(stats, options, stopped=False):
     why = ("the solve stopped short of the tolerance, and such a result is not re-solved"
            if stats.get("quality") == "not_checked" else
            f"the solve was stopped before a re-solve kept {it} open" if stopped else
+           f"the time budget ended the re-solves before one kept {it} open"
+           if stats.get("quality_timed_out") else
            f"{int(stats['quality_resolves'])} re-solves did not keep {it} open")
     return [f"{n} panel corner{'s' if n != 1 else ''} under {angle:g} degrees that the input "
             f"did not have ({why})"]

@@ -145,6 +145,7 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         "threads": int(getattr(result, "threads", 0)),
         "compared": getattr(result, "compared", None),
         "stopped": bool(getattr(result, "stopped", False)),
+        "quality_timed_out": bool(getattr(result, "quality_timed_out", False)),
         "solve_seconds": float(result.solve_seconds),
         "input_planarity_max_rel": input_planarity.max_rel_all,
         "input_planarity_max_abs": input_planarity.max_abs_all,
