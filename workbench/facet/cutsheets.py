@@ -24,7 +24,7 @@ import os
 
 import numpy as np
 
-from facet.io.files import write_replacing
+from facet.io.files import when_staged, write_replacing, write_text
 from facet.report import json_safe
 
 __all__ = ["LAYERS", "write_dxf", "schedule_rows", "write_schedule_csv",
@@ -34,21 +34,10 @@ __all__ = ["LAYERS", "write_dxf", "schedule_rows", "write_schedule_csv",
 LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "SHEET": 8, "GRAIN": 6}
 
 
-def _atomic_write(path, data, binary=False):
-    def write(tmp):
-        with open(tmp, "wb" if binary else "w", **({} if binary else {"encoding": "utf-8",
-                                                                      "newline": ""})) as f:
-            f.write(data)
-
-    write_replacing(path, write)
-
-
 def _remove_stale(numbered, count):
     """Remove ``numbered(k)`` for k = count + 1, count + 2, ... while such a file exists:
     the sheets of an earlier, longer run written to the same names, which would otherwise
     be cut again; when the new ones take their places (:func:`facet.io.files.staged`)."""
-    from facet.io.files import when_staged
-
     def remove():
         k = count + 1
         while os.path.isfile(numbered(k)):
@@ -217,14 +206,14 @@ def write_schedule_csv(path, rows):
     writer.writerow(_CSV_COLUMNS)
     for row in rows:
         writer.writerow([_cell(row.get(c)) for c in _CSV_COLUMNS])
-    _atomic_write(path, buf.getvalue())
+    write_text(path, [buf.getvalue()])
 
 
 def write_schedule_json(path, rows, meta=None):
     """JSON: {"meta": ..., "panels": rows}."""
     text = json.dumps(json_safe({"meta": meta or {}, "panels": rows}), allow_nan=False,
                       indent=1) + "\n"
-    _atomic_write(path, text)
+    write_text(path, [text])
 
 
 def _svg_path(points):
@@ -265,7 +254,7 @@ def write_svg(directory, nest_result, drawings, stem="sheet"):
                        f'dominant-baseline="middle" fill="#003">{escape(d.id)}</text>')
         out.append("</g></svg>\n")
         target = os.path.join(directory, f"{stem}_{i + 1:02d}.svg")
-        _atomic_write(target, "\n".join(out))
+        write_text(target, ["\n".join(out)])
         written.append(target)
     _remove_stale(lambda k: os.path.join(directory, f"{stem}_{k:02d}.svg"), len(written))
     return written
