@@ -484,19 +484,17 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
         x, y = g.coords[0]
         raise PlanError(f"{where}the edges near ({x:.6g}, {y:.6g}) form a self-crossing ring")
     faces = list(getattr(polygons, "geoms", []))
-    opening_points = [Point(x, y) for x, y in opening_xy]
-    kept = []
-    n_openings = 0
-    for polygon in faces:
-        if any(polygon.contains(p) for p in opening_points):
-            n_openings += 1
-            continue
-        kept.append(polygon)
-    for point in opening_points:
-        if not any(polygon.contains(point) for polygon in faces):
-            raise PlanError(f"{where}the opening at ({point.x:.6g}, {point.y:.6g}) lies in no "
-                            "face of the drawing (outside it, or on an edge): give a point "
-                            "inside the face to leave open")
+    opened = set()  # the faces holding an opening point (one each: faces do not overlap)
+    for x, y in opening_xy:
+        point = Point(x, y)
+        face = next((k for k, polygon in enumerate(faces) if polygon.contains(point)), None)
+        if face is None:
+            raise PlanError(f"{where}the opening at ({x:.6g}, {y:.6g}) lies in no face of the "
+                            "drawing (outside it, or on an edge): give a point inside the face "
+                            "to leave open")
+        opened.add(face)
+    kept = [polygon for k, polygon in enumerate(faces) if k not in opened]
+    n_openings = len(opened)
     for polygon in kept:
         if len(polygon.interiors):
             x, y = polygon.interiors[0].coords[0]
