@@ -24,7 +24,7 @@ import numpy as np
 
 from facet import _core
 from facet.errors import FacetError, InputError, from_core
-from facet.mesh import PolyMesh
+from facet.mesh import PolyMesh, next_corners
 
 __all__ = ["BASES", "LiftResult", "Lifter", "LiftingSpace", "lift", "lifting_space",
            "TargetError", "NearlyLiftResult", "lift_nearly"]
@@ -188,10 +188,10 @@ def _pieces(mesh):
     if not used.size:
         return 0
     # each corner joined to the next one of its face
-    nxt = np.roll(mesh.face_vertices, -1)
-    nxt[mesh.face_start[1:] - 1] = mesh.face_vertices[mesh.face_start[:-1]]
+    corners = np.asarray(mesh.face_vertices)
+    nxt = corners[next_corners(np.asarray(mesh.face_start))]
     n = mesh.n_vertices
-    graph = coo_matrix((np.ones(len(nxt)), (mesh.face_vertices, nxt)), shape=(n, n))
+    graph = coo_matrix((np.ones(len(nxt)), (corners, nxt)), shape=(n, n))
     _count, labels = connected_components(graph, directed=False)
     return int(np.unique(labels[used]).size)
 
@@ -716,20 +716,19 @@ def lift_nearly(plan, targets, weights=None, *, tolerance, progress=None, rank_t
     method = "exact"
     result = exact
     planar_heights = flat.mesh.vertices[:, 2] / _HEIGHT_SCALE + centre
-    planar_miss = _misses(planar_heights, t, exact.weights)[1]
+    rms, planar_miss, where = _misses(planar_heights, t, exact.weights)
     if exact.target_max > planar_miss and flat.planarity.max_rel_all <= 1e-10:
         method = "planarized"
         lifted = moved_plan.with_vertices(np.column_stack([moved_xy, planar_heights]))
         from facet.planarity import planarity
 
         report = planarity(lifted)
-        rms, largest, where = _misses(planar_heights, t, exact.weights)
         result = LiftResult(
             mesh=lifted, heights=planar_heights, targets=t, weights=exact.weights,
             dimension=exact.dimension, trivial_dimension=exact.trivial_dimension,
             planarity_max_abs=float(report.max_abs_all),
             planarity_max_rel=float(report.max_rel_all),
-            target_rms=rms, target_max=largest, target_max_vertex=where,
+            target_rms=rms, target_max=planar_miss, target_max_vertex=where,
             solve_seconds=float(flat.solve_seconds), factor_seconds=exact.factor_seconds,
             warnings=[])
     if result.target_max >= base.target_max:
