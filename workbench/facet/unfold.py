@@ -183,8 +183,9 @@ _CHAR_WIDTH = 0.9
 
 def _fit_label(polygon, inside, pole, height, n_chars):
     """Where an ID of ``n_chars`` characters goes and how high, at most ``height``: its box
-    (``_CHAR_WIDTH`` of the height per character wide, centred, with a tenth of the height
-    around it) inside the outline. At the pole of inaccessibility or the centroid,
+    (``_CHAR_WIDTH`` of the height per character wide and a tenth of the height at each
+    end; 0.9 of the height above and below its middle, for the descenders) inside the
+    outline. At the pole of inaccessibility or the centroid,
     whichever takes the larger text: the pole of a long strip lies near one end, where a
     text as high as the strip ran past the end, and off the sheet. ``polygon``: the
     outline's shapely Polygon, ``inside``: the same prepared."""
@@ -342,7 +343,7 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
             u = d / length
             n_in = np.array([-u[1], u[0]])  # inside of a counter-clockwise outline
             text = f"{b:+.1f}\u00b0"
-            # no longer than its edge (0.6 of the height per character), inside the part
+            # no longer than its edge (_CHAR_WIDTH of the height per character), inside the part
             # (beside a short edge at a sharp corner 1.5 times the height from it is not)
             bh = min(0.6 * h, 0.8 * length / (_CHAR_WIDTH * len(text)))
             for _ in range(4):
