@@ -507,10 +507,11 @@ static facet_status check_options(const facet_planarize_options *o, int has_refe
             "without bound");
     /* beside a weight FACET_WEIGHT_SPAN times data_tangent's the data term is lost to
      * rounding and the vertices drift (fuzzing: parallelogram 1e16 moved a unit grid's
-     * vertices by 900, and boundary_fairness 1e16 by 1,300, with FACET_OK) */
+     * vertices by 900, and boundary_fairness 1e16 by 1,300, with FACET_OK); a shape weight
+     * with no shape term is not read */
     for (size_t k = 1; k + 1 < sizeof weights / sizeof weights[0]; ++k)
         if (weights[k].value > FACET_WEIGHT_SPAN * o->data_tangent &&
-            !(k == 6 && o->shape == FACET_SHAPE_NONE)) /* 6: shape_weight, unread with no shape */
+            !(o->shape == FACET_SHAPE_NONE && strcmp(weights[k].name, "shape_weight") == 0))
             BAD("%s %g is more than %g times data_tangent (%g): beside it the data term is "
                 "lost to rounding", weights[k].name, weights[k].value, FACET_WEIGHT_SPAN,
                 o->data_tangent);
