@@ -44,26 +44,27 @@ class ProgressLine:
 
     def progress(self, iteration, max_iter, planarity):
         """facet's ``progress(iteration, max_iter, planarity_max_rel)``; never cancels."""
-        if not self.enabled:
-            return False
-        now = time.monotonic()
-        if self._last is not None and now - self._last < self.interval:
-            return False
-        self._last = now
-        self._show(f"iteration {iteration} of at most {max_iter}, planarity {planarity:.2g}")
+        if self._due():
+            self._show(f"iteration {iteration} of at most {max_iter}, planarity {planarity:.2g}")
         return False
 
     def steps(self, done, total, what):
         """A count of steps: ``what done of total``; never cancels (the last one is shown
         at once)."""
+        if self._due(at_once=done >= total):
+            self._show(f"{what} {done} of {total}")
+        return False
+
+    def _due(self, at_once=False):
+        """Whether to rewrite the line now: on a terminal, at most every ``interval``
+        seconds (or at once)."""
         if not self.enabled:
             return False
         now = time.monotonic()
-        if done < total and self._last is not None and now - self._last < self.interval:
+        if not at_once and self._last is not None and now - self._last < self.interval:
             return False
         self._last = now
-        self._show(f"{what} {done} of {total}")
-        return False
+        return True
 
     def stage(self, stage, stages):
         """facet's ``stage(stage, stages)``: a quality re-solve starts, or one of method
