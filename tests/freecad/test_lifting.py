@@ -215,6 +215,29 @@ class TestPlanGraphSources(DocumentTestCase):
         self.assertTrue(from_file.isValid(), from_file.getStatusString())
         self.assertEqual(from_file.FaceCount, 4)
 
+    def test_dxf_layers_that_are_off_are_left_out_and_said(self):
+        import ezdxf
+
+        document = ezdxf.new()
+        document.layers.add("HELP").off()
+        space = document.modelspace()
+        space.add_lwpolyline([(0, 0), (3000, 0), (3000, 2000), (0, 2000)], close=True)
+        space.add_line((0, 0), (3000, 2000), dxfattribs={"layer": "HELP"})
+        path = os.path.join(self.tmp.name, "hidden.dxf")
+        document.saveas(path)
+        plan = facetwb.make_plan_graph(file=path, doc=self.doc)
+        self.doc.recompute()
+        self.assertTrue(plan.isValid(), plan.getStatusString())
+        self.assertEqual(plan.FaceCount, 1)  # the diagonal on HELP did not split it
+        self.assertEqual(len(plan.Warnings), 1)
+        self.assertTrue(plan.Warnings[0].startswith(
+            "left out 1 entity on layers that are off or frozen (HELP 1)"), plan.Warnings)
+        document.layers.get("HELP").on()
+        document.saveas(path)
+        plan.touch()
+        self.doc.recompute()
+        self.assertEqual((plan.FaceCount, list(plan.Warnings)), (2, []))
+
     def test_arcs_refused_then_split(self):
         shape = self.doc.addObject("Part::Feature", "Arcs")
         arc = Part.ArcOfCircle(Part.Circle(App.Vector(0, 0, 0), App.Vector(0, 0, 1), 1000.0),

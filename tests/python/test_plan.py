@@ -319,6 +319,79 @@ def test_dxf_blocks_and_mirrored_polylines_are_read_where_they_are_drawn(tmp_pat
         sorted(map(tuple, meant.mesh.vertices.tolist()))
 
 
+def test_dxf_layers_that_are_off_or_frozen_are_not_read(facet_command, tmp_path):
+    # an architect's plan keeps construction lines, grids and notes on layers turned off;
+    # they were read as edges of the plan: here a diagonal that split the square in two
+    import ezdxf
+
+    square = [(0, 0), (10, 0), (10, 10), (0, 10)]
+    document = ezdxf.new()
+    document.layers.add("Construction").off()
+    document.layers.add("grid").freeze()
+    document.layers.add("Blocks").off()
+    space = document.modelspace()
+    space.add_lwpolyline(square, close=True, dxfattribs={"layer": "PANELS"})
+    space.add_line((0, 0), (10, 10), dxfattribs={"layer": "CONSTRUCTION"})  # any case
+    space.add_line((10, 0), (0, 10), dxfattribs={"layer": "Grid"})
+    # a block on layer 0 takes its INSERT's layer (off): hidden; its line on a layer
+    # that is on is shown; an INSERT on a frozen layer hides all it places
+    block = document.blocks.new("MARKS")
+    block.add_line((0, 2), (10, 2))
+    block.add_line((5, 0), (5, 10), dxfattribs={"layer": "PANELS"})
+    space.add_blockref("MARKS", (0, 0), dxfattribs={"layer": "Blocks"})
+    space.add_blockref("MARKS", (0, 1), dxfattribs={"layer": "Grid"})
+    document.saveas(tmp_path / "plan.dxf")
+    plan = read_plan(tmp_path / "plan.dxf")
+    assert plan.n_faces == 2  # the square split by the block's line on PANELS only
+    assert sorted(len(f) for f in plan.mesh.faces()) == [4, 4]
+    assert plan.warnings[0] == (
+        "left out 4 entities on layers that are off or frozen (Grid 2, Blocks 1, "
+        "CONSTRUCTION 1): turn a layer on (and thaw it) to read what is drawn on it")
+    assert read_segments(tmp_path / "plan.dxf", notes=None)  # notes are optional
+    # both commands say so
+    for command in (["lift", "-o", tmp_path / "roof.obj", "--pin", "0=0", "--pin", "1=1",
+                     "--pin", "2=3"],
+                    ["lifting-space", "-o", tmp_path / "space"]):
+        done = facet_command(command[0], tmp_path / "plan.dxf", *command[1:])
+        assert done.returncode == 0, done.stderr
+        assert "warning       left out 4 entities on layers that are off or frozen" in done.stdout
+    # turned on again, the layers are read
+    for name in ("Construction", "grid", "Blocks"):
+        layer = document.layers.get(name)
+        layer.on(), layer.thaw()
+    document.saveas(tmp_path / "shown.dxf")
+    shown = read_plan(tmp_path / "shown.dxf")
+    assert shown.n_faces > 2 and not shown.warnings
+
+
+def test_dxf_entities_flagged_invisible_are_not_read():
+    # group code 60 (ezdxf does not write it, other CAD programs do): checked in memory
+    import ezdxf
+    from ezdxf import path as ezpath
+
+    from facet.plan import _dxf_model_segments
+
+    document = ezdxf.new()
+    document.modelspace().add_line((0, 0), (1, 0))
+    document.modelspace().add_line((0, 1), (1, 1), dxfattribs={"invisible": 1})
+    segments = _dxf_model_segments("plan.dxf", document, None, ezpath)
+    assert segments == [((0.0, 0.0), (1.0, 0.0))]
+
+
+def test_dxf_with_everything_hidden_says_so(tmp_path):
+    import ezdxf
+
+    document = ezdxf.new()
+    document.layers.add("OLD").off()
+    document.modelspace().add_lwpolyline([(0, 0), (1, 0), (1, 1)], close=True,
+                                         dxfattribs={"layer": "OLD"})
+    document.saveas(tmp_path / "hidden.dxf")
+    with pytest.raises(PlanError, match=r"no LINE, LWPOLYLINE or POLYLINE in the model space "
+                       r"\(nothing; 1 entity on layers that are off or frozen \(OLD 1\), "
+                       r"left out\)"):
+        read_plan(tmp_path / "hidden.dxf")
+
+
 @pytest.mark.parametrize("tolerance, says", [
     (0.0, "the arc tolerance must be a finite number > 0, not 0.0"),
     (-1.0, "the arc tolerance must be a finite number > 0, not -1.0"),

@@ -243,6 +243,8 @@ def run_lifting_space(args):
     print(f"facet lifting-space: {args.plan}: dimension {lifter.dimension} "
           f"({lifter.trivial_dimension} trivial); {count} {args.basis} liftings written to "
           f"{args.output}")
+    for text in plan.warnings:
+        print(f"  warning       {text}")
     if lifter.pieces > 1:
         print(f"  warning       the plan is in {lifter.pieces} separate pieces that share no "
               "vertex")

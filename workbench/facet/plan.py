@@ -8,7 +8,8 @@ roof or canopy seen from above. :func:`read_plan` makes one from
 ``.dxf``                  LINE, LWPOLYLINE, POLYLINE (through ezdxf); ARC,
                           CIRCLE, ELLIPSE, SPLINE and polyline bulges are
                           refused unless ``arc_tolerance`` is given, then
-                          split into segments whose sagitta is at most it
+                          split into segments whose sagitta is at most it;
+                          layers that are off or frozen are not read
 ``.csv``                  segments, one ``x1,y1,x2,y2`` per line
 ``.obj .off .json``       a mesh lying in a plane (compas form diagrams
                           too): its faces are the plan's faces, projected
@@ -145,7 +146,7 @@ def _flatten(path_obj, tolerance, what="a curve", corners=0):
     return list(zip(points[:-1], points[1:]))
 
 
-def _dxf_segments(path, arc_tolerance):
+def _dxf_segments(path, arc_tolerance, notes=None):
     try:
         import ezdxf
         from ezdxf import path as ezpath
@@ -177,7 +178,7 @@ def _dxf_segments(path, arc_tolerance):
         # mean "ezdxf cannot read this file"; say so in one line.
         raise PlanError(f"{path}: not a valid DXF file ({_exception_line(exc)})") from None
     try:
-        return _dxf_model_segments(path, document, arc_tolerance, ezpath)
+        return _dxf_model_segments(path, document, arc_tolerance, ezpath, notes)
     except (PlanError, MemoryError):
         raise
     except Exception as exc:  # noqa: BLE001 - an entity ezdxf loaded but cannot answer for
@@ -195,34 +196,88 @@ def _exception_line(exc):
     return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
 
 
-def _dxf_model_segments(path, document, arc_tolerance, ezpath):
+def _dxf_model_segments(path, document, arc_tolerance, ezpath, notes=None):
     segments = []
     skipped = {}
-    _dxf_entity_segments(path, document.modelspace(), arc_tolerance, ezpath, segments, skipped)
+    hidden = {}
+    reader = _DxfReader(path, document, arc_tolerance, ezpath, segments, skipped, hidden)
+    reader.entities(document.modelspace())
+    if hidden and notes is not None:
+        notes.append(f"left out {_hidden_text(hidden)}: turn a layer on (and thaw it) to "
+                     "read what is drawn on it")
     if not segments:
         found = ", ".join(f"{n} {k}" for k, n in sorted(skipped.items())) or "nothing"
+        if hidden:
+            found += f"; {_hidden_text(hidden)}, left out"
         raise PlanError(f"{path}: no LINE, LWPOLYLINE or POLYLINE in the model space ({found})")
     return segments
+
+
+def _hidden_text(hidden):
+    """'12 entities on layers that are off or frozen (CONSTRUCTION 10, GRID 2)'."""
+    total = sum(hidden.values())
+    layers = sorted(hidden.items(), key=lambda item: (-item[1], item[0]))
+    named = ", ".join(f"{name} {count}" for name, count in layers[:6])
+    more = f", {len(layers) - 6} more layers" if len(layers) > 6 else ""
+    noun = "entity" if total == 1 else "entities"
+    return f"{total} {noun} on layers that are off or frozen ({named}{more})"
 
 
 #: Blocks inside blocks deeper than this are refused (a block that holds itself).
 _DXF_BLOCK_DEPTH = 16
 
 
-def _dxf_entity_segments(path, entities, arc_tolerance, ezpath, segments, skipped, depth=0):
-    """Append the straight segments of `entities` (in world coordinates) to `segments`;
-    the block references' contents too (INSERT, placed as drawn)."""
-    curved = ("ARC", "CIRCLE", "ELLIPSE", "SPLINE")
-    for entity in entities:
-        kind = entity.dxftype()
+class _DxfReader:
+    """Appends the straight segments of DXF entities (in world coordinates) to
+    `segments`; the block references' contents too (INSERT, placed as drawn).
+
+    What is not shown is not read, as a CAD program shows it: entities flagged
+    invisible, and entities on a layer that is off or frozen, counted by layer
+    in `hidden`. An entity of a block on layer 0 takes the layer of the INSERT
+    that places it, and everything an INSERT on a frozen layer places is hidden.
+    Other entities are counted by type in `skipped`."""
+
+    def __init__(self, path, document, arc_tolerance, ezpath, segments, skipped, hidden):
+        self.path, self.arc_tolerance, self.ezpath = path, arc_tolerance, ezpath
+        self.segments, self.skipped, self.hidden = segments, skipped, hidden
+        self.layer_state = {}
+        for layer in document.layers:
+            self.layer_state[layer.dxf.name.lower()] = (layer.is_off(), layer.is_frozen())
+
+    def _hide(self, layer):
+        self.hidden[layer] = self.hidden.get(layer, 0) + 1
+
+    def entities(self, entities, parent_layer=None, depth=0):
+        for entity in entities:
+            layer = entity.dxf.get("layer", "0")
+            if parent_layer is not None and layer == "0":
+                layer = parent_layer  # drawn on layer 0 in the block: the INSERT's layer
+            off, frozen = self.layer_state.get(layer.lower(), (False, False))
+            if entity.dxf.get("invisible", 0):
+                continue
+            kind = entity.dxftype()
+            if kind == "INSERT":
+                if frozen:
+                    self._hide(layer)
+                    continue
+                self.insert(entity, layer, depth)
+            elif off or frozen:
+                self._hide(layer)
+            else:
+                self.entity(entity, kind)
+
+    def insert(self, entity, layer, depth):
+        if depth >= _DXF_BLOCK_DEPTH:
+            handle = entity.dxf.get("handle", "?")
+            raise PlanError(f"{self.path}: INSERT {handle}: blocks nested more than "
+                            f"{_DXF_BLOCK_DEPTH} deep (a block that holds itself?)")
+        self.entities(entity.virtual_entities(), layer, depth + 1)
+
+    def entity(self, entity, kind):
+        path, segments, arc_tolerance, ezpath = (self.path, self.segments, self.arc_tolerance,
+                                                 self.ezpath)
         handle = entity.dxf.get("handle", "?")
-        if kind == "INSERT":
-            if depth >= _DXF_BLOCK_DEPTH:
-                raise PlanError(f"{path}: INSERT {handle}: blocks nested more than "
-                                f"{_DXF_BLOCK_DEPTH} deep (a block that holds itself?)")
-            _dxf_entity_segments(path, entity.virtual_entities(), arc_tolerance, ezpath,
-                                 segments, skipped, depth + 1)
-        elif kind == "LINE":
+        if kind == "LINE":
             s, e = entity.dxf.start, entity.dxf.end
             segments.append(((float(s.x), float(s.y)), (float(e.x), float(e.y))))
         elif kind in ("LWPOLYLINE", "POLYLINE"):
@@ -238,7 +293,7 @@ def _dxf_entity_segments(path, entities, arc_tolerance, ezpath, segments, skippe
                     )
                 segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance,
                                          f"{path}: {kind} {handle}", corners=len(bulges)))
-                continue
+                return
             if kind == "LWPOLYLINE":
                 elevation = float(entity.dxf.get("elevation", 0.0))
                 points = [(float(x), float(y), elevation) for x, y in entity.get_points("xy")]
@@ -254,7 +309,7 @@ def _dxf_entity_segments(path, entities, arc_tolerance, ezpath, segments, skippe
             if closed and len(points) > 1:
                 points.append(points[0])
             segments.extend(zip(points[:-1], points[1:]))
-        elif kind in curved:
+        elif kind in ("ARC", "CIRCLE", "ELLIPSE", "SPLINE"):
             if arc_tolerance is None:
                 raise PlanError(
                     f"{path}: {kind} {handle} is curved: give an arc tolerance to split it "
@@ -263,7 +318,7 @@ def _dxf_entity_segments(path, entities, arc_tolerance, ezpath, segments, skippe
             segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance,
                                      f"{path}: {kind} {handle}"))
         else:
-            skipped[kind] = skipped.get(kind, 0) + 1
+            self.skipped[kind] = self.skipped.get(kind, 0) + 1
 
 
 def _csv_rows(path, error):
@@ -317,8 +372,12 @@ def _csv_segments(path):
     return segments
 
 
-def read_segments(path, *, arc_tolerance=None):
-    """The straight segments of a DXF or CSV drawing, ``[((x1, y1), (x2, y2)), ...]``."""
+def read_segments(path, *, arc_tolerance=None, notes=None):
+    """The straight segments of a DXF or CSV drawing, ``[((x1, y1), (x2, y2)), ...]``.
+
+    A DXF's entities on layers that are off or frozen, and those flagged
+    invisible, are not read; what was left out is appended to the list `notes`
+    (if given) as one line of text."""
     suffix = os.path.splitext(os.fspath(path))[1].lower()
     if arc_tolerance is not None:
         try:
@@ -329,7 +388,7 @@ def read_segments(path, *, arc_tolerance=None):
             raise PlanError(f"{path}: the arc tolerance must be a finite number > 0, not "
                             f"{arc_tolerance!r}")
     if suffix == ".dxf":
-        return _dxf_segments(path, arc_tolerance)
+        return _dxf_segments(path, arc_tolerance, notes)
     if suffix == ".csv":
         return _csv_segments(path)
     raise PlanError(f"{path}: not a line drawing (.dxf or .csv)")
@@ -630,8 +689,11 @@ def read_plan(path, *, snap=None, arc_tolerance=None, openings=()):
     """A plan graph from a drawing file (see the module docstring)."""
     suffix = os.path.splitext(os.fspath(path))[1].lower()
     if suffix in (".dxf", ".csv"):
-        segments = read_segments(path, arc_tolerance=arc_tolerance)
-        return plan_from_segments(segments, snap=snap, openings=openings, source=path)
+        notes = []
+        segments = read_segments(path, arc_tolerance=arc_tolerance, notes=notes)
+        plan = plan_from_segments(segments, snap=snap, openings=openings, source=path)
+        plan.warnings[:0] = notes
+        return plan
     if suffix in (".obj", ".off", ".json"):
         from facet.io import read_mesh
 

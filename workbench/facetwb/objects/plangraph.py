@@ -5,10 +5,13 @@ Parametric on its drawing: ``Sources`` (Sketches, Draft wires and lines, Part ed
 that is empty, ``File`` (.dxf, .csv of segments, or a plan mesh .obj .off .json). Recompute
 reads the drawing again and builds the graph with ``facet.plan``: endpoints snapped, crossings
 split, duplicate edges merged, dangling edges dropped (counted in ``DanglingEdges``), faces
-found by polygonize, faces containing an ``Openings`` point left out. The graph is stored as
+found by polygonize, faces containing an ``Openings`` point left out; a DXF's layers that are off
+or frozen are not read (listed in ``Warnings``). The graph is stored as
 a flat polygon mesh (z = 0), like a PolyMesh, so a Lifting (or anything taking a Facet
 mesh) can use it.
 """
+
+import FreeCAD as App
 
 import facet
 from facetwb import compat
@@ -51,6 +54,10 @@ class PlanGraph(PolyMesh):
                             "Faces left out as openings", attr=output, editor_mode=read_only)
         compat.add_property(obj, "App::PropertyInteger", "SnappedEndpoints", "Result",
                             "Endpoints moved by snapping", attr=output, editor_mode=read_only)
+        compat.add_property(obj, "App::PropertyStringList", "Warnings", "Result",
+                            "What reading the drawing left out (layers that are off or "
+                            "frozen) or found worth telling", attr=output,
+                            editor_mode=read_only)
 
     @guarded
     def execute(self, obj):
@@ -73,6 +80,10 @@ class PlanGraph(PolyMesh):
         obj.DanglingEdges = len(plan.dangling)
         obj.OpeningCount = int(plan.openings)
         obj.SnappedEndpoints = int(plan.snapped)
+        if list(obj.Warnings) != list(plan.warnings):
+            obj.Warnings = list(plan.warnings)
+        for text in plan.warnings:
+            App.Console.PrintWarning(f"{obj.Label}: {text}\n")
 
 
 def is_plan_graph(obj):
