@@ -586,6 +586,30 @@ def test_schedule_csv_and_json(tmp_path):
     assert len(svgs) == len(pngs) == len(result.sheets)
     assert svgs[0].read_text().count("<path") == len(result.sheets[0].parts)
     assert pngs[0].read_bytes()[:4] == b"\x89PNG"
+    # the preview's IDs lie where the DXF's do and turn with their parts as they do
+    # (they were drawn unturned on every turned part)
+    import re
+    import xml.etree.ElementTree as ET
+
+    import ezdxf
+
+    dxf = {e.dxf.text: e for e in ezdxf.readfile(tmp_path / "cut.dxf").modelspace().query(
+        "TEXT[layer=='LABEL']")}
+    from facet.cutsheets import sheet_offsets
+
+    offsets = sheet_offsets(result)
+    turned = 0
+    for k, svg in enumerate(svgs):
+        for text in ET.parse(svg).getroot().iter("{http://www.w3.org/2000/svg}text"):
+            x, y = float(text.get("x")), float(text.get("y"))
+            scale, rotate = re.fullmatch(r"(scale\(1 -1\)) rotate\((\S+) (\S+) (\S+)\)",
+                                         text.get("transform")).group(1, 2)
+            label = dxf[text.text]
+            assert label.dxf.align_point.x - offsets[k] == pytest.approx(x, abs=1e-9)
+            assert label.dxf.align_point.y == pytest.approx(-y, abs=1e-9)
+            assert float(rotate) == pytest.approx(-label.dxf.rotation, abs=1e-9)
+            turned += label.dxf.rotation != 0.0
+    assert turned > 0  # the nesting turned some parts
 
 
 def test_sheets_of_an_earlier_longer_run_are_removed(tmp_path):

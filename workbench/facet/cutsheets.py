@@ -249,7 +249,11 @@ def write_svg(directory, nest_result, drawings, stem="sheet"):
             out.append(f'<path d="{_svg_path(cut)}" fill="#c9d8e8" stroke="#c00" '
                        f'stroke-width="{stroke!r}"/>')
             lx, ly = pl.transform([d.label_position])[0]
-            out.append(f'<text x="{lx!r}" y="{-ly!r}" transform="scale(1 -1)" '
+            # upright (scale), then turned with its part as in the DXF: counter-clockwise
+            # on the sheet is a negative angle in the text's y-down frame
+            turn = -(pl.angle_deg % 360.0)
+            out.append(f'<text x="{lx!r}" y="{-ly!r}" '
+                       f'transform="scale(1 -1) rotate({turn!r} {lx!r} {-ly!r})" '
                        f'font-size="{d.label_height!r}" text-anchor="middle" '
                        f'dominant-baseline="middle" fill="#003">{escape(d.id)}</text>')
         out.append("</g></svg>\n")
