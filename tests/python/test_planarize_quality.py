@@ -199,6 +199,11 @@ def test_resolve_same_bits_on_one_and_two_threads():
     assert np.array_equal(r1.mesh.vertices, r2.mesh.vertices)
     assert r1.iterations == r2.iterations
     assert any("under 40 degrees that the input did not have" in w for w in r1.warnings)
+    # a quad mesh: the warning says why re-solves fail there, and what to do
+    from facet.planarize import QUAD_LAYOUT_ADVICE
+
+    assert any(w.endswith("(4 re-solves did not keep them open); " + QUAD_LAYOUT_ADVICE)
+               for w in r1.warnings)
     first = facet.planarize(mesh, method="lg", threads=1, quality_angle=0)
     assert np.array_equal(r1.mesh.vertices, first.mesh.vertices)
     assert r1.first_iterations == first.iterations < r1.iterations

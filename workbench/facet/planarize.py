@@ -329,6 +329,8 @@ class Planarizer:
         report = mesh.validate()
         self._warnings = _mesh_warnings(report)
         self._topology = mesh
+        degrees = np.diff(np.asarray(mesh.face_start))
+        self._quads = bool(degrees.size) and np.count_nonzero(degrees == 4) * 2 > degrees.size
         try:
             self._core = _core.Planarizer(mesh.face_start, mesh.face_vertices, mesh.n_vertices)
         except _core.CoreError as exc:
@@ -579,7 +581,8 @@ class Planarizer:
             planarity=measured,
             displacement=displacement,
             options=options,
-            warnings=(list(self._warnings) + _quality_warnings(stats, options, stopped)
+            warnings=(list(self._warnings) + _quality_warnings(stats, options, stopped,
+                                                               self._quads)
                       + _precision_warnings(stats, options, result_mesh, measured)),
             constraint_max_rel=stats["constraint_max_rel"],
             anderson=(stats["anderson_accepted"], stats["anderson_rejected"]),
@@ -687,10 +690,20 @@ def _compared(stats):
                for k, name in enumerate(("ll", "lg"))}}
 
 
-def _quality_warnings(stats, options, stopped=False):
+#: Why re-solves cannot keep a quad mesh's corners open, and the remedy (docs/solver-notes.md,
+#: "The 100 x 100 hypar"): what the warning adds on meshes of mostly quads.
+QUAD_LAYOUT_ADVICE = (
+    "planar quads follow conjugate directions of the surface, such as its principal "
+    "curvature lines; a quad mesh laid far from them (along a saddle's straight rulings, "
+    "say) cannot be made planar without collapsing some panels: remesh along curvature "
+    "lines there")
+
+
+def _quality_warnings(stats, options, stopped=False, quads=False):
     """A warning when the result has corners under ``quality_angle`` that the input did not
     have: no re-solve kept them open, the solve was stopped first, or it stopped short of
-    the tolerance, and is not re-solved (see PlanarizeResult.quality_check)."""
+    the tolerance, and is not re-solved (see PlanarizeResult.quality_check). When every
+    re-solve ran and failed on a mesh of mostly quads, it says why that usually is."""
     n = int(stats.get("narrow_corners", 0))
     if not n or stats.get("quality") not in ("narrow", "not_checked"):
         return []
@@ -702,8 +715,13 @@ def _quality_warnings(stats, options, stopped=False):
            f"the time budget ended the re-solves before one kept {it} open"
            if stats.get("quality_timed_out") else
            f"{int(stats['quality_resolves'])} re-solves did not keep {it} open")
-    return [f"{n} panel corner{'s' if n != 1 else ''} under {angle:g} degrees that the input "
-            f"did not have ({why})"]
+    text = (f"{n} panel corner{'s' if n != 1 else ''} under {angle:g} degrees that the input "
+            f"did not have ({why})")
+    every_resolve_failed = (stats.get("quality") == "narrow" and not stopped
+                            and not stats.get("quality_timed_out"))
+    if quads and every_resolve_failed:
+        text += f"; {QUAD_LAYOUT_ADVICE}"
+    return [text]
 
 
 def planarize(mesh, method="auto", tol=1e-6, tol_abs=None, max_iter=None, iterations=None,
