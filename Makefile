@@ -110,8 +110,10 @@ translations:
 demo: deps-test build
 	sh tools/demo.sh $(OUT)/demo
 
-# examples/facade.FCStd and examples/roof.FCStd (commit them after a change)
+# examples/facade.FCStd, roof.FCStd, roof_plan.dxf and roof_heights.csv (commit them after
+# a change)
 examples: deps-test build
+	$(PYTHON) tools/make_example_plan.py
 	$(FC_ENV) freecadcmd tools/make_examples.py
 
 # BENCH_ARGS: options of tools/bench/run_bench.py; BENCH_ARGS=--quick is a smoke run (< 1 min)

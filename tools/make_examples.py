@@ -19,6 +19,7 @@ facade.FCStd -- from a design surface to cut sheets:
 
 roof.FCStd -- from a plan to panels:
     Plan           a Sketch: a 3 x 2 grid of 4 m x 3 m bays, one bay split by a diagonal
+                   (the plan of examples/roof_plan.dxf: tools/make_example_plan.py)
     PlanGraph      the sketch as a plan graph
     Lifting        the optimal lifting to four pinned corner heights (a warped, planar-
                    paneled roof)
@@ -37,6 +38,7 @@ import Part
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
 EXAMPLES = os.path.join(ROOT, "examples")
 
 #: Control net of the design surface (mm): 7 columns along the facade, 5 rows up it.
@@ -110,23 +112,17 @@ def make_roof(path):
 
     import facetwb
 
+    # the plan and pins that examples/roof_plan.dxf and roof_heights.csv hold
+    from make_example_plan import ROOF_PINS, roof_lines
+
     doc = App.newDocument("roof")
     sketch = doc.addObject("Sketcher::SketchObject", "Plan")
     sketch.Label = "Roof plan"
-    xs, ys = (0.0, 4000.0, 8000.0, 12000.0), (0.0, 3000.0, 6000.0)
-    lines = []
-    for y in ys:
-        lines.append(((xs[0], y), (xs[-1], y)))
-    for x in xs:
-        lines.append(((x, ys[0]), (x, ys[-1])))
-    lines.append(((xs[1], ys[0]), (xs[2], ys[1])))  # one bay split into two triangles
-    for (x1, y1), (x2, y2) in lines:
+    for (x1, y1), (x2, y2) in roof_lines():
         sketch.addGeometry(Part.LineSegment(App.Vector(x1, y1, 0), App.Vector(x2, y2, 0)),
                            False)
     plan = facetwb.make_plan_graph([sketch], doc=doc)
-    corners = [(xs[0], ys[0], 3000.0), (xs[-1], ys[0], 3600.0), (xs[0], ys[-1], 4200.0),
-               (xs[-1], ys[-1], 3300.0), (xs[1], ys[1], 4500.0)]
-    lifting = facetwb.make_lifting(plan, pins=corners)
+    lifting = facetwb.make_lifting(plan, pins=[tuple(p) for p in ROOF_PINS])
     # 20 mm joints: square-cut 30 mm panels overlap across the roof's valley below 18.3 mm
     facetwb.make_panelset(lifting, thickness=30.0, gap=20.0)
     doc.recompute()

@@ -3,10 +3,13 @@
 
 import json
 import math
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+import facet
 from facet.errors import InputError
 from facet.mesh import PolyMesh
 from facet.plan import (
@@ -474,3 +477,31 @@ def test_a_nan_pin_is_refused_by_name(tmp_path, capsys):
     assert cli.main(["lift", str(plan), "-o", str(tmp_path / "o.obj"), "--pin", "0=0",
                      "--pin", "1=nan"]) == 2
     assert "pinned height of vertex 1 is nan" in capsys.readouterr().err
+
+
+def test_the_example_plan_lifts_as_the_readme_says(facet_command, tmp_path):
+    # examples/roof_plan.dxf and roof_heights.csv: the README's lift command
+    root = Path(__file__).resolve().parents[2]
+    plan, heights = root / "examples" / "roof_plan.dxf", root / "examples" / "roof_heights.csv"
+    out, report = tmp_path / "roof.obj", tmp_path / "roof.json"
+    done = facet_command("lift", plan, "-o", out, "--targets", heights, "--report", report)
+    assert done.returncode == 0, done.stderr
+    assert "left out 5 entities on layers that are off or frozen (CONSTRUCTION 5)" in done.stdout
+    data = json.loads(report.read_text())
+    assert (data["plan"]["vertices"], data["plan"]["faces"], data["dimension"]) == (12, 7, 7)
+    roof = facet.read_mesh(out)
+    assert float(np.max(facet.planarity(roof).max_rel)) <= 1e-9
+    pins = np.loadtxt(heights, delimiter=",", skiprows=1)
+    for x, y, z in pins:
+        v = int(np.argmin(np.hypot(roof.vertices[:, 0] - x, roof.vertices[:, 1] - y)))
+        assert abs(roof.vertices[v, 2] - z) <= 1e-3  # mm
+    # the files are what tools/make_example_plan.py writes (the plan of roof.FCStd)
+    sys.path.insert(0, str(root / "tools"))
+    try:
+        import make_example_plan
+    finally:
+        sys.path.remove(str(root / "tools"))
+    make_example_plan.write_plan_dxf(tmp_path / "again.dxf")
+    make_example_plan.write_heights_csv(tmp_path / "again.csv")
+    assert read_segments(tmp_path / "again.dxf") == read_segments(plan)
+    assert (tmp_path / "again.csv").read_text() == heights.read_text()
