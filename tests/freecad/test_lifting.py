@@ -238,6 +238,29 @@ class TestPlanGraphSources(DocumentTestCase):
         self.doc.recompute()
         self.assertEqual((plan.FaceCount, list(plan.Warnings)), (2, []))
 
+    def test_a_plan_torn_at_its_vertices_says_so(self):
+        # 2 x 2 bays exported unwelded (each face its own corners): lifted apart, the
+        # command line warned; the Lifting said nothing and looked fine
+        path = os.path.join(self.tmp.name, "torn.obj")
+        with open(path, "w", encoding="utf-8") as handle:
+            for j in range(2):
+                for i in range(2):
+                    for x, y in ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)):
+                        handle.write(f"v {3000.0 * x!r} {3000.0 * y!r} 0\n")
+            for k in range(4):
+                handle.write("f %d %d %d %d\n" % (4 * k + 1, 4 * k + 2, 4 * k + 3, 4 * k + 4))
+        plan = facetwb.make_plan_graph(file=path, doc=self.doc)
+        lifting = facetwb.make_lifting(plan, pins=[(0, 0, 3000), (6000, 0, 3300),
+                                                   (0, 6000, 3600)])
+        self.doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        expected = facet.lift(facet.read_plan(path), np.zeros(16)).warnings
+        self.assertEqual(len(expected), 2, expected)  # unjoined vertices, 4 pieces
+        self.assertEqual(list(lifting.Warnings), expected)
+        from facetwb.objects.lifting import lifting_summary
+
+        self.assertIn(f"  warning: {expected[0]}", lifting_summary(lifting))
+
     def test_arcs_refused_then_split(self):
         shape = self.doc.addObject("Part::Feature", "Arcs")
         arc = Part.ArcOfCircle(Part.Circle(App.Vector(0, 0, 0), App.Vector(0, 0, 1), 1000.0),

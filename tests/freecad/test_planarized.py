@@ -161,6 +161,26 @@ class TestPlanarizedMixedPolygons(DocumentTestCase):
         self.assertEqual(result.FaceCount, 7)
 
 
+class TestPlanarizedWarnings(DocumentTestCase):
+    def test_the_solver_s_warnings_reach_the_object_and_its_summary(self):
+        # three quads on one edge (a fin): the command line warned of the non-manifold
+        # edge; the Planarized object said nothing
+        vertices = [(0, 0, 0), (1000, 0, 0), (0, 1000, 0), (1000, 1000, 0), (0, -1000, 50),
+                    (1000, -1000, 0), (0, 0, 1000), (1000, 0, 1000), (3000, 3000, 0)]
+        faces = [[0, 1, 3, 2], [0, 4, 5, 1], [0, 1, 7, 6]]
+        mesh = facet.PolyMesh.from_faces(vertices, faces)
+        expected = facet.planarize(mesh).warnings
+        self.assertTrue(any("non-manifold" in w for w in expected), expected)
+        source = facetwb.make_polymesh(mesh, doc=self.doc)
+        result = facetwb.make_planarized(source)
+        self.doc.recompute()
+        self.assertTrue(result.isValid(), result.getStatusString())
+        self.assertEqual(list(result.Warnings), expected)
+        summary = facetwb.planarize_summary(result)
+        for text in expected:
+            self.assertIn(f"  warning: {text}", summary)
+
+
 class TestPlanarizedErrors(DocumentTestCase):
     def test_empty_source_is_an_error_not_a_crash(self):
         result = facetwb.make_planarized(importer.import_mesh(data_path("hypar.obj"), self.doc))

@@ -65,7 +65,11 @@ class Lifting(PolyMesh):
                 ("App::PropertyInteger", "TargetMaxVertex", "Where the largest distance is"),
                 ("App::PropertyFloat", "SolveSeconds", "Time of the factorization and solve"),
                 ("App::PropertyString", "FarTargets",
-                 "The targets the lifting misses most: vertex:distance, ...")):
+                 "The targets the lifting misses most: vertex:distance, ..."),
+                ("App::PropertyStringList", "Warnings",
+                 "What the lifting found worth telling: faces that meet in plan without "
+                 "sharing a vertex (lifted apart), a plan in separate pieces, a solve that "
+                 "missed planarity")):
             compat.add_property(obj, kind, name, "Result", doc, attr=output,
                                 editor_mode=read_only)
 
@@ -172,6 +176,22 @@ class Lifting(PolyMesh):
         obj.TargetMaxVertex = int(result.target_max_vertex)
         obj.SolveSeconds = float(result.factor_seconds + result.solve_seconds)
         obj.FarTargets = ", ".join(f"{v}:{d:.6g}" for v, d in result.far_targets(5))
+        warnings = self._unjoined(obj, plan) + list(result.warnings)
+        if list(obj.Warnings) != warnings:
+            obj.Warnings = warnings
+
+    def _unjoined(self, obj, plan):
+        """The plan's warnings as `facet lift` gives them for a plan mesh (faces that meet
+        in plan without sharing a vertex), kept between recomputes of the same plan."""
+        from facet.plan import plan_from_mesh
+
+        key = (np.asarray(plan.vertices[:, :2]).tobytes(), plan.face_start.tobytes(),
+               plan.face_vertices.tobytes())
+        cached = getattr(self, "_unjoined_cache", None)
+        if cached is None or cached[0] != key:
+            graph = plan_from_mesh(plan, source=obj.Plan.Label, check_overlap=False)
+            cached = self._unjoined_cache = (key, list(graph.warnings))
+        return list(cached[1])
 
 
 def is_lifting(obj):
@@ -190,4 +210,5 @@ def lifting_summary(obj):
     lines.append(f"  planarity max {obj.PlanarityMaxRel:.2g} of the edge length; targets missed "
                  f"by {obj.TargetRms.UserString} RMS, {obj.TargetMax.UserString} max at vertex "
                  f"{obj.TargetMaxVertex}")
+    lines.extend(f"  warning: {text}" for text in getattr(obj, "Warnings", ()))
     return "\n".join(lines)

@@ -13,7 +13,7 @@ import time
 import FreeCAD as App
 
 import facet
-from facet.planarize import ANDERSON_MAX, DATA_TERMS as _PRESETS
+from facet.planarize import ANDERSON_MAX, DATA_TERMS as _PRESETS, QUAD_LAYOUT_ADVICE
 from facetwb import compat, progress
 from facetwb.translation import translate
 from facetwb.recompute import failure, guarded
@@ -70,6 +70,9 @@ RESULT_OUTPUTS = [
     ("App::PropertyLength", "DisplacementMax", "Largest distance a vertex moved from the source"),
     ("App::PropertyLength", "DisplacementRms",
      "Root mean square of the distances the vertices moved"),
+    ("App::PropertyStringList", "Warnings",
+     "What the last solve found worth telling: non-manifold edges, vertices of no face, "
+     "coordinates too far from the origin for the tolerance, corners that closed"),
 ]
 
 
@@ -199,6 +202,8 @@ class Planarized(PolyMesh):
         obj.DataTangentUsed = float(result.data_tangent)
         obj.DisplacementMax = float(result.displacement_max)
         obj.DisplacementRms = float(result.displacement_rms)
+        if list(obj.Warnings) != list(result.warnings):
+            obj.Warnings = list(result.warnings)
 
 
 class _Follow:
@@ -398,4 +403,10 @@ def planarize_summary(obj):
                ", not re-solved: the solve stopped short of the tolerance")
         lines.append(f"  {obj.NarrowCorners} panel corners under 5 degrees that the source "
                      f"did not have{why} (see the quality report)")
+    for text in getattr(obj, "Warnings", ()):
+        if "that the input did not have" in text:  # said above; its advice is not
+            if QUAD_LAYOUT_ADVICE in text:
+                lines.append(f"  {QUAD_LAYOUT_ADVICE}")
+        else:
+            lines.append(f"  warning: {text}")
     return "\n".join(lines)
