@@ -367,6 +367,42 @@ def test_dxf_layers_that_are_off_or_frozen_are_not_read(facet_command, tmp_path)
     assert shown.n_faces > 2 and not shown.warnings
 
 
+def test_dxf_block_arrays_and_spline_fit_polylines_are_read_as_drawn(tmp_path):
+    # MINSERT (a block placed as rows x columns) gave its first cell only: 1 face for 6
+    # bays; a spline-fit POLYLINE was read through its control frame, which is not drawn
+    import ezdxf
+
+    document = ezdxf.new()
+    bay = document.blocks.new("BAY")
+    bay.add_lwpolyline([(0, 0), (4, 0), (4, 3), (0, 3)], close=True)
+    document.modelspace().add_blockref("BAY", (0, 0)).grid(size=(2, 3), spacing=(3, 4))
+    document.saveas(tmp_path / "array.dxf")
+    plan = read_plan(tmp_path / "array.dxf")
+    assert plan.n_faces == 6 and plan.n_vertices == 12
+    fitted = ezdxf.new()
+    line = fitted.modelspace().add_polyline2d([(0, 0), (10, 10), (20, 0)])  # the frame
+    for v in line.vertices:
+        v.dxf.flags |= 16
+    line.append_vertices([(0, 0), (10, 5), (20, 0)], dxfattribs={"flags": 8})
+    line.dxf.flags |= 4  # spline-fit
+    fitted.saveas(tmp_path / "fitted.dxf")
+    assert read_segments(tmp_path / "fitted.dxf") == [((0.0, 0.0), (10.0, 5.0)),
+                                                     ((10.0, 5.0), (20.0, 0.0))]
+
+
+def test_dxf_messages_name_an_entity_of_a_block_by_its_block_and_insert(tmp_path):
+    import ezdxf
+
+    document = ezdxf.new()
+    block = document.blocks.new("ROUND")
+    block.add_lwpolyline([(0, 0, 0.5), (1, 0, 0)], format="xyb")
+    insert = document.modelspace().add_blockref("ROUND", (0, 0))
+    document.saveas(tmp_path / "round.dxf")
+    with pytest.raises(PlanError, match=rf"LWPOLYLINE in block ROUND of INSERT "
+                       rf"{insert.dxf.handle} has arc segments"):
+        read_plan(tmp_path / "round.dxf")
+
+
 def test_dxf_entities_flagged_invisible_are_not_read():
     # group code 60 (ezdxf does not write it, other CAD programs do): checked in memory
     import ezdxf

@@ -247,7 +247,7 @@ class _DxfReader:
     def _hide(self, layer):
         self.hidden[layer] = self.hidden.get(layer, 0) + 1
 
-    def entities(self, entities, parent_layer=None, depth=0):
+    def entities(self, entities, parent_layer=None, depth=0, block=None):
         for entity in entities:
             layer = entity.dxf.get("layer", "0")
             if parent_layer is not None and layer == "0":
@@ -260,46 +260,62 @@ class _DxfReader:
                 if frozen:
                     self._hide(layer)
                     continue
-                self.insert(entity, layer, depth)
+                self.insert(entity, layer, depth, block)
             elif off or frozen:
                 self._hide(layer)
             else:
-                self.entity(entity, kind)
+                self.entity(entity, kind, block)
 
-    def insert(self, entity, layer, depth):
+    def insert(self, entity, layer, depth, block):
+        where = self._name(entity, "INSERT", block)
         if depth >= _DXF_BLOCK_DEPTH:
-            handle = entity.dxf.get("handle", "?")
-            raise PlanError(f"{self.path}: INSERT {handle}: blocks nested more than "
+            raise PlanError(f"{self.path}: {where}: blocks nested more than "
                             f"{_DXF_BLOCK_DEPTH} deep (a block that holds itself?)")
-        self.entities(entity.virtual_entities(), layer, depth + 1)
+        inside = f"block {entity.dxf.get('name', '?')} of {where}"
+        # an array of the block (MINSERT: rows x columns): every cell
+        cells = entity.multi_insert() if entity.mcount > 1 else (entity,)
+        for cell in cells:
+            self.entities(cell.virtual_entities(), layer, depth + 1, inside)
 
-    def entity(self, entity, kind):
+    @staticmethod
+    def _name(entity, kind, block):
+        """'LWPOLYLINE 2F', or for an entity of a block (which has no handle of its own)
+        'LWPOLYLINE in block B of INSERT 3A'."""
+        handle = entity.dxf.get("handle", None)
+        if handle:
+            return f"{kind} {handle}"
+        return f"{kind} in {block}" if block else kind
+
+    def entity(self, entity, kind, block=None):
         path, segments, arc_tolerance, ezpath = (self.path, self.segments, self.arc_tolerance,
                                                  self.ezpath)
-        handle = entity.dxf.get("handle", "?")
+        name = self._name(entity, kind, block)
         if kind == "LINE":
             s, e = entity.dxf.start, entity.dxf.end
             segments.append(((float(s.x), float(s.y)), (float(e.x), float(e.y))))
         elif kind in ("LWPOLYLINE", "POLYLINE"):
             if kind == "POLYLINE" and (entity.is_polygon_mesh or entity.is_poly_face_mesh):
-                raise PlanError(f"{path}: POLYLINE {handle} is a mesh, not a line drawing")
+                raise PlanError(f"{path}: {name} is a mesh, not a line drawing")
             bulges = ([b[0] for b in entity.get_points("b")] if kind == "LWPOLYLINE" else
                       [v.dxf.get("bulge", 0.0) for v in entity.vertices])
             if any(abs(b) > 0 for b in bulges):
                 if arc_tolerance is None:
                     raise PlanError(
-                        f"{path}: {kind} {handle} has arc segments (bulges): "
+                        f"{path}: {name} has arc segments (bulges): "
                         "give an arc tolerance to split arcs into straight segments"
                     )
                 segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance,
-                                         f"{path}: {kind} {handle}", corners=len(bulges)))
+                                         f"{path}: {name}", corners=len(bulges)))
                 return
             if kind == "LWPOLYLINE":
                 elevation = float(entity.dxf.get("elevation", 0.0))
                 points = [(float(x), float(y), elevation) for x, y in entity.get_points("xy")]
                 closed = entity.closed
             else:
-                points = [tuple(v.dxf.location) for v in entity.vertices]
+                # a spline-fit polyline is shown through its fitted vertices; its
+                # control frame's (flag 16) are not drawn
+                points = [tuple(v.dxf.location) for v in entity.vertices
+                          if not v.dxf.get("flags", 0) & 16]
                 closed = entity.is_closed
             if kind == "LWPOLYLINE" or entity.is_2d_polyline:
                 # in the polyline's own coordinate system (a mirrored one has z down):
@@ -312,11 +328,11 @@ class _DxfReader:
         elif kind in ("ARC", "CIRCLE", "ELLIPSE", "SPLINE"):
             if arc_tolerance is None:
                 raise PlanError(
-                    f"{path}: {kind} {handle} is curved: give an arc tolerance to split it "
+                    f"{path}: {name} is curved: give an arc tolerance to split it "
                     "into straight segments"
                 )
             segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance,
-                                     f"{path}: {kind} {handle}"))
+                                     f"{path}: {name}"))
         else:
             self.skipped[kind] = self.skipped.get(kind, 0) + 1
 
