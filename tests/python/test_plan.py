@@ -403,6 +403,25 @@ def test_dxf_messages_name_an_entity_of_a_block_by_its_block_and_insert(tmp_path
         read_plan(tmp_path / "round.dxf")
 
 
+def test_a_snap_distance_that_chains_endpoints_is_refused():
+    # a front edge drawn in 20 mm steps with a snap of 25: every endpoint was within 25 of
+    # the next, and single-linkage snapping merged the whole 10 m curve and both corners
+    # into one vertex: two triangles, exit 0
+    x = np.arange(0.0, 10001.0, 20.0)
+    front = np.column_stack([x, -300.0 * np.sin(np.pi * x / 10000.0)])
+    segments = list(zip(map(tuple, front[:-1]), map(tuple, front[1:])))
+    segments += [((10000.0, 0.0), (10000.0, 6000.0)), ((10000.0, 6000.0), (0.0, 6000.0)),
+                 ((0.0, 6000.0), (0.0, 0.0)), ((5000.0, -300.0), (5000.0, 6000.0))]
+    assert plan_from_segments(segments, snap=10.0).n_faces == 2
+    with pytest.raises(PlanError, match=r"the snap distance 25 joins 502 endpoints in a chain "
+                       r"10004.5 wide, from \(0, 0\) to \(10000, "):
+        plan_from_segments(segments, snap=25.0)
+    # endpoints scattered about a node within the snap distance are one vertex, as before
+    node = [((0.0, 0.0), (10.0, 0.0)), ((10.4, 0.3), (10.0, 10.0)), ((9.7, 10.2), (0.0, 10.0)),
+            ((0.2, 9.6), (0.0, 0.0))]
+    assert plan_from_segments(node, snap=0.6).n_faces == 1
+
+
 def test_dxf_entities_flagged_invisible_are_not_read():
     # group code 60 (ezdxf does not write it, other CAD programs do): checked in memory
     import ezdxf

@@ -434,6 +434,30 @@ def _snap_points(points, tolerance):
     return roots
 
 
+def _check_chains(points, roots, snap, where):
+    """Refuse a cluster of snapped endpoints wider than twice the snap distance: points
+    joined pairwise within it, in a chain (a curve drawn in steps shorter than the snap
+    distance), which would collapse whole edges into one vertex."""
+    lo = np.full((len(points), 2), np.inf)
+    hi = np.full((len(points), 2), -np.inf)
+    np.minimum.at(lo, roots, points)
+    np.maximum.at(hi, roots, points)
+    width = np.hypot(*(hi - lo).T)
+    width[~np.isfinite(width)] = 0.0
+    worst = int(np.argmax(width))
+    if width[worst] > 2.0 * snap:
+        members = points[roots == worst]
+        a = members[np.argmin(members[:, 0] + members[:, 1])] + 0.0  # (no "-0")
+        b = members[np.argmax(members[:, 0] + members[:, 1])] + 0.0
+        unique = len(np.unique(members, axis=0))
+        raise PlanError(
+            f"{where}the snap distance {snap:g} joins {unique} endpoints in a chain "
+            f"{width[worst]:.6g} wide, from ({a[0]:.6g}, {a[1]:.6g}) to ({b[0]:.6g}, "
+            f"{b[1]:.6g}): each is within the snap distance of the next, and all would "
+            "become one vertex; give a snap distance smaller than the drawing's shortest "
+            "edge")
+
+
 def _points_inside(tree, points, p, q, tolerance):
     """Indices of `points` (the KD-tree `tree` holds them) within `tolerance` of the inside
     of the segment p-q, not of its ends, in order along it."""
@@ -529,6 +553,7 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
     snapped = 0
     if snap > 0:
         roots = _snap_points(points, snap)
+        _check_chains(points, roots, snap, where)
         # Each cluster goes to its mean position.
         sums = np.zeros_like(points)
         counts = np.zeros(len(points))
