@@ -261,6 +261,34 @@ class TestPlanGraphSources(DocumentTestCase):
 
         self.assertIn(f"  warning: {expected[0]}", lifting_summary(lifting))
 
+    def test_a_curved_target_at_georeferenced_coordinates_keeps_its_precision(self):
+        # a sloped plane as a B-spline face, tessellated into FreeCAD's single-precision
+        # Mesh where it stood: at E 512 km, N 5,712 km in mm the heights were 16 mm off
+        # while TargetMax said 0; and a target whose outline is the plan's did not
+        # "cover" the plan's corners
+        east, north = 512000000.0, 5712000000.0
+        corners = {"a": (0, 0), "b": (10000, 0), "c": (10000, 6000), "d": (0, 6000),
+                   "e": (3000, 3000), "f": (7000, 3000)}
+        edges = [Part.makeLine(App.Vector(east + corners[u][0], north + corners[u][1], 0),
+                               App.Vector(east + corners[v][0], north + corners[v][1], 0))
+                 for u, v in ("ab", "bc", "cd", "da", "ae", "de", "ef", "bf", "cf")]
+        drawing = self.doc.addObject("Part::Feature", "GeoPlan")
+        drawing.Shape = Part.Compound(edges)
+        surface = Part.BSplineSurface()
+        poles = [[App.Vector(east + x, north + y, 1000 + 0.3 * x + 0.1 * y)
+                  for y in (0, 3000, 6000)] for x in (0, 5000, 10000)]
+        surface.buildFromPolesMultsKnots(poles, [3, 3], [3, 3], [0, 1], [0, 1], False, False,
+                                         2, 2)
+        target = self.doc.addObject("Part::Feature", "GeoTarget")
+        target.Shape = surface.toShape()
+        lifting = facetwb.make_lifting(facetwb.make_plan_graph([drawing], doc=self.doc),
+                                       targets=target)
+        self.doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        xyz = points_array(lifting)
+        want = 1000 + 0.3 * (xyz[:, 0] - east) + 0.1 * (xyz[:, 1] - north)
+        self.assertLess(np.abs(xyz[:, 2] - want).max(), 1e-6)
+
     def test_arcs_refused_then_split(self):
         shape = self.doc.addObject("Part::Feature", "Arcs")
         arc = Part.ArcOfCircle(Part.Circle(App.Vector(0, 0, 0), App.Vector(0, 0, 1), 1000.0),

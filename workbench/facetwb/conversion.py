@@ -54,12 +54,15 @@ def mesh_from_object(obj, tessellation_tolerance=0.0):
     raise SourceError(f"{obj.Label} is neither a polygon mesh, a Mesh nor a shape with faces")
 
 
-def mesh_from_mesh(mesh, label="mesh"):
-    """A triangle ``facet.PolyMesh`` from a FreeCAD ``Mesh.Mesh``."""
+def mesh_from_mesh(mesh, label="mesh", offset=None):
+    """A triangle ``facet.PolyMesh`` from a FreeCAD ``Mesh.Mesh`` (its points plus
+    ``offset``, added in double precision)."""
     points, facets = mesh.Topology
     if not facets:
         raise SourceError(f"{label} has no triangles")
     xyz = np.array([(p.x, p.y, p.z) for p in points], dtype=np.float64).reshape(-1, 3)
+    if offset is not None:
+        xyz += np.asarray(offset, dtype=np.float64)
     return facet.PolyMesh.from_faces(xyz, [list(f) for f in facets])
 
 
@@ -84,9 +87,15 @@ def mesh_from_shape(shape, tessellation_tolerance=0.0, label="shape"):
     tolerance = tessellation_tolerance
     if tolerance <= 0.0:
         tolerance = shape.BoundBox.DiagonalLength / 1000.0 or 0.1
-    mesh = MeshPart.meshFromShape(Shape=shape, LinearDeflection=tolerance,
+    # FreeCAD's Mesh holds single-precision points: tessellated where it stands, a
+    # shape at georeferenced coordinates (E 512 km in mm) came back rounded to tens of
+    # millimetres. Tessellated about its centre, then moved back in double precision.
+    centre = shape.BoundBox.Center
+    local = shape.copy()
+    local.translate(-centre)
+    mesh = MeshPart.meshFromShape(Shape=local, LinearDeflection=tolerance,
                                   AngularDeflection=0.5, Relative=False)
-    return mesh_from_mesh(mesh, label)
+    return mesh_from_mesh(mesh, label, offset=(centre.x, centre.y, centre.z))
 
 
 def _polygons_from_faces(shape, label):
