@@ -264,3 +264,33 @@ def test_weights_too_far_apart_are_refused_by_name(options, message):
     # at the limit: taken; a shape weight with no shape term is not read
     facet.planarize(mesh, max_iter=1, data_tangent=1e-3, laplacian=1e9)
     facet.planarize(mesh, max_iter=1, shape_weight=1e20)
+
+
+def test_a_reference_the_mesh_cannot_mean_is_refused_or_said(hypar, tmp_path, capsys):
+    # a reference in millimetres beside a mesh in metres pulled the whole facade onto it
+    # (3.7 km wide) and said "tolerance reached"; a reference with no area pulled it onto
+    # a line
+    from facet.io import write_mesh
+    from facet.surface import Surface
+
+    reference = tmp_path / "design_mm.obj"
+    write_mesh(hypar.with_vertices(hypar.vertices * 1000.0), reference)
+    source = tmp_path / "in.obj"
+    write_mesh(hypar, source)
+    code = main(["planarize", str(source), "-o", str(tmp_path / "out.obj"), "--data",
+                 "surface", "--reference", str(reference)])
+    err = capsys.readouterr().err
+    assert code == 2 and not (tmp_path / "out.obj").exists()
+    assert f"{reference}: the reference surface is " in err
+    assert "farther than the mesh is wide" in err and "other units" in err
+    line = Surface(np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0]]), [[0, 1, 2]])
+    with pytest.raises(facet.InputError, match="the reference surface has no area"):
+        facet.planarize(hypar, data="surface", reference=line)
+    # two mean edges above: solved, and said
+    edge = hypar.mean_edge_length()
+    r = facet.planarize(hypar, data="surface",
+                        reference=hypar.with_vertices(hypar.vertices + [0.0, 0.0, 2 * edge]))
+    assert any(w.startswith("the vertices are ") and "from the reference surface (RMS, 1.79 "
+               "mean edges): they are pulled onto it" in w for w in r.warnings), r.warnings
+    assert not any("reference" in w for w in facet.planarize(
+        hypar, data="surface", reference=hypar).warnings)

@@ -290,6 +290,34 @@ class PlanarizeResult:
         return float(np.sqrt(np.mean(self.displacement**2)))
 
 
+def _check_reference(surface, control, source=None):
+    """Refuse a reference surface the mesh cannot mean: one with no area, or one farther
+    from a vertex than the mesh is wide (another unit, another place: the solve pulls
+    every vertex onto it, and reports the tolerance reached). Returns a warning when the
+    vertices are, in RMS, more than a mean edge from it (they are pulled onto it)."""
+    where = f"{source}: " if source else ""
+    xyz = np.asarray(control.vertices, dtype=np.float64)
+    used = np.unique(np.asarray(control.face_vertices))
+    _, distance, _, normal = surface.closest(xyz[used])
+    if not np.any(normal):
+        raise InputError(f"{where}the reference surface has no area: each of its triangles "
+                         "is a point or a line")
+    low, high = xyz[used].min(axis=0), xyz[used].max(axis=0)
+    size = float(np.linalg.norm(high - low))
+    far = int(np.argmax(distance))
+    if distance[far] > size:
+        raise InputError(
+            f"{where}the reference surface is {distance[far]:.6g} from vertex {int(used[far])}, "
+            f"farther than the mesh is wide ({size:.6g}): is it in other units or in another "
+            "place? Every vertex would be pulled onto it")
+    edge = control.mean_edge_length()
+    rms = float(np.sqrt(np.mean(distance**2)))
+    if edge and rms > edge:
+        return [f"the vertices are {rms:.4g} from the reference surface (RMS, {rms / edge:.3g} "
+                "mean edges): they are pulled onto it"]
+    return []
+
+
 def _mesh_warnings(report):
     warnings = []
     if report.get("n_non_manifold_edges"):
@@ -534,8 +562,12 @@ class Planarizer:
             surface = reference if reference is not None else control
             if not isinstance(surface, Surface):
                 surface = Surface(surface)
+            info = getattr(reference, "info", None) or {}
+            self._reference_warnings = ([] if reference is None else
+                                        _check_reference(surface, control, info.get("source")))
             self._core.set_reference(surface._core)
         else:
+            self._reference_warnings = []
             self._core.set_reference(None)
         try:
             self._core.set_fixed(None if fixed is None else _vertex_indices("fixed", fixed))
@@ -581,8 +613,8 @@ class Planarizer:
             planarity=measured,
             displacement=displacement,
             options=options,
-            warnings=(list(self._warnings) + _quality_warnings(stats, options, stopped,
-                                                               self._quads)
+            warnings=(list(self._warnings) + list(getattr(self, "_reference_warnings", []))
+                      + _quality_warnings(stats, options, stopped, self._quads)
                       + _precision_warnings(stats, options, result_mesh, measured)),
             constraint_max_rel=stats["constraint_max_rel"],
             anderson=(stats["anderson_accepted"], stats["anderson_rejected"]),
