@@ -236,6 +236,32 @@ class TestPlanarizedErrors(DocumentTestCase):
 class TestPlanarizedTerms(DocumentTestCase):
     """The Terms properties reach the solver and show in the result."""
 
+    def test_terms_that_would_be_ignored_are_refused_by_name(self):
+        # a Reference with Data point, or a ShapeWeight with no shape term, gave the same
+        # result as without them, and no word
+        source = importer.import_mesh(data_path("hypar.obj"), self.doc)
+        design = importer.import_mesh(data_path("hypar.obj"), self.doc)
+        result = facetwb.make_planarized(source)
+        result.Reference = design
+        self.doc.recompute()
+        self.assertFalse(result.isValid())
+        self.assertIn(f"{result.Label}: Reference is the design surface that Data surface "
+                      "holds the vertices to; with Data point it would be ignored",
+                      result.getStatusString())
+        result.Data = "surface"
+        self.doc.recompute()
+        self.assertTrue(result.isValid(), result.getStatusString())
+        result.Reference = None
+        result.Data = "point"
+        result.ShapeWeight = 5.0
+        self.doc.recompute()
+        self.assertFalse(result.isValid())
+        self.assertIn("ShapeWeight weighs the shape term, which is off (Shape default, Data "
+                      "point)", result.getStatusString())
+        result.Shape = "asap"
+        self.doc.recompute()
+        self.assertTrue(result.isValid(), result.getStatusString())
+
     def test_terms_change_the_result(self):
         source = importer.import_mesh(data_path("hypar.obj"), self.doc)
         # one method for both, so that only the terms differ (auto may return another

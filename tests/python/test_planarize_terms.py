@@ -261,9 +261,25 @@ def test_weights_too_far_apart_are_refused_by_name(options, message):
         [[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6], [4, 5, 8, 7]])
     with pytest.raises(facet.errors.InputError, match=message):
         facet.planarize(mesh, **options)
-    # at the limit: taken; a shape weight with no shape term is not read
+    # at the limit: taken
     facet.planarize(mesh, max_iter=1, data_tangent=1e-3, laplacian=1e9)
-    facet.planarize(mesh, max_iter=1, shape_weight=1e20)
+
+
+def test_a_shape_weight_without_a_shape_term_is_refused(hypar, tmp_path, capsys):
+    # it was not read, silently: the same result with --shape-weight 50 or without
+    with pytest.raises(facet.FacetError, match=r"shape_weight weighs the shape term, which "
+                       r"is off \(data='point' sets no shape\): pass shape='asap'"):
+        facet.planarize(hypar, data="point", shape_weight=50.0)
+    with pytest.raises(facet.FacetError, match=r"is off \(shape='none'\)"):
+        facet.planarize(hypar, data="plane", shape="none", shape_weight=50.0)
+    facet.planarize(hypar, data="plane", shape_weight=0.5, max_iter=2)  # asap: read
+    from facet.io import write_mesh
+
+    write_mesh(hypar, tmp_path / "in.obj")
+    code = main(["planarize", str(tmp_path / "in.obj"), "-o", str(tmp_path / "out.obj"),
+                 "--shape-weight", "50"])
+    assert code == 2 and "--shape-weight weighs the shape term, which is off" in \
+        capsys.readouterr().err
 
 
 def test_a_reference_the_mesh_cannot_mean_is_refused_or_said(hypar, tmp_path, capsys):

@@ -469,6 +469,7 @@ def _read(args):
 def _term_options(args, mesh):
     """The solver terms asked for on the command line, checked against `mesh`."""
     from facet.io import read_mesh
+    from facet.planarize import DATA_TERMS
 
     options = {"data": args.data, "boundary": args.boundary}
     for name in ("shape", "shape_weight", "laplacian", "normal_laplacian", "boundary_fairness",
@@ -476,6 +477,10 @@ def _term_options(args, mesh):
         value = getattr(args, name)
         if value is not None:
             options[name] = value
+    if args.shape_weight is not None and (args.shape or DATA_TERMS.get(
+            args.data or "", {}).get("shape", "none")) == "none":
+        raise _UsageError("--shape-weight weighs the shape term, which is off: give --shape "
+                          "asap or arap with it (or --data plane or surface, which set asap)")
     if args.reference:
         if args.data != "surface":
             raise _UsageError("--reference needs --data surface")

@@ -552,6 +552,12 @@ class Planarizer:
             else:
                 options[name] = kind(value)
         _check_weight_span(options, data, face_weights)
+        if "shape_weight" in terms and options.get("shape", "none") == "none":
+            raise FacetError(
+                "shape_weight weighs the shape term, which is off "
+                + (f"(data={data!r} sets no shape)" if data is not None and "shape" not in terms
+                   else "(shape='none')")
+                + ": pass shape='asap' or 'arap' with it, or leave it out")
         surface = None
         if reference is not None and not options.get("surface_weight", 0.0) > 0.0:
             raise FacetError("reference is the design surface of data='surface' (or a "

@@ -275,6 +275,12 @@ def term_options(obj, mesh):
         options["shape"] = obj.Shape
     shape_weight = non_negative(obj, "ShapeWeight")
     if shape_weight > 0:
+        shape = obj.Shape if obj.Shape != "default" else _PRESETS.get(obj.Data, {}).get(
+            "shape", "none")
+        if shape == "none":
+            raise ValueError(f"{obj.Label}: ShapeWeight weighs the shape term, which is off "
+                             f"(Shape {obj.Shape}, Data {obj.Data}): set Shape to asap or arap, "
+                             "or ShapeWeight to 0")
         options["shape_weight"] = shape_weight
     for name, option, _tip in TERM_WEIGHTS:
         value = non_negative(obj, name)
@@ -302,7 +308,11 @@ def term_options(obj, mesh):
             raise ValueError(f"{obj.Label}: FaceWeights: face {bad[0]} has weight "
                              f"{weights[bad[0]]:g}; weights must be in [0, {FACE_WEIGHT_MAX:g}]")
         options["face_weights"] = weights
-    if obj.Data == "surface" and obj.Reference is not None:
+    if obj.Reference is not None:
+        if obj.Data != "surface":
+            raise ValueError(f"{obj.Label}: Reference is the design surface that Data surface "
+                             f"holds the vertices to; with Data {obj.Data} it would be "
+                             "ignored: set Data to surface, or clear Reference")
         options["reference"] = conversion.mesh_from_object(obj.Reference)
     return options
 
