@@ -310,3 +310,25 @@ def test_a_reference_the_mesh_cannot_mean_is_refused_or_said(hypar, tmp_path, ca
                "mean edges): they are pulled onto it" in w for w in r.warnings), r.warnings
     assert not any("reference" in w for w in facet.planarize(
         hypar, data="surface", reference=hypar).warnings)
+
+
+def test_options_that_cannot_do_what_they_say_are_refused(hypar, tmp_path, capsys):
+    # every vertex fixed ran 25 iterations to "planarity stopped improving"; --max-iter
+    # beside --iterations was not read; a time budget's stop was printed as "time"
+    with pytest.raises(facet.InputError, match=r"fixed holds every vertex of the faces "
+                       r"\(81\): no vertex can move"):
+        facet.planarize(hypar, fixed=range(hypar.n_vertices))
+    from facet.io import write_mesh
+
+    write_mesh(hypar, tmp_path / "in.obj")
+    out = str(tmp_path / "out.obj")
+    assert main(["planarize", str(tmp_path / "in.obj"), "-o", out, "--iterations", "5",
+                 "--max-iter", "3"]) == 2
+    assert "give --iterations (exactly N, no tolerance) or --max-iter" in capsys.readouterr().err
+    assert main(["planarize", str(tmp_path / "in.obj"), "-o", out, "--time-budget",
+                 "1e-9"]) == 0
+    text = capsys.readouterr().out
+    assert "time budget used before the tolerance" in text, text
+    assert "non-manifold edge (more" in facet.planarize(facet.PolyMesh.from_faces(
+        [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1)],
+        [[0, 1, 2], [0, 3, 1], [0, 1, 4]])).warnings[0]

@@ -50,6 +50,7 @@ STOP_REASONS = {
     "iterations": "requested number of iterations done",
     "stagnation": "planarity stopped improving",
     "cancelled": "cancelled",
+    "time": "time budget used before the tolerance",
 }
 
 
@@ -559,6 +560,9 @@ def run_planarize(args):
     from facet.report import planarize_report, write_json
 
     writer_for(args.output)  # refuse an unknown output format before the solve
+    if args.iterations is not None and args.max_iter is not None:
+        raise _UsageError("give --iterations (exactly N, no tolerance) or --max-iter (a limit "
+                          "on a solve to the tolerance), not both")
     check_files(reads=[("IN", args.input), ("--reference", args.reference)],
                 writes=[("-o", args.output), ("--report", args.report)])
     mesh = _read(args)

@@ -159,7 +159,8 @@ class PlanarizeResult:
         Iterations run.
     stop_reason : str
         ``"tolerance"`` (reached), ``"max_iter"``, ``"iterations"`` (a fixed
-        count was asked for) or ``"stagnation"`` (no more progress).
+        count was asked for), ``"stagnation"`` (no more progress) or ``"time"``
+        (the ``time_budget`` ran out first).
     converged : bool
         Whether the tolerance was reached.
     solve_seconds : float
@@ -322,8 +323,9 @@ def _mesh_warnings(report):
     warnings = []
     if report.get("n_non_manifold_edges"):
         a, b = report["first_non_manifold_edge"]
+        n = report["n_non_manifold_edges"]
         warnings.append(
-            f"{report['n_non_manifold_edges']} non-manifold edges "
+            f"{n} non-manifold edge{'s' if n != 1 else ''} "
             f"(more than two faces meet at edge {a}-{b})"
         )
     if report.get("n_isolated_vertices"):
@@ -585,6 +587,11 @@ class Planarizer:
             raise from_core(exc, source=self._source) from None
         except ValueError as exc:
             raise FacetError(str(exc)) from None
+        if fixed is not None and len(fixed):
+            used = np.unique(np.asarray(control.face_vertices))
+            if np.isin(used, np.asarray(fixed)).all():
+                raise InputError(f"fixed holds every vertex of the faces ({used.size}): no "
+                                 "vertex can move, so no face can be made flat")
         xyz_in = control.vertices
         xyz_out = np.empty_like(xyz_in)
         try:

@@ -106,7 +106,10 @@ class Surface:
             Index of the triangle the closest point lies on (see
             :attr:`triangle_faces` for its mesh face).
         normal : numpy.ndarray, shape (n, 3)
-            Unit normal of that triangle (0 0 0 for a zero-area one).
+            The surface's unit normal at the closest point: the triangle's
+            own inside it, the mean of the two triangles' on an edge they
+            share, the angle-weighted pseudo-normal at a corner (the same
+            whichever triangle is reported); 0 0 0 on a zero-area triangle.
         """
         query = np.ascontiguousarray(points, dtype=np.float64)
         if query.ndim == 1 and query.size == 3:
