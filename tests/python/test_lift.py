@@ -187,8 +187,14 @@ def test_bad_inputs():
         lift(mesh, np.zeros(6), [1, -1, 1, 1, 1, 1])
     xyz = mesh.vertices.copy()
     xyz[3:, :2] = [[1, 1], [2, 2], [3, 3]]  # collinear inner triangle
-    with pytest.raises(PlanError, match="face 0 has collinear corners"):
+    with pytest.raises(PlanError, match=r"face 0 has collinear corners .*; the face is "
+                       r"around \(2, 2\)"):  # (a drawing's user cannot see face numbers)
         lift(mesh.with_vertices(xyz), np.zeros(6))
+    # weights 1e30 apart gave faces 0.2 of an edge off planar, with exit 0
+    with pytest.raises(TargetError, match=r"the weight of vertex 3 is 1e-13, 1e-13 times "
+                       r"vertex 0's \(1\): weights more than 1e\+12 apart"):
+        lift(mesh, np.zeros(6), [1, 1, 1, 1e-13, 1, 1])
+    assert lift(mesh, np.arange(6.0), [1, 1, 1, 2e-12, 1, 1]).planarity_max_rel <= 1e-12
     with pytest.raises(InputError):
         Lifter(mesh).basis("smooth")
     assert issubclass(PlanError, InputError) and issubclass(TargetError, InputError)

@@ -25,6 +25,7 @@ import numpy as np
 from facet import _core
 from facet.errors import FacetError, InputError, from_core
 from facet.mesh import PolyMesh, next_corners
+from facet.plan import FREE_WEIGHT
 
 __all__ = ["BASES", "LiftResult", "Lifter", "LiftingSpace", "lift", "lifting_space",
            "TargetError", "NearlyLiftResult", "lift_nearly"]
@@ -54,6 +55,10 @@ def _plan_mesh(plan):
     return mesh
 
 
+#: The smallest weight a Lifter takes, relative to its largest.
+WEIGHT_RATIO_MIN = 1e-12
+
+
 def _vector(values, n, name):
     try:
         array = np.ascontiguousarray(values, dtype=np.float64).reshape(-1)
@@ -67,7 +72,7 @@ def _vector(values, n, name):
     return array
 
 
-def _core_error(exc, source):
+def _core_error(exc, source, plan=None):
     name = getattr(exc, "status_name", None)
     if name in ("FACET_ERROR_BAD_WEIGHT", "FACET_ERROR_BAD_TARGET"):
         error = TargetError(str(exc))
@@ -76,7 +81,15 @@ def _core_error(exc, source):
     if name == "FACET_ERROR_PLAN_DEGENERATE_FACE":
         from facet.plan import PlanError
 
-        error = PlanError(f"{source}: {exc}" if source else str(exc))
+        text = str(exc)
+        face = getattr(exc, "face", -1)
+        if plan is not None and 0 <= face < plan.n_faces:
+            # a drawing's user cannot see face numbers: where it is
+            corners = np.asarray(plan.vertices)[plan.face_vertices[
+                plan.face_start[face]:plan.face_start[face + 1]], :2]
+            x, y = corners.mean(axis=0)
+            text += f"; the face is around ({x:.6g}, {y:.6g})"
+        error = PlanError(f"{source}: {text}" if source else text)
         error.status_name = name
         return error
     return from_core(exc, source=source)
@@ -255,6 +268,16 @@ class Lifter:
             raise TargetError(
                 f"weight of vertex {int(bad[0])} is {self._weights[bad[0]]!r}: weights must be > 0"
             )
+        low, high = int(np.argmin(self._weights)), int(np.argmax(self._weights))
+        if self._weights[low] < WEIGHT_RATIO_MIN * self._weights[high]:
+            # measured: a 20 x 20 plan's faces stay planar to 1e-15 at 1e-14 and lose it
+            # below 1e-16 (6e-11 at 1e-20, 0.2 of an edge at 1e-30)
+            raise TargetError(
+                f"the weight of vertex {low} is {self._weights[low]:.3g}, "
+                f"{self._weights[low] / self._weights[high]:.3g} times vertex {high}'s "
+                f"({self._weights[high]:.3g}): weights more than {1 / WEIGHT_RATIO_MIN:g} "
+                "apart leave the faces' planarity to rounding (a vertex with no target "
+                f"already has {FREE_WEIGHT:g} times the weight given)")
         xyz = np.ascontiguousarray(mesh.vertices, dtype=np.float64).reshape(-1)
         try:
             self._core = _core.Lifter(
@@ -265,7 +288,7 @@ class Lifter:
                 0.0 if rank_tol is None else float(rank_tol),
             )
         except _core.CoreError as exc:
-            raise _core_error(exc, self._source) from None
+            raise _core_error(exc, self._source, mesh) from None
         self._pieces = _pieces(mesh)  # (the core checked the faces)
         self._isolated = int(mesh.n_vertices - np.unique(mesh.face_vertices).size)
         if self._pieces > 1:
