@@ -560,3 +560,16 @@ def test_the_example_plan_lifts_as_the_readme_says(facet_command, tmp_path):
     make_example_plan.write_heights_csv(tmp_path / "again.csv")
     assert read_segments(tmp_path / "again.dxf") == read_segments(plan)
     assert (tmp_path / "again.csv").read_text() == heights.read_text()
+
+
+def test_lifting_space_writes_twenty_liftings_unless_asked(facet_command, tmp_path):
+    # --basis fundamental wrote one OBJ per vertex by default: 961 files and 88 MB for a
+    # 30 x 30 plan
+    plan = tmp_path / "grid.csv"
+    lines = [f"0,{y!r},6,{y!r}\n" for y in range(7)] + [f"{x!r},0,{x!r},6\n" for x in range(7)]
+    plan.write_text("".join(lines))
+    done = facet_command("lifting-space", plan, "--basis", "fundamental", "-o",
+                         tmp_path / "space")
+    assert done.returncode == 0, done.stderr
+    assert len(list((tmp_path / "space").glob("fundamental_*.obj"))) == 20
+    assert "the first 20 of 49; --count K writes more" in done.stdout
