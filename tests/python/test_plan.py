@@ -573,3 +573,21 @@ def test_lifting_space_writes_twenty_liftings_unless_asked(facet_command, tmp_pa
     assert done.returncode == 0, done.stderr
     assert len(list((tmp_path / "space").glob("fundamental_*.obj"))) == 20
     assert "the first 20 of 49; --count K writes more" in done.stdout
+
+
+def test_a_target_drawn_on_the_plan_outline_covers_its_corners():
+    # a surface lofted from the plan's outline and exported with 3 decimals missed the
+    # corners by 0.4 micrometres: "does not cover plan vertex", exit 2
+    corners = [(0.0004, 0.0004), (10000.0004, 0.0004), (10000.0004, 6000.0004),
+               (0.0004, 6000.0004)]
+    plan = plan_from_segments(list(zip(corners, corners[1:] + corners[:1]))
+                              + [((0.0004, 0.0004), (10000.0004, 6000.0004))])
+    rounded = [(round(x, 3), round(y, 3), 1000 + 0.1 * round(x, 3)) for x, y in corners]
+    surface = PolyMesh.from_faces(rounded, [[0, 1, 2, 3]])
+    targets, _ = targets_from_mesh(plan, surface)
+    xy = plan.mesh.vertices[:, :2]
+    assert np.allclose(targets, 1000 + 0.1 * xy[:, 0], atol=1e-3)
+    # farther out than the tolerance: said, with the tolerance
+    with pytest.raises(InputError, match=r"does not cover plan vertex .* none within "
+                       r"1e-07 of its edge in plan"):
+        targets_from_mesh(plan, surface, tolerance=1e-7)

@@ -856,15 +856,36 @@ def _ray_cast_down(xy, vertices, triangles):
     return result
 
 
-def targets_from_mesh(plan, mesh, *, source=None):
+def _nearest_edge_height(point, vertices, triangles, tolerance):
+    """The height of the target's triangle edges at the point of them nearest `point` in
+    plan, if within `tolerance`; else NaN."""
+    best, height = tolerance, math.nan
+    for k in range(3):
+        a = vertices[triangles[:, k]]
+        b = vertices[triangles[:, (k + 1) % 3]]
+        d = b[:, :2] - a[:, :2]
+        length2 = np.einsum("ij,ij->i", d, d)
+        t = np.einsum("ij,ij->i", point - a[:, :2], d) / np.where(length2 > 0, length2, 1.0)
+        t = np.clip(t, 0.0, 1.0)
+        foot = a[:, :2] + t[:, None] * d
+        distance = np.hypot(*(foot - point).T)
+        i = int(np.argmin(distance))
+        if distance[i] <= best:
+            best, height = distance[i], float(a[i, 2] + t[i] * (b[i, 2] - a[i, 2]))
+    return height
+
+
+def targets_from_mesh(plan, mesh, *, source=None, tolerance=None):
     """Targets from a mesh.
 
     When the mesh has the plan's vertices in the same order (same count and
     x, y within 1e-9 of the plan's size) its z are the targets (the paper's
     Fig. 4 case). Otherwise each plan vertex takes the height of the mesh
     straight above or below it, the topmost hit (vertical ray cast against
-    the mesh's fan-triangulated faces); a vertex the mesh does not cover is
-    an error naming it.
+    the mesh's fan-triangulated faces). A vertex just outside the mesh in plan,
+    within `tolerance` of its edge (default 1e-6 of the plan's size: a surface
+    drawn on the plan's outline, rounded), takes the height of the nearest
+    edge point; a vertex farther out is an error naming it.
 
     Returns
     -------
@@ -880,13 +901,18 @@ def targets_from_mesh(plan, mesh, *, source=None):
     for face in mesh.faces():
         for k in range(1, len(face) - 1):
             triangles.append((face[0], face[k], face[k + 1]))
-    z = _ray_cast_down(xy, vertices, np.asarray(triangles, dtype=np.int64))
+    triangles = np.asarray(triangles, dtype=np.int64)
+    z = _ray_cast_down(xy, vertices, triangles)
+    tolerance = 1e-6 * size if tolerance is None else float(tolerance)
+    for v in np.flatnonzero(np.isnan(z)):
+        z[v] = _nearest_edge_height(xy[v], vertices, triangles, tolerance)
     missing = np.flatnonzero(np.isnan(z))
     if missing.size:
         v = int(missing[0])
         raise InputError(
             f"{where}the target surface does not cover plan vertex {v} at "
-            f"({xy[v, 0]:.6g}, {xy[v, 1]:.6g}) ({missing.size} vertices uncovered)"
+            f"({xy[v, 0]:.6g}, {xy[v, 1]:.6g}) ({missing.size} vertices uncovered, none "
+            f"within {tolerance:.3g} of its edge in plan)"
         )
     return z, np.ones(len(xy))
 
@@ -923,6 +949,6 @@ def read_targets(plan, path, *, tolerance=None):
     if suffix in (".obj", ".off", ".json"):
         from facet.io import read_mesh
 
-        return targets_from_mesh(plan, read_mesh(path), source=path)
+        return targets_from_mesh(plan, read_mesh(path), source=path, tolerance=tolerance)
     raise InputError(f"{path}: cannot read targets from {suffix or 'files without an extension'} "
                      "files (Facet reads .obj, .off, .json meshes and .csv points)")
