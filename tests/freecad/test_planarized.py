@@ -294,6 +294,12 @@ class TestPlanarizedTerms(DocumentTestCase):
         self.assertTrue(result.isValid(), result.getStatusString())
         rel = np.asarray(result.FacePlanarity)
         self.assertGreater(rel[5], rel[np.arange(64) != 5].max())
+        # the figure over all faces leaves the exempt face out (it was the exempt face's)
+        self.assertAlmostEqual(result.PlanarityMaxAbs.Value, rel[np.arange(64) != 5].max(),
+                               delta=1e-6 * rel[5])  # (FacePlanarity is in model units)
+        self.assertLessEqual(result.PlanarityMaxRel, 1e-6)
+        self.assertIn("1 exempt faces (FaceWeights 0) not counted",
+                      facetwb.planarize_summary(result))
         result.FaceWeights = [1.0] * 3
         self.doc.recompute()
         self.assertFalse(result.isValid())

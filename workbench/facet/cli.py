@@ -349,7 +349,9 @@ def print_planarize_summary(report, out=None):
         "planarity",
         f"before {_g(report['input_planarity_max_abs'])} "
         f"({_g(report['input_planarity_max_rel'])} of the edge), "
-        f"after {_g(report['planarity_max_abs'])} ({_g(report['planarity_max_rel'])} of the edge)",
+        f"after {_g(report['planarity_max_abs'])} ({_g(report['planarity_max_rel'])} of the edge)"
+        + (f"; {count_noun(report['exempt_faces'], 'exempt face')} (weight 0) not counted"
+           if report.get("exempt_faces") else ""),
     )
     reason = STOP_REASONS.get(report["stop_reason"], report["stop_reason"])
     if report["stop_reason"] != "iterations":

@@ -36,6 +36,10 @@ class PlanarityReport:
     diagonal : numpy.ndarray
         libigl's quad planarity (distance between the diagonals over their
         mean length) for quads, -1 for other faces.
+    exempt : numpy.ndarray of bool or None
+        Faces left out of the figures over all faces (``*_all``,
+        ``worst_faces``): those a planarization exempted (face weight 0),
+        which it does not make planar. Their own figures stay in the arrays.
     """
 
     max_abs: np.ndarray
@@ -44,6 +48,15 @@ class PlanarityReport:
     max_rel: np.ndarray
     rms_rel: np.ndarray
     diagonal: np.ndarray
+    exempt: np.ndarray = None
+
+    def _counted(self, values):
+        return values if self.exempt is None else values[~self.exempt]
+
+    @property
+    def n_exempt(self):
+        """Faces left out of the figures over all faces."""
+        return 0 if self.exempt is None else int(np.count_nonzero(self.exempt))
 
     @property
     def n_faces(self):
@@ -52,28 +65,34 @@ class PlanarityReport:
 
     @property
     def max_abs_all(self):
-        """Largest distance from plane over all faces, model units."""
-        return float(self.max_abs.max()) if self.n_faces else 0.0
+        """Largest distance from plane over all faces (not exempt), model units."""
+        values = self._counted(self.max_abs)
+        return float(values.max()) if values.size else 0.0
 
     @property
     def max_rel_all(self):
-        """Largest relative distance from plane over all faces."""
-        return float(self.max_rel.max()) if self.n_faces else 0.0
+        """Largest relative distance from plane over all faces (not exempt)."""
+        values = self._counted(self.max_rel)
+        return float(values.max()) if values.size else 0.0
 
     @property
     def rms_rel_all(self):
-        """RMS over all faces of each face's relative RMS distance."""
-        return float(np.sqrt(np.mean(self.rms_rel**2))) if self.n_faces else 0.0
+        """RMS over all faces (not exempt) of each face's relative RMS distance."""
+        values = self._counted(self.rms_rel)
+        return float(np.sqrt(np.mean(values**2))) if values.size else 0.0
 
     @property
     def diagonal_max(self):
-        """Largest libigl quad measure, or None when the mesh has no quad."""
-        quads = self.diagonal[self.diagonal >= 0.0]
+        """Largest libigl quad measure (faces not exempt), or None when there is no quad."""
+        diagonal = self._counted(self.diagonal)
+        quads = diagonal[diagonal >= 0.0]
         return float(quads.max()) if quads.size else None
 
     def worst_faces(self, count=5):
-        """Indices of the `count` least planar faces (relative), worst first."""
+        """Indices of the `count` least planar faces (relative, not exempt), worst first."""
         order = np.argsort(-self.max_rel, kind="stable")
+        if self.exempt is not None:
+            order = order[~self.exempt[order]]
         return [int(f) for f in order[:count]]
 
 

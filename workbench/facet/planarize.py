@@ -18,6 +18,7 @@ it is planar with fewer closed panels (``STAGE_FALLBACK``).
 True
 """
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -587,6 +588,14 @@ class Planarizer:
             raise from_core(exc, source=self._source) from None
         except ValueError as exc:
             raise FacetError(str(exc)) from None
+        # exempt faces (weight 0) are not made planar: left out of the figures
+        self._exempt = (None if face_weights is None else
+                        np.asarray(face_weights, dtype=np.float64).ravel() == 0.0)
+        if self._exempt is not None and not self._exempt.any():
+            self._exempt = None
+        elif self._exempt is not None and self._exempt.all():
+            raise InputError("face_weights: every face is exempt (weight 0), so there is "
+                             "nothing to make planar")
         if fixed is not None and len(fixed):
             used = np.unique(np.asarray(control.face_vertices))
             if np.isin(used, np.asarray(fixed)).all():
@@ -616,6 +625,8 @@ class Planarizer:
         result_mesh = control.with_vertices(xyz_out)
         displacement = np.linalg.norm(xyz_out - control.vertices, axis=1)
         measured = planarity(result_mesh, threads=threads)
+        if getattr(self, "_exempt", None) is not None:
+            measured = dataclasses.replace(measured, exempt=self._exempt)
         return PlanarizeResult(
             mesh=result_mesh,
             method=stats["method"],

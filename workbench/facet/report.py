@@ -154,7 +154,9 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         "planarity_max_abs": after.max_abs_all,
         "planarity_rms_rel": after.rms_rel_all,
         "planarity_diagonal_max": after.diagonal_max,
-        "worst_face": _worst_face(after.max_rel),
+        "worst_face": (after.worst_faces(1) or [None])[0] if after.n_exempt else
+        _worst_face(after.max_rel),
+        "exempt_faces": after.n_exempt,
         "displacement_rms": float(result.displacement_rms),
         "displacement_max": displacement_max,
         "displacement_max_rel": (

@@ -379,6 +379,7 @@ def planarize_summary(obj):
     if not obj.isValid():
         return failure(obj)
     source = obj.Source
+    exempt = sum(1 for w in obj.FaceWeights if w == 0.0)
     lines = [
         f"{obj.Label}: {obj.FaceCount} panels, {obj.VertexCount} vertices, "
         f"{method_text(obj)}, {obj.Iterations} iterations, "
@@ -386,7 +387,8 @@ def planarize_summary(obj):
         f"  planarity max {format_length(obj.PlanarityMaxAbs.Value)} "
         f"({obj.PlanarityMaxRel:.2g} of the edge length)"
         + (f", source {format_length(source.PlanarityMaxAbs.Value)}"
-           if source is not None and hasattr(source, "PlanarityMaxAbs") else ""),
+           if source is not None and hasattr(source, "PlanarityMaxAbs") else "")
+        + (f"; {exempt} exempt faces (FaceWeights 0) not counted" if exempt else ""),
         f"  vertices moved: max {format_length(obj.DisplacementMax.Value)}, "
         f"rms {format_length(obj.DisplacementRms.Value)}",
     ]
