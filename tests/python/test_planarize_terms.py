@@ -344,3 +344,26 @@ def test_options_that_cannot_do_what_they_say_are_refused(hypar, tmp_path, capsy
     assert "non-manifold edge (more" in facet.planarize(facet.PolyMesh.from_faces(
         [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1)],
         [[0, 1, 2], [0, 3, 1], [0, 1, 4]])).warnings[0]
+
+
+def test_the_report_measures_the_panels_against_the_reference_given(hypar, tmp_path, capsys):
+    # with a design surface given, only the distance from the input mesh was reported
+    # (0.46 here), not the distance from the design surface the panels were held to
+    from facet.io import write_mesh
+
+    write_mesh(hypar, tmp_path / "in.obj")
+    design = tmp_path / "design.obj"
+    write_mesh(hypar.with_vertices(hypar.vertices + [0.0, 0.0, 0.5]), design)
+    report = tmp_path / "r.json"
+    assert main(["planarize", str(tmp_path / "in.obj"), "-o", str(tmp_path / "out.obj"),
+                 "--data", "surface", "--reference", str(design), "--report",
+                 str(report)]) == 0
+    out = capsys.readouterr().out
+    data = json.loads(report.read_text())
+    assert data["data"] == "surface" and data["reference"] == str(design)
+    assert data["reference_distance_rms"] < 0.1 < data["quality"]["distance_rms"]
+    assert "reference     distance from the reference surface rms" in out
+    plain = facet.planarize(hypar)
+    from facet.report import planarize_report
+
+    assert "reference_distance_rms" not in planarize_report(hypar, plain)

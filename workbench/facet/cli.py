@@ -402,6 +402,9 @@ def print_planarize_summary(report, out=None):
         f"rms {_g(report['displacement_rms'])}, max {_g(report['displacement_max'])}{share}",
     )
     _quality_lines(out, report.get("quality"))
+    if report.get("reference_distance_max") is not None:
+        _line(out, "reference", f"distance from the reference surface rms "
+              f"{_g(report['reference_distance_rms'])}, max {_g(report['reference_distance_max'])}")
     for warning in report.get("warnings") or ():
         _line(out, "warning", warning)
     _line(out, "written", report["output"])
@@ -584,6 +587,10 @@ def run_planarize(args):
     report = planarize_report(
         mesh, result, input_path=args.input, output_path=args.output, input_planarity=before
     )
+    if args.reference:
+        report["reference"] = args.reference
+    if args.fixed:
+        report["fixed"] = options.get("fixed", [])
     if args.report:
         report["report"] = args.report
         write_json(report, args.report)

@@ -242,6 +242,10 @@ class PlanarizeResult:
         The control mesh the result was solved from.
     reference : facet.Surface or None
         The design surface the solve was held to, if any.
+    reference_given : bool
+        Whether that surface was given (``reference=``), not the control mesh's own.
+    data : str or None
+        The data preset asked for (``data=``).
     """
 
     mesh: object
@@ -267,6 +271,8 @@ class PlanarizeResult:
     data_tangent: float = None
     control: object = None
     reference: object = None
+    reference_given: bool = False
+    data: str = None
     _quality: object = field(default=None, repr=False)
 
     @property
@@ -555,6 +561,7 @@ class Planarizer:
             else:
                 options[name] = kind(value)
         _check_weight_span(options, data, face_weights)
+        self._data, self._reference_given = data, reference is not None
         if "shape_weight" in terms and options.get("shape", "none") == "none":
             raise FacetError(
                 "shape_weight weighs the shape term, which is off "
@@ -653,6 +660,8 @@ class Planarizer:
             data_tangent=float(stats["data_tangent"]),
             control=control,
             reference=surface,
+            reference_given=bool(getattr(self, "_reference_given", False)),
+            data=getattr(self, "_data", None),
         )
 
 

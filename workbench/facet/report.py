@@ -165,7 +165,16 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         "options": options,
         "warnings": list(getattr(result, "warnings", None) or []),
         "quality": quality_figures(result, input=source),
+        "data": getattr(result, "data", None),
     }
+    if getattr(result, "reference_given", False) and result.reference is not None:
+        # the design surface given: how far the panels are from it (the quality section's
+        # distance is from the input mesh's own surface)
+        from facet.quality import quality
+
+        to_design = quality(result.mesh, reference=result.reference).as_dict()
+        report["reference_distance_rms"] = to_design["distance_rms"]
+        report["reference_distance_max"] = to_design["distance_max"]
     report.update(_source_facts(source))
     return json_safe(report)
 
