@@ -94,6 +94,16 @@ class TestPlanGraphAndLifting(DocumentTestCase):
             self.assertLessEqual(lifting.PlanarityMaxRel, 1e-9)
             self.assertAlmostEqual(lifting.TargetMax.Value, 500.0, places=6)
             np.testing.assert_array_equal(after[:, :2], before[:, :2])
+            # more values than the plan has liftings beyond the planes: refused, not cut
+            extra = lifting.Dimension - 3
+            lifting.Mix = [500.0] + [0.0] * extra + [200.0]
+            self.doc.recompute()
+            self.assertFalse(lifting.isValid())
+            self.assertIn(f"Mix value {extra + 2} is 200, but the plan has only {extra} "
+                          "liftings that are not planes", lifting.getStatusString())
+            lifting.Mix = [500.0] + [0.0] * (extra + 1)  # zeros beyond are fine
+            self.doc.recompute()
+            self.assertTrue(lifting.isValid(), lifting.getStatusString())
         finally:
             lifting.Mix = []
             self.doc.recompute()

@@ -162,6 +162,12 @@ class Lifting(PolyMesh):
         mix = np.asarray(obj.Mix, dtype=np.float64)
         if mix.size and np.any(mix != 0):
             basis = self.mix_basis(plan, weights, mix.size)
+            beyond = np.flatnonzero(mix[basis.shape[0]:])
+            if beyond.size:
+                raise ValueError(
+                    f"{obj.Label}: Mix value {basis.shape[0] + int(beyond[0]) + 1} is "
+                    f"{mix[basis.shape[0] + beyond[0]]:g}, but the plan has only "
+                    f"{basis.shape[0]} liftings that are not planes: set it to 0")
             extra = mix[: basis.shape[0]] @ basis
             # a lifting: returned as it is, the misses against the targets
             result = lifter.solve(result.heights + extra).against(targets)
