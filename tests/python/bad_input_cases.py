@@ -211,16 +211,21 @@ def _targets_text(n=2):
                    for j in (0.0, 1.0, 2.0) for i in (0.0, 1.0, 2.0)[: n + 1])
 
 
-def dxf_text(segments):
-    """A DXF drawing (ezdxf, R2010) of the segments as LINE entities."""
+def dxf_text(segments, layer=None):
+    """A DXF drawing (ezdxf, R2010) of the segments as LINE entities; on `layer`, turned
+    off, if given."""
     import io
 
     import ezdxf
 
     doc = ezdxf.new("R2010")
     msp = doc.modelspace()
+    attributes = {}
+    if layer:
+        doc.layers.add(layer).off()
+        attributes["layer"] = layer
     for x1, y1, x2, y2 in segments:
-        msp.add_line((x1, y1), (x2, y2))
+        msp.add_line((x1, y1), (x2, y2), dxfattribs=attributes)
     stream = io.StringIO()
     doc.write(stream)
     return stream.getvalue()
@@ -277,6 +282,9 @@ def _plan_rows():
              ["DXF"], plan="plan.dxf")
     plan_row("plan_binary_garbage_dxf", bytes((i * 73 + 11) % 256 for i in range(512)),
              ["not a DXF file"], plan="plan.dxf")
+    # every line on a layer that is turned off: nothing is shown, nothing is read
+    plan_row("plan_every_layer_off_dxf", _LazyText(lambda: dxf_text(good, layer="OLD")),
+             ["no LINE", "on layers that are off or frozen (OLD"], plan="plan.dxf")
 
     def target_row(name, content, expect):
         row(name, {"plan.csv": text, "t.csv": content}, lift, ["{dir}/t.csv", *expect],
