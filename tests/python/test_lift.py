@@ -360,3 +360,28 @@ def test_the_lifting_space_progress_line():
     assert shown[1:3] == ["facet lifting-space: vertices searched 0 of %d" % n,
                           "facet lifting-space: vertices searched %d of %d" % (n, n)]
     assert shown[-1] == "" and shown[-2].strip() == ""  # erased at the end
+
+
+def test_lift_with_move_tolerance_shows_progress_on_a_terminal(tmp_path, monkeypatch, capsys):
+    # a 14k-face plan moved for 15 s with no progress line (lift_nearly had no callback)
+    import io
+    import sys
+
+    from facet.cli import main
+    from facet.io import write_mesh
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    write_mesh(nested_triangles(1e-5), tmp_path / "plan.obj")
+    terminal = Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    from facet.cli_progress import ProgressLine
+
+    monkeypatch.setattr(ProgressLine, "_due", lambda self, at_once=False: True)  # (fast)
+    code = main(["lift", str(tmp_path / "plan.obj"), "-o", str(tmp_path / "roof.obj"),
+                 "--pin", "0=0", "--pin", "1=0", "--pin", "3=1", "--pin", "4=3",
+                 "--move-tolerance", "1e-3"])
+    assert code in (0, 1)  # (1: moved further than the tolerance; the moves are reported)
+    assert "facet lift: moving the plan: iteration 1 of at most " in terminal.getvalue()

@@ -131,8 +131,14 @@ def run_lift(args):
     if args.move_tolerance is not None:
         from facet.lift import lift_nearly
 
-        nearly = lift_nearly(plan, targets, weights, tolerance=args.move_tolerance,
-                             rank_tol=args.rank_tol)
+        from facet.cli_progress import ProgressLine
+
+        line = ProgressLine(sys.stderr, prefix="facet lift: moving the plan")  # a terminal only
+        try:
+            nearly = lift_nearly(plan, targets, weights, tolerance=args.move_tolerance,
+                                 rank_tol=args.rank_tol, progress=line.progress)
+        finally:
+            line.close()
         result = nearly.result
     else:
         result = lift(plan, targets, weights, rank_tol=args.rank_tol)
