@@ -520,14 +520,11 @@ int32_t facet_surface_triangle_count(const facet_surface *surface);
 int32_t facet_surface_face(const facet_surface *surface, int32_t triangle);
 
 /* For n query points query[3n]: closest point on the surface (closest[3n]),
- * its distance (distance[n]), the triangle (triangle[n]) and the surface's
- * unit normal there (normal[3n]): the triangle's own inside it; on an edge
- * two triangles share (within 1e-9 of the triangle's longest edge), the
- * normalised sum of their normals; on a corner, the angle-weighted
- * pseudo-normal of the triangles meeting at its point. Corners are one point
- * when their coordinates are equal. So ties between the triangles at an edge
- * or a corner give one normal, in any units. 0 0 0 for a zero-area triangle;
- * any output may be NULL. Among equally close triangles one with area wins.
+ * its distance (distance[n]), the triangle (triangle[n]) and that
+ * triangle's unit normal (normal[3n], 0 0 0 for a zero-area triangle); any
+ * output may be NULL. Triangles within 1e-12 of the nearest distance (a
+ * query on a corner or an edge they share) are a tie: one with area wins,
+ * then the lowest triangle index, the same in any units or place.
  * A non-finite query point is FACET_ERROR_NONFINITE (vertex = its index),
  * outputs untouched. OpenMP over queries; results do not depend on
  * threads. */

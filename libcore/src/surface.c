@@ -30,14 +30,10 @@ struct facet_surface {
     int32_t *order;        /* tree slot -> triangle index */
     unsigned char *flat;   /* per tree slot: 1 when the triangle has zero area */
     double *normals;       /* 3 per triangle (by triangle index), unit or 0 */
-    int32_t *corner_vertex; /* 3 per tree slot: the corner's point (equal coordinates, one point) */
-    double *point_normals; /* 3 per point: angle-weighted pseudo-normal, unit or 0 */
     int32_t *face;         /* triangle -> mesh face, or NULL */
     node *nodes;
     int32_t n_nodes;
 };
-
-static int build_features(facet_surface *s);
 
 static double dot3(const double a[3], const double b[3])
 {
@@ -274,8 +270,6 @@ void facet_surface_free(facet_surface **surface)
     free(s->order);
     free(s->flat);
     free(s->normals);
-    free(s->corner_vertex);
-    free(s->point_normals);
     free(s->face);
     free(s->nodes);
     free(s);
@@ -385,10 +379,6 @@ static facet_status create_from_corners(int32_t nt, double *corners, int32_t *fa
         s->flat[i] = (nn[0] == 0.0 && nn[1] == 0.0 && nn[2] == 0.0);
     }
     s->corners = corners;
-    if (!build_features(s)) {
-        facet_surface_free(&s);
-        return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
-    }
     *out = s;
     return FACET_OK;
 }
@@ -529,166 +519,39 @@ int32_t facet_surface_face(const facet_surface *surface, int32_t triangle)
     return surface->face[triangle];
 }
 
-/* ---- features: points, edges and their normals -------------------------- */
-
-static uint64_t mix64(uint64_t h)
-{
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdULL;
-    h ^= h >> 33;
-    h *= 0xc4ceb9fe1a85ec53ULL;
-    return h ^ (h >> 33);
-}
-
-static uint64_t point_hash(const double *c)
-{
-    uint64_t h = 0x9e3779b97f4a7c15ULL;
-    for (int k = 0; k < 3; ++k) {
-        const double x = c[k] == 0.0 ? 0.0 : c[k]; /* -0 and 0 are one point */
-        uint64_t bits;
-        memcpy(&bits, &x, sizeof bits);
-        h = mix64(h ^ bits);
-    }
-    return h;
-}
-
-static size_t table_size(size_t n)
-{
-    size_t size = 16;
-    while (size < 2 * n)
-        size *= 2;
-    return size;
-}
-
-/* Points (corners of equal coordinates) and their angle-weighted
- * pseudo-normals; the corners are in tree order.
- * Points are numbered in the order of their first corner, so the numbering
- * depends on the input only. Returns 0 when out of memory. */
-static int build_features(facet_surface *s)
-{
-    const size_t nc = 3 * (size_t)s->n_triangles;
-    if (nc > (size_t)INT32_MAX)
-        return 0; /* (72 bytes of corners per triangle: far beyond memory first) */
-    const size_t size = table_size(nc), mask = size - 1;
-    int32_t *table = malloc(sizeof *table * size);
-    s->corner_vertex = malloc(sizeof *s->corner_vertex * nc);
-    if (!table || !s->corner_vertex) {
-        free(table);
-        return 0;
-    }
-    /* points: open addressing on the coordinates; the table holds a corner */
-    for (size_t i = 0; i < size; ++i)
-        table[i] = -1;
-    int32_t n_points = 0;
-    for (size_t c = 0; c < nc; ++c) {
-        const double *x = s->corners + 3 * c;
-        size_t at = (size_t)point_hash(x) & mask;
-        for (;;) {
-            const int32_t other = table[at];
-            if (other < 0) {
-                table[at] = (int32_t)c;
-                s->corner_vertex[c] = n_points++;
-                break;
-            }
-            const double *y = s->corners + 3 * (size_t)other;
-            if (x[0] == y[0] && x[1] == y[1] && x[2] == y[2]) {
-                s->corner_vertex[c] = s->corner_vertex[other];
-                break;
-            }
-            at = (at + 1) & mask;
-        }
-    }
-    free(table);
-    /* pseudo-normals: each corner's angle times its triangle's normal */
-    s->point_normals = calloc(3 * (size_t)(n_points ? n_points : 1), sizeof *s->point_normals);
-    if (!s->point_normals)
-        return 0;
-    for (int32_t slot = 0; slot < s->n_triangles; ++slot) {
-        if (s->flat[slot])
-            continue;
-        const double *t = s->corners + 9 * (size_t)slot, *n = s->normals + 3 * (size_t)s->order[slot];
-        for (int k = 0; k < 3; ++k) {
-            double e1[3], e2[3], x[3];
-            sub3(t + 3 * ((k + 1) % 3), t + 3 * k, e1);
-            sub3(t + 3 * ((k + 2) % 3), t + 3 * k, e2);
-            cross3(e1, e2, x);
-            const double angle = atan2(sqrt(dot3(x, x)), dot3(e1, e2));
-            double *pn = s->point_normals + 3 * (size_t)s->corner_vertex[3 * (size_t)slot + k];
-            for (int j = 0; j < 3; ++j)
-                pn[j] += angle * n[j];
-        }
-    }
-    for (int32_t v = 0; v < n_points; ++v) {
-        double *pn = s->point_normals + 3 * (size_t)v;
-        const double len = sqrt(dot3(pn, pn));
-        for (int j = 0; j < 3; ++j)
-            pn[j] = len > 0.0 ? pn[j] / len : 0.0;
-    }
-    return 1;
-}
-
-/* The surface's unit normal at c (normalised), its closest point on the
- * triangle in `slot`: its points' pseudo-normals (angle-weighted, Baerentzen
- * and Aanaes 2005) interpolated by c's barycentric coordinates (Phong), so
- * that the normal moves continuously over the surface instead of jumping at
- * every edge. At a corner it is the point's pseudo-normal, on an edge it
- * depends on the edge's two points only: triangles that tie there give the
- * same normal (before, the rounding's winner gave its own, different in mm and
- * in m). The triangle's own normal where the interpolation vanishes; 0 0 0 for
- * a zero-area triangle. */
-static void surface_normal(const facet_surface *s, int32_t slot, const double c[3], double out[3])
-{
-    const double *n = s->normals + 3 * (size_t)s->order[slot];
-    memcpy(out, n, 3 * sizeof *out);
-    if (s->flat[slot])
-        return;
-    const double *t = s->corners + 9 * (size_t)slot;
-    double v0[3], v1[3], v2[3];
-    sub3(t + 3, t, v0);
-    sub3(t + 6, t, v1);
-    sub3(c, t, v2);
-    const double d00 = dot3(v0, v0), d01 = dot3(v0, v1), d11 = dot3(v1, v1);
-    const double d20 = dot3(v2, v0), d21 = dot3(v2, v1);
-    const double denom = d00 * d11 - d01 * d01;
-    if (!(denom > 0.0))
-        return;
-    double w[3];
-    w[1] = (d11 * d20 - d01 * d21) / denom;
-    w[2] = (d00 * d21 - d01 * d20) / denom;
-    w[1] = w[1] < 0.0 ? 0.0 : (w[1] > 1.0 ? 1.0 : w[1]);
-    w[2] = w[2] < 0.0 ? 0.0 : (w[2] > 1.0 ? 1.0 : w[2]);
-    w[0] = 1.0 - w[1] - w[2];
-    if (w[0] < 0.0) { /* (rounding past the far edge) */
-        const double sum = w[1] + w[2];
-        w[1] /= sum, w[2] /= sum, w[0] = 0.0;
-    }
-    double m[3] = {0.0, 0.0, 0.0};
-    for (int k = 0; k < 3; ++k) {
-        const double *pn = s->point_normals + 3 * (size_t)s->corner_vertex[3 * (size_t)slot + k];
-        for (int j = 0; j < 3; ++j)
-            m[j] += w[k] * pn[j];
-    }
-    const double len = sqrt(dot3(m, m));
-    if (len > 1e-8)
-        for (int j = 0; j < 3; ++j)
-            out[j] = m[j] / len;
-}
-
 /* ---- queries ------------------------------------------------------------- */
 
+/* Squared distances (normalised: the surface is 1 wide) within this much of
+ * the nearest, relative and absolute, are a tie: a query on a corner or an edge
+ * that triangles share, where rounding alone told them apart. */
+#define TIE_REL 1e-12
+#define TIE_ABS 1e-24
+
+static double tie_bound(double nearest)
+{
+    return nearest + TIE_REL * nearest + TIE_ABS;
+}
+
+/* The closest triangle to p (normalised). Among triangles tied with the
+ * nearest, one with area wins over a zero-area one, whose normal says
+ * nothing, then the lowest triangle index: so the same triangle, and its
+ * normal, in any units or place (the order does not depend on them).
+ * Before, the first strictly closer one won, which rounding chose at the
+ * corners where a planarization's control vertices start: the surface term
+ * then took a different path in mm than in m. */
 static void query_one(const facet_surface *s, const double p[3], double best_point[3],
                       double *best_d2, int32_t *best_slot)
 {
     int32_t stack[STACK_SIZE];
     double stack_d[STACK_SIZE];
     int top = 0;
-    double best = DBL_MAX;
+    double nearest = DBL_MAX, best = DBL_MAX, bound = DBL_MAX;
     int32_t slot = -1;
     stack[top] = 0;
     stack_d[top++] = box_dist2(&s->nodes[0], p);
     while (top > 0) {
         --top;
-        if (stack_d[top] > best)
+        if (stack_d[top] > bound)
             continue;
         const node *nd = &s->nodes[stack[top]];
         if (nd->left < 0) {
@@ -700,12 +563,20 @@ static void query_one(const facet_surface *s, const double p[3], double best_poi
                 else
                     closest_on_triangle(p, t, q);
                 const double d = dist2(p, q);
-                /* strictly closer; or as close (to rounding) replacing a zero-area
-                 * triangle, whose normal says nothing; ties otherwise keep the
-                 * lower tree slot, which is fixed by the input */
-                const int closer = d < best;
-                if (closer || (slot >= 0 && s->flat[slot] && !s->flat[i] &&
-                               d <= best * (1.0 + 1e-12))) {
+                if (d > bound)
+                    continue;
+                int take;
+                if (slot < 0 || tie_bound(d) < nearest) {
+                    take = 1; /* clearly the nearest */
+                } else {
+                    take = s->flat[slot] != s->flat[i] ? !s->flat[i]
+                                                       : s->order[i] < s->order[slot];
+                    /* the one taken before may be no tie of a nearer one met since */
+                    take = take || best > tie_bound(fmin(nearest, d));
+                }
+                nearest = fmin(nearest, d);
+                bound = tie_bound(nearest);
+                if (take) {
                     best = d;
                     memcpy(best_point, q, sizeof q);
                     slot = i;
@@ -719,14 +590,14 @@ static void query_one(const facet_surface *s, const double p[3], double best_poi
         if (top + 2 > STACK_SIZE)
             break; /* cannot happen: depth <= log2(n) + 1 < 64 */
         if (dl <= dr) {
-            if (dr <= best)
+            if (dr <= bound)
                 stack[top] = nd->right, stack_d[top++] = dr;
-            if (dl <= best)
+            if (dl <= bound)
                 stack[top] = nd->left, stack_d[top++] = dl;
         } else {
-            if (dl <= best)
+            if (dl <= bound)
                 stack[top] = nd->left, stack_d[top++] = dl;
-            if (dr <= best)
+            if (dr <= bound)
                 stack[top] = nd->right, stack_d[top++] = dr;
         }
     }
@@ -791,13 +662,9 @@ facet_status facet_surface_closest(const facet_surface *surface, int64_t n, cons
             distance[i] = (sqrt(d2) + beyond) / s->scale;
         if (triangle)
             triangle[i] = t;
-        if (normal) {
-            double *out = normal + 3 * (size_t)i;
-            if (slot >= 0)
-                surface_normal(s, slot, c, out);
-            else
-                out[0] = out[1] = out[2] = 0.0;
-        }
+        if (normal)
+            for (int k = 0; k < 3; ++k)
+                normal[3 * (size_t)i + k] = t >= 0 ? s->normals[3 * (size_t)t + k] : 0.0;
     }
     return FACET_OK;
 }

@@ -124,77 +124,63 @@ static void random_surface_test(int nt, double offset, double size)
     free(xyz), free(tri), free(q), free(cl), free(d), free(nrm), free(d1), free(ti), free(t1);
 }
 
-/* A pyramid's four sloped triangles around its apex (5 points, the apex shared) and a
- * fifth triangle beside one base edge, folded down, each triangle with corners of
- * its own (a soup: points are joined by their coordinates), in the units `scale` and
- * at `offset`. Normals at: the apex, the middle of edge 0-1 (two sloped triangles),
- * the middle of edge 1-2 (a sloped one and the folded one), a point inside the first
- * triangle, a point 1e-13 off the apex, and points 1e-9 on either side of edge 0-1. */
-static void pyramid_normals(double scale, double offset, double n[21])
+/* A pyramid's four sloped triangles around its apex, each with corners of its own, in
+ * the units `scale` and at `offset`; queries on the apex, on the edge the first two
+ * share, and 1e-13 off the apex. Each is a tie that rounding alone decided before (the
+ * first strictly closer triangle won): now the lowest triangle index wins, in any units,
+ * so the normal (a planarization's tangent plane there) is the same in mm and in m. */
+static void tie_test(double scale, double offset)
 {
-    const double base[5][3] = {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
-    const int32_t faces[5][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}, {1, 5, 2}};
-    double pts[6][3];
-    for (int v = 0; v < 5; ++v)
-        for (int k = 0; k < 3; ++k)
-            pts[v][k] = base[v][k];
-    pts[5][0] = 1.2, pts[5][1] = 1.2, pts[5][2] = -0.8; /* folded down beyond edge 1-2 */
-    double xyz[45];
-    int32_t tri[15];
-    for (int t = 0; t < 5; ++t)
-        for (int c = 0; c < 3; ++c) {
-            for (int k = 0; k < 3; ++k)
-                xyz[9 * t + 3 * c + k] = pts[faces[t][c]][k] * scale + offset;
-            tri[3 * t + c] = 3 * t + c;
+    const double apex[3] = {0, 0, 1};
+    const double base[4][3] = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+    double xyz[36];
+    int32_t tri[12];
+    for (int t = 0; t < 4; ++t) {
+        const double *c[3] = {apex, base[t], base[(t + 1) % 4]};
+        for (int k = 0; k < 3; ++k) {
+            for (int j = 0; j < 3; ++j)
+                xyz[9 * t + 3 * k + j] = c[k][j] * scale + offset;
+            tri[3 * t + k] = 3 * t + k;
         }
-    facet_surface *s = NULL;
-    facet_error e;
-    CHECK_STATUS(facet_surface_create(15, xyz, 5, tri, &s, &e), FACET_OK);
-    const double at[7][3] = {{0, 0, 1}, {0.5, 0, 0.5}, {0.5, 0.5, 0}, {0.4, 0.3, 0.3},
-                             {1e-13, 2e-13, 1.0}, {0.5, 1e-9, 0.5}, {0.5, -1e-9, 0.5}};
-    double q[21];
-    for (int i = 0; i < 7; ++i)
-        for (int k = 0; k < 3; ++k)
-            q[3 * i + k] = at[i][k] * scale + offset;
-    CHECK_STATUS(facet_surface_closest(s, 7, q, 1, NULL, NULL, NULL, n, &e), FACET_OK);
-    facet_surface_free(&s);
-}
-
-/* The normal at a closest point is the points' pseudo-normals interpolated across the
- * triangle: at a corner, the same whichever triangle the rounding picked, so the same
- * in mm, in m and at georeferenced coordinates (before, the winner's own normal); and
- * continuous across edges (before, it jumped from one face's normal to the next). */
-static void interpolated_normals_test(void)
-{
-    double m[21];
-    pyramid_normals(1.0, 0.0, m);
-    /* the apex: four equal angles, normals (+-1, +-1, 1) / sqrt 3: their mean is z */
-    CHECK_NEAR(m[0], 0.0, 1e-12);
-    CHECK_NEAR(m[1], 0.0, 1e-12);
-    CHECK_NEAR(m[2], 1.0, 1e-12);
-    /* 1e-13 off the apex: the apex's */
-    for (int k = 0; k < 3; ++k)
-        CHECK_NEAR(m[12 + k], m[k], 1e-12);
-    /* on either side of edge 0-1: the same to 1e-8 (face normals 70.5 degrees apart) */
-    for (int k = 0; k < 3; ++k) {
-        CHECK_NEAR(m[15 + k], m[18 + k], 1e-8);
-        CHECK_NEAR(m[15 + k], m[3 + k], 1e-8);
     }
-    for (int i = 0; i < 7; ++i)
-        CHECK_NEAR(dot(m + 3 * i, m + 3 * i), 1.0, 1e-12);
-    /* the same normals in other units and places */
-    const double scales[3] = {1000.0, 1000.0, 1e-3}, offsets[3] = {0.0, 5.7e6, -2.0};
-    for (int u = 0; u < 3; ++u) {
-        double n[21];
-        pyramid_normals(scales[u], offsets[u], n);
-        for (int k = 0; k < 21; ++k)
-            CHECK_NEAR(n[k], m[k], offsets[u] != 0.0 ? 1e-6 : 1e-12);
+    /* triangle 3 first: the lowest index must win whatever the order seen */
+    int32_t order[12];
+    for (int k = 0; k < 12; ++k)
+        order[k] = tri[(k + 9) % 12];
+    for (int pass = 0; pass < 2; ++pass) {
+        facet_surface *s = NULL;
+        facet_error e;
+        CHECK_STATUS(facet_surface_create(12, xyz, 4, pass ? order : tri, &s, &e), FACET_OK);
+        const double at[3][3] = {{0, 0, 1}, {0.5, 0, 0.5}, {1e-13, -2e-13, 1}};
+        double q[9], n[9];
+        int32_t t[3];
+        for (int i = 0; i < 3; ++i)
+            for (int k = 0; k < 3; ++k)
+                q[3 * i + k] = at[i][k] * scale + offset;
+        CHECK_STATUS(facet_surface_closest(s, 3, q, 1, NULL, NULL, t, n, &e), FACET_OK);
+        /* apex: all four tie; edge 0-1 of triangle 0 (apex to base[0]) is shared with
+         * triangle 3; the point just off the apex lies within the tie */
+        CHECK(t[0] == 0);
+        CHECK(t[1] == 0);
+        CHECK(t[2] == 0);
+        /* triangle 0: the first face, normal (1, 1, 1) / sqrt 3; in pass 1 the fourth,
+         * (1, -1, 1) / sqrt 3 */
+        const double r3 = 1.0 / sqrt(3.0);
+        for (int i = 0; i < 3; ++i) {
+            CHECK_NEAR(n[3 * i + 0], r3, 1e-12);
+            CHECK_NEAR(n[3 * i + 1], pass ? -r3 : r3, 1e-12);
+            CHECK_NEAR(n[3 * i + 2], r3, 1e-12);
+        }
+        facet_surface_free(&s);
     }
 }
 
 int main(void)
 {
-    interpolated_normals_test();
+    tie_test(1.0, 0.0);
+    tie_test(1000.0, 0.0);
+    tie_test(1000.0, 5.7e6); /* millimetres, georeferenced */
+    tie_test(1e-3, -2.0);
     random_surface_test(1, 0.0, 1.0);
     random_surface_test(7, 0.0, 1.0);
     random_surface_test(500, 0.0, 1.0);

@@ -118,7 +118,7 @@ def test_hypar32_default_has_no_new_narrow_corner(hypar32):
 @pytest.mark.parametrize("name, data, angle, stage", [
     ("heart.obj", "plane", 5.0, {}),  # the default's schedule, held more firmly
     # the floor's recipe (1.2 times the angle); at 5 degrees cmc1 now recovers at the
-    # preset's own weight, since the surface's normals are interpolated
+    # preset's own weight, since ties on the design surface no longer go by rounding
     ("cmc1.obj", "surface", 7.0, {"hold_tol": 0.003, "angle_floor": 8.4}),
 ])
 def test_sliding_vertices_held_more_firmly_when_every_resolve_closed_a_panel(

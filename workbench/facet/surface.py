@@ -106,10 +106,10 @@ class Surface:
             Index of the triangle the closest point lies on (see
             :attr:`triangle_faces` for its mesh face).
         normal : numpy.ndarray, shape (n, 3)
-            The surface's unit normal at the closest point: the angle-weighted
-            pseudo-normals of the triangle's corners, blended by the point's
-            barycentric coordinates (continuous across edges; at a corner the
-            same whichever triangle is reported); 0 0 0 on a zero-area triangle.
+            Unit normal of that triangle (0 0 0 for a zero-area one). On a
+            corner or an edge that triangles share, the one with the lowest
+            index among them (after those with area) is reported, in any
+            units or place.
         """
         query = np.ascontiguousarray(points, dtype=np.float64)
         if query.ndim == 1 and query.size == 3:
