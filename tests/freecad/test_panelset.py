@@ -322,6 +322,20 @@ class TestPanelSetOnPlanarized(DocumentTestCase):
             s.check(True)
 
 
+    def test_overlapping_joints_that_no_gap_clears_are_a_warning(self):
+        # a planarized hypar, 20 mm square panels, no gap: the clearing gap is None (no
+        # gap found) and its warning raised TypeError formatting it: no PanelSet at all
+        source = facetwb.make_polymesh(facet.read_mesh(data_path("hypar.obj")), doc=self.doc)
+        planar = facetwb.make_planarized(source, tolerance=1e-7)
+        ps = facetwb.make_panelset(planar, thickness=20.0)
+        self.doc.recompute()
+        self.assertTrue(ps.isValid(), ps.getStatusString())
+        self.assertGreater(ps.OverlappingJoints, 0)
+        self.assertEqual(ps.ClearingGap.Value, 0.0)
+        self.assertTrue(any("no gap" in w or "thinner panels" in w for w in ps.Warnings),
+                        list(ps.Warnings))
+
+
 class TestPanelSetJoints(DocumentTestCase):
     """Square joints that overlap on the inner side of a fold, in a document of their own."""
 
