@@ -223,6 +223,7 @@ def run(out_dir):
     check_stop_and_keep(check)
     check_keep_press_order(check)
     check_planarize_progress_finer(check, out_dir)
+    check_examples_open_with_view_providers(check, out_dir)
     import ui_checks
 
     ui_checks.run(check, out_dir, sys.modules[__name__])
@@ -256,6 +257,43 @@ def recompute_recording_dialog(doc, out_dir, shots, buttons=None):
         reporter.say = recording_say
         doc.recompute()
     return shown, saved
+
+
+def check_examples_open_with_view_providers(check, out_dir):
+    """The example documents are saved by freecadcmd (tools/make_examples.py), without
+    GuiDocument.xml: opened in the GUI, their Facet objects had no view provider (nothing
+    drawn, no colour map, no task panel). They get their own once the document loads."""
+    import time
+
+    import FreeCAD as App
+    import FreeCADGui as Gui
+
+    wanted = {"Facet::PolyMesh": "ViewProviderPolyMesh",
+              "Facet::Planarized": "ViewProviderPlanarized",
+              "Facet::PlanGraph": "ViewProviderPlanGraph",
+              "Facet::Lifting": "ViewProviderLifting",
+              "Facet::PanelSet": "ViewProviderPanels", "Facet::CutSheets": "ViewProviderPanels"}
+    for name in ("facade.FCStd", "roof.FCStd"):
+        doc = App.openDocument(os.path.join(ROOT, "examples", name))
+        for _ in range(20):  # the providers come once the event loop runs
+            Gui.updateGui()
+            time.sleep(0.01)
+        facet_objects = [o for o in doc.Objects
+                         if getattr(getattr(o, "Proxy", None), "Type", "").startswith("Facet::")]
+        missing = [o.Label for o in facet_objects
+                   if type(o.ViewObject.Proxy).__name__ != wanted.get(o.Proxy.Type)]
+        check(facet_objects and not missing,
+              f"{name}: every Facet object has its view provider ({missing or 'all'})")
+        planarized = [o for o in facet_objects if o.Proxy.Type in ("Facet::Planarized",
+                                                                      "Facet::Lifting")]
+        check(all(o.ViewObject.DisplayMode for o in planarized)
+              and all("Planarity" in o.ViewObject.listDisplayModes() for o in planarized),
+              f"{name}: its results offer the planarity map")
+        Gui.ActiveDocument.ActiveView.viewIsometric()
+        Gui.SendMsgToActiveView("ViewFit")
+        path = os.path.join(out_dir, f"example_{name.split('.')[0]}.png")
+        save_view(Gui.ActiveDocument.ActiveView, path)
+        App.closeDocument(doc.Name)
 
 
 def check_planarize_progress(check, out_dir):

@@ -42,6 +42,9 @@ class _Proxy:
 
     def onDocumentRestored(self, obj):
         self.init_properties(obj)
+        from facetwb.viewproviders import restore
+
+        restore.schedule(obj)  # a document saved without the GUI has no view provider
 
     def onChanged(self, obj, prop):
         pass

@@ -65,6 +65,9 @@ class PolyMesh:
 
     def onDocumentRestored(self, obj):
         self.init_properties(obj)
+        from facetwb.viewproviders import restore
+
+        restore.schedule(obj)  # a document saved without the GUI has no view provider
 
     # --- recompute ------------------------------------------------------------------------
 
