@@ -347,9 +347,10 @@ def test_dxf_layers_that_are_off_or_frozen_are_not_read(facet_command, tmp_path)
     plan = read_plan(tmp_path / "plan.dxf")
     assert plan.n_faces == 2  # the square split by the block's line on PANELS only
     assert sorted(len(f) for f in plan.mesh.faces()) == [4, 4]
+    # (named as the layer table spells them, whatever the entities' spelling)
     assert plan.warnings[0] == (
-        "left out 4 entities on layers that are off or frozen (Grid 2, Blocks 1, "
-        "CONSTRUCTION 1): turn a layer on (and thaw it) to read what is drawn on it")
+        "left out 4 entities on layers that are off or frozen (grid 2, Blocks 1, "
+        "Construction 1): turn a layer on (and thaw it) to read what is drawn there")
     assert read_segments(tmp_path / "plan.dxf", notes=None)  # notes are optional
     # both commands say so
     for command in (["lift", "-o", tmp_path / "roof.obj", "--pin", "0=0", "--pin", "1=1",
@@ -414,7 +415,7 @@ def test_a_snap_distance_that_chains_endpoints_is_refused():
                  ((0.0, 6000.0), (0.0, 0.0)), ((5000.0, -300.0), (5000.0, 6000.0))]
     assert plan_from_segments(segments, snap=10.0).n_faces == 2
     with pytest.raises(PlanError, match=r"the snap distance 25 joins 502 endpoints in a chain "
-                       r"10004.5 wide, from \(0, 0\) to \(10000, "):
+                       r"10000 wide, from \(0, 0\) to \(10000, "):
         plan_from_segments(segments, snap=25.0)
     # endpoints scattered about a node within the snap distance are one vertex, as before
     node = [((0.0, 0.0), (10.0, 0.0)), ((10.4, 0.3), (10.0, 10.0)), ((9.7, 10.2), (0.0, 10.0)),
@@ -432,8 +433,11 @@ def test_dxf_entities_flagged_invisible_are_not_read():
     document = ezdxf.new()
     document.modelspace().add_line((0, 0), (1, 0))
     document.modelspace().add_line((0, 1), (1, 1), dxfattribs={"invisible": 1})
-    segments = _dxf_model_segments("plan.dxf", document, None, ezpath)
+    notes = []
+    segments = _dxf_model_segments("plan.dxf", document, None, ezpath, notes)
     assert segments == [((0.0, 0.0), (1.0, 0.0))]
+    assert notes == ["left out 1 entity flagged invisible: make the entity visible to read "
+                     "what is drawn there"]
 
 
 def test_dxf_with_everything_hidden_says_so(tmp_path):
@@ -612,3 +616,25 @@ def test_free_vertices_do_not_pull_the_pins_off():
     result = lift(plan, targets, weights)
     misses = [abs(result.heights[v] - z) for v, z in pins.items()]
     assert max(misses) < 1e-5, misses
+
+
+def test_just_outside_a_target_with_a_fascia_takes_the_topmost_edge():
+    # a flat roof at z = 10 with a vertical fascia down to 0 on its east edge, the plan's
+    # east corners 1e-7 outside it: the height was 10 or 0 by the faces' order (review)
+    corners = [(0, 0), (10 + 1e-7, 0), (10 + 1e-7, 6), (0, 6)]
+    plan = plan_from_segments(list(zip(corners, corners[1:] + corners[:1])))
+    xyz = np.array([(0, 0, 10), (10, 0, 10), (10, 6, 10), (0, 6, 10), (10, 0, 0), (10, 6, 0)],
+                   float)
+    for faces in ([[0, 1, 2, 3], [1, 4, 5, 2]], [[1, 4, 5, 2], [0, 1, 2, 3]]):
+        targets, _ = targets_from_mesh(plan, PolyMesh.from_faces(xyz, faces))
+        assert np.array_equal(targets, np.full(4, 10.0))
+
+
+def test_a_snap_node_narrower_than_twice_the_snap_is_no_chain():
+    # four lines drawn 0.95 short of a node and a fifth through it, snap 1: every end is
+    # within 1 of the node and no two are 2 apart; the box's diagonal (2.7) was taken
+    # for the spread and the drawing refused (review)
+    segments = [((-10, -10), (10, -10)), ((10, -10), (10, 10)), ((10, 10), (-10, 10)),
+                ((-10, 10), (-10, -10)), ((0.95, 0), (10, 0)), ((-0.95, 0), (-10, 0)),
+                ((0, 0.95), (0, 10)), ((0, -0.95), (0, -10)), ((0, 0), (10, 10))]
+    assert plan_from_segments(segments, snap=1.0).n_faces == 5

@@ -58,9 +58,9 @@ __all__ = [
 #: files): it is pulled, this weakly, towards the best-fitting plane of the
 #: given targets, which makes the optimum unique without bending it. With
 #: more free vertices than given ones it is lowered in proportion (to at
-#: most 1e-4 of itself), so that the free vertices together pull as one
-#: given vertex would at this weight: 3,716 free vertices at 1e-6 had
-#: pulled five pins 1.8 mm off on a 60 m plan.
+#: most 1e-4 of itself), so that the free vertices together weigh what the
+#: given ones would at this weight: 3,716 free vertices at 1e-6 had pulled
+#: five pins 1.8 mm off on a 60 m plan.
 FREE_WEIGHT = 1e-6
 
 #: Largest coordinate magnitude accepted (FACET_COORDINATE_MAX of the core).
@@ -207,8 +207,10 @@ def _dxf_model_segments(path, document, arc_tolerance, ezpath, notes=None):
     reader = _DxfReader(path, document, arc_tolerance, ezpath, segments, skipped, hidden)
     reader.entities(document.modelspace())
     if hidden and notes is not None:
-        notes.append(f"left out {_hidden_text(hidden)}: turn a layer on (and thaw it) to "
-                     "read what is drawn on it")
+        ways = (["turn a layer on (and thaw it)"] if set(hidden) - {None} else []) + \
+            (["make the entity visible"] if None in hidden else [])
+        notes.append(f"left out {_hidden_text(hidden)}: {' or '.join(ways)} to read what is "
+                     "drawn there")
     if not segments:
         found = ", ".join(f"{n} {k}" for k, n in sorted(skipped.items())) or "nothing"
         if hidden:
@@ -218,13 +220,22 @@ def _dxf_model_segments(path, document, arc_tolerance, ezpath, notes=None):
 
 
 def _hidden_text(hidden):
-    """'12 entities on layers that are off or frozen (CONSTRUCTION 10, GRID 2)'."""
-    total = sum(hidden.values())
-    layers = sorted(hidden.items(), key=lambda item: (-item[1], item[0]))
-    named = ", ".join(f"{name} {count}" for name, count in layers[:6])
-    more = f", {len(layers) - 6} more layers" if len(layers) > 6 else ""
-    noun = "entity" if total == 1 else "entities"
-    return f"{total} {noun} on layers that are off or frozen ({named}{more})"
+    """'12 entities on layers that are off or frozen (CONSTRUCTION 10, GRID 2) and
+    1 entity flagged invisible' (the invisible ones are counted under None)."""
+    def entities(n):
+        return f"{n} {'entity' if n == 1 else 'entities'}"
+
+    parts = []
+    layers = sorted(((name, n) for name, n in hidden.items() if name is not None),
+                    key=lambda item: (-item[1], item[0]))
+    if layers:
+        named = ", ".join(f"{name} {count}" for name, count in layers[:6])
+        more = f", {len(layers) - 6} more layers" if len(layers) > 6 else ""
+        parts.append(f"{entities(sum(n for _, n in layers))} on layers that are off or "
+                     f"frozen ({named}{more})")
+    if hidden.get(None):
+        parts.append(f"{entities(hidden[None])} flagged invisible")
+    return " and ".join(parts)
 
 
 #: Blocks inside blocks deeper than this are refused (a block that holds itself).
@@ -244,11 +255,16 @@ class _DxfReader:
     def __init__(self, path, document, arc_tolerance, ezpath, segments, skipped, hidden):
         self.path, self.arc_tolerance, self.ezpath = path, arc_tolerance, ezpath
         self.segments, self.skipped, self.hidden = segments, skipped, hidden
-        self.layer_state = {}
+        self.layer_state = {}  # by lower-case name: (off, frozen, the table's spelling)
         for layer in document.layers:
-            self.layer_state[layer.dxf.name.lower()] = (layer.is_off(), layer.is_frozen())
+            name = layer.dxf.name
+            self.layer_state[name.lower()] = (layer.is_off(), layer.is_frozen(), name)
 
     def _hide(self, layer):
+        """Count an entity left out: on `layer` (the table's spelling), or None when it
+        is flagged invisible."""
+        if layer is not None:
+            layer = self.layer_state.get(layer.lower(), (False, False, layer))[2]
         self.hidden[layer] = self.hidden.get(layer, 0) + 1
 
     def entities(self, entities, parent_layer=None, depth=0, block=None):
@@ -256,8 +272,9 @@ class _DxfReader:
             layer = entity.dxf.get("layer", "0")
             if parent_layer is not None and layer == "0":
                 layer = parent_layer  # drawn on layer 0 in the block: the INSERT's layer
-            off, frozen = self.layer_state.get(layer.lower(), (False, False))
+            off, frozen, _ = self.layer_state.get(layer.lower(), (False, False, layer))
             if entity.dxf.get("invisible", 0):
+                self._hide(None)
                 continue
             kind = entity.dxftype()
             if kind == "INSERT":
@@ -448,18 +465,27 @@ def _check_chains(points, roots, snap, where):
     np.maximum.at(hi, roots, points)
     width = np.hypot(*(hi - lo).T)
     width[~np.isfinite(width)] = 0.0
-    worst = int(np.argmax(width))
-    if width[worst] > 2.0 * snap:
-        members = points[roots == worst]
-        a = members[np.argmin(members[:, 0] + members[:, 1])] + 0.0  # (no "-0")
-        b = members[np.argmax(members[:, 0] + members[:, 1])] + 0.0
-        unique = len(np.unique(members, axis=0))
+    for worst in np.flatnonzero(width > 2.0 * snap):
+        # the box's diagonal is an upper bound: the two endpoints farthest apart
+        members = np.unique(points[roots == worst], axis=0)
+        if len(members) <= 2000:
+            from scipy.spatial.distance import cdist
+
+            distances = cdist(members, members)
+            i, j = np.unravel_index(int(np.argmax(distances)), distances.shape)
+            spread = float(distances[i, j])
+        else:  # (thousands of endpoints within the snap of each other: a chain)
+            i = int(np.argmin(members[:, 0] + members[:, 1]))
+            j = int(np.argmax(members[:, 0] + members[:, 1]))
+            spread = float(width[worst])
+        if spread <= 2.0 * snap:
+            continue
+        a, b = members[i] + 0.0, members[j] + 0.0  # (+ 0.0: no "-0")
         raise PlanError(
-            f"{where}the snap distance {snap:g} joins {unique} endpoints in a chain "
-            f"{width[worst]:.6g} wide, from ({a[0]:.6g}, {a[1]:.6g}) to ({b[0]:.6g}, "
-            f"{b[1]:.6g}): each is within the snap distance of the next, and all would "
-            "become one vertex; give a snap distance smaller than the drawing's shortest "
-            "edge")
+            f"{where}the snap distance {snap:g} joins {len(members)} endpoints in a chain "
+            f"{spread:.6g} wide, from ({a[0]:.6g}, {a[1]:.6g}) to ({b[0]:.6g}, {b[1]:.6g}): "
+            "each is within the snap distance of the next, and all would become one "
+            "vertex; give a snap distance smaller than the drawing's shortest edge")
 
 
 def _points_inside(tree, points, p, q, tolerance):
@@ -863,23 +889,27 @@ def _ray_cast_down(xy, vertices, triangles):
     return result
 
 
-def _nearest_edge_height(point, vertices, triangles, tolerance):
-    """The height of the target's triangle edges at the point of them nearest `point` in
-    plan, if within `tolerance`; else NaN."""
-    best, height = tolerance, math.nan
+def _nearest_edge_height(point, vertices, triangles, boxes, tolerance):
+    """The height of the target's triangle edges within `tolerance` of `point` in plan,
+    the topmost of them (as the ray cast takes the topmost hit); NaN if none is.
+    `boxes`: the triangles' (low, high) corners in plan."""
+    low, high = boxes
+    near = np.all(low - tolerance <= point, axis=1) & np.all(high + tolerance >= point, axis=1)
+    candidates = triangles[near]
+    height = -math.inf
     for k in range(3):
-        a = vertices[triangles[:, k]]
-        b = vertices[triangles[:, (k + 1) % 3]]
+        a = vertices[candidates[:, k]]
+        b = vertices[candidates[:, (k + 1) % 3]]
         d = b[:, :2] - a[:, :2]
         length2 = np.einsum("ij,ij->i", d, d)
         t = np.einsum("ij,ij->i", point - a[:, :2], d) / np.where(length2 > 0, length2, 1.0)
         t = np.clip(t, 0.0, 1.0)
-        foot = a[:, :2] + t[:, None] * d
-        distance = np.hypot(*(foot - point).T)
-        i = int(np.argmin(distance))
-        if distance[i] <= best:
-            best, height = distance[i], float(a[i, 2] + t[i] * (b[i, 2] - a[i, 2]))
-    return height
+        distance = np.hypot(*(a[:, :2] + t[:, None] * d - point).T)
+        z = a[:, 2] + t * (b[:, 2] - a[:, 2])
+        within = distance <= tolerance
+        if within.any():
+            height = max(height, float(z[within].max()))
+    return height if height > -math.inf else math.nan
 
 
 def targets_from_mesh(plan, mesh, *, source=None, tolerance=None):
@@ -911,8 +941,14 @@ def targets_from_mesh(plan, mesh, *, source=None, tolerance=None):
     triangles = np.asarray(triangles, dtype=np.int64)
     z = _ray_cast_down(xy, vertices, triangles)
     tolerance = 1e-6 * size if tolerance is None else float(tolerance)
-    for v in np.flatnonzero(np.isnan(z)):
-        z[v] = _nearest_edge_height(xy[v], vertices, triangles, tolerance)
+    uncovered = np.flatnonzero(np.isnan(z))
+    if uncovered.size:
+        corners = vertices[triangles][:, :, :2]
+        boxes = corners.min(axis=1), corners.max(axis=1)
+        inside = np.all(xy[uncovered] >= boxes[0].min(axis=0) - tolerance, axis=1) & \
+            np.all(xy[uncovered] <= boxes[1].max(axis=0) + tolerance, axis=1)
+        for v in uncovered[inside]:  # (a vertex outside the target's box is not near it)
+            z[v] = _nearest_edge_height(xy[v], vertices, triangles, boxes, tolerance)
     missing = np.flatnonzero(np.isnan(z))
     if missing.size:
         v = int(missing[0])
