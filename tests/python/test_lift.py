@@ -191,10 +191,12 @@ def test_bad_inputs():
                        r"around \(2, 2\)"):  # (a drawing's user cannot see face numbers)
         lift(mesh.with_vertices(xyz), np.zeros(6))
     # weights 1e30 apart gave faces 0.2 of an edge off planar, with exit 0
-    with pytest.raises(TargetError, match=r"the weight of vertex 3 is 1e-13, 1e-13 times "
-                       r"vertex 0's \(1\): weights more than 1e\+12 apart"):
-        lift(mesh, np.zeros(6), [1, 1, 1, 1e-13, 1, 1])
-    assert lift(mesh, np.arange(6.0), [1, 1, 1, 2e-12, 1, 1]).planarity_max_rel <= 1e-12
+    with pytest.raises(TargetError, match=r"the weight of vertex 3 is 1e-17, 1e-17 times "
+                       r"vertex 0's \(1\): weights more than 1e\+16 apart"):
+        lift(mesh, np.zeros(6), [1, 1, 1, 1e-17, 1, 1])
+    assert lift(mesh, np.arange(6.0), [1, 1, 1, 2e-16, 1, 1]).planarity_max_rel <= 1e-12
+    # a pin weighted 1e4 beside free vertices at 1e-10 (many of them) is taken
+    assert lift(mesh, np.arange(6.0), [1e4, 1, 1, 1e-10, 1, 1]).planarity_max_rel <= 1e-12
     with pytest.raises(InputError):
         Lifter(mesh).basis("smooth")
     assert issubclass(PlanError, InputError) and issubclass(TargetError, InputError)
