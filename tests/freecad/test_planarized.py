@@ -298,7 +298,7 @@ class TestPlanarizedTerms(DocumentTestCase):
         self.assertAlmostEqual(result.PlanarityMaxAbs.Value, rel[np.arange(64) != 5].max(),
                                delta=1e-6 * rel[5])  # (FacePlanarity is in model units)
         self.assertLessEqual(result.PlanarityMaxRel, 1e-6)
-        self.assertIn("1 exempt faces (FaceWeights 0) not counted",
+        self.assertIn("1 exempt face (FaceWeights 0) not counted",
                       facetwb.planarize_summary(result))
         result.FaceWeights = [1.0] * 3
         self.doc.recompute()

@@ -101,6 +101,8 @@ def test_exempt_face_is_not_planarized(tube):
 
     report = planarize_report(tube, result)
     assert report["exempt_faces"] == 1 and report["planarity_max_rel"] <= 1e-6
+    before = facet.planarity(tube).max_rel
+    assert report["input_planarity_max_rel"] == np.delete(before, 10).max()  # same faces
     assert report["worst_face"] != 10
     with pytest.raises(facet.InputError, match="every face is exempt"):
         facet.planarize(tube, face_weights=np.zeros(tube.n_faces))
@@ -285,6 +287,7 @@ def test_a_shape_weight_without_a_shape_term_is_refused(hypar, tmp_path, capsys)
     with pytest.raises(facet.FacetError, match=r"is off \(shape='none'\)"):
         facet.planarize(hypar, data="plane", shape="none", shape_weight=50.0)
     facet.planarize(hypar, data="plane", shape_weight=0.5, max_iter=2)  # asap: read
+    facet.planarize(hypar, data="point", shape_weight=0.0, max_iter=2)  # 0: off, as asked
     from facet.io import write_mesh
 
     write_mesh(hypar, tmp_path / "in.obj")

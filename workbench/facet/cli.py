@@ -483,7 +483,7 @@ def _term_options(args, mesh):
         value = getattr(args, name)
         if value is not None:
             options[name] = value
-    if args.shape_weight is not None and (args.shape or DATA_TERMS.get(
+    if args.shape_weight and (args.shape or DATA_TERMS.get(
             args.data or "", {}).get("shape", "none")) == "none":
         raise _UsageError("--shape-weight weighs the shape term, which is off: give --shape "
                           "asap or arap with it (or --data plane or surface, which set asap)")

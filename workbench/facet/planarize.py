@@ -562,7 +562,7 @@ class Planarizer:
                 options[name] = kind(value)
         _check_weight_span(options, data, face_weights)
         self._data, self._reference_given = data, reference is not None
-        if "shape_weight" in terms and options.get("shape", "none") == "none":
+        if terms.get("shape_weight") and options.get("shape", "none") == "none":
             raise FacetError(
                 "shape_weight weighs the shape term, which is off "
                 + (f"(data={data!r} sets no shape)" if data is not None and "shape" not in terms

@@ -388,7 +388,8 @@ def planarize_summary(obj):
         f"({obj.PlanarityMaxRel:.2g} of the edge length)"
         + (f", source {format_length(source.PlanarityMaxAbs.Value)}"
            if source is not None and hasattr(source, "PlanarityMaxAbs") else "")
-        + (f"; {exempt} exempt faces (FaceWeights 0) not counted" if exempt else ""),
+        + (f"; {exempt} exempt face{'s' if exempt != 1 else ''} (FaceWeights 0) not counted"
+           if exempt else ""),
         f"  vertices moved: max {format_length(obj.DisplacementMax.Value)}, "
         f"rms {format_length(obj.DisplacementRms.Value)}",
     ]
