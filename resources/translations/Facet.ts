@@ -407,52 +407,52 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="243"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="248"/>
         <source>Planarize {0}: solving by local/local too, for a result closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="246"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="251"/>
         <source>Planarize {0}: solving by local/global again with a finer hold, closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="251"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="256"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="234"/>
         <source>planarity {0:.2g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="229"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="234"/>
         <source>planarity {0:.2g} (tolerance {1:.2g})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="228"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="238"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="234"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="244"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="214"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="218"/>
         <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm or EdgeMode bisector clears them</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="221"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="231"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="249"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="254"/>
         <source>Planarize {0}: local/local closed a panel, solving by local/global</source>
         <translation type="unfinished"></translation>
     </message>
@@ -474,6 +474,91 @@
     <message>
         <location filename="../ui/preferences.ui" line="22"/>
         <source>Automatic (the default): local/global and local/local up to 10,000 quads, keeping the result closer to the design; local/local alone above. Local/global: one sparse solve per iteration, few iterations. Local/local: many cheap per-face steps, little memory.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/edit_control.py" line="796"/>
+        <source>Edit control mesh</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/edit_control.py" line="798"/>
+        <source>Drag a control vertex (dot) with the left mouse button; the planar result follows. OK (or Esc) keeps the edit, Cancel drops it.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/edit_control.py" line="808"/>
+        <source>Vertices closer than this to the dragged one move with it (0: the dragged vertex alone)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/edit_control.py" line="812"/>
+        <source>Radius</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/edit_control.py" line="815"/>
+        <source>How much the neighbours move: smooth, linear with the distance, or all of them as much as the dragged vertex</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/edit_control.py" line="819"/>
+        <source>Falloff</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/edit_control.py" line="822"/>
+        <source>Colour the result by the planarity of each panel or by how far its corners are from the control mesh</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/edit_control.py" line="826"/>
+        <source>Colour by</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="225"/>
+        <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="45"/>
+        <source>Shape {0}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="48"/>
+        <source>This plan admits only planes: there is nothing to mix. Change the drawing (or lift it with moved vertices) to get more shapes.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="52"/>
+        <source>The plan admits {0} non-planar liftings. Each slider adds one (smoothest first); every face stays exactly planar.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="65"/>
+        <source>Lifting {0}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="68"/>
+        <source>Height of this lifting at its peak; the faces stay planar</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="82"/>
+        <source>Raise vertex</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="84"/>
+        <source>The plan vertex to raise or lower</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="89"/>
+        <source>How far the vertex moves; the rest of the roof follows, every face planar</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -585,6 +585,16 @@ def check_lifting(check, out_dir):
           "the Shape lifting panel is open")
     if panel is not None:
         check(len(panel.sliders) == 1, f"one slider for dimension 4 ({len(panel.sliders)})")
+        # it fits the task pane: a one-line text made it 479 px wide in a 258 px pane,
+        # with Cancel and the slider values off the screen
+        from PySide import QtGui
+
+        panes = [w for w in Gui.getMainWindow().findChildren(QtGui.QScrollArea)
+                 if w.isVisible() and w.widget() and w.widget().isAncestorOf(panel.form)]
+        width = panel.form.minimumSizeHint().width()
+        check(panes and width <= panes[0].viewport().width(),
+              f"the Shape lifting panel fits the task pane ({width} px in "
+              f"{panes[0].viewport().width() if panes else '?'} px)")
         panel.sliders[0].setValue(60)
         Gui.updateGui()
         after = [p.z for p in lifting.Points]
@@ -929,6 +939,19 @@ def check_edit_control(check, out_dir):
     edit_control.finish(False)
     check(np.array_equal(get_mesh(control).vertices, original)
           and edit_control.active_session() is None, "Cancel leaves the control mesh alone")
+    # a parameter changed during a session that moved nothing: the session solved it live,
+    # and the stored result kept the old one, Touched, once the session ended
+    tolerance = result.Tolerance
+    session = edit_control.start(result)
+    result.Tolerance = tolerance * 1e-3
+    session.wait(120.0)
+    edit_control.finish(False)
+    wait_for_live_resolve(result)
+    check("Touched" not in result.State and result.PlanarityMaxRel <= tolerance * 1e-3,
+          f"a Tolerance set during a session is solved when it ends "
+          f"({result.PlanarityMaxRel:.2g}, {result.State})")
+    result.Tolerance = tolerance
+    wait_for_live_resolve(result)
     check_live_parameters(check, result)
     App.closeDocument(doc.Name)
 

@@ -719,6 +719,7 @@ class EditSession:
         moved = self.live.moved
         self.close()
         if not moved:
+            self._parameters_back()
             return False
         doc = self.control_obj.Document
         doc.openTransaction("Edit control mesh")
@@ -736,6 +737,14 @@ class EditSession:
         self.closing = True
         self.wait()
         self.close()
+        self._parameters_back()
+
+    def _parameters_back(self):
+        """A parameter changed during the session (the session solved it live): the
+        stored result has to be solved with it too (it kept the old one, Touched)."""
+        from facetwb import live_parameters
+
+        live_parameters.resolve_if_touched(self.planarized)
 
     def _restore_view(self):
         """Draw the stored result again, as polygons (the session drew triangles)."""
@@ -782,11 +791,13 @@ class EditPanel:
 
         self.session = session
         self.form = QtGui.QWidget()
-        self.form.setWindowTitle("Edit control mesh")
+        from facetwb.translation import translate
+
+        self.form.setWindowTitle(translate("Facet", "Edit control mesh"))
         layout = QtGui.QFormLayout(self.form)
-        help_text = QtGui.QLabel(
-            "Drag a control vertex (dot) with the left mouse button; the planar result "
-            "follows. OK (or Esc) keeps the edit, Cancel drops it.")
+        help_text = QtGui.QLabel(translate(
+            "Facet", "Drag a control vertex (dot) with the left mouse button; the planar "
+            "result follows. OK (or Esc) keeps the edit, Cancel drops it."))
         help_text.setWordWrap(True)
         layout.addRow(help_text)
         self.radius = QtGui.QDoubleSpinBox()
@@ -794,22 +805,25 @@ class EditPanel:
         self.radius.setRange(0.0, 1e9)
         self.radius.setSuffix(" mm")
         self.radius.setValue(session.radius)
-        self.radius.setToolTip("Vertices closer than this to the dragged one move with it "
-                               "(0: the dragged vertex alone)")
+        self.radius.setToolTip(translate(
+            "Facet", "Vertices closer than this to the dragged one move with it (0: the "
+            "dragged vertex alone)"))
         self.radius.valueChanged.connect(self._radius)
-        layout.addRow("Radius", self.radius)
+        layout.addRow(translate("Facet", "Radius"), self.radius)
         self.falloff = QtGui.QComboBox()
         self.falloff.addItems(list(FALLOFFS))
-        self.falloff.setToolTip("How much the neighbours move: smooth, linear with the "
-                                "distance, or all of them as much as the dragged vertex")
+        self.falloff.setToolTip(translate(
+            "Facet", "How much the neighbours move: smooth, linear with the distance, or all "
+            "of them as much as the dragged vertex"))
         self.falloff.currentIndexChanged.connect(self._falloff)
-        layout.addRow("Falloff", self.falloff)
+        layout.addRow(translate("Facet", "Falloff"), self.falloff)
         self.color_by = QtGui.QComboBox()
         self.color_by.addItems(list(COLOR_BY))
-        self.color_by.setToolTip("Colour the result by the planarity of each panel or by how "
-                                 "far its corners are from the control mesh")
+        self.color_by.setToolTip(translate(
+            "Facet", "Colour the result by the planarity of each panel or by how far its "
+            "corners are from the control mesh"))
         self.color_by.currentIndexChanged.connect(self._color_by)
-        layout.addRow("Colour by", self.color_by)
+        layout.addRow(translate("Facet", "Colour by"), self.color_by)
         self.status = QtGui.QLabel("")
         self.status.setWordWrap(True)
         layout.addRow(self.status)

@@ -40,6 +40,15 @@ def parameter_changed(obj, prop):
     _schedule((doc.Name, obj.Name))
 
 
+def resolve_if_touched(obj):
+    """Schedule the live re-solve of ``obj`` if a parameter changed and it was not solved
+    since: an "Edit control mesh" session takes the changes made while it runs and solves
+    them itself, and left them unsolved when it ended without a moved vertex."""
+    doc = getattr(obj, "Document", None)
+    if ENABLED and App.GuiUp and doc is not None and "Touched" in obj.State:
+        _schedule((doc.Name, obj.Name))
+
+
 def _schedule(key):
     from PySide import QtCore
 

@@ -12,6 +12,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb.taskpanels import forms
+from facetwb.translation import translate
 
 #: Sliders shown (fewer when the plan has fewer non-planar liftings).
 MAX_SLIDERS = 8
@@ -41,24 +42,31 @@ class LiftMixPanel:
         self.range = 0.25 * extent
         self.count = max(0, min(MAX_SLIDERS, int(obj.Dimension) - 3))
         self.form = QtGui.QWidget()
-        self.form.setWindowTitle(f"Shape {obj.Label}")
+        self.form.setWindowTitle(translate("Facet", "Shape {0}").format(obj.Label))
         layout = QtGui.QVBoxLayout(self.form)
         if self.count == 0:
-            layout.addWidget(QtGui.QLabel(
-                "This plan admits only planes: there is nothing to mix.\n"
-                "Change the drawing (or lift it with moved vertices) to get more shapes."))
+            intro = QtGui.QLabel(translate(
+                "Facet", "This plan admits only planes: there is nothing to mix. Change the "
+                "drawing (or lift it with moved vertices) to get more shapes."))
         else:
-            layout.addWidget(QtGui.QLabel(
-                f"The plan admits {int(obj.Dimension) - 3} non-planar liftings. Each slider "
-                "adds one (smoothest first);\nevery face stays exactly planar."))
+            intro = QtGui.QLabel(translate(
+                "Facet", "The plan admits {0} non-planar liftings. Each slider adds one "
+                "(smoothest first); every face stays exactly planar.").format(
+                    int(obj.Dimension) - 3))
+        # wrapped: on one line it made the panel 479 px wide, and the task pane (258 px)
+        # cut it and the value labels off (GUI review)
+        intro.setWordWrap(True)
+        layout.addWidget(intro)
         self.sliders = []
         self.labels = []
         values = list(self.original) + [0.0] * self.count
         for k in range(self.count):
             row = QtGui.QHBoxLayout()
-            row.addWidget(QtGui.QLabel(f"Lifting {k + 1}"))
+            row.addWidget(QtGui.QLabel(translate("Facet", "Lifting {0}").format(k + 1)))
             slider = QtGui.QSlider(QtCore.Qt.Horizontal)
             slider.setRange(-STEPS, STEPS)
+            slider.setToolTip(translate(
+                "Facet", "Height of this lifting at its peak; the faces stay planar"))
             slider.setValue(int(round(values[k] / self.range * STEPS)))
             label = QtGui.QLabel()
             row.addWidget(slider, 1)
@@ -71,12 +79,16 @@ class LiftMixPanel:
         self.original_drags = list(obj.Drags)
         self.points = [(p.x, p.y) for p in obj.Plan.Points]
         drag_row = QtGui.QHBoxLayout()
-        drag_row.addWidget(QtGui.QLabel("Raise vertex"))
+        drag_row.addWidget(QtGui.QLabel(translate("Facet", "Raise vertex")))
         self.vertex = QtGui.QSpinBox()
+        self.vertex.setToolTip(translate("Facet", "The plan vertex to raise or lower"))
         self.vertex.setRange(0, max(0, len(self.points) - 1))
         drag_row.addWidget(self.vertex)
         self.drag = QtGui.QSlider(QtCore.Qt.Horizontal)
         self.drag.setRange(-STEPS, STEPS)
+        self.drag.setToolTip(translate(
+            "Facet", "How far the vertex moves; the rest of the roof follows, every face "
+            "planar"))
         drag_row.addWidget(self.drag, 1)
         self.drag_label = QtGui.QLabel()
         drag_row.addWidget(self.drag_label)
