@@ -846,6 +846,14 @@ def check_edit_control(check, out_dir):
         App.closeDocument(doc.Name)
         return
     vertex = 40  # the middle of the 8 x 8 hypar
+    # the radius is a length in the user's units (it always said "mm"), read back in mm
+    radius = session.panel.radius
+    check(radius.metaObject().className() == "Gui::QuantitySpinBox",
+          "the edit panel's Radius is a quantity box")
+    radius.setProperty("rawValue", 2.5 * session.radius)
+    check(abs(session.radius - float(radius.property("rawValue"))) < 1e-9,
+          f"setting Radius sets the session's radius ({session.radius:g} mm)")
+    radius.setProperty("rawValue", 0.4 * session.radius)
     proxy = result.ViewObject.Proxy
     n_tri = session.triangles.shape[0]
     check(n_tri == 2 * mesh.n_faces and proxy.faces.coordIndex.getNum() == 4 * n_tri,

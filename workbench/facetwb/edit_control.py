@@ -137,6 +137,7 @@ class EditSession:
         self.live = LiveSolver(mesh, result=start, **solver_settings(self.planarized, mesh))
         self.edge_length = mesh.mean_edge_length()
         self.radius = 2.0 * self.edge_length
+        self.panel = None  # the task panel, when start() shows one
         self.falloff = "smooth"
         self.color_by = COLOR_BY[0]
         self.plane = None  # (point, normal) of the current drag
@@ -800,11 +801,11 @@ class EditPanel:
             "result follows. OK (or Esc) keeps the edit, Cancel drops it."))
         help_text.setWordWrap(True)
         layout.addRow(help_text)
-        self.radius = QtGui.QDoubleSpinBox()
-        self.radius.setDecimals(3)
-        self.radius.setRange(0.0, 1e9)
-        self.radius.setSuffix(" mm")
-        self.radius.setValue(session.radius)
+        # a length in the user's units, as in the other panels (it always said "mm")
+        self.radius = Gui.UiLoader().createWidget("Gui::QuantitySpinBox")
+        self.radius.setProperty("unit", "mm")
+        self.radius.setProperty("minimum", 0.0)
+        self.radius.setProperty("rawValue", float(session.radius))
         self.radius.setToolTip(translate(
             "Facet", "Vertices closer than this to the dragged one move with it (0: the "
             "dragged vertex alone)"))
@@ -830,8 +831,8 @@ class EditPanel:
         session.listeners.append(self._update_status)
         self._update_status(session)
 
-    def _radius(self, value):
-        self.session.radius = float(value)
+    def _radius(self, _value=None):
+        self.session.radius = float(self.radius.property("rawValue"))
 
     def _falloff(self, index):
         self.session.falloff = FALLOFFS[index]
@@ -871,7 +872,8 @@ def start(obj, view=None, threaded=True, panel=True):
     if panel and App.GuiUp:
         if Gui.Control.activeDialog():
             Gui.Control.closeDialog()
-        Gui.Control.showDialog(EditPanel(session))
+        session.panel = EditPanel(session)
+        Gui.Control.showDialog(session.panel)
     return session
 
 
