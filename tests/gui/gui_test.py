@@ -511,6 +511,31 @@ def check_color_by(check, view, result, out_dir):
     check(any(label.startswith("Distance to input") for label in labels)
           and not any("not computed" in label for label in labels),
           f"ColorBy Distance to input is computed from the source ({labels})")
+    # the distance to a Reference given (the design surface of Data surface): not computed
+    # without one; with one, each face's farthest corner from it
+    vobj.ColorBy = "Distance to reference"
+    Gui.updateGui()
+    check(any("not computed" in label for label in legend_strings(vobj)),
+          "ColorBy Distance to reference says not computed without a Reference")
+    from facetwb import live_parameters
+
+    live_parameters.ENABLED = False  # (the property alone, no re-solve)
+    try:
+        result.Reference = result.Source
+        vobj.ColorBy = "Planarity"
+        vobj.ColorBy = "Distance to reference"
+        Gui.updateGui()
+        far = facet.quality(facetwb.get_mesh(result),
+                            reference=facetwb.get_mesh(result.Source)).per_face("distance")
+        colours = np.array(vobj.Proxy.planarity_material.diffuseColor.getValues())
+        check(np.allclose(colours, colormap.colors(far, far.max()), atol=1e-6)
+              and any(label.startswith("Distance to reference")
+                      for label in legend_strings(vobj)),
+              "ColorBy Distance to reference colours each face by its distance from it")
+        result.Reference = None
+        result.purgeTouched()
+    finally:
+        live_parameters.ENABLED = True
     vobj.ColorBy = "Planarity"
     Gui.updateGui()
 def check_lifting(check, out_dir):

@@ -25,6 +25,7 @@ COLOR_BY = {
     "Planarity": ("planarity", "Planarity", "length", False),
     "Displacement": ("displacement", "Displacement", "length", False),
     "Distance to input": ("distance", "Distance to input", "length", False),
+    "Distance to reference": ("distance", "Distance to reference", "length", False),
     "Smallest angle": ("min_angle", "Smallest angle", "angle", True),
     "Edge ratio change": ("ratio_change", "Edge ratio change", "ratio", False),
     "Straightest corner": ("straight_corner", "Straightest corner", "angle", True),
@@ -42,9 +43,9 @@ class ViewProviderPlanarized(ViewProviderPolyMesh):
         super().init_properties(vobj)
         if compat.add_property(vobj, "App::PropertyEnumeration", "ColorBy", "Planarity",
                                "What the colours of Planarity mode show: planarity, vertex "
-                               "displacement or distance from the source's surface (mm), "
-                               "smallest angle (degrees), change of edge ratios or how far "
-                               "the straightest corner turns (degrees)"):
+                               "displacement, distance from the source's surface or from "
+                               "the Reference (mm), smallest angle (degrees), change of edge "
+                               "ratios or how far the straightest corner turns (degrees)"):
             vobj.ColorBy = list(COLOR_BY)
             vobj.ColorBy = "Planarity"
         elif list(vobj.getEnumerationsOfProperty("ColorBy")) != list(COLOR_BY):
@@ -93,6 +94,14 @@ class ViewProviderPlanarized(ViewProviderPolyMesh):
         from facetwb.objects.polymesh import get_mesh
 
         mesh = get_mesh(obj)
+        if choice == "Distance to reference":
+            # the design surface the panels were held to (Data surface), when one is given
+            reference = getattr(obj, "Reference", None)
+            if mesh is None or reference is None:
+                return None, title, kind, reverse
+            values = facet.quality(mesh, reference=conversion.mesh_from_object(
+                reference)).per_face(name)
+            return np.asarray(values, dtype=np.float64), title, kind, reverse
         source = getattr(obj, "Source", None)
         if mesh is None or source is None:
             return None, title, kind, reverse
