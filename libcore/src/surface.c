@@ -532,54 +532,61 @@ static double tie_bound(double nearest)
     return nearest + TIE_REL * nearest + TIE_ABS;
 }
 
-/* The closest triangle to p (normalised). Among triangles tied with the
- * nearest, one with area wins over a zero-area one, whose normal says
- * nothing, then the lowest triangle index: so the same triangle, and its
- * normal, in any units or place (the order does not depend on them).
- * Before, the first strictly closer one won, which rounding chose at the
- * corners where a planarization's control vertices start: the surface term
- * then took a different path in mm than in m. */
-static void query_one(const facet_surface *s, const double p[3], double best_point[3],
-                      double *best_d2, int32_t *best_slot)
+static double triangle_dist2(const facet_surface *s, int32_t slot, const double p[3], double q[3])
+{
+    const double *t = s->corners + 9 * (size_t)slot;
+    if (s->flat[slot])
+        closest_on_flat(p, t, q);
+    else
+        closest_on_triangle(p, t, q);
+    return dist2(p, q);
+}
+
+/* Triangles kept as candidates for a tie while the tree is searched: those
+ * around a shared corner (a mesh's valence), with room to spare; more (a
+ * fan of hundreds) take a second search. */
+#define TIE_CANDIDATES 32
+
+static int ranks_before(const facet_surface *s, int32_t a, int32_t b)
+{
+    /* a triangle with area first, then the lowest triangle index */
+    return s->flat[a] != s->flat[b] ? !s->flat[a] : s->order[a] < s->order[b];
+}
+
+/* Visit the leaves whose boxes are within *bound of p, nearest first. With
+ * shrink, *bound falls to the tie bound of the nearest triangle met, and the
+ * triangles within it when met are kept in cand (up to TIE_CANDIDATES; *n
+ * counts them all). Without, the best ranked triangle within *bound is taken
+ * (the second search, when the candidates overflowed). Returns the nearest
+ * squared distance. */
+static double search(const facet_surface *s, const double p[3], double *bound, int shrink,
+                     int32_t *cand, double *cand_d, int *n, int32_t *slot)
 {
     int32_t stack[STACK_SIZE];
     double stack_d[STACK_SIZE];
     int top = 0;
-    double nearest = DBL_MAX, best = DBL_MAX, bound = DBL_MAX;
-    int32_t slot = -1;
+    double nearest = DBL_MAX;
     stack[top] = 0;
     stack_d[top++] = box_dist2(&s->nodes[0], p);
     while (top > 0) {
         --top;
-        if (stack_d[top] > bound)
+        if (stack_d[top] > *bound)
             continue;
         const node *nd = &s->nodes[stack[top]];
         if (nd->left < 0) {
             for (int32_t i = nd->right; i < nd->right + nd->count; ++i) {
-                const double *t = s->corners + 9 * (size_t)i;
                 double q[3];
-                if (s->flat[i])
-                    closest_on_flat(p, t, q);
-                else
-                    closest_on_triangle(p, t, q);
-                const double d = dist2(p, q);
-                if (d > bound)
-                    continue;
-                int take;
-                if (slot < 0 || tie_bound(d) < nearest) {
-                    take = 1; /* clearly the nearest */
-                } else {
-                    take = s->flat[slot] != s->flat[i] ? !s->flat[i]
-                                                       : s->order[i] < s->order[slot];
-                    /* the one taken before may be no tie of a nearer one met since */
-                    take = take || best > tie_bound(fmin(nearest, d));
-                }
+                const double d = triangle_dist2(s, i, p, q);
                 nearest = fmin(nearest, d);
-                bound = tie_bound(nearest);
-                if (take) {
-                    best = d;
-                    memcpy(best_point, q, sizeof q);
-                    slot = i;
+                if (d > *bound)
+                    continue;
+                if (shrink) {
+                    *bound = fmin(*bound, tie_bound(d));
+                    if (*n < TIE_CANDIDATES)
+                        cand[*n] = i, cand_d[*n] = d;
+                    ++*n;
+                } else if (*slot < 0 || ranks_before(s, i, *slot)) {
+                    *slot = i;
                 }
             }
             continue;
@@ -590,18 +597,48 @@ static void query_one(const facet_surface *s, const double p[3], double best_poi
         if (top + 2 > STACK_SIZE)
             break; /* cannot happen: depth <= log2(n) + 1 < 64 */
         if (dl <= dr) {
-            if (dr <= bound)
+            if (dr <= *bound)
                 stack[top] = nd->right, stack_d[top++] = dr;
-            if (dl <= bound)
+            if (dl <= *bound)
                 stack[top] = nd->left, stack_d[top++] = dl;
         } else {
-            if (dl <= bound)
+            if (dl <= *bound)
                 stack[top] = nd->left, stack_d[top++] = dl;
-            if (dr <= bound)
+            if (dr <= *bound)
                 stack[top] = nd->right, stack_d[top++] = dr;
         }
     }
-    *best_d2 = best;
+    return nearest;
+}
+
+/* The closest triangle to p (normalised). Triangles within tie_bound of the
+ * nearest distance tie; among them one with area wins over a zero-area one,
+ * whose normal says nothing, then the lowest triangle index: the same
+ * triangle, and normal, in any units or place, whatever order the tree is
+ * searched in. The search keeps the triangles within the tie bound of the
+ * nearest met so far (the bound only shrinks, so every tied one is among
+ * them) and ranks those within the final bound; a second search does it when
+ * they overflow. Before, the first strictly closer one won, which rounding
+ * chose at the corners where a planarization's control vertices start: the
+ * surface term then took a different path in mm than in m. */
+static void query_one(const facet_surface *s, const double p[3], double best_point[3],
+                      double *best_d2, int32_t *best_slot)
+{
+    int32_t cand[TIE_CANDIDATES];
+    double cand_d[TIE_CANDIDATES];
+    int n = 0;
+    double bound = DBL_MAX;
+    int32_t slot = -1;
+    const double nearest = search(s, p, &bound, 1, cand, cand_d, &n, &slot);
+    bound = tie_bound(nearest);
+    if (n <= TIE_CANDIDATES) {
+        for (int k = 0; k < n; ++k)
+            if (cand_d[k] <= bound && (slot < 0 || ranks_before(s, cand[k], slot)))
+                slot = cand[k];
+    } else {
+        search(s, p, &bound, 0, NULL, NULL, &n, &slot);
+    }
+    *best_d2 = triangle_dist2(s, slot, p, best_point);
     *best_slot = slot;
 }
 

@@ -175,8 +175,76 @@ static void tie_test(double scale, double offset)
     }
 }
 
+/* Three parallel triangles under a query, nearest Z, then Y (tied with Z: 0.6e-12 of
+ * the squared distance) and X (1.2e-12: not tied with Z, but with Y): in every order
+ * of their indices the tied one of lower index wins. One pass kept a single candidate
+ * and dropped Y once Z arrived after it (review). */
+static void tie_order_test(void)
+{
+    const double depth[3] = {0.6e-12, 0.3e-12, 0.0}; /* X, Y, Z */
+    const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    const double corners[3][2] = {{-0.5, -0.5}, {0.5, -0.5}, {0.0, 0.5}};
+    for (int k = 0; k < 6; ++k) {
+        double xyz[27];
+        int32_t tri[9];
+        for (int i = 0; i < 3; ++i)
+            for (int c = 0; c < 3; ++c) {
+                xyz[9 * i + 3 * c] = corners[c][0];
+                xyz[9 * i + 3 * c + 1] = corners[c][1];
+                xyz[9 * i + 3 * c + 2] = -depth[perms[k][i]];
+                tri[3 * i + c] = 3 * i + c;
+            }
+        facet_surface *s = NULL;
+        facet_error e;
+        CHECK_STATUS(facet_surface_create(9, xyz, 3, tri, &s, &e), FACET_OK);
+        const double q[3] = {0.0, 0.0, 1.0};
+        int32_t t = -1;
+        CHECK_STATUS(facet_surface_closest(s, 1, q, 1, NULL, NULL, &t, NULL, &e), FACET_OK);
+        int expected = -1; /* the lowest index among Y (1) and Z (2) */
+        for (int i = 0; i < 3 && expected < 0; ++i)
+            if (perms[k][i] != 0)
+                expected = i;
+        CHECK(t == expected);
+        facet_surface_free(&s);
+    }
+}
+
+/* A fan of 40 triangles around one corner, listed from the 17th on: a query on the
+ * corner ties all 40, more than the search keeps as candidates (32): the second search
+ * ranks them, and triangle 0 wins. */
+static void tie_fan_test(void)
+{
+    enum { N = 40 };
+    double xyz[9 * N];
+    int32_t tri[3 * N];
+    for (int k = 0; k < N; ++k) {
+        const int j = (k + 17) % N; /* listed from the 17th */
+        const double a0 = 2 * M_PI * j / N, a1 = 2 * M_PI * (j + 1) / N;
+        const double c[3][3] = {{0, 0, 0.1 * sin(3 * a0)}, {cos(a0), sin(a0), 0},
+                                {cos(a1), sin(a1), 0}};
+        for (int v = 0; v < 3; ++v) {
+            for (int d = 0; d < 3; ++d)
+                xyz[9 * k + 3 * v + d] = c[v][d];
+            tri[3 * k + v] = 3 * k + v;
+        }
+        xyz[9 * k + 2] = 0.0; /* the shared corner: one point */
+    }
+    facet_surface *s = NULL;
+    facet_error e;
+    CHECK_STATUS(facet_surface_create(3 * N, xyz, N, tri, &s, &e), FACET_OK);
+    const double q[3] = {0, 0, 0};
+    int32_t t = -1;
+    double d = -1;
+    CHECK_STATUS(facet_surface_closest(s, 1, q, 1, NULL, &d, &t, NULL, &e), FACET_OK);
+    CHECK(t == 0);
+    CHECK(d == 0.0);
+    facet_surface_free(&s);
+}
+
 int main(void)
 {
+    tie_fan_test();
+    tie_order_test();
     tie_test(1.0, 0.0);
     tie_test(1000.0, 0.0);
     tie_test(1000.0, 5.7e6); /* millimetres, georeferenced */
