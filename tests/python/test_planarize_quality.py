@@ -135,7 +135,9 @@ def test_sliding_vertices_held_more_firmly_when_every_resolve_closed_a_panel(
     r = facet.planarize(mesh, data=data, threads=1, quality_angle=angle)
     assert r.converged and np.max(r.planarity.max_rel) <= 1e-6
     assert new_narrow(mesh, r.mesh.vertices, angle) == 0 and r.narrow_corners == 0
-    assert r.quality_check == "recovered" and not r.warnings
+    # no corner warning (cmc1's free boundary slides off the design: that one is said)
+    assert r.quality_check == "recovered"
+    assert all(w.startswith("boundary vertices slid off the design surface") for w in r.warnings)
     assert r.data_tangent == pytest.approx(3 * asked) and r.options["data_tangent"] == asked
     # the re-solves at the preset's own weight do not keep the panels open
     first = facet.planarize(mesh, data=data, threads=1, quality_angle=0)

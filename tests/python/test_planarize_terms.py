@@ -370,3 +370,17 @@ def test_the_report_measures_the_panels_against_the_reference_given(hypar, tmp_p
     from facet.report import planarize_report
 
     assert "reference_distance_rms" not in planarize_report(hypar, plain)
+
+
+def test_the_sliding_presets_say_when_the_outline_slid_off_the_design():
+    # examples/wave_facade.obj with data='plane': boundary vertices moved 0.75 mean edges
+    # off the design surface, past its edge, and nothing said so
+    from pathlib import Path
+
+    mesh = facet.read_mesh(Path(__file__).resolve().parents[2] / "examples" / "wave_facade.obj")
+    free = facet.planarize(mesh, data="plane")
+    said = [w for w in free.warnings if w.startswith("boundary vertices slid off")]
+    assert len(said) == 1 and "(0.75 mean edges); boundary='sliding'" in said[0], free.warnings
+    for options in ({"data": "plane", "boundary": "sliding"}, {"data": "point"}):
+        r = facet.planarize(mesh, **options)
+        assert not any(w.startswith("boundary vertices slid off") for w in r.warnings)

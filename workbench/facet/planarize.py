@@ -646,7 +646,9 @@ class Planarizer:
             options=options,
             warnings=(list(self._warnings) + list(getattr(self, "_reference_warnings", []))
                       + _quality_warnings(stats, options, stopped, self._quads)
-                      + _precision_warnings(stats, options, result_mesh, measured)),
+                      + _precision_warnings(stats, options, result_mesh, measured)
+                      + _outline_warnings(control, xyz_out, options, surface,
+                                          getattr(self, "_data", None))),
             constraint_max_rel=stats["constraint_max_rel"],
             anderson=(stats["anderson_accepted"], stats["anderson_rejected"]),
             quality_check=stats["quality"],
@@ -762,6 +764,44 @@ QUAD_LAYOUT_ADVICE = (
     "curvature lines; a quad mesh laid far from them (along a saddle's straight rulings, "
     "say) cannot be made planar without collapsing some panels: remesh along curvature "
     "lines there")
+
+
+#: Boundary vertices farther than this many mean edges off the design surface make
+#: the plane and surface presets warn (their vertices slide along it, and with a free
+#: boundary they slide past its edge).
+OUTLINE_DRIFT = 0.25
+
+
+def _outline_warnings(control, xyz_out, options, surface, data):
+    """A warning when the `plane` or `surface` preset, with a free boundary, moved boundary
+    vertices off the design surface, past its edge: the facade's outline moved
+    (examples/wave_facade.obj: 0.75 mean edges). ``boundary='sliding'`` keeps them on it."""
+    if data not in ("plane", "surface") or options.get("boundary", "free") != "free":
+        return []
+    from facet.mesh import next_corners
+
+    starts = np.asarray(control.face_vertices)
+    if starts.size == 0:
+        return []
+    ends = starts[next_corners(np.asarray(control.face_start))]
+    keys, counts = np.unique(np.sort(np.column_stack([starts, ends]), axis=1), axis=0,
+                             return_counts=True)
+    boundary = np.unique(keys[counts == 1])
+    if boundary.size == 0:
+        return []
+    if surface is None:
+        from facet.surface import Surface
+
+        surface = Surface(control)
+    distance = surface.closest(np.asarray(xyz_out)[boundary])[1]
+    edge = control.mean_edge_length()
+    far = int(np.argmax(distance))
+    if not edge or distance[far] <= OUTLINE_DRIFT * edge:
+        return []
+    return [f"boundary vertices slid off the design surface, past its edge: vertex "
+            f"{int(boundary[far])} by {distance[far]:.4g} ({distance[far] / edge:.2g} mean "
+            f"edges); boundary='sliding' (--boundary sliding, Boundary sliding) keeps the "
+            "outline on it"]
 
 
 def _quality_warnings(stats, options, stopped=False, quads=False):
