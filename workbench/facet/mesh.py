@@ -359,6 +359,19 @@ class PolyMesh:
         return f"<PolyMesh: {self.n_vertices} vertices, {self.n_faces} faces>"
 
 
+def boundary_corners(face_start, face_vertices):
+    """For each face corner k, whether the edge from it to the next corner of its face
+    belongs to that face alone (a boundary edge, or an edge the faces beside it do not
+    share): bool, size face_start[-1]."""
+    starts = np.asarray(face_vertices)
+    if starts.size == 0:
+        return np.zeros(0, dtype=bool)
+    ends = starts[next_corners(np.asarray(face_start))]
+    keys = np.sort(np.column_stack([starts, ends]), axis=1)
+    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+    return counts[inverse.reshape(-1)] == 1
+
+
 def next_corners(face_start):
     """For each face corner k (an index into face_vertices), the index of the next corner
     of its face: k + 1, and a face's last corner back to its first (int64, size

@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from facet.errors import InputError
-from facet.mesh import PolyMesh, next_corners
+from facet.mesh import PolyMesh, boundary_corners
 
 __all__ = [
     "PlanError",
@@ -733,11 +733,7 @@ def _unjoined(plan):
     coincident = {int(used[k]) for pair in pairs for k in pair}
     # a vertex on another face's edge without being its corner leaves that edge to one
     # face (the faces on its other side have the vertex): only such edges are searched
-    starts = np.asarray(plan.face_vertices)
-    ends = starts[next_corners(np.asarray(plan.face_start))]
-    keys = np.sort(np.column_stack([starts, ends]), axis=1)
-    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
-    lone = counts[inverse.reshape(-1)] == 1
+    lone = boundary_corners(plan.face_start, plan.face_vertices)
     on_edge = []
     for f, face in enumerate(plan.faces()):
         b0 = int(plan.face_start[f])

@@ -778,15 +778,12 @@ def _outline_warnings(control, xyz_out, options, surface, data):
     (examples/wave_facade.obj: 0.75 mean edges). ``boundary='sliding'`` keeps them on it."""
     if data not in ("plane", "surface") or options.get("boundary", "free") != "free":
         return []
-    from facet.mesh import next_corners
+    from facet.mesh import boundary_corners, next_corners
 
-    starts = np.asarray(control.face_vertices)
-    if starts.size == 0:
-        return []
-    ends = starts[next_corners(np.asarray(control.face_start))]
-    keys, counts = np.unique(np.sort(np.column_stack([starts, ends]), axis=1), axis=0,
-                             return_counts=True)
-    boundary = np.unique(keys[counts == 1])
+    lone = boundary_corners(control.face_start, control.face_vertices)
+    corners = np.asarray(control.face_vertices)
+    ends = corners[next_corners(np.asarray(control.face_start))]
+    boundary = np.unique(np.concatenate([corners[lone], ends[lone]]))
     if boundary.size == 0:
         return []
     if surface is None:
