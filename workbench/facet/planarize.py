@@ -368,6 +368,9 @@ class Planarizer:
         self._topology = mesh
         degrees = np.diff(np.asarray(mesh.face_start))
         self._quads = bool(degrees.size) and np.count_nonzero(degrees == 4) * 2 > degrees.size
+        # what the last solve was asked (its result reports them)
+        self._data, self._reference_given, self._reference_warnings = None, False, []
+        self._exempt = None
         try:
             self._core = _core.Planarizer(mesh.face_start, mesh.face_vertices, mesh.n_vertices)
         except _core.CoreError as exc:
@@ -632,7 +635,7 @@ class Planarizer:
         result_mesh = control.with_vertices(xyz_out)
         displacement = np.linalg.norm(xyz_out - control.vertices, axis=1)
         measured = planarity(result_mesh, threads=threads)
-        if getattr(self, "_exempt", None) is not None:
+        if self._exempt is not None:
             measured = dataclasses.replace(measured, exempt=self._exempt)
         return PlanarizeResult(
             mesh=result_mesh,
@@ -644,11 +647,11 @@ class Planarizer:
             planarity=measured,
             displacement=displacement,
             options=options,
-            warnings=(list(self._warnings) + list(getattr(self, "_reference_warnings", []))
+            warnings=(list(self._warnings) + list(self._reference_warnings)
                       + _quality_warnings(stats, options, stopped, self._quads)
                       + _precision_warnings(stats, options, result_mesh, measured)
                       + _outline_warnings(control, xyz_out, options, surface,
-                                          getattr(self, "_data", None))),
+                                          self._data)),
             constraint_max_rel=stats["constraint_max_rel"],
             anderson=(stats["anderson_accepted"], stats["anderson_rejected"]),
             quality_check=stats["quality"],
@@ -662,8 +665,8 @@ class Planarizer:
             data_tangent=float(stats["data_tangent"]),
             control=control,
             reference=surface,
-            reference_given=bool(getattr(self, "_reference_given", False)),
-            data=getattr(self, "_data", None),
+            reference_given=self._reference_given,
+            data=self._data,
         )
 
 
