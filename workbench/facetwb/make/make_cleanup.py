@@ -1,9 +1,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """make_cleanup(): create a Cleanup document object (scripting API, runs headless)."""
 
-import FreeCAD as App
-
 from facetwb.objects.cleanup import Cleanup
+from facetwb.viewproviders import attach
 
 
 def make_cleanup(source, min_edge=0.1, relative=True, planarize=True, tolerance=1e-6,
@@ -37,9 +36,5 @@ def make_cleanup(source, min_edge=0.1, relative=True, planarize=True, tolerance=
     obj.Relative = bool(relative)
     obj.Planarize = bool(planarize)
     obj.Tolerance = float(tolerance)
-    if App.GuiUp:
-        from facetwb.viewproviders.view_cleanup import ViewProviderCleanup
-
-        ViewProviderCleanup(obj.ViewObject)
-        source.ViewObject.Visibility = False
+    attach.give(obj)
     return obj

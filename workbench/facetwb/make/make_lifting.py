@@ -6,6 +6,7 @@ import FreeCAD as App
 
 from facetwb.objects.lifting import Lifting
 from facetwb.objects.plangraph import PlanGraph
+from facetwb.viewproviders import attach
 
 
 def make_plan_graph(sources=(), file=None, snap=0.0, arc_tolerance=0.0, openings=(),
@@ -28,12 +29,7 @@ def make_plan_graph(sources=(), file=None, snap=0.0, arc_tolerance=0.0, openings
     obj.Snap = snap
     obj.ArcTolerance = arc_tolerance
     obj.Openings = [App.Vector(float(x), float(y), 0.0) for x, y in openings]
-    if App.GuiUp:
-        from facetwb.viewproviders.view_lifting import ViewProviderPlanGraph
-
-        ViewProviderPlanGraph(obj.ViewObject)
-        for source in sources:
-            source.ViewObject.Visibility = False
+    attach.give(obj)
     return obj
 
 
@@ -57,11 +53,5 @@ def make_lifting(plan, targets=None, target_file=None, pins=None, weights=None, 
         obj.PinnedPoints = [App.Vector(float(x), float(y), float(z)) for x, y, z in pins]
     if weights is not None:
         obj.Weights = [float(w) for w in weights]
-    if App.GuiUp:
-        from facetwb.viewproviders.view_lifting import ViewProviderLifting
-
-        ViewProviderLifting(obj.ViewObject)
-        plan.ViewObject.Visibility = False
-        if targets is not None:
-            targets.ViewObject.Visibility = False
+    attach.give(obj)
     return obj

@@ -1,9 +1,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """make_planarized(): create a Planarized document object (scripting API, runs headless)."""
 
-import FreeCAD as App
-
 from facetwb.objects.planarized import METHODS, Planarized
+from facetwb.viewproviders import attach
 
 
 def make_planarized(source, method="auto", tolerance=1e-6, tolerance_abs=0.0, max_iterations=0,
@@ -42,9 +41,5 @@ def make_planarized(source, method="auto", tolerance=1e-6, tolerance_abs=0.0, ma
     obj.ToleranceAbs = tolerance_abs
     obj.MaxIterations = max_iterations
     obj.Threads = threads
-    if App.GuiUp:
-        from facetwb.viewproviders.view_planarized import ViewProviderPlanarized
-
-        ViewProviderPlanarized(obj.ViewObject)
-        source.ViewObject.Visibility = False
+    attach.give(obj)
     return obj

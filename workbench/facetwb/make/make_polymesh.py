@@ -4,13 +4,7 @@
 import FreeCAD as App
 
 from facetwb.objects.polymesh import PolyMesh, set_mesh
-
-
-def _attach_view_provider(obj):
-    if App.GuiUp:
-        from facetwb.viewproviders.view_polymesh import ViewProviderPolyMesh
-
-        ViewProviderPolyMesh(obj.ViewObject)
+from facetwb.viewproviders import attach
 
 
 def make_polymesh(mesh, name="PolyMesh", label=None, doc=None):
@@ -36,7 +30,7 @@ def make_polymesh(mesh, name="PolyMesh", label=None, doc=None):
     if label:
         obj.Label = label
     set_mesh(obj, mesh)
-    _attach_view_provider(obj)
+    attach.give(obj)
     return obj
 
 
@@ -52,7 +46,5 @@ def make_polymesh_from_object(source, name="PolyMesh", tessellation_tolerance=0.
     obj.Label = f"{source.Label} polygons"
     obj.Source = source
     obj.TessellationTolerance = tessellation_tolerance
-    _attach_view_provider(obj)
-    if App.GuiUp:
-        source.ViewObject.Visibility = False
+    attach.give(obj)
     return obj

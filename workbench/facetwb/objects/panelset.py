@@ -42,9 +42,9 @@ class _Proxy:
 
     def onDocumentRestored(self, obj):
         self.init_properties(obj)
-        from facetwb.viewproviders import restore
+        from facetwb.viewproviders import attach
 
-        restore.schedule(obj)  # a document saved without the GUI has no view provider
+        attach.schedule(obj)  # a document saved without the GUI has no view provider
 
     def onChanged(self, obj, prop):
         pass
@@ -515,9 +515,9 @@ def make_panelset(source, thickness=40.0, offset="outer", gap=0.0, edge="square"
     obj.IdScheme = ids
     obj.IdPrefix = prefix
     obj.OnePerPanel = bool(one_per_panel)
-    if App.GuiUp:
-        ViewProviderPanels(obj.ViewObject, "Facet_PanelSet")
-        obj.ViewObject.ShapeColor = (0.78, 0.84, 0.91)
+    from facetwb.viewproviders import attach
+
+    attach.give(obj)
     return obj
 
 
@@ -545,7 +545,7 @@ def make_cutsheets(panelset, sheet=(3000.0, 1500.0), margin=10.0, spacing=6.0,
         obj.Grain = App.Vector(*grain)
     obj.OutputDir = output_dir
     obj.WriteStep = bool(write_step)
-    if App.GuiUp:
-        ViewProviderPanels(obj.ViewObject, "Facet_CutSheets")
-        obj.ViewObject.LineColor = (0.8, 0.0, 0.0)
+    from facetwb.viewproviders import attach
+
+    attach.give(obj)
     return obj

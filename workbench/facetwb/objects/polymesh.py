@@ -65,9 +65,9 @@ class PolyMesh:
 
     def onDocumentRestored(self, obj):
         self.init_properties(obj)
-        from facetwb.viewproviders import restore
+        from facetwb.viewproviders import attach
 
-        restore.schedule(obj)  # a document saved without the GUI has no view provider
+        attach.schedule(obj)  # a document saved without the GUI has no view provider
 
     # --- recompute ------------------------------------------------------------------------
 

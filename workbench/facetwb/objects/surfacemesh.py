@@ -190,8 +190,6 @@ def make_surface_mesh(source, pattern="quad", count_u=10, count_v=10, panel_size
             raise ValueError(f"{label} is {count!r}; it must be a whole number, 1 or more")
     if not panel_size >= 0:
         raise ValueError(f"panel_size is {panel_size!r}; it must be 0 or more")
-    import FreeCAD as App
-
     doc = source.Document
     obj = doc.addObject("App::FeaturePython", name)
     SurfaceMesh(obj)
@@ -201,10 +199,8 @@ def make_surface_mesh(source, pattern="quad", count_u=10, count_v=10, panel_size
     obj.CountU = count_u
     obj.CountV = count_v
     obj.PanelSize = float(panel_size)
-    if App.GuiUp:
-        from facetwb.viewproviders.view_surfacemesh import ViewProviderSurfaceMesh
+    from facetwb.viewproviders import attach
 
-        ViewProviderSurfaceMesh(obj.ViewObject)
-        source.ViewObject.Visibility = False
+    attach.give(obj)
     return obj
 

@@ -1,0 +1,130 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The view provider of each Facet object type, given at creation and on restore.
+
+:func:`give` is what the ``make_*`` functions call: the object's view provider, its
+colours, and its sources hidden under it. A document saved by ``freecadcmd`` (a script,
+``tools/make_examples.py``) holds no ``GuiDocument.xml``. Opened in the GUI, its Facet
+objects had no view provider: nothing drawn, no colour map or legend, no task panel on
+double-click. Each Facet object's ``onDocumentRestored`` calls :func:`schedule`. Once the
+document has loaded, and its ``GuiDocument.xml`` with it, an object still without a view
+provider gets the same as :func:`give` gives.
+"""
+
+import FreeCAD as App
+
+#: View provider (module in facetwb.viewproviders, class) by Facet type.
+PROVIDERS = {
+    "Facet::PolyMesh": ("view_polymesh", "ViewProviderPolyMesh"),
+    "Facet::Planarized": ("view_planarized", "ViewProviderPlanarized"),
+    "Facet::PlanGraph": ("view_lifting", "ViewProviderPlanGraph"),
+    "Facet::Lifting": ("view_lifting", "ViewProviderLifting"),
+    "Facet::Cleanup": ("view_cleanup", "ViewProviderCleanup"),
+    "Facet::SurfaceMesh": ("view_surfacemesh", "ViewProviderSurfaceMesh"),
+}
+
+#: The links whose objects are hidden under the object, by Facet type.
+HIDDEN_SOURCES = {
+    "Facet::PolyMesh": ("Source",),
+    "Facet::Planarized": ("Source",),
+    "Facet::Cleanup": ("Source",),
+    "Facet::SurfaceMesh": ("Source",),
+    "Facet::PlanGraph": ("Sources",),
+    "Facet::Lifting": ("Plan", "Targets"),
+}
+
+_pending = []
+
+
+def give(obj):
+    """A new object's view provider, and its sources hidden (headless: nothing)."""
+    if App.GuiUp:
+        attach(obj)
+        hide_sources(obj)
+
+
+def attach(obj):
+    """Give ``obj`` the view provider of its Facet type (and a PanelSet's or CutSheets'
+    colours)."""
+    kind = getattr(getattr(obj, "Proxy", None), "Type", None)
+    view = obj.ViewObject
+    if kind in ("Facet::PanelSet", "Facet::CutSheets"):
+        from facetwb.objects.panelset import ViewProviderPanels
+
+        if kind == "Facet::PanelSet":
+            ViewProviderPanels(view, "Facet_PanelSet")
+            view.ShapeColor = (0.78, 0.84, 0.91)
+        else:
+            ViewProviderPanels(view, "Facet_CutSheets")
+            view.LineColor = (0.8, 0.0, 0.0)
+    elif kind in PROVIDERS:
+        import importlib
+
+        module, name = PROVIDERS[kind]
+        getattr(importlib.import_module(f"facetwb.viewproviders.{module}"), name)(view)
+
+
+def hide_sources(obj):
+    """Hide the objects ``obj`` is made from (HIDDEN_SOURCES)."""
+    for name in HIDDEN_SOURCES.get(obj.Proxy.Type, ()):
+        value = getattr(obj, name, None)
+        for source in value if isinstance(value, (list, tuple)) else [value]:
+            if getattr(source, "ViewObject", None) is not None:
+                source.ViewObject.Visibility = False
+
+
+def schedule(obj):
+    """Attach ``obj``'s view provider after the document has loaded, if it has none then.
+    Headless: nothing to do."""
+    if not App.GuiUp:
+        return
+    _pending.append((obj.Document.Name, obj.Name))
+    if len(_pending) == 1:
+        from PySide import QtCore
+
+        QtCore.QTimer.singleShot(0, attach_pending)
+
+
+def _objects(items):
+    for doc_name, name in items:
+        try:
+            obj = App.getDocument(doc_name).getObject(name)
+            view = obj.ViewObject if obj is not None else None
+        except (NameError, ReferenceError):  # the document was closed meanwhile
+            continue
+        if view is not None:
+            yield obj, view
+
+
+def attach_pending():
+    """Attach the view providers of the objects scheduled since the last call; their
+    display modes and the sources they hide come next (the modes exist only once the
+    view providers have been attached)."""
+    items = list(_pending)
+    _pending.clear()
+    attached = []
+    for obj, view in _objects(items):
+        # (FreeCAD gives such a view object the placeholder Proxy 1)
+        if isinstance(getattr(view, "Proxy", None), (type(None), int)):
+            try:
+                attach(obj)
+                attached.append((obj.Document.Name, obj.Name))
+            except Exception as error:  # noqa: BLE001 - one object must not stop the rest
+                App.Console.PrintError(f"Facet: {obj.Label}: no view provider: {error}\n")
+    if attached:
+        from PySide import QtCore
+
+        QtCore.QTimer.singleShot(0, lambda: _finish(attached))
+
+
+def _finish(items):
+    for obj, view in _objects(items):
+        proxy = view.Proxy
+        if not view.DisplayMode and hasattr(proxy, "getDefaultDisplayMode"):
+            try:
+                # FreeCAD left the restored property's list of modes empty: the
+                # provider's own, then its default
+                view.DisplayMode = list(view.listDisplayModes())
+                view.DisplayMode = proxy.getDefaultDisplayMode()
+            except (ValueError, TypeError) as error:
+                App.Console.PrintWarning(f"Facet: {obj.Label}: display mode: {error}\n")
+        hide_sources(obj)
