@@ -261,10 +261,8 @@ class _DxfReader:
             self.layer_state[name.lower()] = (layer.is_off(), layer.is_frozen(), name)
 
     def _hide(self, layer):
-        """Count an entity left out: on `layer` (the table's spelling), or None when it
+        """Count an entity left out: on `layer` (as the table spells it), or None when it
         is flagged invisible."""
-        if layer is not None:
-            layer = self.layer_state.get(layer.lower(), (False, False, layer))[2]
         self.hidden[layer] = self.hidden.get(layer, 0) + 1
 
     def entities(self, entities, parent_layer=None, depth=0, block=None):
@@ -272,18 +270,18 @@ class _DxfReader:
             layer = entity.dxf.get("layer", "0")
             if parent_layer is not None and layer == "0":
                 layer = parent_layer  # drawn on layer 0 in the block: the INSERT's layer
-            off, frozen, _ = self.layer_state.get(layer.lower(), (False, False, layer))
+            off, frozen, spelled = self.layer_state.get(layer.lower(), (False, False, layer))
             if entity.dxf.get("invisible", 0):
                 self._hide(None)
                 continue
             kind = entity.dxftype()
             if kind == "INSERT":
                 if frozen:
-                    self._hide(layer)
+                    self._hide(spelled)
                     continue
                 self.insert(entity, layer, depth, block)
             elif off or frozen:
-                self._hide(layer)
+                self._hide(spelled)
             else:
                 self.entity(entity, kind, block)
 
