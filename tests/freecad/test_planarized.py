@@ -8,6 +8,7 @@ import numpy as np
 import facet
 import facetwb
 from facetwb import importer
+from facetwb.objects.planarized import format_length
 from facet_test_support import DocumentTestCase, bits, data_path, points_array
 
 TOLERANCE = 1e-6
@@ -287,19 +288,24 @@ class TestPlanarizedTerms(DocumentTestCase):
     def test_exempt_face_and_bad_weights(self):
         source = importer.import_mesh(data_path("hypar.obj"), self.doc)
         result = facetwb.make_planarized(source)
-        weights = [1.0] * 64
-        weights[5] = 0.0
-        result.FaceWeights = weights
+        before = np.asarray(source.FacePlanarity)  # (model units)
+        # the source's least planar faces are exempt (four: the hypar is symmetric)
+        exempt = before > 0.999 * before.max()
+        self.assertEqual(np.count_nonzero(exempt), 4)
+        result.FaceWeights = [0.0 if e else 1.0 for e in exempt]
         self.doc.recompute()
         self.assertTrue(result.isValid(), result.getStatusString())
         rel = np.asarray(result.FacePlanarity)
-        self.assertGreater(rel[5], rel[np.arange(64) != 5].max())
-        # the figure over all faces leaves the exempt face out (it was the exempt face's)
-        self.assertAlmostEqual(result.PlanarityMaxAbs.Value, rel[np.arange(64) != 5].max(),
-                               delta=1e-6 * rel[5])  # (FacePlanarity is in model units)
+        self.assertGreater(rel[exempt].min(), rel[~exempt].max())
+        # the figure over all faces leaves the exempt faces out (it was theirs)
+        self.assertAlmostEqual(result.PlanarityMaxAbs.Value, rel[~exempt].max(),
+                               delta=1e-6 * rel[exempt].min())
         self.assertLessEqual(result.PlanarityMaxRel, 1e-6)
-        self.assertIn("1 exempt face (FaceWeights 0) not counted",
-                      facetwb.planarize_summary(result))
+        summary = facetwb.planarize_summary(result)
+        self.assertIn("4 exempt faces (FaceWeights 0) not counted", summary)
+        # and so does the source's beside it (it had been the source's own: the exempt faces')
+        self.assertIn(f", source {format_length(before[~exempt].max())};", summary)
+        self.assertNotIn(f", source {format_length(before.max())};", summary)
         result.FaceWeights = [1.0] * 3
         self.doc.recompute()
         self.assertFalse(result.isValid())

@@ -9,6 +9,7 @@ any size compare. For quads the figure libigl reports is given too (distance
 between the two diagonals over the mean diagonal length).
 """
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -49,6 +50,12 @@ class PlanarityReport:
     rms_rel: np.ndarray
     diagonal: np.ndarray
     exempt: np.ndarray = None
+
+    def leaving_out(self, exempt):
+        """The same figures with the faces `exempt` (bool per face, or None) left out of
+        those over all faces: another mesh's measure over the faces a planarization
+        counted."""
+        return dataclasses.replace(self, exempt=exempt)
 
     def _counted(self, values):
         return values if self.exempt is None else values[~self.exempt]

@@ -18,7 +18,6 @@ it is planar with fewer closed panels (``STAGE_FALLBACK``).
 True
 """
 
-import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -634,9 +633,7 @@ class Planarizer:
         (`stopped`: what a stopped solve had reached)."""
         result_mesh = control.with_vertices(xyz_out)
         displacement = np.linalg.norm(xyz_out - control.vertices, axis=1)
-        measured = planarity(result_mesh, threads=threads)
-        if self._exempt is not None:
-            measured = dataclasses.replace(measured, exempt=self._exempt)
+        measured = planarity(result_mesh, threads=threads).leaving_out(self._exempt)
         return PlanarizeResult(
             mesh=result_mesh,
             method=stats["method"],

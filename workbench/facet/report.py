@@ -117,11 +117,8 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
 
         input_planarity = planarity(source)
     after = result.planarity
-    if getattr(after, "exempt", None) is not None:
-        # before and after over the same faces: the exempt ones are in neither
-        import dataclasses
-
-        input_planarity = dataclasses.replace(input_planarity, exempt=after.exempt)
+    # before and after over the same faces: the exempt ones are in neither
+    input_planarity = input_planarity.leaving_out(getattr(after, "exempt", None))
     options = dict(getattr(result, "options", None) or {})
     mean_edge = _mean_edge_length(source)
     displacement_max = float(result.displacement_max)

@@ -194,6 +194,9 @@ class Planarized(PolyMesh):
         self.method_ran = result.method  # what "auto" chose; for the report, not saved
         self.compared = result.compared  # and what it compared (the same)
         self.stopped = result.stopped  # Stop and keep (the same)
+        # the source's planarity over the faces the result's figure counts (the same)
+        self.source_max_abs = float(
+            facet.planarity(mesh).leaving_out(result.planarity.exempt).max_abs_all)
         obj.Iterations = int(result.iterations)
         obj.StopReason = str(result.stop_reason)
         obj.Converged = bool(result.converged)
@@ -378,16 +381,19 @@ def planarize_summary(obj):
     """A few lines for the report view about a recomputed Planarized object."""
     if not obj.isValid():
         return failure(obj)
-    source = obj.Source
     exempt = sum(1 for w in obj.FaceWeights if w == 0.0)
+    # measured by the last recompute; in a document just opened, the source's own figure
+    # (over all its faces: not with exempt faces)
+    source_max_abs = getattr(obj.Proxy, "source_max_abs", None)
+    if source_max_abs is None and not exempt and hasattr(obj.Source, "PlanarityMaxAbs"):
+        source_max_abs = obj.Source.PlanarityMaxAbs.Value
     lines = [
         f"{obj.Label}: {obj.FaceCount} panels, {obj.VertexCount} vertices, "
         f"{method_text(obj)}, {obj.Iterations} iterations, "
         f"stopped: {STOP_REASONS.get(obj.StopReason, obj.StopReason)}",
         f"  planarity max {format_length(obj.PlanarityMaxAbs.Value)} "
         f"({obj.PlanarityMaxRel:.2g} of the edge length)"
-        + (f", source {format_length(source.PlanarityMaxAbs.Value)}"
-           if source is not None and hasattr(source, "PlanarityMaxAbs") else "")
+        + (f", source {format_length(source_max_abs)}" if source_max_abs is not None else "")
         + (f"; {exempt} exempt face{'s' if exempt != 1 else ''} (FaceWeights 0) not counted"
            if exempt else ""),
         f"  vertices moved: max {format_length(obj.DisplacementMax.Value)}, "
