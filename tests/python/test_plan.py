@@ -638,3 +638,21 @@ def test_a_snap_node_narrower_than_twice_the_snap_is_no_chain():
                 ((-10, 10), (-10, -10)), ((0.95, 0), (10, 0)), ((-0.95, 0), (-10, 0)),
                 ((0, 0.95), (0, 10)), ((0, -0.95), (0, -10)), ((0, 0), (10, 10))]
     assert plan_from_segments(segments, snap=1.0).n_faces == 5
+
+
+def test_a_snap_node_of_thousands_of_endpoints_is_judged_by_its_true_spread():
+    # 2,100 spokes end on a circle of radius 0.95 about their hub, snap 1: one vertex, no
+    # two ends 2 apart. Above 2,000 endpoints the box's diagonal (2.69) was taken for the
+    # spread and the plan refused, naming two ends 1.9 apart
+    n = 2100
+    angle = 2.0 * np.pi * np.arange(n) / n
+    ring = np.column_stack([np.cos(angle), np.sin(angle)])
+    inner, outer = 0.95 * ring, 700.0 * ring
+    segments = [(tuple(a), tuple(b)) for a, b in zip(inner, outer)]
+    segments += [(tuple(outer[i]), tuple(outer[(i + 1) % n])) for i in range(n)]
+    plan = plan_from_segments(segments, snap=1.0)
+    assert (plan.n_vertices, plan.n_faces) == (n + 1, n)
+    # and a cluster as large that is a chain is still refused, with its true ends
+    with pytest.raises(PlanError, match=r"joins 2100 endpoints in a chain 4 wide, from \(-1.9999"):
+        plan_from_segments([(tuple(2.0 * a), tuple(b)) for a, b in zip(ring, outer)]
+                           + segments[n:], snap=1.0)

@@ -433,24 +433,19 @@ def read_segments(path, *, arc_tolerance=None, notes=None):
 
 
 def _snap_points(points, tolerance):
-    """Cluster points closer than tolerance; returns representative per point."""
+    """Cluster points closer than tolerance (single linkage); each point's representative
+    is the lowest index of its cluster."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
 
-    tree = cKDTree(points)
-    parent = np.arange(len(points))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for i, j in sorted(tree.query_pairs(tolerance)):
-        a, b = find(i), find(j)
-        if a != b:
-            parent[max(a, b)] = min(a, b)
-    roots = np.array([find(i) for i in range(len(points))])
-    return roots
+    n = len(points)
+    pairs = cKDTree(points).query_pairs(tolerance, output_type="ndarray")
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    _, labels = connected_components(graph, directed=False)
+    lowest = np.full(labels.max() + 1 if n else 0, n)
+    np.minimum.at(lowest, labels, np.arange(n))
+    return lowest[labels]
 
 
 def _check_chains(points, roots, snap, where):
@@ -466,24 +461,31 @@ def _check_chains(points, roots, snap, where):
     for worst in np.flatnonzero(width > 2.0 * snap):
         # the box's diagonal is an upper bound: the two endpoints farthest apart
         members = np.unique(points[roots == worst], axis=0)
-        if len(members) <= 2000:
-            from scipy.spatial.distance import cdist
-
-            distances = cdist(members, members)
-            i, j = np.unravel_index(int(np.argmax(distances)), distances.shape)
-            spread = float(distances[i, j])
-        else:  # (thousands of endpoints within the snap of each other: a chain)
-            i = int(np.argmin(members[:, 0] + members[:, 1]))
-            j = int(np.argmax(members[:, 0] + members[:, 1]))
-            spread = float(width[worst])
+        a, b = _farthest_pair(members)
+        spread = float(np.hypot(*(b - a)))
         if spread <= 2.0 * snap:
             continue
-        a, b = members[i] + 0.0, members[j] + 0.0  # (+ 0.0: no "-0")
+        a, b = a + 0.0, b + 0.0  # (+ 0.0: no "-0")
         raise PlanError(
             f"{where}the snap distance {snap:g} joins {len(members)} endpoints in a chain "
             f"{spread:.6g} wide, from ({a[0]:.6g}, {a[1]:.6g}) to ({b[0]:.6g}, {b[1]:.6g}): "
             "each is within the snap distance of the next, and all would become one "
             "vertex; give a snap distance smaller than the drawing's shortest edge")
+
+
+def _farthest_pair(points):
+    """The two of `points` (distinct, 2D) farthest apart, the one with the smaller x (then
+    y) first: among the convex hull's corners (joggled for collinear points; the
+    distances are the points' own)."""
+    from scipy.spatial import ConvexHull
+    from scipy.spatial.distance import cdist
+
+    if len(points) > 16:
+        points = points[ConvexHull(points, qhull_options="QJ").vertices]
+    distances = cdist(points, points)
+    i, j = np.unravel_index(int(np.argmax(distances)), distances.shape)
+    a, b = sorted((points[i], points[j]), key=tuple)
+    return a, b
 
 
 def _points_inside(tree, points, p, q, tolerance):
