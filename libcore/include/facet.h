@@ -837,7 +837,8 @@ typedef struct facet_panel_output {
                                the boundary (neighbor -1) and where either panel
                                dropped the edge (no joint there) */
     double *node_clash;     /* n_vertices: how deep two panels that meet at the
-                               vertex but not across a joint there overlap, the
+                               vertex but not across a joint there (or across one
+                               at a reflex corner of either) overlap, the
                                deepest pair's, model units (the least distance
                                along a direction that would part them: separating
                                axes of the two solids, a concave one taken as
@@ -874,7 +875,8 @@ typedef struct facet_panel_result {
                                      overlap across its section, model units (0
                                      when none does) */
     int64_t n_node_clashes;       /* pairs of panels that meet at a vertex, not
-                                     across a joint there, and overlap (see
+                                     across a joint there (or across one at a
+                                     reflex corner of either), and overlap (see
                                      out->node_clash; a pair meeting at two
                                      vertices counts at each) */
     double deepest_node_clash;    /* model units, 0 when none */

@@ -477,18 +477,18 @@ static double depth_in_panel(const work *w, int32_t f, const double x[3], double
     return inside ? fmin(slab, sqrt(nearest2)) : 0.0;
 }
 
-/* Whether face f's panel and face h's meet across a joint at corner c (its
- * edges from and into c), which the joints' widths measure: an edge either
- * panel dropped is no joint. */
-static int joint_at(const work *w, int32_t f, int64_t c, int32_t h)
+/* Where face f's panel and face h's meet across a joint at corner c (its
+ * edges from and into c), which the joints' widths measure: the joint's edge
+ * (a corner of f), or -1 when none; an edge either panel dropped is no joint. */
+static int64_t joint_at(const work *w, int32_t f, int64_t c, int32_t h)
 {
     const int64_t edges[2] = {c, prev_corner(w->mesh, f, c)};
     for (int k = 0; k < 2; ++k) {
         const int64_t t = w->nbr_corner[edges[k]];
         if (w->nbr[edges[k]] == h && !w->drop[edges[k]] && t >= 0 && !w->drop[t])
-            return 1;
+            return edges[k];
     }
-    return 0;
+    return -1;
 }
 
 /* Whether face f's panel is convex: every corner of its top and bottom
@@ -519,6 +519,36 @@ static int panel_convex(const work *w, int32_t f)
         }
     }
     return 1;
+}
+
+/* Whether face f's panel turns back at corner c: its top or bottom outline
+ * turns there against the outline's own sense about the panel's normal (a
+ * reflex corner; corners that coincide, where an edge was dropped, and
+ * straight ones are not). */
+static int corner_reflex(const work *w, int32_t f, int64_t c)
+{
+    const facet_mesh *m = w->mesh;
+    const double *n = w->plane + 4 * f;
+    const int64_t s = m->face_start[f], e = m->face_start[f + 1];
+    for (int side = 0; side < 2; ++side) {
+        const double *x = side ? w->cbot : w->ctop;
+        double area = 0.0;
+        for (int64_t i = s; i < e; ++i) {
+            double k[3];
+            cross3(x + 3 * i, x + 3 * next_corner(m, f, i), k);
+            area += dot3(k, n);
+        }
+        const double *a = x + 3 * prev_corner(m, f, c), *b = x + 3 * c,
+                     *d = x + 3 * next_corner(m, f, c);
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        const double v[3] = {d[0] - b[0], d[1] - b[1], d[2] - b[2]};
+        double k[3];
+        cross3(u, v, k);
+        const double turn = dot3(k, n);
+        if (fabs(turn) > 1e-12 * (dot3(u, u) + dot3(v, v)) && (turn > 0.0) != (area > 0.0))
+            return 1;
+    }
+    return 0;
 }
 
 /* A convex piece of a panel: the solid between the top and bottom corners
@@ -1215,9 +1245,10 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
     r.clearing_gap = clearing * scale;
 
     /* Nodes: panels that meet at a vertex but not across a joint there (a
-     * node's diagonal neighbours, or across an edge one of them dropped) must
-     * not overlap either. Where the node's edge planes miss a common axis, or
-     * with square cuts, a corner of one can lie inside the other. */
+     * node's diagonal neighbours, or across an edge one of them dropped), and
+     * across a joint at a reflex corner of either, must not overlap either.
+     * Where the node's edge planes miss a common axis, or with square cuts, a
+     * corner of one can lie inside the other. */
     int64_t *node_start = calloc((size_t)nv + 1, sizeof *node_start);
     int64_t *node_corner = malloc((nc ? nc : 1) * sizeof *node_corner);
     int8_t *convex = malloc((size_t)(nf ? nf : 1));
@@ -1247,8 +1278,22 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             for (int64_t j = i + 1; j < node_start[v + 1]; ++j) {
                 const int64_t ci = node_corner[i];
                 const int32_t f = w.corner_face[ci], h = w.corner_face[node_corner[j]];
-                if (f == h || joint_at(&w, f, ci, h))
+                if (f == h)
                     continue;
+                /* across a joint the joint's width measures them, in its section:
+                 * exactly when both are convex (each lies behind its side plane);
+                 * a concave panel reaches past the side plane at a reflex corner
+                 * (its other edge's bevel there), so a pair with a reflex corner at
+                 * this end of their joint is tested whole too, unless the joint
+                 * already overlaps (counted there) */
+                const int64_t jc = joint_at(&w, f, ci, h);
+                if (jc >= 0) {
+                    double width;
+                    if ((convex[f] && convex[h]) ||
+                        !(corner_reflex(&w, f, ci) || corner_reflex(&w, h, node_corner[j])) ||
+                        joint_overlap(&w, f, jc, up, down, 0.0, &width) > JOINT_TOUCH)
+                        continue;
+                }
                 const double depth = node_overlap(&w, convex, f, h, up, down);
                 if (!(depth > JOINT_TOUCH))
                     continue;

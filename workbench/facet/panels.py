@@ -398,7 +398,10 @@ class PanelSet:
         IDs of every panel at the node). Where a node's edge planes miss a
         common axis, or with square cuts over a valley, such panels can run
         into each other. Two convex panels are tested exactly (separating
-        axes); a concave one as convex pieces (its outline's triangles).
+        axes); a concave one as convex pieces (its outline's triangles). Two
+        panels across a joint are tested too at an end where either has a
+        reflex corner: a concave panel can reach past its side plane there
+        (the bevel of its other edge), which the joint's section does not see.
     node_clash_pairs : int
         How many such pairs overlap.
     deepest_node_clash_panels : tuple of str or None
