@@ -441,6 +441,12 @@ def print_check_summary(report, out=None):
         first = report.get("first_isolated_vertex")
         count = report["isolated_vertices"]
         _line(out, "warning", f"{count_noun(count, 'vertex')} used by no face (first: {first})")
+    if report.get("coincident_vertex_pairs"):
+        i, j = report.get("first_coincident_vertices")
+        count = report["coincident_vertex_pairs"]
+        _line(out, "warning", f"vertices at one point but not one vertex: "
+              f"{count_noun(count, 'pair')} (first: {i} and {j}); the faces there are not "
+              "joined: weld them where the panels should meet")
     low, high = report["bounds"]["min"], report["bounds"]["max"]
     size = " x ".join(_g(b - a) for a, b in zip(low, high))
     _line(out, "size", f"{size}, mean edge {_g(report['mean_edge_length'])}")

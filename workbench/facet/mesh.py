@@ -15,7 +15,7 @@ import numpy as np
 
 from facet.errors import MeshError, from_core
 
-__all__ = ["PolyMesh"]
+__all__ = ["PolyMesh", "coincident_vertices"]
 
 _INT32_MAX = np.iinfo(np.int32).max
 
@@ -357,6 +357,40 @@ class PolyMesh:
 
     def __repr__(self):
         return f"<PolyMesh: {self.n_vertices} vertices, {self.n_faces} faces>"
+
+
+def coincident_vertices(mesh, rel_tol=1e-9):
+    """Vertices that faces use and that lie where another such vertex lies: the copies an
+    export that gives each face (or each part) its own vertices leaves along a seam that
+    looks joined but is not. The faces there are solved apart, and the seam opens.
+
+    Parameters
+    ----------
+    mesh : PolyMesh
+    rel_tol : float
+        Two vertices coincide when they are this close, times the mesh's largest extent.
+
+    Returns
+    -------
+    (int, tuple or None)
+        The number of coincident pairs and the first pair (lower index first), or
+        ``(0, None)``.
+    """
+    used = np.unique(np.asarray(mesh.face_vertices))
+    if used.size < 2:
+        return 0, None
+    points = np.asarray(mesh.vertices, dtype=np.float64)[used]
+    if not np.isfinite(points).all():
+        return 0, None
+    size = float(np.ptp(points, axis=0).max())
+    from scipy.spatial import cKDTree
+
+    pairs = cKDTree(points).query_pairs(rel_tol * size, output_type="ndarray")
+    if pairs.shape[0] == 0:
+        return 0, None
+    pairs = np.sort(used[pairs], axis=1)
+    first = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))[0]]
+    return int(pairs.shape[0]), (int(first[0]), int(first[1]))
 
 
 def boundary_corners(face_start, face_vertices):

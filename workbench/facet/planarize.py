@@ -342,6 +342,23 @@ def _mesh_warnings(report):
     return warnings
 
 
+def _coincident_warnings(mesh):
+    """A warning for vertices at one point that are not one vertex (faces given their own
+    copies by the export): the faces there are planarized apart and the seam opens."""
+    from facet.mesh import coincident_vertices
+
+    n_pairs, first = coincident_vertices(mesh)
+    if not n_pairs:
+        return []
+    i, j = first
+    where = ", ".join(f"{value:.6g}" for value in mesh.vertices[i])
+    return [
+        f"vertices at one point but not one vertex: {n_pairs} pair{'s' if n_pairs != 1 else ''} "
+        f"(vertices {i} and {j} at ({where})); the faces there are not joined, each is made "
+        "planar on its own and the seam opens: weld them where the panels should meet"
+    ]
+
+
 class Planarizer:
     """A planarization solver kept for one mesh topology.
 
@@ -363,7 +380,7 @@ class Planarizer:
     def __init__(self, mesh):
         self._source = mesh.info.get("source") if mesh.info else None
         report = mesh.validate()
-        self._warnings = _mesh_warnings(report)
+        self._warnings = _mesh_warnings(report) + _coincident_warnings(mesh)
         self._topology = mesh
         degrees = np.diff(np.asarray(mesh.face_start))
         self._quads = bool(degrees.size) and np.count_nonzero(degrees == 4) * 2 > degrees.size

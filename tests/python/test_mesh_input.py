@@ -1,0 +1,67 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Mesh files as designers bring them (Rhino, Blender, Grasshopper exports): what the
+readers, ``planarize`` and ``check`` make of them."""
+
+import json
+
+import numpy as np
+
+import facet
+from facet.io import read_mesh
+
+# two non-planar quads side by side, sharing the edge x = 1
+_POINTS = [(0, 0, 0), (1, 0, 0), (2, 0, 0.1), (0, 1, 0.1), (1, 1, 0), (2, 1, 0)]
+
+
+def _obj(points, faces):
+    return "".join(f"v {x} {y} {z}\n" for x, y, z in points) + "".join(
+        "f " + " ".join(str(i + 1) for i in face) + "\n" for face in faces)
+
+
+def _welded():
+    return _obj(_POINTS, [[0, 1, 4, 3], [1, 2, 5, 4]])
+
+
+def _unwelded():
+    """The same two quads, each with its own vertices (an unwelded export): the shared
+    edge's two points are written twice."""
+    points = _POINTS + [_POINTS[1], _POINTS[4]]
+    return _obj(points, [[0, 1, 4, 3], [6, 2, 5, 7]])
+
+
+def test_vertices_at_one_point_are_found(write_file):
+    from facet.mesh import coincident_vertices
+
+    assert coincident_vertices(read_mesh(write_file("welded.obj", _welded()))) == (0, None)
+    assert coincident_vertices(read_mesh(write_file("apart.obj", _unwelded()))) == (2, (1, 6))
+
+
+def test_unwelded_seam_is_warned_by_planarize(write_file):
+    welded = facet.planarize(read_mesh(write_file("welded.obj", _welded())))
+    assert not any("one point" in text for text in welded.warnings)
+    mesh = read_mesh(write_file("apart.obj", _unwelded()))
+    result = facet.planarize(mesh)
+    warning = [text for text in result.warnings if "one point" in text]
+    assert warning and "2 pairs (vertices 1 and 6 at (1, 0, 0))" in warning[0]
+    assert "weld" in warning[0]
+    # what the warning is about: the seam opened
+    gap = np.linalg.norm(result.mesh.vertices[1] - result.mesh.vertices[6])
+    assert gap > 1e-3
+
+
+def test_unwelded_seam_is_warned_by_check_and_planarize_commands(write_file, tmp_path,
+                                                                facet_command):
+    run_facet = facet_command
+    path = write_file("apart.obj", _unwelded())
+    check = run_facet("check", path, "--report", tmp_path / "check.json")
+    assert check.returncode == 0, check.stderr
+    assert "warning       vertices at one point but not one vertex: 2 pairs (first: 1 and 6)" \
+        in check.stdout
+    report = json.loads((tmp_path / "check.json").read_text())
+    assert report["coincident_vertex_pairs"] == 2
+    assert report["first_coincident_vertices"] == [1, 6]
+    run = run_facet("planarize", path, "-o", tmp_path / "out.obj")
+    assert run.returncode == 0, run.stderr
+    assert "vertices at one point but not one vertex" in run.stdout
+    welded = run_facet("check", write_file("welded.obj", _welded()))
+    assert "one point" not in welded.stdout
