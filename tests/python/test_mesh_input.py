@@ -65,3 +65,27 @@ def test_unwelded_seam_is_warned_by_check_and_planarize_commands(write_file, tmp
     assert "vertices at one point but not one vertex" in run.stdout
     welded = run_facet("check", write_file("welded.obj", _welded()))
     assert "one point" not in welded.stdout
+
+
+_QUAD_OBJ = "# Fassade Süd\nv 0 0 0\nv 1 0 0\nv 1 1 0.1\nv 0 1 0\nf 1 2 3 4\n"
+_QUAD_OFF = "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0.1\n0 1 0\n4 0 1 2 3\n"
+_QUAD_JSON = ('{"vertex": {"0": {"x": 0, "y": 0, "z": 0}, "1": {"x": 1, "y": 0, "z": 0}, '
+              '"2": {"x": 1, "y": 1, "z": 0.1}, "3": {"x": 0, "y": 1, "z": 0}}, '
+              '"face": {"0": [0, 1, 2, 3]}}')
+
+
+def test_utf16_files_with_a_byte_order_mark_are_read(tmp_path):
+    """Windows tools write "Unicode" text as UTF-16 with a byte order mark (PowerShell's
+    '>', Notepad, .NET scripts): it was read as UTF-8, found no 'v' line and said "not an
+    OBJ file" (OFF: "starts with '\\ufffd\\ufffdO\\x00F...'", JSON: "not valid JSON")."""
+    for name, text in (("in.obj", _QUAD_OBJ), ("in.off", _QUAD_OFF), ("in.json", _QUAD_JSON)):
+        for encoding in ("utf-16", "utf-16-be", "utf-8-sig", "utf-8"):
+            path = tmp_path / f"{encoding}-{name}"
+            # (Windows line ends with the Windows encoding)
+            data = (text.replace("\n", "\r\n") if encoding == "utf-16" else text).encode(encoding)
+            if encoding == "utf-16-be":
+                data = b"\xfe\xff" + data
+            path.write_bytes(data)
+            mesh = read_mesh(path)
+            assert (mesh.n_vertices, mesh.n_faces) == (4, 1), path
+            assert mesh.vertices[2].tolist() == [1.0, 1.0, 0.1]

@@ -28,7 +28,7 @@ import json
 
 from facet.errors import MeshError
 from facet.io.checks import build_mesh
-from facet.io.files import _plain
+from facet.io.files import _plain, read_text, split_lines
 
 __all__ = ["read_compas_json", "PREFERRED_SCENE_ITEM"]
 
@@ -226,8 +226,8 @@ def read_compas_json(path, *, item=None, validate=True):
         When the file cannot be read.
     """
     source = path
-    with open(path, encoding="utf-8-sig", errors="replace") as stream:  # (a BOM: .NET tools)
-        text = stream.read()
+    # UTF-8 with or without a BOM (.NET tools), or UTF-16 with one (Windows "Unicode")
+    text = "\n".join(split_lines(read_text(path)))
     if not text.strip():
         raise MeshError("file is empty", source=source)
     try:

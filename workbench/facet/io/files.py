@@ -6,6 +6,7 @@ never fails on a stray byte in a comment, numbers parsed with the line they
 came from in the error, and writing that never leaves half a file behind.
 """
 
+import codecs
 import contextlib
 import errno
 import os
@@ -18,6 +19,7 @@ from facet.errors import MeshError
 
 __all__ = [
     "read_lines",
+    "read_text",
     "split_lines",
     "parse_float",
     "parse_int",
@@ -51,16 +53,41 @@ def read_lines(path):
     -------
     list of str
         Lines without their ends; ``lines[k]`` is line ``k + 1``. Windows and
-        old Mac line ends are accepted. Bytes that are not UTF-8 become
-        U+FFFD, so a stray byte in a comment does not stop the reading.
+        old Mac line ends are accepted. The text is decoded by :func:`read_text`
+        (UTF-8, or UTF-16 with its byte order mark); bytes that do not decode
+        become U+FFFD, so a stray byte in a comment does not stop the reading.
 
     Raises
     ------
     OSError
         When the file cannot be opened.
     """
-    with open(path, encoding="utf-8", errors="replace", newline="") as stream:
-        return split_lines(stream.read())  # line ends are split_lines' to translate
+    return split_lines(read_text(path))  # line ends are split_lines' to translate
+
+
+def read_text(path):
+    """Read a text file whole, line ends as they are.
+
+    UTF-8 (with or without a byte order mark), or UTF-16 or UTF-32 when the file starts
+    with its byte order mark (what Windows tools write as "Unicode": PowerShell's ``>``,
+    Notepad, .NET scripts). Bytes that do not decode become U+FFFD, so a stray byte in a
+    comment does not stop the reading. A byte order mark is dropped.
+
+    Raises
+    ------
+    OSError
+        When the file cannot be opened.
+    """
+    with open(path, "rb") as stream:
+        data = stream.read()
+    encoding = "utf-8"
+    for mark, name in ((codecs.BOM_UTF32_LE, "utf-32"), (codecs.BOM_UTF32_BE, "utf-32"),
+                       (codecs.BOM_UTF16_LE, "utf-16"), (codecs.BOM_UTF16_BE, "utf-16")):
+        if data.startswith(mark):
+            encoding = name
+            break
+    text = data.decode(encoding, errors="replace")
+    return text[1:] if text.startswith("\ufeff") else text
 
 
 def split_lines(text):
