@@ -89,3 +89,21 @@ def test_utf16_files_with_a_byte_order_mark_are_read(tmp_path):
             mesh = read_mesh(path)
             assert (mesh.n_vertices, mesh.n_faces) == (4, 1), path
             assert mesh.vertices[2].tolist() == [1.0, 1.0, 0.1]
+
+
+def test_a_repeated_vertex_is_quoted_as_the_obj_line_writes_it(write_file):
+    """A Rhino-style triangle written as a quad with its last vertex twice ("f 2 3 5 5"):
+    the error names the line and the vertex as that line writes it (it said only "repeats
+    vertex 4", counted from 0, on a line that shows 5)."""
+    import pytest
+
+    path = write_file("tri_as_quad.obj", _obj(_POINTS, [[0, 1, 4, 3], [1, 2, 4, 4]]))
+    with pytest.raises(facet.MeshError) as caught:
+        read_mesh(path)
+    assert str(caught.value).endswith(
+        "tri_as_quad.obj: line 8: face 1 repeats vertex 4 (written 5 in the file)")
+    # OFF counts from 0 as the message does: nothing to add
+    off = write_file("tri_as_quad.off", "OFF\n6 1 0\n" + "".join(
+        f"{x} {y} {z}\n" for x, y, z in _POINTS) + "4 1 2 4 4\n")
+    with pytest.raises(facet.MeshError, match=r"line 9: face 0 repeats vertex 4$"):
+        read_mesh(off)

@@ -109,7 +109,7 @@ def build_mesh(
             mesh.validate()
         except MeshError as error:
             raise _locate(
-                error, source, face_lines, vertex_lines, face_names, vertex_names
+                error, source, face_lines, vertex_lines, face_names, vertex_names, index_base
             ) from None
     return mesh
 
@@ -132,8 +132,11 @@ def _named(names, index, what):
     return f" ({what} key {names[index]!r} in the file)"
 
 
-def _locate(error, source, face_lines, vertex_lines, face_names, vertex_names):
-    """Add the file, line and file keys to an error of the core."""
+def _locate(error, source, face_lines, vertex_lines, face_names, vertex_names, index_base=0):
+    """Add the file, line and file keys to an error of the core. Where the file counts its
+    vertices from `index_base` (1 in OBJ), a vertex that a face's line repeats is quoted as
+    that line writes it too: "face 5 repeats vertex 12" on the line "f 7 8 13 13" named a
+    vertex the line does not show."""
     line = None
     keys = []
     if error.face is not None:
@@ -147,6 +150,9 @@ def _locate(error, source, face_lines, vertex_lines, face_names, vertex_names):
         if vertex_names is not None and error.vertex < len(vertex_names):
             keys.append(f"vertex key {vertex_names[error.vertex]!r}")
     message = error.message
+    if (index_base and error.vertex is not None and error.face is not None and not keys
+            and error.status_name == "FACET_ERROR_REPEATED_VERTEX"):
+        message += f" (written {error.vertex + index_base} in the file)"
     if keys:
         message += f" ({', '.join(keys)} in the file)"
     located = MeshError(message, source=source, line=line, face=error.face, vertex=error.vertex)
