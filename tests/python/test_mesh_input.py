@@ -107,3 +107,13 @@ def test_a_repeated_vertex_is_quoted_as_the_obj_line_writes_it(write_file):
         f"{x} {y} {z}\n" for x, y, z in _POINTS) + "4 1 2 4 4\n")
     with pytest.raises(facet.MeshError, match=r"line 9: face 0 repeats vertex 4$"):
         read_mesh(off)
+
+
+def test_an_edge_of_no_length_is_not_an_unwelded_seam(write_file):
+    """Two vertices at one point that an edge joins are joined: no seam warning (the
+    quality report counts the faces as degenerate)."""
+    from facet.mesh import coincident_vertices
+
+    points = [(0, 0, 0), (1, 0, 0), (1, 0, 0), (1, 1, 0.1), (0, 1, 0)]
+    mesh = read_mesh(write_file("short.obj", _obj(points, [[0, 1, 2, 3, 4]])))
+    assert coincident_vertices(mesh) == (0, None)

@@ -362,7 +362,8 @@ class PolyMesh:
 def coincident_vertices(mesh, rel_tol=1e-9):
     """Vertices that faces use and that lie where another such vertex lies: the copies an
     export that gives each face (or each part) its own vertices leaves along a seam that
-    looks joined but is not. The faces there are solved apart, and the seam opens.
+    looks joined but is not. The faces there are solved apart, and the seam opens. The two
+    ends of an edge of no length are joined by it, and not counted.
 
     Parameters
     ----------
@@ -388,7 +389,14 @@ def coincident_vertices(mesh, rel_tol=1e-9):
     pairs = cKDTree(points).query_pairs(rel_tol * size, output_type="ndarray")
     if pairs.shape[0] == 0:
         return 0, None
-    pairs = np.sort(used[pairs], axis=1)
+    pairs = np.sort(used[pairs], axis=1).astype(np.int64)
+    # two ends of one edge are joined (an edge of no length: the quality report's
+    # degenerate faces), not a seam
+    edges = mesh.edges().astype(np.int64)
+    base = int(mesh.n_vertices)
+    pairs = pairs[~np.isin(pairs[:, 0] * base + pairs[:, 1], edges[:, 0] * base + edges[:, 1])]
+    if pairs.shape[0] == 0:
+        return 0, None
     first = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))[0]]
     return int(pairs.shape[0]), (int(first[0]), int(first[1]))
 
