@@ -117,3 +117,23 @@ def test_an_edge_of_no_length_is_not_an_unwelded_seam(write_file):
     points = [(0, 0, 0), (1, 0, 0), (1, 0, 0), (1, 1, 0.1), (0, 1, 0)]
     mesh = read_mesh(write_file("short.obj", _obj(points, [[0, 1, 2, 3, 4]])))
     assert coincident_vertices(mesh) == (0, None)
+
+
+def test_a_face_twice_is_named_as_a_copy(write_file, tmp_path, facet_command):
+    """A face written twice (a join of overlapping meshes, a double-sided export, here
+    turned the other way) was said only as "4 non-manifold edges": now as the copy it is,
+    by planarize, check and facet.planarize."""
+    from facet.mesh import duplicate_faces
+
+    faces = [[0, 1, 4, 3], [1, 2, 5, 4], [4, 5, 2, 1], [0, 1, 4, 3]]
+    mesh = read_mesh(write_file("twice.obj", _obj(_POINTS, faces)))
+    assert duplicate_faces(mesh) == (2, (1, 2))
+    assert duplicate_faces(read_mesh(write_file("once.obj", _welded()))) == (0, None)
+    warning = [text for text in facet.planarize(mesh).warnings if "same vertices" in text]
+    assert warning == ["2 faces with the same vertices as another (first: face 2 repeats "
+                       "face 1): two panels at one place; remove the copies"]
+    check = facet_command("check", tmp_path / "twice.obj", "--report", tmp_path / "c.json")
+    assert "2 faces with the same vertices as another (first: face 2 repeats face 1)" \
+        in check.stdout
+    report = json.loads((tmp_path / "c.json").read_text())
+    assert (report["duplicate_faces"], report["first_duplicate_faces"]) == (2, [1, 2])

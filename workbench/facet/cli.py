@@ -441,6 +441,11 @@ def print_check_summary(report, out=None):
         first = report.get("first_isolated_vertex")
         count = report["isolated_vertices"]
         _line(out, "warning", f"{count_noun(count, 'vertex')} used by no face (first: {first})")
+    if report.get("duplicate_faces"):
+        earlier, copy = report.get("first_duplicate_faces")
+        count = report["duplicate_faces"]
+        _line(out, "warning", f"{count_noun(count, 'face')} with the same vertices as another "
+              f"(first: face {copy} repeats face {earlier}): two panels at one place")
     if report.get("coincident_vertex_pairs"):
         i, j = report.get("first_coincident_vertices")
         count = report["coincident_vertex_pairs"]

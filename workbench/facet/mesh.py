@@ -15,7 +15,7 @@ import numpy as np
 
 from facet.errors import MeshError, from_core
 
-__all__ = ["PolyMesh", "coincident_vertices"]
+__all__ = ["PolyMesh", "coincident_vertices", "duplicate_faces"]
 
 _INT32_MAX = np.iinfo(np.int32).max
 
@@ -399,6 +399,40 @@ def coincident_vertices(mesh, rel_tol=1e-9):
         return 0, None
     first = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))[0]]
     return int(pairs.shape[0]), (int(first[0]), int(first[1]))
+
+
+def duplicate_faces(mesh):
+    """Faces with the same vertices as an earlier face (in any order or turn): two panels
+    at one place, as a Rhino join of overlapping meshes or a double-sided export leaves.
+    Each edge of such a face is then shared by more than two faces.
+
+    Parameters
+    ----------
+    mesh : PolyMesh
+
+    Returns
+    -------
+    (int, tuple or None)
+        The number of faces that repeat an earlier one, and the first such pair (the
+        earlier face, the copy), or ``(0, None)``.
+    """
+    degrees = np.asarray(mesh.degrees)
+    starts = np.asarray(mesh.face_start)[:-1]
+    corners = np.asarray(mesh.face_vertices)
+    count, first = 0, None
+    for degree in np.unique(degrees).tolist():
+        faces = np.flatnonzero(degrees == degree)
+        if faces.size < 2:
+            continue
+        rows = np.sort(corners[starts[faces][:, None] + np.arange(degree)], axis=1)
+        _, index, inverse = np.unique(rows, axis=0, return_index=True, return_inverse=True)
+        inverse = inverse.reshape(-1)
+        copies = np.flatnonzero(index[inverse] != np.arange(faces.size))
+        if copies.size:
+            count += int(copies.size)
+            pair = (int(faces[index[inverse[copies[0]]]]), int(faces[copies[0]]))
+            first = pair if first is None or pair[1] < first[1] else first
+    return count, first
 
 
 def boundary_corners(face_start, face_vertices):

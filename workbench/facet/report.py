@@ -199,7 +199,9 @@ def check_report(mesh, planarity_report, validation_report, path=None):
     dict
         Mesh size and shape (``faces``, ``vertices``, ``edges``,
         ``boundary_edges``, ``non_manifold_edges``, ``isolated_vertices``,
-        ``coincident_vertex_pairs`` and ``first_coincident_vertices`` (vertices at one
+        ``duplicate_faces`` and ``first_duplicate_faces`` (faces with the vertices of
+        another: :func:`facet.mesh.duplicate_faces`), ``coincident_vertex_pairs`` and
+        ``first_coincident_vertices`` (vertices at one
         point that are not one vertex: :func:`facet.mesh.coincident_vertices`),
         ``max_degree``, ``face_degrees``, ``mean_edge_length``, ``bounds``),
         planarity (``planarity_max_rel``, ``planarity_max_abs``,
@@ -208,10 +210,11 @@ def check_report(mesh, planarity_report, validation_report, path=None):
         :func:`facet.quality`) and what the reader noted (``source_*``).
         Already JSON-safe.
     """
-    from facet.mesh import coincident_vertices
+    from facet.mesh import coincident_vertices, duplicate_faces
 
     validation = dict(validation_report)
     coincident = coincident_vertices(mesh)
+    duplicates = duplicate_faces(mesh)
     lower, upper = mesh.bounds()
     report = {
         "command": "check",
@@ -226,6 +229,8 @@ def check_report(mesh, planarity_report, validation_report, path=None):
         "isolated_vertices": validation.get("n_isolated_vertices"),
         "first_non_manifold_edge": validation.get("first_non_manifold_edge"),
         "first_isolated_vertex": validation.get("first_isolated_vertex"),
+        "duplicate_faces": duplicates[0],
+        "first_duplicate_faces": duplicates[1],
         "coincident_vertex_pairs": coincident[0],
         "first_coincident_vertices": coincident[1],
         "max_degree": validation.get("max_degree"),
