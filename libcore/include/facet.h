@@ -64,6 +64,7 @@ extern "C" {
     X(FACET_ERROR_BAD_TARGET, -22, "target height not finite")                        \
     X(FACET_WARNING_TRIVIAL_LIFTING, 10, "plan admits only the trivial liftings")     \
     X(FACET_WARNING_PLANARITY, 11, "lifted faces not planar to 1e-9") \
+    X(FACET_WARNING_LIFTING_RANK, 12, "lifting space's dimension not found reliably") \
     X(FACET_ERROR_NOT_PLANAR, -30, "faces not planar within the tolerance")           \
     X(FACET_ERROR_NOT_ORIENTABLE, -31, "faces cannot be oriented consistently")       \
     X(FACET_ERROR_PANEL_GEOMETRY, -32, "panel outline degenerate or consumed")        \
@@ -657,7 +658,8 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
 
 void facet_lifter_free(facet_lifter **lifter);
 
-/* Dimension of the lifting space (>= 3), and the factorization's time. */
+/* Dimension of the lifting space (>= 3, but see FACET_WARNING_LIFTING_RANK), and the
+ * factorization's time. */
 int32_t facet_lifter_dimension(const facet_lifter *lifter);
 double facet_lifter_factor_seconds(const facet_lifter *lifter);
 
@@ -665,7 +667,12 @@ double facet_lifter_factor_seconds(const facet_lifter *lifter);
  * be the same array). result may be NULL. Returns FACET_WARNING_TRIVIAL_LIFTING
  * when the plan admits only the affine liftings (heights are then the
  * weighted best-fitting plane), FACET_WARNING_PLANARITY when a face is planar
- * only to more than 1e-9 relative (then said in the message). A non-finite
+ * only to more than 1e-9 relative (then said in the message),
+ * FACET_WARNING_LIFTING_RANK when the sparse QR kept dependent constraints that
+ * lie beyond what the create step recovers (the affine liftings do not survive
+ * the projection: the dimension is then too small and the heights may be
+ * farther from the targets than the closest lifting; seen on Voronoi-like plans
+ * of thousands of cells). A non-finite
  * target gives FACET_ERROR_BAD_TARGET naming the vertex. */
 facet_status facet_lifter_solve(facet_lifter *lifter, const double *targets, double *heights,
                                 facet_lift_result *result, facet_error *error);

@@ -40,6 +40,9 @@
 #include <string.h>
 
 /* LAPACK (Fortran interface). */
+extern void dgesvd_(const char *jobu, const char *jobvt, const int *m, const int *n, double *a,
+                    const int *lda, double *s, double *u, const int *ldu, double *vt,
+                    const int *ldvt, double *work, const int *lwork, int *info);
 extern void dsyevr_(const char *jobz, const char *range, const char *uplo, const int *n, double *a,
                     const int *lda, const double *vl, const double *vu, const int *il,
                     const int *iu, const double *abstol, int *m, double *w, double *z,
@@ -84,6 +87,8 @@ static void blas_serial_end(int previous)
  * 1e-10 of the plan's size, inside the 1e-9 promise; enforcing it instead
  * would make the lifting space hinge on rounding of the drawing. */
 #define RANK_TOL_DEFAULT 1e-10
+/* See facet_lifter.rank_check. */
+#define RANK_CHECK_TOL 1e-6
 
 struct facet_lifter {
     int32_t nv, nf, nc, m, rank, dim, max_degree;
@@ -99,6 +104,14 @@ struct facet_lifter {
     SuiteSparseQR_C_factorization *qr; /* NULL when m == 0 (Q = I) */
     cholmod_sparse *a;                 /* A = W^-1/2 C', n x m */
     cholmod_dense *rhs_m;              /* m x 1 workspace */
+    /* Directions of range(Q1) that A's columns do not reach (hidden dependencies, see
+     * find_hidden): nv x n_hidden, orthonormal; they belong to the lifting space. */
+    double *hidden;
+    int32_t n_hidden;
+    /* How far the projection onto the lifting space moves the affine liftings, which are
+     * in it exactly (relative): above RANK_CHECK_TOL, the constraints' rank was
+     * overestimated by more than the hidden directions make up for. */
+    double rank_check;
     double factor_seconds;
     char message[512];
 };
@@ -142,6 +155,7 @@ void facet_lifter_free(facet_lifter **handle)
     free(s->save);
     free(s->work2);
     free(s->xyz);
+    free(s->hidden);
     free(s);
     *handle = NULL;
 }
@@ -253,6 +267,228 @@ static int apply_q(facet_lifter *s, int transpose, int32_t k, double *x)
         memcpy(x + (size_t)c * s->nv, ox + (size_t)c * out->d, sizeof(double) * (size_t)s->nv);
     cholmod_l_free_dense(&out, &s->cm);
     return 1;
+}
+
+/* SPQR's rank detection (Heath's method: a column whose part outside the span of
+ * the columns before it is within the tolerance is dead) can keep columns that
+ * depend on the others, sets that only together are dependent, the last of
+ * which meets a residual above the tolerance once rounding has grown through
+ * the earlier steps. Voronoi-like plans (three faces at a vertex) show it from
+ * a few hundred faces: the paraboloid's lifting and the boundary's freedoms
+ * were lost, the dimension came out short of a dense SVD's count (even below
+ * the 3 affine liftings) and the result was the best plane. Each such column
+ * adds a direction to range(Q1) that no column of A reaches: Householder QR is
+ * backward stable, so R keeps a singular value at rounding level for it even
+ * where no diagonal entry of R is small. Those directions are found by block
+ * inverse iteration with R (two triangular solves a step; R's left singular
+ * vectors, mapped by Q), kept where A' q is within the tolerance for the unit
+ * vector q (an SVD of A' times the block), and counted into the lifting
+ * space; remove_range keeps them. Returns 0 when out of memory. */
+#define HIDDEN_BLOCK_FIRST 8
+#define HIDDEN_BLOCK_MAX 512
+#define HIDDEN_STEPS 3
+
+/* Orthonormalise the k columns (length n) of v in place by modified Gram-Schmidt, twice;
+ * a column that vanishes is set to zero. */
+static void orthonormalise(int64_t n, int32_t k, double *v)
+{
+    for (int pass = 0; pass < 2; ++pass)
+        for (int32_t j = 0; j < k; ++j) {
+            double *vj = v + (size_t)j * (size_t)n;
+            for (int32_t i = 0; i < j; ++i) {
+                const double *vi = v + (size_t)i * (size_t)n;
+                double dot = 0.0;
+                for (int64_t r = 0; r < n; ++r)
+                    dot += vi[r] * vj[r];
+                for (int64_t r = 0; r < n; ++r)
+                    vj[r] -= dot * vi[r];
+            }
+            double norm = 0.0;
+            for (int64_t r = 0; r < n; ++r)
+                norm += vj[r] * vj[r];
+            norm = sqrt(norm);
+            for (int64_t r = 0; r < n; ++r)
+                vj[r] = norm > 0.0 ? vj[r] / norm : 0.0;
+        }
+}
+
+/* v (n x k, orthonormal) <- v minus its parts along the nf orthonormal columns of f, then
+ * orthonormalised. */
+static void deflate(int64_t n, int32_t k, double *v, int32_t nf, const double *f)
+{
+    for (int pass = 0; pass < 2; ++pass)
+        for (int32_t j = 0; j < k; ++j) {
+            double *vj = v + (size_t)j * (size_t)n;
+            for (int32_t i = 0; i < nf; ++i) {
+                const double *fi = f + (size_t)i * (size_t)n;
+                double dot = 0.0;
+                for (int64_t r = 0; r < n; ++r)
+                    dot += fi[r] * vj[r];
+                for (int64_t r = 0; r < n; ++r)
+                    vj[r] -= dot * fi[r];
+            }
+        }
+    orthonormalise(n, k, v);
+}
+
+/* Copy the solve's result (nrow x k, leading dimension d) into v (n x k), rows from
+ * `keep` on set to zero, non-finite values too. */
+static void take(const cholmod_dense *z, int64_t n, int32_t k, int64_t keep, double *v)
+{
+    for (int32_t j = 0; j < k; ++j)
+        for (int64_t r = 0; r < n; ++r) {
+            double value = r < (int64_t)z->nrow ? ((const double *)z->x)[(size_t)j * z->d + r]
+                                                : 0.0;
+            v[(size_t)j * n + r] = r < keep && isfinite(value) ? value : 0.0;
+        }
+}
+
+/* Subspace iteration with (R R')^-1 on u's k columns (R's left space: nv each, rows
+ * from rank on zero), away from the nf columns of `found` (orthonormal, the same
+ * space), orthonormalised after each triangular solve (the singular values span
+ * far more than a double: one solve at a time stays within it). 0 on failure. */
+static int hidden_block(facet_lifter *s, cholmod_dense *u, cholmod_dense *x, int32_t nf,
+                        const double *found)
+{
+    const int32_t nv = s->nv, m = s->m, k = (int32_t)u->ncol;
+    double *uu = u->x;
+    uint64_t state = 0x9E3779B97F4A7C15ull; /* the same start every time */
+    for (int32_t j = 0; j < k; ++j)
+        for (int32_t v = 0; v < nv; ++v) {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            uu[(size_t)j * nv + v] = v < s->rank ? (double)(state >> 11) * 0x1p-53 - 0.5 : 0.0;
+        }
+    deflate(nv, k, uu, nf, found);
+    for (int step = 0; step < HIDDEN_STEPS; ++step) {
+        cholmod_dense *y = SuiteSparseQR_C_solve(SPQR_RX_EQUALS_B, s->qr, u, &s->cm);
+        if (!y)
+            return 0;
+        take(y, m, k, m, x->x);
+        cholmod_l_free_dense(&y, &s->cm);
+        orthonormalise(m, k, x->x);
+        cholmod_dense *z = SuiteSparseQR_C_solve(SPQR_RTX_EQUALS_B, s->qr, x, &s->cm);
+        if (!z)
+            return 0;
+        take(z, nv, k, s->rank, uu);
+        cholmod_l_free_dense(&z, &s->cm);
+        deflate(nv, k, uu, nf, found);
+    }
+    return 1;
+}
+
+/* Appends to s->hidden the directions Q u of the block u (k columns) that A' sends
+ * within tol * largest of zero, and their coordinates u to *coords (nf of them so
+ * far, capacity *cap); returns how many, or -1 on failure. */
+static int32_t hidden_keep(facet_lifter *s, const cholmod_dense *u, double tol, double largest,
+                           double **coords, int32_t *cap)
+{
+    const int32_t nv = s->nv, m = s->m, k = (int32_t)u->ncol;
+    const int64_t *ap = s->a->p, *ai = s->a->i;
+    const double *ax = s->a->x;
+    cholmod_dense *q = SuiteSparseQR_C_qmult(SPQR_QX, s->qr, (cholmod_dense *)u, &s->cm);
+    double *y = malloc(sizeof(double) * (size_t)m * (size_t)k);
+    double *sv = malloc(sizeof(double) * (size_t)k);
+    double *vt = malloc(sizeof(double) * (size_t)k * (size_t)k);
+    int32_t found = -1;
+    int info = 0;
+    if (q && y && sv && vt) {
+        /* y = A' Q u (m x k); its right singular vectors whose singular values are
+         * within the tolerance give the unreached directions */
+        const double *qx = q->x;
+        for (int32_t j = 0; j < k; ++j)
+            for (int32_t c = 0; c < m; ++c) {
+                double dot = 0.0;
+                for (int64_t p = ap[c]; p < ap[c + 1]; ++p)
+                    dot += ax[p] * qx[(size_t)j * q->d + (size_t)ai[p]];
+                y[(size_t)j * m + c] = dot;
+            }
+        int mm = m, kk = k, lwork = -1, one = 1;
+        double query = 0.0;
+        dgesvd_("N", "A", &mm, &kk, y, &mm, sv, NULL, &one, vt, &kk, &query, &lwork, &info);
+        lwork = (int)query;
+        double *work = info == 0 ? malloc(sizeof(double) * (size_t)(lwork > 1 ? lwork : 1))
+                                 : NULL;
+        if (work) {
+            dgesvd_("N", "A", &mm, &kk, y, &mm, sv, NULL, &one, vt, &kk, work, &lwork, &info);
+            found = 0;
+            for (int32_t j = 0; info == 0 && j < k; ++j)
+                found += sv[j] <= tol * largest;
+            free(work);
+        }
+    }
+    const int32_t old = s->n_hidden;
+    if (found > 0 && old + found > *cap) {
+        int32_t want = 2 * (old + found);
+        double *h = realloc(s->hidden, sizeof(double) * (size_t)nv * (size_t)want);
+        double *c = h ? realloc(*coords, sizeof(double) * (size_t)nv * (size_t)want) : NULL;
+        if (h)
+            s->hidden = h;
+        if (c)
+            *coords = c, *cap = want;
+        else
+            found = -1;
+    }
+    for (int32_t h = 0; found > 0 && h < found; ++h) {
+        const int32_t row = k - found + h; /* singular values descend */
+        double *out = s->hidden + (size_t)(old + h) * nv, *co = *coords + (size_t)(old + h) * nv;
+        for (int32_t v = 0; v < nv; ++v) {
+            double sum = 0.0, sumq = 0.0;
+            for (int32_t j = 0; j < k; ++j) {
+                sum += vt[(size_t)j * k + row] * ((const double *)u->x)[(size_t)j * nv + v];
+                sumq += vt[(size_t)j * k + row] * ((const double *)q->x)[(size_t)j * q->d + v];
+            }
+            co[v] = sum;
+            out[v] = sumq;
+        }
+    }
+    if (found > 0)
+        s->n_hidden = old + found;
+    cholmod_l_free_dense(&q, &s->cm);
+    free(y), free(sv), free(vt);
+    return found;
+}
+
+static int check_rank(facet_lifter *s);
+
+static int find_hidden(facet_lifter *s, double tol)
+{
+    const int32_t nv = s->nv, m = s->m;
+    const int64_t *ap = s->a->p;
+    const double *ax = s->a->x;
+    double largest = 0.0; /* largest column norm of A: the tolerance's scale */
+    for (int32_t j = 0; j < m; ++j) {
+        double sum = 0.0;
+        for (int64_t p = ap[j]; p < ap[j + 1]; ++p)
+            sum += ax[p] * ax[p];
+        largest = fmax(largest, sqrt(sum));
+    }
+    double *coords = NULL;
+    int32_t cap = 0, k = HIDDEN_BLOCK_FIRST;
+    int ok = 1;
+    while (ok) {
+        if (k > s->rank - s->n_hidden)
+            k = s->rank - s->n_hidden;
+        if (k <= 0 || (double)k * (double)(m > nv ? m : nv) > 4e8)
+            break;
+        cholmod_dense *u = cholmod_l_allocate_dense((size_t)nv, (size_t)k, (size_t)nv,
+                                                    CHOLMOD_REAL, &s->cm);
+        cholmod_dense *x = cholmod_l_allocate_dense((size_t)m, (size_t)k, (size_t)m,
+                                                    CHOLMOD_REAL, &s->cm);
+        int32_t found = u && x && hidden_block(s, u, x, s->n_hidden, coords)
+                            ? hidden_keep(s, u, tol, largest, &coords, &cap)
+                            : -1;
+        cholmod_l_free_dense(&u, &s->cm);
+        cholmod_l_free_dense(&x, &s->cm);
+        ok = found >= 0;
+        if (found < k) /* the block reached past them: all found */
+            break;
+        if (k < HIDDEN_BLOCK_MAX)
+            k *= 2;
+    }
+    free(coords);
+    if (ok && s->n_hidden > 0)
+        orthonormalise(nv, s->n_hidden, s->hidden);
+    return ok;
 }
 
 facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
@@ -497,6 +733,16 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
         }
         if (m > 0) {
             s->rank = (int32_t)s->cm.SPQR_istat[4];
+            int blas = blas_serial_begin();
+            int found = find_hidden(s, tol);
+            blas_serial_end(blas);
+            if (!found) {
+                free(scratch);
+                free(order);
+                facet_lifter_free(&s);
+                return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1,
+                                  "out of memory checking the planarity constraints' rank");
+            }
             s->rhs_m = cholmod_l_allocate_dense((size_t)m, 1, (size_t)m, CHOLMOD_REAL, &s->cm);
             if (!s->rhs_m) {
                 free(scratch);
@@ -508,7 +754,11 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
     }
     free(scratch);
     free(order);
-    s->dim = nv - s->rank;
+    s->dim = nv - s->rank + s->n_hidden;
+    if (s->qr && !check_rank(s)) {
+        facet_lifter_free(&s);
+        return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    }
     s->factor_seconds = facet_now() - t0;
     *out = s;
     return FACET_OK;
@@ -535,6 +785,31 @@ const char *facet_lifter_message(const facet_lifter *lifter)
  * the stored R alone (two sparse triangular solves: the corrected
  * semi-normal equations, refined until A'u is at rounding level) instead of
  * the Householder Q, which is several times larger and slower to apply. */
+/* u <- u - Q1 Q1' u + H H' u (H: the hidden directions, within range(Q1) and
+ * reached by no column of A, so part of the lifting space), with the orthogonal Q. */
+static int remove_range_q(facet_lifter *s, double *u)
+{
+    const int32_t nv = s->nv, nh = s->n_hidden;
+    double *hidden_part = s->work2;
+    memset(hidden_part, 0, sizeof(double) * (size_t)nv);
+    for (int32_t h = 0; h < nh; ++h) {
+        const double *q = s->hidden + (size_t)h * nv;
+        double dot = 0.0;
+        for (int32_t v = 0; v < nv; ++v)
+            dot += q[v] * u[v];
+        for (int32_t v = 0; v < nv; ++v)
+            hidden_part[v] += dot * q[v];
+    }
+    if (!apply_q(s, 1, 1, u))
+        return 0;
+    memset(u, 0, sizeof(double) * (size_t)s->rank);
+    if (!apply_q(s, 0, 1, u))
+        return 0;
+    for (int32_t v = 0; v < nv; ++v)
+        u[v] += hidden_part[v];
+    return 1;
+}
+
 static int remove_range(facet_lifter *s, double *u)
 {
     const int64_t *ap = s->a->p, *ai = s->a->i;
@@ -545,6 +820,8 @@ static int remove_range(facet_lifter *s, double *u)
         scale = fmax(scale, fabs(u[v]));
     if (scale == 0.0)
         return 1;
+    if (s->n_hidden > 0) /* R is singular: the semi-normal equations cannot serve */
+        return remove_range_q(s, u);
     memcpy(s->save, u, sizeof(double) * (size_t)nv); /* kept for the fallback */
     double *b = s->rhs_m->x;
     int converged = 0;
@@ -589,10 +866,7 @@ static int remove_range(facet_lifter *s, double *u)
      * independent, but only just): project with the orthogonal Q, whose
      * accuracy does not depend on the conditioning. */
     memcpy(u, s->save, sizeof(double) * (size_t)nv);
-    if (!apply_q(s, 1, 1, u))
-        return 0;
-    memset(u, 0, sizeof(double) * (size_t)s->rank);
-    return apply_q(s, 0, 1, u);
+    return remove_range_q(s, u);
 }
 
 /* Largest vertical distance of face f's corners (heights z) from the
@@ -635,6 +909,29 @@ static double face_vertical_residual(const facet_lifter *s, int32_t f, const dou
     for (int32_t i = 0; i < k; ++i)
         largest = fmax(largest, fabs(x[i]));
     return largest;
+}
+
+/* s->rank_check: the affine liftings (W^1/2 g, unit vectors of the lifting space)
+ * through remove_range, which must leave them where they are. 0 on failure. */
+static int check_rank(facet_lifter *s)
+{
+    const int32_t nv = s->nv;
+    double *u = s->work;
+    for (int j = 0; j < 3; ++j) {
+        const double *g = s->trivial + (size_t)j * nv;
+        for (int32_t v = 0; v < nv; ++v)
+            u[v] = s->sqw[v] * g[v];
+        int blas = blas_serial_begin();
+        int ok = remove_range(s, u);
+        blas_serial_end(blas);
+        if (!ok)
+            return 0;
+        double moved = 0.0;
+        for (int32_t v = 0; v < nv; ++v)
+            moved += (u[v] - s->sqw[v] * g[v]) * (u[v] - s->sqw[v] * g[v]);
+        s->rank_check = fmax(s->rank_check, isfinite(moved) ? sqrt(moved) : INFINITY);
+    }
+    return 1;
 }
 
 /* heights = the optimal lifting of t (may alias). Returns 0 on failure of Q. */
@@ -762,6 +1059,13 @@ facet_status facet_lifter_solve(facet_lifter *s, const double *targets, double *
         return lifter_fail(s, error, FACET_WARNING_PLANARITY, worst, -1,
                            "face %d is planar only to %.3g of its mean edge length (> 1e-9)",
                            (int)worst, r.planarity_max_rel);
+    if (s->rank_check > RANK_CHECK_TOL)
+        return lifter_fail(s, error, FACET_WARNING_LIFTING_RANK, -1, -1,
+                           "the planarity constraints' dependencies could not be told from "
+                           "rounding (the affine liftings move by %.2g when projected): the "
+                           "lifting space may be larger than the %d dimensions found, and "
+                           "the result farther from the targets than the closest lifting",
+                           s->rank_check, (int)s->dim);
     if (s->dim <= 3)
         return lifter_fail(s, error, FACET_WARNING_TRIVIAL_LIFTING, -1, -1,
                            "the plan admits only the trivial (affine) liftings: the result "
@@ -862,30 +1166,39 @@ static facet_status basis_serial(facet_lifter *s, facet_basis_kind kind, int32_t
     /* How many non-trivial functions to build. */
     const int32_t nt = d - 3;
     const int32_t nbuild = kind == FACET_BASIS_EIGEN ? nt : count - 3;
-    /* Coordinates of the trivial liftings in Q2: c_j = (Q' W^1/2 g_j)[rank:]. */
+    /* Coordinates in the lifting space's orthonormal basis (of W^1/2 null(C)): the
+     * hidden directions H first (nh), then Q2, the last nv - rank columns of Q.
+     * Those of the trivial liftings: c_j = [H' W^1/2 g_j; (Q' W^1/2 g_j)[rank:]]. */
+    const int32_t nh = s->n_hidden, tail = nv - s->rank;
     double *c = malloc(sizeof(double) * 3 * (size_t)nv);
     double *z = malloc(sizeof(double) * (size_t)nv * (size_t)nbuild);
     double *hv = malloc(sizeof(double) * (size_t)d);
-    if (!c || !z || !hv) {
-        free(c), free(z), free(hv);
+    double *heads = malloc(sizeof(double) * (size_t)(nh > 0 ? nh : 1) * (size_t)nbuild);
+    double *h = malloc(sizeof(double) * 3 * (size_t)d);
+    if (!c || !z || !hv || !heads || !h) {
+        free(c), free(z), free(hv), free(heads), free(h);
         return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
     }
     for (int j = 0; j < 3; ++j)
         for (int32_t v = 0; v < nv; ++v)
             c[(size_t)j * nv + v] = s->sqw[v] * s->trivial[(size_t)j * nv + v];
+    for (int j = 0; j < 3; ++j)
+        for (int32_t k = 0; k < nh; ++k) {
+            const double *q = s->hidden + (size_t)k * nv, *cj = c + (size_t)j * nv;
+            double dot = 0.0;
+            for (int32_t v = 0; v < nv; ++v)
+                dot += q[v] * cj[v];
+            h[(size_t)j * d + k] = dot;
+        }
     if (!apply_q(s, 1, 3, c)) {
-        free(c), free(z), free(hv);
+        free(c), free(z), free(hv), free(heads), free(h);
         return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "applying Q failed");
     }
-    /* Householder QR of the d x 3 matrix of those coordinates (in place, in
-     * the tail of each column); its last d-3 Q columns span the rest. */
-    double *h = malloc(sizeof(double) * 3 * (size_t)d);
-    if (!h) {
-        free(c), free(z), free(hv);
-        return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
-    }
+    /* Householder QR of the d x 3 matrix of those coordinates (in place); its last
+     * d-3 Q columns span the rest. */
     for (int j = 0; j < 3; ++j)
-        memcpy(h + (size_t)j * d, c + (size_t)j * nv + s->rank, sizeof(double) * (size_t)d);
+        memcpy(h + (size_t)j * d + nh, c + (size_t)j * nv + s->rank,
+               sizeof(double) * (size_t)tail);
     free(c);
     double beta[3], diag[3];
     householder3(d, h, beta, diag);
@@ -895,14 +1208,24 @@ static facet_status basis_serial(facet_lifter *s, facet_basis_kind kind, int32_t
         memset(hv, 0, sizeof(double) * (size_t)d);
         hv[3 + j] = 1.0;
         householder3_apply(d, h, beta, hv);
-        memcpy(col + s->rank, hv, sizeof(double) * (size_t)d);
+        memcpy(heads + (size_t)j * nh, hv, sizeof(double) * (size_t)nh);
+        memcpy(col + s->rank, hv + nh, sizeof(double) * (size_t)tail);
     }
     free(h);
     free(hv);
     if (!apply_q(s, 0, nbuild, z)) {
-        free(z);
+        free(z), free(heads);
         return lifter_fail(s, error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "applying Q failed");
     }
+    for (int32_t j = 0; j < nbuild; ++j)
+        for (int32_t k = 0; k < nh; ++k) {
+            const double *q = s->hidden + (size_t)k * nv;
+            const double a = heads[(size_t)j * nh + k];
+            double *col = z + (size_t)j * nv;
+            for (int32_t v = 0; v < nv; ++v)
+                col[v] += a * q[v];
+        }
+    free(heads);
     for (int32_t j = 0; j < nbuild; ++j)
         for (int32_t v = 0; v < nv; ++v)
             z[(size_t)j * nv + v] /= s->sqw[v];

@@ -387,3 +387,71 @@ def test_lift_with_move_tolerance_shows_progress_on_a_terminal(tmp_path, monkeyp
                  "--move-tolerance", "1e-3"])
     assert code in (0, 1)  # (1: moved further than the tolerance; the moves are reported)
     assert "facet lift: moving the plan: iteration 1 of at most " in terminal.getvalue()
+
+
+def _voronoi_plan(sites, seed):
+    """The Voronoi cells of random sites in the unit square, those inside [0.05, 0.95]^2 (a
+    hexagon-like plan, three faces at a vertex), and the heights of its paraboloid lifting:
+    each cell on the plane tangent to z = |p|^2 above its site, which makes every face
+    planar (a Voronoi diagram is always liftable)."""
+    from scipy.spatial import Voronoi
+
+    p = np.random.default_rng(seed).random((sites, 2))
+    vor = Voronoi(p)
+    cells = [(i, vor.regions[r]) for i, r in enumerate(vor.point_region)
+             if vor.regions[r] and -1 not in vor.regions[r]
+             and np.all((vor.vertices[vor.regions[r]] > 0.05)
+                        & (vor.vertices[vor.regions[r]] < 0.95))]
+    used = np.unique(np.concatenate([c for _, c in cells]))
+    index = np.full(len(vor.vertices), -1)
+    index[used] = np.arange(len(used))
+    xy = vor.vertices[used]
+    faces, heights = [], np.empty(len(used))
+    for site, cell in cells:
+        face = list(index[cell])
+        q = xy[face]
+        area = np.sum(q[:, 0] * np.roll(q[:, 1], -1) - np.roll(q[:, 0], -1) * q[:, 1])
+        faces.append(face if area > 0 else face[::-1])
+        heights[face] = 2.0 * q @ p[site] - p[site] @ p[site]
+    return PolyMesh.from_faces(np.column_stack([xy, np.zeros(len(used))]), faces), heights
+
+
+def _dense_dimension(mesh):
+    """The lifting space's dimension by a dense SVD of the planarity constraints."""
+    from facet.lift import _face_complements
+
+    rows = []
+    for face, complement in _face_complements(mesh):
+        for values in complement:
+            row = np.zeros(mesh.n_vertices)
+            row[face] = values
+            rows.append(row)
+    singular = np.linalg.svd(np.array(rows), compute_uv=False)
+    return mesh.n_vertices - int(np.count_nonzero(singular > 1e-10))
+
+
+@pytest.mark.parametrize("seed", [3, 4, 5])
+def test_a_voronoi_plan_keeps_its_liftings(seed):
+    # SPQR's rank detection kept dependent constraints on these 300-site plans: the
+    # dimension came out 3 (seed 3: 4 by SVD), and the paraboloid's heights, a lifting,
+    # were lifted 0.08 RMS away from themselves (the best plane)
+    mesh, heights = _voronoi_plan(300, seed)
+    lifter = Lifter(mesh)
+    assert lifter.dimension == _dense_dimension(mesh) > 3
+    result = lifter.solve(heights)
+    assert result.target_max < 1e-9 * np.ptp(heights)
+    assert not [w for w in result.warnings if "dependencies" in w]
+    basis, _ = lifter.basis("orthonormal")
+    assert basis.shape[0] == lifter.dimension
+    assert np.abs(basis @ basis.T - np.eye(len(basis))).max() < 1e-9  # (weights 1)
+    for function in basis:
+        assert np.abs(lifter.solve(function).heights - function).max() < 1e-9
+
+
+def test_a_plan_whose_constraints_rank_is_not_found_says_so():
+    # 3,000 sites: the rank still comes out too high (dimension 1, against 6 by SVD);
+    # the lifting is then the best plane, and the result says it may not be the closest
+    mesh, heights = _voronoi_plan(3000, 3)
+    result = Lifter(mesh).solve(heights)
+    if result.target_rms > 1e-9 * np.ptp(heights):
+        assert [w for w in result.warnings if "lifting space may be larger" in w]
