@@ -288,6 +288,19 @@ static int apply_q(facet_lifter *s, int transpose, int32_t k, double *x)
 #define HIDDEN_BLOCK_MAX 512
 #define HIDDEN_STEPS 3
 
+/* vj <- vj minus its parts along the count orthonormal columns (length n) of basis. */
+static void remove_along(int64_t n, double *vj, int32_t count, const double *basis)
+{
+    for (int32_t i = 0; i < count; ++i) {
+        const double *bi = basis + (size_t)i * (size_t)n;
+        double dot = 0.0;
+        for (int64_t r = 0; r < n; ++r)
+            dot += bi[r] * vj[r];
+        for (int64_t r = 0; r < n; ++r)
+            vj[r] -= dot * bi[r];
+    }
+}
+
 /* Orthonormalise the k columns (length n) of v in place by modified Gram-Schmidt, twice;
  * a column that vanishes is set to zero. */
 static void orthonormalise(int64_t n, int32_t k, double *v)
@@ -295,14 +308,7 @@ static void orthonormalise(int64_t n, int32_t k, double *v)
     for (int pass = 0; pass < 2; ++pass)
         for (int32_t j = 0; j < k; ++j) {
             double *vj = v + (size_t)j * (size_t)n;
-            for (int32_t i = 0; i < j; ++i) {
-                const double *vi = v + (size_t)i * (size_t)n;
-                double dot = 0.0;
-                for (int64_t r = 0; r < n; ++r)
-                    dot += vi[r] * vj[r];
-                for (int64_t r = 0; r < n; ++r)
-                    vj[r] -= dot * vi[r];
-            }
+            remove_along(n, vj, j, v);
             double norm = 0.0;
             for (int64_t r = 0; r < n; ++r)
                 norm += vj[r] * vj[r];
@@ -312,22 +318,13 @@ static void orthonormalise(int64_t n, int32_t k, double *v)
         }
 }
 
-/* v (n x k, orthonormal) <- v minus its parts along the nf orthonormal columns of f, then
+/* v (n x k) <- v minus its parts along the nf orthonormal columns of f, then
  * orthonormalised. */
 static void deflate(int64_t n, int32_t k, double *v, int32_t nf, const double *f)
 {
     for (int pass = 0; pass < 2; ++pass)
-        for (int32_t j = 0; j < k; ++j) {
-            double *vj = v + (size_t)j * (size_t)n;
-            for (int32_t i = 0; i < nf; ++i) {
-                const double *fi = f + (size_t)i * (size_t)n;
-                double dot = 0.0;
-                for (int64_t r = 0; r < n; ++r)
-                    dot += fi[r] * vj[r];
-                for (int64_t r = 0; r < n; ++r)
-                    vj[r] -= dot * fi[r];
-            }
-        }
+        for (int32_t j = 0; j < k; ++j)
+            remove_along(n, v + (size_t)j * (size_t)n, nf, f);
     orthonormalise(n, k, v);
 }
 

@@ -491,26 +491,35 @@ static int64_t joint_at(const work *w, int32_t f, int64_t c, int32_t h)
     return -1;
 }
 
+/* How the outline x (a panel's top or bottom corners) of face f turns at corner c about
+ * the face's normal: > 0 left, < 0 right, 0 where it does not turn (corners that
+ * coincide, where an edge was dropped, and straight ones). */
+static double corner_turn(const work *w, int32_t f, int64_t c, const double *x)
+{
+    const facet_mesh *m = w->mesh;
+    const double *a = x + 3 * prev_corner(m, f, c), *b = x + 3 * c,
+                 *d = x + 3 * next_corner(m, f, c);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {d[0] - b[0], d[1] - b[1], d[2] - b[2]};
+    double k[3];
+    cross3(u, v, k);
+    const double turn = dot3(k, w->plane + 4 * f);
+    return fabs(turn) > 1e-12 * (dot3(u, u) + dot3(v, v)) ? turn : 0.0;
+}
+
 /* Whether face f's panel is convex: every corner of its top and bottom
  * outlines turns the same way about its normal (corners that coincide, where
  * an edge was dropped, and straight ones left out). */
 static int panel_convex(const work *w, int32_t f)
 {
     const facet_mesh *m = w->mesh;
-    const double *n = w->plane + 4 * f;
     const int64_t s = m->face_start[f], e = m->face_start[f + 1];
     int sign = 0;
     for (int side = 0; side < 2; ++side) {
         const double *x = side ? w->cbot : w->ctop;
         for (int64_t c = s; c < e; ++c) {
-            const double *a = x + 3 * prev_corner(m, f, c), *b = x + 3 * c,
-                         *d = x + 3 * next_corner(m, f, c);
-            const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-            const double v[3] = {d[0] - b[0], d[1] - b[1], d[2] - b[2]};
-            double k[3];
-            cross3(u, v, k);
-            const double turn = dot3(k, n);
-            if (!(fabs(turn) > 1e-12 * (dot3(u, u) + dot3(v, v))))
+            const double turn = corner_turn(w, f, c, x);
+            if (turn == 0.0)
                 continue;
             if (sign == 0)
                 sign = turn > 0.0 ? 1 : -1;
@@ -538,14 +547,8 @@ static int corner_reflex(const work *w, int32_t f, int64_t c)
             cross3(x + 3 * i, x + 3 * next_corner(m, f, i), k);
             area += dot3(k, n);
         }
-        const double *a = x + 3 * prev_corner(m, f, c), *b = x + 3 * c,
-                     *d = x + 3 * next_corner(m, f, c);
-        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-        const double v[3] = {d[0] - b[0], d[1] - b[1], d[2] - b[2]};
-        double k[3];
-        cross3(u, v, k);
-        const double turn = dot3(k, n);
-        if (fabs(turn) > 1e-12 * (dot3(u, u) + dot3(v, v)) && (turn > 0.0) != (area > 0.0))
+        const double turn = corner_turn(w, f, c, x);
+        if (turn != 0.0 && (turn > 0.0) != (area > 0.0))
             return 1;
     }
     return 0;
