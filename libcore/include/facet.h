@@ -668,11 +668,11 @@ double facet_lifter_factor_seconds(const facet_lifter *lifter);
  * when the plan admits only the affine liftings (heights are then the
  * weighted best-fitting plane), FACET_WARNING_PLANARITY when a face is planar
  * only to more than 1e-9 relative (then said in the message),
- * FACET_WARNING_LIFTING_RANK when the sparse QR kept dependent constraints that
- * lie beyond what the create step recovers (the affine liftings do not survive
- * the projection: the dimension is then too small and the heights may be
- * farther from the targets than the closest lifting; seen on Voronoi-like plans
- * of thousands of cells). A non-finite
+ * FACET_WARNING_LIFTING_RANK when the affine liftings do not survive the
+ * projection: the sparse QR kept dependent constraints that the create step
+ * did not recover, so the dimension is too small and the heights may be
+ * farther from the targets than the closest lifting (a guard: no plan measured
+ * sets it off). A non-finite
  * target gives FACET_ERROR_BAD_TARGET naming the vertex. */
 facet_status facet_lifter_solve(facet_lifter *lifter, const double *targets, double *heights,
                                 facet_lift_result *result, facet_error *error);

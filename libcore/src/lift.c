@@ -277,171 +277,126 @@ static int apply_q(facet_lifter *s, int transpose, int32_t k, double *x)
  * a few hundred faces: the paraboloid's lifting and the boundary's freedoms
  * were lost, the dimension came out short of a dense SVD's count (even below
  * the 3 affine liftings) and the result was the best plane. Each such column
- * adds a direction to range(Q1) that no column of A reaches: Householder QR is
- * backward stable, so R keeps a singular value at rounding level for it even
- * where no diagonal entry of R is small. Those directions are found by block
- * inverse iteration with R (two triangular solves a step; R's left singular
- * vectors, mapped by Q), kept where A' q is within the tolerance for the unit
- * vector q (an SVD of A' times the block), and counted into the lifting
- * space; remove_range keeps them. Returns 0 when out of memory. */
+ * adds to range(Q1) a direction that no column of A reaches: a lifting.
+ *
+ * They are found without a rank decision: with N = A A' + delta I (CHOLMOD),
+ * u <- delta N^-1 u keeps what A' sends to zero and shrinks a part that A'
+ * reaches with singular value sigma by delta / (sigma^2 + delta) each step.
+ * Random vectors of range(Q1) (Q times random leading coordinates) through a
+ * few steps therefore span exactly those lost directions (the hidden ones),
+ * with what is left of the rest far below; an SVD of the block tells the two
+ * apart, and the block doubles while every vector in it is hidden. Each is
+ * kept only where A' sends it within the rank tolerance of zero. Run only
+ * where SPQR found some constraints dependent (m > rank): where it kept them
+ * all, there were no dependencies to misjudge; and not with a loose rank
+ * tolerance (above HIDDEN_TOL_MAX), which the caller chose SPQR's way.
+ * Returns 0 when out of memory. */
 #define HIDDEN_BLOCK_FIRST 8
 #define HIDDEN_BLOCK_MAX 512
-#define HIDDEN_STEPS 3
+#define HIDDEN_STEPS 6
+/* delta, relative to the largest diagonal entry of A A'. */
+#define HIDDEN_DELTA 1e-12
+/* A singular value of the block below this, relative to the largest, is what the
+ * steps left of a reached direction. */
+#define HIDDEN_GAP 1e-4
+/* Above this rank tolerance (a loose one, asked for) SPQR's decision stands. */
+#define HIDDEN_TOL_MAX 1e-6
 
-/* vj <- vj minus its parts along the count orthonormal columns (length n) of basis. */
-static void remove_along(int64_t n, double *vj, int32_t count, const double *basis)
+/* The hidden directions among k random vectors of range(Q1), appended to s->hidden:
+ * returns how many (k: perhaps more), or -1 on failure. */
+static int32_t hidden_block(facet_lifter *s, cholmod_factor *factor, double delta, int32_t k,
+                            double reach)
 {
-    for (int32_t i = 0; i < count; ++i) {
-        const double *bi = basis + (size_t)i * (size_t)n;
-        double dot = 0.0;
-        for (int64_t r = 0; r < n; ++r)
-            dot += bi[r] * vj[r];
-        for (int64_t r = 0; r < n; ++r)
-            vj[r] -= dot * bi[r];
+    const int32_t nv = s->nv;
+    cholmod_dense *u = cholmod_l_allocate_dense((size_t)nv, (size_t)k, (size_t)nv, CHOLMOD_REAL,
+                                                &s->cm);
+    double *sv = malloc(sizeof(double) * (size_t)k);
+    double *left = malloc(sizeof(double) * (size_t)nv * (size_t)k);
+    if (!u || !sv || !left) {
+        cholmod_l_free_dense(&u, &s->cm);
+        free(sv), free(left);
+        return -1;
     }
-}
-
-/* Orthonormalise the k columns (length n) of v in place by modified Gram-Schmidt, twice;
- * a column that vanishes is set to zero. */
-static void orthonormalise(int64_t n, int32_t k, double *v)
-{
-    for (int pass = 0; pass < 2; ++pass)
-        for (int32_t j = 0; j < k; ++j) {
-            double *vj = v + (size_t)j * (size_t)n;
-            remove_along(n, vj, j, v);
-            double norm = 0.0;
-            for (int64_t r = 0; r < n; ++r)
-                norm += vj[r] * vj[r];
-            norm = sqrt(norm);
-            for (int64_t r = 0; r < n; ++r)
-                vj[r] = norm > 0.0 ? vj[r] / norm : 0.0;
-        }
-}
-
-/* v (n x k) <- v minus its parts along the nf orthonormal columns of f, then
- * orthonormalised. */
-static void deflate(int64_t n, int32_t k, double *v, int32_t nf, const double *f)
-{
-    for (int pass = 0; pass < 2; ++pass)
-        for (int32_t j = 0; j < k; ++j)
-            remove_along(n, v + (size_t)j * (size_t)n, nf, f);
-    orthonormalise(n, k, v);
-}
-
-/* Copy the solve's result (nrow x k, leading dimension d) into v (n x k), rows from
- * `keep` on set to zero, non-finite values too. */
-static void take(const cholmod_dense *z, int64_t n, int32_t k, int64_t keep, double *v)
-{
-    for (int32_t j = 0; j < k; ++j)
-        for (int64_t r = 0; r < n; ++r) {
-            double value = r < (int64_t)z->nrow ? ((const double *)z->x)[(size_t)j * z->d + r]
-                                                : 0.0;
-            v[(size_t)j * n + r] = r < keep && isfinite(value) ? value : 0.0;
-        }
-}
-
-/* Subspace iteration with (R R')^-1 on u's k columns (R's left space: nv each, rows
- * from rank on zero), away from the nf columns of `found` (orthonormal, the same
- * space), orthonormalised after each triangular solve (the singular values span
- * far more than a double: one solve at a time stays within it). 0 on failure. */
-static int hidden_block(facet_lifter *s, cholmod_dense *u, cholmod_dense *x, int32_t nf,
-                        const double *found)
-{
-    const int32_t nv = s->nv, m = s->m, k = (int32_t)u->ncol;
-    double *uu = u->x;
+    double *x = u->x;
     uint64_t state = 0x9E3779B97F4A7C15ull; /* the same start every time */
     for (int32_t j = 0; j < k; ++j)
         for (int32_t v = 0; v < nv; ++v) {
             state = state * 6364136223846793005ull + 1442695040888963407ull;
-            uu[(size_t)j * nv + v] = v < s->rank ? (double)(state >> 11) * 0x1p-53 - 0.5 : 0.0;
+            x[(size_t)j * nv + v] = v < s->rank ? (double)(state >> 11) * 0x1p-53 - 0.5 : 0.0;
         }
-    deflate(nv, k, uu, nf, found);
-    for (int step = 0; step < HIDDEN_STEPS; ++step) {
-        cholmod_dense *y = SuiteSparseQR_C_solve(SPQR_RX_EQUALS_B, s->qr, u, &s->cm);
-        if (!y)
-            return 0;
-        take(y, m, k, m, x->x);
-        cholmod_l_free_dense(&y, &s->cm);
-        orthonormalise(m, k, x->x);
-        cholmod_dense *z = SuiteSparseQR_C_solve(SPQR_RTX_EQUALS_B, s->qr, x, &s->cm);
-        if (!z)
-            return 0;
-        take(z, nv, k, s->rank, uu);
-        cholmod_l_free_dense(&z, &s->cm);
-        deflate(nv, k, uu, nf, found);
-    }
-    return 1;
-}
-
-/* Appends to s->hidden the directions Q u of the block u (k columns) that A' sends
- * within tol * largest of zero, and their coordinates u to *coords (nf of them so
- * far, capacity *cap); returns how many, or -1 on failure. */
-static int32_t hidden_keep(facet_lifter *s, const cholmod_dense *u, double tol, double largest,
-                           double **coords, int32_t *cap)
-{
-    const int32_t nv = s->nv, m = s->m, k = (int32_t)u->ncol;
-    const int64_t *ap = s->a->p, *ai = s->a->i;
-    const double *ax = s->a->x;
-    cholmod_dense *q = SuiteSparseQR_C_qmult(SPQR_QX, s->qr, (cholmod_dense *)u, &s->cm);
-    double *y = malloc(sizeof(double) * (size_t)m * (size_t)k);
-    double *sv = malloc(sizeof(double) * (size_t)k);
-    double *vt = malloc(sizeof(double) * (size_t)k * (size_t)k);
     int32_t found = -1;
-    int info = 0;
-    if (q && y && sv && vt) {
-        /* y = A' Q u (m x k); its right singular vectors whose singular values are
-         * within the tolerance give the unreached directions */
-        const double *qx = q->x;
+    cholmod_dense *q = SuiteSparseQR_C_qmult(SPQR_QX, s->qr, u, &s->cm);
+    for (int step = 0; q && step < HIDDEN_STEPS; ++step) {
+        cholmod_dense *next = cholmod_l_solve(CHOLMOD_A, factor, q, &s->cm);
+        cholmod_l_free_dense(&q, &s->cm);
+        q = next;
+        if (q) {
+            double *qx = q->x;
+            for (size_t i = 0; i < (size_t)nv * (size_t)k; ++i)
+                qx[i] *= delta;
+        }
+    }
+    if (q) {
+        /* back into range(Q1): the solves' rounding leaves parts along Q2 (also reached
+         * by no column), which the projection counts already */
+        cholmod_dense *c = SuiteSparseQR_C_qmult(SPQR_QTX, s->qr, q, &s->cm);
+        cholmod_l_free_dense(&q, &s->cm);
+        if (c)
+            for (int32_t j = 0; j < k; ++j)
+                memset((double *)c->x + (size_t)j * c->d + s->rank, 0,
+                       sizeof(double) * (size_t)(nv - s->rank));
+        q = c ? SuiteSparseQR_C_qmult(SPQR_QX, s->qr, c, &s->cm) : NULL;
+        cholmod_l_free_dense(&c, &s->cm);
+    }
+    if (q) {
         for (int32_t j = 0; j < k; ++j)
-            for (int32_t c = 0; c < m; ++c) {
-                double dot = 0.0;
-                for (int64_t p = ap[c]; p < ap[c + 1]; ++p)
-                    dot += ax[p] * qx[(size_t)j * q->d + (size_t)ai[p]];
-                y[(size_t)j * m + c] = dot;
-            }
-        int mm = m, kk = k, lwork = -1, one = 1;
-        double query = 0.0;
-        dgesvd_("N", "A", &mm, &kk, y, &mm, sv, NULL, &one, vt, &kk, &query, &lwork, &info);
+            memcpy(x + (size_t)j * nv, (const double *)q->x + (size_t)j * q->d,
+                   sizeof(double) * (size_t)nv);
+        int mm = nv, kk = k, lwork = -1, info = 0, one = 1;
+        double query = 0.0, vt = 0.0;
+        dgesvd_("S", "N", &mm, &kk, x, &mm, sv, left, &mm, &vt, &one, &query, &lwork, &info);
         lwork = (int)query;
         double *work = info == 0 ? malloc(sizeof(double) * (size_t)(lwork > 1 ? lwork : 1))
                                  : NULL;
         if (work) {
-            dgesvd_("N", "A", &mm, &kk, y, &mm, sv, NULL, &one, vt, &kk, work, &lwork, &info);
-            found = 0;
-            for (int32_t j = 0; info == 0 && j < k; ++j)
-                found += sv[j] <= tol * largest;
+            dgesvd_("S", "N", &mm, &kk, x, &mm, sv, left, &mm, &vt, &one, work, &lwork, &info);
             free(work);
-        }
-    }
-    const int32_t old = s->n_hidden;
-    if (found > 0 && old + found > *cap) {
-        int32_t want = 2 * (old + found);
-        double *h = realloc(s->hidden, sizeof(double) * (size_t)nv * (size_t)want);
-        double *c = h ? realloc(*coords, sizeof(double) * (size_t)nv * (size_t)want) : NULL;
-        if (h)
-            s->hidden = h;
-        if (c)
-            *coords = c, *cap = want;
-        else
-            found = -1;
-    }
-    for (int32_t h = 0; found > 0 && h < found; ++h) {
-        const int32_t row = k - found + h; /* singular values descend */
-        double *out = s->hidden + (size_t)(old + h) * nv, *co = *coords + (size_t)(old + h) * nv;
-        for (int32_t v = 0; v < nv; ++v) {
-            double sum = 0.0, sumq = 0.0;
-            for (int32_t j = 0; j < k; ++j) {
-                sum += vt[(size_t)j * k + row] * ((const double *)u->x)[(size_t)j * nv + v];
-                sumq += vt[(size_t)j * k + row] * ((const double *)q->x)[(size_t)j * q->d + v];
+            /* kept: the left singular vectors above the gap that A' sends within `reach`
+             * of zero (a part that A' reaches weakly shrinks slowly: below the rank
+             * tolerance it is a dependency, above it a constraint) */
+            found = 0;
+            for (int32_t j = 0; info == 0 && sv[0] > 0.0 && j < k; ++j) {
+                if (!(isfinite(sv[j]) && sv[j] > HIDDEN_GAP * sv[0]))
+                    break;
+                const double *h = left + (size_t)j * nv;
+                const int64_t *ap = s->a->p, *ai = s->a->i;
+                const double *ax = s->a->x;
+                double sum = 0.0;
+                for (int32_t c = 0; c < s->m; ++c) {
+                    double dot = 0.0;
+                    for (int64_t p = ap[c]; p < ap[c + 1]; ++p)
+                        dot += ax[p] * h[ai[p]];
+                    sum += dot * dot;
+                }
+                if (!(sqrt(sum) <= reach))
+                    break;
+                ++found;
             }
-            co[v] = sum;
-            out[v] = sumq;
         }
     }
-    if (found > 0)
-        s->n_hidden = old + found;
     cholmod_l_free_dense(&q, &s->cm);
-    free(y), free(sv), free(vt);
+    cholmod_l_free_dense(&u, &s->cm);
+    if (found > 0) {
+        double *h = realloc(s->hidden, sizeof(double) * (size_t)nv * (size_t)found);
+        if (h) {
+            s->hidden = h;
+            memcpy(h, left, sizeof(double) * (size_t)nv * (size_t)found);
+            s->n_hidden = found;
+        } else {
+            found = -1;
+        }
+    }
+    free(sv), free(left);
     return found;
 }
 
@@ -449,42 +404,50 @@ static int check_rank(facet_lifter *s);
 
 static int find_hidden(facet_lifter *s, double tol)
 {
-    const int32_t nv = s->nv, m = s->m;
-    const int64_t *ap = s->a->p;
-    const double *ax = s->a->x;
-    double largest = 0.0; /* largest column norm of A: the tolerance's scale */
-    for (int32_t j = 0; j < m; ++j) {
-        double sum = 0.0;
-        for (int64_t p = ap[j]; p < ap[j + 1]; ++p)
-            sum += ax[p] * ax[p];
-        largest = fmax(largest, sqrt(sum));
+    if (s->m <= s->rank || tol > HIDDEN_TOL_MAX)
+        return 1;
+    cholmod_factor *factor = cholmod_l_analyze(s->a, &s->cm); /* of A A' */
+    double largest = 0.0; /* of A A''s diagonal */
+    double reach = 0.0;   /* tol times A's largest column norm */
+    {
+        const int64_t *ap = s->a->p, *ai = s->a->i;
+        const double *ax = s->a->x;
+        double *diag = s->work;
+        memset(diag, 0, sizeof(double) * (size_t)s->nv);
+        for (int32_t j = 0; j < s->m; ++j)
+            for (int64_t p = ap[j]; p < ap[j + 1]; ++p)
+                diag[ai[p]] += ax[p] * ax[p];
+        for (int32_t v = 0; v < s->nv; ++v)
+            largest = fmax(largest, diag[v]);
+        for (int32_t j = 0; j < s->m; ++j) {
+            double sum = 0.0;
+            for (int64_t p = ap[j]; p < ap[j + 1]; ++p)
+                sum += ax[p] * ax[p];
+            reach = fmax(reach, sqrt(sum));
+        }
+        reach *= tol;
     }
-    double *coords = NULL;
-    int32_t cap = 0, k = HIDDEN_BLOCK_FIRST;
-    int ok = 1;
-    while (ok) {
-        if (k > s->rank - s->n_hidden)
-            k = s->rank - s->n_hidden;
-        if (k <= 0 || (double)k * (double)(m > nv ? m : nv) > 4e8)
+    const double delta = HIDDEN_DELTA * (largest > 0.0 ? largest : 1.0);
+    double beta[2] = {delta, 0.0};
+    int ok = factor && cholmod_l_factorize_p(s->a, beta, NULL, 0, factor, &s->cm) &&
+             s->cm.status == CHOLMOD_OK;
+    if (!ok && s->cm.status != CHOLMOD_OUT_OF_MEMORY) {
+        /* (not positive definite to rounding: no search; check_rank still looks) */
+        cholmod_l_free_factor(&factor, &s->cm);
+        return 1;
+    }
+    for (int32_t k = HIDDEN_BLOCK_FIRST; ok;) {
+        if (k > s->rank)
+            k = s->rank;
+        if (k <= 0 || (double)k * (double)s->nv > 2e8)
             break;
-        cholmod_dense *u = cholmod_l_allocate_dense((size_t)nv, (size_t)k, (size_t)nv,
-                                                    CHOLMOD_REAL, &s->cm);
-        cholmod_dense *x = cholmod_l_allocate_dense((size_t)m, (size_t)k, (size_t)m,
-                                                    CHOLMOD_REAL, &s->cm);
-        int32_t found = u && x && hidden_block(s, u, x, s->n_hidden, coords)
-                            ? hidden_keep(s, u, tol, largest, &coords, &cap)
-                            : -1;
-        cholmod_l_free_dense(&u, &s->cm);
-        cholmod_l_free_dense(&x, &s->cm);
+        int32_t found = hidden_block(s, factor, delta, k, reach);
         ok = found >= 0;
-        if (found < k) /* the block reached past them: all found */
+        if (found < k || k >= HIDDEN_BLOCK_MAX || k >= s->rank) /* reached past them */
             break;
-        if (k < HIDDEN_BLOCK_MAX)
-            k *= 2;
+        k *= 2;
     }
-    free(coords);
-    if (ok && s->n_hidden > 0)
-        orthonormalise(nv, s->n_hidden, s->hidden);
+    cholmod_l_free_factor(&factor, &s->cm);
     return ok;
 }
 
