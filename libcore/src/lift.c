@@ -439,7 +439,7 @@ static int find_hidden(facet_lifter *s, double tol)
     for (int32_t k = HIDDEN_BLOCK_FIRST; ok;) {
         if (k > s->rank)
             k = s->rank;
-        if (k <= 0 || (double)k * (double)s->nv > 2e8)
+        if (k <= 0 || (double)k * (double)s->nv > 2e7) /* (blocks of 160 MB) */
             break;
         int32_t found = hidden_block(s, factor, delta, k, reach);
         ok = found >= 0;
