@@ -462,3 +462,49 @@ def test_a_large_voronoi_plan_keeps_its_liftings(seed):
     basis, _ = lifter.basis("orthonormal")
     for function in basis:
         assert np.abs(lifter.solve(function).heights - function).max() < 1e-9
+
+
+def _triangulated_plan(n, seed=0):
+    """A Delaunay triangulation of n random points, 50 across (every function lifts)."""
+    from scipy.spatial import Delaunay
+
+    p = np.random.default_rng(seed).random((n, 2)) * 50.0
+    return PolyMesh.from_faces(np.column_stack([p, np.zeros(n)]),
+                               [list(t) for t in Delaunay(p).simplices])
+
+
+@pytest.mark.parametrize("plan", ["triangles", "voronoi"])
+def test_eigen_liftings_by_arpack_are_the_dense_ones(plan):
+    # the path beyond the dense eigen-solver, taken here on plans the dense one serves
+    from facet.lift import _eigen_liftings
+
+    mesh = _triangulated_plan(1200) if plan == "triangles" else _voronoi_plan(3000, 4)[0]
+    lifter = Lifter(mesh)
+    count = min(20, lifter.dimension - 1)
+    dense, dense_energies = lifter.basis("eigen", count)
+    sparse, energies = _eigen_liftings(lifter, count)
+    np.testing.assert_allclose(energies, dense_energies, rtol=1e-7, atol=1e-12)
+    # the same functions (unit vectors: |cosine| 1), signs as the core sets them
+    assert np.abs(np.sum(dense * sparse, axis=1) - 1.0).max() < 1e-6
+
+
+def test_eigen_liftings_beyond_the_dense_limit():
+    # a triangulated canopy of 2,500 vertices: dimension 2,500, and the 20 smoothest
+    # eigen-liftings were refused ("eigen-liftings are dense")
+    mesh = _triangulated_plan(2500)
+    lifter = Lifter(mesh)
+    assert lifter.dimension == 2500
+    basis, energies = lifter.basis("eigen", 20)
+    assert basis.shape == (20, 2500)
+    assert np.abs(basis @ basis.T - np.eye(20)).max() < 1e-9  # (weights 1)
+    assert np.all(np.diff(energies[3:]) >= 0.0) and energies[3] > 0.0
+    edges = mesh.edges()
+    for function, energy in zip(basis[3:], energies[3:]):
+        assert np.isclose(np.sum((function[edges[:, 0]] - function[edges[:, 1]]) ** 2), energy)
+    with pytest.raises(InputError, match=r"dimension 2500, too large for all its "
+                       r"eigen-liftings at once: ask for the smoothest 503 at most"):
+        lifter.basis("eigen")
+    from facet.errors import Cancelled
+
+    with pytest.raises(Cancelled, match="eigen-liftings cancelled"):
+        lifter.basis("eigen", 20, progress=lambda done, total: True)

@@ -42,6 +42,10 @@ BASES = {
 SPARSE_MAX_RINGS = 3
 #: Sparse liftings are collected densely for the independence test: refused beyond this.
 SPARSE_MAX_ENTRIES = 2e7
+#: Beyond the core's dense eigen-solver (dimension 2,000, or vertices x dimension 2e7),
+#: the smoothest eigen-liftings come from ARPACK instead, this many non-trivial ones at
+#: most (see _eigen_liftings).
+EIGEN_SPARSE_MAX = 500
 
 
 class TargetError(InputError):
@@ -381,8 +385,9 @@ class Lifter:
         Parameters
         ----------
         kind : {"eigen", "sparse", "orthonormal", "fundamental"}
-            Eigen-liftings (smoothest first; dense, refused beyond dimension
-            2000), sparse liftings (each non-trivial one supported on at most
+            Eigen-liftings (smoothest first; the core's dense eigen-solver up to
+            dimension 2000, beyond it ARPACK, the smoothest 500 at most), sparse
+            liftings (each non-trivial one supported on at most
             three rings of faces around a vertex where the plan allows, scaled
             to peak 1; independent, not orthogonal; collected densely, refused
             beyond 2e7 entries), any orthonormal basis, or the fundamental
@@ -393,9 +398,10 @@ class Lifter:
             (fundamental).
         progress : callable, optional
             ``progress(done, total)`` as the sparse liftings are searched
-            (vertices) or the fundamental ones computed; True cancels
-            (:class:`facet.Cancelled`). The eigen and orthonormal bases are
-            one computation each and report nothing.
+            (vertices), the fundamental ones computed, or ARPACK steps towards
+            eigen-liftings beyond the dense limit (total an estimate); True
+            cancels (:class:`facet.Cancelled`). The dense eigen and the
+            orthonormal bases are one computation each and report nothing.
 
         Returns
         -------
@@ -438,8 +444,93 @@ class Lifter:
         try:
             self._core.basis(kind, count, basis, energies)
         except _core.CoreError as exc:
-            raise _core_error(exc, self._source) from None
+            if kind != "eigen" or getattr(exc, "status_name", None) != "FACET_ERROR_TOO_LARGE":
+                raise _core_error(exc, self._source) from None
+            if count - 3 > min(EIGEN_SPARSE_MAX, d // 2):
+                raise InputError(
+                    f"the lifting space has dimension {d}, too large for all its "
+                    "eigen-liftings at once: ask for the smoothest "
+                    f"{3 + min(EIGEN_SPARSE_MAX, d // 2)} at most (count)") from None
+            return _eigen_liftings(self, count, progress)
         return basis, energies
+
+
+def _eigen_liftings(lifter, count, progress=None):
+    """The `count` first eigen-liftings (the affine three, then the smoothest), as the core
+    gives them, for lifting spaces beyond its dense eigen-solver.
+
+    The non-trivial ones minimise the Dirichlet energy z' L z over liftings z with
+    z' W z = 1, W-orthogonal to the affine ones (W: the weights normalised to mean 1): the
+    lowest eigenpairs of L z = lambda W z on that subspace. ARPACK finds them in
+    shift-invert mode; its operator solves the constrained system
+    [[L + tau W, B'], [B, -delta I]] (B: the planarity constraints and the three
+    W-orthogonality rows; delta keeps it quasi-definite where constraints depend on each
+    other) by one sparse LU (SuperLU, minimum degree on A + A'). The vectors it returns
+    are then made exact liftings by the lifter's own projection and finished by
+    Rayleigh-Ritz, so each is a lifting to the projection's accuracy whatever ARPACK's.
+    ``progress(done, total)`` between ARPACK's steps (total an estimate); True cancels.
+    """
+    import scipy.linalg
+    import scipy.sparse as sp
+    from scipy.sparse.linalg import LinearOperator, eigsh, splu
+
+    mesh = lifter.plan
+    n = mesh.n_vertices
+    w = lifter._weights / lifter._weights.max()
+    w = w * (n / w.sum())
+    trivial, trivial_energies = lifter.basis("orthonormal", 3)
+    edges = mesh.edges()
+    ne = len(edges)
+    rows = np.repeat(np.arange(ne), 2)
+    incidence = sp.csr_matrix((np.tile([1.0, -1.0], ne), (rows, edges.reshape(-1))),
+                              shape=(ne, n))
+    laplacian = (incidence.T @ incidence).tocsc()
+    r, c, v = [], [], []
+    m = 0
+    for face, complement in _face_complements(mesh):
+        for values in complement:
+            r.append(np.full(len(face), m))
+            c.append(face)
+            v.append(values)
+            m += 1
+    constraints = sp.csr_matrix(
+        (np.concatenate(v) if v else [], (np.concatenate(r) if r else [],
+                                          np.concatenate(c) if c else [])), shape=(m, n))
+    b = sp.vstack([constraints, sp.csr_matrix(trivial * w)]).tocsc()
+    weights = sp.diags(w)
+    tau = 1e-6 * float(laplacian.diagonal().mean() or 1.0)
+    kkt = sp.bmat([[laplacian + tau * weights, b.T],
+                   [b, -1e-8 * sp.identity(b.shape[0])]]).tocsc()
+    lu = splu(kkt, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+              options={"SymmetricMode": True})
+    k = count - 3
+    ncv = min(max(2 * k + 1, 20), n - 1)
+    estimate = 3 * ncv
+    applied = [0]
+
+    def inverse(x):
+        applied[0] += 1
+        _report(progress, min(applied[0], estimate - 1), estimate, "eigen-liftings")
+        rhs = np.zeros(kkt.shape[0])
+        rhs[:n] = np.ravel(x)
+        return lu.solve(rhs)[:n]
+
+    start = np.random.default_rng(0).standard_normal(n)  # (the same every time)
+    _, vectors = eigsh(LinearOperator((n, n), matvec=lambda x: laplacian @ x, dtype=float),
+                       k=k, M=weights, sigma=-tau, which="LM", ncv=ncv, v0=start,
+                       OPinv=LinearOperator((n, n), matvec=inverse, dtype=float))
+    z = np.empty((k, n))
+    for i in range(k):
+        lifted = np.empty(n)
+        lifter._core.solve(np.ascontiguousarray(vectors[:, i]), lifted)
+        z[i] = lifted - trivial.T @ (trivial @ (w * lifted))
+    energies, coefficients = scipy.linalg.eigh(z @ (laplacian @ z.T), (z * w) @ z.T)
+    basis = coefficients.T @ z
+    for function in basis:
+        if function[np.argmax(np.abs(function))] < 0:
+            function *= -1.0
+    _report(progress, estimate, estimate, "eigen-liftings")
+    return np.vstack([trivial, basis]), np.concatenate([trivial_energies, energies])
 
 
 def _face_complements(mesh):
