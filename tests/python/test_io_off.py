@@ -173,3 +173,11 @@ def test_huge_vertex_count_does_not_allocate(write_file):
     path = write_file("x.off", "OFF\n99999999999 1 0\n0 0 0\n")
     with pytest.raises(MeshError, match="file ends after 1 of 99999999999 vertices"):
         read_off(path)
+
+
+def test_the_trailing_data_message_counts_in_the_singular(tmp_path):
+    # "(the header declares 4 vertices and 1 faces)"
+    path = tmp_path / "one.off"
+    path.write_text("OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\nextra\n")
+    with pytest.raises(MeshError, match=r"declares 4 vertices and 1 face\)"):
+        read_off(path)

@@ -88,8 +88,10 @@ def run_cleanup(args):
     c = report["cleanup"]
     print(f"facet cleanup: {args.input}")
     _line(sys.stdout, "cleanup",
-          f"{c['collapsed_edges']} edges shorter than {c['threshold']:.3g} collapsed, "
-          f"{c['removed_faces']} faces removed: {mesh.n_vertices} -> {c['vertices']} vertices, "
+          f"{c['collapsed_edges']} edge{'s' if c['collapsed_edges'] != 1 else ''} shorter than "
+          f"{c['threshold']:.3g} collapsed, {c['removed_faces']} "
+          f"face{'s' if c['removed_faces'] != 1 else ''} removed: "
+          f"{mesh.n_vertices} -> {c['vertices']} vertices, "
           f"{mesh.n_faces} -> {c['faces']} faces")
     if c["skipped_edges"]:
         _line(sys.stdout, "warning",

@@ -203,7 +203,8 @@ def read_off(path, *, validate=True):
         token, line = stream.take()
         raise MeshError(
             f"unexpected {token[:20]!r} after the last face (the header declares "
-            f"{n_vertices} vertices and {n_faces} faces)",
+            f"{n_vertices} vert{'ices' if n_vertices != 1 else 'ex'} and {n_faces} "
+            f"face{'s' if n_faces != 1 else ''})",
             source=source,
             line=line,
         )
