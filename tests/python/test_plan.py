@@ -656,3 +656,24 @@ def test_a_snap_node_of_thousands_of_endpoints_is_judged_by_its_true_spread():
     with pytest.raises(PlanError, match=r"joins 2100 endpoints in a chain 4 wide, from \(-1.9999"):
         plan_from_segments([(tuple(2.0 * a), tuple(b)) for a, b in zip(ring, outer)]
                            + segments[n:], snap=1.0)
+
+
+def test_targets_and_plans_from_a_spreadsheet_s_unicode_text(tmp_path):
+    # Excel's "Unicode Text" export: UTF-16 with a byte order mark, tab-separated, .txt;
+    # refused as "not a text file: byte 1 is not UTF-8" (and .txt not read at all)
+    from facet.plan import read_plan, read_targets
+
+    square = [((0, 0), (10, 0)), ((10, 0), (10, 10)), ((10, 10), (0, 10)), ((0, 10), (0, 0)),
+              ((5, 0), (5, 10))]
+    table = "x1\ty1\tx2\ty2\r\n" + "".join(f"{a[0]}\t{a[1]}\t{b[0]}\t{b[1]}\r\n"
+                                           for a, b in square)
+    (tmp_path / "plan.txt").write_bytes(table.encode("utf-16"))
+    plan = read_plan(tmp_path / "plan.txt")
+    assert plan.n_faces == 2
+    points = "x\ty\tz\r\n0\t0\t1.5\r\n10\t10\t2.5\r\n"
+    (tmp_path / "heights.txt").write_bytes(points.encode("utf-16"))
+    (tmp_path / "heights.csv").write_bytes(b"\xef\xbb\xbf0,0,1.5\r\n10,10,2.5\r\n")  # CSV UTF-8
+    for name in ("heights.txt", "heights.csv"):
+        targets, weights = read_targets(plan, tmp_path / name)
+        given = weights > weights.min()
+        assert sorted(targets[given]) == [1.5, 2.5]

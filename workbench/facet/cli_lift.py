@@ -9,9 +9,10 @@
     python3 -m facet lifting-space PLAN [--basis fundamental|eigen|orthonormal]
         [--count K] -o DIR [--report R.json] [...plan options]
 
-PLAN is a drawing (.dxf, .csv of segments) or a plan mesh (.obj, .off,
+PLAN is a drawing (.dxf, or a table of segments: .csv, or tab-separated .tsv or
+.txt as spreadsheets write them) or a plan mesh (.obj, .off,
 .json). T is a mesh (per-vertex targets when it has the plan's vertices in
-order, else vertical projection, topmost hit) or a CSV of x,y,z points
+order, else vertical projection, topmost hit) or a table of x,y,z points
 (nearest plan vertex within the snap distance; vertices with no point are
 free). W is a text file with one weight per plan vertex. With --move-tolerance D the
 plan's vertices may move by up to D (facet.lift.lift_nearly); the exit status is 1 when
@@ -25,7 +26,7 @@ __all__ = ["add_commands"]
 
 
 def _plan_options(parser):
-    parser.add_argument("plan", metavar="PLAN", help="plan drawing (.dxf, .csv) or mesh "
+    parser.add_argument("plan", metavar="PLAN", help="plan drawing (.dxf, .csv/.tsv/.txt) or mesh "
                         "(.obj, .off, .json)")
     parser.add_argument("--snap", type=float, metavar="D",
                         help="merge drawing endpoints closer than D (default 1e-6 of its size)")
@@ -278,7 +279,7 @@ def add_commands(commands):
     lift.add_argument("-o", "--output", metavar="OUT", required=True,
                       help="lifted mesh (.obj or .off)")
     lift.add_argument("--targets", metavar="T", help="target surface (.obj, .off, .json: "
-                      "vertical projection or per-vertex) or x,y,z points (.csv)")
+                      "vertical projection or per-vertex) or x,y,z points (.csv/.tsv/.txt)")
     lift.add_argument("--pin", action="append", default=[], metavar="V=H",
                       help="pin vertex V at height H (the rest free); repeatable")
     lift.add_argument("--weights", metavar="W", help="file with one weight per plan vertex")

@@ -356,6 +356,11 @@ class _DxfReader:
             self.skipped[kind] = self.skipped.get(kind, 0) + 1
 
 
+#: Tables of numbers (segments or points): comma-separated, or tab-separated as
+#: spreadsheets export text ("Unicode Text" is UTF-16 and tab-separated, .txt).
+TABLE_SUFFIXES = (".csv", ".tsv", ".txt")
+
+
 def _csv_rows(path, error):
     """(line number, non-empty stripped cells) of a CSV file, comments and
     blank lines left out. A file that is not text (control bytes beside bytes
@@ -368,21 +373,30 @@ def _csv_rows(path, error):
             data = handle.read()
     except OSError as exc:
         raise error(f"{path}: cannot read the file ({exc.strerror})") from None
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        if b"\0" in data or any(b < 32 and b not in b"\t\n\r\f" for b in data[:4096]):
-            raise error(f"{path}: not a text file: byte {exc.start + 1} is not UTF-8 "
-                        "(binary data?)") from None
-        text = data.decode("utf-8", errors="replace")
-    nul = data.find(b"\0")
-    if nul >= 0:
-        raise error(f"{path}: not a text file: byte {nul + 1} is NUL (binary data?)")
-    from facet.io.files import split_lines
+    from facet.io.files import bom_encoding, split_lines
 
+    encoding = bom_encoding(data)
+    if encoding in ("utf-16", "utf-32"):
+        # Windows "Unicode" text (Excel's "Unicode Text" export, PowerShell's >): its NULs
+        # are the encoding's, not binary data
+        text = data.decode(encoding, errors="replace")
+    else:
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            if b"\0" in data or any(b < 32 and b not in b"\t\n\r\f" for b in data[:4096]):
+                raise error(f"{path}: not a text file: byte {exc.start + 1} is not UTF-8 "
+                            "(binary data?)") from None
+            text = data.decode("utf-8", errors="replace")
+        nul = data.find(b"\0")
+        if nul >= 0:
+            raise error(f"{path}: not a text file: byte {nul + 1} is NUL (binary data?)")
+    text = text[1:] if text.startswith("\ufeff") else text
     for number, line in enumerate(split_lines(text), 1):
         try:
-            row = next(csv.reader([line]), [])
+            # (tab-separated where a line has no comma: what spreadsheets export as text)
+            row = next(csv.reader([line], delimiter="," if "," in line or "\t" not in line
+                                  else "\t"), [])
         except csv.Error as exc:
             raise error(f"{path}: line {number}: not CSV ({exc})") from None
         cells = [c.strip() for c in row if c.strip()]
@@ -424,9 +438,9 @@ def read_segments(path, *, arc_tolerance=None, notes=None):
                             f"{arc_tolerance!r}")
     if suffix == ".dxf":
         return _dxf_segments(path, arc_tolerance, notes)
-    if suffix == ".csv":
+    if suffix in TABLE_SUFFIXES:
         return _csv_segments(path)
-    raise PlanError(f"{path}: not a line drawing (.dxf or .csv)")
+    raise PlanError(f"{path}: not a line drawing (.dxf, or a .csv, .tsv or .txt table)")
 
 
 # ------------------------------------------------------------------ plan graphs
@@ -755,7 +769,7 @@ def _unjoined(plan):
 def read_plan(path, *, snap=None, arc_tolerance=None, openings=()):
     """A plan graph from a drawing file (see the module docstring)."""
     suffix = os.path.splitext(os.fspath(path))[1].lower()
-    if suffix in (".dxf", ".csv"):
+    if suffix == ".dxf" or suffix in TABLE_SUFFIXES:
         notes = []
         segments = read_segments(path, arc_tolerance=arc_tolerance, notes=notes)
         plan = plan_from_segments(segments, snap=snap, openings=openings, source=path)
@@ -766,7 +780,7 @@ def read_plan(path, *, snap=None, arc_tolerance=None, openings=()):
 
         return plan_from_mesh(read_mesh(path), source=path)
     raise PlanError(f"{path}: cannot read {suffix or 'files without an extension'} plans "
-                    "(Facet reads .dxf, .csv, .obj, .off, .json)")
+                    "(Facet reads .dxf, .csv, .tsv, .txt, .obj, .off, .json)")
 
 
 # ------------------------------------------------------------------ targets
@@ -967,7 +981,7 @@ def read_targets(plan, path, *, tolerance=None):
     """
     suffix = os.path.splitext(os.fspath(path))[1].lower()
     xy, _ = _plan_xy(plan)
-    if suffix == ".csv":
+    if suffix in TABLE_SUFFIXES:
         rows = []
         for number, cells in _csv_rows(path, InputError):
             try:
@@ -990,4 +1004,4 @@ def read_targets(plan, path, *, tolerance=None):
 
         return targets_from_mesh(plan, read_mesh(path), source=path, tolerance=tolerance)
     raise InputError(f"{path}: cannot read targets from {suffix or 'files without an extension'} "
-                     "files (Facet reads .obj, .off, .json meshes and .csv points)")
+                     "files (Facet reads .obj, .off, .json meshes and .csv, .tsv or .txt points)")

@@ -80,14 +80,19 @@ def read_text(path):
     """
     with open(path, "rb") as stream:
         data = stream.read()
-    encoding = "utf-8"
-    for mark, name in ((codecs.BOM_UTF32_LE, "utf-32"), (codecs.BOM_UTF32_BE, "utf-32"),
-                       (codecs.BOM_UTF16_LE, "utf-16"), (codecs.BOM_UTF16_BE, "utf-16")):
-        if data.startswith(mark):
-            encoding = name
-            break
-    text = data.decode(encoding, errors="replace")
+    text = data.decode(bom_encoding(data) or "utf-8", errors="replace")
     return text[1:] if text.startswith("\ufeff") else text
+
+
+def bom_encoding(data):
+    """"utf-16" or "utf-32" when the bytes start with that encoding's byte order mark,
+    "utf-8-sig" with UTF-8's, else None."""
+    for mark, name in ((codecs.BOM_UTF32_LE, "utf-32"), (codecs.BOM_UTF32_BE, "utf-32"),
+                       (codecs.BOM_UTF16_LE, "utf-16"), (codecs.BOM_UTF16_BE, "utf-16"),
+                       (codecs.BOM_UTF8, "utf-8-sig")):
+        if data.startswith(mark):
+            return name
+    return None
 
 
 def split_lines(text):
