@@ -668,6 +668,39 @@ def test_cli_panels_report(facet_command, tmp_path):
     assert (tmp_path / "o.dxf").exists()
 
 
+def test_cli_panels_in_metres(facet_command, tmp_path):
+    # a facade modelled in metres: the DXF said millimetres ($INSUNITS 4) and the STEP was
+    # written as if its metres were millimetres, parts a thousandth of their size, unsaid
+    import ezdxf
+
+    from facet import write_mesh
+
+    freecad_step()
+    mm = translational(nu=3, nv=2, step=400.0)
+    metres = facet.PolyMesh(mm.vertices / 1000.0, mm.face_start, mm.face_vertices)
+    write_mesh(metres, tmp_path / "m.obj")
+    common = ["--edge", "bisector", "--sheet", "1.3x0.9", "--dxf", tmp_path / "o.dxf",
+              "--step", tmp_path / "o.step", "--report", tmp_path / "r.json"]
+    done = facet_command("panels", tmp_path / "m.obj", "--thickness", "0.018", "--gap",
+                         "0.004", "--units", "m", *common)
+    assert done.returncode == 0, done.stderr
+    assert "units" not in done.stderr
+    doc = ezdxf.readfile(tmp_path / "o.dxf")
+    assert doc.header["$INSUNITS"] == 6 and doc.header["$MEASUREMENT"] == 1
+    assert json.load(open(tmp_path / "r.json"))["units"] == "m"
+    import Part
+
+    shape = Part.read(str(tmp_path / "o.step"))  # (STEP in millimetres)
+    box = shape.BoundBox
+    assert box.XLength == pytest.approx(np.ptp(mm.vertices[:, 0]), rel=0.05)
+    assert shape.Volume == pytest.approx(sum(s.Volume for s in shape.Solids))
+    assert shape.Volume > 0.9 * 18.0 * 1200.0 * 800.0
+    # the same mesh cut as millimetres (the default) is said to be the wrong size
+    done = facet_command("panels", tmp_path / "m.obj", "--thickness", "0.018", *common[:2])
+    assert done.returncode == 0, done.stderr
+    assert "edges are 0.429 mm long on average, taking the mesh to be in mm" in done.stderr
+
+
 @pytest.mark.parametrize("args, text", [
     (["--thickness", "0"], "thickness"),
     (["--thickness", "-3"], "thickness"),

@@ -100,6 +100,9 @@ def add_commands(commands):
     p.add_argument("--svg", metavar="DIR", help="SVG preview of each sheet")
     p.add_argument("--png", metavar="DIR", help="PNG preview of each sheet")
     p.add_argument("--report", metavar="R.json", help="JSON report")
+    p.add_argument("--units", choices=("mm", "cm", "m", "in", "ft"), default="mm",
+                   help="the mesh's length unit, and every length given here (default mm): "
+                   "the DXF declares it ($INSUNITS), the STEP file is written in mm from it")
     p.set_defaults(run=run_panels)
 
 
@@ -108,13 +111,16 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
                  min_edge_abs=0.0, sheet=None, margin=0.0,
                  spacing=0.0, rotations="90", grain=None, dxf=None, per_sheet=False,
                  step=None, schedule=None, svg=None, png=None, progress=None,
-                 cancelled=None, panel_set=None, solids=None, allow_unplaced=False):
+                 cancelled=None, panel_set=None, solids=None, allow_unplaced=False,
+                 units="mm"):
     """Everything ``facet panels`` does, as a function (also used by the
     benchmark). Returns (report dict, PanelSet, drawings, NestResult or None).
 
     ``progress(stage, done, total)`` returning True cancels, and so does ``cancelled()``
     returning True before the unplaced parts are judged and before each file is written
-    (the command line's Ctrl+C, :func:`facet.cli.interrupted`). With ``step``
+    (the command line's Ctrl+C, :func:`facet.cli.interrupted`). ``units``: the mesh's
+    length unit (:data:`facet.cutsheets.LENGTH_UNITS`), declared in the DXF and the
+    reports; the STEP file is scaled from it to millimetres. With ``step``
     (and no ``solids``) the solids and the STEP file are made in a worker
     process while the other stages run (:func:`facet.step.start_step`);
     their times in the report are the worker's, and ``total`` is the wall
@@ -124,9 +130,11 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
     Parts that fit on no sheet raise :class:`facet.errors.InputError`
     (nothing written) unless `allow_unplaced` is true.
     """
+    from facet.cutsheets import length_unit
     from facet.errors import InputError
     from facet.panels import DEFAULT_MIN_EDGE, panels
 
+    mm_per_unit = length_unit(units)[0]
     if min_edge is None:
         min_edge = DEFAULT_MIN_EDGE
     if dxf and sheet is None:
@@ -158,7 +166,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
 
         # solids and STEP do not depend on the rest: a worker process makes
         # them while this one unfolds, nests and writes the DXF
-        job = start_step(step, ps)
+        job = start_step(step, ps, scale=mm_per_unit)
     from facet.io.files import staged
 
     try:
@@ -169,7 +177,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
                 mesh, ps, job, times, t_start, sheet=sheet, margin=margin, spacing=spacing,
                 rotations=rotations, grain=grain, dxf=dxf, per_sheet=per_sheet, step=step,
                 schedule=schedule, svg=svg, png=png, allow_unplaced=allow_unplaced,
-                solids=solids, stage_progress=stage_progress, cancelled=cancelled)
+                solids=solids, stage_progress=stage_progress, cancelled=cancelled, units=units)
     except BaseException:
         if job is not None:
             job.cancel()
@@ -178,7 +186,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
 
 def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,
                       dxf, per_sheet, step, schedule, svg, png, allow_unplaced, solids,
-                      stage_progress, cancelled):
+                      stage_progress, cancelled, units):
+    from facet.cutsheets import length_unit
     from facet.cutsheets import (schedule_rows, write_dxf, write_png, write_schedule_csv,
                                  write_schedule_json, write_svg)
     from facet.errors import Cancelled, InputError
@@ -210,7 +219,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
     if dxf:
         check()
         t = time.perf_counter()
-        files["dxf"] = write_dxf(dxf, result, drawings, per_sheet=per_sheet)
+        files["dxf"] = write_dxf(dxf, result, drawings, per_sheet=per_sheet, units=units)
         times["dxf"] = time.perf_counter() - t
     rows = None
     if schedule:
@@ -218,7 +227,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         t = time.perf_counter()
         rows = schedule_rows(ps, result, drawings)
         if schedule.lower().endswith(".json"):
-            write_schedule_json(schedule, rows, meta=ps.options)
+            write_schedule_json(schedule, rows, meta=dict(ps.options, units=units))
         else:
             write_schedule_csv(schedule, rows)
         files["schedule"] = [schedule]
@@ -247,7 +256,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         check()
         times["solids"] = 0.0  # reused
         t = time.perf_counter()
-        write_step(step, solids)
+        write_step(step, solids, scale=length_unit(units)[0])
         times["step"] = time.perf_counter() - t
         files["step"] = [step]
     times["total"] = time.perf_counter() - t_start
@@ -257,6 +266,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         "input": mesh.info.get("source") if mesh.info else None,
         "options": dict(ps.options, sheet=sheet, margin=margin, spacing=spacing,
                         rotations=rotations, grain=grain),
+        "units": units,
         "n_panels": len(ps),
         "id_scheme": ps.id_scheme,
         "grid_shape": ps.grid_shape,
@@ -303,7 +313,8 @@ def run_panels(args):
         min_edge=args.min_edge, min_edge_abs=args.min_edge_abs, sheet=args.sheet,
         margin=args.margin, spacing=args.spacing, rotations=args.rotations, grain=args.grain,
         dxf=args.dxf, per_sheet=args.per_sheet, step=args.step, schedule=args.schedule,
-        svg=args.svg, png=args.png, progress=interrupted, cancelled=interrupted)
+        svg=args.svg, png=args.png, progress=interrupted, cancelled=interrupted,
+        units=args.units)
     report["input"] = args.input
     if args.report:
         write_json(report, args.report)
@@ -347,6 +358,19 @@ def run_panels(args):
     for kind, paths in report["files"].items():
         print(f"  {kind:<13} {', '.join(paths[:3])}" + (" ..." if len(paths) > 3 else ""),
               file=out)
-    for w in ps.warnings:
+    for w in ps.warnings + _units_warnings(mesh, args.units):
         print(f"facet: warning: {w}", file=sys.stderr)
     return EXIT_OK
+
+
+def _units_warnings(mesh, units):
+    """A warning when the panels' size in the declared units is far from any facade's: a
+    mesh in metres cut as millimetres gives parts a thousandth of their size."""
+    from facet.cutsheets import length_unit
+
+    edge = mesh.mean_edge_length() * length_unit(units)[0]  # mm
+    if 10.0 <= edge <= 50000.0:
+        return []
+    return [f"the panels' edges are {edge:.3g} mm long on average, taking the mesh to be in "
+            f"{units} (--units): if it is in other units, say which, or the DXF and STEP "
+            "files give parts of the wrong size"]

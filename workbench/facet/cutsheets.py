@@ -11,7 +11,8 @@ SHEET     sheet borders and sheet names
 GRAIN     grain arrows
 ========  =============================================================
 
-Units are millimetres ($INSUNITS 4): model units are taken as mm. Sheets lie
+Units are the model's, declared in $INSUNITS: millimetres unless `units` says
+otherwise (see LENGTH_UNITS). Sheets lie
 side by side along +x, ``sheet_gap`` apart, in one file, or one file per
 sheet (``per_sheet=True``).
 """
@@ -64,7 +65,22 @@ def _rotate_angle(pl, deg):
     return (deg + pl.angle_deg) % 360.0
 
 
-def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None):
+#: The model units a fabrication run can be in: millimetres per unit, the DXF's
+#: $INSUNITS code and $MEASUREMENT (1 metric, 0 imperial).
+LENGTH_UNITS = {"mm": (1.0, 4, 1), "cm": (10.0, 5, 1), "m": (1000.0, 6, 1),
+                "in": (25.4, 1, 0), "ft": (304.8, 2, 0)}
+
+
+def length_unit(units):
+    """(mm per unit, $INSUNITS, $MEASUREMENT) of `units`, one of LENGTH_UNITS."""
+    from facet.errors import InputError
+
+    if units not in LENGTH_UNITS:
+        raise InputError(f"units {units!r}: use one of {', '.join(LENGTH_UNITS)}")
+    return LENGTH_UNITS[units]
+
+
+def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, units="mm"):
     """Write the nested sheets as DXF (ezdxf; audited before saving).
 
     Parameters
@@ -79,6 +95,9 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None):
     per_sheet : bool
     sheet_gap : float, optional
         Distance between sheets side by side (default a tenth of the width).
+    units : str
+        The model's length unit (a key of LENGTH_UNITS), declared in $INSUNITS and
+        $MEASUREMENT; the coordinates are written as they are.
 
     Returns
     -------
@@ -88,14 +107,15 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None):
     import ezdxf
     from ezdxf.enums import TextEntityAlignment
 
+    _, insunits, measurement = length_unit(units)
     w, h = nest_result.sheet_size
     offsets = sheet_offsets(nest_result, sheet_gap)
     path = os.fspath(path)
 
     def new_doc():
         doc = ezdxf.new("R2010", setup=True)
-        doc.units = ezdxf.units.MM
-        doc.header["$MEASUREMENT"] = 1
+        doc.units = insunits
+        doc.header["$MEASUREMENT"] = measurement
         for name, colour in LAYERS.items():
             doc.layers.add(name, color=colour)
         return doc

@@ -348,7 +348,7 @@ def panel_solids(panel_set, progress=None, brepcheck=True):
     return out
 
 
-def write_step(path, named_solids, pcurves=False):
+def write_step(path, named_solids, pcurves=False, scale=1.0):
     """Write solids to a STEP file, each named by its ID (the product name
     FreeCAD's importer and other CAD systems show).
 
@@ -362,6 +362,9 @@ def write_step(path, named_solids, pcurves=False):
         which a reader rebuilds them exactly; without them the file is half
         the size and written three times as fast. The setting of the session
         (FreeCAD's preference) is restored afterwards.
+    scale : float
+        Millimetres per model unit: STEP files are written in millimetres (OCC's
+        unit), so a model in metres is scaled by 1000 on the way out.
 
     Notes
     -----
@@ -394,6 +397,9 @@ def write_step(path, named_solids, pcurves=False):
         for i, (name, solid) in enumerate(named_solids):
             obj = doc.addObject("Part::Feature", f"Panel{i:07d}")
             obj.Label = name
+            if scale != 1.0:
+                solid = solid.copy()
+                solid.scale(scale)
             obj.Shape = solid
             objs.append(obj)
         labels.SetBool("DuplicateLabels", user_duplicates)
@@ -415,7 +421,7 @@ def _step_job(job, settings):
     import time
 
     path, ids, tops, bottoms = job  # path: the temporary file the parent renames
-    brepcheck, pcurves = settings
+    brepcheck, pcurves, scale = settings
     try:
         t = time.perf_counter()
         FreeCAD, Part = import_freecad()
@@ -425,7 +431,7 @@ def _step_job(job, settings):
             solids.extend(_read_solids(Part, ids[c0:c1], tops[c0:c1], bottoms[c0:c1],
                                        brepcheck))
         t1 = time.perf_counter()
-        write_step(path, list(zip(ids, solids)), pcurves=pcurves)
+        write_step(path, list(zip(ids, solids)), pcurves=pcurves, scale=scale)
         return ("ok", {"solids": t1 - t, "step": time.perf_counter() - t1})
     except (SolidError, FreeCADMissing) as exc:
         return ("error", type(exc).__name__, str(exc))
@@ -443,7 +449,7 @@ class StepJob:
     in_worker : bool
     """
 
-    def __init__(self, path, panel_set, brepcheck, pcurves):
+    def __init__(self, path, panel_set, brepcheck, pcurves, scale=1.0):
         import threading
 
         from facet.parallel import python_executable
@@ -453,7 +459,7 @@ class StepJob:
         # `path` unless the whole job succeeded and was waited for
         self._tmp = f"{self.path}.part{os.getpid()}-{id(self):x}.step"
         self._panels = list(panel_set.panels)
-        self._settings = (bool(brepcheck), bool(pcurves))
+        self._settings = (bool(brepcheck), bool(pcurves), float(scale))
         self._cancel = threading.Event()
         self._result = None
         self.seconds = {}
@@ -508,7 +514,7 @@ class StepJob:
             solids = panel_solids(_Panels(self._panels), progress=progress,
                                   brepcheck=self._settings[0])
             t1 = time.perf_counter()
-            write_step(self.path, solids, pcurves=self._settings[1])
+            write_step(self.path, solids, pcurves=self._settings[1], scale=self._settings[2])
             self.seconds = {"solids": t1 - t, "step": time.perf_counter() - t1}
             return self.path
         while self._thread.is_alive():
@@ -538,7 +544,7 @@ class _Panels:
         self.panels = panels
 
 
-def start_step(path, panel_set, brepcheck=True, pcurves=False):
+def start_step(path, panel_set, brepcheck=True, pcurves=False, scale=1.0):
     """Start making the panels' solids and their STEP file (as
     :func:`panel_solids` and :func:`write_step` do) in a worker process, so
     that nesting and the DXF can go on meanwhile; returns a :class:`StepJob`.
@@ -546,4 +552,4 @@ def start_step(path, panel_set, brepcheck=True, pcurves=False):
     Where no worker process can be started (no Python interpreter for it),
     the job is done by :meth:`StepJob.wait`, in this process.
     """
-    return StepJob(path, panel_set, brepcheck, pcurves)
+    return StepJob(path, panel_set, brepcheck, pcurves, scale)
