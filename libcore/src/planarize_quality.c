@@ -44,6 +44,21 @@ static int folds(int32_t n, const double *xyz, const int32_t *idx)
     return facet_face_folds(n, xyz, idx, nrm);
 }
 
+/* Whether a face has an edge of no length (within 1e-12 of its longest): its
+ * shape, folded or not, was never defined, and the input's own. */
+static int has_empty_edge(int32_t n, const double *xyz, const int32_t *idx)
+{
+    double longest = 0.0, shortest = INFINITY;
+    for (int32_t k = 0; k < n; ++k) {
+        const double *a = xyz + 3 * (size_t)idx[k], *b = xyz + 3 * (size_t)idx[(k + 1) % n];
+        const double d = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                         (a[2] - b[2]) * (a[2] - b[2]);
+        longest = fmax(longest, d);
+        shortest = fmin(shortest, d);
+    }
+    return shortest <= 1e-24 * longest;
+}
+
 int32_t facet_pl_new_narrow(const facet_planarizer *s, double angle_deg, int nthreads,
                             double *smallest)
 {
@@ -57,9 +72,12 @@ int32_t facet_pl_new_narrow(const facet_planarizer *s, double angle_deg, int nth
     reduction(min : least)
     for (int32_t f = 0; f < s->nf; ++f) {
         const int32_t b = start[f], e = start[f + 1];
-        if (folds(e - b, q, fv + b) && !folds(e - b, p, fv + b)) {
+        if (folds(e - b, q, fv + b) && !folds(e - b, p, fv + b) &&
+            !has_empty_edge(e - b, p, fv + b)) {
             /* a new fold: no interior, whatever its corners (a bowtie's may
-             * all be wide), counted as a corner of 0 degrees */
+             * all be wide), counted as a corner of 0 degrees; not where the
+             * input face had an edge of no length (a quad that was a
+             * triangle, its fourth corner anywhere on an edge) */
             ++count;
             least = 0.0;
             continue;

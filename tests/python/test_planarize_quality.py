@@ -296,3 +296,19 @@ def test_a_time_budget_that_ends_the_re_solves_is_said(data_dir):
                for w in cut.warnings)
     full = facet.planarize(mesh, data="plane", threads=1)
     assert full.quality_check == "recovered" and not full.quality_timed_out
+
+
+def test_a_quad_with_an_edge_of_no_length_is_not_a_new_fold():
+    # an 8 x 8 grid where one vertex lies on its neighbour (two quads that are triangles):
+    # their result folded and counted as new 0-degree corners, 4 re-solves (1,845
+    # iterations against 180), and a warning that blamed the layout for the input's shape
+    n = 8
+    vertices = np.array([(i, j, 0.15 * np.sin(i) * np.cos(0.7 * j))
+                         for j in range(n + 1) for i in range(n + 1)])
+    vertices[41] = vertices[40]
+    faces = [[j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1,
+              (j + 1) * (n + 1) + i] for j in range(n) for i in range(n)]
+    result = facet.planarize(facet.PolyMesh.from_faces(vertices, faces))
+    assert result.converged and result.planarity.max_rel_all <= 1e-6
+    assert result.quality_check == "ok" and result.quality_resolves == 0
+    assert not [w for w in result.warnings if "did not have" in w]
