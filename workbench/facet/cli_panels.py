@@ -332,7 +332,10 @@ def run_panels(args):
     if ps.narrowest_joint is not None:
         a, b = ps.narrowest_joint_panels
         if ps.overlapping_joints:
+            # (with node clashes too, ClearingGap is the gap that clears those as well: the
+            # joints' warning gives the smaller one for the joints alone)
             clears = (f"a gap of {ps.clearing_gap:.4g} clears them"
+                      + (" and the nodes' overlaps" if ps.node_clashes else "")
                       if ps.clearing_gap is not None else "no gap found that clears every overlap")
             print(f"  joints        {ps.overlapping_joints} overlap, the deepest by "
                   f"{-ps.narrowest_joint:.4g} ({a} and {b}); {clears}", file=out)
