@@ -91,7 +91,8 @@ class Panel:
     frame : numpy.ndarray
         (3, 4) rigid transform ``flat = R @ x + t`` (R = frame[:, :3], t =
         frame[:, 3]): the face's first input corner to the origin, its first
-        input edge along +x, its normal to +z.
+        input edge along +x, its normal to +z. Where a short edge vanished there (see
+        ``min_edge``), the first corner and edge that remain of the face.
     normal : numpy.ndarray
         Unit normal (top side).
     edge_lengths : list of float
