@@ -203,3 +203,31 @@ def test_numbers_only_as_mesh_files_write_them(write_file, line, token):
     text = "v 0 0 0\nv 1 0 0\nv 0 1 0\n" + line + "\n"
     with pytest.raises(MeshError, match=f"line 4: cannot read '{token}' as"):
         read_obj(write_file("x.obj", text))
+
+
+def test_groups_and_materials_come_back_before_the_same_faces(tmp_path):
+    # the output was one flat group: a facade's zones (g), objects (o) and materials
+    # (usemtl, mtllib) were dropped by planarize, unsaid
+    import facet
+    from facet.io import write_obj
+
+    source = tmp_path / "zones.obj"
+    source.write_text(
+        "mtllib facade.mtl\no Facade\n"
+        "v 0 0 0\nv 1 0 0\nv 1 1 0.1\nv 0 1 0\nv 2 0 0\nv 2 1 0.2\nv 3 0 0\nv 3 1 0\n"
+        "g north\nusemtl glass\nf 1 2 3 4\n"
+        "g   south  \nusemtl metal # a comment\nf 2 5 6 3\nf 5 7 8 6\ng empty\n")
+    mesh = read_obj(source)
+    result = facet.planarize(mesh).mesh
+    write_obj(result, tmp_path / "out.obj")
+    kept = [line for line in (tmp_path / "out.obj").read_text().splitlines()
+            if not line.startswith(("v ", "#"))]
+    assert kept == ["mtllib facade.mtl", "o Facade", "g north", "usemtl glass", "f 1 2 3 4",
+                    "g south", "usemtl metal", "f 2 5 6 3", "f 5 7 8 6", "g empty"]
+    assert np.array_equal(read_obj(tmp_path / "out.obj").vertices, result.vertices)
+    # a mesh with other faces than the file's (one face fewer) is written without them
+    fewer = facet.PolyMesh(mesh.vertices, mesh.face_start[:3], mesh.face_vertices[:8],
+                           info=mesh.info)
+    write_obj(fewer, tmp_path / "fewer.obj")
+    text = (tmp_path / "fewer.obj").read_text()
+    assert "mtllib facade.mtl" in text and "g north" not in text and "usemtl" not in text

@@ -339,7 +339,7 @@ def _create_beside(path, suffix=""):
     raise FileExistsError(errno.EEXIST, "no free name for a temporary file beside it", path)
 
 
-def write_mesh_records(path, mesh, header, vertex_prefix, face_record):
+def write_mesh_records(path, mesh, header, vertex_prefix, face_record, footer=""):
     """Write `header`, then one line per vertex and one per face, in large chunks.
 
     Parameters
@@ -354,7 +354,9 @@ def write_mesh_records(path, mesh, header, vertex_prefix, face_record):
         Written before each vertex's three coordinates (``"v "`` for OBJ).
     face_record : callable
         ``face_record(face)`` gives the line of a face (a list of indices from
-        0), without the newline.
+        0), without the newline; called once per face, in order.
+    footer : str
+        Text after the faces.
     """
     check_writable_mesh(mesh, path)
 
@@ -371,6 +373,6 @@ def write_mesh_records(path, mesh, header, vertex_prefix, face_record):
             if len(lines) >= 4096:
                 yield "".join(lines)
                 lines = []
-        yield "".join(lines)
+        yield "".join(lines) + footer
 
     write_text(path, chunks())

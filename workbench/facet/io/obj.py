@@ -9,9 +9,14 @@ Reading keeps what a panel layout needs and ignores the rest:
   ``a``, ``a/t``, ``a/t/n`` or ``a//n``: only the vertex index ``a`` is used.
   Indices start at 1; negative indices count back from the last vertex
   defined so far (-1 is the latest). ``fo`` is read like ``f``.
-- Normals, texture coordinates, groups, objects, smoothing, materials, lines,
-  points and free-form geometry (``vn vt vp g o s usemtl mtllib l p ...``)
-  are ignored, as are comments (from ``#`` to the end of the line).
+- Normals, texture coordinates, smoothing, lines, points and free-form
+  geometry (``vn vt vp s l p ...``) are ignored, as are comments (from ``#``
+  to the end of the line). Groups, objects and materials (``g o usemtl
+  mtllib``) do not change the mesh, but are kept in its ``info``
+  (``obj_sections``, ``obj_mtllib``): :func:`write_obj` writes them back
+  before the same faces while the mesh has as many faces as the file had (a
+  planarized facade keeps its zones and materials; a cleaned-up one, whose
+  faces changed, does not).
 - A line ending with a backslash continues on the next line.
 
 In error messages faces and vertices are numbered from 0 in the order they
@@ -27,6 +32,8 @@ from facet.io.files import parse_float, parse_int, read_lines, write_mesh_record
 __all__ = ["read_obj", "write_obj"]
 
 _FACE_KEYWORDS = frozenset({"f", "fo"})
+#: Statements kept (in info) and written back before the same faces.
+_SECTION_KEYWORDS = frozenset({"g", "o", "usemtl"})
 
 
 def _statements(lines):
@@ -86,6 +93,8 @@ def read_obj(path, *, validate=True):
     face_start = [0]
     face_lines = []
     n_polylines = 0
+    sections = []  # (faces before it, statement): g, o, usemtl
+    mtllib = []
     lines = read_lines(path)
     for number, text in _statements(lines):
         tokens = text.split()
@@ -138,6 +147,10 @@ def read_obj(path, *, validate=True):
             face_lines.append(number)
         elif keyword in ("l", "curv"):
             n_polylines += 1
+        elif keyword in _SECTION_KEYWORDS:
+            sections.append((len(face_lines), " ".join(tokens)))
+        elif keyword == "mtllib":
+            mtllib.append(" ".join(tokens))
     if not face_lines and not vertex_lines and not n_polylines:
         if not any(line.strip() for line in lines):
             raise MeshError("file is empty", source=source)
@@ -152,7 +165,10 @@ def read_obj(path, *, validate=True):
         face_start,
         face_vertices,
         source=source,
-        info={"format": "obj"},
+        info=dict({"format": "obj"},
+                  **({"obj_sections": tuple(sections), "obj_faces": len(face_lines)}
+                     if sections else {}),
+                  **({"obj_mtllib": tuple(mtllib)} if mtllib else {})),
         vertex_lines=vertex_lines,
         face_lines=face_lines,
         index_base=1,
@@ -178,10 +194,20 @@ def write_obj(mesh, path):
     OSError
         When the file cannot be written.
     """
-    write_mesh_records(
-        path,
-        mesh,
-        header=f"# Facet mesh: {mesh.n_vertices} vertices, {mesh.n_faces} faces\n",
-        vertex_prefix="v ",
-        face_record=lambda face: "f " + " ".join(str(index + 1) for index in face),
-    )
+    info = mesh.info or {}
+    sections = info.get("obj_sections", ()) if info.get("obj_faces") == mesh.n_faces else ()
+    before = {}
+    for at, statement in sections:
+        before.setdefault(at, []).append(statement)
+    faces_written = iter(range(mesh.n_faces))
+
+    def face_record(face):
+        text = "f " + " ".join(str(index + 1) for index in face)
+        ahead = before.get(next(faces_written))
+        return "\n".join(ahead + [text]) if ahead else text
+
+    header = f"# Facet mesh: {mesh.n_vertices} vertices, {mesh.n_faces} faces\n"
+    header += "".join(f"{line}\n" for line in info.get("obj_mtllib", ()))
+    tail = "".join(f"{statement}\n" for statement in before.get(mesh.n_faces, ()))
+    write_mesh_records(path, mesh, header=header, vertex_prefix="v ", face_record=face_record,
+                       footer=tail)
