@@ -231,3 +231,26 @@ def test_groups_and_materials_come_back_before_the_same_faces(tmp_path):
     write_obj(fewer, tmp_path / "fewer.obj")
     text = (tmp_path / "fewer.obj").read_text()
     assert "mtllib facade.mtl" in text and "g north" not in text and "usemtl" not in text
+
+
+def test_groups_follow_their_faces_through_cleanup(tmp_path):
+    # a cleaned-up mesh has fewer faces: its groups were dropped with the file's face count
+    import facet
+    from facet.io import write_obj
+
+    rows = ["v %g %d %g" % (x, j, 0.05 * x * j) for j in range(3) for x in (0, 1, 1.004, 2)]
+    faces = []
+    for j in range(2):
+        for i in range(3):
+            v = j * 4 + i + 1
+            faces.append(f"f {v} {v + 1} {v + 5} {v + 4}")
+    source = tmp_path / "strip.obj"
+    source.write_text("\n".join(rows + ["g left"] + faces[:2] + ["g right"] + faces[2:]) + "\n")
+    mesh = read_obj(source)
+    cleaned = facet.cleanup(mesh, 0.05, relative=False)
+    assert cleaned.mesh.n_faces == 4  # the two slivers between x 1 and 1.004 collapsed
+    write_obj(cleaned.mesh, tmp_path / "out.obj")
+    kept = [line.split()[0] if line.startswith("f ") else line
+            for line in (tmp_path / "out.obj").read_text().splitlines()
+            if not line.startswith(("v ", "#"))]
+    assert kept == ["g left", "f", "g right", "f", "f", "f"]

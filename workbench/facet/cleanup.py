@@ -139,12 +139,18 @@ def cleanup(mesh, min_edge, relative=True):
 
 def _remapped(info, vertex_map, face_map, n_faces, n_vertices):
     """A reader's per-vertex and per-face lists (the compas reader's ``vertex_keys``,
-    ``face_keys`` and ``support_vertices``) for the new topology, so that results written
-    back by key land on the right elements: a face keeps its key; a vertex takes the key
-    of the first input vertex merged into it (``merged_vertex_keys`` lists the others)."""
+    ``face_keys`` and ``support_vertices``, the OBJ reader's ``obj_sections``) for the new
+    topology, so that results written back by key land on the right elements: a face keeps
+    its key (and its group); a vertex takes the key of the first input vertex merged into
+    it (``merged_vertex_keys`` lists the others)."""
     if isinstance(info.get("face_keys"), list) and len(info["face_keys"]) == n_faces:
         keys = info["face_keys"]
         info["face_keys"] = [keys[f] for f in face_map.tolist()]
+    if info.get("obj_sections") and info.get("obj_faces") == n_faces:
+        # the OBJ reader's groups and materials: each before the first face kept after it
+        info["obj_sections"] = tuple((int(np.searchsorted(face_map, at)), statement)
+                                     for at, statement in info["obj_sections"])
+        info["obj_faces"] = len(face_map)
     if isinstance(info.get("vertex_keys"), list) and len(info["vertex_keys"]) == len(vertex_map):
         keys, first, merged = info["vertex_keys"], [None] * n_vertices, {}
         for old, new in enumerate(vertex_map.tolist()):

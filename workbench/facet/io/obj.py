@@ -15,8 +15,8 @@ Reading keeps what a panel layout needs and ignores the rest:
   mtllib``) do not change the mesh, but are kept in its ``info``
   (``obj_sections``, ``obj_mtllib``): :func:`write_obj` writes them back
   before the same faces while the mesh has as many faces as the file had (a
-  planarized facade keeps its zones and materials; a cleaned-up one, whose
-  faces changed, does not).
+  planarized facade keeps its zones and materials; :func:`facet.cleanup` moves
+  them with the faces it keeps).
 - A line ending with a backslash continues on the next line.
 
 In error messages faces and vertices are numbered from 0 in the order they
