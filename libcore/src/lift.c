@@ -269,6 +269,19 @@ static int apply_q(facet_lifter *s, int transpose, int32_t k, double *x)
     return 1;
 }
 
+/* out[m] = A' u (u: nv values). */
+static void a_transpose_times(const facet_lifter *s, const double *u, double *out)
+{
+    const int64_t *ap = s->a->p, *ai = s->a->i;
+    const double *ax = s->a->x;
+    for (int32_t j = 0; j < s->m; ++j) {
+        double dot = 0.0;
+        for (int64_t k = ap[j]; k < ap[j + 1]; ++k)
+            dot += ax[k] * u[ai[k]];
+        out[j] = dot;
+    }
+}
+
 /* SPQR's rank detection (Heath's method: a column whose part outside the span of
  * the columns before it is within the tolerance is dead) can keep columns that
  * depend on the others, sets that only together are dependent, the last of
@@ -302,7 +315,7 @@ static int apply_q(facet_lifter *s, int transpose, int32_t k, double *x)
 /* Above this rank tolerance (a loose one, asked for) SPQR's decision stands. */
 #define HIDDEN_TOL_MAX 1e-6
 
-/* The hidden directions among k random vectors of range(Q1), appended to s->hidden:
+/* The hidden directions among k random vectors of range(Q1), which replace s->hidden:
  * returns how many (k: perhaps more), or -1 on failure. */
 static int32_t hidden_block(facet_lifter *s, cholmod_factor *factor, double delta, int32_t k,
                             double reach)
@@ -368,16 +381,10 @@ static int32_t hidden_block(facet_lifter *s, cholmod_factor *factor, double delt
             for (int32_t j = 0; info == 0 && sv[0] > 0.0 && j < k; ++j) {
                 if (!(isfinite(sv[j]) && sv[j] > HIDDEN_GAP * sv[0]))
                     break;
-                const double *h = left + (size_t)j * nv;
-                const int64_t *ap = s->a->p, *ai = s->a->i;
-                const double *ax = s->a->x;
-                double sum = 0.0;
-                for (int32_t c = 0; c < s->m; ++c) {
-                    double dot = 0.0;
-                    for (int64_t p = ap[c]; p < ap[c + 1]; ++p)
-                        dot += ax[p] * h[ai[p]];
-                    sum += dot * dot;
-                }
+                double *reached = s->rhs_m->x, sum = 0.0;
+                a_transpose_times(s, left + (size_t)j * nv, reached);
+                for (int32_t c = 0; c < s->m; ++c)
+                    sum += reached[c] * reached[c];
                 if (!(sqrt(sum) <= reach))
                     break;
                 ++found;
@@ -693,6 +700,13 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
         }
         if (m > 0) {
             s->rank = (int32_t)s->cm.SPQR_istat[4];
+            s->rhs_m = cholmod_l_allocate_dense((size_t)m, 1, (size_t)m, CHOLMOD_REAL, &s->cm);
+            if (!s->rhs_m) {
+                free(scratch);
+                free(order);
+                facet_lifter_free(&s);
+                return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+            }
             int blas = blas_serial_begin();
             int found = find_hidden(s, tol);
             blas_serial_end(blas);
@@ -702,13 +716,6 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
                 facet_lifter_free(&s);
                 return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1,
                                   "out of memory checking the planarity constraints' rank");
-            }
-            s->rhs_m = cholmod_l_allocate_dense((size_t)m, 1, (size_t)m, CHOLMOD_REAL, &s->cm);
-            if (!s->rhs_m) {
-                free(scratch);
-                free(order);
-                facet_lifter_free(&s);
-                return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
             }
         }
     }
@@ -739,12 +746,6 @@ const char *facet_lifter_message(const facet_lifter *lifter)
     return lifter ? lifter->message : "";
 }
 
-/* u <- u - P u, P the orthogonal projector onto range(A_live), the columns
- * of A that SPQR kept (the others lie within its tolerance of their span).
- * With A_live E = Q1 R11, P = A_live R11^-1 R11^-T A_live', applied with
- * the stored R alone (two sparse triangular solves: the corrected
- * semi-normal equations, refined until A'u is at rounding level) instead of
- * the Householder Q, which is several times larger and slower to apply. */
 /* u <- u - Q1 Q1' u + H H' u (H: the hidden directions, within range(Q1) and
  * reached by no column of A, so part of the lifting space), with the orthogonal Q. */
 static int remove_range_q(facet_lifter *s, double *u)
@@ -770,6 +771,12 @@ static int remove_range_q(facet_lifter *s, double *u)
     return 1;
 }
 
+/* u <- u - P u, P the orthogonal projector onto range(A_live), the columns
+ * of A that SPQR kept (the others lie within its tolerance of their span).
+ * With A_live E = Q1 R11, P = A_live R11^-1 R11^-T A_live', applied with
+ * the stored R alone (two sparse triangular solves: the corrected
+ * semi-normal equations, refined until A'u is at rounding level) instead of
+ * the Householder Q, which is several times larger and slower to apply. */
 static int remove_range(facet_lifter *s, double *u)
 {
     const int64_t *ap = s->a->p, *ai = s->a->i;
@@ -790,12 +797,7 @@ static int remove_range(facet_lifter *s, double *u)
      * correction tells. A small A'u alone would not: with a tiny singular
      * value, u may keep a large part in range(A) that A' barely sees. */
     for (int step = 0; step < 6 && !converged; ++step) {
-        for (int32_t j = 0; j < m; ++j) {
-            double dot = 0.0;
-            for (int64_t k = ap[j]; k < ap[j + 1]; ++k)
-                dot += ax[k] * u[ai[k]];
-            b[j] = dot;
-        }
+        a_transpose_times(s, u, b);
         cholmod_dense *y = SuiteSparseQR_C_solve(SPQR_RTX_EQUALS_ETB, s->qr, s->rhs_m, &s->cm);
         if (!y)
             return 0;
