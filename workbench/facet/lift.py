@@ -322,6 +322,13 @@ class Lifter:
         return 3 * self._pieces + self._isolated
 
     @property
+    def _unit_weights(self):
+        """The weights scaled to mean 1, as the core scales them (by the largest first,
+        so that weights near the largest double do not overflow the sum)."""
+        w = self._weights / self._weights.max()
+        return w * (len(w) / w.sum())
+
+    @property
     def factor_seconds(self):
         return self._core.factor_seconds
 
@@ -476,8 +483,7 @@ def _eigen_liftings(lifter, count, progress=None):
 
     mesh = lifter.plan
     n = mesh.n_vertices
-    w = lifter._weights / lifter._weights.max()
-    w = w * (n / w.sum())
+    w = lifter._unit_weights
     trivial, trivial_energies = lifter.basis("orthonormal", 3)
     edges = mesh.edges()
     ne = len(edges)
@@ -600,8 +606,7 @@ def _sparse_liftings(lifter, count, progress=None):
     for f, (vs, _) in enumerate(faces):
         for v in vs:
             vertex_faces[v].append(f)
-    weights = lifter._weights
-    sw = np.sqrt(weights / weights.mean())
+    sw = np.sqrt(lifter._unit_weights)
     # Orthonormal (in the weighted inner product) span of what is collected, for the test.
     span = [t * sw for t in trivial[:3]]
     found = []
