@@ -486,7 +486,7 @@ def _read(args):
 def _term_options(args, mesh):
     """The solver terms asked for on the command line, checked against `mesh`."""
     from facet.io import read_mesh
-    from facet.planarize import DATA_TERMS
+    from facet.planarize import preset_shape
 
     options = {"data": args.data, "boundary": args.boundary}
     for name in ("shape", "shape_weight", "laplacian", "normal_laplacian", "boundary_fairness",
@@ -494,8 +494,7 @@ def _term_options(args, mesh):
         value = getattr(args, name)
         if value is not None:
             options[name] = value
-    if args.shape_weight and (args.shape or DATA_TERMS.get(
-            args.data or "", {}).get("shape", "none")) == "none":
+    if args.shape_weight and preset_shape(args.shape, args.data) == "none":
         raise _UsageError("--shape-weight weighs the shape term, which is off: give --shape "
                           "asap or arap with it (or --data plane or surface, which set asap)")
     if args.reference:

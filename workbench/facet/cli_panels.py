@@ -187,9 +187,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
 def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,
                       dxf, per_sheet, step, schedule, svg, png, allow_unplaced, solids,
                       stage_progress, cancelled, units):
-    from facet.cutsheets import length_unit
-    from facet.cutsheets import (schedule_rows, write_dxf, write_png, write_schedule_csv,
-                                 write_schedule_json, write_svg)
+    from facet.cutsheets import (length_unit, schedule_rows, write_dxf, write_png,
+                                 write_schedule_csv, write_schedule_json, write_svg)
     from facet.errors import Cancelled, InputError
     from facet.nest import nest
     from facet.unfold import unfold

@@ -75,6 +75,12 @@ DATA_TERMS = {
                 "shape": "asap", "shape_weight": 0.1},
 }
 
+def preset_shape(shape, data):
+    """The shape term a solve runs with: `shape` when given (not None), else the `data`
+    preset's (:data:`DATA_TERMS`), else "none"."""
+    return shape if shape is not None else DATA_TERMS.get(data or "", {}).get("shape", "none")
+
+
 #: The solver's terms beyond the schedule, with their value types (see
 #: facet.h, facet_planarize_options, for their meaning).
 TERMS = {

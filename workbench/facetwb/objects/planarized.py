@@ -13,7 +13,8 @@ import time
 import FreeCAD as App
 
 import facet
-from facet.planarize import ANDERSON_MAX, DATA_TERMS as _PRESETS, QUAD_LAYOUT_ADVICE
+from facet.planarize import (ANDERSON_MAX, DATA_TERMS as _PRESETS, QUAD_LAYOUT_ADVICE,
+                             preset_shape)
 from facetwb import compat, progress
 from facetwb.translation import translate
 from facetwb.recompute import failure, guarded
@@ -278,9 +279,7 @@ def term_options(obj, mesh):
         options["shape"] = obj.Shape
     shape_weight = non_negative(obj, "ShapeWeight")
     if shape_weight > 0:
-        shape = obj.Shape if obj.Shape != "default" else _PRESETS.get(obj.Data, {}).get(
-            "shape", "none")
-        if shape == "none":
+        if preset_shape(options.get("shape"), obj.Data) == "none":
             raise ValueError(f"{obj.Label}: ShapeWeight weighs the shape term, which is off "
                              f"(Shape {obj.Shape}, Data {obj.Data}): set Shape to asap or arap, "
                              "or ShapeWeight to 0")
