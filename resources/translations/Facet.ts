@@ -407,52 +407,47 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="248"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="252"/>
         <source>Planarize {0}: solving by local/local too, for a result closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="251"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="255"/>
         <source>Planarize {0}: solving by local/global again with a finer hold, closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="256"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="260"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="234"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="238"/>
         <source>planarity {0:.2g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="234"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="238"/>
         <source>planarity {0:.2g} (tolerance {1:.2g})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="238"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="234"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="244"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="240"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="218"/>
-        <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm or EdgeMode bisector clears them</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="231"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="227"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="254"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="258"/>
         <source>Planarize {0}: local/local closed a panel, solving by local/global</source>
         <translation type="unfinished"></translation>
     </message>
@@ -477,48 +472,43 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="796"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="797"/>
         <source>Edit control mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="798"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="799"/>
         <source>Drag a control vertex (dot) with the left mouse button; the planar result follows. OK (or Esc) keeps the edit, Cancel drops it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="808"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="809"/>
         <source>Vertices closer than this to the dragged one move with it (0: the dragged vertex alone)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="812"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="813"/>
         <source>Radius</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="815"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="816"/>
         <source>How much the neighbours move: smooth, linear with the distance, or all of them as much as the dragged vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="819"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="820"/>
         <source>Falloff</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="822"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="823"/>
         <source>Colour the result by the planarity of each panel or by how far its corners are from the control mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="826"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="827"/>
         <source>Colour by</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="225"/>
-        <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -559,6 +549,21 @@
     <message>
         <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="89"/>
         <source>How far the vertex moves; the rest of the roof follows, every face planar</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="217"/>
+        <source>a Gap of {0:.4g} mm or EdgeMode bisector clears them</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="217"/>
+        <source>no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="222"/>
+        <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; {5}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

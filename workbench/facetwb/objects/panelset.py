@@ -214,19 +214,15 @@ class PanelSet(_Proxy):
         obj.Warnings = list(ps.warnings)
         if ps.overlapping_joints:
             a, b = ps.narrowest_joint_panels
-            if ps.clearing_gap is not None:
-                App.Console.PrintWarning(translate(
-                    "Facet", "{0}: joints that overlap (cut square on the inner side of a "
-                    "fold): {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm or "
-                    "EdgeMode bisector clears them").format(
-                        obj.Label, ps.overlapping_joints, a, b, -ps.narrowest_joint,
-                        ps.clearing_gap) + "\n")
-            else:  # (the node clashes' search found no gap: panels.py)
-                App.Console.PrintWarning(translate(
-                    "Facet", "{0}: joints that overlap (cut square on the inner side of a "
-                    "fold): {1}; the deepest {2} and {3} by {4:.4g} mm; no Gap found clears "
-                    "every overlap: EdgeMode bisector or thinner panels").format(
-                        obj.Label, ps.overlapping_joints, a, b, -ps.narrowest_joint) + "\n")
+            clears = (translate("Facet", "a Gap of {0:.4g} mm or EdgeMode bisector clears "
+                                "them").format(ps.clearing_gap)
+                      if ps.clearing_gap is not None else  # (no gap clears the node clashes)
+                      translate("Facet", "no Gap found clears every overlap: EdgeMode "
+                                "bisector or thinner panels"))
+            App.Console.PrintWarning(translate(
+                "Facet", "{0}: joints that overlap (cut square on the inner side of a fold): "
+                "{1}; the deepest {2} and {3} by {4:.4g} mm; {5}").format(
+                    obj.Label, ps.overlapping_joints, a, b, -ps.narrowest_joint, clears) + "\n")
         if ps.node_clashes:
             App.Console.PrintWarning(translate(
                 "Facet", "{0}: pairs of panels that overlap at nodes they share without a "
