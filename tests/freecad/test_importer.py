@@ -78,3 +78,25 @@ class TestImporter(DocumentTestCase):
         with self.assertRaises(importer.MeshImportError) as caught:
             importer.read_polymesh(data_path("bad_index.off"))
         self.assertIn("face 1", str(caught.exception))
+
+    def test_triangle_written_as_quad_is_read_and_said(self):
+        """A face with a vertex at two corners in a row (Rhino's triangle in a quad) is
+        imported with it once, and the report view says so with the file and the line."""
+        import tempfile
+
+        said = []
+        keep, importer.report_warning = importer.report_warning, said.append
+        try:
+            with tempfile.TemporaryDirectory() as folder:
+                path = os.path.join(folder, "tri_as_quad.obj")
+                with open(path, "w", encoding="utf-8") as stream:
+                    stream.write("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n"
+                                 "f 1 2 3 4\nf 2 5 3 3\n")
+                obj = importer.insert(path, self.doc.Name)
+        finally:
+            importer.report_warning = keep
+        self.assertIsNotNone(obj)
+        self.assertEqual(obj.FaceCount, 2)
+        self.assertEqual(len(said), 1, said)
+        self.assertTrue(said[0].startswith(f"Facet: {path}: 1 face gave a vertex at two "
+                                           "corners in a row (first: face 1, line 7)"), said)

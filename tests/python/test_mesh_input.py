@@ -5,6 +5,7 @@ readers, ``planarize`` and ``check`` make of them."""
 import json
 
 import numpy as np
+import pytest
 
 import facet
 from facet.io import read_mesh
@@ -91,20 +92,54 @@ def test_utf16_files_with_a_byte_order_mark_are_read(tmp_path):
             assert mesh.vertices[2].tolist() == [1.0, 1.0, 0.1]
 
 
-def test_a_repeated_vertex_is_quoted_as_the_obj_line_writes_it(write_file):
-    """A Rhino-style triangle written as a quad with its last vertex twice ("f 2 3 5 5"):
-    the error names the line and the vertex as that line writes it (it said only "repeats
-    vertex 4", counted from 0, on a line that shows 5)."""
-    import pytest
+def test_a_triangle_written_as_a_quad_is_read_as_a_triangle(write_file, tmp_path,
+                                                            facet_command):
+    """Rhino writes a triangle of a quad mesh as a quad with its last vertex twice
+    ("f 2 3 5 5"); a vertex twice in a row round the end ("f 5 2 3 5") is the same. Both
+    were refused ("face 1 repeats vertex 4"): now each is read with the vertex once, the
+    file's other faces as written, and the reading is said, with the first such face's
+    line, by the readers, the command line (every command, and the report) and the
+    FreeCAD importer (test_fc_importer)."""
+    from facet.io import read_warnings
 
-    path = write_file("tri_as_quad.obj", _obj(_POINTS, [[0, 1, 4, 3], [1, 2, 4, 4]]))
+    faces = [[0, 1, 4, 3], [1, 2, 5, 5], [4, 1, 5, 4]]
+    path = write_file("tri_as_quad.obj", _obj(_POINTS, faces))
+    mesh = read_mesh(path)
+    assert mesh.faces() == [[0, 1, 4, 3], [1, 2, 5], [4, 1, 5]]
+    assert read_warnings(mesh) == [
+        "2 faces gave a vertex at two corners in a row (first: face 1, line 8): read with it "
+        "once, so a quad written so is a triangle"]
+    assert read_warnings(read_mesh(write_file("welded.obj", _welded()))) == []
+    off = write_file("tri_as_quad.off", "OFF\n6 1 0\n" + "".join(
+        f"{x} {y} {z}\n" for x, y, z in _POINTS) + "4 1 2 5 5\n")
+    assert read_mesh(off).faces() == [[1, 2, 5]]
+    # a vertex twice in a row that leaves two corners is the degenerate face it was
+    with pytest.raises(facet.MeshError, match=r"line 9: face 0 .*2 distinct"):
+        read_mesh(write_file("two.off", "OFF\n6 1 0\n" + "".join(
+            f"{x} {y} {z}\n" for x, y, z in _POINTS) + "4 1 1 2 2\n"))
+
+    run = facet_command("check", path, "--report", tmp_path / "c.json")
+    assert run.returncode == 0, run.stderr
+    assert (f"facet: warning: {path}: 2 faces gave a vertex at two corners in a row "
+            "(first: face 1, line 8)") in run.stderr
+    report = json.loads((tmp_path / "c.json").read_text())
+    assert (report["faces"], report["face_degrees"]) == (3, {"3": 2, "4": 1})
+    assert report["source_repeated_corners_merged"] == 2
+    assert report["source_repeated_corners_first"] == "face 1, line 8"
+
+
+def test_a_vertex_repeated_apart_is_quoted_as_the_obj_line_writes_it(write_file):
+    """A face that gives one vertex at two corners apart ("f 2 5 3 5") is not a panel: the
+    error names the line and the vertex as that line writes it (it said only "repeats
+    vertex 4", counted from 0, on a line that shows 5)."""
+    path = write_file("bowtie.obj", _obj(_POINTS, [[0, 1, 4, 3], [1, 4, 2, 4]]))
     with pytest.raises(facet.MeshError) as caught:
         read_mesh(path)
     assert str(caught.value).endswith(
-        "tri_as_quad.obj: line 8: face 1 repeats vertex 4 (written 5 in the file)")
+        "bowtie.obj: line 8: face 1 repeats vertex 4 (written 5 in the file)")
     # OFF counts from 0 as the message does: nothing to add
-    off = write_file("tri_as_quad.off", "OFF\n6 1 0\n" + "".join(
-        f"{x} {y} {z}\n" for x, y, z in _POINTS) + "4 1 2 4 4\n")
+    off = write_file("bowtie.off", "OFF\n6 1 0\n" + "".join(
+        f"{x} {y} {z}\n" for x, y, z in _POINTS) + "4 1 4 2 4\n")
     with pytest.raises(facet.MeshError, match=r"line 9: face 0 repeats vertex 4$"):
         read_mesh(off)
 

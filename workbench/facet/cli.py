@@ -473,14 +473,18 @@ def print_check_summary(report, out=None):
 
 
 def _read(args):
-    from facet.io import read_mesh
+    """The input mesh; what the reader changed in reading it is warned about."""
+    from facet.io import read_mesh, read_warnings
 
     options = {}
     if args.item is not None:
         if os.path.splitext(args.input)[1].lower() != ".json":
             raise _UsageError("--item applies to .json files only")
         options["item"] = args.item
-    return read_mesh(args.input, **options)
+    mesh = read_mesh(args.input, **options)
+    for warning in read_warnings(mesh):
+        print(f"facet: warning: {args.input}: {warning}", file=sys.stderr)
+    return mesh
 
 
 def _term_options(args, mesh):

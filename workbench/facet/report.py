@@ -23,7 +23,8 @@ __all__ = ["planarize_report", "check_report", "quality_figures", "json_safe", "
            "count_noun"]
 
 #: Keys of ``mesh.info`` copied into reports (lists of keys are left out).
-_INFO_KEYS = ("format", "header", "dtype", "item", "openings_skipped", "unused_vertices_dropped")
+_INFO_KEYS = ("format", "header", "dtype", "item", "openings_skipped", "unused_vertices_dropped",
+              "repeated_corners_merged", "repeated_corners_first")
 
 
 def count_noun(number, noun):

@@ -23,11 +23,17 @@ class MeshImportError(Exception):
 
 
 def read_polymesh(filename):
-    """``facet.read_mesh(filename)``, raising MeshImportError with a one-line message."""
+    """``facet.read_mesh(filename)``, raising MeshImportError with a one-line message; what
+    the reader changed in reading it (faces with a vertex twice in a row) is a warning in the
+    report view."""
     import facet
+    from facet.io import read_warnings
 
     try:
-        return facet.read_mesh(filename)
+        mesh = facet.read_mesh(filename)
+        for warning in read_warnings(mesh):
+            report_warning(f"Facet: {filename}: {warning}")
+        return mesh
     except (facet.errors.FacetError, OSError, ValueError) as error:
         message = str(error)
         if isinstance(error, OSError) and error.strerror:
@@ -53,6 +59,11 @@ def _add_polymesh(mesh, filename, doc):
     obj = make_polymesh(mesh, label=label, doc=doc)
     doc.recompute()
     return obj
+
+
+def report_warning(message):
+    """One line in the report view, as a warning."""
+    App.Console.PrintWarning(message + "\n")
 
 
 def report_error(message):

@@ -21,6 +21,7 @@ the same bits, and refuse NaN.
 import os
 
 from facet.errors import MeshError
+from facet.io.checks import read_warnings
 from facet.io.compas_json import read_compas_json
 from facet.io.obj import read_obj, write_obj
 from facet.io.off import read_off, write_off
@@ -37,6 +38,7 @@ __all__ = [
     "WRITERS",
     "reader_for",
     "writer_for",
+    "read_warnings",
 ]
 
 #: Reader for each file suffix.

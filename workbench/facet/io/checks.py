@@ -6,6 +6,13 @@ from; :func:`build_mesh` turns them into a :class:`~facet.mesh.PolyMesh`,
 refusing non-finite coordinates and indices out of range with the line of the
 offending record, and then runs the full validation of the compiled core,
 adding the line (or the compas key) of the face it names.
+
+A face that gives one vertex at two corners in a row ("f 2 3 5 5", Rhino's way of
+writing a triangle in a quad, or "f 5 2 3 5" round the end) is read with that vertex
+once, when three or more corners remain; the mesh's info counts these faces
+(``repeated_corners_merged``) and says where the first is (``repeated_corners_first``),
+and :func:`read_warnings` says so. A vertex repeated at corners apart ("f 2 5 3 5")
+stays an error: no reading of it is a panel.
 """
 
 import numpy as np
@@ -13,11 +20,57 @@ import numpy as np
 from facet.errors import MeshError
 from facet.mesh import PolyMesh
 
-__all__ = ["build_mesh"]
+__all__ = ["build_mesh", "read_warnings"]
 
 
 def _face_of_corner(face_start, corner):
     return int(np.searchsorted(face_start, corner, side="right") - 1)
+
+
+def _merge_repeated_corners(face_start, face_vertices):
+    """Drop a corner whose vertex the next corner repeats (cyclically: the face's first corner
+    is kept), in each face left with three corners or more. Returns the new face_start and
+    face_vertices and the indices of the faces changed."""
+    degrees = np.diff(face_start)
+    if face_vertices.size == 0 or (degrees < 1).any():
+        return face_start, face_vertices, np.zeros(0, dtype=np.int64)
+    corner = np.arange(face_vertices.size)
+    face = np.repeat(np.arange(degrees.size), degrees)
+    following = np.where(corner == face_start[face + 1] - 1, face_start[face], corner + 1)
+    repeat = face_vertices == face_vertices[following]
+    if not repeat.any():
+        return face_start, face_vertices, np.zeros(0, dtype=np.int64)
+    dropped = np.bincount(face[repeat], minlength=degrees.size)
+    # a face with fewer than three distinct corners in a row stays as written: the
+    # validation names it as the degenerate face it is
+    merged = (dropped > 0) & (degrees - dropped >= 3)
+    repeat &= merged[face]
+    kept = face_vertices[~repeat]
+    new_degrees = degrees - np.where(merged, dropped, 0)
+    new_start = np.concatenate(([0], np.cumsum(new_degrees))).astype(np.int64)
+    return new_start, kept, np.flatnonzero(merged)
+
+
+def _where(face, face_lines, face_names):
+    """Where face `face` is in its file, for a message: its line, its key, or its index."""
+    if face_names is not None and face < len(face_names):
+        return f"face key {face_names[face]!r}"
+    if face_lines is not None and face < len(face_lines):
+        return f"face {face}, line {face_lines[face]}"
+    return f"face {face}"
+
+
+def read_warnings(mesh):
+    """What a reader changed in reading `mesh` (faces with a vertex at two corners in a row,
+    read with it once), as sentences for the user; [] for a mesh read as written."""
+    info = getattr(mesh, "info", None) or {}
+    merged = info.get("repeated_corners_merged")
+    if not merged:
+        return []
+    faces = f"{merged} face{'s' if merged != 1 else ''}"
+    return [f"{faces} gave a vertex at two corners in a row (first: "
+            f"{info.get('repeated_corners_first')}): read with it once, so a quad written so is "
+            "a triangle"]
 
 
 def build_mesh(
@@ -101,8 +154,12 @@ def build_mesh(
             face_lines, face_names,
         )
 
+    face_start, face_vertices, merged = _merge_repeated_corners(face_start, face_vertices)
     info = dict(info)
     info["source"] = source
+    if merged.size:
+        info["repeated_corners_merged"] = int(merged.size)
+        info["repeated_corners_first"] = _where(int(merged[0]), face_lines, face_names)
     mesh = PolyMesh(vertices, face_start, face_vertices, info=info)
     if validate:
         try:
