@@ -585,6 +585,8 @@ def test_schedule_csv_and_json(tmp_path):
     pngs = sorted((tmp_path / "png").glob("*.png"))
     assert len(svgs) == len(pngs) == len(result.sheets)
     assert svgs[0].read_text().count("<path") == len(result.sheets[0].parts)
+    w, h = result.sheet_size
+    assert f'width="{w!r}mm" height="{h!r}mm"' in svgs[0].read_text()
     assert pngs[0].read_bytes()[:4] == b"\x89PNG"
     # the preview's IDs lie where the DXF's do and turn with their parts as they do
     # (they were drawn unturned on every turned part)
@@ -680,7 +682,8 @@ def test_cli_panels_in_metres(facet_command, tmp_path):
     metres = facet.PolyMesh(mm.vertices / 1000.0, mm.face_start, mm.face_vertices)
     write_mesh(metres, tmp_path / "m.obj")
     common = ["--edge", "bisector", "--sheet", "1.3x0.9", "--dxf", tmp_path / "o.dxf",
-              "--step", tmp_path / "o.step", "--report", tmp_path / "r.json"]
+              "--step", tmp_path / "o.step", "--report", tmp_path / "r.json",
+              "--svg", tmp_path / "svg"]
     done = facet_command("panels", tmp_path / "m.obj", "--thickness", "0.018", "--gap",
                          "0.004", "--units", "m", *common)
     assert done.returncode == 0, done.stderr
@@ -688,6 +691,13 @@ def test_cli_panels_in_metres(facet_command, tmp_path):
     doc = ezdxf.readfile(tmp_path / "o.dxf")
     assert doc.header["$INSUNITS"] == 6 and doc.header["$MEASUREMENT"] == 1
     assert json.load(open(tmp_path / "r.json"))["units"] == "m"
+    # the SVG previews at true size: a 1.3 x 0.9 m sheet is 1300 x 900 mm (it was 1000
+    # pixels wide whatever the sheet and unit)
+    import xml.etree.ElementTree as ET
+
+    root = ET.parse(sorted((tmp_path / "svg").glob("*.svg"))[0]).getroot()
+    assert (root.get("width"), root.get("height"), root.get("viewBox")) == (
+        "1300.0mm", "900.0mm", "0 0 1.3 0.9")
     import Part
 
     shape = Part.read(str(tmp_path / "o.step"))  # (STEP in millimetres)

@@ -234,7 +234,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
     if svg:
         check()
         t = time.perf_counter()
-        files["svg"] = write_svg(svg, result, drawings)
+        files["svg"] = write_svg(svg, result, drawings, units=units)
         times["svg"] = time.perf_counter() - t
     if png:
         check()

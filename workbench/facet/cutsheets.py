@@ -240,8 +240,12 @@ def _svg_path(points):
     return "M " + " L ".join(f"{x!r} {y!r}" for x, y in points) + " Z"
 
 
-def write_svg(directory, nest_result, drawings, stem="sheet"):
-    """One SVG preview per sheet (``stem_01.svg``...), in model units with y up.
+def write_svg(directory, nest_result, drawings, stem="sheet", units="mm"):
+    """One SVG preview per sheet (``stem_01.svg``...), in model units with y up, at true
+    size: the drawing's width and height are the sheet's in millimetres, from `units` (the
+    model's length unit, a key of LENGTH_UNITS), so that a laser cutter's software or
+    Inkscape opens a sheet at the size it is cut (it was 1000 pixels wide whatever the
+    sheet).
 
     Returns
     -------
@@ -249,6 +253,7 @@ def write_svg(directory, nest_result, drawings, stem="sheet"):
     """
     from xml.sax.saxutils import escape
 
+    mm = length_unit(units)[0]
     os.makedirs(directory, exist_ok=True)
     w, h = nest_result.sheet_size
     by_sheet = {}
@@ -258,7 +263,7 @@ def write_svg(directory, nest_result, drawings, stem="sheet"):
     stroke = max(w, h) / 1500.0
     for i, sheet in enumerate(nest_result.sheets):
         out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w!r} {h!r}" '
-               f'width="{1000}" height="{1000 * h / w:.0f}">',
+               f'width="{w * mm!r}mm" height="{h * mm!r}mm">',
                f'<title>sheet {i + 1}: {len(sheet.parts)} parts, '
                f'{100 * sheet.utilisation:.1f}% used</title>',
                f'<g transform="matrix(1 0 0 -1 0 {h!r})">',
