@@ -5,9 +5,8 @@ Every panel's outline is laid flat in its own frame (the first edge of its
 face along +x; rotated so that the grain runs along +x when a grain
 direction is given), with its ID at the pole of inaccessibility of the outline
 (:func:`label_point`, the point polylabel finds) or its centroid, whichever holds the
-larger text inside the part, each bevel angle written beside its edge, inside the part and nearer that edge than any
-other,
-and a grain arrow when a grain direction is set.
+larger text inside the part, each bevel angle written beside its edge, inside the part
+and nearer that edge than any other, and a grain arrow when a grain direction is set.
 
 >>> drawings = unfold(panel_set, grain=(0, 0, 1))   # doctest: +SKIP
 >>> drawings[0].label                              # doctest: +SKIP
