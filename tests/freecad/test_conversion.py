@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """PolyMeshes from FreeCAD Mesh and Part objects (Facet_ToPolyMesh's scripting API)."""
 
+import FreeCAD as App
 import Mesh
 import numpy as np
 import Part
@@ -40,6 +41,25 @@ class TestToPolyMesh(DocumentTestCase):
         obj = facetwb.make_polymesh_from_object(feature)
         self.doc.recompute()
         self.assertEqual((obj.VertexCount, obj.FaceCount), (6, 2))
+
+    def test_panels_modelled_apart_are_joined(self):
+        """Two panels modelled one by one, their common corners a rounding apart (0.1 + 0.2
+        against 0.3): one vertex each, so the panels are joined and mitred. They were two
+        vertices each, and the panels' common edge was cut square, with no bevel."""
+        from facet.mesh import coincident_vertices
+
+        def face(points):
+            return Part.Face(Part.makePolygon([App.Vector(*p) for p in points + points[:1]]))
+
+        a = face([(0, 0, 0), (0.1 + 0.2, 0, 0), (0.1 + 0.2, 1, 0), (0, 1, 0)])
+        b = face([(0.3, 0, 0), (0.6, 0, 0.1), (0.6, 1, 0.1), (0.3, 1, 0)])
+        obj = self.doc.addObject("Part::Feature", "Panels")
+        obj.Shape = Part.makeCompound([a, b])
+        mesh = facetwb.conversion.mesh_from_object(obj)
+        self.assertEqual((mesh.n_vertices, mesh.n_faces), (6, 2))
+        self.assertEqual(coincident_vertices(mesh), (0, None))
+        panel_set = facet.panels(mesh, 0.01, edge="bisector")
+        self.assertEqual(sum(abs(b) > 1 for p in panel_set.panels for b in p.bevel_deg), 2)
 
     def test_mesh_gives_triangles(self):
         feature = self.doc.addObject("Mesh::Feature", "MeshBox")

@@ -50,6 +50,29 @@ def test_unwelded_seam_is_warned_by_planarize(write_file):
     assert gap > 1e-3
 
 
+def test_unwelded_seam_is_warned_by_panels(write_file):
+    """Panels on an unwelded seam are not joined: their edges there were cut square, with
+    no bevel and no clash check, and only "2 separate parts" was said. Now the warning
+    says why and what to do; a welded mesh gives none."""
+    from facet.panels import panels
+
+    points = [(x, y, 0.3 * abs(x - 1)) for x, y, _ in _POINTS]  # folded along x = 1
+    welded = panels(facet.PolyMesh.from_faces(np.array(points, float),
+                                              [[0, 1, 4, 3], [1, 2, 5, 4]]), 0.05,
+                    edge="bisector")
+    assert not any("one point" in text for text in welded.warnings)
+    assert abs(welded.panels[0].bevel_deg[1]) > 1  # the joint is mitred
+    apart = panels(facet.PolyMesh.from_faces(np.array(points + [points[1], points[4]], float),
+                                             [[0, 1, 4, 3], [6, 2, 5, 7]]), 0.05,
+                   edge="bisector")
+    assert apart.panels[0].bevel_deg[1] == 0  # what the warning is about
+    warning = [text for text in apart.warnings if "one point" in text]
+    assert warning == [
+        "vertices at one point but not one vertex: 2 pairs (vertices 1 and 6 at (1, 0, 0)); "
+        "the panels there are not joined: their edges there are cut square, with no bevel, "
+        "and not checked for clashes: weld them where the panels meet"]
+
+
 def test_unwelded_seam_is_warned_by_check_and_planarize_commands(write_file, tmp_path,
                                                                 facet_command):
     run_facet = facet_command

@@ -15,7 +15,7 @@ import numpy as np
 
 from facet.errors import MeshError, from_core
 
-__all__ = ["PolyMesh", "coincident_vertices", "duplicate_faces"]
+__all__ = ["PolyMesh", "coincident_vertices", "coincident_text", "duplicate_faces"]
 
 _INT32_MAX = np.iinfo(np.int32).max
 
@@ -399,6 +399,21 @@ def coincident_vertices(mesh, rel_tol=1e-9):
         return 0, None
     first = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))[0]]
     return int(pairs.shape[0]), (int(first[0]), int(first[1]))
+
+
+def coincident_text(mesh):
+    """What :func:`coincident_vertices` finds, as the start of a warning ("vertices at one
+    point but not one vertex: 2 pairs (vertices 1 and 6 at (1, 0, 0))"), for the caller to
+    end with what it means there; None when there are none."""
+    from facet.report import count_noun
+
+    n_pairs, first = coincident_vertices(mesh)
+    if not n_pairs:
+        return None
+    i, j = first
+    where = ", ".join(f"{value:.6g}" for value in mesh.vertices[i])
+    return (f"vertices at one point but not one vertex: {count_noun(n_pairs, 'pair')} "
+            f"(vertices {i} and {j} at ({where}))")
 
 
 def duplicate_faces(mesh):

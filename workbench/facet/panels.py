@@ -771,6 +771,20 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source, progr
     return merged, rep_of, vanished, kept, len(groups)
 
 
+def _unwelded_warnings(mesh):
+    """A warning for vertices at one point that are not one vertex (an export that gives
+    each face or part its own vertices): the panels there are not joined, so their edges
+    there are cut square as the mesh's boundary is, with no bevel, and no clash between
+    them is looked for."""
+    from facet.mesh import coincident_text
+
+    seam = coincident_text(mesh)
+    if seam is None:
+        return []
+    return [f"{seam}; the panels there are not joined: their edges there are cut square, "
+            "with no bevel, and not checked for clashes: weld them where the panels meet"]
+
+
 def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, ids="auto",
            prefix="P-", tol=1e-6, tol_abs=0.0, min_edge=DEFAULT_MIN_EDGE, min_edge_abs=0.0,
            repair=True, progress=None):
@@ -922,6 +936,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
                         f"{'was' if n == 1 else 'were'} reversed to make orientation consistent")
     if res["n_components"] > 1:
         warnings.append(f"{res['n_components']} separate parts, each oriented on its own")
+    warnings += _unwelded_warnings(input_mesh)
     if vanished:
         n_panels = len({f for d in vanished for f in d["faces"]})
         n_edges = len(vanished)

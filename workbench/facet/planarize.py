@@ -352,7 +352,7 @@ def _coincident_warnings(mesh):
     """Warnings for faces that repeat another (two panels at one place), and for vertices at
     one point that are not one vertex (faces given their own copies by the export): the
     faces there are planarized apart and the seam opens."""
-    from facet.mesh import coincident_vertices, duplicate_faces
+    from facet.mesh import coincident_text, duplicate_faces
 
     warnings = []
     n_copies, first = duplicate_faces(mesh)
@@ -361,16 +361,12 @@ def _coincident_warnings(mesh):
             f"{n_copies} face{'s' if n_copies != 1 else ''} with the same vertices as another "
             f"(first: face {first[1]} repeats face {first[0]}): two panels at one place; "
             "remove the copies")
-    n_pairs, first = coincident_vertices(mesh)
-    if not n_pairs:
+    seam = coincident_text(mesh)
+    if seam is None:
         return warnings
-    i, j = first
-    where = ", ".join(f"{value:.6g}" for value in mesh.vertices[i])
     return warnings + [
-        f"vertices at one point but not one vertex: {n_pairs} pair{'s' if n_pairs != 1 else ''} "
-        f"(vertices {i} and {j} at ({where})); the faces there are not joined, each is made "
-        "planar on its own and the seam opens: weld them where the panels should meet"
-    ]
+        f"{seam}; the faces there are not joined, each is made planar on its own and the "
+        "seam opens: weld them where the panels should meet"]
 
 
 class Planarizer:
