@@ -73,6 +73,36 @@ def test_unwelded_seam_is_warned_by_panels(write_file):
         "and not checked for clashes: weld them where the panels meet"]
 
 
+def test_weld_joins_the_seam_the_warnings_name(write_file, tmp_path, facet_command):
+    """The warnings say "weld them": facet.mesh.weld and ``facet weld`` do, joining each
+    group of coincident vertices into its first, dropping a corner that then repeats the one
+    before it, keeping the faces' order and an isolated vertex; the welded mesh planarizes
+    with its seam closed and no warning."""
+    from facet.mesh import coincident_vertices, weld
+
+    path = write_file("apart.obj", _unwelded() + "v 9 9 9\ng sides\nf 1 2 8 8 5 4\n")
+    mesh = read_mesh(path)
+    welded, merged = weld(mesh)
+    assert merged == 2 and welded.n_vertices == mesh.n_vertices - 2
+    assert welded.faces() == [[0, 1, 4, 3], [1, 2, 5, 4], [0, 1, 4, 3]]
+    assert welded.vertices[6].tolist() == [9, 9, 9]  # isolated, kept
+    assert welded.info["obj_sections"] == mesh.info["obj_sections"]
+    assert coincident_vertices(welded) == (0, None)
+    result = facet.planarize(read_mesh(write_file("two.obj", _unwelded())))
+    assert any("one point" in text for text in result.warnings)
+    result = facet.planarize(weld(read_mesh(write_file("two.obj", _unwelded())))[0])
+    assert not any("one point" in text for text in result.warnings)
+
+    run = facet_command("weld", write_file("two.obj", _unwelded()), "-o", tmp_path / "w.obj")
+    assert run.returncode == 0, run.stderr
+    assert "2 vertices joined to another: 8 -> 6 vertices, 2 faces" in run.stdout
+    assert read_mesh(tmp_path / "w.obj").faces() == [[0, 1, 4, 3], [1, 2, 5, 4]]
+    # a face that welding leaves with two corners apart is named
+    with pytest.raises(facet.MeshError, match="face 0 has fewer than 3 corners apart"):
+        weld(facet.PolyMesh.from_faces(np.array(_POINTS[:3] + [_POINTS[1]], float),
+                                       [[0, 1, 2, 3]]), rel_tol=1.0)
+
+
 def test_unwelded_seam_is_warned_by_check_and_planarize_commands(write_file, tmp_path,
                                                                 facet_command):
     run_facet = facet_command

@@ -15,7 +15,7 @@ import numpy as np
 
 from facet.errors import MeshError, from_core
 
-__all__ = ["PolyMesh", "coincident_vertices", "coincident_text", "duplicate_faces"]
+__all__ = ["PolyMesh", "coincident_vertices", "coincident_text", "duplicate_faces", "weld"]
 
 _INT32_MAX = np.iinfo(np.int32).max
 
@@ -359,6 +359,23 @@ class PolyMesh:
         return f"<PolyMesh: {self.n_vertices} vertices, {self.n_faces} faces>"
 
 
+def _near_pairs(mesh, rel_tol):
+    """Pairs (k, 2) of vertices that faces use and that lie within ``rel_tol`` times the
+    largest extent of those vertices of each other; none where a coordinate is not finite."""
+    used = np.unique(np.asarray(mesh.face_vertices))
+    none = np.zeros((0, 2), dtype=np.int64)
+    if used.size < 2:
+        return none
+    points = np.asarray(mesh.vertices, dtype=np.float64)[used]
+    if not np.isfinite(points).all():
+        return none
+    size = float(np.ptp(points, axis=0).max())
+    from scipy.spatial import cKDTree
+
+    pairs = cKDTree(points).query_pairs(rel_tol * size, output_type="ndarray")
+    return used[pairs].astype(np.int64) if pairs.shape[0] else none
+
+
 def coincident_vertices(mesh, rel_tol=1e-9):
     """Vertices that faces use and that lie where another such vertex lies: the copies an
     export that gives each face (or each part) its own vertices leaves along a seam that
@@ -377,19 +394,10 @@ def coincident_vertices(mesh, rel_tol=1e-9):
         The number of coincident pairs and the first pair (lower index first), or
         ``(0, None)``.
     """
-    used = np.unique(np.asarray(mesh.face_vertices))
-    if used.size < 2:
-        return 0, None
-    points = np.asarray(mesh.vertices, dtype=np.float64)[used]
-    if not np.isfinite(points).all():
-        return 0, None
-    size = float(np.ptp(points, axis=0).max())
-    from scipy.spatial import cKDTree
-
-    pairs = cKDTree(points).query_pairs(rel_tol * size, output_type="ndarray")
+    pairs = _near_pairs(mesh, rel_tol)
     if pairs.shape[0] == 0:
         return 0, None
-    pairs = np.sort(used[pairs], axis=1).astype(np.int64)
+    pairs = np.sort(pairs, axis=1)
     # two ends of one edge are joined (an edge of no length: the quality report's
     # degenerate faces), not a seam
     edges = mesh.edges().astype(np.int64)
@@ -399,6 +407,66 @@ def coincident_vertices(mesh, rel_tol=1e-9):
         return 0, None
     first = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))[0]]
     return int(pairs.shape[0]), (int(first[0]), int(first[1]))
+
+
+def weld(mesh, rel_tol=1e-9):
+    """The mesh with one vertex for each group of vertices within ``rel_tol`` times its
+    largest extent of each other (the seams :func:`coincident_vertices` warns of, joined);
+    a corner that then repeats the one before it is dropped. Each group keeps its first
+    vertex, where it is, and the others go; a vertex no face uses stays. The faces keep
+    their order, so the info about them (OBJ groups, compas face keys) still holds; compas
+    vertex keys follow the vertices kept.
+
+    Parameters
+    ----------
+    mesh : PolyMesh
+        Not modified.
+    rel_tol : float
+        As in :func:`coincident_vertices`.
+
+    Returns
+    -------
+    (PolyMesh, int)
+        The welded mesh and the number of vertices merged into another.
+
+    Raises
+    ------
+    MeshError
+        A face left with fewer than three corners apart, named.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    info = dict(mesh.info or {})
+    points = np.asarray(mesh.vertices, dtype=np.float64)
+    n = mesh.n_vertices
+    group = np.arange(n)
+    pairs = _near_pairs(mesh, rel_tol)
+    if pairs.shape[0]:
+        graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+        _, component = connected_components(graph, directed=False)
+        first = np.full(component.max() + 1, n)
+        np.minimum.at(first, component, np.arange(n))
+        group = first[component]
+    used = np.unique(np.asarray(mesh.face_vertices))
+    merged = int(np.count_nonzero(group[used] != used))
+    faces = []
+    for f, face in enumerate(mesh.faces()):
+        corners = [int(group[v]) for v in face]
+        corners = [c for k, c in enumerate(corners) if c != corners[k - 1]]
+        if len(corners) < 3:
+            raise MeshError(f"face {f} has fewer than 3 corners apart once its vertices "
+                            f"within {rel_tol:g} of the mesh's size are one", face=f,
+                            source=info.get("source"))
+        faces.append(corners)
+    kept = np.flatnonzero(group == np.arange(n))
+    index = np.full(n, -1)
+    index[kept] = np.arange(kept.size)
+    if isinstance(info.get("vertex_keys"), list) and len(info["vertex_keys"]) == n:
+        info["vertex_keys"] = [info["vertex_keys"][v] for v in kept]
+    welded = PolyMesh.from_faces(points[kept], [index[face].tolist() for face in faces],
+                                 info=info)
+    return welded, merged
 
 
 def coincident_text(mesh):

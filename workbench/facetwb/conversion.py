@@ -16,6 +16,7 @@ Coordinates are global (placements applied) and in model units (mm).
 import numpy as np
 
 import facet
+from facet.mesh import weld
 
 
 class SourceError(ValueError):
@@ -122,36 +123,8 @@ def _polygons_from_faces(shape, label):
         if np.dot(area_vector, (normal.x, normal.y, normal.z)) < 0.0:
             polygon.reverse()
         faces.append(polygon)
-    xyz, faces = _weld(np.array(xyz, dtype=np.float64), faces, label)
-    return facet.PolyMesh.from_faces(xyz, faces)
-
-
-def _weld(xyz, faces, label, rel_tol=1e-9):
-    """One vertex for the points within ``rel_tol`` times the largest extent of each other
-    (the rule of :func:`facet.mesh.coincident_vertices`, which would warn of them as a seam
-    that looks joined and is not), the first of each group kept; a corner that then repeats
-    the one before it is dropped. Returns (xyz, faces)."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
-
-    size = float(np.ptp(xyz, axis=0).max()) if len(xyz) else 0.0
-    pairs = cKDTree(xyz).query_pairs(rel_tol * size, output_type="ndarray")
-    if size == 0.0 or pairs.shape[0] == 0:
-        return xyz, faces
-    n = len(xyz)
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-    _, group = connected_components(graph, directed=False)
-    first = np.full(group.max() + 1, n)
-    np.minimum.at(first, group, np.arange(n))
-    kept = np.unique(first)
-    index = np.searchsorted(kept, first[group])
-    welded = []
-    for polygon in faces:
-        corners = [int(index[v]) for v in polygon]
-        corners = [c for k, c in enumerate(corners) if c != corners[k - 1]]
-        if len(corners) < 3:
-            raise SourceError(f"{label}: a face has fewer than 3 corners apart "
-                              f"(within {rel_tol:g} of the shape's size of each other)")
-        welded.append(corners)
-    return xyz[kept], welded
+    mesh = facet.PolyMesh.from_faces(np.array(xyz, dtype=np.float64), faces)
+    try:
+        return weld(mesh)[0]
+    except facet.MeshError as error:
+        raise SourceError(f"{label}: {error}") from None
