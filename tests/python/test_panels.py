@@ -512,6 +512,32 @@ def test_verify_catches_overlap():
     assert any(a in p and b in p for p in problems)
 
 
+def test_verify_catches_overlap_without_spacing(data_dir):
+    # with no spacing (the default) overlapping parts, 0 apart, passed the check, so they
+    # were written overlapping: 42 pairs of heart_planar's square-edged parts, by up to
+    # 0.025 m2 (a part is about 0.012 m2)
+    from facet.nest import Placement, nest, verify
+    from shapely.geometry import Polygon
+
+    parts = _parts()
+    r = nest(parts, (1300, 900))
+    assert verify(r, parts) == []
+    a, b = list(r.placements)[:2]
+    pa = r.placements[a]
+    r.placements[b] = Placement(b, pa.sheet, pa.angle_deg, pa.x + 1.0, pa.y)
+    assert any(a in p and b in p and "overlap" in p for p in verify(r, parts))
+    heart = {d.id: d.footprint for d in unfold(panels(
+        facet.read_mesh(data_dir / "heart_planar.obj"), 0.005))}
+    r = nest(heart, (2.5, 1.25))
+    assert verify(r, heart) == [] and not r.unplaced
+    placed = {}
+    for pid, pl in r.placements.items():
+        placed.setdefault(pl.sheet, []).append(Polygon(pl.transform(heart[pid])))
+    worst = max(g.intersection(h).area for items in placed.values()
+                for i, g in enumerate(items) for h in items[i + 1:])
+    assert worst < 1e-9
+
+
 def test_parts_too_big_are_unplaced_and_bad_sheets_rejected():
     from facet.nest import NestError, nest
 
