@@ -335,6 +335,29 @@ def test_a_bevel_text_is_nearer_its_own_edge_than_any_other(data_dir):
     assert checked > 3000
 
 
+def test_bevel_texts_clear_the_id_and_each_other(data_dir):
+    """A bevel angle written over the part's ID (or another angle) cannot be read: on
+    heart_planar 92 of 1,517 bevel texts overlapped their part's ID (by up to 0.37 of the
+    text, as ezdxf measures it) and 4 another bevel text; on a planarized conical mesh 623
+    of 4,188. Now none does, and each still lies inside its part."""
+    from shapely.geometry import Polygon
+
+    heart = facet.read_mesh(data_dir / "heart_planar.obj")
+    checked = 0
+    for ps in (panels(heart, 0.02, edge="bisector"),
+               panels(heart, 0.005, gap=0.01, edge="bisector")):
+        for d in unfold(ps):
+            part = Polygon(d.cut)
+            boxes = [_text_box(*d.label_position, d.label_height, d.id)]
+            for text, x, y, angle, h in d.bevels:
+                box = _text_box(x, y, h, text, angle)
+                assert part.contains(box), (d.id, text)
+                assert all(box.intersection(other).area == 0 for other in boxes), (d.id, text)
+                boxes.append(box)
+                checked += 1
+    assert checked > 3000
+
+
 def test_grain_turns_parts_and_is_checked():
     ps = panels(cylinder(), 10.0)
     drawings = unfold(ps, grain=(0, 0, 1))

@@ -5,8 +5,9 @@ Every panel's outline is laid flat in its own frame (the first edge of its
 face along +x; rotated so that the grain runs along +x when a grain
 direction is given), with its ID at the pole of inaccessibility of the outline
 (:func:`label_point`, the point polylabel finds) or its centroid, whichever holds the
-larger text inside the part, each bevel angle written beside its edge, inside the part
-and nearer that edge than any other, and a grain arrow when a grain direction is set.
+larger text inside the part, each bevel angle written beside its edge, inside the part,
+nearer that edge than any other and clear of the ID and the other angles, and a grain
+arrow when a grain direction is set.
 
 >>> drawings = unfold(panel_set, grain=(0, 0, 1))   # doctest: +SKIP
 >>> drawings[0].label                              # doctest: +SKIP
@@ -186,7 +187,7 @@ _CHAR_WIDTH = 0.9
 _BEVEL_ALONG = (0.5, 0.4, 0.6, 0.3, 0.7)
 
 
-def _place_bevel(inside, outline, i, a, u, length, text, height):
+def _place_bevel(inside, outline, i, a, u, length, text, height, taken=()):
     """Where the bevel text of edge ``i`` of an outline (its start ``a``, direction ``u``,
     ``length``) goes and how high, at most 0.6 ``height`` and no longer than the edge: its
     box (``_CHAR_WIDTH`` of the height per character, a fifth more; middle-aligned, as the
@@ -194,10 +195,17 @@ def _place_bevel(inside, outline, i, a, u, length, text, height):
     edge of the outline than its own, so that it is read as that edge's. Beside a short
     edge at a sharp corner the middle is too near the neighbouring edge (on heart_planar 45
     of 1,510 texts were nearer it, 20 ran outside the part): a smaller text, then a place
-    along the edge nearer its wider end. Returns (middle, height); where none fits, the
-    smallest tried at the edge's middle. ``inside``: the outline's prepared Polygon,
-    ``outline``: its edges as LineStrings."""
+    along the edge nearer its wider end. The text, with its descenders (0.9 of its height
+    below its middle, towards its edge), clears the boxes ``taken`` (the ID's, the other
+    bevel texts'), which it was written over (conical1 planarized: 623 of 4,188). Returns
+    (middle, height, the text's box); where none fits, the smallest tried at the edge's
+    middle. ``inside``: the outline's prepared Polygon, ``outline``: its edges as
+    LineStrings."""
     from shapely.geometry import Polygon
+
+    def rectangle(mid, half_w, below, above):
+        return Polygon([mid + sx * half_w * u + sy * n_in
+                        for sx, sy in ((-1, -below), (1, -below), (1, above), (-1, above))])
 
     n_in = np.array([-u[1], u[0]])  # inside of a counter-clockwise outline
     bh = min(0.6 * height, 0.8 * length / (_CHAR_WIDTH * len(text)))
@@ -210,12 +218,15 @@ def _place_bevel(inside, outline, i, a, u, length, text, height):
             mid = a + u * (t * length) + n_in * (1.5 * bh)
             if not (half_w <= t * length and half_w <= (1.0 - t) * length):
                 continue  # (past the edge's end)
-            box = Polygon([mid + sx * half_w * u + sy * 0.5 * bh * n_in
-                           for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))])
+            box = rectangle(mid, half_w, 0.5 * bh, 0.5 * bh)
+            text_box = rectangle(mid, half_w, 0.9 * bh, 0.5 * bh)
             # the box is bh from its own edge
-            if inside.contains(box) and all(edge.distance(box) > bh for edge in others):
-                return mid, bh
-    return a + u * (0.5 * length) + n_in * (1.5 * bh), bh
+            if (inside.contains(box) and all(edge.distance(box) > bh for edge in others)
+                    and not any(text_box.intersects(t) for t in taken)):
+                return mid, bh, text_box
+    mid = a + u * (0.5 * length) + n_in * (1.5 * bh)
+    half_w = 0.5 * (_CHAR_WIDTH * len(text) + 0.2) * bh
+    return mid, bh, rectangle(mid, half_w, 0.9 * bh, 0.5 * bh)
 
 
 def _fit_label(polygon, inside, pole, height, n_chars):
@@ -328,7 +339,7 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
     PanelError
         A grain direction that is zero or perpendicular to a panel.
     """
-    from shapely.geometry import LineString, Polygon
+    from shapely.geometry import LineString, Polygon, box
     from shapely.prepared import prep
 
     g = None
@@ -368,6 +379,9 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
         outline = [LineString([cut[i], cut[(i + 1) % len(cut)]]) for i in range(len(cut))]
         (lx, ly), h = _fit_label(shape, inside, (lx, ly), min(h, 1.2 * depth), len(p.id))
         bevels = []
+        # the ID's box as _fit_label fits it: the bevel texts keep off it and each other
+        half_w = 0.5 * (_CHAR_WIDTH * len(p.id) + 0.2) * h
+        taken = [box(lx - half_w, ly - 0.9 * h, lx + half_w, ly + 0.9 * h)]
         k = len(cut)
         for i in range(k):
             b = p.bevel_deg[i]
@@ -380,7 +394,8 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
                 continue
             u = d / length
             text = f"{b:+.1f}\u00b0"
-            mid, bh = _place_bevel(inside, outline, i, a, u, length, text, h)
+            mid, bh, text_box = _place_bevel(inside, outline, i, a, u, length, text, h, taken)
+            taken.append(text_box)
             bevels.append((text, float(mid[0]), float(mid[1]),
                            math.degrees(math.atan2(u[1], u[0])), bh))
         arrow = None
