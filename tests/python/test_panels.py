@@ -370,6 +370,30 @@ def test_grain_turns_parts_and_is_checked():
         unfold(ps, grain=(0, 0, 0))
 
 
+def test_the_grain_arrow_lies_inside_its_part_clear_of_the_texts(data_dir):
+    # the arrow (engraved) was drawn 1.5 ID heights below the ID whatever the part's shape:
+    # on heart_planar with grain 1,0,0 it ran out of 8 of the 400 parts, onto the sheet
+    # beyond them, and through a text on 4
+    from shapely.geometry import LineString, Polygon
+
+    ps = panels(facet.read_mesh(data_dir / "heart_planar.obj"), 0.005, gap=0.01,
+                edge="bisector")
+    for d in unfold(ps, grain=(1, 0, 0)):
+        a, b = np.asarray(d.grain, dtype=float)
+        length = np.linalg.norm(b - a)
+        assert length > 0
+        u = (b - a) / length
+        n = np.array([-u[1], u[0]])
+        # the shaft and the head, as write_dxf draws them
+        lines = [LineString([a, b])] + [
+            LineString([b, b - 0.15 * length * u + s * 0.075 * length * n]) for s in (1, -1)]
+        part = Polygon(d.cut)
+        texts = [_text_box(*d.label_position, d.label_height, d.id)] + [
+            _text_box(x, y, h, text, angle) for text, x, y, angle, h in d.bevels]
+        assert all(part.contains(line) for line in lines), d.id
+        assert not any(t.intersects(line) for t in texts for line in lines), d.id
+
+
 @pytest.mark.parametrize("grain", [(1, 0, 1), (1, 0, 2), (-2, 0, 1), (0, 0, 1), (1, 0, 0)])
 def test_grain_runs_along_x_at_any_angle_to_the_panels_edges(grain):
     # a square panel in the XZ plane; the grain at an angle to its edges (the cylinder's
