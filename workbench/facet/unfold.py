@@ -5,9 +5,9 @@ Every panel's outline is laid flat in its own frame (the first edge of its
 face along +x; rotated so that the grain runs along +x when a grain
 direction is given), with its ID at the pole of inaccessibility of the outline
 (:func:`label_point`, the point polylabel finds) or its centroid, whichever holds the
-larger text inside the part, each bevel angle written beside its edge, inside the part,
-nearer that edge than any other and clear of the ID and the other angles, and a grain
-arrow inside the part when a grain direction is set.
+larger text on the part's top face (where it is engraved), each bevel angle written
+beside its edge, on that face, nearer that edge than any other and clear of the ID and
+the other angles, and a grain arrow inside the part when a grain direction is set.
 
 >>> drawings = unfold(panel_set, grain=(0, 0, 1))   # doctest: +SKIP
 >>> drawings[0].label                              # doctest: +SKIP
@@ -187,7 +187,7 @@ _CHAR_WIDTH = 0.9
 _BEVEL_ALONG = (0.5, 0.4, 0.6, 0.3, 0.7)
 
 
-def _place_bevel(inside, outline, i, a, u, length, text, height, taken=()):
+def _place_bevel(inside, outline, i, a, u, length, text, height, taken=(), inset=0.0):
     """Where the bevel text of edge ``i`` of an outline (its start ``a``, direction ``u``,
     ``length``) goes and how high, at most 0.6 ``height`` and no longer than the edge: its
     box (``_CHAR_WIDTH`` of the height per character, a fifth more; middle-aligned, as the
@@ -200,7 +200,8 @@ def _place_bevel(inside, outline, i, a, u, length, text, height, taken=()):
     bevel texts'), which it was written over (conical1 planarized: 623 of 4,188). Returns
     (middle, height, the text's box); where none fits, the smallest tried at the edge's
     middle. ``inside``: the outline's prepared Polygon, ``outline``: its edges as
-    LineStrings."""
+    LineStrings; ``inset``: how far inside the edge the face the text is engraved on
+    begins (the top face, where the bevel narrows it), which the text keeps off."""
     from shapely.geometry import Polygon
 
     def rectangle(mid, half_w, below, above):
@@ -215,16 +216,17 @@ def _place_bevel(inside, outline, i, a, u, length, text, height, taken=()):
             bh *= 0.5
         half_w = 0.5 * (_CHAR_WIDTH * len(text) + 0.2) * bh
         for t in _BEVEL_ALONG:
-            mid = a + u * (t * length) + n_in * (1.5 * bh)
+            mid = a + u * (t * length) + n_in * (inset + 1.5 * bh)
             if not (half_w <= t * length and half_w <= (1.0 - t) * length):
                 continue  # (past the edge's end)
             box = rectangle(mid, half_w, 0.5 * bh, 0.5 * bh)
             text_box = rectangle(mid, half_w, 0.9 * bh, 0.5 * bh)
-            # the box is bh from its own edge
-            if (inside.contains(box) and all(edge.distance(box) > bh for edge in others)
+            # the box is inset + bh from its own edge
+            if (inside.contains(box)
+                    and all(edge.distance(box) > inset + bh for edge in others)
                     and not any(text_box.intersects(t) for t in taken)):
                 return mid, bh, text_box
-    mid = a + u * (0.5 * length) + n_in * (1.5 * bh)
+    mid = a + u * (0.5 * length) + n_in * (inset + 1.5 * bh)
     half_w = 0.5 * (_CHAR_WIDTH * len(text) + 0.2) * bh
     return mid, bh, rectangle(mid, half_w, 0.9 * bh, 0.5 * bh)
 
@@ -394,16 +396,29 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
                          np.dot(cut[:, 1], np.roll(cut[:, 0], -1)))
         h = label_height if label_height is not None else 0.1 * math.sqrt(area)
         shape = Polygon(cut)
-        inside = prep(shape)
+        # the texts are engraved from above, on the top face: where a bevel narrows it they
+        # ran off it, onto the slope (heart_planar 20 mm mitred: 34 of 1,510 bevel texts and
+        # 5 of 400 IDs), so they go inside the part's cut and top outlines both
+        face, insets = shape, np.zeros(len(cut))
+        if len(top) == len(cut) and Polygon(top).is_valid:
+            both = shape.intersection(Polygon(top))
+            if both.geom_type == "Polygon" and not both.is_empty:
+                face = both
+                d = np.roll(cut, -1, axis=0) - cut
+                normal = np.stack([-d[:, 1], d[:, 0]], axis=1)  # inward, unnormalised
+                insets = np.maximum(np.sum((top - cut) * normal, axis=1)
+                                    / np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-300), 0.0)
+        inside = prep(face)
         outline = [LineString([cut[i], cut[(i + 1) % len(cut)]]) for i in range(len(cut))]
-        (lx, ly), h = _fit_label(shape, inside, (lx, ly), min(h, 1.2 * depth), len(p.id))
+        (lx, ly), h = _fit_label(face, inside, (lx, ly), min(h, 1.2 * depth), len(p.id))
         bevels = []
         # the ID's box as _fit_label fits it: the bevel texts keep off it and each other
         half_w = 0.5 * (_CHAR_WIDTH * len(p.id) + 0.2) * h
         taken = [box(lx - half_w, ly - 0.9 * h, lx + half_w, ly + 0.9 * h)]
         arrow = None
         if g is not None:
-            arrow = _place_grain(inside, taken[0], lx, ly, h, cut[:, 0].max() - cut[:, 0].min())
+            width = cut[:, 0].max() - cut[:, 0].min()
+            arrow = _place_grain(inside, taken[0], lx, ly, h, width)
             (x0, y0), (x1, y1) = arrow
             taken.append(box(x0, y0 - 0.075 * (x1 - x0), x1, y0 + 0.075 * (x1 - x0)))
         k = len(cut)
@@ -418,7 +433,8 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
                 continue
             u = d / length
             text = f"{b:+.1f}\u00b0"
-            mid, bh, text_box = _place_bevel(inside, outline, i, a, u, length, text, h, taken)
+            mid, bh, text_box = _place_bevel(inside, outline, i, a, u, length, text, h, taken,
+                                             float(insets[i]))
             taken.append(text_box)
             bevels.append((text, float(mid[0]), float(mid[1]),
                            math.degrees(math.atan2(u[1], u[0])), bh))
