@@ -677,3 +677,36 @@ def test_targets_and_plans_from_a_spreadsheet_s_unicode_text(tmp_path):
         targets, weights = read_targets(plan, tmp_path / name)
         given = weights > weights.min()
         assert sorted(targets[given]) == [1.5, 2.5]
+
+
+def test_target_points_that_reach_no_vertex_are_refused_by_line(tmp_path):
+    # A georeferenced 30 m quad plan and a table of its corners' heights rounded to
+    # 0.1 mm: the default match distance (1e-6 of the plan's size, 3e-5) left 84 of the
+    # 121 vertices free without a word, and the lifting missed their heights by 5 cm.
+    from facet.plan import read_targets
+
+    rng = np.random.default_rng(0)
+    k = 10
+    grid = np.stack(np.meshgrid(np.arange(k + 1) * 3.0, np.arange(k + 1) * 3.0), -1)
+    corners = grid + rng.uniform(-0.3, 0.3, grid.shape) + [512345.678, 5712345.678]
+    xy = corners.reshape(-1, 2)
+    faces = [[i * (k + 1) + j, i * (k + 1) + j + 1, (i + 1) * (k + 1) + j + 1,
+              (i + 1) * (k + 1) + j] for i in range(k) for j in range(k)]
+    plan = plan_from_mesh(PolyMesh.from_faces(np.column_stack([xy, np.zeros(len(xy))]), faces))
+    table = tmp_path / "heights.csv"
+    table.write_text("x,y,z\n" + "".join(f"{x:.4f},{y:.4f},20\n" for x, y in xy))
+    with pytest.raises(InputError, match=r"heights.csv: 84 of the 121 target points lie "
+                       r"near a plan vertex but farther than the match distance 3.059\d*e-05; "
+                       r"the nearest of them, "
+                       r"line \d+ at \(512\d{3}\.\d+, 57\d{5}\.\d+\), .*--snap"):
+        read_targets(plan, table)
+    targets, weights = read_targets(plan, table, tolerance=1e-4)
+    assert np.all(weights == 1) and np.all(targets == 20)
+    # given as numbers: named by their place; a point far from every vertex (a denser
+    # survey than the plan) is left out
+    points = np.column_stack([np.vstack([xy[:3], xy[:1] + 1.0]), [20.0, 21.0, 22.0, 23.0]])
+    points[1, :2] += 0.01
+    with pytest.raises(InputError, match=r"1 of the 4 target points .* point 2 at"):
+        targets_from_points(plan, points, tolerance=1e-3)
+    targets, weights = targets_from_points(plan, points, tolerance=0.02)
+    assert list(targets[:3]) == [20.0, 21.0, 22.0] and np.count_nonzero(weights == 1) == 3

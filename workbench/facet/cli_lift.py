@@ -29,7 +29,8 @@ def _plan_options(parser):
     parser.add_argument("plan", metavar="PLAN", help="plan drawing (.dxf, .csv/.tsv/.txt) or mesh "
                         "(.obj, .off, .json)")
     parser.add_argument("--snap", type=float, metavar="D",
-                        help="merge drawing endpoints closer than D (default 1e-6 of its size)")
+                        help="merge drawing endpoints closer than D, and match target points to plan "
+                        "vertices within D (default 1e-6 of its size)")
     parser.add_argument("--arc-tolerance", type=float, metavar="D",
                         help="split arcs and curves into segments with sagitta <= D "
                         "(default: refuse them)")
