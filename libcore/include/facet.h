@@ -672,7 +672,7 @@ double facet_lifter_factor_seconds(const facet_lifter *lifter);
  * projection: the sparse QR kept dependent constraints that the create step
  * did not recover, so the dimension is too small and the heights may be
  * farther from the targets than the closest lifting (a guard: no plan measured
- * sets it off). A non-finite
+ * since the search goes on past its largest block sets it off). A non-finite
  * target gives FACET_ERROR_BAD_TARGET naming the vertex. */
 facet_status facet_lifter_solve(facet_lifter *lifter, const double *targets, double *heights,
                                 facet_lift_result *result, facet_error *error);

@@ -466,6 +466,29 @@ def test_a_large_voronoi_plan_keeps_its_liftings(seed):
         assert np.abs(lifter.solve(function).heights - function).max() < 1e-9
 
 
+def test_the_hidden_directions_beyond_one_block_are_found(monkeypatch):
+    """Where the search for the directions SPQR's rank lost is left with a block that can
+    grow no more (512 vectors, or its memory: 32 on a 300,000-site Voronoi plan) and is
+    all hidden, further blocks orthogonal to those found go on. It stopped there: that
+    plan's paraboloid came back 3.4 times its range away. The largest block is lowered
+    here (FACET_LIFT_HIDDEN_BLOCK_MAX) to take that path on the 3,000-site plan of
+    test_a_large_voronoi_plan_keeps_its_liftings, whose search finds its directions in
+    blocks of 8 and 16: in blocks of 2 and of 1 it finds them all too, and the same
+    lifting (a search that stopped at 2 left the dimension 7 and missed the paraboloid by
+    58% of its range)."""
+    mesh, heights = _voronoi_plan(3000, 4)
+    whole = Lifter(mesh)
+    for block in ("2", "1"):
+        monkeypatch.setenv("FACET_LIFT_HIDDEN_BLOCK_MAX", block)
+        lifter = Lifter(mesh)
+        assert lifter.dimension == whole.dimension == 15
+        result = lifter.solve(heights)
+        assert result.target_max < 1e-9 * np.ptp(heights) and not result.warnings
+        basis, _ = lifter.basis("orthonormal")
+        for function in basis:
+            assert np.abs(lifter.solve(function).heights - function).max() < 1e-9
+
+
 def _triangulated_plan(n, seed=0):
     """A Delaunay triangulation of n random points, 50 across (every function lifts)."""
     from scipy.spatial import Delaunay
