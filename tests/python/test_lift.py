@@ -192,6 +192,11 @@ def test_bad_inputs():
     with pytest.raises(PlanError, match=r"face 0 has collinear corners .*; the face is "
                        r"around \(2, 2\)"):  # (a drawing's user cannot see face numbers)
         lift(mesh.with_vertices(xyz), np.zeros(6))
+    # placed in a georeferenced grid, the place reads to the millimetre: it said
+    # "(512346, 5.71236e+06)", ten metres out
+    xyz[:, :2] += [512344.25, 5712358.5]
+    with pytest.raises(PlanError, match=r"the face is around \(512346\.25, 5712360\.5\)"):
+        lift(mesh.with_vertices(xyz), np.zeros(6))
     # weights 1e30 apart gave faces 0.2 of an edge off planar, with exit 0
     with pytest.raises(TargetError, match=r"the weight of vertex 3 is 1e-17, 1e-17 times "
                        r"vertex 0's \(1\): weights more than 1e\+16 apart"):

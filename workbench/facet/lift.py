@@ -26,6 +26,7 @@ from facet import _core
 from facet.errors import FacetError, InputError, from_core
 from facet.mesh import PolyMesh, next_corners
 from facet.plan import FREE_WEIGHT
+from facet.report import point_text
 
 __all__ = ["BASES", "LiftResult", "Lifter", "LiftingSpace", "lift", "lifting_space",
            "TargetError", "NearlyLiftResult", "lift_nearly"]
@@ -93,7 +94,7 @@ def _core_error(exc, source, plan=None):
             corners = np.asarray(plan.vertices)[plan.face_vertices[
                 plan.face_start[face]:plan.face_start[face + 1]], :2]
             x, y = corners.mean(axis=0)
-            text += f"; the face is around ({x:.6g}, {y:.6g})"
+            text += f"; the face is around {point_text((x, y))}"
         error = PlanError(f"{source}: {text}" if source else text)
         error.status_name = name
         return error

@@ -473,15 +473,14 @@ def coincident_text(mesh):
     """What :func:`coincident_vertices` finds, as the start of a warning ("vertices at one
     point but not one vertex: 2 pairs (vertices 1 and 6 at (1, 0, 0))"), for the caller to
     end with what it means there; None when there are none."""
-    from facet.report import count_noun
+    from facet.report import count_noun, point_text
 
     n_pairs, first = coincident_vertices(mesh)
     if not n_pairs:
         return None
     i, j = first
-    where = ", ".join(f"{value:.6g}" for value in mesh.vertices[i])
     return (f"vertices at one point but not one vertex: {count_noun(n_pairs, 'pair')} "
-            f"(vertices {i} and {j} at ({where}))")
+            f"(vertices {i} and {j} at {point_text(mesh.vertices[i])})")
 
 
 def duplicate_faces(mesh):

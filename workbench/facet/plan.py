@@ -38,6 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from facet.errors import InputError
+from facet.report import count_noun, point_text
 from facet.mesh import PolyMesh, boundary_corners
 
 __all__ = [
@@ -482,7 +483,7 @@ def _check_chains(points, roots, snap, where):
         a, b = a + 0.0, b + 0.0  # (+ 0.0: no "-0")
         raise PlanError(
             f"{where}the snap distance {snap:g} joins {len(members)} endpoints in a chain "
-            f"{spread:.6g} wide, from ({a[0]:.6g}, {a[1]:.6g}) to ({b[0]:.6g}, {b[1]:.6g}): "
+            f"{spread:.6g} wide, from {point_text(a[:2])} to {point_text(b[:2])}: "
             "each is within the snap distance of the next, and all would become one "
             "vertex; give a snap distance smaller than the drawing's shortest edge")
 
@@ -585,7 +586,7 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
     if not np.all(np.isfinite(opening_xy)):
         bad = int(np.flatnonzero(~np.all(np.isfinite(opening_xy), axis=1))[0])
         x, y = opening_xy[bad]
-        raise PlanError(f"{where}opening {bad} at ({x:.6g}, {y:.6g}) is not a finite point")
+        raise PlanError(f"{where}opening {bad} at {point_text((x, y))} is not a finite point")
     points = array.reshape(-1, 2)
     lower, upper = points.min(axis=0), points.max(axis=0)
     size = float(np.hypot(*(upper - lower)))
@@ -626,14 +627,14 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
     if len(getattr(invalids, "geoms", [])):
         g = invalids.geoms[0]
         x, y = g.coords[0]
-        raise PlanError(f"{where}the edges near ({x:.6g}, {y:.6g}) form a self-crossing ring")
+        raise PlanError(f"{where}the edges near {point_text((x, y))} form a self-crossing ring")
     faces = list(getattr(polygons, "geoms", []))
     opened = set()  # the faces holding an opening point (one each: faces do not overlap)
     for x, y in opening_xy:
         point = Point(x, y)
         face = next((k for k, polygon in enumerate(faces) if polygon.contains(point)), None)
         if face is None:
-            raise PlanError(f"{where}the opening at ({x:.6g}, {y:.6g}) lies in no face of the "
+            raise PlanError(f"{where}the opening at {point_text((x, y))} lies in no face of the "
                             "drawing (outside it, or on an edge): give a point inside the face "
                             "to leave open")
         opened.add(face)
@@ -643,8 +644,8 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
         if len(polygon.interiors):
             x, y = polygon.interiors[0].coords[0]
             raise PlanError(
-                f"{where}the face around ({polygon.representative_point().x:.6g}, "
-                f"{polygon.representative_point().y:.6g}) has a hole at ({x:.6g}, {y:.6g}), "
+                f"{where}the face around {point_text(polygon.representative_point().coords[0])} "
+                f"has a hole at {point_text((x, y))}, "
                 "and a face must be a simple polygon: draw two or more edges from the hole "
                 "to the outline, which split the ring into faces (one edge is not enough), or "
                 "mark the face around the hole as an opening"
@@ -726,8 +727,6 @@ def _unjoined(plan):
     kept (pins and per-vertex targets use it), so nothing is welded here."""
     from scipy.spatial import cKDTree
 
-    from facet.report import count_noun
-
     xy = np.asarray(plan.vertices, dtype=np.float64)[:, :2]
     used = np.unique(plan.face_vertices)
     if used.size < 2:
@@ -742,7 +741,7 @@ def _unjoined(plan):
         i, j = (int(used[k]) for k in pairs[0])
         warnings.append(
             "vertices at one point in plan but not one vertex: "
-            f"{count_noun(len(pairs), 'pair')} (vertices {i} and {j} at ({xy[i, 0]:.6g}, {xy[i, 1]:.6g})); the faces there are "
+            f"{count_noun(len(pairs), 'pair')} (vertices {i} and {j} at {point_text(xy[i, :2])}); the faces there are "
             "lifted apart, as at a step in the roof: weld them where the faces should meet")
     coincident = {int(used[k]) for pair in pairs for k in pair}
     # a vertex on another face's edge without being its corner leaves that edge to one
@@ -876,7 +875,7 @@ def targets_from_points(plan, points, *, tolerance, labels=None):
         raise InputError(
             f"{near.size} of the {len(points)} target points lie near a plan vertex but "
             f"farther than the match distance {tolerance:g}; the nearest of them, {label} "
-            f"at ({points[p, 0]:.10g}, {points[p, 1]:.10g}), is {apart[p]:.3g} from vertex "
+            f"at {point_text(points[p, :2])}, is {apart[p]:.3g} from vertex "
             f"{int(vertex[p])}: give a larger snap distance (--snap) to match them")
     targets = np.where(given, points[np.minimum(nearest, len(points) - 1), 2], 0.0)
     return _with_free(xy, targets, given)
@@ -987,7 +986,7 @@ def targets_from_mesh(plan, mesh, *, source=None, tolerance=None):
         v = int(missing[0])
         raise InputError(
             f"{where}the target surface does not cover plan vertex {v} at "
-            f"({xy[v, 0]:.6g}, {xy[v, 1]:.6g}) ({missing.size} vertices uncovered, none "
+            f"{point_text(xy[v, :2])} ({missing.size} vertices uncovered, none "
             f"within {tolerance:.3g} of its edge in plan)"
         )
     return z, np.ones(len(xy))

@@ -20,11 +20,18 @@ import numpy as np
 from facet.io.files import write_text
 
 __all__ = ["planarize_report", "check_report", "quality_figures", "json_safe", "write_json",
-           "count_noun"]
+           "count_noun", "point_text"]
 
 #: Keys of ``mesh.info`` copied into reports (lists of keys are left out).
 _INFO_KEYS = ("format", "header", "dtype", "item", "openings_skipped", "unused_vertices_dropped",
               "repeated_corners_merged", "repeated_corners_first")
+
+
+def point_text(point):
+    """A point in a message, "(512346.25, 5712360.5)": ten significant digits, so that a
+    point of a georeferenced plan reads to the millimetre, where six gave
+    "(512346, 5.71236e+06)", ten metres out; no "-0"."""
+    return "(" + ", ".join(f"{float(value) + 0.0:.10g}" for value in point) + ")"
 
 
 def count_noun(number, noun):
