@@ -679,6 +679,26 @@ def test_targets_and_plans_from_a_spreadsheet_s_unicode_text(tmp_path):
         assert sorted(targets[given]) == [1.5, 2.5]
 
 
+def test_two_target_points_at_one_vertex_with_two_heights_are_refused(tmp_path):
+    """Two points of a table within the match distance of one vertex, at different
+    heights (two readings of a survey, tables joined): the nearest was taken and the other
+    dropped without a word. Now refused, naming both lines and heights; the same point
+    twice at one height is taken."""
+    from facet.plan import read_targets
+
+    plan = plan_from_mesh(PolyMesh.from_faces(
+        np.array([[0, 0, 0], [10, 0, 0], [10, 10, 0], [0, 10, 0.0]]), [[0, 1, 2, 3]]))
+    table = tmp_path / "heights.csv"
+    table.write_text("x,y,z\n0,0,1\n10,0,2\n10,10,3\n0,10,4\n10.000001,0,2.5\n")
+    with pytest.raises(InputError, match=r"heights.csv: two target points at plan vertex 1 "
+                       r"give it different heights: line 3 gives 2 and line 6 2.5, both within the "
+                       r"match distance of it: keep the one meant"):
+        read_targets(plan, table, tolerance=1e-3)
+    table.write_text("x,y,z\n0,0,1\n10,0,2\n10,10,3\n0,10,4\n10.000001,0,2\n")
+    targets, weights = read_targets(plan, table, tolerance=1e-3)
+    assert targets.tolist() == [1, 2, 3, 4] and np.all(weights == 1)
+
+
 def test_target_points_that_reach_no_vertex_are_refused_by_line(tmp_path):
     # A georeferenced 30 m quad plan and a table of its corners' heights rounded to
     # 0.1 mm: the default match distance (1e-6 of the plan's size, 3e-5) left 84 of the

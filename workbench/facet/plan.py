@@ -877,8 +877,30 @@ def targets_from_points(plan, points, *, tolerance, labels=None):
             f"farther than the match distance {tolerance:g}; the nearest of them, {label} "
             f"at {point_text(points[p, :2])}, is {apart[p]:.3g} from vertex "
             f"{int(vertex[p])}: give a larger snap distance (--snap) to match them")
+    _check_one_height(points, cKDTree(points[:, :2]).query_ball_point(xy[given], tolerance),
+                      np.flatnonzero(given), labels)
     targets = np.where(given, points[np.minimum(nearest, len(points) - 1), 2], 0.0)
     return _with_free(xy, targets, given)
+
+
+def _check_one_height(points, matched, vertices, labels):
+    """Refuse two target points at one vertex (within the match distance) whose heights
+    differ by more than rounding: the nearest was taken without a word, the other's
+    height dropped (a survey's two readings, a table joined from two). ``matched[k]``: the
+    points within the match distance of vertex ``vertices[k]``."""
+    span = float(np.ptp(points[:, 2])) or 1.0
+    for vertex, found in zip(vertices, matched):
+        if len(found) < 2:
+            continue
+        z = points[found, 2]
+        if np.ptp(z) <= 1e-9 * max(span, float(np.abs(z).max())):
+            continue
+        a, b = int(found[np.argmin(z)]), int(found[np.argmax(z)])
+        name = (lambda k: labels[k]) if labels is not None else (lambda k: f"point {k + 1}")
+        raise InputError(
+            f"two target points at plan vertex {int(vertex)} give it different heights: "
+            f"{name(a)} gives {points[a, 2]:.10g} and {name(b)} {points[b, 2]:.10g}, both "
+            "within the match distance of it: keep the one meant")
 
 
 def _ray_cast_down(xy, vertices, triangles):
