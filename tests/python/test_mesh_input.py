@@ -161,7 +161,7 @@ def test_a_triangle_written_as_a_quad_is_read_as_a_triangle(write_file, tmp_path
     assert mesh.faces() == [[0, 1, 4, 3], [1, 2, 5], [4, 1, 5]]
     assert read_warnings(mesh) == [
         "2 faces gave a vertex at two corners in a row (first: face 1, line 8): read with it "
-        "once, so a quad written so is a triangle"]
+        "once (a quad written so is a triangle)"]
     assert read_warnings(read_mesh(write_file("welded.obj", _welded()))) == []
     off = write_file("tri_as_quad.off", "OFF\n6 1 0\n" + "".join(
         f"{x} {y} {z}\n" for x, y, z in _POINTS) + "4 1 2 5 5\n")

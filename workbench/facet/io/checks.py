@@ -67,10 +67,11 @@ def read_warnings(mesh):
     merged = info.get("repeated_corners_merged")
     if not merged:
         return []
-    faces = f"{merged} face{'s' if merged != 1 else ''}"
-    return [f"{faces} gave a vertex at two corners in a row (first: "
-            f"{info.get('repeated_corners_first')}): read with it once, so a quad written so is "
-            "a triangle"]
+    from facet.report import count_noun
+
+    return [f"{count_noun(merged, 'face')} gave a vertex at two corners in a row (first: "
+            f"{info.get('repeated_corners_first')}): read with it once (a quad written so is "
+            "a triangle)"]
 
 
 def build_mesh(
