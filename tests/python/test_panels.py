@@ -750,6 +750,32 @@ def test_sheets_of_an_earlier_longer_run_are_removed(tmp_path):
         == count
 
 
+def test_sheet_files_past_99_sort_as_the_sheets_go(tmp_path):
+    """A run of 100 sheets or more numbers its files with as many digits as the last
+    ("sheet_001" ... "sheet_110"): with two, "sheet_100" sorted before "sheet_11" in a
+    listing. An earlier run numbered with two digits is removed as stale, as a longer
+    run's extra sheets are."""
+    from facet.cli_panels import run_pipeline
+
+    mesh = translational(nu=11, nv=10, step=400.0)  # 110 panels, one per sheet
+    svg = tmp_path / "svg"
+    _, _, _, few = run_pipeline(mesh, 18.0, sheet=(4000, 3000), margin=15, spacing=8,
+                                svg=str(svg), dxf=str(tmp_path / "cut.dxf"), per_sheet=True)
+    assert 1 < len(few.sheets) < 10 and (svg / "sheet_01.svg").exists()
+    _, _, _, many = run_pipeline(mesh, 18.0, sheet=(600, 600), margin=5, spacing=8,
+                                 svg=str(svg), dxf=str(tmp_path / "cut.dxf"), per_sheet=True)
+    count = len(many.sheets)
+    assert count >= 100
+    names = sorted(path.name for path in svg.iterdir())
+    assert names == [f"sheet_{k:03d}.svg" for k in range(1, count + 1)]
+    assert sorted(p.name for p in tmp_path.glob("cut_*.dxf")) == [
+        f"cut_{k:03d}.dxf" for k in range(1, count + 1)]
+    # the listing's order is the sheets': each file's title names its sheet
+    for name in names[:12] + names[98:102]:
+        number = int(name[6:9])
+        assert f"<title>sheet {number}:" in (svg / name).read_text()
+
+
 def test_a_failed_preview_leaves_no_temporary_file(tmp_path, monkeypatch):
     import matplotlib.figure
 

@@ -35,15 +35,29 @@ __all__ = ["LAYERS", "write_dxf", "schedule_rows", "write_schedule_csv",
 LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "SHEET": 8, "GRAIN": 6}
 
 
-def _remove_stale(numbered, count):
-    """Remove ``numbered(k)`` for k = count + 1, count + 2, ... while such a file exists:
-    the sheets of an earlier, longer run written to the same names, which would otherwise
-    be cut again; when the new ones take their places (:func:`facet.io.files.staged`)."""
+def _sheet_number(k, count):
+    """Sheet k of `count` as its file is numbered: as many digits as the last has, two at
+    least, so that a listing sorts the files as the sheets go ("sheet_100" came before
+    "sheet_11" of a 153-sheet run)."""
+    return f"{k:0{max(2, len(str(count)))}d}"
+
+
+def _remove_stale(numbered, written):
+    """Remove the files ``numbered(digits)`` that an earlier run wrote and this one did not
+    (not in `written`): with any number of digits from 2 to 6, from 1 on while such a file
+    exists. An earlier, longer run's last sheets, or all of a run numbered with other widths
+    (12 sheets against 140), would otherwise lie beside the new ones and be cut again; when
+    the new ones take their places (:func:`facet.io.files.staged`)."""
+    keep = {os.path.abspath(path) for path in written}
+
     def remove():
-        k = count + 1
-        while os.path.isfile(numbered(k)):
-            os.remove(numbered(k))
-            k += 1
+        for width in range(2, 7):
+            k = 1
+            while os.path.isfile(numbered(f"{k:0{width}d}")):
+                name = numbered(f"{k:0{width}d}")
+                if os.path.abspath(name) not in keep:
+                    os.remove(name)
+                k += 1
 
     when_staged(remove)
 
@@ -87,9 +101,10 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
     ----------
     path : str or os.PathLike
         The file; with ``per_sheet`` a pattern whose ``{sheet}`` is replaced
-        by the sheet number (1-based), or ``name.dxf`` -> ``name_01.dxf``. Numbered
-        files of an earlier run beyond this run's last sheet are removed (they would be
-        cut again); so are write_svg's and write_png's.
+        by the sheet number (1-based), or ``name.dxf`` -> ``name_01.dxf``; with as many
+        digits as the last sheet's, two at least (``name_001.dxf`` from 100 sheets), so
+        that a listing sorts them. Numbered files of an earlier run that this one did not
+        write are removed (they would be cut again); so are write_svg's and write_png's.
     nest_result : facet.nest.NestResult
     drawings : list of facet.unfold.PartDrawing
     per_sheet : bool
@@ -159,11 +174,11 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
     if not docs:  # nothing placed: still a valid (empty) drawing, so no stale file remains
         docs[0] = new_doc()
 
-    def numbered(k):
+    def numbered(digits):
         if "{sheet}" in path:
-            return path.replace("{sheet}", f"{k:02d}")
+            return path.replace("{sheet}", digits)
         root, ext = os.path.splitext(path)
-        return f"{root}_{k:02d}{ext or '.dxf'}"
+        return f"{root}_{digits}{ext or '.dxf'}"
 
     written = []
     for key in sorted(docs):
@@ -171,11 +186,11 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         auditor = doc.audit()
         if auditor.has_errors:
             raise RuntimeError(f"ezdxf audit found {len(auditor.errors)} errors in the DXF")
-        target = numbered(key + 1) if per_sheet else path
+        target = numbered(_sheet_number(key + 1, len(docs))) if per_sheet else path
         write_replacing(target, doc.saveas)
         written.append(target)
     if per_sheet:
-        _remove_stale(numbered, len(docs))
+        _remove_stale(numbered, written)
     return written
 
 
@@ -282,10 +297,11 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm"):
                        f'font-size="{d.label_height!r}" text-anchor="middle" '
                        f'dominant-baseline="middle" fill="#003">{escape(d.id)}</text>')
         out.append("</g></svg>\n")
-        target = os.path.join(directory, f"{stem}_{i + 1:02d}.svg")
+        number = _sheet_number(i + 1, len(nest_result.sheets))
+        target = os.path.join(directory, f"{stem}_{number}.svg")
         write_text(target, ["\n".join(out)])
         written.append(target)
-    _remove_stale(lambda k: os.path.join(directory, f"{stem}_{k:02d}.svg"), len(written))
+    _remove_stale(lambda digits: os.path.join(directory, f"{stem}_{digits}.svg"), written)
     return written
 
 
@@ -323,11 +339,12 @@ def write_png(directory, nest_result, drawings, stem="sheet", dpi=100):
         ax.set_aspect("equal")
         ax.set_title(f"sheet {i + 1}: {len(sheet.parts)} parts, "
                      f"{100 * sheet.utilisation:.1f}% used")
-        target = os.path.join(directory, f"{stem}_{i + 1:02d}.png")
+        number = _sheet_number(i + 1, len(nest_result.sheets))
+        target = os.path.join(directory, f"{stem}_{number}.png")
         try:
             write_replacing(target, lambda tmp: fig.savefig(tmp, dpi=dpi), ".png")
         finally:
             plt.close(fig)
         written.append(target)
-    _remove_stale(lambda k: os.path.join(directory, f"{stem}_{k:02d}.png"), len(written))
+    _remove_stale(lambda digits: os.path.join(directory, f"{stem}_{digits}.png"), written)
     return written
