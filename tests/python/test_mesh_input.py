@@ -103,6 +103,31 @@ def test_weld_joins_the_seam_the_warnings_name(write_file, tmp_path, facet_comma
                                        [[0, 1, 2, 3]]), rel_tol=1.0)
 
 
+def test_weld_carries_the_compas_supports_and_keys(write_file):
+    """A compas session welded: its support vertices and vertex keys follow the vertices
+    kept, as facet.cleanup's do. The supports kept their input indices, so one named a
+    vertex past the welded mesh's last (6 of 6) and a results file written back by key
+    would have lost it; the keys of the vertices joined were dropped unsaid."""
+    from facet.mesh import weld
+
+    def vertex(x, y, support=False):
+        return {"x": x, "y": y, "z": 0, **({"is_support": True} if support else {})}
+
+    session = {"vertex": {"a": vertex(0, 0), "b": vertex(1, 0, True), "c": vertex(1, 1),
+                          "d": vertex(0, 1), "e": vertex(1, 0), "f": vertex(2, 0),
+                          "g": vertex(2, 1, True), "h": vertex(1, 1)},
+               "face": {"0": ["a", "b", "c", "d"], "1": ["e", "f", "g", "h"]}}
+    mesh = read_mesh(write_file("apart.json", json.dumps(session)))
+    welded, merged = weld(mesh)
+    assert merged == 2 and welded.faces() == [[0, 1, 2, 3], [1, 4, 5, 2]]
+    info = welded.info
+    assert info["vertex_keys"] == ["a", "b", "c", "d", "f", "g"]
+    assert info["merged_vertex_keys"] == {"b": ["e"], "c": ["h"]}
+    assert info["face_keys"] == mesh.info["face_keys"]
+    assert [welded.vertices[v].tolist() for v in info["support_vertices"]] == [
+        [1, 0, 0], [2, 1, 0]]
+
+
 def test_unwelded_seam_is_warned_by_check_and_planarize_commands(write_file, tmp_path,
                                                                 facet_command):
     run_facet = facet_command

@@ -19,7 +19,7 @@ import numpy as np
 
 from facet import _core
 from facet.errors import InputError, MeshError, from_core
-from facet.mesh import PolyMesh
+from facet.mesh import PolyMesh, remapped_info
 
 __all__ = ["CleanupResult", "cleanup"]
 
@@ -122,8 +122,8 @@ def cleanup(mesh, min_edge, relative=True):
     keep = np.ones(mesh.n_faces, dtype=bool)
     keep[removed] = False
     vertex_map = np.frombuffer(out["vertex_map"], dtype=np.int32).copy()
-    info = _remapped(dict(mesh.info or {}), vertex_map, np.flatnonzero(keep), mesh.n_faces,
-                     len(xyz))
+    info = remapped_info(dict(mesh.info or {}), vertex_map, np.flatnonzero(keep),
+                         mesh.n_faces, len(xyz))
     info["cleanup"] = {"threshold": out["threshold"], "collapsed": len(out["collapsed_edges"]) // 8}
     new_mesh = PolyMesh(xyz, face_start, face_vertices, info=info)
     return CleanupResult(
@@ -135,35 +135,3 @@ def cleanup(mesh, min_edge, relative=True):
         skipped=int(out["skipped"]),
         face_map=np.flatnonzero(keep).astype(np.int32),
     )
-
-
-def _remapped(info, vertex_map, face_map, n_faces, n_vertices):
-    """A reader's per-vertex and per-face lists (the compas reader's ``vertex_keys``,
-    ``face_keys`` and ``support_vertices``, the OBJ reader's ``obj_sections``) for the new
-    topology, so that results written back by key land on the right elements: a face keeps
-    its key (and its group); a vertex takes the key of the first input vertex merged into
-    it (``merged_vertex_keys`` lists the others)."""
-    if isinstance(info.get("face_keys"), list) and len(info["face_keys"]) == n_faces:
-        keys = info["face_keys"]
-        info["face_keys"] = [keys[f] for f in face_map.tolist()]
-    if info.get("obj_sections") and info.get("obj_faces") == n_faces:
-        # the OBJ reader's groups and materials: each before the first face kept after it
-        info["obj_sections"] = tuple((int(np.searchsorted(face_map, at)), statement)
-                                     for at, statement in info["obj_sections"])
-        info["obj_faces"] = len(face_map)
-    if isinstance(info.get("vertex_keys"), list) and len(info["vertex_keys"]) == len(vertex_map):
-        keys, first, merged = info["vertex_keys"], [None] * n_vertices, {}
-        for old, new in enumerate(vertex_map.tolist()):
-            if new < 0:
-                continue
-            if first[new] is None:
-                first[new] = keys[old]
-            else:
-                merged.setdefault(first[new], []).append(keys[old])
-        info["vertex_keys"] = first
-        if merged:
-            info["merged_vertex_keys"] = merged
-    if isinstance(info.get("support_vertices"), list):
-        info["support_vertices"] = sorted({int(vertex_map[v]) for v in info["support_vertices"]
-                                           if 0 <= v < len(vertex_map) and vertex_map[v] >= 0})
-    return info

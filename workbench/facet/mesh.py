@@ -415,7 +415,8 @@ def weld(mesh, rel_tol=1e-9):
     a corner that then repeats the one before it is dropped. Each group keeps its first
     vertex, where it is, and the others go; a vertex no face uses stays. The faces keep
     their order, so the info about them (OBJ groups, compas face keys) still holds; compas
-    vertex keys follow the vertices kept.
+    vertex keys and support vertices follow the vertices kept (:func:`remapped_info`, as
+    :func:`facet.cleanup` does).
 
     Parameters
     ----------
@@ -462,11 +463,43 @@ def weld(mesh, rel_tol=1e-9):
     kept = np.flatnonzero(group == np.arange(n))
     index = np.full(n, -1)
     index[kept] = np.arange(kept.size)
-    if isinstance(info.get("vertex_keys"), list) and len(info["vertex_keys"]) == n:
-        info["vertex_keys"] = [info["vertex_keys"][v] for v in kept]
+    info = remapped_info(info, index[group], np.arange(mesh.n_faces), mesh.n_faces,
+                         kept.size)
     welded = PolyMesh.from_faces(points[kept], [index[face].tolist() for face in faces],
                                  info=info)
     return welded, merged
+
+
+def remapped_info(info, vertex_map, face_map, n_faces, n_vertices):
+    """A reader's per-vertex and per-face lists (the compas reader's ``vertex_keys``,
+    ``face_keys`` and ``support_vertices``, the OBJ reader's ``obj_sections``) for the new
+    topology, so that results written back by key land on the right elements: a face keeps
+    its key (and its group); a vertex takes the key of the first input vertex merged into
+    it (``merged_vertex_keys`` lists the others)."""
+    if isinstance(info.get("face_keys"), list) and len(info["face_keys"]) == n_faces:
+        keys = info["face_keys"]
+        info["face_keys"] = [keys[f] for f in face_map.tolist()]
+    if info.get("obj_sections") and info.get("obj_faces") == n_faces:
+        # the OBJ reader's groups and materials: each before the first face kept after it
+        info["obj_sections"] = tuple((int(np.searchsorted(face_map, at)), statement)
+                                     for at, statement in info["obj_sections"])
+        info["obj_faces"] = len(face_map)
+    if isinstance(info.get("vertex_keys"), list) and len(info["vertex_keys"]) == len(vertex_map):
+        keys, first, merged = info["vertex_keys"], [None] * n_vertices, {}
+        for old, new in enumerate(vertex_map.tolist()):
+            if new < 0:
+                continue
+            if first[new] is None:
+                first[new] = keys[old]
+            else:
+                merged.setdefault(first[new], []).append(keys[old])
+        info["vertex_keys"] = first
+        if merged:
+            info["merged_vertex_keys"] = merged
+    if isinstance(info.get("support_vertices"), list):
+        info["support_vertices"] = sorted({int(vertex_map[v]) for v in info["support_vertices"]
+                                           if 0 <= v < len(vertex_map) and vertex_map[v] >= 0})
+    return info
 
 
 def coincident_text(mesh):
