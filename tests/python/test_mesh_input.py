@@ -101,6 +101,15 @@ def test_weld_joins_the_seam_the_warnings_name(write_file, tmp_path, facet_comma
     with pytest.raises(facet.MeshError, match="face 0 has fewer than 3 corners apart"):
         weld(facet.PolyMesh.from_faces(np.array(_POINTS[:3] + [_POINTS[1]], float),
                                        [[0, 1, 2, 3]]), rel_tol=1.0)
+    # so is one left with a vertex at two corners apart, which no reader takes back: it
+    # was written ("f 1 2 1 3 4") and `facet check` refused the file it wrote
+    pinched = write_file("pinched.obj", "v 0 0 0\nv 1 0 0\nv 0 0 0\nv 0 1 0\nv -1 1 0\n"
+                         "f 1 2 3 4 5\n")
+    with pytest.raises(facet.MeshError, match="face 0 has one vertex at two corners apart"):
+        weld(read_mesh(pinched))
+    run = facet_command("weld", pinched, "-o", tmp_path / "p.obj")
+    assert run.returncode == 2 and "face 0 has one vertex at two corners apart" in run.stderr
+    assert not (tmp_path / "p.obj").exists()
 
 
 def test_weld_carries_the_compas_supports_and_keys(write_file):

@@ -433,7 +433,8 @@ def weld(mesh, rel_tol=1e-9):
     Raises
     ------
     MeshError
-        A face left with fewer than three corners apart, named.
+        A face left with fewer than three corners apart, or with one vertex at two corners
+        apart (pinched at a point), named.
     """
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
@@ -459,6 +460,12 @@ def weld(mesh, rel_tol=1e-9):
             raise MeshError(f"face {f} has fewer than 3 corners apart once its vertices "
                             f"within {rel_tol:g} of the mesh's size are one", face=f,
                             source=info.get("source"))
+        if len(set(corners)) < len(corners):
+            # (a face pinched at a point: the readers refuse it, so a file written so
+            # could not be read back)
+            raise MeshError(f"face {f} has one vertex at two corners apart once its "
+                            f"vertices within {rel_tol:g} of the mesh's size are one",
+                            face=f, source=info.get("source"))
         faces.append(corners)
     kept = np.flatnonzero(group == np.arange(n))
     index = np.full(n, -1)
