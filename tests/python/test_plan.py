@@ -730,3 +730,12 @@ def test_target_points_that_reach_no_vertex_are_refused_by_line(tmp_path):
         targets_from_points(plan, points, tolerance=1e-3)
     targets, weights = targets_from_points(plan, points, tolerance=0.02)
     assert list(targets[:3]) == [20.0, 21.0, 22.0] and np.count_nonzero(weights == 1) == 3
+    # a plan vertex no face uses has no edge to measure "just beyond" by: a point nearest
+    # it (here 0.7 from it) was refused as meant for it ("is 0.707 from vertex 121")
+    loose = plan_from_mesh(PolyMesh(np.vstack([plan.mesh.vertices, [[xy[0, 0] - 50.0,
+                                                                     xy[0, 1], 0.0]]]),
+                                    plan.mesh.face_start, plan.mesh.face_vertices))
+    points = np.column_stack([xy, np.full(len(xy), 20.0)])
+    points = np.vstack([points, [xy[0, 0] - 50.5, xy[0, 1] + 0.5, 3.0]])
+    targets, weights = targets_from_points(loose, points, tolerance=1e-4)
+    assert np.count_nonzero(weights == 1) == len(xy) and np.all(targets[weights == 1] == 20)

@@ -867,6 +867,7 @@ def targets_from_points(plan, points, *, tolerance, labels=None):
     shortest = np.full(len(xy), np.inf)
     np.minimum.at(shortest, edges[:, 0], length)
     np.minimum.at(shortest, edges[:, 1], length)
+    shortest[np.isinf(shortest)] = 0.0  # a vertex of no edge: no point is meant for it
     apart, vertex = cKDTree(xy).query(points[:, :2])
     near = np.flatnonzero((apart > tolerance) & (apart <= 0.01 * shortest[vertex]))
     if near.size:
