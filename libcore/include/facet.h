@@ -671,8 +671,11 @@ double facet_lifter_factor_seconds(const facet_lifter *lifter);
  * FACET_WARNING_LIFTING_RANK when the affine liftings do not survive the
  * projection: the sparse QR kept dependent constraints that the create step
  * did not recover, so the dimension is too small and the heights may be
- * farther from the targets than the closest lifting (a guard: no plan measured
- * since the search goes on past its largest block sets it off). A non-finite
+ * farther from the targets than the closest lifting (a guard: at rank tolerances
+ * up to 1e-6, where the search for the dependencies SPQR's rank lost runs, no plan
+ * measured since it goes on past its largest block sets it off; a looser one, whose
+ * rank stands, can). Where both warnings hold, FACET_WARNING_LIFTING_RANK is
+ * returned, its message ending with the planarity finding. A non-finite
  * target gives FACET_ERROR_BAD_TARGET naming the vertex. */
 facet_status facet_lifter_solve(facet_lifter *lifter, const double *targets, double *heights,
                                 facet_lift_result *result, facet_error *error);
