@@ -726,7 +726,7 @@ def test_target_points_that_reach_no_vertex_are_refused_by_line(tmp_path):
     # survey than the plan) is left out
     points = np.column_stack([np.vstack([xy[:3], xy[:1] + 1.0]), [20.0, 21.0, 22.0, 23.0]])
     points[1, :2] += 0.01
-    with pytest.raises(InputError, match=r"1 of the 4 target points .* point 2 at"):
+    with pytest.raises(InputError, match=r"1 of the 4 target points lies near .* point 2 at"):
         targets_from_points(plan, points, tolerance=1e-3)
     targets, weights = targets_from_points(plan, points, tolerance=0.02)
     assert list(targets[:3]) == [20.0, 21.0, 22.0] and np.count_nonzero(weights == 1) == 3

@@ -874,7 +874,8 @@ def targets_from_points(plan, points, *, tolerance, labels=None):
         p = int(near[np.argmin(apart[near])])
         label = labels[p] if labels is not None else f"point {p + 1}"
         raise InputError(
-            f"{near.size} of the {len(points)} target points lie near a plan vertex but "
+            f"{near.size} of the {len(points)} target points "
+            f"{'lies' if near.size == 1 else 'lie'} near a plan vertex but "
             f"farther than the match distance {tolerance:g}; the nearest of them, {label} "
             f"at {point_text(points[p, :2])}, is {apart[p]:.3g} from vertex "
             f"{int(vertex[p])}: give a larger snap distance (--snap) to match them")
