@@ -739,3 +739,10 @@ def test_target_points_that_reach_no_vertex_are_refused_by_line(tmp_path):
     points = np.vstack([points, [xy[0, 0] - 50.5, xy[0, 1] + 0.5, 3.0]])
     targets, weights = targets_from_points(loose, points, tolerance=1e-4)
     assert np.count_nonzero(weights == 1) == len(xy) and np.all(targets[weights == 1] == 20)
+    # a survey denser than the plan, every vertex's own point in it too: a survey point
+    # 1 cm from a vertex matched (within 1% of its edges) was refused as meant for it,
+    # and --snap, as advised, then found two heights at that vertex
+    points = np.column_stack([xy, np.full(len(xy), 20.0)])
+    points = np.vstack([points, [xy[5, 0] + 0.01, xy[5, 1], 20.3]])
+    targets, weights = targets_from_points(plan, points, tolerance=1e-4)
+    assert np.all(weights == 1) and np.all(targets == 20)

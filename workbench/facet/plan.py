@@ -843,7 +843,8 @@ def targets_from_points(plan, points, *, tolerance, labels=None):
     nearest point within `tolerance` (in plan); vertices with none are free
     (see :func:`pinned_targets`). No interpolation. A point beyond `tolerance`
     but within 1% of an edge of a vertex (meant for it, rounded) is an error naming it
-    (``labels[k]``, default "point k+1"); points farther out are left out."""
+    (``labels[k]``, default "point k+1") when no point matches that vertex; points farther
+    out, or beside a vertex matched, are left out."""
     from scipy.spatial import cKDTree
 
     xy, _ = _plan_xy(plan)
@@ -859,8 +860,9 @@ def targets_from_points(plan, points, *, tolerance, labels=None):
     # A point just beyond the match distance of a vertex was meant for it, and would leave
     # it free without a word: a table rounded to 0.1 mm for a 30 m plan (distance 3e-5)
     # gave 37 of 121 vertices their heights and the lifting missed the rest by 5 cm,
-    # reported as a success. "Just beyond": within 1% of the vertex's shortest edge;
-    # points farther out (a denser survey than the plan) are left out as before.
+    # reported as a success. "Just beyond": within 1% of the vertex's shortest edge, of a
+    # vertex that no point matches; points farther out, or beside a vertex matched (a
+    # survey denser than the plan), are left out as before.
     xy_mesh = _plan_xy(plan)[1]
     edges = xy_mesh.edges()
     length = np.hypot(*(xy[edges[:, 0]] - xy[edges[:, 1]]).T)
@@ -869,7 +871,8 @@ def targets_from_points(plan, points, *, tolerance, labels=None):
     np.minimum.at(shortest, edges[:, 1], length)
     shortest[np.isinf(shortest)] = 0.0  # a vertex of no edge: no point is meant for it
     apart, vertex = cKDTree(xy).query(points[:, :2])
-    near = np.flatnonzero((apart > tolerance) & (apart <= 0.01 * shortest[vertex]))
+    near = np.flatnonzero((apart > tolerance) & (apart <= 0.01 * shortest[vertex])
+                          & ~given[vertex])
     if near.size:
         p = int(near[np.argmin(apart[near])])
         label = labels[p] if labels is not None else f"point {p + 1}"
