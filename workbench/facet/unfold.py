@@ -199,36 +199,44 @@ def _place_bevel(inside, outline, i, a, u, length, text, height, taken=(), inset
     below its middle, towards its edge), clears the boxes ``taken`` (the ID's, the other
     bevel texts'), which it was written over (conical1 planarized: 623 of 4,188). Returns
     (middle, height, the text's box); where none fits, the smallest tried at the edge's
-    middle. ``inside``: the outline's prepared Polygon, ``outline``: its edges as
-    LineStrings; ``inset``: how far inside the edge the face the text is engraved on
+    middle. ``inside``: the prepared face the texts go on (the cut outline within the
+    top face), ``outline``: the cut outline's edges as LineStrings; ``inset``: how far inside the edge the face the text is engraved on
     begins (the top face, where the bevel narrows it), which the text keeps off."""
     from shapely.geometry import Polygon
 
-    def rectangle(mid, half_w, below, above):
-        return Polygon([mid + sx * half_w * u + sy * n_in
+    ux, uy = float(u[0]), float(u[1])
+    nx, ny = -uy, ux  # inside of a counter-clockwise outline
+
+    def rectangle(mid, half_w, below, above):  # (plain floats: numpy's were half the time)
+        mx, my = mid
+        return Polygon([(mx + sx * half_w * ux + sy * nx, my + sx * half_w * uy + sy * ny)
                         for sx, sy in ((-1, -below), (1, -below), (1, above), (-1, above))])
 
-    n_in = np.array([-u[1], u[0]])  # inside of a counter-clockwise outline
+    def middle(t, bh):
+        along, off = t * length, inset + 1.5 * bh
+        return (float(a[0]) + along * ux + off * nx, float(a[1]) + along * uy + off * ny)
+
     bh = min(0.6 * height, 0.8 * length / (_CHAR_WIDTH * len(text)))
     others = [edge for j, edge in enumerate(outline) if j != i]
     for attempt in range(5):
         if attempt:
             bh *= 0.5
         half_w = 0.5 * (_CHAR_WIDTH * len(text) + 0.2) * bh
-        for t in _BEVEL_ALONG:
-            mid = a + u * (t * length) + n_in * (inset + 1.5 * bh)
-            if not (half_w <= t * length and half_w <= (1.0 - t) * length):
+        for along in _BEVEL_ALONG:
+            if not (half_w <= along * length and half_w <= (1.0 - along) * length):
                 continue  # (past the edge's end)
-            box = rectangle(mid, half_w, 0.5 * bh, 0.5 * bh)
-            text_box = rectangle(mid, half_w, 0.9 * bh, 0.5 * bh)
+            mid = middle(along, bh)
             # the box is inset + bh from its own edge
-            if (inside.contains(box)
-                    and all(edge.distance(box) > inset + bh for edge in others)
-                    and not any(text_box.intersects(t) for t in taken)):
-                return mid, bh, text_box
-    mid = a + u * (0.5 * length) + n_in * (inset + 1.5 * bh)
+            box = rectangle(mid, half_w, 0.5 * bh, 0.5 * bh)
+            if not inside.contains(box) or any(edge.distance(box) <= inset + bh
+                                               for edge in others):
+                continue
+            text_box = rectangle(mid, half_w, 0.9 * bh, 0.5 * bh)
+            if not any(text_box.intersects(other) for other in taken):
+                return np.array(mid), bh, text_box
+    mid = middle(0.5, bh)
     half_w = 0.5 * (_CHAR_WIDTH * len(text) + 0.2) * bh
-    return mid, bh, rectangle(mid, half_w, 0.9 * bh, 0.5 * bh)
+    return np.array(mid), bh, rectangle(mid, half_w, 0.9 * bh, 0.5 * bh)
 
 
 def _fit_label(polygon, inside, pole, height, n_chars):
