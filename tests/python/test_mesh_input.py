@@ -213,6 +213,11 @@ def test_a_triangle_written_as_a_quad_is_read_as_a_triangle(write_file, tmp_path
     assert (report["faces"], report["face_degrees"]) == (3, {"3": 2, "4": 1})
     assert report["source_repeated_corners_merged"] == 2
     assert report["source_repeated_corners_first"] == "face 1, line 8"
+    # a plan mesh for `facet lift` says so too (it lifted without a word)
+    from facet.plan import read_plan
+
+    plan = read_plan(path)
+    assert plan.warnings[:1] == read_warnings(mesh)
 
 
 def test_a_vertex_repeated_apart_is_quoted_as_the_obj_line_writes_it(write_file):

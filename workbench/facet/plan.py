@@ -775,9 +775,12 @@ def read_plan(path, *, snap=None, arc_tolerance=None, openings=()):
         plan.warnings[:0] = notes
         return plan
     if suffix in (".obj", ".off", ".json"):
-        from facet.io import read_mesh
+        from facet.io import read_mesh, read_warnings
 
-        return plan_from_mesh(read_mesh(path), source=path)
+        mesh = read_mesh(path)
+        plan = plan_from_mesh(mesh, source=path)
+        plan.warnings[:0] = read_warnings(mesh)  # (a face read with a vertex once)
+        return plan
     raise PlanError(f"{path}: cannot read {suffix or 'files without an extension'} plans "
                     "(Facet reads .dxf, .csv, .tsv, .txt, .obj, .off, .json)")
 
