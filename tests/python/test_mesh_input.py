@@ -97,6 +97,15 @@ def test_weld_joins_the_seam_the_warnings_name(write_file, tmp_path, facet_comma
     assert run.returncode == 0, run.stderr
     assert "2 vertices joined to another: 8 -> 6 vertices, 2 faces" in run.stdout
     assert read_mesh(tmp_path / "w.obj").faces() == [[0, 1, 4, 3], [1, 2, 5, 4]]
+    # a chain of points each within the tolerance of the next, longer than twice it, is
+    # refused rather than made one vertex (its ends would move by more than asked)
+    chain = [(0.009 * k, 0.0, 0.0) for k in range(4)]  # 0.009 apart, 0.027 long
+    far = [(0.3 * k, 1.0, 0.0) for k in range(4)] + [(0.3 * k + 0.1, 1.0, 0.0)
+                                                     for k in range(4)]
+    triangles = [[k, 4 + k, 8 + k] for k in range(4)]  # (the mesh is 1 wide: tol 0.01)
+    with pytest.raises(facet.MeshError, match=r"form a chain 0.027 long, from vertex 0 to "
+                       r"vertex 3 at \(0.027, 0, 0\)"):
+        weld(facet.PolyMesh.from_faces(np.array(chain + far), triangles), rel_tol=0.01)
     # a face that welding leaves with two corners apart is named
     with pytest.raises(facet.MeshError, match="face 0 has fewer than 3 corners apart"):
         weld(facet.PolyMesh.from_faces(np.array(_POINTS[:3] + [_POINTS[1]], float),

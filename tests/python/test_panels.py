@@ -703,7 +703,7 @@ def test_schedule_csv_and_json(tmp_path):
     assert len(svgs) == len(pngs) == len(result.sheets)
     assert svgs[0].read_text().count("<path") == len(result.sheets[0].parts)
     w, h = result.sheet_size
-    assert f'width="{w!r}mm" height="{h!r}mm"' in svgs[0].read_text()
+    assert f'width="{w:.10g}mm" height="{h:.10g}mm"' in svgs[0].read_text()
     assert pngs[0].read_bytes()[:4] == b"\x89PNG"
     # the preview's IDs lie where the DXF's do and turn with their parts as they do
     # (they were drawn unturned on every turned part)
@@ -840,7 +840,7 @@ def test_cli_panels_in_metres(facet_command, tmp_path):
 
     root = ET.parse(sorted((tmp_path / "svg").glob("*.svg"))[0]).getroot()
     assert (root.get("width"), root.get("height"), root.get("viewBox")) == (
-        "1300.0mm", "900.0mm", "0 0 1.3 0.9")
+        "1300mm", "900mm", "0 0 1.3 0.9")
     import Part
 
     shape = Part.read(str(tmp_path / "o.step"))  # (STEP in millimetres)

@@ -278,7 +278,8 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm"):
     stroke = max(w, h) / 1500.0
     for i, sheet in enumerate(nest_result.sheets):
         out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w!r} {h!r}" '
-               f'width="{w * mm!r}mm" height="{h * mm!r}mm">',
+               # (ten digits: 1219.2mm, not 1219.1999999999998mm, for a 48 in sheet)
+               f'width="{w * mm:.10g}mm" height="{h * mm:.10g}mm">',
                f'<title>sheet {i + 1}: {len(sheet.parts)} parts, '
                f'{100 * sheet.utilisation:.1f}% used</title>',
                f'<g transform="matrix(1 0 0 -1 0 {h!r})">',

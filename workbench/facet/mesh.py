@@ -450,6 +450,20 @@ def weld(mesh, rel_tol=1e-9):
         first = np.full(component.max() + 1, n)
         np.minimum.at(first, component, np.arange(n))
         group = first[component]
+        # a chain of points each within the tolerance of the next would be one vertex
+        # however long (the plan reader refuses such chains too): joined, its ends would
+        # move by more than the tolerance asked for
+        size = float(np.ptp(points[np.unique(np.asarray(mesh.face_vertices))], axis=0).max())
+        spread = np.linalg.norm(points - points[group], axis=1)
+        if spread.max() > 2.0 * rel_tol * size:
+            v = int(np.argmax(spread))
+            from facet.report import point_text
+
+            raise MeshError(f"the vertices within {rel_tol:g} of the mesh's size of each other "
+                            f"form a chain {spread[v]:.3g} long, from vertex {int(group[v])} to "
+                            f"vertex {v} at {point_text(points[v])}: joined, they would move "
+                            "by more than that; give a smaller tolerance", vertex=v,
+                            source=info.get("source"))
     used = np.unique(np.asarray(mesh.face_vertices))
     merged = int(np.count_nonzero(group[used] != used))
     faces = []
