@@ -1082,7 +1082,8 @@ facet_status facet_lifter_solve(facet_lifter *s, const double *targets, double *
             snprintf(planar, sizeof planar,
                      "; and face %d is planar only to %.3g of its mean edge length (> 1e-9)",
                      (int)worst, r.planarity_max_rel);
-        return lifter_fail(s, error, FACET_WARNING_LIFTING_RANK, worst, -1,
+        return lifter_fail(s, error, FACET_WARNING_LIFTING_RANK,
+                           r.planarity_max_rel > PLANARITY_TOL_REL ? worst : -1, -1,
                            "the planarity constraints' dependencies could not be told from "
                            "rounding (the affine liftings move by %.2g when projected): the "
                            "lifting space may be larger than the %d dimensions found, and "
