@@ -770,10 +770,11 @@ def test_sheet_files_past_99_sort_as_the_sheets_go(tmp_path):
     assert names == [f"sheet_{k:03d}.svg" for k in range(1, count + 1)]
     assert sorted(p.name for p in tmp_path.glob("cut_*.dxf")) == [
         f"cut_{k:03d}.dxf" for k in range(1, count + 1)]
-    # the listing's order is the sheets': each file's title names its sheet
+    # the listing's order is the sheets': each file's title names its sheet (and its one
+    # part as one: it said "1 parts")
     for name in names[:12] + names[98:102]:
         number = int(name[6:9])
-        assert f"<title>sheet {number}:" in (svg / name).read_text()
+        assert f"<title>sheet {number}: 1 part, " in (svg / name).read_text()
 
 
 def test_a_failed_preview_leaves_no_temporary_file(tmp_path, monkeypatch):

@@ -26,7 +26,7 @@ import os
 import numpy as np
 
 from facet.io.files import when_staged, write_replacing, write_text
-from facet.report import json_safe
+from facet.report import count_noun, json_safe
 
 __all__ = ["LAYERS", "write_dxf", "schedule_rows", "write_schedule_csv",
            "write_schedule_json", "write_svg", "write_png", "sheet_offsets"]
@@ -280,7 +280,7 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm"):
         out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w!r} {h!r}" '
                # (ten digits: 1219.2mm, not 1219.1999999999998mm, for a 48 in sheet)
                f'width="{w * mm:.10g}mm" height="{h * mm:.10g}mm">',
-               f'<title>sheet {i + 1}: {len(sheet.parts)} parts, '
+               f'<title>sheet {i + 1}: {count_noun(len(sheet.parts), "part")}, '
                f'{100 * sheet.utilisation:.1f}% used</title>',
                f'<g transform="matrix(1 0 0 -1 0 {h!r})">',
                f'<rect x="0" y="0" width="{w!r}" height="{h!r}" fill="#f4f1ea" '
@@ -338,7 +338,7 @@ def write_png(directory, nest_result, drawings, stem="sheet", dpi=100):
         ax.set_xlim(-0.02 * w, 1.02 * w)
         ax.set_ylim(-0.02 * h, 1.02 * h)
         ax.set_aspect("equal")
-        ax.set_title(f"sheet {i + 1}: {len(sheet.parts)} parts, "
+        ax.set_title(f"sheet {i + 1}: {count_noun(len(sheet.parts), 'part')}, "
                      f"{100 * sheet.utilisation:.1f}% used")
         number = _sheet_number(i + 1, len(nest_result.sheets))
         target = os.path.join(directory, f"{stem}_{number}.png")
