@@ -576,7 +576,7 @@
     </message>
     <message>
         <location filename="../../workbench/facetwb/commands/cleanup.py" line="24"/>
-        <source>Collapse the edges of the selected polygon mesh shorter than a tenth of its mean edge (change MinEdge in the new object), then planarize again. The result is a new mesh with fewer panels; the source is kept.</source>
+        <source>Join the selected polygon mesh&apos;s unwelded seams (vertices at one point), collapse its edges shorter than a tenth of its mean edge (change MinEdge in the new object), then planarize again. The result is a new mesh with fewer panels; the source is kept.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

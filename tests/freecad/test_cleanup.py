@@ -53,6 +53,27 @@ class TestCleanup(DocumentTestCase):
                                       bits(self.source_mesh.vertices))
         self.assertEqual(self.source.FaceCount, 24)
 
+    def test_unwelded_seams_are_joined_first(self):
+        """An unwelded export (each quad its own copy of the vertices it shares) planarized
+        as it was opens its seams, which the warnings can only tell the designer to weld:
+        the Cleanup joins them first (Weld, on by default), and says so."""
+        quads = squeezed_grid(nu=2, nv=1, column=1)
+        faces = quads.faces()
+        points = np.asarray(quads.vertices)
+        apart = facet.PolyMesh.from_faces(
+            np.vstack([points, points[[faces[1][0], faces[1][3]]]]),
+            [faces[0], [len(points), faces[1][1], faces[1][2], len(points) + 1]])
+        source = facetwb.make_polymesh(apart, label="apart", doc=self.doc)
+        welded = facetwb.make_cleanup(source, min_edge=0.001, name="Welded")
+        kept = facetwb.make_cleanup(source, min_edge=0.001, name="Kept", weld=False)
+        self.doc.recompute()
+        self.assertTrue(welded.isValid(), welded.getStatusString())
+        self.assertEqual((welded.WeldedVertices, welded.VertexCount), (2, 6))
+        self.assertEqual((kept.WeldedVertices, kept.VertexCount), (0, 8))
+        self.assertIn("2 vertices at one point with another joined first",
+                      facetwb.cleanup_summary(welded))
+        self.assertEqual(source.VertexCount, 8)  # the source is kept as it was
+
     def test_parametric(self):
         self.result.MinEdge = 0.001  # nothing that short: the source's topology again
         self.doc.recompute()

@@ -23,9 +23,10 @@ class CommandCleanup:
             "MenuText": QT_TRANSLATE_NOOP("Facet_Cleanup", "Collapse short edges"),
             "ToolTip": QT_TRANSLATE_NOOP(
                 "Facet_Cleanup",
-                "Collapse the edges of the selected polygon mesh shorter than a tenth of "
-                "its mean edge (change MinEdge in the new object), then planarize again. "
-                "The result is a new mesh with fewer panels; the source is kept."),
+                "Join the selected polygon mesh's unwelded seams (vertices at one point), "
+                "collapse its edges shorter than a tenth of its mean edge (change MinEdge in "
+                "the new object), then planarize again. The result is a new mesh with fewer "
+                "panels; the source is kept."),
         }
 
     def IsActive(self):

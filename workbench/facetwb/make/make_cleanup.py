@@ -6,7 +6,7 @@ from facetwb.viewproviders import attach
 
 
 def make_cleanup(source, min_edge=0.1, relative=True, planarize=True, tolerance=1e-6,
-                 name="Cleanup"):
+                 name="Cleanup", weld=True):
     """Add a Cleanup object that collapses the short edges of ``source`` on recompute.
 
     Parameters
@@ -17,6 +17,8 @@ def make_cleanup(source, min_edge=0.1, relative=True, planarize=True, tolerance=
         Edges shorter than this collapse (a fraction of the mean edge when ``relative``,
         else mm).
     relative, planarize : bool
+    weld : bool
+        First join the vertices at one point that are not one vertex (an unwelded export).
     tolerance : float
         Planarity to reach after the collapse, relative to each face's mean edge.
 
@@ -35,6 +37,7 @@ def make_cleanup(source, min_edge=0.1, relative=True, planarize=True, tolerance=
     obj.MinEdge = float(min_edge)
     obj.Relative = bool(relative)
     obj.Planarize = bool(planarize)
+    obj.Weld = bool(weld)
     obj.Tolerance = float(tolerance)
     attach.give(obj)
     return obj

@@ -2,13 +2,16 @@
 """Cleanup: a parametric polygon mesh with the short edges of its source collapsed.
 
 It links its ``Source`` (a PolyMesh or Planarized object, a FreeCAD Mesh or Part object);
-recompute runs ``facet.cleanup`` on the source's mesh (edges shorter than ``MinEdge``
-collapse; faces lose corners or disappear) and then, with ``Planarize`` on,
+recompute first joins, with ``Weld`` on, the source's vertices at one point that are not one
+vertex (``facet.mesh.weld``: an unwelded export's seams, which planarization would open and
+panels would cut square), then runs ``facet.cleanup`` (edges shorter than ``MinEdge``
+collapse; faces lose corners or disappear) and, with ``Planarize`` on,
 ``facet.planarize`` on the new mesh. The result has a new topology; the source is never
 modified.
 """
 
 import facet
+from facet.mesh import weld
 from facetwb import compat, progress
 from facetwb.recompute import guarded
 from facetwb import conversion
@@ -34,11 +37,16 @@ class Cleanup(PolyMesh):
             "Relative is on, else a length in mm", value=0.1)
         add(obj, "App::PropertyBool", "Relative", "Cleanup",
             "MinEdge is a fraction of the mean edge length", value=True)
+        add(obj, "App::PropertyBool", "Weld", "Cleanup",
+            "First join the vertices at one point that are not one vertex (within 1e-9 of the "
+            "mesh's size): an unwelded export's seams, which planarizing would open",
+            value=True)
         add(obj, "App::PropertyBool", "Planarize", "Cleanup",
             "Planarize the new mesh after the collapse", value=True)
         add(obj, "App::PropertyFloat", "Tolerance", "Cleanup",
             "Planarity to reach, relative to each face's mean edge length", value=1e-6)
-        for name, doc in (("CollapsedEdges", "Edges collapsed"),
+        for name, doc in (("WeldedVertices", "Source vertices joined to another by Weld"),
+                          ("CollapsedEdges", "Edges collapsed"),
                           ("RemovedFaces", "Source faces that fell below 3 vertices"),
                           ("SkippedEdges", "Short edges kept because collapsing them would "
                                            "make the mesh non-manifold")):
@@ -55,6 +63,9 @@ class Cleanup(PolyMesh):
         if obj.Source is None:
             raise ValueError(f"{obj.Label}: Source is empty, nothing to clean up")
         mesh = conversion.mesh_from_object(obj.Source)
+        welded = 0
+        if obj.Weld:
+            mesh, welded = weld(mesh)
         cleaned = facet.cleanup(mesh, obj.MinEdge, relative=obj.Relative)
         result_mesh, converged = cleaned.mesh, False
         if obj.Planarize:
@@ -63,6 +74,7 @@ class Cleanup(PolyMesh):
             result_mesh, converged = result.mesh, bool(result.converged)
         set_mesh(obj, result_mesh)
         set_planarity(obj, facet.planarity(result_mesh))
+        obj.WeldedVertices = int(welded)
         obj.CollapsedEdges = int(len(cleaned.collapsed_edges))
         obj.RemovedFaces = int(len(cleaned.removed_faces))
         obj.SkippedEdges = int(cleaned.skipped)
@@ -81,6 +93,8 @@ def cleanup_summary(obj):
         return f"{obj.Label}: cleanup failed: {obj.getStatusString()}"
     text = (f"{obj.Label}: {obj.CollapsedEdges} short edges collapsed, {obj.RemovedFaces} faces "
             f"removed: {obj.FaceCount} panels, {obj.VertexCount} vertices")
+    if getattr(obj, "WeldedVertices", 0):
+        text += f"; {obj.WeldedVertices} vertices at one point with another joined first"
     if obj.SkippedEdges:
         text += f"; {obj.SkippedEdges} short edges kept (would break the mesh)"
     return text
