@@ -64,7 +64,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         weights = fz_calloc((size_t)nv, sizeof(double));
         for (int32_t v = 0; v < nv; v++) weights[v] = fz_range(&b, 1e-6, 10.0, 10);
     }
-    facet_lift_options opt = {0.0};
+    facet_lift_options opt = {0.0, NULL, NULL};
     if (fz_u8(&b) < 32) opt.rank_tol = fz_special(&b);
     double *targets = fz_calloc((size_t)nv, sizeof(double));
     for (int32_t v = 0; v < nv; v++) targets[v] = fz_range(&b, -10.0, 10.0, 4);

@@ -247,6 +247,11 @@ typedef enum facet_laplacian_weights {
 typedef int (*facet_progress_fn)(void *user, int32_t iteration, int32_t max_iter,
                                  double planarity_max_rel);
 
+/* Progress of a step counted in parts (the panels: faces done of total; a lifter's
+ * create step: stages done of total); return nonzero to cancel (FACET_ERROR_CANCELLED,
+ * outputs unspecified). Called from the calling thread. */
+typedef int (*facet_count_progress_fn)(void *user, int64_t done, int64_t total);
+
 /* The energy, in coordinates centred and scaled to a mean edge of 1:
  *
  *   mu * [ data + laplacian * E_lap + boundary_fairness * E_fair
@@ -629,6 +634,12 @@ typedef struct facet_lifter facet_lifter;
 
 typedef struct facet_lift_options {
     double rank_tol; /* <= 0: 1e-10 */
+    /* may be NULL: called by facet_lifter_create with (done, 3) as its stages end (the
+     * sparse QR; the search for the directions its rank lost, and between that search's
+     * blocks with done 1; the check), the factorization's QR itself not interruptible;
+     * nonzero cancels (FACET_ERROR_CANCELLED, no lifter) */
+    facet_count_progress_fn progress;
+    void *progress_user;
 } facet_lift_options;
 
 typedef struct facet_lift_result {
@@ -793,9 +804,6 @@ typedef enum facet_panel_edge {
     FACET_PANEL_EDGE_BISECTOR = 1
 } facet_panel_edge;
 
-/* Progress: faces done of total; return nonzero to cancel
- * (FACET_ERROR_CANCELLED, outputs unspecified). Called from the calling thread. */
-typedef int (*facet_count_progress_fn)(void *user, int64_t done, int64_t total);
 
 typedef struct facet_panel_options {
     double thickness;          /* > 0, model units */

@@ -153,3 +153,26 @@ fail:
     py_release_mesh(m);
     return -1;
 }
+
+int py_count_progress(void *user, int64_t done, int64_t total)
+{
+    py_count_progress_state *ps = user;
+    PyGILState_STATE gil = PyGILState_Ensure();
+    int cancel = 0;
+    if (PyErr_CheckSignals() < 0) {
+        cancel = 1;
+    } else if (ps->callback) {
+        PyObject *r = PyObject_CallFunction(ps->callback, "LL", (long long)done, (long long)total);
+        if (!r) {
+            cancel = 1;
+        } else {
+            cancel = PyObject_IsTrue(r) == 1;
+            Py_DECREF(r);
+        }
+    }
+    if (PyErr_Occurred() && !ps->exc_type)
+        PyErr_Fetch(&ps->exc_type, &ps->exc_value, &ps->exc_tb);
+    PyErr_Clear();
+    PyGILState_Release(gil);
+    return cancel;
+}

@@ -32,6 +32,16 @@ int py_set_attr(PyObject *obj, const char *name, PyObject *value);
  * NULL. error may be NULL. */
 PyObject *py_raise_status(module_state *st, facet_status status, const facet_error *error);
 
+/* A facet_count_progress_fn calling a Python callable (may be NULL) with (done, total),
+ * run with the GIL released: it takes the GIL for the call and for Ctrl+C (both cancel:
+ * a true result, an exception, a signal). An exception is kept in exc_* for the caller to
+ * restore once the library returns. */
+typedef struct {
+    PyObject *callback;
+    PyObject *exc_type, *exc_value, *exc_tb;
+} py_count_progress_state;
+int py_count_progress(void *user, int64_t done, int64_t total);
+
 /* Gets a C-contiguous buffer of doubles ('d') or int32 ('i'). expected < 0
  * means any length. Sets a TypeError/ValueError naming the argument and
  * returns -1 on failure. */

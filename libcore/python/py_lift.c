@@ -17,12 +17,17 @@ typedef struct {
 static int lifter_init(PyObject *self_obj, PyObject *args, PyObject *kwargs)
 {
     lifter_object *self = (lifter_object *)self_obj;
-    static char *keywords[] = {"xyz", "face_start", "face_vertices", "weights", "rank_tol", NULL};
-    PyObject *xyz, *start, *faces, *weights = Py_None;
+    static char *keywords[] = {"xyz",      "face_start", "face_vertices", "weights",
+                               "rank_tol", "progress",   NULL};
+    PyObject *xyz, *start, *faces, *weights = Py_None, *progress = Py_None;
     double rank_tol = 0.0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|Od:Lifter", keywords, &xyz, &start,
-                                     &faces, &weights, &rank_tol))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|OdO:Lifter", keywords, &xyz, &start,
+                                     &faces, &weights, &rank_tol, &progress))
         return -1;
+    if (progress != Py_None && !PyCallable_Check(progress)) {
+        PyErr_SetString(PyExc_TypeError, "progress must be callable or None");
+        return -1;
+    }
     if (self->handle) {
         PyErr_SetString(PyExc_RuntimeError, "Lifter is already initialised");
         return -1;
@@ -39,7 +44,8 @@ static int lifter_init(PyObject *self_obj, PyObject *args, PyObject *kwargs)
         }
         have_w = 1;
     }
-    facet_lift_options o = {rank_tol};
+    py_count_progress_state ps = {progress == Py_None ? NULL : progress, NULL, NULL, NULL};
+    facet_lift_options o = {rank_tol, py_count_progress, &ps};
     facet_error error;
     facet_status status;
     Py_BEGIN_ALLOW_THREADS
@@ -50,6 +56,11 @@ static int lifter_init(PyObject *self_obj, PyObject *args, PyObject *kwargs)
     if (have_w)
         PyBuffer_Release(&wview);
     py_release_mesh(&m);
+    if (ps.exc_type) { /* (the callback raised: its exception, not "cancelled") */
+        facet_lifter_free(&self->handle);
+        PyErr_Restore(ps.exc_type, ps.exc_value, ps.exc_tb);
+        return -1;
+    }
     if (status < 0) {
         py_raise_status(py_state(PyType_GetModule(Py_TYPE(self_obj))), status, &error);
         return -1;
@@ -230,8 +241,11 @@ static PyGetSetDef lifter_getset[] = {
     {NULL, NULL, NULL, NULL, NULL}};
 
 static PyType_Slot lifter_slots[] = {
-    {Py_tp_doc, "Lifter(xyz, face_start, face_vertices, weights=None, rank_tol=0)\n\n"
-                "Optimal liftings of a plan (x, y of xyz; z ignored), from one sparse QR."},
+    {Py_tp_doc, "Lifter(xyz, face_start, face_vertices, weights=None, rank_tol=0, "
+                "progress=None)\n\n"
+                "Optimal liftings of a plan (x, y of xyz; z ignored), from one sparse QR.\n"
+                "progress(done, 3) as the create step's stages end (a true result, an\n"
+                "exception or Ctrl+C cancels: Cancelled)."},
     {Py_tp_init, lifter_init},
     {Py_tp_dealloc, lifter_dealloc},
     {Py_tp_methods, lifter_methods},

@@ -7,35 +7,6 @@
 
 #include <string.h>
 
-typedef struct {
-    PyObject *callback; /* may be NULL */
-    PyObject *exc_type, *exc_value, *exc_tb;
-} count_progress_state;
-
-/* Runs with the GIL released: takes it for the callback and for Ctrl+C. */
-static int count_progress(void *user, int64_t done, int64_t total)
-{
-    count_progress_state *ps = user;
-    PyGILState_STATE gil = PyGILState_Ensure();
-    int cancel = 0;
-    if (PyErr_CheckSignals() < 0) {
-        cancel = 1;
-    } else if (ps->callback) {
-        PyObject *r = PyObject_CallFunction(ps->callback, "LL", (long long)done, (long long)total);
-        if (!r) {
-            cancel = 1;
-        } else {
-            cancel = PyObject_IsTrue(r) == 1;
-            Py_DECREF(r);
-        }
-    }
-    if (PyErr_Occurred() && !ps->exc_type)
-        PyErr_Fetch(&ps->exc_type, &ps->exc_value, &ps->exc_tb);
-    PyErr_Clear();
-    PyGILState_Release(gil);
-    return cancel;
-}
-
 enum { N_OUT = 16 };
 
 static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
@@ -113,8 +84,8 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
         facet_panel_output out = {ptrs[0], ptrs[1], ptrs[2], ptrs[3], ptrs[4], ptrs[5],
                                   ptrs[6], ptrs[7], ptrs[8], ptrs[9], ptrs[10], ptrs[11], ptrs[12],
                                   ptrs[13], ptrs[14], ptrs[15]};
-        count_progress_state ps = {progress == Py_None ? NULL : progress, NULL, NULL, NULL};
-        o.progress = count_progress;
+        py_count_progress_state ps = {progress == Py_None ? NULL : progress, NULL, NULL, NULL};
+        o.progress = py_count_progress;
         o.progress_user = &ps;
         facet_panel_result r;
         memset(&r, 0, sizeof r);

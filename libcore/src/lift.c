@@ -448,7 +448,15 @@ static int32_t hidden_block(facet_lifter *s, cholmod_factor *factor, double delt
 
 static int check_rank(facet_lifter *s);
 
-static int find_hidden(facet_lifter *s, double tol)
+/* The create step's progress, stage `done` of 3 ended (facet_lift_options): nonzero when
+ * the caller cancels. */
+static int create_progress(const facet_lift_options *o, int64_t done)
+{
+    return o && o->progress && o->progress(o->progress_user, done, 3) != 0;
+}
+
+/* 1, 0 when out of memory, -1 when cancelled (between blocks). */
+static int find_hidden(facet_lifter *s, double tol, const facet_lift_options *options)
 {
     if (s->m <= s->rank || tol > HIDDEN_TOL_MAX)
         return 1;
@@ -490,7 +498,11 @@ static int find_hidden(facet_lifter *s, double tol)
     if (given && atoi(given) > 0 && atoi(given) < block_max)
         block_max = atoi(given);
     int more = 0; /* the blocks are deflated */
-    for (int32_t k = HIDDEN_BLOCK_FIRST; ok;) {
+    for (int32_t k = HIDDEN_BLOCK_FIRST, block = 0; ok; ++block) {
+        if (block > 0 && create_progress(options, 1)) {
+            ok = -1; /* (a 300,000-site Voronoi plan searches for a minute) */
+            break;
+        }
         const int32_t left = more ? s->rank - s->n_hidden : s->rank;
         if (k > block_max)
             k = block_max;
@@ -499,7 +511,7 @@ static int find_hidden(facet_lifter *s, double tol)
         if (k <= 0 || (double)k * nv > 2e7) /* (blocks of 160 MB) */
             break;
         int32_t found = hidden_block(s, factor, delta, k, reach, more);
-        ok = found >= 0;
+        ok = found >= 0 ? 1 : 0;
         if (found < k || k >= left) /* reached past them */
             break;
         if (!more && 2 * k <= block_max && 2.0 * k * nv <= 2e7)
@@ -743,6 +755,12 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
             blas_serial_end(blas);
         }
         s->a = a;
+        if (m > 0 && s->qr && create_progress(options, 1)) {
+            free(scratch);
+            free(order);
+            facet_lifter_free(&s);
+            return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
+        }
         if (m > 0 && !s->qr) {
             facet_status st = s->cm.status == CHOLMOD_OUT_OF_MEMORY ? FACET_ERROR_OUT_OF_MEMORY
                                                                      : FACET_ERROR_NUMERICAL;
@@ -763,12 +781,14 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
                 return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
             }
             int blas = blas_serial_begin();
-            int found = find_hidden(s, tol);
+            int found = find_hidden(s, tol, options);
             blas_serial_end(blas);
-            if (!found) {
+            if (found <= 0) {
                 free(scratch);
                 free(order);
                 facet_lifter_free(&s);
+                if (found < 0)
+                    return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
                 return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1,
                                   "out of memory checking the planarity constraints' rank");
             }
@@ -777,9 +797,17 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
     free(scratch);
     free(order);
     s->dim = nv - s->rank + s->n_hidden;
+    if (create_progress(options, 2)) {
+        facet_lifter_free(&s);
+        return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
+    }
     if (s->qr && !check_rank(s)) {
         facet_lifter_free(&s);
         return facet_fail(error, FACET_ERROR_OUT_OF_MEMORY, -1, -1, "out of memory");
+    }
+    if (create_progress(options, 3)) {
+        facet_lifter_free(&s);
+        return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
     }
     s->factor_seconds = facet_now() - t0;
     *out = s;

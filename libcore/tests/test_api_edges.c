@@ -652,7 +652,7 @@ static void test_lifter_api(void)
     /* rank_tol: NaN, negative, infinite, huge: treated as documented, no crash */
     const double tols[] = {NAN, -1.0, INFINITY, 1e300, 0.0};
     for (int k = 0; k < 5; ++k) {
-        facet_lift_options lo = {tols[k]};
+        facet_lift_options lo = {tols[k], NULL, NULL};
         facet_status s = facet_lifter_create(&m, w, &lo, &l, &e);
         CHECK(s >= 0 || s == FACET_ERROR_INVALID_ARGUMENT);
         if (s >= 0) {

@@ -189,6 +189,29 @@ class TestPlanGraphAndLifting(DocumentTestCase):
         self.assertEqual(len(geometry), 10)
         self.assertEqual(geometry, [(g.StartPoint, g.EndPoint) for g in self.sketch.Geometry])
 
+    def test_the_factorization_can_be_cancelled(self):
+        """The Lifting's factorization reports its stages to the recompute's progress and
+        Cancel stops it (it was one uninterruptible call: seconds on a large plan); the
+        object says so, and recomputed again it lifts."""
+        from facetwb import progress
+
+        lifting = facetwb.make_lifting(self.plan, targets=self.surface)
+        progress.cancel_after(1)
+        try:
+            with progress.reporting("Lifting ...") as reporter:
+                self.doc.recompute()
+        finally:
+            progress.cancel_after(0)
+        self.assertTrue(reporter.cancelled and reporter.calls >= 1)
+        self.assertEqual((reporter.done, reporter.total), (1, 3))
+        self.assertFalse(lifting.isValid())
+        self.assertIn("cancelled", lifting.getStatusString())
+        lifting.touch()
+        self.doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        self.doc.removeObject(lifting.Name)
+        self.doc.recompute()
+
     def test_z_save_reopen(self):  # last: it replaces the class's document
         names = {key: obj.Name for key, obj in (("plan", self.plan), ("lifting", self.lifting))}
         before = points_array(self.lifting)

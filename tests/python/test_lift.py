@@ -494,6 +494,34 @@ def test_the_hidden_directions_beyond_one_block_are_found(monkeypatch):
             assert np.abs(lifter.solve(function).heights - function).max() < 1e-9
 
 
+def test_the_factorization_shows_its_stages_and_can_be_cancelled():
+    """Lifter(plan) was one call with no progress and no Cancel (2.4 s on a 100,000-quad
+    plan, a minute on a 300,000-site Voronoi plan). It now reports (done, 3) as its stages
+    end, and between the blocks of the search for the directions SPQR's rank lost; True
+    cancels at any of them, and an exception in the callback comes through as itself."""
+    import facet
+
+    mesh, heights = _voronoi_plan(3000, 4)
+    calls = []
+    lifter = Lifter(mesh, progress=lambda done, total: calls.append((done, total)))
+    assert calls[0] == (1, 3) and calls[-2:] == [(2, 3), (3, 3)]
+    assert set(calls[1:-2]) <= {(1, 3)} and len(calls) > 3  # (its search's blocks)
+    assert lifter.dimension == 15
+    for stop in range(1, len(calls) + 1):
+        seen = []
+        with pytest.raises(facet.Cancelled):
+            Lifter(mesh, progress=lambda done, total: seen.append(done) or len(seen) == stop)
+        assert len(seen) == stop
+
+    def broken(done, total):
+        raise ZeroDivisionError("in the callback")
+
+    with pytest.raises(ZeroDivisionError, match="in the callback"):
+        Lifter(mesh, progress=broken)
+    # lift() takes it too
+    assert lift(mesh, heights, progress=lambda done, total: False).target_max < 1e-9
+
+
 def _triangulated_plan(n, seed=0):
     """A Delaunay triangulation of n random points, 50 across (every function lifts)."""
     from scipy.spatial import Delaunay

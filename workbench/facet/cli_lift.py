@@ -19,6 +19,7 @@ plan's vertices may move by up to D (facet.lift.lift_nearly); the exit status is
 more was needed (the result is written all the same).
 """
 
+import contextlib
 import os
 import sys
 
@@ -89,6 +90,22 @@ def _read_weights(path, n):
     return values
 
 
+@contextlib.contextmanager
+def _factorizing(prefix):
+    """The progress of a lifter's factorization on a terminal, for the block: a line
+    naming its stages (a large plan's takes seconds, a 300,000-site Voronoi plan's a
+    minute), erased at the end; Ctrl+C stops it between them."""
+    from facet.cli_progress import ProgressLine
+
+    what = "factorizing the planarity constraints: stages done"
+    line = ProgressLine(sys.stderr, prefix=prefix)
+    line.steps(0, 3, what)
+    try:
+        yield lambda done, total: line.steps(done, total, what)
+    finally:
+        line.close()
+
+
 def _pins(texts):
     from facet.errors import InputError
 
@@ -143,7 +160,8 @@ def run_lift(args):
             line.close()
         result = nearly.result
     else:
-        result = lift(plan, targets, weights, rank_tol=args.rank_tol)
+        with _factorizing("facet lift") as progress:
+            result = lift(plan, targets, weights, rank_tol=args.rank_tol, progress=progress)
     write_mesh(result.mesh, args.output)
     report = {"source": os.fspath(args.plan), "output": os.fspath(args.output)}
     report.update(nearly.report() if nearly is not None else result.report())
@@ -201,7 +219,8 @@ def run_lifting_space(args):
     check_files(reads=[("PLAN", args.plan)], writes=[("--report", args.report)],
                 creates=[args.output])
     plan = _read_plan(args)
-    lifter = Lifter(plan, rank_tol=args.rank_tol)
+    with _factorizing("facet lifting-space") as progress:
+        lifter = Lifter(plan, rank_tol=args.rank_tol, progress=progress)
     limit = plan.n_vertices if args.basis == "fundamental" else lifter.dimension
     # an OBJ per lifting: every vertex's fundamental lifting of a 961-vertex plan was
     # 961 files and 88 MB (15,000 vertices: some 20 GB)

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from facet import _core
-from facet.errors import FacetError, InputError, from_core
+from facet.errors import Cancelled, FacetError, InputError, from_core
 from facet.mesh import PolyMesh, next_corners
 from facet.plan import FREE_WEIGHT
 from facet.report import point_text
@@ -251,9 +251,17 @@ class Lifter:
         face constraint dependent on the others to within this is treated
         as dependent (and so violated by about that much, well inside the
         1e-9 planarity promise); the others are enforced exactly.
+    progress : callable, optional
+        ``progress(done, 3)`` as the factorization's stages end (the sparse QR, the
+        search for the directions its rank lost, and between that search's blocks, the
+        check); True cancels. The QR itself cannot be interrupted: 2.4 s on a
+        100,000-quad plan, 5 s on 300,000; the search takes a minute on a 300,000-site
+        Voronoi plan.
 
     Raises
     ------
+    facet.Cancelled
+        ``progress`` returned True, or Ctrl+C.
     facet.MeshError
         The plan's faces are not valid.
     facet.plan.PlanError
@@ -262,7 +270,7 @@ class Lifter:
         A weight is not finite and > 0.
     """
 
-    def __init__(self, plan, weights=None, *, rank_tol=None):
+    def __init__(self, plan, weights=None, *, rank_tol=None, progress=None):
         mesh = _plan_mesh(plan)
         self._source = mesh.info.get("source") if mesh.info else None
         self._plan = mesh
@@ -290,7 +298,10 @@ class Lifter:
                 mesh.face_vertices,
                 None if weights is None else self._weights,
                 0.0 if rank_tol is None else float(rank_tol),
+                progress,
             )
+        except _core.Cancelled:
+            raise Cancelled("lifting cancelled") from None
         except _core.CoreError as exc:
             raise _core_error(exc, self._source, mesh) from None
         self._pieces = _pieces(mesh)  # (the core checked the faces)
@@ -582,8 +593,6 @@ def _echelon(rows):
 def _report(progress, done, total, what):
     """Call ``progress(done, total)``; raise Cancelled when it says so."""
     if progress is not None and progress(done, total):
-        from facet.errors import Cancelled
-
         raise Cancelled(f"{what} cancelled")
 
 
@@ -696,7 +705,7 @@ class LiftingSpace:
     energies: np.ndarray
 
 
-def lift(plan, targets, weights=None, *, rank_tol=None):
+def lift(plan, targets, weights=None, *, rank_tol=None, progress=None):
     """The lifting of a plan closest to target heights.
 
     Minimizes ``sum_v w_v (z_v - t_v)^2`` over heights z that make every
@@ -712,14 +721,14 @@ def lift(plan, targets, weights=None, *, rank_tol=None):
         meshes, pinned heights and point files).
     weights : array_like (n,), optional
         Finite and > 0; default all 1.
-    rank_tol : float, optional
+    rank_tol, progress : optional
         See :class:`Lifter`.
 
     Returns
     -------
     LiftResult
     """
-    return Lifter(plan, weights, rank_tol=rank_tol).solve(targets)
+    return Lifter(plan, weights, rank_tol=rank_tol, progress=progress).solve(targets)
 
 
 def lifting_space(plan, kind="eigen", count=None, weights=None, *, rank_tol=None,
