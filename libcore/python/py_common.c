@@ -162,17 +162,26 @@ int py_count_progress(void *user, int64_t done, int64_t total)
     if (PyErr_CheckSignals() < 0) {
         cancel = 1;
     } else if (ps->callback) {
-        PyObject *r = PyObject_CallFunction(ps->callback, "LL", (long long)done, (long long)total);
-        if (!r) {
-            cancel = 1;
-        } else {
-            cancel = PyObject_IsTrue(r) == 1;
-            Py_DECREF(r);
-        }
+        cancel = py_callback_cancels(
+            PyObject_CallFunction(ps->callback, "LL", (long long)done, (long long)total));
     }
-    if (PyErr_Occurred() && !ps->exc_type)
-        PyErr_Fetch(&ps->exc_type, &ps->exc_value, &ps->exc_tb);
-    PyErr_Clear();
+    py_keep_exception(&ps->exc_type, &ps->exc_value, &ps->exc_tb);
     PyGILState_Release(gil);
     return cancel;
+}
+
+int py_callback_cancels(PyObject *result)
+{
+    if (!result)
+        return 1;
+    int cancel = PyObject_IsTrue(result) == 1;
+    Py_DECREF(result);
+    return cancel;
+}
+
+void py_keep_exception(PyObject **type, PyObject **value, PyObject **tb)
+{
+    if (PyErr_Occurred() && !*type)
+        PyErr_Fetch(type, value, tb);
+    PyErr_Clear();
 }

@@ -42,6 +42,14 @@ typedef struct {
 } py_count_progress_state;
 int py_count_progress(void *user, int64_t done, int64_t total);
 
+/* A progress callback's result (a new reference, or NULL when it raised; released
+ * here): 1, cancel, when it raised or returned something true. */
+int py_callback_cancels(PyObject *result);
+
+/* Under a trampoline, with the GIL: keeps the first exception raised in *type, *value,
+ * *tb (for the caller to restore once the library returns) and clears the error. */
+void py_keep_exception(PyObject **type, PyObject **value, PyObject **tb);
+
 /* Gets a C-contiguous buffer of doubles ('d') or int32 ('i'). expected < 0
  * means any length. Sets a TypeError/ValueError naming the argument and
  * returns -1 on failure. */

@@ -85,19 +85,10 @@ static int progress_trampoline(void *user, int32_t iteration, int32_t max_iter, 
         cancel = !r;
         Py_XDECREF(r);
     }
-    if (!cancel && ps->callback) {
-        PyObject *r = PyObject_CallFunction(ps->callback, "iid", (int)iteration, (int)max_iter,
-                                            planarity);
-        if (!r) {
-            cancel = 1;
-        } else {
-            cancel = PyObject_IsTrue(r) == 1;
-            Py_DECREF(r);
-        }
-    }
-    if (PyErr_Occurred() && !ps->exc_type)
-        PyErr_Fetch(&ps->exc_type, &ps->exc_value, &ps->exc_tb);
-    PyErr_Clear();
+    if (!cancel && ps->callback)
+        cancel = py_callback_cancels(PyObject_CallFunction(
+            ps->callback, "iid", (int)iteration, (int)max_iter, planarity));
+    py_keep_exception(&ps->exc_type, &ps->exc_value, &ps->exc_tb);
     PyGILState_Release(gil);
     return cancel;
 }

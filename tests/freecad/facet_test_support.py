@@ -40,6 +40,19 @@ class DocumentTestCase(unittest.TestCase):
             App.closeDocument(name)
         cls.tmp.cleanup()
 
+    def recompute_cancelled(self, after):
+        """Recompute ``self.doc`` with a progress reporter whose Cancel is pressed at its
+        ``after``-th call (facetwb.progress.cancel_after); returns the reporter."""
+        from facetwb import progress
+
+        progress.cancel_after(after)
+        try:
+            with progress.reporting("test") as reporter:
+                self.doc.recompute()
+        finally:
+            progress.cancel_after(0)
+        return reporter
+
     def save_and_reopen(self, filename):
         """Save ``self.doc``, close it, reopen it; ``self.doc`` is the reopened one."""
         path = os.path.join(self.tmp.name, filename)

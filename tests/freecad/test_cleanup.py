@@ -93,18 +93,11 @@ class TestCleanup(DocumentTestCase):
 
     def test_cancel_keeps_the_previous_result(self):
         # the cleanup's planarization reports progress and can be cancelled (it could not)
-        from facetwb import progress
-
         other = facetwb.make_cleanup(self.source, min_edge=0.1, relative=True, name="Cancel")
         self.doc.recompute()
         kept = facetwb.get_mesh(other).vertices.copy()
         other.Tolerance = 1e-10
-        progress.cancel_after(2)
-        try:
-            with progress.reporting("Cleanup ...") as reporter:
-                self.doc.recompute()
-        finally:
-            progress.cancel_after(0)
+        reporter = self.recompute_cancelled(2)
         self.assertTrue(reporter.cancelled and reporter.calls >= 2)
         self.assertFalse(other.isValid())
         self.assertIn("cancelled", other.getStatusString())

@@ -193,15 +193,8 @@ class TestPlanGraphAndLifting(DocumentTestCase):
         """The Lifting's factorization reports its stages to the recompute's progress and
         Cancel stops it (it was one uninterruptible call: seconds on a large plan); the
         object says so, and recomputed again it lifts."""
-        from facetwb import progress
-
         lifting = facetwb.make_lifting(self.plan, targets=self.surface)
-        progress.cancel_after(1)
-        try:
-            with progress.reporting("Lifting ...") as reporter:
-                self.doc.recompute()
-        finally:
-            progress.cancel_after(0)
+        reporter = self.recompute_cancelled(1)
         self.assertTrue(reporter.cancelled and reporter.calls >= 1)
         self.assertEqual((reporter.done, reporter.total), (1, 3))
         self.assertFalse(lifting.isValid())
