@@ -755,12 +755,6 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
             blas_serial_end(blas);
         }
         s->a = a;
-        if (m > 0 && s->qr && create_progress(options, 1)) {
-            free(scratch);
-            free(order);
-            facet_lifter_free(&s);
-            return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
-        }
         if (m > 0 && !s->qr) {
             facet_status st = s->cm.status == CHOLMOD_OUT_OF_MEMORY ? FACET_ERROR_OUT_OF_MEMORY
                                                                      : FACET_ERROR_NUMERICAL;
@@ -770,6 +764,12 @@ facet_status facet_lifter_create(const facet_mesh *plan, const double *weights,
             return facet_fail(error, st, -1, -1,
                               "sparse QR of the %lld planarity constraints failed (status %d)",
                               (long long)m, st);
+        }
+        if (create_progress(options, 1)) {
+            free(scratch);
+            free(order);
+            facet_lifter_free(&s);
+            return facet_fail(error, FACET_ERROR_CANCELLED, -1, -1, "cancelled");
         }
         if (m > 0) {
             s->rank = (int32_t)s->cm.SPQR_istat[4];
