@@ -325,6 +325,8 @@ static void a_transpose_times(const facet_lifter *s, const double *u, double *ou
 /* Above this rank tolerance (a loose one, asked for) SPQR's decision stands. */
 #define HIDDEN_TOL_MAX 1e-6
 
+/* The largest block of the search, in entries (nv times its vectors: 160 MB). */
+#define HIDDEN_BLOCK_ENTRIES 2e7
 /* Above this many entries (nv times the count) the hidden directions found stop the
  * deflated search (480 MB); the rank check then warns. */
 #define HIDDEN_TOTAL_MAX 6e7
@@ -468,17 +470,16 @@ static int find_hidden(facet_lifter *s, double tol, const facet_lift_options *op
         const double *ax = s->a->x;
         double *diag = s->work;
         memset(diag, 0, sizeof(double) * (size_t)s->nv);
-        for (int32_t j = 0; j < s->m; ++j)
-            for (int64_t p = ap[j]; p < ap[j + 1]; ++p)
-                diag[ai[p]] += ax[p] * ax[p];
-        for (int32_t v = 0; v < s->nv; ++v)
-            largest = fmax(largest, diag[v]);
         for (int32_t j = 0; j < s->m; ++j) {
             double sum = 0.0;
-            for (int64_t p = ap[j]; p < ap[j + 1]; ++p)
+            for (int64_t p = ap[j]; p < ap[j + 1]; ++p) {
+                diag[ai[p]] += ax[p] * ax[p];
                 sum += ax[p] * ax[p];
+            }
             reach = fmax(reach, sqrt(sum));
         }
+        for (int32_t v = 0; v < s->nv; ++v)
+            largest = fmax(largest, diag[v]);
         reach *= tol;
     }
     const double delta = HIDDEN_DELTA * (largest > 0.0 ? largest : 1.0);
@@ -508,13 +509,13 @@ static int find_hidden(facet_lifter *s, double tol, const facet_lift_options *op
             k = block_max;
         if (k > left)
             k = left;
-        if (k <= 0 || (double)k * nv > 2e7) /* (blocks of 160 MB) */
+        if (k <= 0 || (double)k * nv > HIDDEN_BLOCK_ENTRIES)
             break;
         int32_t found = hidden_block(s, factor, delta, k, reach, more);
         ok = found >= 0 ? 1 : 0;
         if (found < k || k >= left) /* reached past them */
             break;
-        if (!more && 2 * k <= block_max && 2.0 * k * nv <= 2e7)
+        if (!more && 2 * k <= block_max && 2.0 * k * nv <= HIDDEN_BLOCK_ENTRIES)
             k *= 2;
         else if ((double)(s->n_hidden + k) * nv <= HIDDEN_TOTAL_MAX)
             more = 1; /* blocks of this size, orthogonal to the directions found */
@@ -1104,24 +1105,20 @@ facet_status facet_lifter_solve(facet_lifter *s, const double *targets, double *
      * hid that the result was far from the closest lifting (a 1,000-site Voronoi plan at
      * rank tolerance 1e-5 missed the paraboloid's lifting by 12% of its range, reported as
      * a face planar to 5.05e-6 only: test_lift.py). */
-    if (s->rank_check > RANK_CHECK_TOL) {
-        char planar[128] = "";
-        if (r.planarity_max_rel > PLANARITY_TOL_REL)
-            snprintf(planar, sizeof planar,
-                     "; and face %d is planar only to %.3g of its mean edge length (> 1e-9)",
-                     (int)worst, r.planarity_max_rel);
-        return lifter_fail(s, error, FACET_WARNING_LIFTING_RANK,
-                           r.planarity_max_rel > PLANARITY_TOL_REL ? worst : -1, -1,
+    char planar[128] = ""; /* the planarity finding, when a face misses */
+    if (r.planarity_max_rel > PLANARITY_TOL_REL)
+        snprintf(planar, sizeof planar,
+                 "face %d is planar only to %.3g of its mean edge length (> 1e-9)", (int)worst,
+                 r.planarity_max_rel);
+    if (s->rank_check > RANK_CHECK_TOL)
+        return lifter_fail(s, error, FACET_WARNING_LIFTING_RANK, planar[0] ? worst : -1, -1,
                            "the planarity constraints' dependencies could not be told from "
                            "rounding (the affine liftings move by %.2g when projected): the "
                            "lifting space may be larger than the %d dimensions found, and "
-                           "the result farther from the targets than the closest lifting%s",
-                           s->rank_check, (int)s->dim, planar);
-    }
-    if (r.planarity_max_rel > PLANARITY_TOL_REL)
-        return lifter_fail(s, error, FACET_WARNING_PLANARITY, worst, -1,
-                           "face %d is planar only to %.3g of its mean edge length (> 1e-9)",
-                           (int)worst, r.planarity_max_rel);
+                           "the result farther from the targets than the closest lifting%s%s",
+                           s->rank_check, (int)s->dim, planar[0] ? "; and " : "", planar);
+    if (planar[0])
+        return lifter_fail(s, error, FACET_WARNING_PLANARITY, worst, -1, "%s", planar);
     if (s->dim <= 3)
         return lifter_fail(s, error, FACET_WARNING_TRIVIAL_LIFTING, -1, -1,
                            "the plan admits only the trivial (affine) liftings: the result "
