@@ -15,7 +15,8 @@ import numpy as np
 
 from facet.errors import MeshError, from_core
 
-__all__ = ["PolyMesh", "coincident_vertices", "coincident_text", "duplicate_faces", "weld"]
+__all__ = ["PolyMesh", "cluster_points", "coincident_vertices", "coincident_text",
+           "duplicate_faces", "weld"]
 
 _INT32_MAX = np.iinfo(np.int32).max
 
@@ -359,6 +360,22 @@ class PolyMesh:
         return f"<PolyMesh: {self.n_vertices} vertices, {self.n_faces} faces>"
 
 
+def cluster_points(points, tolerance):
+    """Cluster points closer than tolerance (single linkage); each point's representative
+    is the lowest index of its cluster."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    n = len(points)
+    pairs = cKDTree(points).query_pairs(tolerance, output_type="ndarray")
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    _, labels = connected_components(graph, directed=False)
+    lowest = np.full(labels.max() + 1 if n else 0, n)
+    np.minimum.at(lowest, labels, np.arange(n))
+    return lowest[labels]
+
+
 def _near_pairs(mesh, rel_tol):
     """Pairs (k, 2) of vertices that faces use and that lie within ``rel_tol`` times the
     largest extent of those vertices of each other; none where a coordinate is not finite."""
@@ -436,24 +453,17 @@ def weld(mesh, rel_tol=1e-9):
         A face left with fewer than three corners apart, or with one vertex at two corners
         apart (pinched at a point), named.
     """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
     info = dict(mesh.info or {})
     points = np.asarray(mesh.vertices, dtype=np.float64)
     n = mesh.n_vertices
     group = np.arange(n)
-    pairs = _near_pairs(mesh, rel_tol)
-    if pairs.shape[0]:
-        graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-        _, component = connected_components(graph, directed=False)
-        first = np.full(component.max() + 1, n)
-        np.minimum.at(first, component, np.arange(n))
-        group = first[component]
+    used = np.unique(np.asarray(mesh.face_vertices))
+    if used.size > 1 and np.isfinite(points[used]).all():  # (as coincident_vertices finds them)
+        size = float(np.ptp(points[used], axis=0).max())
+        group[used] = used[cluster_points(points[used], rel_tol * size)]
         # a chain of points each within the tolerance of the next would be one vertex
         # however long (the plan reader refuses such chains too): joined, its ends would
         # move by more than the tolerance asked for
-        size = float(np.ptp(points[np.unique(np.asarray(mesh.face_vertices))], axis=0).max())
         spread = np.linalg.norm(points - points[group], axis=1)
         if spread.max() > 2.0 * rel_tol * size:
             v = int(np.argmax(spread))
@@ -464,7 +474,6 @@ def weld(mesh, rel_tol=1e-9):
                             f"vertex {v} at {point_text(points[v])}: joined, they would move "
                             "by more than that; give a smaller tolerance", vertex=v,
                             source=info.get("source"))
-    used = np.unique(np.asarray(mesh.face_vertices))
     merged = int(np.count_nonzero(group[used] != used))
     faces = []
     for f, face in enumerate(mesh.faces()):

@@ -39,7 +39,7 @@ import numpy as np
 
 from facet.errors import InputError
 from facet.report import count_noun, point_text
-from facet.mesh import PolyMesh, boundary_corners
+from facet.mesh import PolyMesh, boundary_corners, cluster_points
 
 __all__ = [
     "PlanError",
@@ -392,8 +392,7 @@ def _csv_rows(path, error):
         nul = data.find(b"\0")
         if nul >= 0:
             raise error(f"{path}: not a text file: byte {nul + 1} is NUL (binary data?)")
-    text = text[1:] if text.startswith("\ufeff") else text
-    for number, line in enumerate(split_lines(text), 1):
+    for number, line in enumerate(split_lines(text), 1):  # (split_lines drops a BOM)
         try:
             # (tab-separated where a line has no comma: what spreadsheets export as text)
             row = next(csv.reader([line], delimiter="," if "," in line or "\t" not in line
@@ -445,22 +444,6 @@ def read_segments(path, *, arc_tolerance=None, notes=None):
 
 
 # ------------------------------------------------------------------ plan graphs
-
-
-def _snap_points(points, tolerance):
-    """Cluster points closer than tolerance (single linkage); each point's representative
-    is the lowest index of its cluster."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
-
-    n = len(points)
-    pairs = cKDTree(points).query_pairs(tolerance, output_type="ndarray")
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-    _, labels = connected_components(graph, directed=False)
-    lowest = np.full(labels.max() + 1 if n else 0, n)
-    np.minimum.at(lowest, labels, np.arange(n))
-    return lowest[labels]
 
 
 def _check_chains(points, roots, snap, where):
@@ -597,7 +580,7 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
         raise PlanError(f"{where}snap distance must be >= 0, not {snap}")
     snapped = 0
     if snap > 0:
-        roots = _snap_points(points, snap)
+        roots = cluster_points(points, snap)
         _check_chains(points, roots, snap, where)
         # Each cluster goes to its mean position.
         sums = np.zeros_like(points)
@@ -850,13 +833,14 @@ def targets_from_points(plan, points, *, tolerance, labels=None):
     out, or beside a vertex matched, are left out."""
     from scipy.spatial import cKDTree
 
-    xy, _ = _plan_xy(plan)
+    xy, xy_mesh = _plan_xy(plan)
     points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
     if points.shape[0] == 0:
         raise InputError("no target points")
     if not np.all(np.isfinite(points)):
         raise InputError("a target point has a NaN or infinite coordinate")
-    distance, nearest = cKDTree(points[:, :2]).query(xy)
+    tree = cKDTree(points[:, :2])
+    distance, nearest = tree.query(xy)
     given = distance <= tolerance
     if not np.any(given):
         raise InputError(f"no target point lies within {tolerance:g} of a plan vertex")
@@ -866,7 +850,6 @@ def targets_from_points(plan, points, *, tolerance, labels=None):
     # reported as a success. "Just beyond": within 1% of the vertex's shortest edge, of a
     # vertex that no point matches; points farther out, or beside a vertex matched (a
     # survey denser than the plan), are left out as before.
-    xy_mesh = _plan_xy(plan)[1]
     edges = xy_mesh.edges()
     length = np.hypot(*(xy[edges[:, 0]] - xy[edges[:, 1]]).T)
     shortest = np.full(len(xy), np.inf)
@@ -885,7 +868,7 @@ def targets_from_points(plan, points, *, tolerance, labels=None):
             f"farther than the match distance {tolerance:g}; the nearest of them, {label} "
             f"at {point_text(points[p, :2])}, is {apart[p]:.3g} from vertex "
             f"{int(vertex[p])}: give a larger snap distance (--snap) to match them")
-    _check_one_height(points, cKDTree(points[:, :2]).query_ball_point(xy[given], tolerance),
+    _check_one_height(points, tree.query_ball_point(xy[given], tolerance),
                       np.flatnonzero(given), labels)
     targets = np.where(given, points[np.minimum(nearest, len(points) - 1), 2], 0.0)
     return _with_free(xy, targets, given)
