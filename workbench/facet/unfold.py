@@ -182,6 +182,21 @@ def label_points(outlines, rounds=4, n=16):
 _CHAR_WIDTH = 0.9
 
 
+def _half_width(n_chars, height):
+    """Half the width of a text of ``n_chars`` characters ``height`` high, as the texts
+    are fitted: ``_CHAR_WIDTH`` of the height per character and a tenth of it at each end."""
+    return 0.5 * (_CHAR_WIDTH * n_chars + 0.2) * height
+
+
+def _label_box(x, y, height, n_chars):
+    """The box of an ID centred at (x, y): 0.9 of its height above and below its middle,
+    for the descenders (below the capitals' middle: 0.5 of them and the descenders)."""
+    from shapely.geometry import box
+
+    half_w, half_h = _half_width(n_chars, height), 0.9 * height
+    return box(x - half_w, y - half_h, x + half_w, y + half_h)
+
+
 #: Where along its edge a bevel text may sit, as fractions of the edge from its start: the
 #: middle first.
 _BEVEL_ALONG = (0.5, 0.4, 0.6, 0.3, 0.7)
@@ -200,8 +215,9 @@ def _place_bevel(inside, outline, i, a, u, length, text, height, taken=(), inset
     bevel texts'), which it was written over (conical1 planarized: 623 of 4,188). Returns
     (middle, height, the text's box); where none fits, the smallest tried at the edge's
     middle. ``inside``: the prepared face the texts go on (the cut outline within the
-    top face), ``outline``: the cut outline's edges as LineStrings; ``inset``: how far inside the edge the face the text is engraved on
-    begins (the top face, where the bevel narrows it), which the text keeps off."""
+    top face), ``outline``: the cut outline's edges as LineStrings; ``inset``: how far
+    inside the edge the face the text is engraved on begins (the top face, where the bevel
+    narrows it), which the text keeps off."""
     from shapely.geometry import Polygon
 
     ux, uy = float(u[0]), float(u[1])
@@ -221,7 +237,7 @@ def _place_bevel(inside, outline, i, a, u, length, text, height, taken=(), inset
     for attempt in range(5):
         if attempt:
             bh *= 0.5
-        half_w = 0.5 * (_CHAR_WIDTH * len(text) + 0.2) * bh
+        half_w = _half_width(len(text), bh)
         for along in _BEVEL_ALONG:
             if not (half_w <= along * length and half_w <= (1.0 - along) * length):
                 continue  # (past the edge's end)
@@ -235,8 +251,7 @@ def _place_bevel(inside, outline, i, a, u, length, text, height, taken=(), inset
             if not any(text_box.intersects(other) for other in taken):
                 return np.array(mid), bh, text_box
     mid = middle(0.5, bh)
-    half_w = 0.5 * (_CHAR_WIDTH * len(text) + 0.2) * bh
-    return np.array(mid), bh, rectangle(mid, half_w, 0.9 * bh, 0.5 * bh)
+    return np.array(mid), bh, rectangle(mid, _half_width(len(text), bh), 0.9 * bh, 0.5 * bh)
 
 
 def _fit_label(polygon, inside, pole, height, n_chars):
@@ -247,15 +262,13 @@ def _fit_label(polygon, inside, pole, height, n_chars):
     whichever takes the larger text: the pole of a long strip lies near one end, where a
     text as high as the strip ran past the end, and off the sheet. ``polygon``: the
     outline's shapely Polygon, ``inside``: the same prepared."""
-    from shapely.geometry import Point, box
+    from shapely.geometry import Point
 
     centroid = polygon.centroid
     candidates = [pole] + ([(centroid.x, centroid.y)] if inside.contains(Point(centroid)) else [])
 
-    def fits(point, h):  # (below the capitals' middle: 0.5 of them and the descenders)
-        half_w, half_h = 0.5 * (_CHAR_WIDTH * n_chars + 0.2) * h, 0.9 * h
-        return inside.contains(box(point[0] - half_w, point[1] - half_h,
-                                   point[0] + half_w, point[1] + half_h))
+    def fits(point, h):
+        return inside.contains(_label_box(point[0], point[1], h, n_chars))
 
     best = (pole, 0.0)
     for point in candidates:
@@ -282,17 +295,21 @@ def _place_grain(inside, label_box, lx, ly, height, width):
     half and a quarter as long; with its head (as the DXF draws it, 0.075 of the length
     either side) inside the part and clear of the ID's ``label_box``. Below the ID it ran
     out of 8 of heart_planar's 400 parts (grain 1,0,0), engraved on the sheet beyond the
-    part, where another part may lie. Where none fits, the first tried."""
+    part, where another part may lie. Where none fits, the first tried. Returns the arrow
+    and the box it takes."""
     from shapely.geometry import box
 
-    tries = [(fraction, side) for fraction in (0.25, 0.125, 0.0625) for side in (-1, 1)]
-    for fraction, side in tries:
+    def placed(fraction, side):
         half, y0 = 0.5 * fraction * width, ly + side * 1.5 * height
-        shape = box(lx - half, y0 - 0.15 * half, lx + half, y0 + 0.15 * half)
-        if inside.contains(shape) and not shape.intersects(label_box):
-            return (lx - half, y0), (lx + half, y0)
-    half, y0 = 0.125 * width, ly - 1.5 * height
-    return (lx - half, y0), (lx + half, y0)
+        return ((lx - half, y0), (lx + half, y0)), box(lx - half, y0 - 0.15 * half,
+                                                       lx + half, y0 + 0.15 * half)
+
+    for fraction in (0.25, 0.125, 0.0625):
+        for side in (-1, 1):
+            arrow, shape = placed(fraction, side)
+            if inside.contains(shape) and not shape.intersects(label_box):
+                return arrow, shape
+    return placed(0.25, -1)
 
 
 def label_point(outline, rounds=4, n=16):
@@ -368,7 +385,7 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
     PanelError
         A grain direction that is zero or perpendicular to a panel.
     """
-    from shapely.geometry import LineString, Polygon, box
+    from shapely.geometry import LineString, Polygon
     from shapely.prepared import prep
 
     g = None
@@ -421,14 +438,12 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6):
         (lx, ly), h = _fit_label(face, inside, (lx, ly), min(h, 1.2 * depth), len(p.id))
         bevels = []
         # the ID's box as _fit_label fits it: the bevel texts keep off it and each other
-        half_w = 0.5 * (_CHAR_WIDTH * len(p.id) + 0.2) * h
-        taken = [box(lx - half_w, ly - 0.9 * h, lx + half_w, ly + 0.9 * h)]
+        taken = [_label_box(lx, ly, h, len(p.id))]
         arrow = None
         if g is not None:
             width = cut[:, 0].max() - cut[:, 0].min()
-            arrow = _place_grain(inside, taken[0], lx, ly, h, width)
-            (x0, y0), (x1, y1) = arrow
-            taken.append(box(x0, y0 - 0.075 * (x1 - x0), x1, y0 + 0.075 * (x1 - x0)))
+            arrow, arrow_box = _place_grain(inside, taken[0], lx, ly, h, width)
+            taken.append(arrow_box)
         k = len(cut)
         for i in range(k):
             b = p.bevel_deg[i]
