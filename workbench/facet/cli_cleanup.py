@@ -76,7 +76,7 @@ def run_cleanup(args):
                            print_planarize_summary, stopped_with_result)
     from facet.io import write_mesh, writer_for
     from facet.quality import quality
-    from facet.report import planarize_report, write_json
+    from facet.report import count_noun, planarize_report, write_json
     from facet.surface import Surface
 
     writer_for(args.output)
@@ -108,9 +108,8 @@ def run_cleanup(args):
     c = report["cleanup"]
     print(f"facet cleanup: {args.input}")
     _line(sys.stdout, "cleanup",
-          f"{c['collapsed_edges']} edge{'s' if c['collapsed_edges'] != 1 else ''} shorter than "
-          f"{c['threshold']:.3g} collapsed, {c['removed_faces']} "
-          f"face{'s' if c['removed_faces'] != 1 else ''} removed: "
+          f"{count_noun(c['collapsed_edges'], 'edge')} shorter than {c['threshold']:.3g} "
+          f"collapsed, {count_noun(c['removed_faces'], 'face')} removed: "
           f"{mesh.n_vertices} -> {c['vertices']} vertices, "
           f"{mesh.n_faces} -> {c['faces']} faces")
     if c["skipped_edges"]:

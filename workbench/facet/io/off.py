@@ -200,11 +200,12 @@ def read_off(path, *, validate=True):
         face_lines.append(first_line)
 
     if stream.left():
+        from facet.report import count_noun
+
         token, line = stream.take()
         raise MeshError(
             f"unexpected {token[:20]!r} after the last face (the header declares "
-            f"{n_vertices} vert{'ices' if n_vertices != 1 else 'ex'} and {n_faces} "
-            f"face{'s' if n_faces != 1 else ''})",
+            f"{count_noun(n_vertices, 'vertex')} and {count_noun(n_faces, 'face')})",
             source=source,
             line=line,
         )
