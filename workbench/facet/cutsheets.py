@@ -42,6 +42,17 @@ def _sheet_number(k, count):
     return f"{k:0{max(2, len(str(count)))}d}"
 
 
+def _sheet_title(i, sheet):
+    """A preview's title for sheet i (from 0): "sheet 3: 4 parts, 61.2% used"."""
+    return (f"sheet {i + 1}: {count_noun(len(sheet.parts), 'part')}, "
+            f"{100 * sheet.utilisation:.1f}% used")
+
+
+def _numbered_in(directory, stem, suffix):
+    """``numbered(digits)``: the file of a sheet preview, ``directory/stem_digits.suffix``."""
+    return lambda digits: os.path.join(directory, f"{stem}_{digits}{suffix}")
+
+
 def _remove_stale(numbered, written):
     """Remove the files ``numbered(digits)`` that an earlier run wrote and this one did not
     (not in `written`): with any number of digits from 2 to 6, from 1 on while such a file
@@ -270,6 +281,7 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm"):
 
     mm = length_unit(units)[0]
     os.makedirs(directory, exist_ok=True)
+    numbered = _numbered_in(directory, stem, ".svg")
     w, h = nest_result.sheet_size
     by_sheet = {}
     for pl, d in _placed(nest_result, drawings):
@@ -280,8 +292,7 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm"):
         out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w!r} {h!r}" '
                # (ten digits: 1219.2mm, not 1219.1999999999998mm, for a 48 in sheet)
                f'width="{w * mm:.10g}mm" height="{h * mm:.10g}mm">',
-               f'<title>sheet {i + 1}: {count_noun(len(sheet.parts), "part")}, '
-               f'{100 * sheet.utilisation:.1f}% used</title>',
+               f'<title>{_sheet_title(i, sheet)}</title>',
                f'<g transform="matrix(1 0 0 -1 0 {h!r})">',
                f'<rect x="0" y="0" width="{w!r}" height="{h!r}" fill="#f4f1ea" '
                f'stroke="#777" stroke-width="{stroke!r}"/>']
@@ -298,11 +309,10 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm"):
                        f'font-size="{d.label_height!r}" text-anchor="middle" '
                        f'dominant-baseline="middle" fill="#003">{escape(d.id)}</text>')
         out.append("</g></svg>\n")
-        number = _sheet_number(i + 1, len(nest_result.sheets))
-        target = os.path.join(directory, f"{stem}_{number}.svg")
+        target = numbered(_sheet_number(i + 1, len(nest_result.sheets)))
         write_text(target, ["\n".join(out)])
         written.append(target)
-    _remove_stale(lambda digits: os.path.join(directory, f"{stem}_{digits}.svg"), written)
+    _remove_stale(numbered, written)
     return written
 
 
@@ -321,6 +331,7 @@ def write_png(directory, nest_result, drawings, stem="sheet", dpi=100):
     from matplotlib.patches import Rectangle
 
     os.makedirs(directory, exist_ok=True)
+    numbered = _numbered_in(directory, stem, ".png")
     w, h = nest_result.sheet_size
     by_sheet = {}
     for pl, d in _placed(nest_result, drawings):
@@ -338,14 +349,12 @@ def write_png(directory, nest_result, drawings, stem="sheet", dpi=100):
         ax.set_xlim(-0.02 * w, 1.02 * w)
         ax.set_ylim(-0.02 * h, 1.02 * h)
         ax.set_aspect("equal")
-        ax.set_title(f"sheet {i + 1}: {count_noun(len(sheet.parts), 'part')}, "
-                     f"{100 * sheet.utilisation:.1f}% used")
-        number = _sheet_number(i + 1, len(nest_result.sheets))
-        target = os.path.join(directory, f"{stem}_{number}.png")
+        ax.set_title(_sheet_title(i, sheet))
+        target = numbered(_sheet_number(i + 1, len(nest_result.sheets)))
         try:
             write_replacing(target, lambda tmp: fig.savefig(tmp, dpi=dpi), ".png")
         finally:
             plt.close(fig)
         written.append(target)
-    _remove_stale(lambda digits: os.path.join(directory, f"{stem}_{digits}.png"), written)
+    _remove_stale(numbered, written)
     return written
