@@ -54,7 +54,7 @@ build: deps-build
 test: deps-test build
 	$(MAKE) --no-print-directory test-c test-sanitize test-python test-freecad test-gui
 
-test-c:
+test-c: build
 	cd $(BUILD)/libcore && ctest --output-on-failure
 
 # The C library and tests with AddressSanitizer and UndefinedBehaviorSanitizer
@@ -83,13 +83,13 @@ check-memory: build
 	@$(ENSURE) $(PKGS_MEMCHECK)
 	sh tools/sanitizer/check-memory.sh $(BUILD)/libcore/tests
 
-test-python:
+test-python: deps-test build
 	PYTHONPATH=$(CURDIR)/workbench $(PYTHON) -m pytest -q tests/python
 
-test-freecad:
+test-freecad: deps-test build
 	$(FC_ENV) headless
 
-test-gui:
+test-gui: deps-test build
 	$(FC_ENV) gui $(OUT)/gui
 
 # the tutorial's screenshots, taken by the GUI test (tests/gui), into docs/images
@@ -120,7 +120,7 @@ examples: deps-test build
 # bench_planarize and bench_surface call no BLAS; OPENBLAS_NUM_THREADS=1 keeps OpenBLAS's
 # worker threads, which may spin for about 0.1 s after the library loads, off the cores
 # that the first two-thread solves measure (docs/benchmarks.md, "OpenBLAS's start-up spin").
-bench: build
+bench: deps-test build
 	mkdir -p $(OUT)/bench
 	OPENBLAS_NUM_THREADS=1 $(BUILD)/libcore/bench/bench_planarize $(if $(findstring --quick,$(BENCH_ARGS)),--max-faces 10000 --runs 3,--runs 5) \
 	    --json $(OUT)/bench/bench_c.json
@@ -131,7 +131,7 @@ bench: build
 	    --json $(OUT)/bench/interactive.json
 
 # the 10,000-panel fabrication pipeline, each stage timed
-bench-panels: build
+bench-panels: deps-test build
 	$(PYTHON) tools/bench_panels.py --panels 10000 --out $(OUT)/bench_panels
 
 # FUZZ_SECONDS per target, 7 targets: the default is 12 minutes in all.
@@ -150,7 +150,7 @@ fuzz: fuzz-build
 	sh tools/fuzz/run_fuzz.sh $(BUILD)/fuzz $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 # dragging a control vertex of a 10k-face facade in FreeCAD under Xvfb: frames per second
-bench-drag: build
+bench-drag: deps-test build
 	mkdir -p $(OUT)/bench
 	FACET_DRAG_JSON=$(abspath $(OUT))/bench/drag_fps.json $(FC_ENV) xvfb-run -a -s "-screen 0 $(DRAG_SCREEN)" \
 	    freecad tools/bench/drag_fps.py
