@@ -100,3 +100,33 @@ class TestImporter(DocumentTestCase):
         self.assertEqual(len(said), 1, said)
         self.assertTrue(said[0].startswith(f"Facet: {path}: 1 face gave a vertex at two "
                                            "corners in a row (first: face 1, line 7)"), said)
+
+    def test_unwelded_seam_is_said_with_what_welds_it(self):
+        """An OBJ whose panels each have their own vertices imports as it is, and the report
+        view says at once that its faces are not joined and what in FreeCAD joins them;
+        Planarize and Panels only said it later, and named no FreeCAD command."""
+        import tempfile
+
+        said = []
+        keep, importer.report_warning = importer.report_warning, said.append
+        try:
+            with tempfile.TemporaryDirectory() as folder:
+                path = os.path.join(folder, "apart.obj")
+                with open(path, "w", encoding="utf-8") as stream:
+                    stream.write("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                 "v 1 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\n"
+                                 "f 1 2 3 4\nf 5 6 7 8\n")
+                obj = importer.insert(path, self.doc.Name)
+                welded = os.path.join(folder, "welded.obj")
+                with open(welded, "w", encoding="utf-8") as stream:
+                    stream.write("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+                                 "f 1 2 3 4\nf 2 5 6 3\n")
+                importer.insert(welded, self.doc.Name)
+        finally:
+            importer.report_warning = keep
+        self.assertIsNotNone(obj)
+        self.assertEqual(obj.VertexCount, 8)  # imported as it is: the source is not changed
+        self.assertEqual(said, [
+            f"Facet: {path}: vertices at one point but not one vertex: 2 pairs (vertices 1 "
+            "and 4 at (1, 0, 0)); the faces there are not joined: weld them where the panels "
+            "should meet: facet weld, or in FreeCAD Collapse short edges, which welds first"])

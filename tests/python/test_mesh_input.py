@@ -70,7 +70,8 @@ def test_unwelded_seam_is_warned_by_panels(write_file):
     assert warning == [
         "vertices at one point but not one vertex: 2 pairs (vertices 1 and 6 at (1, 0, 0)); "
         "the panels there are not joined: their edges there are cut square, with no bevel, "
-        "and not checked for clashes: weld them where the panels meet"]
+        "and not checked for clashes: weld them where the panels should meet: facet weld, "
+        "or in FreeCAD Collapse short edges, which welds first"]
 
 
 def test_weld_joins_the_seam_the_warnings_name(write_file, tmp_path, facet_command):
@@ -160,6 +161,8 @@ def test_unwelded_seam_is_warned_by_check_and_planarize_commands(write_file, tmp
     run = run_facet("planarize", path, "-o", tmp_path / "out.obj")
     assert run.returncode == 0, run.stderr
     assert "vertices at one point but not one vertex" in run.stdout
+    assert "facet weld, or in FreeCAD Collapse short edges" in run.stdout
+    assert "facet weld, or in FreeCAD Collapse short edges" in check.stdout
     welded = run_facet("check", write_file("welded.obj", _welded()))
     assert "one point" not in welded.stdout
 

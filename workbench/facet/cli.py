@@ -447,11 +447,13 @@ def print_check_summary(report, out=None):
         _line(out, "warning", f"{count_noun(count, 'face')} with the same vertices as another "
               f"(first: face {copy} repeats face {earlier}): two panels at one place")
     if report.get("coincident_vertex_pairs"):
+        from facet.mesh import WELD_ADVICE
+
         i, j = report.get("first_coincident_vertices")
         count = report["coincident_vertex_pairs"]
         _line(out, "warning", f"vertices at one point but not one vertex: "
               f"{count_noun(count, 'pair')} (first: {i} and {j}); the faces there are not "
-              "joined: weld them where the panels should meet")
+              f"joined: {WELD_ADVICE}")
     low, high = report["bounds"]["min"], report["bounds"]["max"]
     size = " x ".join(_g(b - a) for a, b in zip(low, high))
     _line(out, "size", f"{size}, mean edge {_g(report['mean_edge_length'])}")

@@ -15,7 +15,7 @@ import numpy as np
 
 from facet.errors import MeshError, from_core
 
-__all__ = ["PolyMesh", "cluster_points", "coincident_vertices", "coincident_text",
+__all__ = ["PolyMesh", "cluster_points", "coincident_vertices", "coincident_text", "WELD_ADVICE",
            "duplicate_faces", "weld"]
 
 _INT32_MAX = np.iinfo(np.int32).max
@@ -391,6 +391,11 @@ def _near_pairs(mesh, rel_tol):
 
     pairs = cKDTree(points).query_pairs(rel_tol * size, output_type="ndarray")
     return used[pairs].astype(np.int64) if pairs.shape[0] else none
+
+
+#: How a warning of vertices at one point ends: what joins them, from either front end.
+WELD_ADVICE = ("weld them where the panels should meet: facet weld, or in FreeCAD Collapse "
+               "short edges, which welds first")
 
 
 def coincident_vertices(mesh, rel_tol=1e-9):

@@ -352,7 +352,7 @@ def _coincident_warnings(mesh):
     """Warnings for faces that repeat another (two panels at one place), and for vertices at
     one point that are not one vertex (faces given their own copies by the export): the
     faces there are planarized apart and the seam opens."""
-    from facet.mesh import coincident_text, duplicate_faces
+    from facet.mesh import WELD_ADVICE, coincident_text, duplicate_faces
 
     warnings = []
     n_copies, first = duplicate_faces(mesh)
@@ -366,7 +366,7 @@ def _coincident_warnings(mesh):
         return warnings
     return warnings + [
         f"{seam}; the faces there are not joined, each is made planar on its own and the "
-        "seam opens: weld them where the panels should meet"]
+        f"seam opens: {WELD_ADVICE}"]
 
 
 class Planarizer:

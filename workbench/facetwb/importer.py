@@ -24,15 +24,21 @@ class MeshImportError(Exception):
 
 def read_polymesh(filename):
     """``facet.read_mesh(filename)``, raising MeshImportError with a one-line message; what
-    the reader changed in reading it (faces with a vertex twice in a row) is a warning in the
+    the reader changed in reading it (faces with a vertex twice in a row) and an unwelded
+    seam (vertices at one point, which the faces there do not share) are warnings in the
     report view."""
     import facet
     from facet.io import read_warnings
+    from facet.mesh import WELD_ADVICE, coincident_text
 
     try:
         mesh = facet.read_mesh(filename)
         for warning in read_warnings(mesh):
             report_warning(f"Facet: {filename}: {warning}")
+        seam = coincident_text(mesh)
+        if seam:
+            report_warning(f"Facet: {filename}: {seam}; the faces there are not joined: "
+                           f"{WELD_ADVICE}")
         return mesh
     except (facet.errors.FacetError, OSError, ValueError) as error:
         message = str(error)
