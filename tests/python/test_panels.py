@@ -687,6 +687,41 @@ def test_dxf_layers_units_audit_and_outlines(tmp_path):
     assert msp.query("TEXT[layer=='BEVEL']")
 
 
+def test_the_top_outline_is_a_reference_layer_of_its_own(tmp_path):
+    """The top face's outline (a closed contour that crosses the cut outline where a
+    bevel leans out) lay on BEVEL with the bevel angles to engrave: mapping BEVEL to
+    engraving engraved it too. It is on TOP now, dashed by layer, and BEVEL holds texts
+    only; every layer says in the file what it holds."""
+    import ezdxf
+    from shapely.geometry import Polygon
+
+    from facet.cutsheets import LAYERS, sheet_offsets
+
+    report, ps, drawings, result = _made(tmp_path)
+    doc = ezdxf.readfile(tmp_path / "cut.dxf")
+    msp = doc.modelspace()
+    assert {e.dxftype() for e in msp.query("*[layer=='BEVEL']")} == {"TEXT"}
+    for name in LAYERS:
+        assert doc.layers.get(name).description  # (what it is for, for the fabricator)
+    assert doc.layers.get("TOP").dxf.linetype == "DASHED"
+    tops = list(msp.query("LWPOLYLINE[layer=='TOP']"))
+    offsets = sheet_offsets(result)
+    by_id = {d.id: d for d in drawings}
+    expected = [result.placements[pid].transform(by_id[pid].top)
+                + (offsets[result.placements[pid].sheet], 0)
+                for pid in result.placements
+                if not np.allclose(by_id[pid].top, by_id[pid].cut, atol=1e-6)]
+    assert len(tops) == len(expected) > 0
+    got = [np.array([(x, y) for x, y, *_ in t.get_points()]) for t in tops]
+    assert all(t.closed and t.dxf.linetype == "BYLAYER" for t in tops)
+    for e in expected:
+        assert any(g.shape == e.shape and np.allclose(g, e, atol=1e-9) for g in got)
+    # (the reason it must not be cut: it crosses the cut outline)
+    cuts = [Polygon([(x, y) for x, y, *_ in c.get_points()])
+            for c in msp.query("LWPOLYLINE[layer=='CUT']")]
+    assert any(not any(c.contains(Polygon(g)) for c in cuts) for g in got)
+
+
 def test_schedule_csv_and_json(tmp_path):
     report, ps, drawings, result = _made(tmp_path)
     rows = list(csv.DictReader(open(tmp_path / "schedule.csv", encoding="utf-8")))

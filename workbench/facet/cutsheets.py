@@ -1,15 +1,22 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Cut files: DXF sheets (ezdxf), the schedule (CSV, JSON), SVG and PNG previews.
 
-DXF layers:
+DXF layers (each with its meaning as its description, in the file too):
 
 ========  =============================================================
 CUT       each part's cut outline (its bottom face), closed polylines
 LABEL     the part ID, engraving text inside the outline
-BEVEL     the top face's outline where it differs, and each bevel angle
+BEVEL     each bevel angle, engraving text beside its edge (texts only)
+TOP       the top face's outline where it differs from the cut (bevelled
+          edges, the offset): a closed, dashed reference contour, neither
+          cut nor engraved (the upper contour of a tilted cut)
 SHEET     sheet borders and sheet names
 GRAIN     grain arrows
 ========  =============================================================
+
+The top face's outline crosses the cut outline where a bevel leans out (394 of heart's
+398 parts mitred at 20 mm), so a layer that held it with texts to engrave (BEVEL did)
+could not be engraved without it.
 
 Units are the model's, declared in $INSUNITS: millimetres unless `units` says
 otherwise (see LENGTH_UNITS). Sheets lie
@@ -28,11 +35,25 @@ import numpy as np
 from facet.io.files import when_staged, write_replacing, write_text
 from facet.report import count_noun, json_safe
 
-__all__ = ["LAYERS", "write_dxf", "schedule_rows", "write_schedule_csv",
+__all__ = ["LAYERS", "LAYER_LINETYPES", "LAYER_MEANINGS", "write_dxf", "schedule_rows", "write_schedule_csv",
            "write_schedule_json", "write_svg", "write_png", "sheet_offsets"]
 
 #: Layer name -> ACI colour.
-LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "SHEET": 8, "GRAIN": 6}
+LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "TOP": 4, "SHEET": 8, "GRAIN": 6}
+
+#: Layer name -> its linetype, where not continuous.
+LAYER_LINETYPES = {"TOP": "DASHED"}
+
+#: Layer name -> what it holds (the layers' descriptions in the DXF).
+LAYER_MEANINGS = {
+    "CUT": "cut: each part's outline (its bottom face)",
+    "LABEL": "engrave: part IDs",
+    "BEVEL": "engrave: bevel angles beside their edges",
+    "TOP": "reference, do not cut: the top face's outline where bevels or the offset "
+           "move it",
+    "SHEET": "reference: sheet borders and names",
+    "GRAIN": "engrave: grain arrows",
+}
 
 
 def _sheet_number(k, count):
@@ -143,7 +164,9 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         doc.units = insunits
         doc.header["$MEASUREMENT"] = measurement
         for name, colour in LAYERS.items():
-            doc.layers.add(name, color=colour)
+            layer = doc.layers.add(name, color=colour,
+                                   linetype=LAYER_LINETYPES.get(name, "Continuous"))
+            layer.description = LAYER_MEANINGS[name]
         return doc
 
     def text(msp, s, x, y, height, rotation, layer):
@@ -167,7 +190,7 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         msp.add_lwpolyline(cut.tolist(), close=True, dxfattribs={"layer": "CUT"})
         if not np.allclose(d.top, d.cut, rtol=0, atol=1e-9 * max(w, h)):
             msp.add_lwpolyline((pl.transform(d.top) + off).tolist(), close=True,
-                               dxfattribs={"layer": "BEVEL", "linetype": "DASHED"})
+                               dxfattribs={"layer": "TOP"})
         lx, ly = pl.transform([d.label_position])[0] + off
         text(msp, d.id, lx, ly, d.label_height, pl.angle_deg % 360.0, "LABEL")
         for s, bx, by, ang, bh in d.bevels:
