@@ -378,6 +378,34 @@ def test_texts_lie_on_the_top_face_where_they_are_engraved(data_dir):
                 assert face.contains(_text_box(x, y, h, text, angle)), (d.id, text)
 
 
+def test_texts_too_small_to_engrave_are_warned_about(data_dir):
+    """A text is as large as its place allows; beside a short edge that was under 3 mm,
+    unsaid (heart_planar in metres, mitred at 5 mm with a 10 mm gap: 23 of 1,517 bevel
+    texts). Now a warning counts them, in the model's units, and names the smallest."""
+    from facet.cli_panels import run_pipeline
+    from facet.unfold import MIN_TEXT_MM, small_text_warnings
+
+    heart = facet.read_mesh(data_dir / "heart_planar.obj")
+    drawings = unfold(panels(heart, 0.005, gap=0.01, edge="bisector"))
+    heights = [bh for d in drawings for *_, bh in d.bevels]
+    small = [h for h in heights if h * 1000.0 < MIN_TEXT_MM]
+    assert 0 < len(small) < len(heights)
+    (warning,) = small_text_warnings(drawings, 1000.0)
+    assert warning.startswith(f"{len(small)} of {len(heights)} bevel angle texts are under "
+                              f"{MIN_TEXT_MM:g} mm high")
+    assert f"the smallest {1000.0 * min(small):.3g} mm" in warning
+    assert all(d.label_height * 1000.0 >= MIN_TEXT_MM for d in drawings)  # (no ID warning)
+    # the same parts in millimetres: every text under 3 mm (IDs too)
+    assert len(small_text_warnings(drawings, 1.0)) == 2
+    # the command's report and output: 20 mm panels' IDs (a tenth of the part) are under
+    # 3 mm; in centimetres the same numbers are ten times larger and say nothing
+    tiny = translational(nu=3, nv=2, step=20.0)
+    report = run_pipeline(tiny, 1.0, units="mm")[0]
+    assert [w for w in report["warnings"] if "part IDs are under 3 mm high" in w]
+    report = run_pipeline(tiny, 1.0, units="cm")[0]
+    assert not [w for w in report["warnings"] if "engrave" in w]
+
+
 def test_grain_turns_parts_and_is_checked():
     ps = panels(cylinder(), 10.0)
     drawings = unfold(ps, grain=(0, 0, 1))

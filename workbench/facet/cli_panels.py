@@ -191,7 +191,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
                                  write_schedule_csv, write_schedule_json, write_svg)
     from facet.errors import Cancelled, InputError
     from facet.nest import nest
-    from facet.unfold import unfold
+    from facet.unfold import small_text_warnings, unfold
 
     def check():
         if cancelled is not None and cancelled():
@@ -199,6 +199,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
 
     t = time.perf_counter()
     drawings = unfold(ps, grain=grain)
+    text_warnings = small_text_warnings(drawings, length_unit(units)[0])
     times["unfold"] = time.perf_counter() - t
     result = None
     if sheet is not None:
@@ -289,7 +290,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         "node_clash_pairs": ps.node_clash_pairs,
         "deepest_node_clash_panels": ps.deepest_node_clash_panels,
         "node_clashes": ps.node_clashes,
-        "warnings": ps.warnings,
+        "warnings": ps.warnings + text_warnings,
         "files": files,
         "seconds": times,
     }
@@ -360,7 +361,7 @@ def run_panels(args):
     for kind, paths in report["files"].items():
         print(f"  {kind:<13} {', '.join(paths[:3])}" + (" ..." if len(paths) > 3 else ""),
               file=out)
-    for w in ps.warnings + _units_warnings(mesh, args.units):
+    for w in report["warnings"] + _units_warnings(mesh, args.units):
         print(f"facet: warning: {w}", file=sys.stderr)
     return EXIT_OK
 
