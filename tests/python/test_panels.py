@@ -750,6 +750,33 @@ def test_the_top_outline_is_a_reference_layer_of_its_own(tmp_path):
     assert any(not any(c.contains(Polygon(g)) for c in cuts) for g in got)
 
 
+@pytest.mark.parametrize("units, mm", [("mm", 1.0), ("m", 1000.0), ("in", 25.4)])
+def test_the_dxf_opens_on_its_sheets_and_its_dashes_read_as_dashes(tmp_path, units, mm):
+    """The DXF left $EXTMIN/$EXTMAX unset (+-1e20) and its view a window 1000 units high at
+    the origin (sheets in metres showed as a dot), and its dashes were 1.27 drawing units
+    long whatever the units: 1.27 mm on parts a metre wide, 1.27 m on parts 20 cm wide,
+    both a continuous line to the eye."""
+    import ezdxf
+
+    from facet.cutsheets import write_dxf
+
+    _, ps, drawings, result = _made(tmp_path)
+    path = tmp_path / f"cut_{units}.dxf"
+    write_dxf(path, result, drawings, units=units)  # (the same numbers in other units)
+    doc = ezdxf.readfile(path)
+    msp = doc.modelspace()
+    lo, hi = np.array(doc.header["$EXTMIN"])[:2], np.array(doc.header["$EXTMAX"])[:2]
+    points = np.array([(x, y) for e in msp.query("LWPOLYLINE") for x, y, *_ in e.get_points()])
+    assert (points >= lo - 1e-9).all() and (points <= hi + 1e-9).all()
+    span = points.max(axis=0) - points.min(axis=0)
+    assert (hi - lo <= 1.2 * span).all()  # (the sheets and their names, no more)
+    (view,) = doc.viewports.get("*Active")
+    assert np.allclose(np.array(view.dxf.center)[:2], 0.5 * (lo + hi))
+    assert view.dxf.height >= hi[1] - lo[1]
+    dash = doc.linetypes.get("DASHED").pattern_tags.tags[3].value
+    assert 5.0 <= dash * doc.header["$LTSCALE"] * mm <= 50.0  # millimetres
+
+
 def test_schedule_csv_and_json(tmp_path):
     report, ps, drawings, result = _made(tmp_path)
     rows = list(csv.DictReader(open(tmp_path / "schedule.csv", encoding="utf-8")))

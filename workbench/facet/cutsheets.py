@@ -44,6 +44,11 @@ LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "TOP": 4, "SHEET": 8, "GRAIN": 6}
 #: Layer name -> its linetype, where not continuous.
 LAYER_LINETYPES = {"TOP": "DASHED"}
 
+#: A dash of a dashed line (TOP), millimetres: $LTSCALE scales ezdxf's DASHED pattern
+#: (1.27 drawing units a dash) to it in any units (1.27 mm and 1.27 m dashes read as a
+#: continuous line on parts a metre and 20 cm wide).
+DASH_MM = 12.7
+
 #: Layer name -> what it holds (the layers' descriptions in the DXF).
 LAYER_MEANINGS = {
     "CUT": "cut: each part's outline (its bottom face)",
@@ -152,9 +157,10 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         The files written.
     """
     import ezdxf
+    from ezdxf import bbox, zoom
     from ezdxf.enums import TextEntityAlignment
 
-    _, insunits, measurement = length_unit(units)
+    mm_per_unit, insunits, measurement = length_unit(units)
     w, h = nest_result.sheet_size
     offsets = sheet_offsets(nest_result, sheet_gap)
     path = os.fspath(path)
@@ -163,6 +169,8 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         doc = ezdxf.new("R2010", setup=True)
         doc.units = insunits
         doc.header["$MEASUREMENT"] = measurement
+        dash = doc.linetypes.get("DASHED").pattern_tags.tags[3].value  # (its first dash)
+        doc.header["$LTSCALE"] = DASH_MM / (mm_per_unit * dash)
         for name, colour in LAYERS.items():
             layer = doc.layers.add(name, color=colour,
                                    linetype=LAYER_LINETYPES.get(name, "Continuous"))
@@ -217,6 +225,13 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
     written = []
     for key in sorted(docs):
         doc = docs[key]
+        # the drawing's extents and the view it opens with: its sheets (the extents were
+        # left unset, +-1e20, and the view a 1000 units high window at the origin, which
+        # showed a drawing in metres as a dot)
+        extents = bbox.extents(doc.modelspace(), fast=True)
+        if extents.has_data:
+            doc.modelspace().reset_extents(extents.extmin, extents.extmax)  # ($EXTMIN/MAX)
+            zoom.center(doc.modelspace(), extents.center, extents.size)
         auditor = doc.audit()
         if auditor.has_errors:
             raise RuntimeError(f"ezdxf audit found {len(auditor.errors)} errors in the DXF")
