@@ -169,7 +169,7 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         doc = ezdxf.new("R2010", setup=True)
         doc.units = insunits
         doc.header["$MEASUREMENT"] = measurement
-        dash = doc.linetypes.get("DASHED").pattern_tags.tags[3].value  # (its first dash)
+        dash = doc.linetypes.get("DASHED").simplified_line_pattern()[0]  # its first dash
         doc.header["$LTSCALE"] = DASH_MM / (mm_per_unit * dash)
         for name, colour in LAYERS.items():
             layer = doc.layers.add(name, color=colour,
