@@ -291,6 +291,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         "deepest_node_clash_panels": ps.deepest_node_clash_panels,
         "node_clashes": ps.node_clashes,
         "warnings": ps.warnings + text_warnings,
+        "text_warnings": text_warnings,
         "files": files,
         "seconds": times,
     }

@@ -323,6 +323,8 @@ class CutSheets(_Proxy):
         _output(obj, "App::PropertyFloatList", "SheetUtilisation", "Per sheet")
         _output(obj, "App::PropertyStringList", "Unplaced", "Parts that fit on no sheet")
         _output(obj, "App::PropertyStringList", "Files", "Files written")
+        _output(obj, "App::PropertyStringList", "Warnings",
+                "What was found worth telling about the sheets (texts too small to engrave)")
 
     @guarded
     def execute(self, obj):
@@ -383,6 +385,9 @@ class CutSheets(_Proxy):
         obj.SheetUtilisation = [float(s.utilisation) for s in result.sheets]
         obj.Unplaced = list(result.unplaced)
         obj.Files = [f for paths in report["files"].values() for f in paths]
+        obj.Warnings = list(report["text_warnings"])
+        for warning in obj.Warnings:
+            App.Console.PrintWarning(f"{obj.Label}: {warning}\n")
 
 
 def is_panelset(obj):
