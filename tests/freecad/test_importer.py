@@ -79,22 +79,29 @@ class TestImporter(DocumentTestCase):
             importer.read_polymesh(data_path("bad_index.off"))
         self.assertIn("face 1", str(caught.exception))
 
-    def test_triangle_written_as_quad_is_read_and_said(self):
-        """A face with a vertex at two corners in a row (Rhino's triangle in a quad) is
-        imported with it once, and the report view says so with the file and the line."""
+    def imported_saying(self, *texts):
+        """Import each OBJ text with importer.insert; (the report view's warnings, [(path,
+        object)])."""
         import tempfile
 
-        said = []
+        said, imported = [], []
         keep, importer.report_warning = importer.report_warning, said.append
         try:
             with tempfile.TemporaryDirectory() as folder:
-                path = os.path.join(folder, "tri_as_quad.obj")
-                with open(path, "w", encoding="utf-8") as stream:
-                    stream.write("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n"
-                                 "f 1 2 3 4\nf 2 5 3 3\n")
-                obj = importer.insert(path, self.doc.Name)
+                for k, text in enumerate(texts):
+                    path = os.path.join(folder, f"mesh{k}.obj")
+                    with open(path, "w", encoding="utf-8") as stream:
+                        stream.write(text)
+                    imported.append((path, importer.insert(path, self.doc.Name)))
         finally:
             importer.report_warning = keep
+        return said, imported
+
+    def test_triangle_written_as_quad_is_read_and_said(self):
+        """A face with a vertex at two corners in a row (Rhino's triangle in a quad) is
+        imported with it once, and the report view says so with the file and the line."""
+        said, [(path, obj)] = self.imported_saying(
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nf 1 2 3 4\nf 2 5 3 3\n")
         self.assertIsNotNone(obj)
         self.assertEqual(obj.FaceCount, 2)
         self.assertEqual(len(said), 1, said)
@@ -105,25 +112,10 @@ class TestImporter(DocumentTestCase):
         """An OBJ whose panels each have their own vertices imports as it is, and the report
         view says at once that its faces are not joined and what in FreeCAD joins them;
         Planarize and Panels only said it later, and named no FreeCAD command."""
-        import tempfile
-
-        said = []
-        keep, importer.report_warning = importer.report_warning, said.append
-        try:
-            with tempfile.TemporaryDirectory() as folder:
-                path = os.path.join(folder, "apart.obj")
-                with open(path, "w", encoding="utf-8") as stream:
-                    stream.write("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
-                                 "v 1 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\n"
-                                 "f 1 2 3 4\nf 5 6 7 8\n")
-                obj = importer.insert(path, self.doc.Name)
-                welded = os.path.join(folder, "welded.obj")
-                with open(welded, "w", encoding="utf-8") as stream:
-                    stream.write("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
-                                 "f 1 2 3 4\nf 2 5 6 3\n")
-                importer.insert(welded, self.doc.Name)
-        finally:
-            importer.report_warning = keep
+        said, [(path, obj), _] = self.imported_saying(
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\n"
+            "f 1 2 3 4\nf 5 6 7 8\n",
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 5 6 3\n")
         self.assertIsNotNone(obj)
         self.assertEqual(obj.VertexCount, 8)  # imported as it is: the source is not changed
         self.assertEqual(said, [
