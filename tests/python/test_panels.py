@@ -1440,3 +1440,20 @@ def test_the_re_nest_of_crowded_parts_reports_progress_and_can_be_cancelled(monk
     with pytest.raises(Cancelled, match="nesting cancelled"):
         facet.nest.nest(parts, (1000, 1000), margin=10, spacing=5,
                         progress=lambda d, t: len(checked) > 0)  # Cancel once the re-nest runs
+
+
+@pytest.mark.parametrize("text, said", [
+    ("infx3000", "must have a finite width and height"),
+    ("3000xnan", "must have a finite width and height"),
+    ("0x1500", "must have a width and height > 0"),
+    ("3000", "is not WIDTHxHEIGHT")])
+def test_a_sheet_that_is_not_stock_is_refused_saying_what_is_wrong(text, said):
+    """--sheet infx3000 was refused as having no width and height > 0, which it has."""
+    import argparse
+
+    from facet.cli_panels import _sheet
+
+    with pytest.raises(argparse.ArgumentTypeError) as caught:
+        _sheet(text)
+    assert said in str(caught.value) and repr(text) in str(caught.value)
+    assert _sheet("3000X1500") == (3000.0, 1500.0)

@@ -35,7 +35,10 @@ def _sheet(text):
         w, h = (float(p) for p in parts)
     except ValueError:
         raise argparse.ArgumentTypeError(f"{text!r} is not WIDTHxHEIGHT (e.g. 3000x1500)") from None
-    if not (w > 0 and h > 0 and math.isfinite(w) and math.isfinite(h)):
+    if not (math.isfinite(w) and math.isfinite(h)):
+        raise argparse.ArgumentTypeError(f"sheet {text!r} must have a finite width and height "
+                                         "(a sheet of stock, e.g. 3000x1500)")
+    if not (w > 0 and h > 0):
         raise argparse.ArgumentTypeError(f"sheet {text!r} must have a width and height > 0")
     return w, h
 
