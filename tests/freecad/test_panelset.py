@@ -275,6 +275,26 @@ class TestPanelSet(DocumentTestCase):
         self.assertTrue(large.isValid(), large.getStatusString())
         self.assertEqual(list(large.Warnings), [])
 
+    def test_cutsheets_write_texts_as_outlines_when_asked(self):
+        """TextOutlines: sheets.dxf holds the IDs and bevel angles as closed outlines on
+        their layers, no TEXT there (many CAM importers skip TEXT)."""
+        import ezdxf
+
+        out = os.path.join(self.tmp.name, "outlines")
+        sheets = facetwb.make_cutsheets(self.mitred, sheet=(2600.0, 1400.0), margin=10.0,
+                                        spacing=6.0, output_dir=out, write_step=False,
+                                        name="OutlineSheets")
+        self.assertFalse(sheets.TextOutlines)
+        sheets.TextOutlines = True
+        self.doc.recompute()
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        msp = ezdxf.readfile(os.path.join(out, "sheets.dxf")).modelspace()
+        self.assertEqual({t.dxf.layer for t in msp.query("TEXT")}, {"SHEET"})
+        for layer in ("LABEL", "BEVEL"):
+            letters = msp.query(f"LWPOLYLINE[layer=='{layer}']")
+            self.assertGreater(len(letters), 0, layer)
+            self.assertTrue(all(e.closed for e in letters), layer)
+
     def test_cutsheets_reuse_the_panelsets_panels_and_solids(self):
         import facet.step  # noqa: F401
 

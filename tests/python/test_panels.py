@@ -773,7 +773,7 @@ def test_the_dxf_opens_on_its_sheets_and_its_dashes_read_as_dashes(tmp_path, uni
     (view,) = doc.viewports.get("*Active")
     assert np.allclose(np.array(view.dxf.center)[:2], 0.5 * (lo + hi))
     assert view.dxf.height >= hi[1] - lo[1]
-    dash = doc.linetypes.get("DASHED").pattern_tags.tags[3].value
+    dash = doc.linetypes.get("DASHED").simplified_line_pattern()[0]
     assert 5.0 <= dash * doc.header["$LTSCALE"] * mm <= 50.0  # millimetres
 
 
@@ -1457,3 +1457,46 @@ def test_a_sheet_that_is_not_stock_is_refused_saying_what_is_wrong(text, said):
         _sheet(text)
     assert said in str(caught.value) and repr(text) in str(caught.value)
     assert _sheet("3000X1500") == (3000.0, 1500.0)
+
+
+def test_texts_as_outlines_for_cam_that_imports_no_text(tmp_path):
+    """Many CAM importers skip TEXT, so the IDs and bevel angles were lost to them. With
+    text_outlines (--text-outlines) each is the closed outlines of its letters on its
+    layer, where its TEXT would stand: centred on the TEXT's point, its capitals the
+    TEXT's height, inside its part."""
+    import ezdxf
+    from shapely.geometry import Polygon
+    from shapely.ops import unary_union
+
+    from facet.cutsheets import write_dxf
+
+    _, ps, drawings, result = _made(tmp_path)
+    write_dxf(tmp_path / "outlines.dxf", result, drawings, text_outlines=True)
+    texts = ezdxf.readfile(tmp_path / "cut.dxf").modelspace()
+    doc = ezdxf.readfile(tmp_path / "outlines.dxf")
+    assert not doc.audit().has_errors
+    msp = doc.modelspace()
+    assert {t.dxf.layer for t in msp.query("TEXT")} == {"SHEET"}
+    cuts = [Polygon([(x, y) for x, y, *_ in c.get_points()])
+            for c in msp.query("LWPOLYLINE[layer=='CUT']")]
+    for layer in ("LABEL", "BEVEL"):
+        letters = [Polygon([(x, y) for x, y, *_ in e.get_points()])
+                   for e in msp.query(f"LWPOLYLINE[layer=='{layer}']")]
+        assert letters and all(e.closed for e in msp.query(f"LWPOLYLINE[layer=='{layer}']"))
+        assert all(np.isfinite(letter.exterior.coords).all() for letter in letters)
+        for text in texts.query(f"TEXT[layer=='{layer}']"):
+            x, y = text.dxf.align_point.x, text.dxf.align_point.y
+            height = text.dxf.height
+            part = next(c for c in cuts if c.contains(Polygon([(x, y), (x + 1e-9, y),
+                                                               (x, y + 1e-9)])))
+            near = [p for p in letters if p.distance(Polygon([(x, y), (x + 1e-9, y),
+                                                              (x, y + 1e-9)])) < height
+                    and part.contains(p)]
+            drawn = unary_union(near).convex_hull
+            cx, cy = drawn.centroid.x, drawn.centroid.y
+            assert math.hypot(cx - x, cy - y) < 0.5 * height, text.dxf.text
+            # the capitals' height across the text's direction
+            turn = math.radians(text.dxf.rotation)
+            across = [(-(px - x) * math.sin(turn) + (py - y) * math.cos(turn))
+                      for px, py in drawn.exterior.coords]
+            assert 0.95 * height < max(across) - min(across) < 1.4 * height, text.dxf.text

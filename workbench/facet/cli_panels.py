@@ -8,6 +8,7 @@
         [--prefix P] [--tol T] [--min-edge F] [--min-edge-abs L] [--sheet WxH]
         [--margin M] [--spacing S]
         [--rotations none|90|free] [--grain X,Y,Z] [--dxf OUT.dxf] [--per-sheet]
+        [--text-outlines]
         [--step OUT.step] [--schedule OUT.csv|OUT.json] [--svg DIR] [--png DIR]
         [--report R.json]
 
@@ -98,6 +99,9 @@ def add_commands(commands):
                    help="grain direction in model space: parts turned to it, rotations locked")
     p.add_argument("--dxf", metavar="OUT.dxf", help="cut sheets as DXF (needs --sheet)")
     p.add_argument("--per-sheet", action="store_true", help="one DXF file per sheet")
+    p.add_argument("--text-outlines", action="store_true",
+                   help="IDs and bevel angles in the DXF as the outlines of their letters "
+                        "(closed polylines), for CAM programs that import no TEXT")
     p.add_argument("--step", metavar="OUT.step", help="panel solids as STEP (needs FreeCAD)")
     p.add_argument("--schedule", metavar="OUT.csv", help="schedule as .csv or .json")
     p.add_argument("--svg", metavar="DIR", help="SVG preview of each sheet")
@@ -115,7 +119,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
                  spacing=0.0, rotations="90", grain=None, dxf=None, per_sheet=False,
                  step=None, schedule=None, svg=None, png=None, progress=None,
                  cancelled=None, panel_set=None, solids=None, allow_unplaced=False,
-                 units="mm"):
+                 units="mm", text_outlines=False):
     """Everything ``facet panels`` does, as a function (also used by the
     benchmark). Returns (report dict, PanelSet, drawings, NestResult or None).
 
@@ -131,7 +135,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
     (a facet PanelSet already computed from ``mesh`` with these options) and
     ``solids`` (its [(id, Part.Solid)], for STEP) are reused when given.
     Parts that fit on no sheet raise :class:`facet.errors.InputError`
-    (nothing written) unless `allow_unplaced` is true.
+    (nothing written) unless `allow_unplaced` is true. ``text_outlines``: the DXF's IDs
+    and bevel angles as letter outlines (:func:`facet.cutsheets.write_dxf`).
     """
     from facet.cutsheets import length_unit
     from facet.errors import InputError
@@ -178,7 +183,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
         with staged():
             return _rest_of_pipeline(
                 mesh, ps, job, times, t_start, sheet=sheet, margin=margin, spacing=spacing,
-                rotations=rotations, grain=grain, dxf=dxf, per_sheet=per_sheet, step=step,
+                rotations=rotations, grain=grain, dxf=dxf, per_sheet=per_sheet,
+                text_outlines=text_outlines, step=step,
                 schedule=schedule, svg=svg, png=png, allow_unplaced=allow_unplaced,
                 solids=solids, stage_progress=stage_progress, cancelled=cancelled, units=units)
     except BaseException:
@@ -188,7 +194,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
 
 
 def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,
-                      dxf, per_sheet, step, schedule, svg, png, allow_unplaced, solids,
+                      dxf, per_sheet, text_outlines, step, schedule, svg, png, allow_unplaced,
+                      solids,
                       stage_progress, cancelled, units):
     from facet.cutsheets import (length_unit, schedule_rows, write_dxf, write_png,
                                  write_schedule_csv, write_schedule_json, write_svg)
@@ -222,7 +229,8 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
     if dxf:
         check()
         t = time.perf_counter()
-        files["dxf"] = write_dxf(dxf, result, drawings, per_sheet=per_sheet, units=units)
+        files["dxf"] = write_dxf(dxf, result, drawings, per_sheet=per_sheet, units=units,
+                                 text_outlines=text_outlines)
         times["dxf"] = time.perf_counter() - t
     rows = None
     if schedule:
@@ -316,7 +324,8 @@ def run_panels(args):
         ids=args.ids, prefix=args.prefix, tol=args.tol, tol_abs=args.tol_abs,
         min_edge=args.min_edge, min_edge_abs=args.min_edge_abs, sheet=args.sheet,
         margin=args.margin, spacing=args.spacing, rotations=args.rotations, grain=args.grain,
-        dxf=args.dxf, per_sheet=args.per_sheet, step=args.step, schedule=args.schedule,
+        dxf=args.dxf, per_sheet=args.per_sheet, text_outlines=args.text_outlines,
+        step=args.step, schedule=args.schedule,
         svg=args.svg, png=args.png, progress=interrupted, cancelled=interrupted,
         units=args.units)
     report["input"] = args.input

@@ -61,6 +61,42 @@ LAYER_MEANINGS = {
 }
 
 
+#: The font of texts written as outlines (``write_dxf(text_outlines=True)``): matplotlib's
+#: own, so always there.
+OUTLINE_FONT = "DejaVu Sans"
+
+#: The outlines' curves are flattened to within this fraction of the text height (0.3 mm
+#: on a 30 mm ID; the demo's 1,477 texts give a DXF of 8.7 MB against 0.56 MB as TEXT).
+OUTLINE_FLATNESS = 0.01
+
+
+def _outline_writer(align):
+    """A function (msp, s, x, y, height, rotation_deg, layer) that adds the outlines of
+    the letters of ``s`` as closed polylines, placed as a TEXT of that height (its capitals'
+    height), rotation and alignment would be."""
+    from ezdxf.addons import text2path
+    from ezdxf.math import Matrix44
+    from ezdxf.path import render_lwpolylines
+
+    try:  # ezdxf 1.x
+        from ezdxf.fonts.fonts import FontFace
+    except ImportError:  # ezdxf 0.18 (Debian 12)
+        from ezdxf.tools.fonts import FontFace
+    face = FontFace(family=OUTLINE_FONT)
+
+    def outline(msp, s, x, y, height, rotation, layer):
+        m = Matrix44.chain(Matrix44.z_rotate(math.radians(rotation)), Matrix44.translate(x, y, 0))
+        paths = text2path.make_paths_from_str(s, face, size=height, align=align, m=m)
+        for polyline in render_lwpolylines(msp, paths, distance=OUTLINE_FLATNESS * height,
+                                           segments=1, dxfattribs={"layer": layer}):
+            points = polyline.get_points("xy")  # a letter's contour ends where it starts:
+            if len(points) > 3 and points[0] == points[-1]:  # a closed polyline, as CAM
+                polyline.set_points(points[:-1], format="xy")  # takes a contour
+            polyline.closed = True
+
+    return outline
+
+
 def _sheet_number(k, count):
     """Sheet k of `count` as its file is numbered: as many digits as the last has, two at
     least, so that a listing sorts the files as the sheets go ("sheet_100" came before
@@ -131,7 +167,8 @@ def length_unit(units):
     return LENGTH_UNITS[units]
 
 
-def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, units="mm"):
+def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, units="mm",
+              text_outlines=False):
     """Write the nested sheets as DXF (ezdxf; audited before saving).
 
     Parameters
@@ -150,6 +187,11 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
     units : str
         The model's length unit (a key of LENGTH_UNITS), declared in $INSUNITS and
         $MEASUREMENT; the coordinates are written as they are.
+    text_outlines : bool
+        Write the IDs and bevel angles as the outlines of their letters (closed polylines,
+        font :data:`OUTLINE_FONT`, on the same layers) instead of TEXT entities, for the
+        CAM programs that import no TEXT (many laser and router importers skip it). The
+        sheet names stay TEXT, on SHEET.
 
     Returns
     -------
@@ -181,6 +223,14 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         t = msp.add_text(s, dxfattribs={"height": height, "rotation": rotation, "layer": layer})
         t.set_placement((x, y), align=TextEntityAlignment.MIDDLE_CENTER)
 
+    outline = _outline_writer(TextEntityAlignment.MIDDLE_CENTER) if text_outlines else None
+
+    def engraved(msp, s, x, y, height, rotation, layer):
+        if outline is None:
+            text(msp, s, x, y, height, rotation, layer)
+        else:
+            outline(msp, s, x, y, height, rotation, layer)
+
     docs = {}
     for i, sheet in enumerate(nest_result.sheets):
         key = i if per_sheet else 0
@@ -200,10 +250,10 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
             msp.add_lwpolyline((pl.transform(d.top) + off).tolist(), close=True,
                                dxfattribs={"layer": "TOP"})
         lx, ly = pl.transform([d.label_position])[0] + off
-        text(msp, d.id, lx, ly, d.label_height, pl.angle_deg % 360.0, "LABEL")
+        engraved(msp, d.id, lx, ly, d.label_height, pl.angle_deg % 360.0, "LABEL")
         for s, bx, by, ang, bh in d.bevels:
             px, py = pl.transform([(bx, by)])[0] + off
-            text(msp, s, px, py, bh, _rotate_angle(pl, ang), "BEVEL")
+            engraved(msp, s, px, py, bh, _rotate_angle(pl, ang), "BEVEL")
         if d.grain is not None:
             a, b = pl.transform(d.grain) + off
             msp.add_line(a.tolist(), b.tolist(), dxfattribs={"layer": "GRAIN"})

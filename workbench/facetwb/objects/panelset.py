@@ -318,6 +318,9 @@ class CutSheets(_Proxy):
             "(empty: write nothing)")
         add(obj, "App::PropertyBool", "WriteStep", "Files", "Also write panels.step",
             value=True)
+        add(obj, "App::PropertyBool", "TextOutlines", "Files",
+            "IDs and bevel angles in sheets.dxf as the outlines of their letters (closed "
+            "polylines), for CAM programs that import no TEXT", value=False)
         _output(obj, "App::PropertyInteger", "SheetCount", "Number of sheets")
         _output(obj, "App::PropertyFloat", "Utilisation", "Part area over sheet area, all sheets")
         _output(obj, "App::PropertyFloatList", "SheetUtilisation", "Per sheet")
@@ -356,6 +359,7 @@ class CutSheets(_Proxy):
             schedule=os.path.join(out, "schedule.csv") if out else None,
             svg=os.path.join(out, "svg") if out else None,
             step=os.path.join(out, "panels.step") if out and obj.WriteStep else None,
+            text_outlines=bool(obj.TextOutlines),
             progress=_stage_progress(progress.hook()))
         if out:
             from facet.cutsheets import schedule_rows, write_schedule_json
