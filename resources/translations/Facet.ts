@@ -88,6 +88,16 @@
         <source>Folder for the DXF, STEP, schedule and previews (empty: nothing is written, the layout is only shown)</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="97"/>
+        <source>Texts as outlines in the DXF</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/cutsheets.ui" line="98"/>
+        <source>IDs and bevel angles written as the outlines of their letters (closed polylines), for CAM programs that import no DXF text</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>Facet</name>
@@ -117,7 +127,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="350"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="352"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
@@ -382,22 +392,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="269"/>
+        <location filename="../ui/preferences.ui" line="275"/>
         <source>Colour map top</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/preferences.ui" line="275"/>
+        <location filename="../ui/preferences.ui" line="281"/>
         <source>Planarity shown in the top colour (red) of new meshes&apos; colour maps (0: the largest face value)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="307"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="308"/>
         <source>Choose the output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="316"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="317"/>
         <source>Folder for the cut files</source>
         <translation type="unfinished"></translation>
     </message>
@@ -564,6 +574,16 @@
     <message>
         <location filename="../../workbench/facetwb/objects/panelset.py" line="222"/>
         <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; {5}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="269"/>
+        <source>Texts as outlines in the DXF</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/preferences.ui" line="270"/>
+        <source>Default: IDs and bevel angles written as the outlines of their letters, for CAM programs that import no DXF text</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

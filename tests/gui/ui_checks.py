@@ -241,13 +241,22 @@ def run(check, out_dir, g):
     Gui.Selection.addSelection(panels)
     g.accept_panel(check, "Facet_CutSheets", [("SheetWidth", 4000.0, None),
                                               ("SheetHeight", 2500.0, None),
-                                              ("OutputDir", out, None)],
+                                              ("OutputDir", out, None),
+                                              ("TextOutlines", True, None)],
                    shot=os.path.join(out_dir, "taskpanel_cutsheets.png"))
     sheets = [obj for obj in doc.Objects if facetwb.is_cutsheets(obj)]
     if not check(len(sheets) == 1 and sheets[0].isValid() and not sheets[0].Unplaced,
                  "Facet_CutSheets nested every part"):
         return
     check(os.path.isfile(os.path.join(out, "sheets.dxf")), "the cut sheets DXF is written")
+    import ezdxf
+
+    msp = ezdxf.readfile(os.path.join(out, "sheets.dxf")).modelspace()
+    letters = len(msp.query("LWPOLYLINE[layer=='LABEL']"))
+    check(sheets[0].TextOutlines and not msp.query("TEXT[layer=='LABEL']")
+          and letters >= len(panels.PartIds),
+          f"the task panel's 'Texts as outlines' writes the IDs as letter outlines ({letters} "
+          f"contours for {len(panels.PartIds)} IDs)")
     panels.ViewObject.Visibility = False
     Gui.Selection.clearSelection()
     view.viewTop()

@@ -35,6 +35,7 @@ DEFAULTS = {
     "SheetSpacing": ("float", 6.0),
     "SheetRotations": ("string", "90"),
     "SheetOutputDir": ("string", ""),
+    "SheetTextOutlines": ("bool", False),
     # display
     "LegendMax": ("float", 0.0),
 }

@@ -528,7 +528,7 @@ def make_panelset(source, thickness=40.0, offset="outer", gap=0.0, edge="square"
 
 def make_cutsheets(panelset, sheet=(3000.0, 1500.0), margin=10.0, spacing=6.0,
                    rotations="90", grain=None, output_dir="", write_step=True,
-                   name="CutSheets"):
+                   name="CutSheets", text_outlines=False):
     """Add a CutSheets object nesting ``panelset``'s parts; recompute to nest and write.
 
     Returns
@@ -550,6 +550,7 @@ def make_cutsheets(panelset, sheet=(3000.0, 1500.0), margin=10.0, spacing=6.0,
         obj.Grain = App.Vector(*grain)
     obj.OutputDir = output_dir
     obj.WriteStep = bool(write_step)
+    obj.TextOutlines = bool(text_outlines)
     from facetwb.viewproviders import attach
 
     attach.give(obj)

@@ -286,7 +286,8 @@ class CutSheetsPanel(DerivePanel):
               ("Margin", "SheetMargin", None, None),
               ("Spacing", "SheetSpacing", None, None),
               ("Rotations", "SheetRotations", ["90", "none", "free"], None),
-              ("OutputDir", "SheetOutputDir", None, None))
+              ("OutputDir", "SheetOutputDir", None, None),
+              ("TextOutlines", "SheetTextOutlines", None, None))
 
     def setup(self):
         """A Browse button beside the output folder."""
@@ -329,7 +330,8 @@ class CutSheetsPanel(DerivePanel):
         return [f"facetwb.make_cutsheets({object_expression(src)}, "
                 f"sheet=({v['SheetWidth']!r}, {v['SheetHeight']!r}), margin={v['Margin']!r}, "
                 f"spacing={v['Spacing']!r}, rotations={v['Rotations']!r}, "
-                f"output_dir={v['OutputDir']!r})" for src in self.sources]
+                f"output_dir={v['OutputDir']!r}, text_outlines={v['TextOutlines']!r})"
+                for src in self.sources]
 
     def is_result(self, obj):
         from facetwb.objects.panelset import is_cutsheets
