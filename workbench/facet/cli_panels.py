@@ -230,7 +230,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         check()
         t = time.perf_counter()
         files["dxf"] = write_dxf(dxf, result, drawings, per_sheet=per_sheet, units=units,
-                                 text_outlines=text_outlines)
+                                 text_outlines=text_outlines, progress=stage_progress("dxf"))
         times["dxf"] = time.perf_counter() - t
     rows = None
     if schedule:
