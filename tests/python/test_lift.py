@@ -12,7 +12,7 @@ from facet.mesh import PolyMesh
 _core = pytest.importorskip("facet._core")
 
 from facet.lift import Lifter, TargetError, lift, lifting_space  # noqa: E402
-from facet.plan import PlanError, plan_from_segments  # noqa: E402
+from facet.plan import PlanError, pinned_targets, plan_from_segments  # noqa: E402
 
 
 def dense_lifting_basis(mesh):
@@ -579,3 +579,21 @@ def test_a_wrong_rank_is_said_even_where_a_face_is_not_planar_too():
     [warning] = result.warnings
     assert "dependencies could not be told from rounding" in warning
     assert re.search(r"; and face \d+ is planar only to [0-9.e-]+ of its mean edge", warning)
+
+
+@pytest.mark.parametrize("offset", [(512_000.0, 5_712_000.0), (512_000_000.0, 5_712_000_000.0)])
+def test_free_vertices_follow_the_pins_plane_at_map_coordinates(offset):
+    # Free vertices are drawn (weakly) to the plane of the given heights. At map
+    # coordinates in mm the columns 1, x, y of that plane's fit were parallel to 1e-16:
+    # the fit fell back on the mean height, and the free corners of a 12 x 6 m roof came
+    # out tens of millimetres from where they are at the origin.
+    mesh = straight_grid([0.0, 4000.0, 8000.0, 12000.0], [0.0, 3000.0, 6000.0])
+    pins = {0: 3000.0, 3: 3600.0, 8: 4200.0, 11: 3300.0, 5: 4500.0}
+    local = lift(mesh, *pinned_targets(mesh, pins))
+    xyz = mesh.vertices.copy()
+    xyz[:, :2] += offset  # exact in binary: the same plan
+    moved = mesh.with_vertices(xyz)
+    far = lift(moved, *pinned_targets(moved, {v: h + 300_000.0 for v, h in pins.items()}))
+    free = np.setdiff1d(np.arange(mesh.n_vertices), list(pins))
+    assert np.ptp(local.heights[free]) > 100.0  # the free heights do depend on the fill
+    assert np.max(np.abs((far.heights - 300_000.0) - local.heights)) < 1e-6 * 12000.0

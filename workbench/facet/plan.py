@@ -783,10 +783,15 @@ def _with_free(plan_xy, targets, given):
     n_given, n_free = int(np.count_nonzero(given)), int(np.count_nonzero(~given))
     share = min(1.0, max(n_given / n_free, 1e-4)) if n_free else 1.0
     weights = np.where(given, 1.0, FREE_WEIGHT * share)
-    a = np.column_stack([np.ones(int(given.sum())), plan_xy[given]])
+    # the plane in coordinates about the given vertices' centroid: at map coordinates in mm
+    # (5.7e9) the columns 1, x, y are parallel to 1e-16, and the rank test took three
+    # targets spread over 12 m for a line (their mean height filled the free vertices)
+    centre = plan_xy[given].mean(axis=0)
+    xy = plan_xy - centre
+    a = np.column_stack([np.ones(int(given.sum())), xy[given]])
     if np.linalg.matrix_rank(a) == 3:
         coef, *_ = np.linalg.lstsq(a, targets[given], rcond=None)
-        fill = coef[0] + plan_xy @ coef[1:]
+        fill = coef[0] + xy @ coef[1:]
     else:
         fill = np.full(len(plan_xy), float(np.mean(targets[given])))
     return np.where(given, targets, fill), weights
