@@ -11,6 +11,7 @@ import Sketcher
 
 import facet
 import facetwb
+from facet.report import point_text
 from facet_test_support import DocumentTestCase, bits, points_array
 
 OUTER = [(0.0, 0.0), (4000.0, 0.0), (1000.0, 3000.0)]
@@ -314,6 +315,13 @@ class TestPlanGraphSources(DocumentTestCase):
         xyz = points_array(lifting)
         want = 1000 + 0.3 * (xyz[:, 0] - east) + 0.1 * (xyz[:, 1] - north)
         self.assertLess(np.abs(xyz[:, 2] - want).max(), 1e-6)
+        # a drag beside every vertex names its point to the millimetre (six digits gave
+        # "(5.12005e+08, 5.712e+09)": kilometres out)
+        lifting.Drags = [App.Vector(east + 5000.0, north + 50.0, 300.0)]
+        self.doc.recompute()
+        self.assertFalse(lifting.isValid())
+        self.assertIn(f"of the drag at {point_text((east + 5000.0, north + 50.0))}",
+                      lifting.getStatusString())
 
     def test_arcs_refused_then_split(self):
         shape = self.doc.addObject("Part::Feature", "Arcs")

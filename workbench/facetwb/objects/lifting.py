@@ -14,6 +14,7 @@ of the workbench (Planarize, panels) takes it as a source.
 import numpy as np
 
 import facet
+from facet.report import point_text
 from facetwb import compat, conversion, progress
 from facetwb.recompute import guarded
 from facetwb.objects.polymesh import PolyMesh, get_mesh, set_mesh, set_planarity
@@ -134,7 +135,7 @@ class Lifting(PolyMesh):
             v = int(np.argmin(distance))
             if distance[v] > tolerance:
                 raise ValueError(f"{obj.Label}: no plan vertex within {tolerance:g} mm of the "
-                                 f"drag at ({drag.x:.6g}, {drag.y:.6g})")
+                                 f"drag at {point_text((drag.x, drag.y))}")
             fundamental = lifter.fundamental(v)
             if not fundamental[v] > 1e-9:
                 raise ValueError(f"{obj.Label}: vertex {v} cannot be raised on its own: "
