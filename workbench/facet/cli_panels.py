@@ -246,12 +246,13 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
     if svg:
         check()
         t = time.perf_counter()
-        files["svg"] = write_svg(svg, result, drawings, units=units)
+        files["svg"] = write_svg(svg, result, drawings, units=units,
+                                 progress=stage_progress("svg"))
         times["svg"] = time.perf_counter() - t
     if png:
         check()
         t = time.perf_counter()
-        files["png"] = write_png(png, result, drawings)
+        files["png"] = write_png(png, result, drawings, progress=stage_progress("png"))
         times["png"] = time.perf_counter() - t
     if job is not None:
         t = time.perf_counter()

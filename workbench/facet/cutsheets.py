@@ -148,6 +148,26 @@ def _placed(nest_result, drawings):
         yield pl, by_id[pid]
 
 
+def _by_sheet(nest_result, drawings):
+    """{sheet index: [(placement, drawing)]}."""
+    by_sheet = {}
+    for pl, d in _placed(nest_result, drawings):
+        by_sheet.setdefault(pl.sheet, []).append((pl, d))
+    return by_sheet
+
+
+def _reporter(progress, total, what):
+    """``report(done)``: calls ``progress(done, total)`` (if given) and raises Cancelled
+    ("writing the WHAT cancelled") when it returns True."""
+    def report(done):
+        if progress is not None and progress(done, total):
+            from facet.errors import Cancelled
+
+            raise Cancelled(f"writing the {what} cancelled")
+
+    return report
+
+
 def _rotate_angle(pl, deg):
     return (deg + pl.angle_deg) % 360.0
 
@@ -246,13 +266,7 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
                            dxfattribs={"layer": "SHEET"})
         text(msp, f"SHEET {i + 1}", x0 + 0.5 * w, -0.04 * h, 0.02 * h, 0.0, "SHEET")
     placed = list(_placed(nest_result, drawings))
-
-    def report(done):
-        if progress is not None and progress(done, len(placed)):
-            from facet.errors import Cancelled
-
-            raise Cancelled("writing the DXF cancelled")
-
+    report = _reporter(progress, len(placed), "DXF")
     for done, (pl, d) in enumerate(placed):
         if done % 16 == 0:
             report(done)
@@ -369,12 +383,12 @@ def _svg_path(points):
     return "M " + " L ".join(f"{x!r} {y!r}" for x, y in points) + " Z"
 
 
-def write_svg(directory, nest_result, drawings, stem="sheet", units="mm"):
+def write_svg(directory, nest_result, drawings, stem="sheet", units="mm", progress=None):
     """One SVG preview per sheet (``stem_01.svg``...), in model units with y up, at true
     size: the drawing's width and height are the sheet's in millimetres, from `units` (the
     model's length unit, a key of LENGTH_UNITS), so that a laser cutter's software or
     Inkscape opens a sheet at the size it is cut (it was 1000 pixels wide whatever the
-    sheet).
+    sheet). ``progress`` as :func:`write_png`'s.
 
     Returns
     -------
@@ -386,12 +400,12 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm"):
     os.makedirs(directory, exist_ok=True)
     numbered = _numbered_in(directory, stem, ".svg")
     w, h = nest_result.sheet_size
-    by_sheet = {}
-    for pl, d in _placed(nest_result, drawings):
-        by_sheet.setdefault(pl.sheet, []).append((pl, d))
+    by_sheet = _by_sheet(nest_result, drawings)
+    report = _reporter(progress, len(nest_result.sheets), "SVG previews")
     written = []
     stroke = max(w, h) / 1500.0
     for i, sheet in enumerate(nest_result.sheets):
+        report(i)
         out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w!r} {h!r}" '
                # (ten digits: 1219.2mm, not 1219.1999999999998mm, for a 48 in sheet)
                f'width="{w * mm:.10g}mm" height="{h * mm:.10g}mm">',
@@ -415,12 +429,15 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm"):
         target = numbered(_sheet_number(i + 1, len(nest_result.sheets)))
         write_text(target, ["\n".join(out)])
         written.append(target)
+    report(len(nest_result.sheets))
     _remove_stale(numbered, written)
     return written
 
 
-def write_png(directory, nest_result, drawings, stem="sheet", dpi=100):
-    """One PNG preview per sheet (matplotlib, Agg).
+def write_png(directory, nest_result, drawings, stem="sheet", dpi=100, progress=None):
+    """One PNG preview per sheet (matplotlib, Agg). ``progress(done, total)`` before each
+    sheet and at the end, True cancels (:class:`facet.errors.Cancelled`; the sheets written
+    so far stay, unless in :func:`facet.io.files.staged`, as ``facet panels`` writes).
 
     Returns
     -------
@@ -436,11 +453,11 @@ def write_png(directory, nest_result, drawings, stem="sheet", dpi=100):
     os.makedirs(directory, exist_ok=True)
     numbered = _numbered_in(directory, stem, ".png")
     w, h = nest_result.sheet_size
-    by_sheet = {}
-    for pl, d in _placed(nest_result, drawings):
-        by_sheet.setdefault(pl.sheet, []).append((pl, d))
+    by_sheet = _by_sheet(nest_result, drawings)
+    report = _reporter(progress, len(nest_result.sheets), "PNG previews")
     written = []
     for i, sheet in enumerate(nest_result.sheets):
+        report(i)
         fig, ax = plt.subplots(figsize=(10, 10 * h / w + 0.6))
         ax.add_patch(Rectangle((0, 0), w, h, facecolor="#f4f1ea", edgecolor="#777"))
         for pl, d in by_sheet.get(i, []):
@@ -459,5 +476,6 @@ def write_png(directory, nest_result, drawings, stem="sheet", dpi=100):
         finally:
             plt.close(fig)
         written.append(target)
+    report(len(nest_result.sheets))
     _remove_stale(numbered, written)
     return written
