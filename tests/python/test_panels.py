@@ -1543,3 +1543,29 @@ def test_previews_show_progress_and_cancel(tmp_path, kind):
     with pytest.raises(Cancelled), staged():
         write(tmp_path / "cancelled", result, drawings, progress=lambda done, total: done > 0)
     assert not list((tmp_path / "cancelled").glob(f"*.{kind}"))
+
+
+def test_facet_panels_shows_each_stage_on_a_terminal(tmp_path):
+    """facet panels ran silent until its summary (tens of seconds at 10,000 panels, a
+    minute or more with texts as outlines): on a terminal its line now counts each stage
+    (nesting, the DXF's parts, the sheets; the panels' own on larger meshes), and Ctrl+C
+    still cancels."""
+    import io
+
+    from facet.cli_panels import panels_progress, run_pipeline
+    from facet.cli_progress import ProgressLine
+
+    out = io.StringIO()
+    line = ProgressLine(out, prefix="facet panels", interval=0.0, force=True)
+    run_pipeline(translational(nu=6, nv=5, step=400.0), 18.0, sheet=(1300, 900), margin=15,
+                 spacing=8, dxf=str(tmp_path / "cut.dxf"), svg=str(tmp_path / "svg"),
+                 progress=panels_progress(line, lambda: False))
+    shown = out.getvalue()
+    for words in ("nesting the parts", "drawing the DXF's parts 30 of 30",
+                  "writing the SVG sheets"):
+        assert f"facet panels: {words}" in shown, words
+    with pytest.raises(facet.errors.Cancelled):
+        run_pipeline(translational(nu=6, nv=5, step=400.0), 18.0, sheet=(1300, 900),
+                     margin=15, spacing=8, dxf=str(tmp_path / "cancelled.dxf"),
+                     progress=panels_progress(line, lambda: True))
+    assert not (tmp_path / "cancelled.dxf").exists()

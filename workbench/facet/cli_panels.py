@@ -310,9 +310,26 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
     return report, ps, drawings, result
 
 
+#: What each stage of run_pipeline counts, on the progress line.
+_STAGE_WORDS = {"panels": "building the panels", "nest": "nesting the parts",
+                "step": "making the STEP solids", "dxf": "drawing the DXF's parts",
+                "svg": "writing the SVG sheets", "png": "writing the PNG sheets"}
+
+
+def panels_progress(line, cancelled):
+    """run_pipeline's ``progress(stage, done, total)`` that shows each stage's count on
+    ``line`` (a :class:`facet.cli_progress.ProgressLine`) and cancels when ``cancelled()``."""
+    def progress(stage, done, total):
+        line.steps(done, total, _STAGE_WORDS.get(stage, stage))
+        return cancelled()
+
+    return progress
+
+
 def run_panels(args):
     """Run ``facet panels``; return the exit status."""
     from facet.cli import EXIT_OK, _read, check_files, interrupted
+    from facet.cli_progress import ProgressLine
     from facet.report import write_json
 
     check_files(reads=[("MESH", args.input)],
@@ -320,15 +337,20 @@ def run_panels(args):
                         ("--schedule", args.schedule), ("--report", args.report)],
                 creates=[args.svg, args.png])
     mesh = _read(args)
-    report, ps, drawings, result = run_pipeline(
-        mesh, args.thickness, offset=args.offset, gap=args.gap, edge=args.edge, flip=args.flip,
-        ids=args.ids, prefix=args.prefix, tol=args.tol, tol_abs=args.tol_abs,
-        min_edge=args.min_edge, min_edge_abs=args.min_edge_abs, sheet=args.sheet,
-        margin=args.margin, spacing=args.spacing, rotations=args.rotations, grain=args.grain,
-        dxf=args.dxf, per_sheet=args.per_sheet, text_outlines=args.text_outlines,
-        step=args.step, schedule=args.schedule,
-        svg=args.svg, png=args.png, progress=interrupted, cancelled=interrupted,
-        units=args.units)
+    line = ProgressLine(sys.stderr, prefix="facet panels")  # a terminal only
+    try:
+        report, ps, drawings, result = run_pipeline(
+            mesh, args.thickness, offset=args.offset, gap=args.gap, edge=args.edge,
+            flip=args.flip, ids=args.ids, prefix=args.prefix, tol=args.tol,
+            tol_abs=args.tol_abs, min_edge=args.min_edge, min_edge_abs=args.min_edge_abs,
+            sheet=args.sheet, margin=args.margin, spacing=args.spacing,
+            rotations=args.rotations, grain=args.grain, dxf=args.dxf,
+            per_sheet=args.per_sheet, text_outlines=args.text_outlines, step=args.step,
+            schedule=args.schedule, svg=args.svg, png=args.png,
+            progress=panels_progress(line, interrupted), cancelled=interrupted,
+            units=args.units)
+    finally:
+        line.close()  # (before the summary, or an error's message)
     report["input"] = args.input
     if args.report:
         write_json(report, args.report)
