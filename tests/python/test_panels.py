@@ -1569,3 +1569,26 @@ def test_facet_panels_shows_each_stage_on_a_terminal(tmp_path):
                      margin=15, spacing=8, dxf=str(tmp_path / "cancelled.dxf"),
                      progress=panels_progress(line, lambda: True))
     assert not (tmp_path / "cancelled.dxf").exists()
+
+
+def test_texts_as_outlines_refuse_letters_the_font_lacks_and_skip_blank_ids(tmp_path):
+    """The outline font (DejaVu Sans) has no CJK letters: an ID prefix in them was written as
+    the font's empty box, each ID lost to the cutter without a word; now it is refused,
+    naming the letter, and nothing is written. A blank ID has nothing to engrave (text2path
+    failed on it with an AssertionError); a Cyrillic prefix and the degree sign are in
+    the font."""
+    from facet.cli_panels import run_pipeline
+
+    mesh = translational(nu=3, nv=2, step=400.0)
+    kw = dict(sheet=(1300, 900), margin=15, spacing=8, text_outlines=True)
+    with pytest.raises(facet.errors.InputError, match=r"DejaVu Sans has no letter for '面'"):
+        run_pipeline(mesh, 18.0, prefix="面-", dxf=str(tmp_path / "cjk.dxf"), **kw)
+    assert not (tmp_path / "cjk.dxf").exists()
+    run_pipeline(mesh, 18.0, prefix="Ж-", edge="bisector", gap=4,
+                 dxf=str(tmp_path / "cyrillic.dxf"), **kw)
+    ids = [" ", "A", "B", "C", "D", "E"]
+    run_pipeline(mesh, 18.0, ids=ids, dxf=str(tmp_path / "blank.dxf"), **kw)
+    import ezdxf
+
+    msp = ezdxf.readfile(tmp_path / "blank.dxf").modelspace()
+    assert 0 < len(msp.query("LWPOLYLINE[layer=='LABEL']"))

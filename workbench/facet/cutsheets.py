@@ -61,8 +61,11 @@ LAYER_MEANINGS = {
 }
 
 
-#: The font of texts written as outlines (``write_dxf(text_outlines=True)``): matplotlib's
-#: own, so always there.
+#: The font of texts written as outlines (``write_dxf(text_outlines=True)``): with ezdxf
+#: 0.18 found by matplotlib, which ships it, so always there; ezdxf 1.1 and later look for
+#: it among the system's fonts (/usr/share/fonts...) and take another sans font when it is
+#: not there. It has Latin, Greek and Cyrillic letters, not CJK: write_dxf refuses a text
+#: with a letter the font lacks (it would be cut as an empty box).
 OUTLINE_FONT = "DejaVu Sans"
 
 #: The outlines' curves are flattened to within this fraction of the text height (0.3 mm
@@ -84,7 +87,32 @@ def _outline_writer(align):
         from ezdxf.tools.fonts import FontFace
     face = FontFace(family=OUTLINE_FONT)
 
+    def shape(s):  # the flattened contours of s at size 1, as a comparable tuple
+        paths = text2path.make_paths_from_str(s, face, size=1.0)
+        return tuple(tuple(round(c, 9) for v in p.flattening(0.01) for c in (v.x, v.y))
+                     for p in paths)
+
+    notdef = shape("\U0010fffd")  # a character in no font: the font's missing-glyph box
+    missing = {}  # character -> whether the font lacks it
+
+    def lacked(s):
+        for c in s:
+            if c not in missing:
+                missing[c] = not c.isspace() and shape(c) == notdef
+        return [c for c in dict.fromkeys(s) if missing[c]]
+
     def outline(msp, s, x, y, height, rotation, layer):
+        if not s.strip():  # nothing to engrave (and text2path fails on blanks)
+            return
+        lacking = lacked(s)
+        if lacking:  # its outline would be the font's empty box, the text lost
+            from facet.errors import InputError
+
+            raise InputError(
+                f"text {s!r}: the outline font {OUTLINE_FONT} has no letter for "
+                f"{', '.join(repr(c) for c in lacking)}, which would be cut as an empty box; "
+                "use other letters (a Latin ID prefix), or write the texts as TEXT "
+                "(texts as outlines off)")
         m = Matrix44.chain(Matrix44.z_rotate(math.radians(rotation)), Matrix44.translate(x, y, 0))
         paths = text2path.make_paths_from_str(s, face, size=height, align=align, m=m)
         for polyline in render_lwpolylines(msp, paths, distance=OUTLINE_FLATNESS * height,
@@ -211,7 +239,8 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         Write the IDs and bevel angles as the outlines of their letters (closed polylines,
         font :data:`OUTLINE_FONT`, on the same layers) instead of TEXT entities, for the
         CAM programs that import no TEXT (many laser and router importers skip it). The
-        sheet names stay TEXT, on SHEET.
+        sheet names stay TEXT, on SHEET. A text with a letter that font lacks (CJK) raises
+        :class:`facet.errors.InputError`, nothing written; a blank one is left out.
     progress : callable, optional
         ``progress(done, total)`` after each part drawn; returning True cancels
         (:class:`facet.errors.Cancelled`, nothing written). Texts as outlines take about
