@@ -1592,3 +1592,21 @@ def test_texts_as_outlines_refuse_letters_the_font_lacks_and_skip_blank_ids(tmp_
 
     msp = ezdxf.readfile(tmp_path / "blank.dxf").modelspace()
     assert 0 < len(msp.query("LWPOLYLINE[layer=='LABEL']"))
+
+
+def test_texts_as_outlines_keep_dollar_signs():
+    """ezdxf 0.18's text2path draws with matplotlib, which took the text between two $ for
+    mathtext: the ID "A$1$" was written as the outlines of "A1", its $ dropped."""
+    import ezdxf
+    from ezdxf.enums import TextEntityAlignment
+
+    from facet.cutsheets import _outline_writer
+
+    outline = _outline_writer(TextEntityAlignment.MIDDLE_CENTER)
+    counts = {}
+    for s in ("A$1$", "A1", "$"):
+        msp = ezdxf.new().modelspace()
+        outline(msp, s, 0.0, 0.0, 10.0, 0.0, "LABEL")
+        counts[s] = len(msp)
+    assert counts["$"] > 0
+    assert counts["A$1$"] == counts["A1"] + 2 * counts["$"]

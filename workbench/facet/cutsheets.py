@@ -86,9 +86,13 @@ def _outline_writer(align):
     except ImportError:  # ezdxf 0.18 (Debian 12)
         from ezdxf.tools.fonts import FontFace
     face = FontFace(family=OUTLINE_FONT)
+    # ezdxf before 1.1 draws with matplotlib's TextPath, which takes the text between two
+    # $ for mathtext ("A$1$" came out as "A1"): a $ is escaped there
+    literal = ((lambda s: s.replace("$", r"\$")) if hasattr(text2path, "TextPath")
+               else (lambda s: s))
 
     def shape(s):  # the flattened contours of s at size 1, as a comparable tuple
-        paths = text2path.make_paths_from_str(s, face, size=1.0)
+        paths = text2path.make_paths_from_str(literal(s), face, size=1.0)
         return tuple(tuple(round(c, 9) for v in p.flattening(0.01) for c in (v.x, v.y))
                      for p in paths)
 
@@ -114,7 +118,8 @@ def _outline_writer(align):
                 "use other letters (a Latin ID prefix), or write the texts as TEXT "
                 "(texts as outlines off)")
         m = Matrix44.chain(Matrix44.z_rotate(math.radians(rotation)), Matrix44.translate(x, y, 0))
-        paths = text2path.make_paths_from_str(s, face, size=height, align=align, m=m)
+        paths = text2path.make_paths_from_str(literal(s), face, size=height, align=align,
+                                              m=m)
         for polyline in render_lwpolylines(msp, paths, distance=OUTLINE_FLATNESS * height,
                                            segments=1, dxfattribs={"layer": layer}):
             points = polyline.get_points("xy")  # a letter's contour ends where it starts:
