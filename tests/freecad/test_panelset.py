@@ -275,6 +275,24 @@ class TestPanelSet(DocumentTestCase):
         self.assertTrue(large.isValid(), large.getStatusString())
         self.assertEqual(list(large.Warnings), [])
 
+    def test_cutsheets_progress_names_each_stage(self):
+        """The progress bar starts again from 0 at each stage (nesting, the DXF, the
+        previews): the dialog's text now names the stage, which nothing said."""
+        from facetwb import progress
+
+        out = os.path.join(self.tmp.name, "staged")
+        sheets = facetwb.make_cutsheets(self.mitred, sheet=(2600.0, 1400.0), margin=10.0,
+                                        spacing=6.0, output_dir=out, write_step=False,
+                                        name="StagedSheets")
+        self.doc.recompute()
+        sheets.touch()
+        with progress.reporting("Cut sheets ...") as reporter:
+            self.doc.recompute()
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        said = [t.split("\n", 1)[1] for t in reporter.texts if "\n" in t]
+        self.assertEqual(said, ["Nesting the parts on the sheets", "Drawing the parts in the DXF",
+                                "Writing the SVG sheets"])
+
     def test_cutsheets_write_texts_as_outlines_when_asked(self):
         """TextOutlines: sheets.dxf holds the IDs and bevel angles as closed outlines on
         their layers, no TEXT there (many CAM importers skip TEXT)."""

@@ -21,7 +21,7 @@ import FreeCAD as App
 
 from facetwb import compat, progress
 from facetwb.recompute import guarded
-from facetwb.translation import translate
+from facetwb.translation import QT_TRANSLATE_NOOP, translate
 
 TYPE_PANELSET = "Facet::PanelSet"
 TYPE_CUTSHEETS = "Facet::CutSheets"
@@ -360,7 +360,7 @@ class CutSheets(_Proxy):
             svg=os.path.join(out, "svg") if out else None,
             step=os.path.join(out, "panels.step") if out and obj.WriteStep else None,
             text_outlines=bool(obj.TextOutlines),
-            progress=_stage_progress(progress.hook()))
+            progress=_stage_progress(progress.hook(), progress.say_hook()))
         if out:
             from facet.cutsheets import schedule_rows, write_schedule_json
 
@@ -490,9 +490,31 @@ class ViewProviderPanels:
         self.loads(state)
 
 
-def _stage_progress(hook):
-    """run_pipeline's ``progress(stage, done, total)`` for a ``(done, total)`` hook."""
-    return None if hook is None else (lambda stage, done, total: hook(done, total))
+#: What each stage of run_pipeline does, under the progress dialog's title.
+_STAGE_TEXTS = {
+    "panels": QT_TRANSLATE_NOOP("Facet", "Building the panels"),
+    "nest": QT_TRANSLATE_NOOP("Facet", "Nesting the parts on the sheets"),
+    "step": QT_TRANSLATE_NOOP("Facet", "Making the solids for STEP"),
+    "dxf": QT_TRANSLATE_NOOP("Facet", "Drawing the parts in the DXF"),
+    "svg": QT_TRANSLATE_NOOP("Facet", "Writing the SVG sheets"),
+    "png": QT_TRANSLATE_NOOP("Facet", "Writing the PNG sheets"),
+}
+
+
+def _stage_progress(hook, say=None):
+    """run_pipeline's ``progress(stage, done, total)`` for a ``(done, total)`` hook; ``say``
+    (the dialog's text) names each stage as it starts, as the bar starts again from 0."""
+    if hook is None:
+        return None
+    current = [None]
+
+    def stage_progress(stage, done, total):
+        if say is not None and stage != current[0]:
+            current[0] = stage
+            say(translate("Facet", _STAGE_TEXTS[stage]) if stage in _STAGE_TEXTS else stage)
+        return hook(done, total)
+
+    return stage_progress
 
 
 def make_panelset(source, thickness=40.0, offset="outer", gap=0.0, edge="square", flip=False,
