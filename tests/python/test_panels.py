@@ -1610,3 +1610,31 @@ def test_texts_as_outlines_keep_dollar_signs():
         counts[s] = len(msp)
     assert counts["$"] > 0
     assert counts["A$1$"] == counts["A1"] + 2 * counts["$"]
+
+
+@pytest.mark.parametrize("rotation", [0.0, 90.0, 180.0, 270.0, 33.0])
+def test_texts_as_outlines_read_along_their_turn_upright(rotation):
+    """A text as outlines reads as its TEXT would: first letter first along the turned
+    baseline, letters upright to its left (a text turned half round, or mirrored, keeps its
+    centre and height, which the test above checks)."""
+    import ezdxf
+    from ezdxf.enums import TextEntityAlignment
+    from shapely.geometry import Polygon
+
+    from facet.cutsheets import _outline_writer
+
+    msp = ezdxf.new("R2010").modelspace()
+    _outline_writer(TextEntityAlignment.MIDDLE_CENTER)(msp, "L7", 100.0, 50.0, 10.0,
+                                                        rotation, "LABEL")
+    contours = [Polygon(e.get_points("xy")) for e in msp.query("LWPOLYLINE")]
+    assert len(contours) == 2  # the L, then the 7
+    turn = math.radians(rotation)
+    along = np.array([math.cos(turn), math.sin(turn)])
+    up = np.array([-math.sin(turn), math.cos(turn)])
+    ell, seven = contours
+    first = np.array(ell.centroid.coords[0])
+    last = np.array(seven.centroid.coords[0])
+    assert (last - first) @ along > 5.0  # the 7 after the L, along the baseline
+    # the L's foot is its lower part: its centroid below the middle of its height
+    heights = np.array(ell.exterior.coords) @ up
+    assert first @ up < 0.5 * (heights.min() + heights.max()) - 1.0
