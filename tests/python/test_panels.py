@@ -731,7 +731,7 @@ def test_the_top_outline_is_a_reference_layer_of_its_own(tmp_path):
     assert {e.dxftype() for e in msp.query("*[layer=='BEVEL']")} == {"TEXT"}
     for name in LAYERS:
         assert doc.layers.get(name).description  # (what it is for, for the fabricator)
-    assert doc.layers.get("TOP").dxf.linetype == "DASHED"
+    assert doc.layers.get("TOP").dxf.linetype == "FACET_DASHED"
     tops = list(msp.query("LWPOLYLINE[layer=='TOP']"))
     offsets = sheet_offsets(result)
     by_id = {d.id: d for d in drawings}
@@ -773,8 +773,10 @@ def test_the_dxf_opens_on_its_sheets_and_its_dashes_read_as_dashes(tmp_path, uni
     (view,) = doc.viewports.get("*Active")
     assert np.allclose(np.array(view.dxf.center)[:2], 0.5 * (lo + hi))
     assert view.dxf.height >= hi[1] - lo[1]
-    dash = doc.linetypes.get("DASHED").simplified_line_pattern()[0]
-    assert 5.0 <= dash * doc.header["$LTSCALE"] * mm <= 50.0  # millimetres
+    dashed = doc.linetypes.get(doc.layers.get("TOP").dxf.linetype)
+    dash = max(tag.value for tag in dashed.pattern_tags.tags if tag.code == 49)
+    scale = doc.header.get("$LTSCALE", 1.0)
+    assert 5.0 <= dash * scale * mm <= 50.0  # millimetres
 
 
 def test_schedule_csv_and_json(tmp_path):

@@ -42,12 +42,13 @@ __all__ = ["LAYERS", "LAYER_LINETYPES", "LAYER_MEANINGS", "write_dxf", "schedule
 LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "TOP": 4, "SHEET": 8, "GRAIN": 6}
 
 #: Layer name -> its linetype, where not continuous.
-LAYER_LINETYPES = {"TOP": "DASHED"}
+LAYER_LINETYPES = {"TOP": "FACET_DASHED"}
 
-#: A dash of a dashed line (TOP), millimetres: $LTSCALE scales ezdxf's DASHED pattern
-#: (1.27 drawing units a dash) to it in any units (1.27 mm and 1.27 m dashes read as a
-#: continuous line on parts a metre and 20 cm wide).
-DASH_MM = 12.7
+#: The dash and the gap of FACET_DASHED (TOP), millimetres, written in the file's units:
+#: ezdxf's DASHED is 1.27 drawing units a dash, 1.27 mm or 1.27 m, both read as a
+#: continuous line on parts a metre and 20 cm wide. Its own linetype, made with
+#: ``linetypes.add`` as ezdxf 0.18 and 1.x both do, needs no $LTSCALE.
+DASH_MM = (12.7, 2.54)
 
 #: Layer name -> what it holds (the layers' descriptions in the DXF).
 LAYER_MEANINGS = {
@@ -283,8 +284,9 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         doc = ezdxf.new("R2010", setup=True)
         doc.units = insunits
         doc.header["$MEASUREMENT"] = measurement
-        dash = doc.linetypes.get("DASHED").simplified_line_pattern()[0]  # its first dash
-        doc.header["$LTSCALE"] = DASH_MM / (mm_per_unit * dash)
+        dash, gap = (length / mm_per_unit for length in DASH_MM)
+        doc.linetypes.add("FACET_DASHED", pattern=[dash + gap, dash, -gap],
+                          description=f"Dashed, {DASH_MM[0]:g} mm __  __  __")
         for name, colour in LAYERS.items():
             layer = doc.layers.add(name, color=colour,
                                    linetype=LAYER_LINETYPES.get(name, "Continuous"))
