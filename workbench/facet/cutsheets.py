@@ -35,8 +35,9 @@ import numpy as np
 from facet.io.files import when_staged, write_replacing, write_text
 from facet.report import count_noun, json_safe
 
-__all__ = ["LAYERS", "LAYER_LINETYPES", "LAYER_MEANINGS", "write_dxf", "schedule_rows", "write_schedule_csv",
-           "write_schedule_json", "write_svg", "write_png", "sheet_offsets"]
+__all__ = ["LAYERS", "LAYER_LINETYPES", "LAYER_MEANINGS", "write_dxf", "schedule_rows",
+           "write_schedule_csv", "write_schedule_json", "write_svg", "write_png",
+           "sheet_offsets"]
 
 #: Layer name -> ACI colour.
 LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "TOP": 4, "SHEET": 8, "GRAIN": 6}
@@ -297,13 +298,8 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         t = msp.add_text(s, dxfattribs={"height": height, "rotation": rotation, "layer": layer})
         t.set_placement((x, y), align=TextEntityAlignment.MIDDLE_CENTER)
 
-    outline = _outline_writer(TextEntityAlignment.MIDDLE_CENTER) if text_outlines else None
-
-    def engraved(msp, s, x, y, height, rotation, layer):
-        if outline is None:
-            text(msp, s, x, y, height, rotation, layer)
-        else:
-            outline(msp, s, x, y, height, rotation, layer)
+    # the IDs and bevel angles: TEXT, or their letters' outlines (the sheet names stay TEXT)
+    engraved = _outline_writer(TextEntityAlignment.MIDDLE_CENTER) if text_outlines else text
 
     docs = {}
     for i, sheet in enumerate(nest_result.sheets):
