@@ -23,7 +23,7 @@ import os
 import sys
 import time
 
-from facet.report import count_noun
+from facet.report import count_noun, first_names
 
 __all__ = ["add_commands", "run_panels", "run_pipeline"]
 
@@ -220,7 +220,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         check()
         if result.unplaced and not allow_unplaced:
             source = mesh.info.get("source") if mesh.info else None
-            shown = ", ".join(result.unplaced[:4]) + (", ..." if len(result.unplaced) > 4 else "")
+            shown = first_names(result.unplaced, 4)
             raise InputError(
                 f"{source + ': ' if source else ''}{len(result.unplaced)} of {len(drawings)} "
                 f"parts fit on no {sheet[0]:g} x {sheet[1]:g} sheet (margin {margin:g}): "
@@ -360,7 +360,7 @@ def run_panels(args):
           file=out)
     if ps.vanished_edges or ps.short_edges_kept:
         vanished = ps.vanished_panels
-        shown = ", ".join(p.id for p in vanished[:4]) + (", ..." if len(vanished) > 4 else "")
+        shown = first_names((p.id for p in vanished), 4)
         print(f"  vanished      {count_noun(len(vanished), 'panel')} built with fewer corners "
               f"({count_noun(len(ps.vanished_edges), 'edge')} under min_edge merged to a corner"
               + (f"; {len(ps.short_edges_kept)} kept" if ps.short_edges_kept else "") + ")"
@@ -391,7 +391,7 @@ def run_panels(args):
         print(f"  sheets        {len(result.sheets)}, utilisation {100 * result.utilisation:.1f}%"
               f", {len(result.unplaced)} unplaced", file=out)
         if result.unplaced:
-            shown = ", ".join(result.unplaced[:8]) + (", ..." if len(result.unplaced) > 8 else "")
+            shown = first_names(result.unplaced, 8)
             print(f"facet: warning: {len(result.unplaced)} parts fit on no sheet: {shown}",
                   file=sys.stderr)
     for kind, paths in report["files"].items():

@@ -29,7 +29,7 @@ from facet import _core
 from facet.errors import Cancelled, InputError, from_core
 from facet.mesh import PolyMesh, next_corners
 from facet.quality import DEFAULT_SHORT_EDGE
-from facet.report import count_noun
+from facet.report import count_noun, first_names
 
 __all__ = ["PanelError", "Panel", "PanelSet", "panels", "OFFSETS", "EDGES", "ID_SCHEMES",
            "grid_positions", "DEFAULT_MIN_EDGE"]
@@ -1059,7 +1059,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         hit = [p.id for p in result if getattr(p, attr)]
         if hit:
             count = sum(getattr(p, attr) for p in result)
-            shown = ", ".join(hit[:5]) + (", ..." if len(hit) > 5 else "")
+            shown = first_names(hit, 5)
             warnings.append(f"{count} {text} {count_noun(len(hit), 'panel')}: {shown}"
                             + tail)
     overlapping = int(res["n_overlapping_joints"])

@@ -20,7 +20,7 @@ import numpy as np
 from facet.io.files import write_text
 
 __all__ = ["planarize_report", "check_report", "quality_figures", "json_safe", "write_json",
-           "count_noun", "point_text"]
+           "count_noun", "first_names", "point_text"]
 
 #: Keys of ``mesh.info`` copied into reports (lists of keys are left out).
 _INFO_KEYS = ("format", "header", "dtype", "item", "openings_skipped", "unused_vertices_dropped",
@@ -39,6 +39,13 @@ def count_noun(number, noun):
     if number == 1:
         return f"{number} {noun}"
     return f"{number} {'vertices' if noun == 'vertex' else noun + 's'}"
+
+
+def first_names(names, limit):
+    """The first ``limit`` of ``names`` joined by commas, with ", ..." when there are more:
+    the parts or panels a message names ("P-R01C01, P-R01C02, ...")."""
+    names = list(names)
+    return ", ".join(names[:limit]) + (", ..." if len(names) > limit else "")
 
 
 def _version():

@@ -490,7 +490,7 @@ def small_text_warnings(drawings, mm_per_unit=1.0, min_mm=MIN_TEXT_MM):
     -------
     list of str
     """
-    from facet.report import count_noun
+    from facet.report import count_noun, first_names
 
     limit = min_mm / mm_per_unit
     found = {"ID": [], "bevel": []}
@@ -508,7 +508,7 @@ def small_text_warnings(drawings, mm_per_unit=1.0, min_mm=MIN_TEXT_MM):
             continue
         height, pid = min(small)
         parts = list(dict.fromkeys(p for _, p in small))
-        shown = ", ".join(parts[:5]) + (", ..." if len(parts) > 5 else "")
+        shown = first_names(parts, 5)
         noun = "part ID" if kind == "ID" else "bevel angle text"
         out.append(f"{len(small)} of {count_noun(totals[kind], noun)} "
                    f"{'is' if len(small) == 1 else 'are'} under "

@@ -185,6 +185,7 @@ class PanelSet(_Proxy):
     def execute(self, obj):
         import Part
 
+        from facet.report import first_names
         from facet.step import SolidError, panel_solids
 
         self._cache = None
@@ -235,7 +236,7 @@ class PanelSet(_Proxy):
                 "Facet", "{0}: panels built with fewer corners than their faces, because "
                 "edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}").format(
                     obj.Label, len(vanished), len(ps.vanished_edges),
-                    ", ".join(vanished[:8]) + (", ..." if len(vanished) > 8 else "")) + "\n")
+                    first_names(vanished, 8)) + "\n")
         if ps.short_edges_kept:
             App.Console.PrintWarning(translate(
                 "Facet", "{0}: edges shorter than MinEdge kept as they are: {1} (see its "
