@@ -15,7 +15,8 @@ import numpy as np
 
 from facet.errors import MeshError, from_core
 
-__all__ = ["PolyMesh", "cluster_points", "coincident_vertices", "coincident_text", "WELD_ADVICE",
+__all__ = ["PolyMesh", "cluster_points", "coincident_vertices", "coincident_text",
+           "unwelded_warning", "WELD_ADVICE",
            "duplicate_faces", "weld"]
 
 _INT32_MAX = np.iinfo(np.int32).max
@@ -549,6 +550,14 @@ def coincident_text(mesh):
     i, j = first
     return (f"vertices at one point but not one vertex: {count_noun(n_pairs, 'pair')} "
             f"(vertices {i} and {j} at {point_text(mesh.vertices[i])})")
+
+
+def unwelded_warning(mesh, consequence):
+    """The warning of an unwelded seam: :func:`coincident_text`, then ``consequence`` (what
+    that means where it is said: "the faces there are not joined"), then
+    :data:`WELD_ADVICE`; None when there is none."""
+    seam = coincident_text(mesh)
+    return None if seam is None else f"{seam}; {consequence}: {WELD_ADVICE}"
 
 
 def duplicate_faces(mesh):

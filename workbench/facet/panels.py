@@ -776,13 +776,11 @@ def _unwelded_warnings(mesh):
     each face or part its own vertices): the panels there are not joined, so their edges
     there are cut square as the mesh's boundary is, with no bevel, and no clash between
     them is looked for."""
-    from facet.mesh import WELD_ADVICE, coincident_text
+    from facet.mesh import unwelded_warning
 
-    seam = coincident_text(mesh)
-    if seam is None:
-        return []
-    return [f"{seam}; the panels there are not joined: their edges there are cut square, "
-            f"with no bevel, and not checked for clashes: {WELD_ADVICE}"]
+    seam = unwelded_warning(mesh, "the panels there are not joined: their edges there are "
+                                  "cut square, with no bevel, and not checked for clashes")
+    return [] if seam is None else [seam]
 
 
 def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, ids="auto",

@@ -352,7 +352,7 @@ def _coincident_warnings(mesh):
     """Warnings for faces that repeat another (two panels at one place), and for vertices at
     one point that are not one vertex (faces given their own copies by the export): the
     faces there are planarized apart and the seam opens."""
-    from facet.mesh import WELD_ADVICE, coincident_text, duplicate_faces
+    from facet.mesh import duplicate_faces, unwelded_warning
 
     warnings = []
     n_copies, first = duplicate_faces(mesh)
@@ -361,12 +361,9 @@ def _coincident_warnings(mesh):
             f"{n_copies} face{'s' if n_copies != 1 else ''} with the same vertices as another "
             f"(first: face {first[1]} repeats face {first[0]}): two panels at one place; "
             "remove the copies")
-    seam = coincident_text(mesh)
-    if seam is None:
-        return warnings
-    return warnings + [
-        f"{seam}; the faces there are not joined, each is made planar on its own and the "
-        f"seam opens: {WELD_ADVICE}"]
+    seam = unwelded_warning(mesh, "the faces there are not joined, each is made planar on "
+                                  "its own and the seam opens")
+    return warnings if seam is None else warnings + [seam]
 
 
 class Planarizer:

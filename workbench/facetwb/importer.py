@@ -29,16 +29,15 @@ def read_polymesh(filename):
     report view."""
     import facet
     from facet.io import read_warnings
-    from facet.mesh import WELD_ADVICE, coincident_text
+    from facet.mesh import unwelded_warning
 
     try:
         mesh = facet.read_mesh(filename)
         for warning in read_warnings(mesh):
             report_warning(f"Facet: {filename}: {warning}")
-        seam = coincident_text(mesh)
+        seam = unwelded_warning(mesh, "the faces there are not joined")
         if seam:
-            report_warning(f"Facet: {filename}: {seam}; the faces there are not joined: "
-                           f"{WELD_ADVICE}")
+            report_warning(f"Facet: {filename}: {seam}")
         return mesh
     except (facet.errors.FacetError, OSError, ValueError) as error:
         message = str(error)
