@@ -377,19 +377,30 @@ def cluster_points(points, tolerance):
     return lowest[labels]
 
 
+def _used_extent(mesh):
+    """(the vertices faces use, the largest extent of those vertices), the scale of the
+    relative tolerances of :func:`coincident_vertices` and :func:`weld`; None with fewer
+    than two such vertices or one not finite."""
+    used = np.unique(np.asarray(mesh.face_vertices))
+    if used.size < 2:
+        return None
+    points = np.asarray(mesh.vertices, dtype=np.float64)[used]
+    if not np.isfinite(points).all():
+        return None
+    return used, float(np.ptp(points, axis=0).max())
+
+
 def _near_pairs(mesh, rel_tol):
     """Pairs (k, 2) of vertices that faces use and that lie within ``rel_tol`` times the
     largest extent of those vertices of each other; none where a coordinate is not finite."""
-    used = np.unique(np.asarray(mesh.face_vertices))
     none = np.zeros((0, 2), dtype=np.int64)
-    if used.size < 2:
+    extent = _used_extent(mesh)
+    if extent is None:
         return none
-    points = np.asarray(mesh.vertices, dtype=np.float64)[used]
-    if not np.isfinite(points).all():
-        return none
-    size = float(np.ptp(points, axis=0).max())
+    used, size = extent
     from scipy.spatial import cKDTree
 
+    points = np.asarray(mesh.vertices, dtype=np.float64)[used]
     pairs = cKDTree(points).query_pairs(rel_tol * size, output_type="ndarray")
     return used[pairs].astype(np.int64) if pairs.shape[0] else none
 
@@ -463,9 +474,9 @@ def weld(mesh, rel_tol=1e-9):
     points = np.asarray(mesh.vertices, dtype=np.float64)
     n = mesh.n_vertices
     group = np.arange(n)
-    used = np.unique(np.asarray(mesh.face_vertices))
-    if used.size > 1 and np.isfinite(points[used]).all():  # (as coincident_vertices finds them)
-        size = float(np.ptp(points[used], axis=0).max())
+    extent = _used_extent(mesh)  # (as coincident_vertices finds them)
+    if extent is not None:
+        used, size = extent
         group[used] = used[cluster_points(points[used], rel_tol * size)]
         # a chain of points each within the tolerance of the next would be one vertex
         # however long (the plan reader refuses such chains too): joined, its ends would
@@ -480,7 +491,7 @@ def weld(mesh, rel_tol=1e-9):
                             f"vertex {v} at {point_text(points[v])}: joined, they would move "
                             "by more than that; give a smaller tolerance", vertex=v,
                             source=info.get("source"))
-    merged = int(np.count_nonzero(group[used] != used))
+    merged = int(np.count_nonzero(group != np.arange(n)))  # (only used vertices join)
     faces = []
     for f, face in enumerate(mesh.faces()):
         corners = [int(group[v]) for v in face]
