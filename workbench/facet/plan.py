@@ -866,17 +866,21 @@ def targets_from_points(plan, points, *, tolerance, labels=None):
                           & ~given[vertex])
     if near.size:
         p = int(near[np.argmin(apart[near])])
-        label = labels[p] if labels is not None else f"point {p + 1}"
         raise InputError(
             f"{near.size} of the {len(points)} target points "
             f"{'lies' if near.size == 1 else 'lie'} near a plan vertex but "
-            f"farther than the match distance {tolerance:g}; the nearest of them, {label} "
+            f"farther than the match distance {tolerance:g}; the nearest of them, {_point_label(labels, p)} "
             f"at {point_text(points[p, :2])}, is {apart[p]:.3g} from vertex "
             f"{int(vertex[p])}: give a larger snap distance (--snap) to match them")
     _check_one_height(points, tree.query_ball_point(xy[given], tolerance),
                       np.flatnonzero(given), labels)
     targets = np.where(given, points[np.minimum(nearest, len(points) - 1), 2], 0.0)
     return _with_free(xy, targets, given)
+
+
+def _point_label(labels, k):
+    """Target point ``k`` in a message: ``labels[k]`` ("line 12"), else "point k+1"."""
+    return labels[k] if labels is not None else f"point {k + 1}"
 
 
 def _check_one_height(points, matched, vertices, labels):
@@ -892,10 +896,10 @@ def _check_one_height(points, matched, vertices, labels):
         if np.ptp(z) <= 1e-9 * max(span, float(np.abs(z).max())):
             continue
         a, b = int(found[np.argmin(z)]), int(found[np.argmax(z)])
-        name = (lambda k: labels[k]) if labels is not None else (lambda k: f"point {k + 1}")
         raise InputError(
             f"two target points at plan vertex {int(vertex)} give it different heights: "
-            f"{name(a)} gives {points[a, 2]:.10g} and {name(b)} {points[b, 2]:.10g}, both "
+            f"{_point_label(labels, a)} gives {points[a, 2]:.10g} and "
+            f"{_point_label(labels, b)} {points[b, 2]:.10g}, both "
             "within the match distance of it: keep the one meant")
 
 
