@@ -210,6 +210,17 @@ class TestBadInputFreeCAD(unittest.TestCase):
                 sheets.SheetWidth, sheets.SheetHeight = width, height
 
             self.recompute_fails(sheets, smaller, expected[1:], sources=[source, panels])
+        elif row.name == "panels_default_margin_larger_than_sheet":
+            # the CutSheets' margin is a property in view, 10 mm unless changed
+            sheets = make_cutsheets(panels, sheet=(3000.0, 1500.0), write_step=False)
+            self.doc.recompute()
+            width, height = (float(t) for t in value["--sheet"].split("x"))
+
+            def smaller():
+                sheets.SheetWidth, sheets.SheetHeight = width, height
+
+            self.recompute_fails(sheets, smaller, ["margin 10 leaves nothing", "3 x 1.5 sheet"],
+                                 sources=[source, panels])
         elif row.name == "panels_gap_closes_a_notch":  # the mesh with its thickness and gap
             bad = importer.insert(os.path.join(folder, row.mesh), self.doc.Name)
             bad.Label = "notched mesh"

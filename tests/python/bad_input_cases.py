@@ -314,9 +314,16 @@ def _panel_rows():
     panel_row("panels_zero_thickness", ["--thickness", "0"], ["thickness", "0"])
     panel_row("panels_negative_thickness", ["--thickness", "-1"], ["thickness", "-1"])
     panel_row("panels_nan_thickness", ["--thickness", "nan"], ["thickness", "nan"])
-    panel_row("panels_sheet_smaller_than_panel", ["--thickness", "0.01", "--sheet", "0.5x0.5"],
+    panel_row("panels_sheet_smaller_than_panel", ["--thickness", "0.01", "--sheet", "0.5x0.5",
+                                                  "--margin", "0.01"],
               ["{dir}/flat.obj", "fit on no 0.5 x 0.5 sheet", "P-",
                "use a larger sheet or a smaller margin"])  # (the workbench says it too)
+    # a mesh in metres read as millimetres: the default margin (10 mm) is larger than the
+    # sheet; it was refused as "margin 10 leaves nothing", a margin the user never gave
+    panel_row("panels_default_margin_larger_than_sheet",
+              ["--thickness", "0.01", "--sheet", "3x1.5"],
+              ["{dir}/flat.obj", "the default margin, 10 mm, leaves", "3 x 1.5 sheet",
+               "--margin", "--units"])
     panel_row("panels_gap_larger_than_panel", ["--thickness", "0.01", "--gap", "3"],
               ["{dir}/flat.obj", "face 0", "gap 3"])
     panel_row("panels_gap_closes_a_notch", ["--thickness", "8", "--gap", "10"],

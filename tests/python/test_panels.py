@@ -378,7 +378,7 @@ def test_texts_lie_on_the_top_face_where_they_are_engraved(data_dir):
                 assert face.contains(_text_box(x, y, h, text, angle)), (d.id, text)
 
 
-def test_texts_too_small_to_engrave_are_warned_about(data_dir):
+def test_texts_too_small_to_engrave_are_warned_about(data_dir, tmp_path):
     """A text is as large as its place allows; beside a short edge that was under 3 mm,
     unsaid (heart_planar in metres, mitred at 5 mm with a 10 mm gap: 23 of 1,517 bevel
     texts). Now a warning counts them, in the model's units, and names the smallest."""
@@ -400,9 +400,11 @@ def test_texts_too_small_to_engrave_are_warned_about(data_dir):
     # the command's report and output: 20 mm panels' IDs (a tenth of the part) are under
     # 3 mm; in centimetres the same numbers are ten times larger and say nothing
     tiny = translational(nu=3, nv=2, step=20.0)
-    report = run_pipeline(tiny, 1.0, units="mm")[0]
+    report = run_pipeline(tiny, 1.0, units="mm", sheet=(200, 100), margin=1, spacing=1,
+                          dxf=str(tmp_path / "tiny.dxf"))[0]
     assert [w for w in report["warnings"] if "part IDs are under 3 mm high" in w]
-    report = run_pipeline(tiny, 1.0, units="cm")[0]
+    report = run_pipeline(tiny, 1.0, units="cm", sheet=(200, 100), margin=1, spacing=1,
+                          dxf=str(tmp_path / "tiny.dxf"))[0]
     assert not [w for w in report["warnings"] if "engrave" in w]
 
 
@@ -910,6 +912,51 @@ def test_cli_panels_report(facet_command, tmp_path):
     assert (tmp_path / "o.dxf").exists()
 
 
+def _gaps(result, drawings):
+    """The least distance between two parts on one sheet, and from a part to its sheet's
+    edge, of a nested run."""
+    from shapely.geometry import Polygon
+
+    by_id = {d.id: d for d in drawings}
+    w, h = result.sheet_size
+    placed = {}
+    for pid, pl in result.placements.items():
+        placed.setdefault(pl.sheet, []).append(Polygon(pl.transform(by_id[pid].footprint)))
+    between = min(a.distance(b) for polys in placed.values()
+                  for i, a in enumerate(polys) for b in polys[:i])
+    edge = min(min(x0, y0, w - x1, h - y1) for polys in placed.values()
+               for x0, y0, x1, y1 in (p.bounds for p in polys))
+    return between, edge
+
+
+def test_cli_panels_default_margin_and_spacing(facet_command, tmp_path):
+    """Without --margin and --spacing the command nested parts 0 apart and up to the
+    sheet's edge: neighbours shared a cut line, and a kerf took its width from both, while
+    FreeCAD's cut sheets kept 10 and 6 mm. Both now default to 10 mm and 6 mm, in the
+    mesh's units."""
+    from facet import write_mesh
+    from facet.cli_panels import run_pipeline
+    from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
+
+    mm = translational(nu=6, nv=5, step=400.0)
+    report, _, drawings, result = run_pipeline(mm, 18.0, sheet=(1300, 900))
+    assert (report["options"]["margin"], report["options"]["spacing"]) == (
+        DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM) == (10.0, 6.0)
+    between, edge = _gaps(result, drawings)
+    assert between >= 6.0 - 1e-6 and edge >= 10.0 - 1e-6
+    # the same in metres, through the command line
+    metres = facet.PolyMesh(mm.vertices / 1000.0, mm.face_start, mm.face_vertices)
+    write_mesh(metres, tmp_path / "m.obj")
+    done = facet_command("panels", tmp_path / "m.obj", "--thickness", "0.018", "--units", "m",
+                         "--sheet", "1.3x0.9", "--report", tmp_path / "r.json")
+    assert done.returncode == 0, done.stderr
+    options = json.load(open(tmp_path / "r.json"))["options"]
+    assert (options["margin"], options["spacing"]) == pytest.approx((0.01, 0.006), rel=1e-12)
+    # and a spacing of 0 is still there to be asked for (parts sharing a cut line)
+    report = run_pipeline(mm, 18.0, sheet=(1300, 900), margin=0, spacing=0)[0]
+    assert (report["options"]["margin"], report["options"]["spacing"]) == (0, 0)
+
+
 def test_cli_panels_in_metres(facet_command, tmp_path):
     # a facade modelled in metres: the DXF said millimetres ($INSUNITS 4) and the STEP was
     # written as if its metres were millimetres, parts a thousandth of their size, unsaid
@@ -1372,7 +1419,8 @@ def test_a_panel_whose_edge_was_dropped_is_a_valid_solid_and_cut(tmp_path):
     from facet.cli_panels import run_pipeline
 
     report, ps, drawings, result = run_pipeline(_cut_tip_mesh(), 0.05, gap=0.4,
-                                                sheet=(30.0, 30.0), dxf=str(tmp_path / "cut.dxf"),
+                                                sheet=(30.0, 30.0), margin=0, spacing=0,
+                                                dxf=str(tmp_path / "cut.dxf"),
                                                 schedule=str(tmp_path / "schedule.csv"))
     doc = ezdxf.readfile(tmp_path / "cut.dxf")
     assert not doc.audit().has_errors

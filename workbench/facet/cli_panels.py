@@ -59,6 +59,7 @@ def _vector(text):
 def add_commands(commands):
     """Add the ``panels`` sub-command to the argparse sub-parsers object."""
     from facet.cli import _non_negative_float
+    from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
     from facet.panels import DEFAULT_MIN_EDGE
 
     p = commands.add_parser(
@@ -91,8 +92,12 @@ def add_commands(commands):
     p.add_argument("--min-edge-abs", type=_non_negative_float, default=0.0,
                    help="the same in model units (the larger one applies)")
     p.add_argument("--sheet", type=_sheet, metavar="WxH", help="stock sheet size: nest the parts")
-    p.add_argument("--margin", type=float, default=0.0, help="clear border along sheet edges")
-    p.add_argument("--spacing", type=float, default=0.0, help="least distance between parts")
+    p.add_argument("--margin", type=float,
+                   help=f"clear border along sheet edges (default {DEFAULT_MARGIN_MM:g} mm, "
+                   "in --units)")
+    p.add_argument("--spacing", type=float,
+                   help="least distance between parts: the kerf and more (default "
+                   f"{DEFAULT_SPACING_MM:g} mm, in --units; 0 lets parts share a cut line)")
     p.add_argument("--rotations", choices=("none", "90", "free"), default="90",
                    help="rotations allowed in nesting (none with --grain)")
     p.add_argument("--grain", type=_vector, metavar="X,Y,Z",
@@ -115,8 +120,8 @@ def add_commands(commands):
 
 def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False,
                  ids="auto", prefix="P-", tol=1e-6, tol_abs=0.0, min_edge=None,
-                 min_edge_abs=0.0, sheet=None, margin=0.0,
-                 spacing=0.0, rotations="90", grain=None, dxf=None, per_sheet=False,
+                 min_edge_abs=0.0, sheet=None, margin=None,
+                 spacing=None, rotations="90", grain=None, dxf=None, per_sheet=False,
                  step=None, schedule=None, svg=None, png=None, progress=None,
                  cancelled=None, panel_set=None, solids=None, allow_unplaced=False,
                  units="mm", text_outlines=False):
@@ -136,15 +141,32 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
     ``solids`` (its [(id, Part.Solid)], for STEP) are reused when given.
     Parts that fit on no sheet raise :class:`facet.errors.InputError`
     (nothing written) unless `allow_unplaced` is true. ``text_outlines``: the DXF's IDs
-    and bevel angles as letter outlines (:func:`facet.cutsheets.write_dxf`).
+    and bevel angles as letter outlines (:func:`facet.cutsheets.write_dxf`). ``margin``
+    and ``spacing`` (model units) default to :data:`facet.nest.DEFAULT_MARGIN_MM` and
+    :data:`facet.nest.DEFAULT_SPACING_MM` in ``units``.
     """
     from facet.cutsheets import length_unit
     from facet.errors import InputError
+    from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
     from facet.panels import DEFAULT_MIN_EDGE, panels
 
     mm_per_unit = length_unit(units)[0]
     if min_edge is None:
         min_edge = DEFAULT_MIN_EDGE
+    margin_said = margin is not None
+    if margin is None:
+        margin = DEFAULT_MARGIN_MM / mm_per_unit
+    if spacing is None:
+        spacing = DEFAULT_SPACING_MM / mm_per_unit
+    if (sheet is not None and not margin_said and all(math.isfinite(v) for v in sheet)
+            and 2 * margin >= min(sheet)):
+        # (nest() says it too, but of a margin that nobody gave, and of no file)
+        source = mesh.info.get("source") if mesh.info else None
+        raise InputError(
+            f"{source + ': ' if source else ''}the default margin, {DEFAULT_MARGIN_MM:g} mm"
+            + ("" if units == "mm" else f" ({margin:g} {units})")
+            + f", leaves nothing of a {sheet[0]:g} x {sheet[1]:g} sheet: "
+            f"give a smaller --margin, or the mesh's --units if they are not {units}")
     if dxf and sheet is None:
         raise InputError("--dxf needs --sheet WxH (the DXF holds nested sheets)")
     if (svg or png) and sheet is None:

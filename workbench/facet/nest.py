@@ -32,7 +32,16 @@ import numpy as np
 
 from facet.errors import Cancelled, FacetError, InputError
 
-__all__ = ["NestError", "Placement", "Sheet", "NestResult", "nest", "verify", "ROTATIONS"]
+__all__ = ["NestError", "Placement", "Sheet", "NestResult", "nest", "verify", "ROTATIONS",
+           "DEFAULT_MARGIN_MM", "DEFAULT_SPACING_MM"]
+
+#: The clear border along the sheet's edges and the least distance between parts that
+#: ``facet panels`` and FreeCAD's cut sheets use unless told otherwise, in millimetres
+#: (converted to the model's units): room for the clamps, and for the kerf of a laser,
+#: waterjet or router. With a spacing of 0, neighbours share their cut lines, and the
+#: kerf of one part's cut takes its width from the next part.
+DEFAULT_MARGIN_MM = 10.0
+DEFAULT_SPACING_MM = 6.0
 
 #: Allowed rotations by name: angles tried, radians.
 ROTATIONS = {

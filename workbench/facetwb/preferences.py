@@ -8,6 +8,8 @@ works with an empty parameter group. Lengths are stored in mm (FreeCAD's interna
 
 import FreeCAD as App
 
+from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
+
 PATH = "User parameter:BaseApp/Preferences/Mod/Facet"
 
 #: name -> (kind, default). Kinds: "float", "int", "bool", "string".
@@ -31,8 +33,8 @@ DEFAULTS = {
     # cut sheets
     "SheetWidth": ("float", 3000.0),
     "SheetHeight": ("float", 1500.0),
-    "SheetMargin": ("float", 10.0),
-    "SheetSpacing": ("float", 6.0),
+    "SheetMargin": ("float", DEFAULT_MARGIN_MM),
+    "SheetSpacing": ("float", DEFAULT_SPACING_MM),
     "SheetRotations": ("string", "90"),
     "SheetOutputDir": ("string", ""),
     "SheetTextOutlines": ("bool", False),

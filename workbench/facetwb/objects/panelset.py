@@ -19,6 +19,7 @@ The source is never modified. The numerics are in ``facet``; this module is wiri
 
 import FreeCAD as App
 
+from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
 from facetwb import compat, progress
 from facetwb.recompute import guarded
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
@@ -549,9 +550,9 @@ def make_panelset(source, thickness=40.0, offset="outer", gap=0.0, edge="square"
     return obj
 
 
-def make_cutsheets(panelset, sheet=(3000.0, 1500.0), margin=10.0, spacing=6.0,
-                   rotations="90", grain=None, output_dir="", write_step=True,
-                   name="CutSheets", text_outlines=False):
+def make_cutsheets(panelset, sheet=(3000.0, 1500.0), margin=DEFAULT_MARGIN_MM,
+                   spacing=DEFAULT_SPACING_MM, rotations="90", grain=None, output_dir="",
+                   write_step=True, name="CutSheets", text_outlines=False):
     """Add a CutSheets object nesting ``panelset``'s parts; recompute to nest and write.
 
     Returns
