@@ -406,6 +406,10 @@ def test_texts_too_small_to_engrave_are_warned_about(data_dir, tmp_path):
     report = run_pipeline(tiny, 1.0, units="cm", sheet=(200, 100), margin=1, spacing=1,
                           dxf=str(tmp_path / "tiny.dxf"))[0]
     assert not [w for w in report["warnings"] if "engrave" in w]
+    # with no DXF, SVG or PNG no text is written: nothing to warn about (it warned)
+    report = run_pipeline(tiny, 1.0, units="mm", schedule=str(tmp_path / "tiny.csv"))[0]
+    assert not [w for w in report["warnings"] if "engrave" in w]
+    assert report["text_warnings"] == []
 
 
 def test_grain_turns_parts_and_is_checked():

@@ -231,7 +231,9 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
 
     t = time.perf_counter()
     drawings = unfold(ps, grain=grain)
-    text_warnings = small_text_warnings(drawings, length_unit(units)[0])
+    # the texts are in the DXF and the previews only: no warning about a text not written
+    text_warnings = (small_text_warnings(drawings, length_unit(units)[0])
+                     if dxf or svg or png else [])
     times["unfold"] = time.perf_counter() - t
     result = None
     if sheet is not None:
