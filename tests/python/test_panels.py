@@ -803,34 +803,88 @@ def test_schedule_csv_and_json(tmp_path):
     svgs = sorted((tmp_path / "svg").glob("*.svg"))
     pngs = sorted((tmp_path / "png").glob("*.png"))
     assert len(svgs) == len(pngs) == len(result.sheets)
-    assert svgs[0].read_text().count("<path") == len(result.sheets[0].parts)
     w, h = result.sheet_size
     assert f'width="{w:.10g}mm" height="{h:.10g}mm"' in svgs[0].read_text()
     assert pngs[0].read_bytes()[:4] == b"\x89PNG"
-    # the preview's IDs lie where the DXF's do and turn with their parts as they do
-    # (they were drawn unturned on every turned part)
+    turned, counts = _svg_holds_what_the_dxf_holds(svgs, tmp_path / "cut.dxf", result)
+    assert turned > 0  # the nesting turned some parts
+    assert counts["BEVEL"] > len(ps) and counts["TOP"] == len(ps)  # (mitred: every part)
+
+
+def test_previews_draw_the_grain(tmp_path):
+    _, ps, _, result = _made(tmp_path, grain=(0.0, 0.0, 1.0))
+    svgs = sorted((tmp_path / "svg").glob("*.svg"))
+    _, counts = _svg_holds_what_the_dxf_holds(svgs, tmp_path / "cut.dxf", result)
+    assert counts["GRAIN"] == 3 * len(ps)  # (a shaft and two barbs a part)
+
+
+def _svg_holds_what_the_dxf_holds(svgs, dxf_path, result):
+    """Each SVG preview is its sheet of the DXF: a layer (an Inkscape layer, a group) for
+    each DXF layer, with the same outlines (CUT, TOP), grain arrows and texts (LABEL,
+    BEVEL: the same text, at the same place, turned the same way). The previews drew the
+    IDs alone: no bevel angle, no top outline, no grain."""
     import re
     import xml.etree.ElementTree as ET
 
     import ezdxf
 
-    dxf = {e.dxf.text: e for e in ezdxf.readfile(tmp_path / "cut.dxf").modelspace().query(
-        "TEXT[layer=='LABEL']")}
     from facet.cutsheets import sheet_offsets
 
+    svg_ns = "{http://www.w3.org/2000/svg}"
+    ink = "{http://www.inkscape.org/namespaces/inkscape}"
+    msp = ezdxf.readfile(dxf_path).modelspace()
     offsets = sheet_offsets(result)
+    w = result.sheet_size[0]
+
+    def on_sheet(k, xs):
+        return (xs >= offsets[k] - 1e-9) & (xs <= offsets[k] + w + 1e-9)
+
     turned = 0
+    counts = {"TOP": 0, "BEVEL": 0, "GRAIN": 0}
     for k, svg in enumerate(svgs):
-        for text in ET.parse(svg).getroot().iter("{http://www.w3.org/2000/svg}text"):
-            x, y = float(text.get("x")), float(text.get("y"))
-            scale, rotate = re.fullmatch(r"(scale\(1 -1\)) rotate\((\S+) (\S+) (\S+)\)",
-                                         text.get("transform")).group(1, 2)
-            label = dxf[text.text]
-            assert label.dxf.align_point.x - offsets[k] == pytest.approx(x, abs=1e-9)
-            assert label.dxf.align_point.y == pytest.approx(-y, abs=1e-9)
-            assert float(rotate) == pytest.approx(-label.dxf.rotation, abs=1e-9)
-            turned += label.dxf.rotation != 0.0
-    assert turned > 0  # the nesting turned some parts
+        root = ET.parse(svg).getroot()
+        layers = {g.get("id"): g for g in root.findall(f"{svg_ns}g")}
+        assert all(g.get(f"{ink}groupmode") == "layer" and g.get(f"{ink}label") == name
+                   for name, g in layers.items())
+        for name in ("CUT", "TOP"):
+            def ordered(rings):
+                return sorted(rings, key=lambda r: tuple(np.round(r.mean(axis=0), 6)))
+
+            rings = [np.array(e.get_points("xy"))
+                     for e in msp.query(f"LWPOLYLINE[layer=='{name}']")]
+            rings = ordered([r - (offsets[k], 0) for r in rings if on_sheet(k, r[:, 0]).all()])
+            paths = [] if name not in layers else layers[name].findall(f"{svg_ns}path")
+            got = ordered([np.array([[float(v) for v in xy.split()]
+                                     for xy in p.get("d")[2:-2].split(" L ")])
+                           for p in paths])
+            assert len(got) == len(rings), (svg.name, name)
+            assert all(np.allclose(a, b, rtol=0, atol=1e-9) for a, b in zip(got, rings))
+            counts["TOP"] += len(got) if name == "TOP" else 0
+        lines = [] if "GRAIN" not in layers else layers["GRAIN"].findall(f"{svg_ns}line")
+        dxf_lines = [e for e in msp.query("LINE[layer=='GRAIN']")
+                     if on_sheet(k, np.array([e.dxf.start.x]))[0]]
+        assert len(lines) == len(dxf_lines)
+        counts["GRAIN"] += len(lines)
+        for name in ("LABEL", "BEVEL"):
+            dxf = {}
+            for e in msp.query(f"TEXT[layer=='{name}']"):
+                x = e.dxf.align_point.x - offsets[k]
+                if 0 <= x <= w:
+                    dxf.setdefault(e.dxf.text, []).append(e)
+            texts = list(layers[name].iter(f"{svg_ns}text")) if name in layers else []
+            assert len(texts) == sum(map(len, dxf.values())), (svg.name, name)
+            for text in texts:
+                x, y = float(text.get("x")), float(text.get("y"))
+                rotate = re.fullmatch(r"scale\(1 -1\) rotate\((\S+) (\S+) (\S+)\)",
+                                      text.get("transform")).group(1)
+                (same,) = [e for e in dxf[text.text]
+                           if abs(e.dxf.align_point.x - offsets[k] - x) < 1e-9
+                           and abs(e.dxf.align_point.y + y) < 1e-9]
+                assert float(rotate) == pytest.approx(-same.dxf.rotation, abs=1e-9)
+                assert float(text.get("font-size")) == pytest.approx(same.dxf.height)
+                turned += name == "LABEL" and same.dxf.rotation != 0.0
+                counts["BEVEL"] += name == "BEVEL"
+    return turned, counts
 
 
 def test_sheets_of_an_earlier_longer_run_are_removed(tmp_path):

@@ -37,7 +37,7 @@ from facet.report import count_noun, json_safe
 
 __all__ = ["LAYERS", "LAYER_LINETYPES", "LAYER_MEANINGS", "write_dxf", "schedule_rows",
            "write_schedule_csv", "write_schedule_json", "write_svg", "write_png",
-           "sheet_offsets"]
+           "sheet_offsets", "PREVIEW_COLOURS"]
 
 #: Layer name -> ACI colour.
 LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "TOP": 4, "SHEET": 8, "GRAIN": 6}
@@ -221,6 +221,30 @@ def _rotate_angle(pl, deg):
     return (deg + pl.angle_deg) % 360.0
 
 
+def _drawn(pl, d, off, tol):
+    """A placed part as the cut files draw it, on the sheet moved by ``off`` (x, y):
+    ``(cut, top, texts, grain)``: the cut ring; the top face's ring, or None where it is
+    the cut's (within ``tol``); the texts ``(text, x, y, height, rotation_deg, layer)``,
+    the ID (LABEL) and the bevel angles (BEVEL), rotation counter-clockwise; and the grain
+    arrow's segments ``(a, b)`` (none without a grain). The DXF, SVG and PNG draw these."""
+    cut = pl.transform(d.cut) + off
+    top = None if np.allclose(d.top, d.cut, rtol=0, atol=tol) else pl.transform(d.top) + off
+    lx, ly = pl.transform([d.label_position])[0] + off
+    texts = [(d.id, lx, ly, d.label_height, pl.angle_deg % 360.0, "LABEL")]
+    for s, bx, by, ang, bh in d.bevels:
+        px, py = pl.transform([(bx, by)])[0] + off
+        texts.append((s, px, py, bh, _rotate_angle(pl, ang), "BEVEL"))
+    grain = []
+    if d.grain is not None:
+        a, b = pl.transform(d.grain) + off
+        grain.append((a, b))
+        u = (b - a) / max(np.linalg.norm(b - a), 1e-300)
+        n = np.array([-u[1], u[0]])
+        size = 0.15 * np.linalg.norm(b - a)
+        grain += [(b, b - size * u + sgn * 0.5 * size * n) for sgn in (1, -1)]
+    return cut, top, texts, grain
+
+
 #: The model units a fabrication run can be in: millimetres per unit, the DXF's
 #: $INSUNITS code and $MEASUREMENT (1 metric, 0 imperial).
 LENGTH_UNITS = {"mm": (1.0, 4, 1), "cm": (10.0, 5, 1), "m": (1000.0, 6, 1),
@@ -318,25 +342,14 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
             report(done)
         msp = docs[pl.sheet if per_sheet else 0].modelspace()
         off = np.array([0.0 if per_sheet else offsets[pl.sheet], 0.0])
-        cut = pl.transform(d.cut) + off
+        cut, top, texts, grain = _drawn(pl, d, off, 1e-9 * max(w, h))
         msp.add_lwpolyline(cut.tolist(), close=True, dxfattribs={"layer": "CUT"})
-        if not np.allclose(d.top, d.cut, rtol=0, atol=1e-9 * max(w, h)):
-            msp.add_lwpolyline((pl.transform(d.top) + off).tolist(), close=True,
-                               dxfattribs={"layer": "TOP"})
-        lx, ly = pl.transform([d.label_position])[0] + off
-        engraved(msp, d.id, lx, ly, d.label_height, pl.angle_deg % 360.0, "LABEL")
-        for s, bx, by, ang, bh in d.bevels:
-            px, py = pl.transform([(bx, by)])[0] + off
-            engraved(msp, s, px, py, bh, _rotate_angle(pl, ang), "BEVEL")
-        if d.grain is not None:
-            a, b = pl.transform(d.grain) + off
+        if top is not None:
+            msp.add_lwpolyline(top.tolist(), close=True, dxfattribs={"layer": "TOP"})
+        for t in texts:
+            engraved(msp, *t)
+        for a, b in grain:
             msp.add_line(a.tolist(), b.tolist(), dxfattribs={"layer": "GRAIN"})
-            u = (b - a) / max(np.linalg.norm(b - a), 1e-300)
-            n = np.array([-u[1], u[0]])
-            size = 0.15 * np.linalg.norm(b - a)
-            for sgn in (1, -1):
-                msp.add_line(b.tolist(), (b - size * u + sgn * 0.5 * size * n).tolist(),
-                             dxfattribs={"layer": "GRAIN"})
     report(len(placed))
     if not docs:  # nothing placed: still a valid (empty) drawing, so no stale file remains
         docs[0] = new_doc()
@@ -431,12 +444,21 @@ def _svg_path(points):
     return "M " + " L ".join(f"{x!r} {y!r}" for x, y in points) + " Z"
 
 
+#: Layer name -> its colour in the SVG and PNG previews (the DXF's ACI colours: red, blue,
+#: green, cyan, grey, magenta).
+PREVIEW_COLOURS = {"CUT": "#c00", "LABEL": "#003", "BEVEL": "#070", "TOP": "#089",
+                   "SHEET": "#777", "GRAIN": "#a0a"}
+
+
 def write_svg(directory, nest_result, drawings, stem="sheet", units="mm", progress=None):
     """One SVG preview per sheet (``stem_01.svg``...), in model units with y up, at true
     size: the drawing's width and height are the sheet's in millimetres, from `units` (the
     model's length unit, a key of LENGTH_UNITS), so that a laser cutter's software or
     Inkscape opens a sheet at the size it is cut (it was 1000 pixels wide whatever the
-    sheet). ``progress`` as :func:`write_png`'s.
+    sheet). It holds what the DXF holds, each DXF layer an Inkscape layer (a group named
+    and labelled by the layer, its meaning as its title), in :data:`PREVIEW_COLOURS`:
+    the cut outlines, the top outlines dashed, the IDs, the bevel angles, the grain arrows.
+    ``progress`` as :func:`write_png`'s.
 
     Returns
     -------
@@ -452,28 +474,53 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm", progre
     report = _reporter(progress, len(nest_result.sheets), "SVG previews")
     written = []
     stroke = max(w, h) / 1500.0
+    dashes = " ".join(repr(length / mm) for length in DASH_MM)
+    # each layer's group: its look, then its elements
+    looks = {"SHEET": f'fill="#f4f1ea" stroke="{PREVIEW_COLOURS["SHEET"]}"',
+             "CUT": f'fill="#c9d8e8" stroke="{PREVIEW_COLOURS["CUT"]}"',
+             "TOP": f'fill="none" stroke="{PREVIEW_COLOURS["TOP"]}" '
+                    f'stroke-dasharray="{dashes}"',
+             "GRAIN": f'fill="none" stroke="{PREVIEW_COLOURS["GRAIN"]}"',
+             "LABEL": f'fill="{PREVIEW_COLOURS["LABEL"]}" text-anchor="middle" '
+                      'dominant-baseline="middle"',
+             "BEVEL": f'fill="{PREVIEW_COLOURS["BEVEL"]}" text-anchor="middle" '
+                      'dominant-baseline="middle"'}
     for i, sheet in enumerate(nest_result.sheets):
         report(i)
-        out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w!r} {h!r}" '
+        layers = {name: [] for name in looks}
+        layers["SHEET"].append(f'<rect x="0" y="0" width="{w!r}" height="{h!r}"/>')
+        for pl, d in by_sheet.get(i, []):
+            cut, top, texts, grain = _drawn(pl, d, np.zeros(2), 1e-9 * max(w, h))
+            layers["CUT"].append(f'<path d="{_svg_path(cut)}"/>')
+            if top is not None:
+                layers["TOP"].append(f'<path d="{_svg_path(top)}"/>')
+            for a, b in grain:
+                layers["GRAIN"].append(f'<line x1="{a[0]!r}" y1="{a[1]!r}" x2="{b[0]!r}" '
+                                       f'y2="{b[1]!r}"/>')
+            for text, x, y, height, rotation, layer in texts:
+                # upright (scale), then turned as in the DXF: counter-clockwise on the
+                # sheet is a negative angle in the text's y-down frame
+                turn = -rotation
+                layers[layer].append(
+                    f'<text x="{x!r}" y="{-y!r}" '
+                    f'transform="scale(1 -1) rotate({turn!r} {x!r} {-y!r})" '
+                    f'font-size="{height!r}">{escape(text)}</text>')
+        out = [f'<svg xmlns="http://www.w3.org/2000/svg" '
+               'xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" '
+               f'viewBox="0 0 {w!r} {h!r}" '
                # (ten digits: 1219.2mm, not 1219.1999999999998mm, for a 48 in sheet)
                f'width="{w * mm:.10g}mm" height="{h * mm:.10g}mm">',
-               f'<title>{_sheet_title(i, sheet)}</title>',
-               f'<g transform="matrix(1 0 0 -1 0 {h!r})">',
-               f'<rect x="0" y="0" width="{w!r}" height="{h!r}" fill="#f4f1ea" '
-               f'stroke="#777" stroke-width="{stroke!r}"/>']
-        for pl, d in by_sheet.get(i, []):
-            cut = pl.transform(d.cut)
-            out.append(f'<path d="{_svg_path(cut)}" fill="#c9d8e8" stroke="#c00" '
-                       f'stroke-width="{stroke!r}"/>')
-            lx, ly = pl.transform([d.label_position])[0]
-            # upright (scale), then turned with its part as in the DXF: counter-clockwise
-            # on the sheet is a negative angle in the text's y-down frame
-            turn = -(pl.angle_deg % 360.0)
-            out.append(f'<text x="{lx!r}" y="{-ly!r}" '
-                       f'transform="scale(1 -1) rotate({turn!r} {lx!r} {-ly!r})" '
-                       f'font-size="{d.label_height!r}" text-anchor="middle" '
-                       f'dominant-baseline="middle" fill="#003">{escape(d.id)}</text>')
-        out.append("</g></svg>\n")
+               f'<title>{_sheet_title(i, sheet)}</title>']
+        for name, elements in layers.items():
+            if not elements:
+                continue
+            out.append(f'<g id="{name}" inkscape:groupmode="layer" inkscape:label="{name}" '
+                       f'transform="matrix(1 0 0 -1 0 {h!r})" {looks[name]} '
+                       f'stroke-width="{stroke!r}">')
+            out.append(f"<title>{escape(LAYER_MEANINGS[name])}</title>")
+            out += elements
+            out.append("</g>")
+        out.append("</svg>\n")
         target = numbered(_sheet_number(i + 1, len(nest_result.sheets)))
         write_text(target, ["\n".join(out)])
         written.append(target)
@@ -483,7 +530,9 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm", progre
 
 
 def write_png(directory, nest_result, drawings, stem="sheet", dpi=100, progress=None):
-    """One PNG preview per sheet (matplotlib, Agg). ``progress(done, total)`` before each
+    """One PNG preview per sheet (matplotlib, Agg): the cut outlines, the top outlines
+    dashed, the IDs, the bevel angles at their size and the grain arrows, in
+    :data:`PREVIEW_COLOURS`. ``progress(done, total)`` before each
     sheet and at the end, True cancels (:class:`facet.errors.Cancelled`; the sheets written
     so far stay, unless in :func:`facet.io.files.staged`, as ``facet panels`` writes).
 
@@ -504,20 +553,33 @@ def write_png(directory, nest_result, drawings, stem="sheet", dpi=100, progress=
     by_sheet = _by_sheet(nest_result, drawings)
     report = _reporter(progress, len(nest_result.sheets), "PNG previews")
     written = []
+    colour = PREVIEW_COLOURS
     for i, sheet in enumerate(nest_result.sheets):
         report(i)
         fig, ax = plt.subplots(figsize=(10, 10 * h / w + 0.6))
-        ax.add_patch(Rectangle((0, 0), w, h, facecolor="#f4f1ea", edgecolor="#777"))
-        for pl, d in by_sheet.get(i, []):
-            ax.add_patch(MplPolygon(pl.transform(d.cut), closed=True, facecolor="#c9d8e8",
-                                    edgecolor="#c00", linewidth=0.6))
-            lx, ly = pl.transform([d.label_position])[0]
-            ax.text(lx, ly, d.id, ha="center", va="center", fontsize=6,
-                    rotation=pl.angle_deg % 360.0)
         ax.set_xlim(-0.02 * w, 1.02 * w)
         ax.set_ylim(-0.02 * h, 1.02 * h)
         ax.set_aspect("equal")
         ax.set_title(_sheet_title(i, sheet))
+        ax.add_patch(Rectangle((0, 0), w, h, facecolor="#f4f1ea", edgecolor=colour["SHEET"]))
+        # points per model unit: the texts at their size on the part, as in the DXF
+        ax.apply_aspect()
+        x0, x1 = ax.transData.transform([(0.0, 0.0), (1.0, 0.0)])[:, 0]
+        points = (x1 - x0) * 72.0 / fig.dpi
+        for pl, d in by_sheet.get(i, []):
+            cut, top, texts, grain = _drawn(pl, d, np.zeros(2), 1e-9 * max(w, h))
+            ax.add_patch(MplPolygon(cut, closed=True, facecolor="#c9d8e8",
+                                    edgecolor=colour["CUT"], linewidth=0.6))
+            if top is not None:
+                ax.add_patch(MplPolygon(top, closed=True, fill=False, edgecolor=colour["TOP"],
+                                        linewidth=0.4, linestyle=(0, (4, 1))))
+            for a, b in grain:
+                ax.plot([a[0], b[0]], [a[1], b[1]], color=colour["GRAIN"], linewidth=0.6)
+            for text, x, y, height, rotation, layer in texts:
+                size = height * points
+                if size >= 1.0:  # (smaller is a dot at this resolution)
+                    ax.text(x, y, text, ha="center", va="center", fontsize=size,
+                            rotation=rotation, rotation_mode="anchor", color=colour[layer])
         target = numbered(_sheet_number(i + 1, len(nest_result.sheets)))
         try:
             write_replacing(target, lambda tmp: fig.savefig(tmp, dpi=dpi), ".png")
