@@ -259,19 +259,26 @@ class TestPanelSet(DocumentTestCase):
 
     def test_cutsheets_warn_of_texts_too_small_to_engrave(self):
         """Parts 20 mm wide get IDs of 2 mm (a tenth of the part): the CutSheets' Warnings
-        say so, as facet panels does; only the command line said it. Parts a metre wide
-        get none."""
+        say so when they write the DXF, as facet panels does; only the command line said
+        it. Parts a metre wide get none, and nor do sheets with no output folder (no text
+        is written anywhere)."""
         small = facetwb.make_polymesh(translational(nu=3, nv=2, step=20.0), label="small",
                                       doc=self.doc)
         small_panels = facetwb.make_panelset(small, thickness=2.0, name="SmallPanels")
         tiny = facetwb.make_cutsheets(small_panels, sheet=(200.0, 100.0), margin=1.0,
-                                      spacing=1.0, name="TinySheets")
+                                      spacing=1.0, name="TinySheets", write_step=False,
+                                      output_dir=os.path.join(self.tmp.name, "tiny"))
+        unwritten = facetwb.make_cutsheets(small_panels, sheet=(200.0, 100.0), margin=1.0,
+                                           spacing=1.0, name="UnwrittenSheets")
         large = facetwb.make_cutsheets(self.square, sheet=(2600.0, 1400.0), margin=10.0,
-                                       spacing=6.0, name="LargeSheets")
+                                       spacing=6.0, name="LargeSheets", write_step=False,
+                                       output_dir=os.path.join(self.tmp.name, "large"))
         self.doc.recompute()
         self.assertTrue(tiny.isValid(), tiny.getStatusString())
         self.assertEqual(len(tiny.Warnings), 1, list(tiny.Warnings))
         self.assertRegex(tiny.Warnings[0], r"^6 of 6 part IDs are under 3 mm high")
+        self.assertTrue(unwritten.isValid(), unwritten.getStatusString())
+        self.assertEqual(list(unwritten.Warnings), [])
         self.assertTrue(large.isValid(), large.getStatusString())
         self.assertEqual(list(large.Warnings), [])
 
