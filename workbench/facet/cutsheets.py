@@ -475,16 +475,17 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm", progre
     written = []
     stroke = max(w, h) / 1500.0
     dashes = " ".join(repr(length / mm) for length in DASH_MM)
+    font = (f'font-family="{OUTLINE_FONT}, sans-serif" text-anchor="middle" '
+            'dominant-baseline="middle"')
     # each layer's group: its look, then its elements
     looks = {"SHEET": f'fill="#f4f1ea" stroke="{PREVIEW_COLOURS["SHEET"]}"',
              "CUT": f'fill="#c9d8e8" stroke="{PREVIEW_COLOURS["CUT"]}"',
              "TOP": f'fill="none" stroke="{PREVIEW_COLOURS["TOP"]}" '
                     f'stroke-dasharray="{dashes}"',
              "GRAIN": f'fill="none" stroke="{PREVIEW_COLOURS["GRAIN"]}"',
-             "LABEL": f'fill="{PREVIEW_COLOURS["LABEL"]}" text-anchor="middle" '
-                      'dominant-baseline="middle"',
-             "BEVEL": f'fill="{PREVIEW_COLOURS["BEVEL"]}" text-anchor="middle" '
-                      'dominant-baseline="middle"'}
+             # (the font of the DXF's texts as outlines, not the viewer's serif default)
+             "LABEL": f'fill="{PREVIEW_COLOURS["LABEL"]}" {font}',
+             "BEVEL": f'fill="{PREVIEW_COLOURS["BEVEL"]}" {font}'}
     for i, sheet in enumerate(nest_result.sheets):
         report(i)
         layers = {name: [] for name in looks}
