@@ -348,12 +348,89 @@ static int deflate(double *col, int32_t nv, int32_t k, const double *h, int32_t 
     return 1;
 }
 
+/* The candidates u[nv x p] (orthonormal) span directions that A' sends near zero, but a
+ * near-dependency of the constraints (a singular value of A just above the rank
+ * tolerance: on a Voronoi plan, a short edge that the snap collapsed into a vertex of
+ * four faces) shrinks as slowly as the hidden directions and mixes into every one of
+ * them. Then the directions of their span that A' sends within `reach` are taken: the
+ * eigenvectors of G = (A'U)'(A'U) whose eigenvalue is at most reach^2, as U times
+ * them, written over u; returns how many, `leading` (the leading candidates A' sends
+ * within reach, u unchanged) when LAPACK fails, -1 when out of memory. G is summed from
+ * A'U in chunks of rows (A'U itself is m x p). */
+static int32_t within_reach(facet_lifter *s, double *u, int32_t p, double reach,
+                            int32_t leading)
+{
+    const int32_t nv = s->nv, m = s->m, rows = 256;
+    const int64_t *ap = s->a->p, *ai = s->a->i;
+    const double *ax = s->a->x;
+    double *g = calloc((size_t)p * (size_t)p, sizeof(double));
+    double *chunk = malloc(sizeof(double) * (size_t)rows * (size_t)p);
+    double *evals = malloc(sizeof(double) * (size_t)p);
+    double *evecs = malloc(sizeof(double) * (size_t)p * (size_t)p);
+    int *isuppz = malloc(sizeof(int) * 2 * (size_t)p);
+    double *kept = malloc(sizeof(double) * (size_t)nv * (size_t)p);
+    double *work = NULL;
+    int *iwork = NULL;
+    int32_t found = -1;
+    if (!g || !chunk || !evals || !evecs || !isuppz || !kept)
+        goto done;
+    const int pp = p, rr = rows;
+    const double one = 1.0, zero = 0.0;
+    for (int32_t c0 = 0; c0 < m; c0 += rows) {
+        const int32_t r = m - c0 < rows ? m - c0 : rows;
+        const int ri = r;
+        for (int32_t i = 0; i < r; ++i)
+            for (int32_t j = 0; j < p; ++j) {
+                double dot = 0.0;
+                const double *uj = u + (size_t)j * nv;
+                for (int64_t k = ap[c0 + i]; k < ap[c0 + i + 1]; ++k)
+                    dot += ax[k] * uj[ai[k]];
+                chunk[(size_t)j * rows + i] = dot;
+            }
+        dgemm_("T", "N", &pp, &pp, &ri, &one, chunk, &rr, chunk, &rr, &one, g, &pp);
+    }
+    int n_found = 0, info = 0, lwork = -1, liwork = -1, iwork_query = 0, il = 1, iu = p;
+    double work_query = 0.0, vl = 0.0, vu = 0.0, abstol = 0.0;
+    dsyevr_("V", "A", "U", &pp, g, &pp, &vl, &vu, &il, &iu, &abstol, &n_found, evals, evecs,
+            &pp, isuppz, &work_query, &lwork, &iwork_query, &liwork, &info);
+    if (info != 0) {
+        found = leading;
+        goto done;
+    }
+    lwork = (int)work_query;
+    liwork = iwork_query;
+    work = malloc(sizeof(double) * (size_t)(lwork > 1 ? lwork : 1));
+    iwork = malloc(sizeof(int) * (size_t)(liwork > 1 ? liwork : 1));
+    if (!work || !iwork)
+        goto done;
+    dsyevr_("V", "A", "U", &pp, g, &pp, &vl, &vu, &il, &iu, &abstol, &n_found, evals, evecs,
+            &pp, isuppz, work, &lwork, iwork, &liwork, &info);
+    if (info != 0 || n_found != p) {
+        found = leading;
+        goto done;
+    }
+    /* ascending: the first ones are the hidden directions */
+    found = 0;
+    while (found < p && evals[found] <= reach * reach)
+        ++found;
+    if (found > 0) {
+        const int nn = nv, q = found;
+        dgemm_("N", "N", &nn, &q, &pp, &one, u, &nn, evecs, &pp, &zero, kept, &nn);
+        memcpy(u, kept, sizeof(double) * (size_t)nv * (size_t)found);
+    }
+done:
+    free(g), free(chunk), free(evals), free(evecs), free(isuppz), free(kept);
+    free(work), free(iwork);
+    return found;
+}
+
 /* The hidden directions among k random vectors of range(Q1): they replace
  * s->hidden, or with `more` (the deflated search) the vectors are first made
  * orthogonal to s->hidden and add to it. Returns how many (k: perhaps more), or -1 on
- * failure. */
+ * failure; `candidates`: how many of the block shrank as slowly as hidden directions (k:
+ * perhaps more of them, hidden or near-dependencies, than the block holds). */
 static int32_t hidden_block(facet_lifter *s, cholmod_factor *factor, double delta, int32_t k,
-                            double reach, int more)
+                            double reach, int more, int32_t *candidates)
 {
     const int32_t nv = s->nv;
     cholmod_dense *u = cholmod_l_allocate_dense((size_t)nv, (size_t)k, (size_t)nv, CHOLMOD_REAL,
@@ -374,6 +451,7 @@ static int32_t hidden_block(facet_lifter *s, cholmod_factor *factor, double delt
             x[(size_t)j * nv + v] = v < s->rank ? (double)(state >> 11) * 0x1p-53 - 0.5 : 0.0;
         }
     int32_t found = -1;
+    *candidates = 0;
     cholmod_dense *q = SuiteSparseQR_C_qmult(SPQR_QX, s->qr, u, &s->cm);
     for (int step = 0; q && step < HIDDEN_STEPS; ++step) {
         cholmod_dense *next = cholmod_l_solve(CHOLMOD_A, factor, q, &s->cm);
@@ -418,9 +496,12 @@ static int32_t hidden_block(facet_lifter *s, cholmod_factor *factor, double delt
              * of zero (a part that A' reaches weakly shrinks slowly: below the rank
              * tolerance it is a dependency, above it a constraint) */
             found = 0;
-            for (int32_t j = 0; info == 0 && sv[0] > 0.0 && j < k; ++j) {
-                if (!(isfinite(sv[j]) && sv[j] > HIDDEN_GAP * sv[0]))
-                    break;
+            int32_t above = 0; /* the candidates: above the gap */
+            while (info == 0 && sv[0] > 0.0 && above < k && isfinite(sv[above]) &&
+                   sv[above] > HIDDEN_GAP * sv[0])
+                ++above;
+            *candidates = above;
+            for (int32_t j = 0; j < above; ++j) {
                 double *reached = s->rhs_m->x, sum = 0.0;
                 a_transpose_times(s, left + (size_t)j * nv, reached);
                 for (int32_t c = 0; c < s->m; ++c)
@@ -429,6 +510,11 @@ static int32_t hidden_block(facet_lifter *s, cholmod_factor *factor, double delt
                     break;
                 ++found;
             }
+            /* one that A' reaches: the span's hidden directions instead (a near-dependency
+             * mixed into them had hidden every one after it: a 1,000-site Voronoi plan
+             * with one short edge snapped lost the affine liftings: dimension 3, 6 by SVD) */
+            if (found < above)
+                found = within_reach(s, left, above, reach, found);
         }
     }
     cholmod_l_free_dense(&q, &s->cm);
@@ -511,9 +597,11 @@ static int find_hidden(facet_lifter *s, double tol, const facet_lift_options *op
             k = left;
         if (k <= 0 || (double)k * nv > HIDDEN_BLOCK_ENTRIES)
             break;
-        int32_t found = hidden_block(s, factor, delta, k, reach, more);
+        int32_t candidates = 0;
+        int32_t found = hidden_block(s, factor, delta, k, reach, more, &candidates);
         ok = found >= 0 ? 1 : 0;
-        if (found < k || k >= left) /* reached past them */
+        /* reached past them; or a deflated block of near-dependencies alone */
+        if (candidates < k || k >= left || (more && found == 0))
             break;
         if (!more && 2 * k <= block_max && 2.0 * k * nv <= HIDDEN_BLOCK_ENTRIES)
             k *= 2;
