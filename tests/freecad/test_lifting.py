@@ -246,6 +246,7 @@ class TestPlanGraphSources(DocumentTestCase):
         import ezdxf
 
         document = ezdxf.new()
+        document.units = 4  # millimetres (ezdxf's default is metres)
         document.layers.add("HELP").off()
         space = document.modelspace()
         space.add_lwpolyline([(0, 0), (3000, 0), (3000, 2000), (0, 2000)], close=True)
@@ -264,6 +265,33 @@ class TestPlanGraphSources(DocumentTestCase):
         plan.touch()
         self.doc.recompute()
         self.assertEqual((plan.FaceCount, list(plan.Warnings)), (2, []))
+
+    def test_a_dxf_drawn_in_metres_is_read_in_millimetres(self):
+        # a canopy drawn in metres ($INSUNITS 6, as Rhino and AutoCAD set it) became a
+        # 9 x 6 mm plan in the millimetre document, without a word: a target surface
+        # drawn over the real canopy gave every vertex its height at the origin (FreeCAD's
+        # own DXF importers scale by $INSUNITS)
+        import ezdxf
+
+        document = ezdxf.new()
+        document.units = 6
+        space = document.modelspace()
+        space.add_lwpolyline([(0, 0), (9, 0), (9, 6), (0, 6)], close=True)
+        space.add_lwpolyline([(3, 0), (3, 6), (6, 6), (6, 0)], format="xy")
+        path = os.path.join(self.tmp.name, "metres.dxf")
+        document.saveas(path)
+        plan = facetwb.make_plan_graph(file=path, doc=self.doc)
+        surface = add_plane(self.doc, 3000.0, 0.1, -0.2, name="MetresTarget")
+        lifting = facetwb.make_lifting(plan, targets=surface)
+        self.doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        xyz = points_array(plan)
+        np.testing.assert_array_equal(np.ptp(xyz[:, :2], axis=0), [9000.0, 6000.0])
+        self.assertEqual(list(plan.Warnings), [
+            "drawn in metres ($INSUNITS 6): read in millimetres, scaled by 1000"])
+        lifted = points_array(lifting)
+        want = 3000.0 + 0.1 * lifted[:, 0] - 0.2 * lifted[:, 1]
+        self.assertLess(np.abs(lifted[:, 2] - want).max(), 1e-6)
 
     def test_a_plan_torn_at_its_vertices_says_so(self):
         # 2 x 2 bays exported unwelded (each face its own corners): lifted apart, the

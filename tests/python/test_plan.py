@@ -746,3 +746,32 @@ def test_target_points_that_reach_no_vertex_are_refused_by_line(tmp_path):
     points = np.vstack([points, [xy[5, 0] + 0.01, xy[5, 1], 20.3]])
     targets, weights = targets_from_points(plan, points, tolerance=1e-4)
     assert np.all(weights == 1) and np.all(targets == 20)
+
+
+def test_a_dxf_in_metres_or_inches_read_in_millimetres_on_request(tmp_path):
+    """FreeCAD's documents are in millimetres, and a PlanGraph read a DXF drawn in metres
+    as a plan a thousand times too small. read_plan(to_mm=True) scales a DXF by its
+    $INSUNITS (exactly: 25.4 per inch), the arc tolerance given in millimetres, and says
+    so; without it (the command line) a drawing is read in its own units, as before."""
+    for code, scale in ((6, 1000.0), (1, 25.4), (4, 1.0), (0, 1.0)):
+        document = ezdxf.new()
+        document.units = code
+        space = document.modelspace()
+        space.add_lwpolyline([(0, 0), (12, 0), (12, 6), (0, 6)], close=True)
+        space.add_arc((6, 6), 6.0, 0, 180)  # over the top edge: one more face
+        path = tmp_path / f"units{code}.dxf"
+        document.saveas(path)
+        plan = read_plan(path, to_mm=True, arc_tolerance=0.001 * scale)
+        xy = plan.mesh.vertices[:, :2]
+        assert list(np.ptp(xy, axis=0)) == [12.0 * scale, 12.0 * scale]
+        assert plan.n_faces == 2
+        notes = [w for w in plan.warnings if "$INSUNITS" in w]
+        assert len(notes) == (scale != 1.0)
+        if code == 6:
+            assert notes == ["drawn in metres ($INSUNITS 6): read in millimetres, "
+                             "scaled by 1000"]
+        # the arc split as finely in millimetres as in the drawing's units
+        drawn = read_plan(path, arc_tolerance=0.001)
+        assert drawn.n_vertices == plan.n_vertices
+        assert np.ptp(drawn.mesh.vertices[:, 0]) == 12.0
+        assert not [w for w in drawn.warnings if "$INSUNITS" in w]

@@ -139,6 +139,17 @@ def _where(source):
 MAX_CURVE_SEGMENTS = 2000
 
 
+#: Millimetres per drawing unit by a DXF's $INSUNITS (exact; ezdxf's own factor for inches
+#: is 25.400000000101603), with the unit's name. 0 (unitless) and the astronomical units
+#: are not here: such a drawing is read as drawn.
+DXF_UNITS_MM = {1: (25.4, "inches"), 2: (304.8, "feet"), 3: (1609344.0, "miles"),
+                4: (1.0, "millimetres"), 5: (10.0, "centimetres"), 6: (1000.0, "metres"),
+                7: (1e6, "kilometres"), 8: (2.54e-5, "microinches"), 9: (0.0254, "mils"),
+                10: (914.4, "yards"), 11: (1e-7, "angstroms"), 12: (1e-6, "nanometres"),
+                13: (1e-3, "micrometres"), 14: (100.0, "decimetres"), 15: (1e4, "decametres"),
+                16: (1e5, "hectometres")}
+
+
 def _flatten(path_obj, tolerance, what="a curve", corners=0):
     """The straight segments of a path; at most MAX_CURVE_SEGMENTS of them besides its
     `corners` (a polyline's own vertices)."""
@@ -151,7 +162,7 @@ def _flatten(path_obj, tolerance, what="a curve", corners=0):
     return list(zip(points[:-1], points[1:]))
 
 
-def _dxf_segments(path, arc_tolerance, notes=None):
+def _dxf_segments(path, arc_tolerance, notes=None, to_mm=False):
     try:
         import ezdxf
         from ezdxf import path as ezpath
@@ -182,8 +193,22 @@ def _dxf_segments(path, arc_tolerance, notes=None):
         # UnicodeDecodeError, IndexError... found by fuzzing). All of them
         # mean "ezdxf cannot read this file"; say so in one line.
         raise PlanError(f"{path}: not a valid DXF file ({_exception_line(exc)})") from None
+    scale = 1.0
+    if to_mm:
+        code = document.header.get("$INSUNITS", 0)
+        scale, unit = DXF_UNITS_MM.get(code if isinstance(code, int) else 0, (1.0, None))
+        if scale != 1.0:
+            if notes is not None:
+                notes.append(f"drawn in {unit} ($INSUNITS {code}): read in millimetres, "
+                             f"scaled by {scale:g}")
+            if arc_tolerance is not None:
+                arc_tolerance = float(arc_tolerance) / scale  # (given in mm)
     try:
-        return _dxf_model_segments(path, document, arc_tolerance, ezpath, notes)
+        segments = _dxf_model_segments(path, document, arc_tolerance, ezpath, notes)
+        if scale != 1.0:
+            segments = [((a[0] * scale, a[1] * scale), (b[0] * scale, b[1] * scale))
+                        for a, b in segments]
+        return segments
     except (PlanError, MemoryError):
         raise
     except Exception as exc:  # noqa: BLE001 - an entity ezdxf loaded but cannot answer for
@@ -421,12 +446,15 @@ def _csv_segments(path):
     return segments
 
 
-def read_segments(path, *, arc_tolerance=None, notes=None):
+def read_segments(path, *, arc_tolerance=None, notes=None, to_mm=False):
     """The straight segments of a DXF or CSV drawing, ``[((x1, y1), (x2, y2)), ...]``.
 
     A DXF's entities on layers that are off or frozen, and those flagged
     invisible, are not read; what was left out is appended to the list `notes`
-    (if given) as one line of text."""
+    (if given) as one line of text. With `to_mm` a DXF whose $INSUNITS names a
+    length unit (:data:`DXF_UNITS_MM`) is scaled to millimetres (`arc_tolerance`
+    is then in millimetres too), and a note says so; a unitless one, a CSV, are read
+    as they are. Without it every drawing is read in its own units."""
     suffix = os.path.splitext(os.fspath(path))[1].lower()
     if arc_tolerance is not None:
         try:
@@ -437,7 +465,7 @@ def read_segments(path, *, arc_tolerance=None, notes=None):
             raise PlanError(f"{path}: the arc tolerance must be a finite number > 0, not "
                             f"{arc_tolerance!r}")
     if suffix == ".dxf":
-        return _dxf_segments(path, arc_tolerance, notes)
+        return _dxf_segments(path, arc_tolerance, notes, to_mm)
     if suffix in TABLE_SUFFIXES:
         return _csv_segments(path)
     raise PlanError(f"{path}: not a line drawing (.dxf, or a .csv, .tsv or .txt table)")
@@ -748,12 +776,14 @@ def _unjoined(plan):
     return warnings
 
 
-def read_plan(path, *, snap=None, arc_tolerance=None, openings=()):
-    """A plan graph from a drawing file (see the module docstring)."""
+def read_plan(path, *, snap=None, arc_tolerance=None, openings=(), to_mm=False):
+    """A plan graph from a drawing file (see the module docstring). With `to_mm` a DXF
+    drawn in another length unit is read in millimetres (see :func:`read_segments`);
+    `snap`, `arc_tolerance` and `openings` are then in millimetres."""
     suffix = os.path.splitext(os.fspath(path))[1].lower()
     if suffix == ".dxf" or suffix in TABLE_SUFFIXES:
         notes = []
-        segments = read_segments(path, arc_tolerance=arc_tolerance, notes=notes)
+        segments = read_segments(path, arc_tolerance=arc_tolerance, notes=notes, to_mm=to_mm)
         plan = plan_from_segments(segments, snap=snap, openings=openings, source=path)
         plan.warnings[:0] = notes
         return plan

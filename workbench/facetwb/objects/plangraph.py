@@ -6,7 +6,8 @@ that is empty, ``File`` (.dxf, .csv of segments, or a plan mesh .obj .off .json)
 reads the drawing again and builds the graph with ``facet.plan``: endpoints snapped, crossings
 split, duplicate edges merged, dangling edges dropped (counted in ``DanglingEdges``), faces
 found by polygonize, faces containing an ``Openings`` point left out; a DXF's layers that are off
-or frozen are not read (listed in ``Warnings``). The graph is stored as
+or frozen are not read (listed in ``Warnings``), and a DXF drawn in another unit ($INSUNITS:
+metres, inches...) is scaled to millimetres (said in ``Warnings``). The graph is stored as
 a flat polygon mesh (z = 0), like a PolyMesh, so a Lifting (or anything taking a Facet
 mesh) can use it.
 """
@@ -72,7 +73,9 @@ class PlanGraph(PolyMesh):
             segments = segments_from_objects(obj.Sources, arc or 0.0)
             plan = plan_from_segments(segments, snap=snap, openings=openings, source=obj.Label)
         elif obj.File:
-            plan = read_plan(obj.File, snap=snap, arc_tolerance=arc, openings=openings)
+            # (a DXF drawn in metres or inches: in millimetres, as the document is)
+            plan = read_plan(obj.File, snap=snap, arc_tolerance=arc, openings=openings,
+                             to_mm=True)
         else:
             raise ValueError(f"{obj.Label}: no drawing: set Sources or File")
         set_mesh(obj, plan.mesh)
