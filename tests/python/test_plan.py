@@ -775,3 +775,39 @@ def test_a_dxf_in_metres_or_inches_read_in_millimetres_on_request(tmp_path):
         assert drawn.n_vertices == plan.n_vertices
         assert np.ptp(drawn.mesh.vertices[:, 0]) == 12.0
         assert not [w for w in drawn.warnings if "$INSUNITS" in w]
+
+
+def test_tables_from_a_european_excel_and_their_missing_values(tmp_path):
+    """Excel writes "CSV" with semicolons and decimal commas where the decimal separator
+    is a comma (most of Europe), and "Unicode Text" with tabs and decimal commas: both were
+    refused as "line 2: not three numbers x,y,z". An empty cell between two others was
+    left out, which moved the next cells into its place: "0,,10,4.2" was read as the
+    point (0, 10) at height 4.2, whether a comma was doubled or a value missing. Now both
+    tables are read, and an empty cell is refused by its line, quoting the cells."""
+    from facet.plan import read_targets
+
+    plan = plan_from_mesh(PolyMesh.from_faces(
+        np.array([[0, 0, 0], [10, 0, 0], [10, 10, 0], [0, 10, 0.0]]), [[0, 1, 2, 3]]))
+    (tmp_path / "excel.csv").write_bytes(
+        b"\xef\xbb\xbfx;y;z\r\n0;0;1,5\r\n10;0;2,25\r\n10;10;3\r\n0;10;-0,5;\r\n")
+    (tmp_path / "excel.txt").write_bytes(
+        "x\ty\tz\r\n0\t0\t1,5\r\n10\t0\t2,25\r\n10\t10\t3\r\n0\t10\t-0,5\r\n".encode("utf-16"))
+    for name in ("excel.csv", "excel.txt"):
+        targets, weights = read_targets(plan, tmp_path / name)
+        assert targets.tolist() == [1.5, 2.25, 3.0, -0.5] and np.all(weights == 1)
+    # (with tabs, whose locale is not known, a comma that may group thousands is refused)
+    (tmp_path / "thousands.txt").write_text("x\ty\tz\n10\t0\t1,250\n")
+    with pytest.raises(InputError, match=r"thousands.txt: line 2: not three numbers x,y,z "
+                       r"\(10 \| 0 \| 1,250\)"):
+        read_targets(plan, tmp_path / "thousands.txt")
+    (tmp_path / "segments.csv").write_text("0;0;10;0\n10;0;10;10\n10;10;0;10\n0;10;0;0\n"
+                                           "0;0;10,0;10,0\n")
+    assert read_plan(tmp_path / "segments.csv").n_faces == 2
+    (tmp_path / "gap.csv").write_text("x,y,z\n0,0,1\n10,0,2\n10,10,3\n0,,10,4.2\n")
+    with pytest.raises(InputError, match=r"gap.csv: line 5: not three numbers x,y,z "
+                       r"\(0 \|  \| 10 \| 4.2\)"):
+        read_targets(plan, tmp_path / "gap.csv")
+    (tmp_path / "short.csv").write_text("x,y,z\n0,0,1\n10,0,\n")
+    with pytest.raises(InputError, match=r"short.csv: line 3: need three finite numbers "
+                       r"x,y,z \(10 \| 0\)"):
+        read_targets(plan, tmp_path / "short.csv")

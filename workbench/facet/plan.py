@@ -418,15 +418,46 @@ def _csv_rows(path, error):
         if nul >= 0:
             raise error(f"{path}: not a text file: byte {nul + 1} is NUL (binary data?)")
     for number, line in enumerate(split_lines(text), 1):  # (split_lines drops a BOM)
+        # semicolon-separated where a line has a semicolon, with decimal commas: what
+        # Excel writes as CSV where the decimal separator is a comma (most of Europe);
+        # tab-separated where a line has no comma, or more tabs than commas (decimal
+        # commas again): what spreadsheets export as text
+        delimiter = (";" if ";" in line else
+                     "\t" if line.count("\t") > line.count(",") else ",")
         try:
-            # (tab-separated where a line has no comma: what spreadsheets export as text)
-            row = next(csv.reader([line], delimiter="," if "," in line or "\t" not in line
-                                  else "\t"), [])
+            row = next(csv.reader([line], delimiter=delimiter), [])
         except csv.Error as exc:
             raise error(f"{path}: line {number}: not CSV ({exc})") from None
-        cells = [c.strip() for c in row if c.strip()]
+        cells = [c.strip() for c in row]
+        while cells and not cells[-1]:
+            cells.pop()  # (trailing separators: a row shorter than the widest)
+        while cells and not cells[0]:
+            cells.pop(0)
+        if delimiter != ",":
+            cells = [_decimal_comma(c, delimiter) for c in cells]
+        # an empty cell between two others stays: a missing value, refused by its line
+        # (left out, it moved the next column into its place)
         if cells and not cells[0].startswith("#"):
             yield number, cells
+
+
+def _decimal_comma(cell, delimiter):
+    """A cell's decimal comma as a point ('3,5' -> '3.5'). In a tab-separated table, whose
+    locale is not known, not where the comma may group thousands ('1,250': left, refused
+    as not a number); with semicolons (a comma locale's CSV), always."""
+    if cell.count(",") != 1 or "." in cell:
+        return cell
+    whole, _, fraction = cell.partition(",")
+    if delimiter == "\t" and len(fraction) == 3 and 1 <= len(whole.lstrip("+-")) <= 3:
+        return cell
+    return whole + "." + fraction
+
+
+def _cells_text(cells):
+    """A table row's cells in a message: 'A | 0 |  | 3.5' (an empty one shown empty), at
+    most 60 characters."""
+    text = " | ".join(cells)
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def _csv_segments(path):
@@ -437,9 +468,11 @@ def _csv_segments(path):
         except ValueError:
             if number == 1:  # a header line
                 continue
-            raise PlanError(f"{path}: line {number}: not four numbers x1,y1,x2,y2")
+            raise PlanError(f"{path}: line {number}: not four numbers x1,y1,x2,y2 "
+                            f"({_cells_text(cells)})")
         if len(values) != 4 or not all(np.isfinite(values)):
-            raise PlanError(f"{path}: line {number}: need four finite numbers x1,y1,x2,y2")
+            raise PlanError(f"{path}: line {number}: need four finite numbers x1,y1,x2,y2 "
+                            f"({_cells_text(cells)})")
         segments.append(((values[0], values[1]), (values[2], values[3])))
     if not segments:
         raise PlanError(f"{path}: no segments")
@@ -1063,9 +1096,11 @@ def read_targets(plan, path, *, tolerance=None):
             except ValueError:
                 if number == 1:
                     continue
-                raise InputError(f"{path}: line {number}: not three numbers x,y,z")
+                raise InputError(f"{path}: line {number}: not three numbers x,y,z "
+                                 f"({_cells_text(cells)})")
             if len(values) != 3 or not all(np.isfinite(values)):
-                raise InputError(f"{path}: line {number}: need three finite numbers x,y,z")
+                raise InputError(f"{path}: line {number}: need three finite numbers x,y,z "
+                                 f"({_cells_text(cells)})")
             rows.append(values)
             lines.append(f"line {number}")
         if tolerance is None:
