@@ -293,6 +293,23 @@ class TestPlanGraphSources(DocumentTestCase):
         want = 3000.0 + 0.1 * lifted[:, 0] - 0.2 * lifted[:, 1]
         self.assertLess(np.abs(lifted[:, 2] - want).max(), 1e-6)
 
+    def test_target_points_that_match_no_vertex_are_said(self):
+        # a table of heights in metres for the millimetre plan: its point at 0, 0 matched a
+        # vertex, the rest fell near none and were left out; the Lifting was valid, flat at
+        # the one height, with no warning
+        path = os.path.join(self.tmp.name, "metres.csv")
+        with open(path, "w", encoding="utf-8") as handle:
+            handle.write("x,y,z\n0,0,3.5\n4,0,3.6\n1,3,4.2\n")
+        sketch = add_sketch(self.doc, nested_segments(), "Unmatched")
+        lifting = facetwb.make_lifting(facetwb.make_plan_graph([sketch]), target_file=path)
+        self.doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        self.assertEqual(len(lifting.Warnings), 1, lifting.Warnings)
+        self.assertTrue(lifting.Warnings[0].startswith(
+            f"{path}: 2 of the 3 target points lie farther than the match distance"),
+            lifting.Warnings)
+        self.assertIn("1 of the 6 plan vertices has a target height", lifting.Warnings[0])
+
     def test_a_plan_torn_at_its_vertices_says_so(self):
         # 2 x 2 bays exported unwelded (each face its own corners): lifted apart, the
         # command line warned; the Lifting said nothing and looked fine

@@ -811,3 +811,38 @@ def test_tables_from_a_european_excel_and_their_missing_values(tmp_path):
     with pytest.raises(InputError, match=r"short.csv: line 3: need three finite numbers "
                        r"x,y,z \(10 \| 0\)"):
         read_targets(plan, tmp_path / "short.csv")
+
+
+def test_target_points_that_match_no_vertex_are_said(facet_command, tmp_path):
+    """A table of heights in metres for a plan in millimetres: its point at 0, 0 matched
+    vertex 0, the other three fell inside the plan near no vertex and were left out, and
+    the lifting met the one height, flat, reported as a success (RMS miss 0). The points
+    left out are now said: in the notes of read_targets, on the command line and in its
+    report."""
+    from facet.plan import read_targets
+
+    segments = [((0, 0), (6000, 0)), ((6000, 0), (12000, 0)), ((12000, 0), (12000, 6000)),
+                ((12000, 6000), (6000, 6000)), ((6000, 6000), (0, 6000)),
+                ((0, 6000), (0, 0)), ((6000, 0), (6000, 6000))]
+    plan_file = tmp_path / "plan.csv"
+    plan_file.write_text("".join(f"{a[0]},{a[1]},{b[0]},{b[1]}\n" for a, b in segments))
+    points = tmp_path / "heights.csv"
+    points.write_text("x,y,z\n0,0,3.5\n12,0,3.6\n0,6,4.2\n12,6,3.3\n")
+    plan = read_plan(plan_file)
+    notes = []
+    targets, weights = read_targets(plan, points, notes=notes)
+    assert np.count_nonzero(weights == 1) == 1
+    assert notes == [f"{points}: 3 of the 4 target points lie farther than the match "
+                     "distance 0.012 from every plan vertex, left out (the nearest of "
+                     "them, line 4 at (0, 6), is 6 from vertex 3); 1 of the 6 plan vertices "
+                     "has a target height"]
+    out, report = tmp_path / "roof.obj", tmp_path / "r.json"
+    done = facet_command("lift", plan_file, "-o", out, "--targets", points, "--report", report)
+    assert done.returncode == 0, done.stderr
+    assert "warning       " + notes[0] in done.stdout
+    assert notes[0] in json.loads(report.read_text())["warnings"]
+    # every point on a vertex: nothing said
+    points.write_text("x,y,z\n0,0,3.5\n12000,0,3.6\n0,6000,4.2\n12000,6000,3.3\n")
+    notes = []
+    read_targets(plan, points, notes=notes)
+    assert notes == []

@@ -140,8 +140,9 @@ def run_lift(args):
     if (args.targets is None) == (not args.pin):
         raise InputError("give either --targets FILE or --pin VERTEX=HEIGHT (not both)")
     plan = _read_plan(args)
+    notes = []  # (target points left out)
     if args.targets is not None:
-        targets, weights = read_targets(plan, args.targets, tolerance=args.snap)
+        targets, weights = read_targets(plan, args.targets, tolerance=args.snap, notes=notes)
     else:
         targets, weights = pinned_targets(plan, _pins(args.pin))
     if args.weights is not None:
@@ -165,6 +166,7 @@ def run_lift(args):
     write_mesh(result.mesh, args.output)
     report = {"source": os.fspath(args.plan), "output": os.fspath(args.output)}
     report.update(nearly.report() if nearly is not None else result.report())
+    report["warnings"] = notes + list(report.get("warnings", []))
     report["plan"] = plan.summary()
     report["dangling"] = [[list(a), list(b)] for a, b in plan.dangling]
     if args.report:
@@ -193,9 +195,8 @@ def run_lift(args):
           f"at vertex {result.target_max_vertex} ({result.target_max / size:.3g} of the plan "
           "size)")
     print(f"  time          {result.factor_seconds + result.solve_seconds:.3g} s")
-    for text in result.warnings:
-        if "trivial" not in text:
-            print(f"  warning       {text}")
+    for text in notes + [w for w in result.warnings if "trivial" not in w]:
+        print(f"  warning       {text}")
     if args.pin and result.target_max > 1e-6 * size:
         # pins read as exact heights; the lifting meets them in least squares
         print(f"  warning       no planar lifting meets every pin: the closest misses vertex "

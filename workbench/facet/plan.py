@@ -892,13 +892,14 @@ def pinned_targets(plan, pins):
     return _with_free(xy, targets, given)
 
 
-def targets_from_points(plan, points, *, tolerance, labels=None):
+def targets_from_points(plan, points, *, tolerance, labels=None, notes=None):
     """Targets from x, y, z points: each plan vertex takes the z of the
     nearest point within `tolerance` (in plan); vertices with none are free
     (see :func:`pinned_targets`). No interpolation. A point beyond `tolerance`
     but within 1% of an edge of a vertex (meant for it, rounded) is an error naming it
     (``labels[k]``, default "point k+1") when no point matches that vertex; points farther
-    out, or beside a vertex matched, are left out."""
+    out, or beside a vertex matched, are left out, and a line saying how many is appended
+    to the list `notes` (if given)."""
     from scipy.spatial import cKDTree
 
     xy, xy_mesh = _plan_xy(plan)
@@ -937,6 +938,20 @@ def targets_from_points(plan, points, *, tolerance, labels=None):
             f"{int(vertex[p])}: give a larger snap distance (--snap) to match them")
     _check_one_height(points, tree.query_ball_point(xy[given], tolerance),
                       np.flatnonzero(given), labels)
+    # points left out: said, as a table in other units or another origin matched a vertex
+    # or two by chance (a table in metres for a plan in mm: its point at 0, 0 matched, the
+    # others fell inside the plan, near no vertex, and the lifting met the one height)
+    out = np.flatnonzero(apart > tolerance)
+    if out.size and notes is not None:
+        p = int(out[np.argmin(apart[out])])
+        notes.append(
+            f"{out.size} of the {len(points)} target points "
+            f"{'lies' if out.size == 1 else 'lie'} farther than the match distance "
+            f"{tolerance:g} from every plan vertex, left out (the nearest of them, "
+            f"{_point_label(labels, p)} at {point_text(points[p, :2])}, is {apart[p]:.3g} "
+            f"from vertex {int(vertex[p])}); {int(np.count_nonzero(given))} of the "
+            f"{len(xy)} plan vertices {'has' if np.count_nonzero(given) == 1 else 'have'} "
+            "a target height")
     targets = np.where(given, points[np.minimum(nearest, len(points) - 1), 2], 0.0)
     return _with_free(xy, targets, given)
 
@@ -1077,10 +1092,11 @@ def targets_from_mesh(plan, mesh, *, source=None, tolerance=None):
     return z, np.ones(len(xy))
 
 
-def read_targets(plan, path, *, tolerance=None):
+def read_targets(plan, path, *, tolerance=None, notes=None):
     """Targets from a file: a mesh (.obj, .off, .json; see
     :func:`targets_from_mesh`) or a CSV of x,y,z points (see
-    :func:`targets_from_points`; tolerance default 1e-6 of the plan's size).
+    :func:`targets_from_points`; tolerance default 1e-6 of the plan's size; points left
+    out are said in the list `notes`, if given).
 
     Returns
     -------
@@ -1106,7 +1122,12 @@ def read_targets(plan, path, *, tolerance=None):
         if tolerance is None:
             tolerance = 1e-6 * (float(np.ptp(xy, axis=0).max()) or 1.0)
         try:
-            return targets_from_points(plan, rows, tolerance=tolerance, labels=lines)
+            found = []
+            result = targets_from_points(plan, rows, tolerance=tolerance, labels=lines,
+                                         notes=found)
+            if notes is not None:
+                notes.extend(f"{path}: {text}" for text in found)
+            return result
         except InputError as exc:
             raise InputError(f"{path}: {exc}") from None
     if suffix in (".obj", ".off", ".json"):

@@ -68,20 +68,22 @@ class Lifting(PolyMesh):
                 ("App::PropertyString", "FarTargets",
                  "The targets the lifting misses most: vertex:distance, ..."),
                 ("App::PropertyStringList", "Warnings",
-                 "What the lifting found worth telling: faces that meet in plan without "
-                 "sharing a vertex (lifted apart), a plan in separate pieces, a solve that "
-                 "missed planarity")):
+                 "What the lifting found worth telling: target points that match no plan "
+                 "vertex (left out), faces that meet in plan without sharing a vertex "
+                 "(lifted apart), a plan in separate pieces, a solve that missed planarity")):
             compat.add_property(obj, kind, name, "Result", doc, attr=output,
                                 editor_mode=read_only)
 
-    def _targets(self, obj, plan):
+    def _targets(self, obj, plan, notes):
+        """(targets, weights); what reading them left out is appended to `notes`."""
         from facet.plan import read_targets, targets_from_mesh, targets_from_points
 
         if obj.Targets is not None:
             surface = conversion.mesh_from_object(obj.Targets)
             return targets_from_mesh(plan, surface, source=obj.Targets.Label)
         if obj.TargetFile:
-            return read_targets(plan, obj.TargetFile, tolerance=obj.Snap.Value or None)
+            return read_targets(plan, obj.TargetFile, tolerance=obj.Snap.Value or None,
+                                notes=notes)
         if obj.PinnedPoints:
             xy = plan.vertices[:, :2]
             tolerance = obj.Snap.Value or 1e-6 * (float(np.ptp(xy, axis=0).max()) or 1.0)
@@ -149,7 +151,8 @@ class Lifting(PolyMesh):
         if obj.Plan is None:
             raise ValueError(f"{obj.Label}: Plan is empty, nothing to lift")
         plan = get_mesh(obj.Plan)
-        targets, weights = self._targets(obj, plan)
+        notes = []  # (target points left out)
+        targets, weights = self._targets(obj, plan, notes)
         if obj.Weights:
             if len(obj.Weights) != plan.n_vertices:
                 raise ValueError(f"{obj.Label}: {len(obj.Weights)} weights but the plan has "
@@ -185,7 +188,7 @@ class Lifting(PolyMesh):
         obj.TargetMaxVertex = int(result.target_max_vertex)
         obj.SolveSeconds = float(result.factor_seconds + result.solve_seconds)
         obj.FarTargets = ", ".join(f"{v}:{d:.6g}" for v, d in result.far_targets(5))
-        warnings = self._unjoined(obj, plan) + list(result.warnings)
+        warnings = notes + self._unjoined(obj, plan) + list(result.warnings)
         if list(obj.Warnings) != warnings:
             obj.Warnings = warnings
 
