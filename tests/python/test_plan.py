@@ -846,3 +846,30 @@ def test_target_points_that_match_no_vertex_are_said(facet_command, tmp_path):
     notes = []
     read_targets(plan, points, notes=notes)
     assert notes == []
+
+
+def test_a_line_drawn_just_short_of_another_is_said(tmp_path):
+    """A bay line drawn 1 mm short of the line it meets (beyond the default snap, 0.013
+    mm on this 12 x 6 m plan) bounds no face: it was dropped with the face it should have
+    split, and the only trace was "1 dangling edges dropped". Now a warning says where,
+    and the snap distance that joins it; an overhang past the outline (as far from it as
+    it is long) says nothing."""
+    document = ezdxf.new()
+    space = document.modelspace()
+    space.add_lwpolyline([(0, 0), (12000, 0), (12000, 6000), (0, 6000)], close=True)
+    space.add_line((6000, -50), (6000, 6050))  # overhangs of 50 past the outline
+    space.add_line((0, 3000), (5999, 3000))  # 1 short of the middle line
+    space.add_line((6000, 3000), (12000, 3000))
+    document.saveas(tmp_path / "gap.dxf")
+    plan = read_plan(tmp_path / "gap.dxf")
+    assert plan.n_faces == 3 and len(plan.dangling) == 3
+    assert plan.warnings == [
+        "an edge ends 1 short of another at (5999, 3000): it bounds no face and was dropped "
+        "(3 dangling edges in all), and a face there is lost if they should meet: a snap "
+        "distance above 1 joins them"]
+    assert read_plan(tmp_path / "gap.dxf", snap=1.5).n_faces == 4
+    assert facet.lift(plan, np.zeros(plan.n_vertices)).warnings[0] == plan.warnings[0]
+    space.add_line((5999, 3000), (6000, 3000))
+    document.saveas(tmp_path / "closed.dxf")
+    closed = read_plan(tmp_path / "closed.dxf")
+    assert closed.n_faces == 4 and len(closed.dangling) == 2 and closed.warnings == []

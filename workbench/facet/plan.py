@@ -719,8 +719,60 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None):
     xyz[:, :2] = vertices
     info = {"source": os.fspath(source)} if source is not None else {}
     mesh = PolyMesh.from_faces(xyz, face_lists, info=info)
+    gap = _nearest_gap(noded, dangling, 0.01 * size)
+    warnings = []
+    if gap is not None:
+        distance, end = gap
+        warnings.append(
+            f"an edge ends {distance:.3g} short of another at {point_text(end)}: it bounds "
+            f"no face and was dropped ({count_noun(len(dangling), 'dangling edge')} in "
+            f"all), and a face there is lost if they should meet: a snap distance above "
+            f"{distance:.3g} joins them")
     return PlanGraph(mesh, source=source, snap=snap, dangling=dangling, openings=n_openings,
-                     snapped=snapped)
+                     snapped=snapped, warnings=warnings)
+
+
+def _nearest_gap(noded, dangling, limit):
+    """(distance, point) of the free end of a dangling edge nearest another edge, when
+    that is within `limit` and a twentieth of the edge's length (a line drawn just short of
+    the one it meets: a face lost), else None. A free end: an end of one segment of the
+    noded drawing only."""
+    if not dangling:
+        return None
+    pieces = []
+    for line in getattr(noded, "geoms", [noded]):
+        coords = [tuple(c[:2]) for c in line.coords]
+        pieces.extend(zip(coords[:-1], coords[1:]))
+    ends = {}
+    for a, b in pieces:
+        for p in (a, b):
+            ends[p] = ends.get(p, 0) + 1
+    array = np.asarray(pieces, dtype=np.float64).reshape(-1, 2, 2)
+    start, direction = array[:, 0], array[:, 1] - array[:, 0]
+    length2 = np.einsum("ij,ij->i", direction, direction)
+    best = None
+    for a, b in dangling:
+        a, b = tuple(a), tuple(b)
+        for end, other in ((a, b), (b, a)):
+            if ends.get(end, 0) != 1:
+                continue
+            point = np.asarray(end)
+            t = np.einsum("ij,ij->i", point - start, direction) / np.where(length2 > 0,
+                                                                          length2, 1.0)
+            nearest = start + np.clip(t, 0.0, 1.0)[:, None] * direction
+            distance = np.hypot(*(nearest - point).T)
+            # not the segments it meets already (at its other end: an overhang past an
+            # outline is as far from the outline as it is long)
+            distance[np.all(array[:, 0] == other, axis=1)
+                     | np.all(array[:, 1] == other, axis=1)] = np.inf
+            distance[distance == 0] = np.inf
+            k = int(np.argmin(distance))
+            # short of the other by a twentieth of its own length at most: a stub that
+            # ends near a line it does not meet is not a gap
+            own = 0.05 * float(np.hypot(end[0] - other[0], end[1] - other[1]))
+            if distance[k] <= min(limit, own) and (best is None or distance[k] < best[0]):
+                best = (float(distance[k]), end)
+    return best
 
 
 def plan_from_mesh(mesh, *, source=None, check_overlap=True):
