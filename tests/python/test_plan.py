@@ -3,6 +3,7 @@
 
 import json
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -873,3 +874,18 @@ def test_a_line_drawn_just_short_of_another_is_said(tmp_path):
     document.saveas(tmp_path / "closed.dxf")
     closed = read_plan(tmp_path / "closed.dxf")
     assert closed.n_faces == 4 and len(closed.dangling) == 2 and closed.warnings == []
+
+
+def test_a_plan_on_a_layout_is_said_where_it_is(tmp_path):
+    """A plan drawn on a layout (paper space) was refused as "no LINE, LWPOLYLINE or
+    POLYLINE in the model space (nothing)": where it is, and what to do, is now said."""
+    document = ezdxf.new()
+    layout = document.layout("Layout1")
+    layout.add_lwpolyline([(0, 0), (10, 0), (10, 10), (0, 10)], close=True)
+    layout.add_text("ROOF")  # (not counted: no drawing)
+    document.saveas(tmp_path / "paper.dxf")
+    with pytest.raises(PlanError, match=re.escape(
+            "no LINE, LWPOLYLINE or POLYLINE in the model space (nothing; 1 entity on the "
+            "layout Layout1 (paper space), which Facet does not read: draw the plan in the "
+            "model space)")):
+        read_plan(tmp_path / "paper.dxf")

@@ -241,6 +241,18 @@ def _dxf_model_segments(path, document, arc_tolerance, ezpath, notes=None):
         found = ", ".join(f"{n} {k}" for k, n in sorted(skipped.items())) or "nothing"
         if hidden:
             found += f"; {_hidden_text(hidden)}, left out"
+        # a plan drawn on a layout (paper space), which is not read: say where it is
+        drawn = "LINE LWPOLYLINE POLYLINE ARC CIRCLE ELLIPSE SPLINE INSERT"
+        paper = [(layout.name, len(layout.query(drawn))) for layout in document.layouts
+                 if layout.name != "Model"]
+        paper = [(name, n) for name, n in paper if n]
+        if paper:
+            names = ", ".join(name for name, _ in paper[:3]) + (", ..." if len(paper) > 3
+                                                                   else "")
+            count = sum(n for _, n in paper)
+            found += (f"; {count} {'entity' if count == 1 else 'entities'} on the "
+                      f"layout{'s' if len(paper) > 1 else ''} {names} (paper space), "
+                      "which Facet does not read: draw the plan in the model space")
         raise PlanError(f"{path}: no LINE, LWPOLYLINE or POLYLINE in the model space ({found})")
     return segments
 
