@@ -848,10 +848,10 @@ typedef struct facet_panel_output {
                                the edge): the gap where it is mitred or a butt
                                joint; cut square across a fold, less on the
                                fold's inner side, and negative where the gap is
-                               too small and the panels overlap (minus how deep a
-                               corner of one side face lies inside the other
-                               panel: its distance to the nearest of that
-                               panel's side, top and bottom planes); 0 on
+                               too small and the panels overlap (minus how deep:
+                               the least overlap of the two panels' sections
+                               along the normals of their planes and side
+                               planes, as panels at a node are measured); 0 on
                                the boundary (neighbor -1) and where either panel
                                dropped the edge (no joint there) */
     double *node_clash;     /* n_vertices: how deep two panels that meet at the

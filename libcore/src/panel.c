@@ -360,6 +360,35 @@ static double section_distance2(const double x[3], const double lo[3], const dou
  * mesh's size) touch: their joint is 0 wide, not an overlap. */
 #define JOINT_TOUCH 1e-9
 
+/* How deep two panels' sections at a joint overlap (0 when they do not): the
+ * least overlap of the two along the normals of their edges (each panel's
+ * plane and its side plane), as the node test measures two convex pieces
+ * (piece_overlap). Both sections are convex, so they overlap exactly when
+ * every axis does (separating axes). x[i]: the ends of panel i's side face's
+ * section (bottom, top), in[i]: the direction its section runs into it (it is
+ * unbounded that way); n[i], side[i]: the planes (unit normals first). The
+ * deepest corner of one inside the other saw no overlap on a fold of 90
+ * degrees or more with square cuts: there no corner lies inside the other
+ * panel (at 90 degrees each lies on the other's faces), though the panels
+ * overlap by their whole thickness. */
+static double section_overlap(double x[2][2][3], double in[2][3], const double *n0,
+                              const double *n1, const double *side0, const double *side1)
+{
+    const double *axes[4] = {n0, n1, side0, side1};
+    double least = INFINITY;
+    for (int a = 0; a < 4; ++a) {
+        double lo[2], hi[2];
+        for (int i = 0; i < 2; ++i) {
+            const double p = dot3(axes[a], x[i][0]), q = dot3(axes[a], x[i][1]);
+            const double run = dot3(axes[a], in[i]);
+            lo[i] = run < -1e-12 ? -INFINITY : fmin(p, q);
+            hi[i] = run > 1e-12 ? INFINITY : fmax(p, q);
+        }
+        least = fmin(least, fmin(hi[0], hi[1]) - fmax(lo[0], lo[1]));
+    }
+    return least > 0.0 ? least : 0.0;
+}
+
 /* The most corners a panel may have for the node test by convex pieces (more:
  * its corners inside the other panel). */
 #define FACET_PIECE_MAX 32
@@ -367,7 +396,8 @@ static double section_distance2(const double x[3], const double lo[3], const dou
 /* How deep the panels of edge c (face f) and of its twin overlap, normalised
  * units (0 when they do not), with both side planes moved widen farther into
  * their panels (half of a wider gap): in the cross-section at the edge's
- * midpoint, the deepest corner of one side face inside the other panel. The
+ * midpoint, the least overlap of the two sections along their edges' normals
+ * (section_overlap). The
  * section is the same all along the edge, as every plane of the joint
  * contains the edge's direction. *narrowest: the joint's narrowest width
  * there, the least distance from a corner of one side face to the other
@@ -407,17 +437,13 @@ static double joint_overlap(const work *w, int32_t f, int64_t c, double up, doub
         for (int k = 0; k < 3; ++k)
             in[i][k] *= sg / li;
     }
-    double deepest = 0.0, nearest2 = INFINITY;
-    for (int i = 0; i < 2; ++i) {
-        const double *n2 = w->plane + 4 * faces[1 - i], *side2 = w->eplane + 4 * corners[1 - i];
-        for (int top = 0; top < 2; ++top) {
-            const double height = dot3(n2, x[i][top]) + n2[3];
-            const double inside = dot3(side2, x[i][top]) - side2[3] - widen;
-            deepest = fmax(deepest, fmin(inside, fmin(height - down, up - height)));
+    double nearest2 = INFINITY;
+    for (int i = 0; i < 2; ++i)
+        for (int top = 0; top < 2; ++top)
             nearest2 = fmin(nearest2, section_distance2(x[i][top], x[1 - i][0], x[1 - i][1],
                                                         in[1 - i]));
-        }
-    }
+    const double deepest = section_overlap(x, in, w->plane + 4 * f, w->plane + 4 * h,
+                                           w->eplane + 4 * c, w->eplane + 4 * t);
     *narrowest = deepest > JOINT_TOUCH ? -deepest : sqrt(nearest2);
     return deepest;
 }

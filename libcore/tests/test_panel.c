@@ -235,6 +235,38 @@ static void square_joint_overlap(void)
     CHECK_NEAR(r.narrowest_repaired_joint, width, 1e-9);
 }
 
+/* A valley folded 90 degrees (an inner corner) or more, cut square: no corner
+ * of one panel's section lies inside the other (at 90 degrees each lies on the
+ * other's faces), yet the panels overlap by their thickness less half the gap.
+ * The deepest corner inside the other found 0: the joint touching (gap 0) or
+ * open, nothing counted. */
+static void sharp_valley_joints(void)
+{
+    const double L = 1000.0, t = 40.0;
+    int32_t qs[3] = {0, 4, 8}, qf[8] = {0, 1, 2, 3, 1, 0, 4, 5};
+    for (int k = 0; k < 2; ++k) {
+        const double fold = (k ? 120.0 : 90.0) * PI / 180.0;
+        const double clear = 2.0 * t * tan(0.5 * fold);
+        double q[18] = {0, 0, 0, L, 0, 0, L, L, 0, 0, L, 0,
+                        0, -L * cos(fold), L * sin(fold), L, -L * cos(fold), L * sin(fold)};
+        facet_mesh qm = {6, 2, q, qs, qf};
+        for (int g = 0; g < 2; ++g) {
+            facet_panel_options o = panel_options(t, g ? 8.0 : 0.0, FACET_PANEL_EDGE_SQUARE);
+            facet_panel_output out;
+            memset(&out, 0, sizeof out);
+            facet_panel_result r;
+            facet_error e;
+            CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+            CHECK(r.n_overlapping_joints == 1);
+            CHECK_NEAR(r.clearing_gap, clear, 1e-9 * clear);
+            if (k == 0)
+                CHECK_NEAR(r.narrowest_joint, -(t - 0.5 * o.gap), 1e-9);
+            else
+                CHECK(r.narrowest_joint < -0.5 * t);
+        }
+    }
+}
+
 /* Every joint's narrowest width (facet_panel_output.joint): two 1000 mm
  * quads folded by 30 degrees about their shared edge, 40 mm thick, at
  * georeferenced coordinates. Valley (the second quad rising on the top
@@ -566,6 +598,7 @@ int main(void)
     squared_mitre();
     square_joint_overlap();
     joint_widths();
+    sharp_valley_joints();
     node_clashes();
     return check_report("test_panel");
 }

@@ -23,13 +23,22 @@ def _fold_angle(i):
     return after - before
 
 
-def _corner_depth(fold, gap, t=THICKNESS):
-    """How deep a top corner of a square joint across a valley lies inside the
-    other panel: it is half the gap off the edge in its panel's plane and t above
-    it; its distances inside the other's side plane, below its top, above its
-    bottom."""
-    s, c = math.sin(fold), math.cos(fold)
-    return min(t * s - gap / 2 * (1 + c), t * (1 - c) - gap / 2 * s, gap / 2 * s + t * c)
+def _overlap_depth(fold, gap, t=THICKNESS):
+    """How deep two panels cut square overlap across a valley of this fold (radians),
+    in the joint's section: the least overlap of the two sections along the normals of
+    their edges (each is a half-strip t high, running from its side, half the gap off
+    the edge, into its panel). 0 when they do not overlap."""
+    run = [np.array([-1.0, 0.0]), np.array([math.cos(fold), math.sin(fold)])]
+    normal = [np.array([0.0, 1.0]), np.array([-math.sin(fold), math.cos(fold)])]
+    ends = [[gap / 2 * r, gap / 2 * r + t * n] for r, n in zip(run, normal)]
+    least = math.inf
+    for axis in normal + run:
+        lo, hi = [], []
+        for r, (p, q) in zip(run, ends):
+            lo.append(-math.inf if axis @ r < -1e-12 else min(axis @ p, axis @ q))
+            hi.append(math.inf if axis @ r > 1e-12 else max(axis @ p, axis @ q))
+        least = min(least, min(hi) - max(lo))
+    return max(least, 0.0)
 
 
 def _joint_line(mesh, panel, k):
@@ -61,9 +70,9 @@ def test_square_joints_narrow_on_the_inner_side_of_a_fold_and_overlap_in_the_val
             line = _joint_line(mesh, p, k)
             fold = 0.0 if line is None else _fold_angle(line)
             if fold > 0:
-                # the top corners meet first; here each lies inside the other panel, as
-                # deep as its distance to that panel's nearest plane (side, top, bottom)
-                expected = -_corner_depth(fold, GAP)
+                # the top corners meet first; here the panels overlap, as deep as their
+                # sections overlap along the normals of their edges
+                expected = -_overlap_depth(fold, GAP)
                 assert expected < 0
             else:
                 # a ridge opens the joint on top; it is narrowest between the bottoms
@@ -75,7 +84,7 @@ def test_square_joints_narrow_on_the_inner_side_of_a_fold_and_overlap_in_the_val
     clearing = 2 * THICKNESS * math.tan(valley / 2)
     assert ps.overlapping_joints == 2  # the valley's two edges, one per row
     assert ps.clearing_gap == pytest.approx(clearing, rel=1e-9)
-    assert ps.narrowest_joint == pytest.approx(-_corner_depth(valley, GAP), abs=1e-9 * STEP)
+    assert ps.narrowest_joint == pytest.approx(-_overlap_depth(valley, GAP), abs=1e-9 * STEP)
     a, b = ps.narrowest_joint_panels
     assert {ps.by_id(a).face, ps.by_id(b).face} in ({1, 2}, {5, 6})
     (warning,) = [w for w in ps.warnings if "on the inner side of a fold" in w]
@@ -121,6 +130,46 @@ def test_occ_finds_the_same_overlaps_and_widths():
                     assert a.distToShape(b)[0] == pytest.approx(width, abs=1e-6 * STEP)
                 checked += 1
         assert checked == 3 * 2 + 4 * 1
+
+
+def _valley(fold_deg, length=1000.0, width=800.0):
+    """Two quads meeting along the y axis, the second rising on the top side of the
+    first by the fold (degrees): 90 is an inner corner of a box."""
+    a = math.radians(fold_deg)
+    c, s = length * math.cos(a), length * math.sin(a)
+    return type(folded_grid()).from_faces(
+        [(-length, 0, 0), (0, 0, 0), (0, width, 0), (-length, width, 0), (c, 0, s),
+         (c, width, s)], [[0, 1, 2, 3], [1, 4, 5, 2]])
+
+
+@pytest.mark.parametrize("gap", [0.0, 8.0])
+@pytest.mark.parametrize("fold", [60.0, 89.0, 90.0, 120.0, 150.0])
+def test_square_joints_overlap_across_sharp_valleys(fold, gap):
+    """A valley folded 90 degrees or more (an inner corner) with square cuts: no
+    corner of one panel's section lies inside the other (at 90 degrees each lies on
+    the other's faces), yet the panels overlap by up to their whole thickness. The
+    joint was 0 wide (touching) or open (3 mm at a 100 degree fold and gap 8), the
+    panels unflagged, while their solids shared 1.3e6 mm3 (40 mm panels, 800 mm
+    joint); the cross-check of facet panels' STEP against its schedule found it."""
+    t = 40.0
+    ps = panels(_valley(fold), t, gap=gap)
+    depth = _overlap_depth(math.radians(fold), gap, t)
+    assert depth > 0.5 * t
+    assert ps.overlapping_joints == 1
+    assert ps.narrowest_joint == pytest.approx(-depth, abs=1e-9 * STEP)
+    assert [p.clash for p in ps] == pytest.approx([depth, depth], abs=1e-9 * STEP)
+    assert ps.clearing_gap == pytest.approx(2 * t * math.tan(math.radians(fold) / 2),
+                                            rel=1e-9)
+    if fold == 90.0:
+        assert depth == pytest.approx(t - gap / 2)  # the whole thickness, less the gap's half
+    # and OCC agrees: the solids share volume, and not at the clearing gap
+    step = freecad_step()
+    a, b = (s for _, s in step.panel_solids(ps))
+    assert a.common(b).Volume > 0.01 * a.Volume
+    wide = panels(_valley(fold), t, gap=ps.clearing_gap * (1 + 1e-7))
+    assert wide.overlapping_joints == 0 and wide.narrowest_joint >= 0.0
+    a, b = (s for _, s in step.panel_solids(wide))
+    assert a.common(b).Volume < 1e-9 * a.Volume
 
 
 def test_schedule_has_each_panels_joint_widths(tmp_path):

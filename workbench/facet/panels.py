@@ -121,8 +121,9 @@ class Panel:
         (the same along the edge), model units: the gap where the joint is
         mitred or a butt joint; cut square across a fold, less on the fold's
         inner side, and negative where the gap is too small for the fold and
-        the two panels overlap (minus how deep a corner of one lies inside the
-        other). None on the boundary and where a panel dropped the edge.
+        the two panels overlap (minus how deep: the least overlap of their
+        sections along the normals of their planes and side planes). None on
+        the boundary and where a panel dropped the edge.
     clash : float
         How deep the panel overlaps another one, across a joint or at a node
         (model units, the deepest); 0 when it overlaps none.
