@@ -589,6 +589,25 @@ def test_a_part_libnest2d_keeps_misplacing_ends_in_an_error(monkeypatch):
         facet.nest.nest(square, (1000, 1000), margin=10, spacing=5)
 
 
+@pytest.mark.parametrize("shift", [k / 7.0 for k in range(7)])
+def test_a_part_with_a_sloping_side_stays_on_the_sheet(shift):
+    # at spacing 0 libnest2d left a parallelogram up to 1.4 of its integer units (4 um on
+    # a 3 m sheet) past the sheet's edge: the check refused the nesting and facet panels
+    # wrote nothing ("P-R02C05 on sheet 0 leaves the sheet less its margin"), for a
+    # 1,128 x 983 mm panel of a translational surface (50 mm, square, gap 20, centred)
+    from facet.nest import nest, verify
+
+    unit = 3000.0 / 2 ** 20
+    part = {"P": np.array([[10.39571375, 10.0], [1099.61462078, 10.0],
+                           [1137.78405224, 993.28621289], [48.56514521, 993.28621289]])
+            + shift * unit}
+    for margin in (0.0, 10.0):
+        r = nest(part, (3000, 2000), margin=margin)
+        assert verify(r, part, tolerance=1e-9) == []
+        placed = r.placements["P"].transform(part["P"])
+        assert placed.min() >= margin - 1e-9
+
+
 def test_a_part_that_fits_only_turned_is_turned():
     # a 1000 x 2000 panel on a 3000 x 1500 sheet: libnest2d refused it before it tried a
     # quarter turn, so the command said it fit on no sheet
