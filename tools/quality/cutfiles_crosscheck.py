@@ -20,16 +20,19 @@ degrees) and the panel where it is, and "!!" lines for what does not match at al
 - Bevels: the angle between each side face and the cut face, less 90 (positive where the
   top is the larger face), against the schedule and the DXF's BEVEL text nearest that edge.
 - The schedule's sheet, x, y and rotation placing the cut face (in the frame of the face's
-  first corner and edge, its top normal +z) onto the DXF's outline.
+  first corner and edge, its top normal +z) onto the DXF's outline, corner by corner (not
+  where an edge vanished: that frame starts at the first corner left).
 - Neighbours (panels sharing a mesh vertex): OCC's common volume where the schedule says
   no clash, and every panel with a clash overlapping some neighbour; mitred joints: the
   distance of the two parallel side planes against --gap; other panels whose bounding boxes
   meet: their common volume.
+- With --grain: each part's grain arrow (its GRAIN shaft, head last) against the grain
+  direction projected into the panel, through the same motion.
 - The sheets: each part's footprint (CUT and TOP outlines) inside its sheet less --margin
   and at least --spacing from the others.
 
 A symmetric part (both faces fit, or several turns of its outline do) is matched by the
-schedule's placement and the TOP outline. It needs --dxf as one file (no --per-sheet).
+TOP outline, then by the schedule's placement. It needs --dxf as one file (no --per-sheet).
 Written for the cross-check that found square joints across valleys folded 90 degrees or
 more reported as touching (their solids overlapped by the panels' thickness) and parts
 left 4 um off the sheet at spacing 0; on the meshes it was run on, the rest agreed to
@@ -100,27 +103,23 @@ def rigid_fit(a, b):
     return res, (r, ca, cb)
 
 
-def best_match(a, b, a_top=None, b_top=None):
-    """a, b (k,2) CCW polygons; the cyclic shift of a fitting b best by a proper motion.
-    Among shifts that fit equally (a symmetric outline), the one that also carries a_top
-    onto b_top (the DXF's TOP outline) best."""
+def fits(a, b, a_top=None, b_top=None):
+    """Every cyclic shift of a (k,2) CCW polygon onto b by a proper rigid motion:
+    [(residual, top residual, shift, (r, ca, cb))]; the top residual carries a_top onto
+    b_top (the DXF's TOP outline) by the same motion (0 without them)."""
     if len(a) != len(b):
-        return np.inf, None, None
-    fits = []
+        return []
+    out = []
     for s in range(len(a)):
         res, t = rigid_fit(np.roll(a, -s, axis=0), b)
-        fits.append((res, s, t))
-    best = min(f[0] for f in fits)
-    size = max(np.ptp(b, axis=0).max(), 1e-300)
-    good = [f for f in fits if f[0] <= best + 1e-7 * size]
-    if len(good) > 1 and a_top is not None and b_top is not None:
-        def top_res(f):
-            r, ca, cb = f[2]
+        top = 0.0
+        if t is not None and a_top is not None and b_top is not None:
+            r, ca, cb = t
             q = (a_top - ca) @ r.T + cb
             d = np.linalg.norm(q[:, None, :] - b_top[None, :, :], axis=2)
-            return max(d.min(0).max(), d.min(1).max())
-        return min(good, key=top_res)
-    return good[0]
+            top = max(d.min(0).max(), d.min(1).max())
+        out.append((res, top, s, t))
+    return out
 
 
 def face_ring(face):
@@ -208,6 +207,14 @@ def main():
             print("  !! bevel text", text, "in", len(hit), "outlines")
             continue
         part_bevels[hit[0]].append((text, p, rot))
+    # the grain arrows: each part's longest GRAIN line (the shaft; its head is two short ones)
+    part_grain = {}
+    for ln in msp.query("LINE[layer=='GRAIN']"):
+        a_, b_ = np.array(ln.dxf.start)[:2], np.array(ln.dxf.end)[:2]
+        hit = [i for i, pg in enumerate(polys) if pg.contains(Point(0.5 * (a_ + b_)))]
+        if len(hit) == 1 and np.linalg.norm(b_ - a_) > np.linalg.norm(
+                np.subtract(*part_grain.get(hit[0], (a_, a_)))[::-1]):
+            part_grain[hit[0]] = (a_, b_)
     part_top = {}
     for tp in tops:
         pg = Polygon(tp)
@@ -274,54 +281,67 @@ def main():
         cut = dedupe(cuts[dxf_part[pid]], 1e-12)
         if area2(cut) < 0:
             cut = cut[::-1]
-        matches = []
-        for (f, ring, c), (_, other_ring, c_other) in (((fa, ra, ca), (fb, rb, cb)),
-                                              ((fb, rb, cb), (fa, ra, ca))):
+        size0 = np.ptp(cut, axis=0).max()
+        tol = 1e-6 * max(size0, 1)
+        if row["sheet"]:
+            th = math.radians(float(row["rotation_deg"]))
+            R = np.array([[math.cos(th), -math.sin(th)], [math.sin(th), math.cos(th)]])
+            t_sheet = np.array([float(row["x"]) + sheets_x0[int(row["sheet"]) - 1],
+                                float(row["y"])])
+        candidates = []
+        for m_, ((f, ring, c), (_, other_ring, c_other)) in enumerate(
+                (((fa, ra, ca), (fb, rb, cb)), ((fb, rb, cb), (fa, ra, ca)))):
             inward = (c_other - c) @ n_mesh * n_mesh
             u, v = frame2d(inward)
-            flat = np.stack([(ring - c) @ u, (ring - c) @ v], axis=1)
-            flat = dedupe(flat, 1e-9)
-            mirrored = area2(flat) < 0
-            if mirrored:
-                flat = flat[::-1]
+            ring3 = dedupe(ring, 1e-9 * max(size0, 1))
+            flat = np.stack([(ring3 - c) @ u, (ring3 - c) @ v], axis=1)
+            if area2(flat) < 0:
+                flat, ring3 = flat[::-1], ring3[::-1]
             ring_o = dedupe(other_ring, 1e-9)
             flat_o = np.stack([(ring_o - c) @ u, (ring_o - c) @ v], axis=1)
             tops_p = part_top.get(dxf_part[pid], [])
-            res, s, tr = best_match(flat, cut, flat_o, tops_p[0] if tops_p else None)
-            # mirror
-            fm = flat.copy()
-            fm[:, 0] *= -1
-            fm = fm[::-1]
-            resm, _, _ = best_match(fm, cut)
-            matches.append((res, resm, s, tr, flat, f, ring, c, c_other, inward))
-        i_best = int(np.argmin([mm_[0] for mm_ in matches]))
-        size0 = np.ptp(cut, axis=0).max()
-        if max(mm_[0] for mm_ in matches) < 1e-6 * max(size0, 1) and row["sheet"]:
-            # both faces match the outline (a symmetric part with square cuts): take the one
-            # the schedule's placement puts there
-            pres = []
-            for mm_ in matches:
-                nz = mm_[9] / np.linalg.norm(mm_[9])
+            mirror = flat[::-1] * [-1, 1]
+            resm = min([f_[0] for f_ in fits(mirror, cut)] or [np.inf])
+            # the schedule's placement of this face (its frame: the face's first corner
+            # and edge, the top normal +z), corner by corner
+            placed = None
+            if row["sheet"] and row["corners"] == row["input_corners"]:
+                # (where an edge vanished the frame starts at the first corner that is left)
+                nz = inward / np.linalg.norm(inward)
                 fx = fv[1] - fv[0]
                 fx = fx - (fx @ nz) * nz
                 fx /= np.linalg.norm(fx)
                 fy = np.cross(nz, fx)
-                r2 = dedupe(mm_[6], 1e-9)
-                fb = np.stack([(r2 - fv[0]) @ fx, (r2 - fv[0]) @ fy], axis=1)
-                th = math.radians(float(row["rotation_deg"]))
-                R = np.array([[math.cos(th), -math.sin(th)], [math.sin(th), math.cos(th)]])
-                pl = fb @ R.T + [float(row["x"]) + sheets_x0[int(row["sheet"]) - 1], float(row["y"])]
-                dd = np.linalg.norm(pl[:, None, :] - cut[None, :, :], axis=2)
-                pres.append(max(dd.min(1).max(), dd.min(0).max()))
-            i_best = int(np.argmin(pres))
-            n_ambiguous.append(pid)
-        res, resm, s, tr, flat, f_cut, ring, c, c_other, inward = matches[i_best]
-        other = matches[1 - i_best]
-        size = np.ptp(cut, axis=0).max()
-        if not res < 1e-6 * max(size, 1):
-            print(f"  !! {pid}: DXF CUT matches no STEP face properly: residuals {matches[0][0]:.3g} "
-                  f"{matches[1][0]:.3g}, mirrored {matches[0][1]:.3g} {matches[1][1]:.3g}")
+                placed = np.stack([(ring3 - fv[0]) @ fx, (ring3 - fv[0]) @ fy],
+                                  axis=1) @ R.T + t_sheet
+            for res, top, s_, tr_ in fits(flat, cut, flat_o, tops_p[0] if tops_p else None):
+                pres = 0.0
+                if placed is not None:
+                    pres = np.linalg.norm(np.roll(placed, -s_, axis=0) - cut, axis=1).max()
+                candidates.append((res, top, pres, resm, s_, tr_, flat, f, ring3, c, c_other,
+                                   inward, m_))
+        if not candidates:
+            print(f"  !! {pid}: the DXF outline has another number of corners than its faces")
             continue
+        best_res = min(x[0] for x in candidates)
+        good = [x for x in candidates if x[0] <= best_res + tol]
+        best_top = min(x[1] for x in good)
+        good = [x for x in good if x[1] <= best_top + tol]
+        # a symmetric part (both faces, or several turns, fit): the schedule says which
+        chosen = min(good, key=lambda x: x[2])
+        if len({(x[12], x[4]) for x in good}) > 1:
+            n_ambiguous.append(pid)
+        res, _, pres, resm, s, tr, flat, f_cut, ring, c, c_other, inward, m_ = chosen
+        if not res < tol:
+            print(f"  !! {pid}: DXF CUT matches no STEP face by a proper motion: residual "
+                  f"{res:.3g}, mirrored {resm:.3g}")
+            continue
+        if row["sheet"] and row["corners"] == row["input_corners"]:
+            worst("schedule placement vs DXF CUT, corner by corner", pres, pid)
+        u, v = frame2d(inward)  # the frame the chosen match was made in
+        o_ring = dedupe(rb if m_ == 0 else ra, 1e-9 * max(size0, 1))
+        o_face = fb if m_ == 0 else fa
+        size = size0
         worst("CUT vs STEP cut face: vertex residual", res, pid)
         # which face: cut face side relative to mesh face plane
         d_cut = (c - fv.mean(0)) @ n_mesh
@@ -397,36 +417,37 @@ def main():
             for i in range(len(cut)):
                 if abs(sb[i]) >= 0.05 and i not in got:
                     print(f"  !! {pid}: edge {i} has STEP bevel {sb[i]:.3f} but no DXF text")
+        grain = opt(opts, "--grain", None)
+        if grain is not None:
+            g = np.array([float(x) for x in grain.split(",")])
+            nin = inward / np.linalg.norm(inward)
+            g = g - (g @ nin) * nin
+            if dxf_part[pid] not in part_grain:
+                print(f"  !! {pid}: no grain arrow")
+            else:
+                a_, b_ = part_grain[dxf_part[pid]]
+                r_ = tr[0]
+                d2 = r_.T @ (b_ - a_)  # the arrow in the cut face's frame (u, v)
+                d3 = d2[0] * u + d2[1] * v
+                cosang = d3 @ g / (np.linalg.norm(d3) * np.linalg.norm(g))
+                worst("grain arrow's angle from the grain in the panel, deg",
+                      math.degrees(math.acos(np.clip(cosang, -1, 1))), pid)
         # top outline (dashed) vs STEP top face under the same motion
-        ftop = other[6]
+        ftop = o_ring
         tf = np.stack([(ftop - c) @ u, (ftop - c) @ v], axis=1)
         r, ca_, cb_ = tr
         tf_sheet = (tf - ca_) @ r.T + cb_
         tops_here = part_top.get(dxf_part[pid], [])
         if not tops_here:
-            if np.abs(tf_sheet[:, None, :] - cut[None, :, :]).sum(-1).min(1).max() > 1e-6 * size:
-                worst("TOP missing but STEP top differs", 1, pid)
+            dd = np.linalg.norm(tf_sheet[:, None, :] - cut[None, :, :], axis=2)
+            worst("no TOP outline: STEP top face vs the CUT outline",
+                  max(dd.min(1).max(), dd.min(0).max()), pid)
         else:
             tp = tops_here[0]
             dd = np.linalg.norm(tf_sheet[:, None, :] - tp[None, :, :], axis=2)
             worst("TOP outline vs STEP top face (max nearest-vertex)", max(dd.min(1).max(), dd.min(0).max()), pid)
-        # schedule placement: sheet_xy = rot(rotation_deg) @ flat + (x, y), flat in the frame
-        # (first input corner at the origin, first input edge along +x, top normal +z)
+        # the sheet the DXF has the part on, against the schedule's
         if row["sheet"]:
-            nz = inward / np.linalg.norm(inward)
-            fx = fv[1] - fv[0]
-            fx = fx - (fx @ nz) * nz
-            fx /= np.linalg.norm(fx)
-            fy = np.cross(nz, fx)
-            r2 = dedupe(ring, 1e-9)
-            flat_b = np.stack([(r2 - fv[0]) @ fx, (r2 - fv[0]) @ fy], axis=1)
-            th = math.radians(float(row["rotation_deg"]))
-            R = np.array([[math.cos(th), -math.sin(th)], [math.sin(th), math.cos(th)]])
-            placed = flat_b @ R.T + [float(row["x"]), float(row["y"])]
-            x0 = sheets_x0[int(row["sheet"]) - 1]
-            placed[:, 0] += x0
-            dd = np.linalg.norm(placed[:, None, :] - cut[None, :, :], axis=2)
-            worst("schedule placement vs DXF CUT (max nearest-vertex)", max(dd.min(1).max(), dd.min(0).max()), pid)
             # which sheet the DXF part is on
             cx = cut[:, 0].mean()
             on = [q for q, x in enumerate(sheets_x0) if x <= cx <= x + sheet_w]
@@ -441,10 +462,11 @@ def main():
         wd, ht = np.ptp(allv @ e0), np.ptp(allv @ e1)
         worst("width |schedule - STEP|", abs(float(row["width"]) - wd), pid)
         worst("height |schedule - STEP|", abs(float(row["height"]) - ht), pid)
-        worst("area_top |schedule - STEP|", abs(float(row["area_top"]) - other[5].Area / k_mm ** 2), pid)
+        worst("area_top |schedule - STEP|", abs(float(row["area_top"]) - o_face.Area / k_mm ** 2), pid)
 
     sides = {(round(a, 4), round(b, 4)) for _, a, b in bottom_side}
-    print("parts whose top and bottom faces both match the CUT outline:", len(n_ambiguous))
+    print("parts that fit their CUT outline more than one way (symmetric; the schedule's "
+          "placement chose):", len(n_ambiguous))
     print("cut face offset from mesh plane (cut, other), distinct:", sorted(sides)[:6])
     # ---- neighbours: overlap and gaps
     ids = sorted(ids_s & ids_c)
