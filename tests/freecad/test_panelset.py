@@ -120,6 +120,50 @@ class TestPanelSet(DocumentTestCase):
         self.assertFalse(obj.isValid())
         self.doc.removeObject(obj.Name)
 
+    def test_density_gives_each_panel_its_mass_in_the_object_and_the_schedule(self):
+        """A PanelSet's Density (kg/m³) gives Masses and TotalMass, and the cut sheets'
+        schedule a mass_kg column (the schedule had no volume or mass). A Density that is
+        not a number > 0 leaves the object in error with its last shape."""
+        import csv
+
+        obj = facetwb.make_panelset(self.source, thickness=T, edge="bisector", gap=GAP,
+                                    name="Heavy")
+        self.doc.recompute()
+        self.assertEqual((list(obj.Masses), obj.TotalMass), ([], 0.0))
+        obj.Density = 2500.0
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        expected = [v * 1e-9 * 2500.0 for v in obj.Volumes]
+        np.testing.assert_allclose(list(obj.Masses), expected, rtol=1e-12)
+        self.assertAlmostEqual(obj.TotalMass / sum(expected), 1.0, places=12)
+        out = os.path.join(self.tmp.name, "heavy")
+        sheets = facetwb.make_cutsheets(obj, sheet=(2600.0, 1400.0), output_dir=out,
+                                        write_step=False, name="HeavySheets")
+        self.doc.recompute()
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        with open(os.path.join(out, "schedule.csv"), encoding="utf-8") as handle:
+            rows = list(csv.DictReader(handle))
+        self.assertEqual([r["id"] for r in rows], list(obj.PartIds))
+        # (the schedule's volumes are facet's, the object's OCC's: the same solids)
+        np.testing.assert_allclose([float(r["mass_kg"]) for r in rows], expected, rtol=1e-9)
+        np.testing.assert_allclose([float(r["volume"]) for r in rows], list(obj.Volumes),
+                                   rtol=1e-9)
+        before = (len(obj.Shape.Solids), obj.Shape.Volume, list(obj.Masses))
+        for bad in (-1.0, float("nan")):
+            obj.Density = bad
+            self.doc.recompute()
+            self.assertFalse(obj.isValid())
+            self.assertIn(f"{obj.Label}: density (kg/m³) must be a finite number > 0",
+                          obj.getStatusString())
+            self.assertEqual((len(obj.Shape.Solids), obj.Shape.Volume, list(obj.Masses)),
+                             before)
+        obj.Density = 0.0
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(list(obj.Masses), [])
+        self.doc.removeObject(sheets.Name)
+        self.doc.removeObject(obj.Name)
+
     def test_cutsheets_dxf_and_step_read_back(self):
         out = os.path.join(self.tmp.name, "cut")
         sheets = facetwb.make_cutsheets(self.mitred, sheet=(2600.0, 1400.0), margin=10.0,

@@ -1034,6 +1034,50 @@ def test_cli_panels_default_margin_and_spacing(facet_command, tmp_path):
     assert (report["options"]["margin"], report["options"]["spacing"]) == (0, 0)
 
 
+def test_schedule_gives_each_panel_its_volume_and_mass(facet_command, tmp_path):
+    """The schedule had no volume (area times thickness is not a mitred panel's) and no
+    mass, which a fabricator needs for handling, transport and cranes. It now gives each
+    panel's volume, and its mass from --density (kg/m³) in any units; the summary gives
+    the total and the heaviest panel."""
+    from facet import write_mesh
+    from facet.cli_panels import run_pipeline
+    from facet.errors import InputError
+
+    mm = translational(nu=4, nv=3, step=400.0)
+    report, ps, _, _ = run_pipeline(mm, 18.0, edge="bisector", gap=4, density=2500.0,
+                                    schedule=str(tmp_path / "s.csv"))
+    rows = list(csv.DictReader(open(tmp_path / "s.csv", encoding="utf-8")))
+    volumes = np.array([float(r["volume"]) for r in rows])
+    assert volumes == pytest.approx([p.volume for p in ps.panels], rel=1e-15)
+    # mitred: not area x thickness
+    assert not np.allclose(volumes, [18.0 * float(r["area"]) for r in rows], rtol=1e-3)
+    masses = np.array([float(r["mass_kg"]) for r in rows])
+    assert masses == pytest.approx(volumes * 1e-9 * 2500.0, rel=1e-12)
+    assert report["total_mass_kg"] == pytest.approx(masses.sum(), rel=1e-12)
+    k = int(np.argmax(masses))
+    assert report["heaviest_panel"] == {"id": rows[k]["id"], "mass_kg": masses[k]}
+    # the same panels in metres weigh the same
+    metres = facet.PolyMesh(mm.vertices / 1000.0, mm.face_start, mm.face_vertices)
+    write_mesh(metres, tmp_path / "m.obj")
+    done = facet_command("panels", tmp_path / "m.obj", "--thickness", "0.018", "--gap",
+                         "0.004", "--edge", "bisector", "--units", "m", "--density", "2500",
+                         "--schedule", tmp_path / "m.json")
+    assert done.returncode == 0, done.stderr
+    in_metres = json.load(open(tmp_path / "m.json"))
+    assert in_metres["meta"]["density"] == 2500.0
+    assert [r["mass_kg"] for r in in_metres["panels"]] == pytest.approx(masses, rel=1e-9)
+    assert (f"mass          {masses.sum():,.1f} kg in all at 2500 kg/m³, the heaviest "
+            f"{rows[k]['id']} {masses[k]:,.1f} kg") in done.stdout
+    # without a density: volumes, and no mass
+    run_pipeline(mm, 18.0, schedule=str(tmp_path / "n.csv"))
+    rows = list(csv.DictReader(open(tmp_path / "n.csv", encoding="utf-8")))
+    assert all(float(r["volume"]) > 0 and r["mass_kg"] == "" for r in rows)
+    for bad in (0.0, -2500.0, float("nan"), float("inf")):
+        with pytest.raises(InputError, match="density"):
+            run_pipeline(mm, 18.0, density=bad, schedule=str(tmp_path / "bad.csv"))
+    assert not (tmp_path / "bad.csv").exists()
+
+
 def test_cli_panels_in_metres(facet_command, tmp_path):
     # a facade modelled in metres: the DXF said millimetres ($INSUNITS 4) and the STEP was
     # written as if its metres were millimetres, parts a thousandth of their size, unsaid

@@ -112,6 +112,10 @@ def add_commands(commands):
     p.add_argument("--svg", metavar="DIR", help="SVG preview of each sheet")
     p.add_argument("--png", metavar="DIR", help="PNG preview of each sheet")
     p.add_argument("--report", metavar="R.json", help="JSON report")
+    p.add_argument("--density", type=float, metavar="KG_M3",
+                   help="the panels' material in kg/m³ (glass 2500, aluminium 2700, steel "
+                   "7850): each panel's mass in the schedule (mass_kg), the total and the "
+                   "heaviest in the summary")
     p.add_argument("--units", choices=("mm", "cm", "m", "in", "ft"), default="mm",
                    help="the mesh's length unit, and every length given here (default mm): "
                    "the DXF declares it ($INSUNITS), the STEP file is written in mm from it")
@@ -124,7 +128,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
                  spacing=None, rotations="90", grain=None, dxf=None, per_sheet=False,
                  step=None, schedule=None, svg=None, png=None, progress=None,
                  cancelled=None, panel_set=None, solids=None, allow_unplaced=False,
-                 units="mm", text_outlines=False):
+                 units="mm", text_outlines=False, density=None):
     """Everything ``facet panels`` does, as a function (also used by the
     benchmark). Returns (report dict, PanelSet, drawings, NestResult or None).
 
@@ -143,14 +147,17 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
     (nothing written) unless `allow_unplaced` is true. ``text_outlines``: the DXF's IDs
     and bevel angles as letter outlines (:func:`facet.cutsheets.write_dxf`). ``margin``
     and ``spacing`` (model units) default to :data:`facet.nest.DEFAULT_MARGIN_MM` and
-    :data:`facet.nest.DEFAULT_SPACING_MM` in ``units``.
+    :data:`facet.nest.DEFAULT_SPACING_MM` in ``units``. ``density`` (kg/m³, optional):
+    the schedule's and the report's masses (:func:`facet.panels.mass_kg`).
     """
     from facet.cutsheets import length_unit
     from facet.errors import InputError
     from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
-    from facet.panels import DEFAULT_MIN_EDGE, panels
+    from facet.panels import DEFAULT_MIN_EDGE, check_density, panels
 
     mm_per_unit = length_unit(units)[0]
+    if density is not None:
+        density = check_density(density)
     if min_edge is None:
         min_edge = DEFAULT_MIN_EDGE
     margin_said = margin is not None
@@ -208,7 +215,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
                 rotations=rotations, grain=grain, dxf=dxf, per_sheet=per_sheet,
                 text_outlines=text_outlines, step=step,
                 schedule=schedule, svg=svg, png=png, allow_unplaced=allow_unplaced,
-                solids=solids, stage_progress=stage_progress, cancelled=cancelled, units=units)
+                solids=solids, stage_progress=stage_progress, cancelled=cancelled, units=units,
+                density=density)
     except BaseException:
         if job is not None:
             job.cancel()
@@ -218,7 +226,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
 def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,
                       dxf, per_sheet, text_outlines, step, schedule, svg, png, allow_unplaced,
                       solids,
-                      stage_progress, cancelled, units):
+                      stage_progress, cancelled, units, density):
     from facet.cutsheets import (length_unit, schedule_rows, write_dxf, write_png,
                                  write_schedule_csv, write_schedule_json, write_svg)
     from facet.errors import Cancelled, InputError
@@ -260,9 +268,10 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
     if schedule:
         check()
         t = time.perf_counter()
-        rows = schedule_rows(ps, result, drawings)
+        rows = schedule_rows(ps, result, drawings, density=density, units=units)
         if schedule.lower().endswith(".json"):
-            write_schedule_json(schedule, rows, meta=dict(ps.options, units=units))
+            write_schedule_json(schedule, rows, meta=dict(ps.options, units=units,
+                                                          density=density))
         else:
             write_schedule_csv(schedule, rows)
         files["schedule"] = [schedule]
@@ -306,7 +315,8 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         "n_panels": len(ps),
         "id_scheme": ps.id_scheme,
         "grid_shape": ps.grid_shape,
-        "panels": schedule_rows(ps, result, drawings) if rows is None else rows,
+        "panels": rows if rows is not None else schedule_rows(
+            ps, result, drawings, density=density, units=units),
         "sheets": [] if result is None else [
             {"index": s.index + 1, "parts": s.parts, "utilisation": s.utilisation}
             for s in result.sheets],
@@ -331,6 +341,12 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         "files": files,
         "seconds": times,
     }
+    if density is not None:
+        masses = [row["mass_kg"] for row in report["panels"]]
+        heaviest = max(range(len(masses)), key=masses.__getitem__, default=None)
+        report.update(density=density, total_mass_kg=float(sum(masses)),
+                      heaviest_panel=None if heaviest is None else
+                      {"id": report["panels"][heaviest]["id"], "mass_kg": masses[heaviest]})
     return report, ps, drawings, result
 
 
@@ -372,7 +388,7 @@ def run_panels(args):
             per_sheet=args.per_sheet, text_outlines=args.text_outlines, step=args.step,
             schedule=args.schedule, svg=args.svg, png=args.png,
             progress=panels_progress(line, interrupted), cancelled=interrupted,
-            units=args.units)
+            units=args.units, density=args.density)
     finally:
         line.close()  # (before the summary, or an error's message)
     report["input"] = args.input
@@ -411,6 +427,11 @@ def run_panels(args):
              + (f"; a gap of {ps.clearing_gap:.4g} clears every overlap"
                 if ps.clearing_gap is not None else "") if ps.node_clashes else ""),
           file=out)
+    if report.get("heaviest_panel"):
+        heaviest = report["heaviest_panel"]
+        print(f"  mass          {report['total_mass_kg']:,.1f} kg in all at "
+              f"{report['density']:g} kg/m³, the heaviest {heaviest['id']} "
+              f"{heaviest['mass_kg']:,.1f} kg", file=out)
     if result is not None:
         print(f"  sheets        {len(result.sheets)}, utilisation {100 * result.utilisation:.1f}%"
               f", {len(result.unplaced)} unplaced", file=out)

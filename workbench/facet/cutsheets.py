@@ -383,17 +383,24 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
     return written
 
 
-def schedule_rows(panel_set, nest_result=None, drawings=None):
+def schedule_rows(panel_set, nest_result=None, drawings=None, density=None, units="mm"):
     """The schedule: one dict per panel (see :meth:`facet.panels.Panel.schedule_row`)
     with sheet (1-based, None when not nested or unplaced), x, y and
     rotation_deg on the sheet: ``sheet_xy = rotate(rotation_deg) @ flat_xy + (x, y)``
     for the panel's flat outline (``Panel.flat_bottom``). ``drawings``
     (:func:`facet.unfold.unfold`'s) carry the turn that lays each part's grain along x,
-    which the rotation includes; without them it is the nesting's alone."""
+    which the rotation includes; without them it is the nesting's alone. ``mass_kg``: the
+    panel's mass in kg from its volume (model units cubed, `units`) and ``density``
+    (kg/m³), None without a density."""
+    from facet.panels import mass_kg
+
+    mm_per_unit = length_unit(units)[0]
     turned = {d.id: d.rotation_deg for d in drawings or ()}
     rows = []
     for p in panel_set.panels:
         row = p.schedule_row()
+        row["mass_kg"] = (None if density is None
+                          else float(mass_kg(row["volume"], density, mm_per_unit)))
         pl = nest_result.placements.get(p.id) if nest_result is not None else None
         row["sheet"] = None if pl is None else pl.sheet + 1
         row["x"] = None if pl is None else pl.x
@@ -405,7 +412,7 @@ def schedule_rows(panel_set, nest_result=None, drawings=None):
 
 
 _CSV_COLUMNS = ["id", "face", "corners", "input_corners", "area", "area_top", "perimeter",
-                "width", "height", "thickness",
+                "width", "height", "thickness", "volume", "mass_kg",
                 "edge_lengths", "bevel_deg", "dihedral_deg", "dropped_edges",
                 "squared_edges", "butt_edges", "joint_widths", "narrowest_joint", "clash",
                 "sheet", "x", "y",

@@ -32,7 +32,7 @@ from facet.quality import DEFAULT_SHORT_EDGE
 from facet.report import count_noun, first_names
 
 __all__ = ["PanelError", "Panel", "PanelSet", "panels", "OFFSETS", "EDGES", "ID_SCHEMES",
-           "grid_positions", "DEFAULT_MIN_EDGE"]
+           "grid_positions", "DEFAULT_MIN_EDGE", "check_density", "mass_kg"]
 
 #: Default of ``panels(min_edge=...)``: an edge shorter than this fraction of
 #: the mean edge of a face beside it has vanished, and its two ends become one
@@ -261,6 +261,7 @@ class Panel:
             "width": w,
             "height": h,
             "thickness": self.thickness,
+            "volume": self.volume,
             "edge_lengths": [float(x) for x in self.edge_lengths],
             "bevel_deg": [float(x) for x in self.bevel_deg],
             "dihedral_deg": [None if x is None else float(x) for x in self.dihedral_deg],
@@ -460,6 +461,20 @@ class PanelSet:
     def schedule(self):
         """List of schedule rows (dicts), in panel order."""
         return [p.schedule_row() for p in self.panels]
+
+
+def check_density(density):
+    """`density` (kg/m³) as a float: a finite number > 0; :class:`PanelError` otherwise,
+    naming it (a density of 0 would weigh every panel 0 kg without a word)."""
+    return _check_float("density (kg/m³)", density, 0.0, True)
+
+
+def mass_kg(volume, density, mm_per_unit=1.0):
+    """The mass in kilograms of `volume` (model units cubed; an array too) of a material of
+    `density` kg/m³, the model's length unit being `mm_per_unit` millimetres (1000 for
+    metres): glass 2,500 kg/m³, aluminium 2,700, steel 7,850."""
+    metres = mm_per_unit / 1000.0
+    return np.asarray(volume, dtype=float) * (metres * metres * metres) * density
 
 
 def _check_float(name, value, minimum, strict):

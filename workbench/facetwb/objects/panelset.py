@@ -109,12 +109,19 @@ class PanelSet(_Proxy):
             value="P-")
         add(obj, "App::PropertyBool", "OnePerPanel", "Part IDs",
             "Also one Part object per panel, labelled by its part ID (else one compound)")
+        add(obj, "App::PropertyFloat", "Density", "Panels",
+            "The panels' material in kg/m³ (glass 2500, aluminium 2700, steel 7850): each "
+            "panel's mass in Masses and the cut sheets' schedule (0: none)")
         _output(obj, "App::PropertyLinkList", "PanelObjects",
                 "The per-panel objects (with OnePerPanel), in the order of PartIds")
         _output(obj, "App::PropertyStringList", "PartIds", "Part ID of each solid, in order")
         _output(obj, "App::PropertyInteger", "PanelCount", "Number of panels")
         _output(obj, "App::PropertyFloatList", "Volumes", "Volume of each solid")
         _output(obj, "App::PropertyFloatList", "Areas", "Bottom face area of each panel")
+        _output(obj, "App::PropertyFloatList", "Masses",
+                "Mass of each panel in kg, from Volumes and Density (empty without one)")
+        _output(obj, "App::PropertyFloat", "TotalMass",
+                "Mass of all the panels in kg (0 without a Density)")
         _output(obj, "App::PropertyAngle", "MaxNodeDeviation",
                 "Largest angle by which a node's edge planes miss a common axis")
         _output(obj, "App::PropertyIntegerList", "Corners",
@@ -190,6 +197,7 @@ class PanelSet(_Proxy):
         from facet.step import SolidError, panel_solids
 
         self._cache = None
+        density = _density(obj)  # (before anything changes)
         ps = self.panel_set(obj)
         try:
             # every solid checked by BRepCheck (brepcheck=True)
@@ -200,6 +208,7 @@ class PanelSet(_Proxy):
         obj.PartIds = [p.id for p in ps.panels]
         obj.PanelCount = len(ps.panels)
         obj.Volumes = [s.Volume for s in solids]
+        obj.Masses, obj.TotalMass = _masses(obj.Volumes, density)
         obj.Areas = [p.area for p in ps.panels]
         obj.MaxNodeDeviation = ps.max_node_deviation_deg
         obj.Corners = [p.corners for p in ps.panels]
@@ -279,6 +288,30 @@ class PanelSet(_Proxy):
             obj.ViewObject.Visibility = not keep
             if hasattr(obj.ViewObject.Proxy, "show_clashes"):
                 obj.ViewObject.Proxy.show_clashes(obj)  # the new objects' colours
+
+
+def _density(obj):
+    """The PanelSet's Density (kg/m³), None when 0 (not given); a ValueError naming the
+    object when it is not a finite number > 0."""
+    from facet.panels import check_density
+
+    if obj.Density == 0.0:
+        return None
+    try:
+        return check_density(obj.Density)
+    except ValueError as exc:
+        raise ValueError(f"{obj.Label}: {exc}") from None
+
+
+def _masses(volumes, density):
+    """(each panel's mass in kg, their sum) from `volumes` (mm³) and `density` (kg/m³);
+    ([], 0.0) without a density."""
+    from facet.panels import mass_kg
+
+    if density is None:
+        return [], 0.0
+    masses = [float(m) for m in mass_kg(volumes, density)]
+    return masses, float(sum(masses))
 
 
 def _owns(obj, child):
@@ -361,13 +394,14 @@ class CutSheets(_Proxy):
             schedule=os.path.join(out, "schedule.csv") if out else None,
             svg=os.path.join(out, "svg") if out else None,
             step=os.path.join(out, "panels.step") if out and obj.WriteStep else None,
-            text_outlines=bool(obj.TextOutlines),
+            text_outlines=bool(obj.TextOutlines), density=_density(ps_obj),
             progress=_stage_progress(progress.hook(), progress.say_hook()))
         if out:
-            from facet.cutsheets import schedule_rows, write_schedule_json
+            from facet.cutsheets import write_schedule_json
 
             path = os.path.join(out, "schedule.json")
-            write_schedule_json(path, schedule_rows(ps, result, drawings), meta=ps.options)
+            write_schedule_json(path, report["panels"],  # (the schedule's rows)
+                                meta=dict(ps.options, units="mm", density=report.get("density")))
             report["files"]["schedule"].append(path)
         # the layout: sheets side by side, flat in the xy plane
         from facet.cutsheets import sheet_offsets
