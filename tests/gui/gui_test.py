@@ -289,10 +289,27 @@ def check_examples_open_with_view_providers(check, out_dir):
         check(all(o.ViewObject.DisplayMode for o in planarized)
               and all("Planarity" in o.ViewObject.listDisplayModes() for o in planarized),
               f"{name}: its results offer the planarity map")
-        Gui.ActiveDocument.ActiveView.viewIsometric()
-        Gui.SendMsgToActiveView("ViewFit")
+        # FreeCAD attached the placeholder Proxy it restored, not the provider set after
+        # it: the providers had no scene graph, the results were not drawn at all
+        undrawn = [o.Label for o in facet_objects if o.Proxy.Type not in (
+            "Facet::PanelSet", "Facet::CutSheets") and not hasattr(o.ViewObject.Proxy, "coords")]
+        check(not undrawn, f"{name}: every Facet mesh has its scene graph ({undrawn or 'all'})")
+        for o in doc.Objects:  # the results alone, in the planarity map
+            o.ViewObject.Visibility = o in planarized
+        Gui.Selection.clearSelection()
         path = os.path.join(out_dir, f"example_{name.split('.')[0]}.png")
         save_view(Gui.ActiveDocument.ActiveView, path)
+        # the planarized facade in its planarity map; the lifted roof in grey, as made
+        check_screenshot(check, path, f"{name}: its result", legend=name == "facade.FCStd")
+        if name == "facade.FCStd":
+            from facetwb import edit_control
+
+            Gui.Selection.addSelection(planarized[0])
+            Gui.runCommand("Facet_EditControlMesh")
+            check(edit_control.active_session() is not None,
+                  f"{name}: Edit control mesh starts on its result")
+            if edit_control.active_session() is not None:
+                edit_control.finish(False)
         App.closeDocument(doc.Name)
 
 

@@ -7,7 +7,8 @@ colours, and its sources hidden under it. A document saved by ``freecadcmd`` (a 
 objects had no view provider: nothing drawn, no colour map or legend, no task panel on
 double-click. Each Facet object's ``onDocumentRestored`` calls :func:`schedule`. Once the
 document has loaded, and its ``GuiDocument.xml`` with it, an object still without a view
-provider gets the same as :func:`give` gives.
+provider gets the same as :func:`give` gives, and its ``attach`` is called when FreeCAD
+does not call it (it attached the placeholder Proxy it restored instead).
 """
 
 import FreeCAD as App
@@ -107,6 +108,12 @@ def attach_pending():
         if isinstance(getattr(view, "Proxy", None), (type(None), int)):
             try:
                 attach(obj)
+                proxy = view.Proxy
+                if getattr(proxy, "ViewObject", None) is None and hasattr(proxy, "attach"):
+                    # FreeCAD attached the placeholder Proxy and does not attach the one
+                    # set after it: the provider had no scene graph (nothing drawn, no
+                    # legend, Edit control mesh failed on it)
+                    proxy.attach(view)
                 attached.append((obj.Document.Name, obj.Name))
             except Exception as error:  # noqa: BLE001 - one object must not stop the rest
                 App.Console.PrintError(f"Facet: {obj.Label}: no view provider: {error}\n")
