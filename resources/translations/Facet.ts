@@ -442,17 +442,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="234"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="236"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="240"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="242"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="227"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="229"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -562,17 +562,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="217"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="219"/>
         <source>a Gap of {0:.4g} mm or EdgeMode bisector clears them</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="217"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="219"/>
         <source>no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="222"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="224"/>
         <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; {5}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -587,33 +587,38 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="495"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="497"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="496"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="498"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="497"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="499"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="498"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="500"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="499"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="501"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="500"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="502"/>
         <source>Writing the PNG sheets</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="47"/>
+        <source>{0}: every change re-solves it at once. OK keeps the changes in one undo step; Cancel puts the previous values and result back.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

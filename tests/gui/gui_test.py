@@ -1158,8 +1158,8 @@ def check_edit_planarized(check, out_dir):
     from facetwb.taskpanels import edit_panels, forms
 
     doc = App.newDocument("EditPlanarized")
-    control = facetwb.make_polymesh(facet.read_mesh(MESH))
-    result = facetwb.make_planarized(control, tolerance=1e-3)
+    control = facetwb.make_polymesh(facet.read_mesh(MESH), label="Control mesh")
+    result = facetwb.make_planarized(control, tolerance=1e-3)  # "Control mesh planarized"
     doc.recompute()
     Gui.ActiveDocument.ActiveView.fitAll()
     before = get_mesh(result).vertices.copy()
@@ -1175,6 +1175,18 @@ def check_edit_planarized(check, out_dir):
     check(forms.get_value(panel.form, "Tolerance", None, True) == 1e-3
           and forms.get_value(panel.form, "Method", METHODS) == result.Method == "auto",
           "the panel shows the object's parameters")
+    Gui.updateGui()
+    # the label in the title ("Planarize: Control mesh planarized") widened the panel past
+    # the task pane: its fields, spin buttons and the note were cut off at the right
+    from PySide import QtGui
+
+    panes = [w for w in Gui.getMainWindow().findChildren(QtGui.QScrollArea)
+             if w.isVisible() and w.widget() and w.widget().isAncestorOf(panel.form)]
+    check(panes and panes[0].widget().width() <= panes[0].viewport().width()
+          and result.Label in forms.widget(panel.form, "note").text(),
+          f"the edit panel of {result.Label!r} fits the task pane and names it "
+          f"({panes[0].widget().width() if panes else '?'} px in "
+          f"{panes[0].viewport().width() if panes else '?'} px)")
     field = forms.widget(panel.form, "Tolerance")
     field.setText("1e-09")
     field.editingFinished.emit()

@@ -39,7 +39,15 @@ class PlanarizeEditPanel:
         self.obj = obj
         self.doc = obj.Document
         self.form = forms.load("planarize")
-        self.form.setWindowTitle(f"{translate('Facet', TITLE)}: {obj.Label}")
+        # the object's name in the note, which wraps: in the title (which does not) a label
+        # such as "Control mesh planarized" widened the panel past the task pane, its
+        # fields cut off at the right
+        self.form.setWindowTitle(translate("Facet", TITLE))
+        note = forms.widget(self.form, "note")
+        note.setText(translate(
+            "Facet", "{0}: every change re-solves it at once. OK keeps the changes in one "
+                     "undo step; Cancel puts the previous values and result back.").format(
+            forms.elided(note, obj.Label)))
         for name, choices in FIELDS:
             forms.set_value(self.form, name, _property_value(obj, name), choices)
         self.doc.openTransaction(f"Edit {obj.Label}")

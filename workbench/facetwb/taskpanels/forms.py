@@ -88,6 +88,14 @@ def label(form, name):
     return found.text() if found is not None else name
 
 
+def elided(label, text, width=180):
+    """``text`` shortened in the middle (with an ellipsis) to ``width`` pixels of ``label``'s
+    font: a word that long cannot wrap, and would widen the task panel past its pane."""
+    from PySide import QtCore
+
+    return label.fontMetrics().elidedText(text, QtCore.Qt.ElideMiddle, width)
+
+
 def on_change(form, name, callback):
     """Call ``callback`` when the user changes the field ``name`` (a line edit: when its
     editing finishes, not at every key)."""
