@@ -621,6 +621,16 @@
         <source>{0}: every change re-solves it at once. OK keeps the changes in one undo step; Cancel puts the previous values and result back.</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="80"/>
+        <source>Import polygon mesh</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="80"/>
+        <source>{0}: its edges are {1:.3g} long on average, which is no facade&apos;s panel in millimetres. Which units are its numbers in?</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>Facet_Cleanup</name>

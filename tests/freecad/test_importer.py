@@ -79,9 +79,10 @@ class TestImporter(DocumentTestCase):
             importer.read_polymesh(data_path("bad_index.off"))
         self.assertIn("face 1", str(caught.exception))
 
-    def imported_saying(self, *texts):
-        """Import each OBJ text with importer.insert; (the report view's warnings, [(path,
-        object)])."""
+    def imported_saying(self, *texts, units="m"):
+        """Import each OBJ text with importer.insert, its numbers in ``units`` (metres: the
+        texts' panels are 1 unit across, which no facade's are in millimetres); (the report
+        view's warnings, [(path, object)])."""
         import tempfile
 
         said, imported = [], []
@@ -92,7 +93,7 @@ class TestImporter(DocumentTestCase):
                     path = os.path.join(folder, f"mesh{k}.obj")
                     with open(path, "w", encoding="utf-8") as stream:
                         stream.write(text)
-                    imported.append((path, importer.insert(path, self.doc.Name)))
+                    imported.append((path, importer.insert(path, self.doc.Name, units)))
         finally:
             importer.report_warning = keep
         return said, imported
@@ -122,3 +123,36 @@ class TestImporter(DocumentTestCase):
             f"Facet: {path}: vertices at one point but not one vertex: 2 pairs (vertices 1 "
             "and 4 at (1, 0, 0)); the faces there are not joined: weld them where the panels "
             "should meet: facet weld, or in FreeCAD Collapse short edges, which welds first"])
+
+    def test_units_scale_to_millimetres(self):
+        """A file in metres (a facade 1 m across, its numbers 0 and 1) read as FreeCAD's
+        millimetres came in a thousand times too small, silently: panels of 40 mm on a 1 mm
+        facade and cut sheets of specks. Read with its units it is scaled to millimetres;
+        read as millimetres the report view says how long its edges are and what to do."""
+        square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"
+        said, [(path, obj)] = self.imported_saying(square, units="m")
+        self.assertEqual(said, [])
+        self.assertEqual([tuple(p) for p in obj.Points],
+                         [(0, 0, 0), (1000, 0, 0), (1000, 1000, 0), (0, 1000, 0)])
+        said, [(path, obj)] = self.imported_saying(square, units="mm")
+        self.assertEqual(max(p.x for p in obj.Points), 1.0)  # as it is
+        self.assertEqual(said, [
+            f"Facet: {path}: its edges are 1 mm long on average, its numbers read as "
+            "millimetres: if the file is in other units, import it again with Facet > Import "
+            "polygon mesh, which asks for them, or its panels and cut sheets come out at the "
+            "wrong size"])
+        with self.assertRaises(importer.MeshImportError) as caught:
+            importer.read_polymesh(data_path("hypar.obj"), "yards")
+        self.assertIn("units 'yards': use one of mm, cm, m, in, ft", str(caught.exception))
+
+    def test_likely_units(self):
+        """The units offered first: those that make the mean edge closest to 1.5 m."""
+        import facet
+
+        square = facet.PolyMesh([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [0, 4],
+                                [0, 1, 2, 3])
+        for size, units in ((0.6, "m"), (1.5, "m"), (1500.0, "mm"), (60.0, "mm"),
+                            (1e-6, "mm")):
+            with self.subTest(size=size):
+                mesh = square.with_vertices(square.vertices * size)
+                self.assertEqual(importer.likely_units(mesh), units)

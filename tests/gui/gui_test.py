@@ -1131,6 +1131,56 @@ def check_import_command(check):
         QtGui.QFileDialog.getOpenFileName = dialog
     check(meshes and meshes[0].FaceCount == 7, "the imported mesh has its 7 faces")
     App.closeDocument(doc.Name)
+    check_import_units(check)
+
+
+def check_import_units(check):
+    """Facet_ImportMesh of a facade in metres (edges 0.566 of its units): read as millimetres
+    it came in a thousand times too small, silently. The command asks for the units,
+    metres offered first, and scales it; Cancel there imports nothing."""
+    import tempfile
+
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import numpy as np
+    from PySide import QtGui
+
+    import facet
+    import facetwb
+    from facet.gridding import sample_surface
+    from facetwb import importer
+
+    doc = App.newDocument("ImportUnits")
+    path = os.path.join(tempfile.mkdtemp(prefix="facet-gui-units-"), "facade_m.obj")
+    facet.write_mesh(sample_surface(lambda u, v: np.column_stack([u, 0.1 * u * v, v]),
+                                    (0.0, 12.0), (0.0, 6.0), "quad", 24, 12), path)
+    asked = []
+
+    def answer(choice):
+        def get_item(parent, title, text, items, current, editable):
+            asked.append((text, items[current]))
+            return (items[[i.endswith("(m)") for i in items].index(True)], True) \
+                if choice else (items[current], False)
+        return staticmethod(get_item)
+
+    dialogs = QtGui.QFileDialog.getOpenFileName, QtGui.QInputDialog.getItem
+    importer.SHOW_DIALOGS = True
+    try:
+        QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *args, **kw: (path, ""))
+        for choice in (False, True):
+            QtGui.QInputDialog.getItem = answer(choice)
+            Gui.runCommand("Facet_ImportMesh")
+    finally:
+        QtGui.QFileDialog.getOpenFileName, QtGui.QInputDialog.getItem = dialogs
+        importer.SHOW_DIALOGS = False
+    meshes = [obj for obj in doc.Objects if facetwb.is_polymesh(obj)]
+    check(len(asked) == 2 and "edges are 0.566 long on average" in asked[0][0]
+          and asked[0][1] == "metres (m)",
+          f"Facet_ImportMesh of a facade in metres asks for its units, metres first ({asked})")
+    width = max(p.x for p in meshes[0].Points) if meshes else 0
+    check(len(meshes) == 1 and abs(width - 12000.0) < 1e-6,
+          f"Cancel imports nothing; metres chosen, the facade is 12 m wide ({width} mm)")
+    App.closeDocument(doc.Name)
 
 
 def bounding_box(node):

@@ -17,20 +17,64 @@ import FreeCAD as App
 #: GUI set this to False so no modal dialog waits for a click.
 SHOW_DIALOGS = True
 
+#: The mean edge lengths, in mm, of the meshes taken to be in the units they were read in
+#: (``facet panels`` warns outside the same range): a facade drawn in metres and read as
+#: FreeCAD's millimetres has edges of a few millimetres at most.
+PLAUSIBLE_EDGE_MM = (10.0, 50000.0)
+
+#: The units a file can be read in (facet.cutsheets.LENGTH_UNITS), as the designer reads them.
+UNIT_NAMES = {"mm": "millimetres", "cm": "centimetres", "m": "metres", "in": "inches",
+              "ft": "feet"}
+
 
 class MeshImportError(Exception):
     """A file that cannot be imported; ``str()`` is one line naming the file and the problem."""
 
 
-def read_polymesh(filename):
-    """``facet.read_mesh(filename)``, raising MeshImportError with a one-line message; what
-    the reader changed in reading it (faces with a vertex twice in a row) and an unwelded
-    seam (vertices at one point, which the faces there do not share) are warnings in the
-    report view."""
+def size_warning(mesh, units="mm"):
+    """The warning for a mesh whose mean edge, read in ``units``, is outside
+    PLAUSIBLE_EDGE_MM (a facade in metres read as millimetres), or None."""
+    from facet.cutsheets import length_unit
+
+    edge = mesh.mean_edge_length() * length_unit(units)[0]
+    if PLAUSIBLE_EDGE_MM[0] <= edge <= PLAUSIBLE_EDGE_MM[1]:
+        return None
+    return (f"its edges are {edge:.3g} mm long on average, its numbers read as "
+            f"{UNIT_NAMES[units]}: if the file is in other units, import it again with Facet "
+            "> Import polygon mesh, which asks for them, or its panels and cut sheets come "
+            "out at the wrong size")
+
+
+def likely_units(mesh):
+    """The unit that makes ``mesh``'s mean edge closest to a panel's (1.5 m), of those that
+    make it plausible; "mm" when none does."""
+    import math
+
+    from facet.cutsheets import length_unit
+
+    edge = mesh.mean_edge_length()
+    plausible = [u for u in UNIT_NAMES if PLAUSIBLE_EDGE_MM[0] <= edge * length_unit(u)[0]
+                 <= PLAUSIBLE_EDGE_MM[1]]
+    if not plausible or "mm" in plausible:
+        return "mm"
+    return min(plausible, key=lambda u: abs(math.log(edge * length_unit(u)[0] / 1500.0)))
+
+
+def read_polymesh(filename, units="mm"):
+    """``facet.read_mesh(filename)`` with its coordinates read in ``units`` (UNIT_NAMES)
+    and turned into millimetres, FreeCAD's unit, raising MeshImportError with a one-line
+    message; what the reader changed in reading it (faces with a vertex twice in a row), an
+    unwelded seam (vertices at one point, which the faces there do not share) and a size
+    no facade has in those units (:func:`size_warning`) are warnings in the report view."""
     import facet
+    from facet.cutsheets import length_unit
     from facet.io import read_warnings
     from facet.mesh import unwelded_warning
 
+    scale = length_unit(units)[0] if units in UNIT_NAMES else None
+    if scale is None:
+        raise MeshImportError(f"Cannot import {filename}: units {units!r}: use one of "
+                              f"{', '.join(UNIT_NAMES)}")
     try:
         mesh = facet.read_mesh(filename)
         for warning in read_warnings(mesh):
@@ -38,6 +82,11 @@ def read_polymesh(filename):
         seam = unwelded_warning(mesh, "the faces there are not joined")
         if seam:
             report_warning(f"Facet: {filename}: {seam}")
+        size = size_warning(mesh, units)
+        if size:
+            report_warning(f"Facet: {filename}: {size}")
+        if scale != 1.0:
+            mesh = mesh.with_vertices(mesh.vertices * scale)
         return mesh
     except (facet.errors.FacetError, OSError, ValueError) as error:
         message = str(error)
@@ -49,12 +98,13 @@ def read_polymesh(filename):
         raise MeshImportError(f"Cannot import {filename}: {message}") from error
 
 
-def import_mesh(filename, doc):
-    """Read ``filename`` into a new, recomputed PolyMesh in ``doc`` and return it.
+def import_mesh(filename, doc, units="mm"):
+    """Read ``filename`` (its numbers in ``units``) into a new, recomputed PolyMesh in
+    ``doc`` and return it.
 
     Raises MeshImportError, with ``doc`` unchanged, if the file cannot be read.
     """
-    return _add_polymesh(read_polymesh(filename), filename, doc)
+    return _add_polymesh(read_polymesh(filename, units), filename, doc)
 
 
 def _add_polymesh(mesh, filename, doc):
@@ -95,10 +145,11 @@ def open(filename):  # noqa: A001 - the name FreeCAD's import mechanism calls
     return doc
 
 
-def insert(filename, docname):
-    """Add ``filename`` to the document ``docname`` (created if missing); returns the object."""
+def insert(filename, docname, units="mm"):
+    """Add ``filename`` (its numbers in ``units``) to the document ``docname`` (created if
+    missing); returns the object."""
     try:
-        mesh = read_polymesh(filename)
+        mesh = read_polymesh(filename, units)
     except MeshImportError as error:
         report_error(str(error))
         return None

@@ -39,8 +39,48 @@ class CommandImportMesh:
         if not filename:
             return
         parameters.SetString("LastImportDir", os.path.dirname(filename))
+        units = file_units(filename)
+        if units is None:
+            return
         doc = App.ActiveDocument or App.newDocument()
         # importer.insert reports a file it cannot read and leaves the document unchanged.
-        run_as_macro(doc, "Import polygon mesh",
-                     [f'facetwb.importer.insert({filename!r}, "{doc.Name}")'],
+        arguments = f'{filename!r}, "{doc.Name}"' + (f", units={units!r}" if units != "mm" else "")
+        run_as_macro(doc, "Import polygon mesh", [f"facetwb.importer.insert({arguments})"],
                      modules=("facetwb.importer",))
+
+
+def file_units(filename):
+    """The units of ``filename``'s numbers: "mm", FreeCAD's unit, unless its mean edge read
+    so is no facade's (a mesh in metres has edges of a few millimetres then), when the
+    designer is asked (:func:`ask_units`; not when importer.SHOW_DIALOGS is off: the
+    report view's warning then says it). None: the designer cancelled the import."""
+    import facet
+
+    from facetwb import importer
+
+    if not importer.SHOW_DIALOGS:
+        return "mm"
+    try:
+        mesh = facet.read_mesh(filename)
+    except Exception:  # noqa: BLE001 - importer.insert reports what is wrong with the file
+        return "mm"
+    if importer.size_warning(mesh) is None:
+        return "mm"
+    return ask_units(filename, mesh.mean_edge_length(), importer.likely_units(mesh))
+
+
+def ask_units(filename, edge, likely):
+    """Ask which units ``filename``'s numbers are in (its mean edge is ``edge`` of them,
+    ``likely`` is offered first); a unit of importer.UNIT_NAMES, or None (Cancel)."""
+    from facetwb import importer
+    from facetwb.translation import translate
+
+    units = list(importer.UNIT_NAMES)
+    names = [f"{importer.UNIT_NAMES[u]} ({u})" for u in units]
+    item, ok = qt_gui().QInputDialog.getItem(
+        Gui.getMainWindow(), translate("Facet", "Import polygon mesh"),
+        translate("Facet", "{0}: its edges are {1:.3g} long on average, which is no facade's "
+                           "panel in millimetres. Which units are its numbers in?").format(
+            os.path.basename(filename), edge),
+        names, units.index(likely), False)
+    return units[names.index(item)] if ok else None
