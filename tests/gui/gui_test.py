@@ -896,6 +896,17 @@ def check_edit_control(check, out_dir):
     check(abs(session.radius - float(radius.property("rawValue"))) < 1e-9,
           f"setting Radius sets the session's radius ({session.radius:g} mm)")
     radius.setProperty("rawValue", 0.4 * session.radius)
+    Gui.updateGui()
+    # the Radius box without a maximum asked for room for DBL_MAX and pushed the panel
+    # past the task pane (285 px in 258 px), its text and boxes cut off at the right
+    from PySide import QtGui
+
+    panes = [w for w in Gui.getMainWindow().findChildren(QtGui.QScrollArea)
+             if w.isVisible() and w.widget() and w.widget().isAncestorOf(session.panel.form)]
+    check(panes and panes[0].widget().width() <= panes[0].viewport().width(),
+          f"the Edit control mesh panel fits the task pane "
+          f"({panes[0].widget().width() if panes else '?'} px in "
+          f"{panes[0].viewport().width() if panes else '?'} px)")
     proxy = result.ViewObject.Proxy
     n_tri = session.triangles.shape[0]
     check(n_tri == 2 * mesh.n_faces and proxy.faces.coordIndex.getNum() == 4 * n_tri,

@@ -805,6 +805,9 @@ class EditPanel:
         self.radius = Gui.UiLoader().createWidget("Gui::QuantitySpinBox")
         self.radius.setProperty("unit", "mm")
         self.radius.setProperty("minimum", 0.0)
+        # as the .ui forms' length boxes: without a maximum the box asked for room for
+        # DBL_MAX (177 px) and pushed the panel past the task pane, the text cut off
+        self.radius.setProperty("maximum", 1e9)
         self.radius.setProperty("rawValue", float(session.radius))
         self.radius.setToolTip(translate(
             "Facet", "Vertices closer than this to the dragged one move with it (0: the "
