@@ -442,17 +442,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="236"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="242"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="242"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="248"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="229"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="235"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -492,32 +492,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="809"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="812"/>
         <source>Vertices closer than this to the dragged one move with it (0: the dragged vertex alone)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="813"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="816"/>
         <source>Radius</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="816"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="819"/>
         <source>How much the neighbours move: smooth, linear with the distance, or all of them as much as the dragged vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="820"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="823"/>
         <source>Falloff</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="823"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="826"/>
         <source>Colour the result by the planarity of each panel or by how far its corners are from the control mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="827"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="830"/>
         <source>Colour by</source>
         <translation type="unfinished"></translation>
     </message>
@@ -562,17 +562,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="219"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="225"/>
         <source>a Gap of {0:.4g} mm or EdgeMode bisector clears them</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="219"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="225"/>
         <source>no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="224"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="230"/>
         <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; {5}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -587,32 +587,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="497"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="503"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="498"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="505"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="499"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="506"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="500"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="507"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="501"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="508"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="502"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="509"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -629,6 +629,11 @@
     <message>
         <location filename="../../workbench/facetwb/commands/import_mesh.py" line="80"/>
         <source>{0}: its edges are {1:.3g} long on average, which is no facade&apos;s panel in millimetres. Which units are its numbers in?</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="504"/>
+        <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -200,8 +200,14 @@ class PanelSet(_Proxy):
         density = _density(obj)  # (before anything changes)
         ps = self.panel_set(obj)
         try:
-            # every solid checked by BRepCheck (brepcheck=True)
-            solids = [s for _, s in panel_solids(ps, brepcheck=True)]
+            # every solid checked by BRepCheck (brepcheck=True); most of the time of a large
+            # set (3,200 panels: 0.4 s the panels, 2.6-10 s their solids), which showed no
+            # progress and could not be cancelled
+            stage = _stage_progress(progress.hook(), progress.say_hook())
+            solids = [s for _, s in panel_solids(
+                ps, brepcheck=True,
+                progress=None if stage is None else lambda done, total: stage("solids", done,
+                                                                               total))]
         except SolidError as exc:
             raise ValueError(f"{obj.Label}: {exc}") from None
         obj.Shape = Part.makeCompound(solids)
@@ -529,6 +535,7 @@ class ViewProviderPanels:
 #: What each stage of run_pipeline does, under the progress dialog's title.
 _STAGE_TEXTS = {
     "panels": QT_TRANSLATE_NOOP("Facet", "Building the panels"),
+    "solids": QT_TRANSLATE_NOOP("Facet", "Making the panel solids"),
     "nest": QT_TRANSLATE_NOOP("Facet", "Nesting the parts on the sheets"),
     "step": QT_TRANSLATE_NOOP("Facet", "Making the solids for STEP"),
     "dxf": QT_TRANSLATE_NOOP("Facet", "Drawing the parts in the DXF"),
