@@ -482,42 +482,42 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="797"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="825"/>
         <source>Edit control mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="799"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="827"/>
         <source>Drag a control vertex (dot) with the left mouse button; the planar result follows. OK (or Esc) keeps the edit, Cancel drops it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="812"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="844"/>
         <source>Vertices closer than this to the dragged one move with it (0: the dragged vertex alone)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="816"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="848"/>
         <source>Radius</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="819"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="851"/>
         <source>How much the neighbours move: smooth, linear with the distance, or all of them as much as the dragged vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="823"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="855"/>
         <source>Falloff</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="826"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="858"/>
         <source>Colour the result by the planarity of each panel or by how far its corners are from the control mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="830"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="862"/>
         <source>Colour by</source>
         <translation type="unfinished"></translation>
     </message>
@@ -634,6 +634,11 @@
     <message>
         <location filename="../../workbench/facetwb/objects/panelset.py" line="504"/>
         <source>Making the panel solids</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/edit_control.py" line="114"/>
+        <source>{0} is rebuilt from {1} on recompute: OK puts the moved vertices in a new polygon mesh, &apos;{0} edited&apos;, which the planar result then follows; both are kept as they are</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -216,6 +216,7 @@ def run(out_dir):
     check_panels(check, out_dir)
     check_panel_clashes(check, out_dir)
     check_edit_control(check, out_dir)
+    check_edit_linked_control(check)
     check_edit_region(check)
     check_edit_planarized(check, out_dir)
     check_recompute_cancel_and_failed_create(check)
@@ -1014,6 +1015,67 @@ def check_edit_control(check, out_dir):
     result.Tolerance = tolerance
     wait_for_live_resolve(result)
     check_live_parameters(check, result)
+    App.closeDocument(doc.Name)
+
+
+def check_edit_linked_control(check):
+    """Edit control mesh on the tutorial's facade (a SurfaceMesh on a B-spline surface,
+    planarized), as the tutorial says: it was refused with 'Facade quad mesh is rebuilt from
+    Facade on recompute'. The panel says what OK does; OK puts the moved vertices in a new
+    PolyMesh which the result follows; the surface and the SurfaceMesh are unchanged; undo
+    takes it all back."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import numpy as np
+
+    import facetwb
+    import ui_checks
+    from facetwb import edit_control
+    from facetwb.objects.polymesh import get_mesh
+
+    doc = App.newDocument("EditLinked")
+    surface = ui_checks.facade_surface(doc)
+    doc.recompute()
+    control = facetwb.make_surface_mesh(surface, "quad", count_u=12, count_v=6)
+    result = facetwb.make_planarized(control)
+    doc.recompute()
+    area, points = surface.Shape.Area, get_mesh(control).vertices.copy()
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(result)
+    Gui.runCommand("Facet_EditControlMesh")
+    session = edit_control.active_session()
+    if not check(session is not None, "Edit control mesh starts on the tutorial's facade"):
+        App.closeDocument(doc.Name)
+        return
+    note = getattr(session.panel, "linked", None)
+    check(note is not None and "OK puts the moved vertices in a new polygon mesh"
+          in note.text(), f"the panel says what OK does ({note.text() if note else None})")
+    x, y = session.screen_position(45)
+    session._on_button(_mouse("button", (x, y), True))
+    for k in range(1, 6):
+        session._on_move(_mouse("move", (x, y + 8 * k)))
+        session.poll()
+    session._on_button(_mouse("button", (x, y + 40), False))
+    session.wait(120.0)
+    names = [o.Name for o in doc.Objects]
+    check(edit_control.finish(True), "OK keeps the edit")
+    edited = result.Source
+    check(edited is not control and facetwb.is_polymesh(edited) and edited.Source is None
+          and edited.Label == f"{control.Label} edited" and not edited.ViewObject.Visibility,
+          f"the moved vertices are in a new, hidden PolyMesh ({edited.Label})")
+    check(not np.array_equal(get_mesh(edited).vertices, points)
+          and np.array_equal(get_mesh(control).vertices, points)
+          and abs(surface.Shape.Area - area) < 1e-9 * area,
+          "the SurfaceMesh and the surface are unchanged")
+    check(result.isValid() and result.PlanarityMaxRel <= result.Tolerance,
+          f"the result follows the edited mesh, planar ({result.getStatusString()})")
+    doc.undo()
+    doc.recompute()
+    check(result.Source is control and [o.Name for o in doc.Objects] == names,
+          "undo puts the SurfaceMesh back as the result's source, the new mesh gone")
     App.closeDocument(doc.Name)
 
 

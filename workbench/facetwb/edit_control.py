@@ -14,7 +14,10 @@ of each panel from the control mesh.
 
 Nothing in the document changes while editing: the moved positions live in the session.
 **Done** (the task panel's OK, or Esc in the 3D view) writes them to the control PolyMesh in
-one undoable transaction and recomputes; **Cancel** leaves the control mesh as it was.
+one undoable transaction and recomputes; **Cancel** leaves the control mesh as it was. A
+control mesh rebuilt from another object on recompute (a SurfaceMesh of the tutorial's
+surface) is left as it is: Done puts the moved vertices in a new PolyMesh, which the
+Planarized object then follows, in the same transaction.
 
 Numerics (soft selection, solves, colours) come from ``facet``; this module is wiring:
 Coin nodes, mouse events, a Qt timer and the task panel.
@@ -94,10 +97,24 @@ def control_of(obj):
     if not is_polymesh(control) or is_planarized(control):
         raise EditError(f"{planarized.Label}: its Source {control.Label} is not a PolyMesh; "
                         "convert it with 'To PolyMesh' to edit its vertices")
-    if getattr(control, "Source", None) is not None:
-        raise EditError(f"{control.Label} is rebuilt from {control.Source.Label} on recompute; "
-                        "edit a PolyMesh that holds its own mesh")
     return planarized, control
+
+
+def is_linked(control):
+    """Whether ``control`` is rebuilt from another object on recompute (a SurfaceMesh from
+    its surface, a PolyMesh from a Mesh or Part object): moved vertices written to it would
+    be lost at the next recompute, so Done puts them in a new PolyMesh instead."""
+    return getattr(control, "Source", None) is not None
+
+
+def linked_note(control):
+    """What Done does with the moved vertices of a linked control mesh (one line)."""
+    from facetwb.translation import translate
+
+    return translate("Facet", "{0} is rebuilt from {1} on recompute: OK puts the moved "
+                              "vertices in a new polygon mesh, '{0} edited', which the planar "
+                              "result then follows; both are kept as they are").format(
+        control.Label, control.Source.Label)
 
 
 def solver_settings(planarized, mesh):
@@ -725,7 +742,18 @@ class EditSession:
         doc = self.control_obj.Document
         doc.openTransaction("Edit control mesh")
         try:
-            self.control_obj.Points = [tuple(p) for p in self.live.control.tolist()]
+            if is_linked(self.control_obj):
+                # a control mesh rebuilt from a surface, Mesh or Part would drop the moved
+                # vertices at the next recompute: they go into a PolyMesh of their own,
+                # which the planar result follows from now on
+                from facetwb.make.make_polymesh import make_polymesh
+
+                edited = make_polymesh(self.mesh.with_vertices(self.live.control),
+                                       label=f"{self.control_obj.Label} edited", doc=doc)
+                self.planarized.Source = edited
+                edited.ViewObject.Visibility = False
+            else:
+                self.control_obj.Points = [tuple(p) for p in self.live.control.tolist()]
             doc.recompute()
         except Exception:
             doc.abortTransaction()
@@ -801,6 +829,10 @@ class EditPanel:
             "result follows. OK (or Esc) keeps the edit, Cancel drops it."))
         help_text.setWordWrap(True)
         layout.addRow(help_text)
+        if is_linked(session.control_obj):
+            self.linked = QtGui.QLabel(linked_note(session.control_obj))
+            self.linked.setWordWrap(True)
+            layout.addRow(self.linked)
         # a length in the user's units, as in the other panels (it always said "mm")
         self.radius = Gui.UiLoader().createWidget("Gui::QuantitySpinBox")
         self.radius.setProperty("unit", "mm")
