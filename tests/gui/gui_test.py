@@ -1283,7 +1283,10 @@ def check_edit_planarized(check, out_dir):
     doc = App.newDocument("EditPlanarized")
     control = facetwb.make_polymesh(facet.read_mesh(MESH), label="Control mesh")
     result = facetwb.make_planarized(control, tolerance=1e-3)  # "Control mesh planarized"
+    panels = facetwb.make_panelset(result, thickness=0.5)
+    panels.Tolerance = 1e-2  # the result is planar to 1e-3 only
     doc.recompute()
+    panels.ViewObject.Visibility = False
     Gui.ActiveDocument.ActiveView.fitAll()
     before = get_mesh(result).vertices.copy()
     loose = result.PlanarityMaxRel
@@ -1323,12 +1326,15 @@ def check_edit_planarized(check, out_dir):
     shot = os.path.join(out_dir, "edit_planarized.png")
     ui_checks.window_shot(shot)
     check(os.path.getsize(shot) > 10000, f"edit panel screenshot {shot} written")
+    check("Touched" in panels.State, "the live re-solve marks the panels made from it")
     panel.reject()
     wait_for_live_resolve(result)
     check(edit_panels.active is None and not Gui.Control.activeDialog()
           and result.Tolerance == 1e-3 and np.array_equal(get_mesh(result).vertices, before)
           and result.PlanarityMaxRel == loose,
           "Cancel puts the previous parameters and the previous result back")
+    check("Touched" not in panels.State,
+          f"after Cancel the panels made from the result are up to date ({panels.State})")
     vobj.Proxy.doubleClicked(vobj)
     panel = edit_panels.active
     forms.set_value(panel.form, "MaxIterations", 7)

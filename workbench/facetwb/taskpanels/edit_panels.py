@@ -50,6 +50,9 @@ class PlanarizeEditPanel:
             forms.elided(note, obj.Label)))
         for name, choices in FIELDS:
             forms.set_value(self.form, name, _property_value(obj, name), choices)
+        # what is made from the result (panels, cut sheets) and up to date now: a live
+        # re-solve touches it, and Cancel, which puts the same result back, leaves it so
+        self.fresh = [o.Name for o in obj.InListRecursive if "Touched" not in o.State]
         self.doc.openTransaction(f"Edit {obj.Label}")
         for name, _choices in FIELDS:
             forms.on_change(self.form, name, self.changed)
@@ -93,6 +96,13 @@ class PlanarizeEditPanel:
         self.doc.abortTransaction()  # the previous values, points and planarity
         if "Touched" in self.obj.State:
             self.doc.recompute([self.obj])
+        # the result is the one they were made from: they are up to date again (they
+        # stayed marked for a Recompute that would have rebuilt the panels and rewritten
+        # the cut files for nothing)
+        for name in self.fresh:
+            dependent = self.doc.getObject(name)
+            if dependent is not None and "Touched" in dependent.State:
+                dependent.purgeTouched()
         self._close()
         return True
 
