@@ -344,6 +344,21 @@ class TestPanelSet(DocumentTestCase):
         self.assertEqual(said, ["Nesting the parts on the sheets", "Drawing the parts in the DXF",
                                 "Writing the SVG sheets"])
 
+    def test_panels_of_no_facades_size_are_warned_about(self):
+        """A facade in metres read as millimetres (panels 0.6 mm across) made 40 mm thick
+        sticks with no word about the units; its Warnings and the report view now say how
+        long the edges are and what to do. Panels a metre across get no such warning."""
+        tiny = facetwb.make_polymesh(translational(nu=3, nv=2, step=0.6), label="tiny",
+                                     doc=self.doc)
+        sticks = facetwb.make_panelset(tiny, thickness=40.0, name="Sticks")
+        self.doc.recompute()
+        self.assertTrue(sticks.isValid(), sticks.getStatusString())
+        said = [w for w in sticks.Warnings if "long on average" in w]
+        self.assertEqual(len(said), 1, list(sticks.Warnings))
+        self.assertRegex(said[0], r"^the panels' edges are 0\.6\d* mm long on average, which "
+                                  r"no facade's are: a mesh drawn in metres .* asks for its units$")
+        self.assertFalse([w for w in self.square.Warnings if "long on average" in w])
+
     def test_panelset_progress_covers_the_solids(self):
         """Making the solids is most of a large PanelSet's recompute (3,200 panels: 0.4 s
         the panels, 2.6-10 s the solids); it reported no progress, the dialog stayed away

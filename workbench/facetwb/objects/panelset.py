@@ -228,7 +228,10 @@ class PanelSet(_Proxy):
         obj.DeepestNodeClash = ps.node_clashes[0]["depth"] if ps.node_clashes else 0.0
         obj.NodeClashPanels = list(ps.deepest_node_clash_panels or ())
         obj.ClashingPanels = [p.id for p in ps.clashing_panels]
-        obj.Warnings = list(ps.warnings)
+        size = _size_warning(ps)
+        obj.Warnings = list(ps.warnings) + ([size] if size else [])
+        if size:
+            App.Console.PrintWarning(f"{obj.Label}: {size}\n")
         if ps.overlapping_joints:
             a, b = ps.narrowest_joint_panels
             clears = (translate("Facet", "a Gap of {0:.4g} mm or EdgeMode bisector clears "
@@ -530,6 +533,21 @@ class ViewProviderPanels:
 
     def __setstate__(self, state):
         self.loads(state)
+
+
+def _size_warning(ps):
+    """A warning when the panels' mean edge is no facade's (importer.PLAUSIBLE_EDGE_MM): a
+    mesh in metres read as millimetres gave 40 mm thick sticks on 0.6 mm faces, and cut
+    sheets of specks, with no word about the units."""
+    from facetwb.importer import PLAUSIBLE_EDGE_MM
+
+    edges = sum(p.perimeter for p in ps.panels) / max(1, sum(p.corners for p in ps.panels))
+    if not ps.panels or PLAUSIBLE_EDGE_MM[0] <= edges <= PLAUSIBLE_EDGE_MM[1]:
+        return None
+    return translate("Facet", "the panels' edges are {0:.3g} mm long on average, which no "
+                              "facade's are: a mesh drawn in metres and read as millimetres "
+                              "is a thousand times too small; import it again with Facet > "
+                              "Import polygon mesh, which asks for its units").format(edges)
 
 
 #: What each stage of run_pipeline does, under the progress dialog's title.
