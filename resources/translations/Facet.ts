@@ -127,7 +127,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="352"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="351"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
@@ -587,32 +587,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="521"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="544"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="523"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="546"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="524"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="547"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="525"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="548"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="526"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="549"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="527"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="550"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -632,7 +632,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="522"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="545"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -642,8 +642,18 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="513"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="536"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="517"/>
+        <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="523"/>
+        <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

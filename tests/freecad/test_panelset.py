@@ -359,6 +359,23 @@ class TestPanelSet(DocumentTestCase):
                                   r"no facade's are: a mesh drawn in metres .* asks for its units$")
         self.assertFalse([w for w in self.square.Warnings if "long on average" in w])
 
+    def test_cutsheets_summary_says_where_the_files_are(self):
+        """The report view's line after Cut sheets' OK named the sheets and the use but no
+        file: with no Output folder nothing was written and nothing said so."""
+        out = os.path.join(self.tmp.name, "summary")
+        written = facetwb.make_cutsheets(self.mitred, sheet=(2600.0, 1400.0), output_dir=out,
+                                         write_step=False, name="SummarySheets")
+        unwritten = facetwb.make_cutsheets(self.mitred, sheet=(2600.0, 1400.0),
+                                           name="UnwrittenSheets")
+        self.doc.recompute()
+        text = facetwb.cutsheets_summary(written)
+        self.assertRegex(text, rf"^{written.Label}: \d+ sheets, utilisation [\d.]+%, 0 unplaced; "
+                               rf"written to {re.escape(out)}: sheets\.dxf, schedule\.csv, "
+                               r"schedule\.json, svg/ \(\d+ sheets\)$")
+        self.assertTrue(facetwb.cutsheets_summary(unwritten).endswith(
+            "; no files written: choose an Output folder (the object's OutputDir) and "
+            "recompute"))
+
     def test_panelset_progress_covers_the_solids(self):
         """Making the solids is most of a large PanelSet's recompute (3,200 panels: 0.4 s
         the panels, 2.6-10 s the solids); it reported no progress, the dialog stayed away

@@ -40,6 +40,7 @@ _API = {
     "make_cutsheets": "facetwb.objects.panelset",
     "is_panelset": "facetwb.objects.panelset",
     "is_cutsheets": "facetwb.objects.panelset",
+    "cutsheets_summary": "facetwb.objects.panelset",
     "make_surface_mesh": "facetwb.objects.surfacemesh",
     "is_surface_mesh": "facetwb.objects.surfacemesh",
 }

@@ -535,6 +535,29 @@ class ViewProviderPanels:
         self.loads(state)
 
 
+def cutsheets_summary(obj):
+    """The report view's line for a CutSheets object: sheets, use, unplaced parts, and where
+    the files went, or that none were written (no OutputDir): the designer who pressed OK
+    without choosing a folder was told the sheets and the use, and looked for files."""
+    import os
+
+    from facetwb.recompute import failure
+
+    if not obj.isValid():
+        return failure(obj)
+    text = (f"{obj.Label}: {obj.SheetCount} sheets, utilisation {100 * obj.Utilisation:.1f}%, "
+            f"{len(obj.Unplaced)} unplaced")
+    if not obj.OutputDir:
+        return text + translate("Facet", "; no files written: choose an Output folder (the "
+                                         "object's OutputDir) and recompute")
+    names = [os.path.relpath(f, obj.OutputDir) for f in obj.Files]
+    svg = [n for n in names if n.startswith("svg" + os.sep)]
+    shown = [n for n in names if n not in svg] + ([f"svg{os.sep} ({len(svg)} sheets)"]
+                                                   if svg else [])
+    return text + translate("Facet", "; written to {0}: {1}").format(obj.OutputDir,
+                                                                     ", ".join(shown))
+
+
 def _size_warning(ps):
     """A warning when the panels' mean edge is no facade's (importer.PLAUSIBLE_EDGE_MM): a
     mesh in metres read as millimetres gave 40 mm thick sticks on 0.6 mm faces, and cut

@@ -339,10 +339,9 @@ class CutSheetsPanel(DerivePanel):
         return is_cutsheets(obj)
 
     def summary(self, obj):
-        if not obj.isValid():
-            return failure(obj)
-        return (f"{obj.Label}: {obj.SheetCount} sheets, utilisation "
-                f"{100 * obj.Utilisation:.1f}%, {len(obj.Unplaced)} unplaced")
+        from facetwb.objects.panelset import cutsheets_summary
+
+        return cutsheets_summary(obj)
 
 
 class LiftPanel(DerivePanel):
