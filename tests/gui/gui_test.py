@@ -1327,6 +1327,23 @@ def check_edit_planarized(check, out_dir):
     ui_checks.window_shot(shot)
     check(os.path.getsize(shot) > 10000, f"edit panel screenshot {shot} written")
     check("Touched" in panels.State, "the live re-solve marks the panels made from it")
+    # Collapse short edges committed the panel's transaction, and Edit control mesh closed
+    # the panel without its Cancel: either way Cancel no longer took the changes back
+    from facetwb.commands.cleanup import CommandCleanup
+    from facetwb.commands.edit_control import CommandEditControlMesh
+    from facetwb.commands.import_mesh import CommandImportMesh
+    from facetwb.commands.to_polymesh import CommandToPolyMesh
+
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(result)
+    check(not CommandCleanup().IsActive() and not CommandEditControlMesh().IsActive(),
+          "while the panel is open, Collapse short edges and Edit control mesh are inactive")
+    box = doc.addObject("Part::Box", "Box")
+    box.ViewObject.Visibility = False
+    Gui.Selection.addSelection(box)
+    check(not CommandToPolyMesh().IsActive() and not CommandImportMesh().IsActive(),
+          "and so are To polygon mesh and Import polygon mesh")
+    Gui.Selection.clearSelection()
     panel.reject()
     wait_for_live_resolve(result)
     check(edit_panels.active is None and not Gui.Control.activeDialog()

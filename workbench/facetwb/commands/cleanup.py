@@ -30,7 +30,12 @@ class CommandCleanup:
         }
 
     def IsActive(self):
-        return App.ActiveDocument is not None and bool(_selected_meshes())
+        import FreeCADGui as Gui
+
+        # not while a task panel is open: its transaction (a Planarize edit panel's) was
+        # committed by this command's, and its Cancel then kept the changes
+        return (App.ActiveDocument is not None and Gui.Control.activeDialog() is False
+                and bool(_selected_meshes()))
 
     def Activated(self):
         from facetwb.objects.cleanup import cleanup_summary, is_cleanup

@@ -32,8 +32,10 @@ class CommandEditControlMesh:
     def IsActive(self):
         import FreeCADGui as Gui
 
+        # not while a task panel is open: the session closed it without its Cancel or OK,
+        # and a Planarize edit panel's changes stayed, its transaction open
         return (App.ActiveDocument is not None and Gui.ActiveDocument is not None
-                and len(_editable()) == 1)
+                and Gui.Control.activeDialog() is False and len(_editable()) == 1)
 
     def Activated(self):
         from facetwb import edit_control

@@ -28,7 +28,8 @@ class CommandImportMesh:
         }
 
     def IsActive(self):
-        return True
+        # not while a task panel is open (its transaction would be committed by this one's)
+        return Gui.Control.activeDialog() is False
 
     def Activated(self):
         parameters = App.ParamGet(PARAMETERS)

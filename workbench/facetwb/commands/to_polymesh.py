@@ -27,7 +27,8 @@ class CommandToPolyMesh:
     def IsActive(self):
         from facetwb.conversion import has_surface
 
-        return App.ActiveDocument is not None and any(
+        # not while a task panel is open (its transaction would be committed by this one's)
+        return App.ActiveDocument is not None and Gui.Control.activeDialog() is False and any(
             has_surface(obj) for obj in Gui.Selection.getSelection())
 
     def Activated(self):
