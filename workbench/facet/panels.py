@@ -279,6 +279,9 @@ _CLEARING_REL = 1e-4
 #: ... in at most this many trials (each a whole panel computation).
 _CLEARING_TRIALS = 40
 
+#: Bevel angles (degrees) smaller than this are rounding, not a bevel: written as 0.
+BEVEL_ZERO_DEG = 1e-9
+
 
 def _clearing_gap(xyz, mesh, options, gap, joints, progress, done):
     """The least gap (to _CLEARING_REL) at which no joint and no node overlaps, by
@@ -986,6 +989,9 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     nbr = out["neighbor"]
     dih = np.degrees(out["dihedral"])
     bev = np.degrees(out["bevel"])
+    # a square cut's side is square to within rounding (+-3e-15 degrees): 0, not the noise
+    # the schedule wrote as "-3.975693351829398e-16" for an angle documented as 0
+    bev[np.abs(bev) < BEVEL_ZERO_DEG] = 0.0
     dropped = out["dropped"]
     squared = out["squared"]
     joint = out["joint"]
