@@ -223,6 +223,7 @@ def run(out_dir):
     check_planarize_progress(check, out_dir)
     check_stop_and_keep(check)
     check_keep_press_order(check)
+    check_busy_progress(check)
     check_planarize_progress_finer(check, out_dir)
     check_examples_open_with_view_providers(check, out_dir)
     import ui_checks
@@ -368,6 +369,22 @@ def check_planarize_progress(check, out_dir):
     check(buttons and buttons[-1] == "Cancel",
           f"the button reads Cancel again after the solve ({buttons[-1:]})")
     App.closeDocument(doc.Name)
+
+
+def check_busy_progress(check):
+    """A stage that has done nothing yet shows a busy bar, not 0%: nesting 3,200 parts
+    sat at 0% for the 44 s of its first batch as if nothing ran; then the bar counts."""
+    from facetwb import progress
+    from facetwb.objects.panelset import _stage_progress
+
+    with progress.reporting("Cut sheets ...", minimum_seconds=0) as reporter:
+        stage = _stage_progress(reporter, reporter.say)
+        stage("nest", 0, 3200)
+        busy = reporter.dialog.maximum()
+        stage("nest", 800, 3200)
+        counting = reporter.dialog.maximum(), reporter.dialog.value()
+    check(busy == 0 and counting == (1000, 250),
+          f"a stage with nothing done shows a busy bar, then counts ({busy}, {counting})")
 
 
 def check_keep_press_order(check):

@@ -122,10 +122,18 @@ class _Reporter:
             self.cancelled = True
         if self.dialog is not None:
             try:
-                fraction = float(done) / float(total) if total else 0.0
+                fraction = float(done) / float(total) if total else None
             except (TypeError, ValueError, ZeroDivisionError):
-                fraction = 0.0
-            self.dialog.setValue(int(1000 * min(max(fraction, 0.0), 1.0)))
+                fraction = None
+            if fraction is None:
+                # no total: a busy bar (it moves while the operation calls), not 0%
+                if self.dialog.maximum() != 0:
+                    self.dialog.setRange(0, 0)
+                self.dialog.setValue(0)
+            else:
+                if self.dialog.maximum() == 0:
+                    self.dialog.setRange(0, 1000)
+                self.dialog.setValue(int(1000 * min(max(fraction, 0.0), 1.0)))
         return self._pressed()
 
     def say(self, text=None):
