@@ -102,7 +102,7 @@
 <context>
     <name>Facet</name>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="159"/>
+        <location filename="../../workbench/facetwb/progress.py" line="167"/>
         <source>Cancel</source>
         <translation type="unfinished"></translation>
     </message>
@@ -442,17 +442,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="245"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="259"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="251"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="265"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="238"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="252"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -462,12 +462,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="145"/>
+        <location filename="../../workbench/facetwb/progress.py" line="153"/>
         <source>Stop and keep</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/progress.py" line="145"/>
+        <location filename="../../workbench/facetwb/progress.py" line="153"/>
         <source>Stop here and keep the result that reached the tolerance</source>
         <translation type="unfinished"></translation>
     </message>
@@ -562,17 +562,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="228"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="242"/>
         <source>a Gap of {0:.4g} mm or EdgeMode bisector clears them</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="228"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="242"/>
         <source>no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="233"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="247"/>
         <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; {5}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -587,32 +587,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="544"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="558"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="546"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="560"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="547"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="561"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="548"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="562"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="549"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="563"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="550"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="564"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,17 +622,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="80"/>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="81"/>
         <source>Import polygon mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="80"/>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="81"/>
         <source>{0}: its edges are {1:.3g} long on average, which is no facade&apos;s panel in millimetres. Which units are its numbers in?</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="545"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="559"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -642,18 +642,23 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="536"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="550"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="517"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="531"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="523"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="537"/>
         <source>; written to {0}: {1}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="170"/>
+        <source>{0}; {1} stopped before its tolerance ({2}): raise its Max. iterations, or set it to 0 for the solver to decide</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

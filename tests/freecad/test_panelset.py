@@ -376,6 +376,23 @@ class TestPanelSet(DocumentTestCase):
             "; no files written: choose an Output folder (the object's OutputDir) and "
             "recompute"))
 
+    def test_panels_of_a_planarization_stopped_short_say_why(self):
+        """Panels of a Planarized object stopped by its iteration limit failed with 'faces
+        are not planar within the tolerance ...; planarize first', to a designer who had
+        planarized: the message now says that it stopped short, why, and what to change."""
+        warped = facetwb.make_polymesh(facet.read_mesh(data_path("hypar.obj")), label="warped",
+                                       doc=self.doc)
+        short = facetwb.make_planarized(warped, max_iterations=2, name="Short")
+        sticks = facetwb.make_panelset(short, thickness=0.5, name="ShortPanels")
+        self.doc.recompute()
+        self.assertFalse(short.Converged)
+        self.assertFalse(sticks.isValid())
+        self.assertRegex(sticks.getStatusString(),
+                         r"not planar within the tolerance: .*; planarize first; "
+                         rf"{short.Label} stopped before its tolerance \(iteration limit "
+                         r"reached, tolerance NOT reached\): raise its Max\. iterations, or "
+                         r"set it to 0 for the solver to decide$")
+
     def test_panelset_progress_covers_the_solids(self):
         """Making the solids is most of a large PanelSet's recompute (3,200 panels: 0.4 s
         the panels, 2.6-10 s the solids); it reported no progress, the dialog stayed away

@@ -19,6 +19,7 @@ The source is never modified. The numerics are in ``facet``; this module is wiri
 
 import FreeCAD as App
 
+import facet.errors
 from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
 from facetwb import compat, progress
 from facetwb.recompute import guarded
@@ -160,11 +161,24 @@ class PanelSet(_Proxy):
         if obj.Source is None:
             raise ValueError(f"{obj.Label}: Source is empty, no mesh to make panels of")
         mesh = conversion.mesh_from_object(obj.Source)
-        return panels(mesh, obj.Thickness.Value, offset=obj.Offset, gap=obj.Gap.Value,
-                      edge=obj.EdgeMode, flip=bool(obj.Flip), ids=obj.IdScheme,
-                      prefix=obj.IdPrefix, tol=obj.Tolerance, tol_abs=obj.ToleranceAbs.Value,
-                      min_edge=obj.MinEdge, min_edge_abs=obj.MinEdgeAbs.Value,
-                      progress=progress.hook())
+        try:
+            return panels(mesh, obj.Thickness.Value, offset=obj.Offset, gap=obj.Gap.Value,
+                          edge=obj.EdgeMode, flip=bool(obj.Flip), ids=obj.IdScheme,
+                          prefix=obj.IdPrefix, tol=obj.Tolerance,
+                          tol_abs=obj.ToleranceAbs.Value, min_edge=obj.MinEdge,
+                          min_edge_abs=obj.MinEdgeAbs.Value, progress=progress.hook())
+        except facet.errors.InputError as error:
+            # "planarize first" of a source that was planarized, but stopped short
+            src = obj.Source
+            from facetwb.objects.planarized import STOP_REASONS, is_planarized
+
+            if ("not planar" in str(error) and is_planarized(src)
+                    and not getattr(src, "Converged", True)):
+                raise ValueError(translate(
+                    "Facet", "{0}; {1} stopped before its tolerance ({2}): raise its Max. "
+                             "iterations, or set it to 0 for the solver to decide").format(
+                    error, src.Label, STOP_REASONS.get(src.StopReason, src.StopReason))) from None
+            raise
 
     def _key(self, obj):
         """What the computed panels depend on, besides the Source's geometry."""
