@@ -442,17 +442,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="259"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="268"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="265"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="274"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="252"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="261"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -562,17 +562,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="242"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="251"/>
         <source>a Gap of {0:.4g} mm or EdgeMode bisector clears them</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="242"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="251"/>
         <source>no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="247"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="256"/>
         <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; {5}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -587,32 +587,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="558"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="592"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="560"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="594"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="561"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="595"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="562"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="596"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="563"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="597"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="564"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="598"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -632,7 +632,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="559"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="593"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -642,22 +642,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="550"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="584"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="531"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="565"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="537"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="571"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="170"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="177"/>
         <source>{0}; {1} stopped before its tolerance ({2}): raise its Max. iterations, or set it to 0 for the solver to decide</source>
         <translation type="unfinished"></translation>
     </message>
