@@ -316,7 +316,7 @@ def _panel_rows():
     panel_row("panels_nan_thickness", ["--thickness", "nan"], ["thickness", "nan"])
     panel_row("panels_sheet_smaller_than_panel", ["--thickness", "0.01", "--sheet", "0.5x0.5",
                                                   "--margin", "0.01"],
-              ["{dir}/flat.obj", "fit on no 0.5 x 0.5 sheet", "P-",
+              ["{dir}/flat.obj", "fit on no 0.5 x 0.5 mm sheet (margin 0.01 mm)", "P-",
                "use a larger sheet or a smaller margin"])  # (the workbench says it too)
     # a mesh in metres read as millimetres: the default margin (10 mm) is larger than the
     # sheet; it was refused as "margin 10 leaves nothing", a margin the user never gave

@@ -255,7 +255,8 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
             shown = first_names(result.unplaced, 4)
             raise InputError(
                 f"{source + ': ' if source else ''}{len(result.unplaced)} of {len(drawings)} "
-                f"parts fit on no {sheet[0]:g} x {sheet[1]:g} sheet (margin {margin:g}): "
+                f"parts fit on no {sheet[0]:g} x {sheet[1]:g} {units} sheet (margin "
+                f"{margin:g} {units}): "
                 f"{shown}; use a larger sheet or a smaller margin")
     files = {}
     if dxf:
