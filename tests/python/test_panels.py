@@ -379,6 +379,31 @@ def test_texts_lie_on_the_top_face_where_they_are_engraved(data_dir):
                 assert face.contains(_text_box(x, y, h, text, angle)), (d.id, text)
 
 
+def test_a_bevel_text_with_no_room_on_its_part_is_left_out_and_said(data_dir):
+    """Where no place inside the part took a bevel text (a short edge at a sharp corner),
+    the smallest tried was put at the edge's middle anyway: on the planarized hex mesh in
+    metres (10 mm panels, mitred, 4 mm gap) a 0.03 mm '-7.2°' lay 0.08 mm outside P-0007's
+    cut outline, engraved off the part. It is left out now, and a warning says so."""
+    from shapely.geometry import Polygon
+
+    from facet.unfold import small_text_warnings
+
+    hexes = facet.planarize(facet.read_mesh(data_dir / "hex_mesh_min_surface.json")).mesh
+    ps = panels(hexes, 0.01, gap=0.004, edge="bisector")
+    drawings = unfold(ps)
+    left_out = [(d.id, text) for d in drawings for text in d.bevels_left_out]
+    assert left_out == [("P-0007", "-7.2°")]
+    for p, d in zip(ps.panels, drawings):
+        face = Polygon(d.cut).intersection(Polygon(d.top))
+        for text, x, y, angle, h in d.bevels:
+            assert face.contains(_text_box(x, y, h, text, angle)), (d.id, text)
+        bevelled = sum(abs(b) >= 1e-6 for b in p.bevel_deg)  # (unfold's tolerance)
+        assert len(d.bevels) + len(d.bevels_left_out) == bevelled, d.id
+    (said,) = [w for w in small_text_warnings(drawings, 1000.0) if "left out" in w]
+    assert said.startswith("1 bevel angle text found no room inside its part and is left "
+                           "out (P-0007)")
+
+
 def test_texts_too_small_to_engrave_are_warned_about(data_dir, tmp_path):
     """A text is as large as its place allows; beside a short edge that was under 3 mm,
     unsaid (heart_planar in metres, mitred at 5 mm with a 10 mm gap: 23 of 1,517 bevel
