@@ -796,6 +796,20 @@ def test_tables_from_a_european_excel_and_their_missing_values(tmp_path):
     for name in ("excel.csv", "excel.txt"):
         targets, weights = read_targets(plan, tmp_path / name)
         assert targets.tolist() == [1.5, 2.25, 3.0, -0.5] and np.all(weights == 1)
+    # every cell with a decimal comma: more commas than tabs, still tab-separated (it was
+    # read as comma-separated: '10,5<tab>0,5<tab>1,5' refused as not three numbers)
+    (tmp_path / "all_decimal.txt").write_bytes(
+        "x\ty\tz\r\n0,5\t0,5\t1,5\r\n10,5\t0,5\t2,25\r\n10,5\t10,5\t3,0\r\n"
+        "0,5\t10,5\t-0,5\r\n".encode("utf-16"))
+    shifted = plan_from_mesh(PolyMesh.from_faces(
+        np.array([[0.5, 0.5, 0], [10.5, 0.5, 0], [10.5, 10.5, 0], [0.5, 10.5, 0.0]]),
+        [[0, 1, 2, 3]]))
+    targets, weights = read_targets(shifted, tmp_path / "all_decimal.txt")
+    assert targets.tolist() == [1.5, 2.25, 3.0, -0.5] and np.all(weights == 1)
+    (tmp_path / "segments.txt").write_text(
+        "0,5\t0,5\t10,5\t0,5\n10,5\t0,5\t10,5\t10,5\n10,5\t10,5\t0,5\t10,5\n"
+        "0,5\t10,5\t0,5\t0,5\n")
+    assert read_plan(tmp_path / "segments.txt").n_faces == 1
     # (with tabs, whose locale is not known, a comma that may group thousands is refused)
     (tmp_path / "thousands.txt").write_text("x\ty\tz\n10\t0\t1,250\n")
     with pytest.raises(InputError, match=r"thousands.txt: line 2: not three numbers x,y,z "

@@ -430,12 +430,7 @@ def _csv_rows(path, error):
         if nul >= 0:
             raise error(f"{path}: not a text file: byte {nul + 1} is NUL (binary data?)")
     for number, line in enumerate(split_lines(text), 1):  # (split_lines drops a BOM)
-        # semicolon-separated where a line has a semicolon, with decimal commas: what
-        # Excel writes as CSV where the decimal separator is a comma (most of Europe);
-        # tab-separated where a line has no comma, or more tabs than commas (decimal
-        # commas again): what spreadsheets export as text
-        delimiter = (";" if ";" in line else
-                     "\t" if line.count("\t") > line.count(",") else ",")
+        delimiter = _delimiter(line)
         try:
             row = next(csv.reader([line], delimiter=delimiter), [])
         except csv.Error as exc:
@@ -451,6 +446,21 @@ def _csv_rows(path, error):
         # (left out, it moved the next column into its place)
         if cells and not cells[0].startswith("#"):
             yield number, cells
+
+
+def _delimiter(line):
+    """A table line's separator: a semicolon where the line has one, with decimal commas:
+    what Excel writes as CSV where the decimal separator is a comma (most of Europe); a tab
+    where the line has tabs and no cell between them holds more than one comma or ends or
+    starts with one (decimal commas again: what spreadsheets export as text; counting the
+    tabs against the commas read '10,5<tab>0,5<tab>1,5' as comma-separated); a comma
+    otherwise."""
+    if ";" in line:
+        return ";"
+    if "\t" in line and all(c.count(",") <= 1 and not c.startswith(",") and
+                            not c.endswith(",") for c in map(str.strip, line.split("\t"))):
+        return "\t"
+    return ","
 
 
 def _decimal_comma(cell, delimiter):
