@@ -37,7 +37,7 @@ from facet.report import count_noun, json_safe
 
 __all__ = ["LAYERS", "LAYER_LINETYPES", "LAYER_MEANINGS", "write_dxf", "schedule_rows",
            "write_schedule_csv", "write_schedule_json", "write_svg", "write_png",
-           "sheet_offsets", "PREVIEW_COLOURS"]
+           "sheet_offsets", "PREVIEW_COLOURS", "PLAUSIBLE_EDGE_MM"]
 
 #: Layer name -> ACI colour.
 LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "TOP": 4, "SHEET": 8, "GRAIN": 6}
@@ -249,6 +249,12 @@ def _drawn(pl, d, off, tol):
 #: $INSUNITS code and $MEASUREMENT (1 metric, 0 imperial).
 LENGTH_UNITS = {"mm": (1.0, 4, 1), "cm": (10.0, 5, 1), "m": (1000.0, 6, 1),
                 "in": (25.4, 1, 0), "ft": (304.8, 2, 0)}
+
+#: The mean edge lengths, in mm, of the meshes taken to be in the units they are read in:
+#: a facade drawn in metres and read as millimetres has edges of a few millimetres at most
+#: (``facet panels`` warns outside it; FreeCAD's import asks for the units, its PanelSet
+#: warns).
+PLAUSIBLE_EDGE_MM = (10.0, 50000.0)
 
 
 def length_unit(units):

@@ -13,14 +13,13 @@ import os
 
 import FreeCAD as App
 
+# the mean edge lengths, in mm, of the meshes taken to be in the units they were read in
+# (``facet panels`` warns outside the same range); the PanelSet's warning uses it too
+from facet.cutsheets import PLAUSIBLE_EDGE_MM
+
 #: Show a message box for import errors when the GUI is up. Scripts and tests that drive the
 #: GUI set this to False so no modal dialog waits for a click.
 SHOW_DIALOGS = True
-
-#: The mean edge lengths, in mm, of the meshes taken to be in the units they were read in
-#: (``facet panels`` warns outside the same range): a facade drawn in metres and read as
-#: FreeCAD's millimetres has edges of a few millimetres at most.
-PLAUSIBLE_EDGE_MM = (10.0, 50000.0)
 
 #: The units a file can be read in (facet.cutsheets.LENGTH_UNITS), as the designer reads them.
 UNIT_NAMES = {"mm": "millimetres", "cm": "centimetres", "m": "metres", "in": "inches",
