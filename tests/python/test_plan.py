@@ -810,7 +810,12 @@ def test_tables_from_a_european_excel_and_their_missing_values(tmp_path):
         "0,5\t0,5\t10,5\t0,5\n10,5\t0,5\t10,5\t10,5\n10,5\t10,5\t0,5\t10,5\n"
         "0,5\t10,5\t0,5\t0,5\n")
     assert read_plan(tmp_path / "segments.txt").n_faces == 1
-    # (with tabs, whose locale is not known, a comma that may group thousands is refused)
+    # (with tabs, whose locale is not known, a comma that may group thousands is refused;
+    # '0,125' groups nothing: a height in metres to the millimetre, it was refused too)
+    (tmp_path / "leading_zero.txt").write_text(
+        "x\ty\tz\n0\t0\t0,125\n10\t0\t-0,250\n10\t10\t3\n0\t10\t0,5\n")
+    targets, _ = read_targets(plan, tmp_path / "leading_zero.txt")
+    assert targets.tolist() == [0.125, -0.25, 3.0, 0.5]
     (tmp_path / "thousands.txt").write_text("x\ty\tz\n10\t0\t1,250\n")
     with pytest.raises(InputError, match=r"thousands.txt: line 2: not three numbers x,y,z "
                        r"\(10 \| 0 \| 1,250\)"):

@@ -466,11 +466,14 @@ def _delimiter(line):
 def _decimal_comma(cell, delimiter):
     """A cell's decimal comma as a point ('3,5' -> '3.5'). In a tab-separated table, whose
     locale is not known, not where the comma may group thousands ('1,250': left, refused
-    as not a number); with semicolons (a comma locale's CSV), always."""
+    as not a number; '0,125' groups nothing); with semicolons (a comma locale's CSV),
+    always."""
     if cell.count(",") != 1 or "." in cell:
         return cell
     whole, _, fraction = cell.partition(",")
-    if delimiter == "\t" and len(fraction) == 3 and 1 <= len(whole.lstrip("+-")) <= 3:
+    digits = whole.lstrip("+-")
+    if (delimiter == "\t" and len(fraction) == 3 and 1 <= len(digits) <= 3
+            and not digits.startswith("0")):
         return cell
     return whole + "." + fraction
 
