@@ -526,8 +526,10 @@ def main():
     # ---- the sheets: footprints inside the sheet less the margin, the spacing apart
     from shapely.ops import unary_union
 
-    margin = float(opt(opts, "--margin", "0"))
-    spacing = float(opt(opts, "--spacing", "0"))
+    # the run's own (facet panels nests 10 mm from the edges and 6 mm apart unless told
+    # otherwise, in --units: without --margin and --spacing this checked 0 and 0)
+    margin = float(rep["options"]["margin"])
+    spacing = float(rep["options"]["spacing"])
     feet = [unary_union([Polygon(c).buffer(0)] + [Polygon(t).buffer(0)
                                                   for t in part_top.get(i, [])])
             for i, c in enumerate(cuts)]
