@@ -895,6 +895,59 @@ def test_a_line_drawn_just_short_of_another_is_said(tmp_path):
     assert closed.n_faces == 4 and len(closed.dangling) == 2 and closed.warnings == []
 
 
+def test_the_search_for_lines_drawn_short_is_quick_and_finds_the_nearest(monkeypatch):
+    """The search for a dangling edge's free end near another edge measured every end
+    against every piece of the drawing: on an 80 x 80 grid with 1,000 short annotation
+    lines it took twice as long as the rest of the plan's reading (16 of 18 s with 3,000
+    on a 150 x 150 grid). It looks at the pieces near each end only, and finds the gap
+    that measuring every piece finds."""
+    import time
+
+    import facet.plan as plan_module
+
+    search = plan_module._nearest_gap
+    seen = {}
+
+    def timed(noded, dangling, limit):
+        t = time.perf_counter()
+        seen["found"] = search(noded, dangling, limit)
+        seen.update(seconds=time.perf_counter() - t, args=(noded, dangling, limit))
+        return seen["found"]
+
+    monkeypatch.setattr(plan_module, "_nearest_gap", timed)
+    n, rng = 80, np.random.default_rng(1)
+    segments = [s for i in range(n + 1) for s in (((0, 100.0 * i), (100.0 * n, 100.0 * i)),
+                                                 ((100.0 * i, 0), (100.0 * i, 100.0 * n)))]
+    for x, y in rng.uniform(0, 100.0 * n, (1000, 2)):  # ticks meeting nothing, some near
+        segments.append(((x + 10, y + 10), (x + 30, y + 30)))
+    t = time.perf_counter()
+    plan = plan_from_segments(segments)
+    rest = time.perf_counter() - t - seen["seconds"]
+    assert seen["seconds"] < 0.8 * rest, (seen["seconds"], rest)
+    # every free end against every piece
+    noded, dangling, limit = seen["args"]
+    pieces = np.array([p for g in noded.geoms for p in zip(g.coords[:-1], g.coords[1:])])
+    ends, counts = np.unique(pieces.reshape(-1, 2), axis=0, return_counts=True)
+    free = {tuple(e) for e in ends[counts == 1]}
+    start, direction = pieces[:, 0], pieces[:, 1] - pieces[:, 0]
+    best = None
+    for a, b in dangling:
+        for end, other in ((a, b), (b, a)):
+            if end not in free:
+                continue
+            u = np.clip(np.einsum("ij,ij->i", np.subtract(end, start), direction)
+                        / np.einsum("ij,ij->i", direction, direction), 0, 1)
+            gap = np.hypot(*(start + u[:, None] * direction - end).T)
+            gap[np.all(pieces[:, 0] == other, axis=1) | np.all(pieces[:, 1] == other, axis=1)
+                | (gap == 0)] = np.inf
+            k = int(np.argmin(gap))
+            if gap[k] <= min(limit, 0.05 * math.dist(end, other)) and (
+                    best is None or gap[k] < best[0]):
+                best = (float(gap[k]), end)
+    assert best is not None and seen["found"] == best
+    assert len(plan.warnings) == 1
+
+
 def test_a_plan_on_a_layout_is_said_where_it_is(tmp_path):
     """A plan drawn on a layout (paper space) was refused as "no LINE, LWPOLYLINE or
     POLYLINE in the model space (nothing)": where it is, and what to do, is now said."""

@@ -773,29 +773,43 @@ def _nearest_gap(noded, dangling, limit):
         for p in (a, b):
             ends[p] = ends.get(p, 0) + 1
     array = np.asarray(pieces, dtype=np.float64).reshape(-1, 2, 2)
-    start, direction = array[:, 0], array[:, 1] - array[:, 0]
-    length2 = np.einsum("ij,ij->i", direction, direction)
+    # the pieces near an end, by their boxes (every piece for every end took 16 s of a
+    # 150 x 150 grid's 18 with 3,000 short annotation lines, 2 s before)
+    lower, upper = array.min(axis=1), array.max(axis=1)
+    order = np.argsort(lower[:, 0], kind="stable")
+    lower_x = lower[order, 0]
+    span = float((upper[:, 0] - lower[:, 0]).max())
     best = None
     for a, b in dangling:
         a, b = tuple(a), tuple(b)
         for end, other in ((a, b), (b, a)):
             if ends.get(end, 0) != 1:
                 continue
+            # short of the other by a twentieth of its own length at most: a stub that
+            # ends near a line it does not meet is not a gap
+            own = 0.05 * float(np.hypot(end[0] - other[0], end[1] - other[1]))
+            reach = min(limit, own)
             point = np.asarray(end)
+            lo = np.searchsorted(lower_x, point[0] - reach - span, side="left")
+            hi = np.searchsorted(lower_x, point[0] + reach, side="right")
+            near = order[lo:hi]
+            near = near[np.all((lower[near] <= point + reach) & (upper[near] >= point - reach),
+                               axis=1)]
+            if not near.size:
+                continue
+            start, direction = array[near, 0], array[near, 1] - array[near, 0]
+            length2 = np.einsum("ij,ij->i", direction, direction)
             t = np.einsum("ij,ij->i", point - start, direction) / np.where(length2 > 0,
                                                                           length2, 1.0)
             nearest = start + np.clip(t, 0.0, 1.0)[:, None] * direction
             distance = np.hypot(*(nearest - point).T)
             # not the segments it meets already (at its other end: an overhang past an
             # outline is as far from the outline as it is long)
-            distance[np.all(array[:, 0] == other, axis=1)
-                     | np.all(array[:, 1] == other, axis=1)] = np.inf
+            distance[np.all(array[near, 0] == other, axis=1)
+                     | np.all(array[near, 1] == other, axis=1)] = np.inf
             distance[distance == 0] = np.inf
             k = int(np.argmin(distance))
-            # short of the other by a twentieth of its own length at most: a stub that
-            # ends near a line it does not meet is not a gap
-            own = 0.05 * float(np.hypot(end[0] - other[0], end[1] - other[1]))
-            if distance[k] <= min(limit, own) and (best is None or distance[k] < best[0]):
+            if distance[k] <= reach and (best is None or distance[k] < best[0]):
                 best = (float(distance[k]), end)
     return best
 
