@@ -655,6 +655,12 @@ def check_lifting(check, out_dir):
         check(panes and width <= panes[0].viewport().width(),
               f"the Shape lifting panel fits the task pane ({width} px in "
               f"{panes[0].viewport().width() if panes else '?'} px)")
+        # a plan graph made while the panel is open: its transaction committed the panel's,
+        # and after Cancel the undo list held a 'Shape lifting' step
+        from facetwb.commands.lift import CommandPlanGraph
+
+        check(not CommandPlanGraph().IsActive(),
+              "while the Shape lifting panel is open, Plan graph is inactive")
         panel.sliders[0].setValue(60)
         Gui.updateGui()
         after = [p.z for p in lifting.Points]

@@ -35,7 +35,8 @@ class CommandPlanGraph:
         }
 
     def IsActive(self):
-        return App.ActiveDocument is not None
+        # inactive while a task panel is open: its macro commits the panel's transaction
+        return App.ActiveDocument is not None and Gui.Control.activeDialog() is False
 
     def Activated(self):
         sources = [obj for obj in Gui.Selection.getSelection() if _has_edges(obj)]
