@@ -522,42 +522,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="45"/>
-        <source>Shape {0}</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="48"/>
-        <source>This plan admits only planes: there is nothing to mix. Change the drawing (or lift it with moved vertices) to get more shapes.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="52"/>
-        <source>The plan admits {0} non-planar liftings. Each slider adds one (smoothest first); every face stays exactly planar.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="65"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="70"/>
         <source>Lifting {0}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="68"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="73"/>
         <source>Height of this lifting at its peak; the faces stay planar</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="82"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="87"/>
         <source>Raise vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="84"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="89"/>
         <source>The plan vertex to raise or lower</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="89"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="99"/>
         <source>How far the vertex moves; the rest of the roof follows, every face planar</source>
         <translation type="unfinished"></translation>
     </message>
@@ -661,6 +646,21 @@
         <source>{0}; {1} stopped before its tolerance ({2}): raise its Max. iterations, or set it to 0 for the solver to decide</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="48"/>
+        <source>Shape lifting</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="53"/>
+        <source>{0}: this plan admits only planes: there is nothing to mix. Change the drawing (or lift it with moved vertices) to get more shapes.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="57"/>
+        <source>{0}: the plan admits {1} non-planar liftings. Each slider adds one (smoothest first); every face stays exactly planar.</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>Facet_Cleanup</name>
@@ -717,12 +717,12 @@
 <context>
     <name>Facet_Lift</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="65"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="66"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="66"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="67"/>
         <source>Select a plan (PlanGraph or Facet mesh), then a target surface (mesh or shape): every plan vertex gets a height so that every face is exactly planar, as close as possible to the surface straight above it.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -730,12 +730,12 @@
 <context>
     <name>Facet_LiftMix</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="99"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="100"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="100"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="101"/>
         <source>Sliders for the selected Lifting: add the smoothest other planar-faced shapes over the same plan; the result follows live and every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>

@@ -636,6 +636,10 @@ def check_lifting(check, out_dir):
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(lifting)
     before = [p.z for p in lifting.Points]
+    # a designer's label: in the title ("Shape Roof over ...") it widened the panel to
+    # 502 px in the 258 px pane, Cancel and the slider values cut off
+    label = lifting.Label
+    lifting.Label = "Roof over the north wing of the community centre lifted"
     Gui.runCommand("Facet_LiftMix")
     Gui.updateGui()
     from facetwb.taskpanels import lift_mix
@@ -649,12 +653,19 @@ def check_lifting(check, out_dir):
         # with Cancel and the slider values off the screen
         from PySide import QtGui
 
+        for _ in range(20):  # the task pane is laid out once the event loop runs
+            Gui.updateGui()
+            time.sleep(0.01)
         panes = [w for w in Gui.getMainWindow().findChildren(QtGui.QScrollArea)
                  if w.isVisible() and w.widget() and w.widget().isAncestorOf(panel.form)]
-        width = panel.form.minimumSizeHint().width()
+        width = max(panel.form.minimumSizeHint().width(),
+                    panes[0].widget().width() if panes else 0)
         check(panes and width <= panes[0].viewport().width(),
               f"the Shape lifting panel fits the task pane ({width} px in "
               f"{panes[0].viewport().width() if panes else '?'} px)")
+        # beside "Raise vertex" and its spin box the height slider was a 32 px stub
+        short = [s.width() for s in panel.sliders + [panel.drag] if s.width() < 80]
+        check(not short, f"the panel's sliders are long enough to drag (short: {short} px)")
         # a plan graph made while the panel is open: its transaction committed the panel's,
         # and after Cancel the undo list held a 'Shape lifting' step
         from facetwb.commands.lift import CommandPlanGraph
@@ -684,6 +695,7 @@ def check_lifting(check, out_dir):
         restored = [p.z for p in lifting.Points]
         check(max(abs(a - b) for a, b in zip(restored, before)) < 1e-6 and not lifting.Mix
               and not lifting.Drags, "Cancel restores the roof")
+    lifting.Label = label
     if Gui.Control.activeDialog():
         Gui.Control.closeDialog()
 

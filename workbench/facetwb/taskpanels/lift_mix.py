@@ -42,17 +42,22 @@ class LiftMixPanel:
         self.range = 0.25 * extent
         self.count = max(0, min(MAX_SLIDERS, int(obj.Dimension) - 3))
         self.form = QtGui.QWidget()
-        self.form.setWindowTitle(translate("Facet", "Shape {0}").format(obj.Label))
+        # the object's name in the intro, which wraps: in the title (which does not) a label
+        # such as "Roof over the north wing lifted" widened the panel past the task pane,
+        # OK's neighbour Cancel and the slider values cut off at the right
+        self.form.setWindowTitle(translate("Facet", "Shape lifting"))
         layout = QtGui.QVBoxLayout(self.form)
+        intro = QtGui.QLabel()
+        name = forms.elided(intro, obj.Label)
         if self.count == 0:
-            intro = QtGui.QLabel(translate(
-                "Facet", "This plan admits only planes: there is nothing to mix. Change the "
-                "drawing (or lift it with moved vertices) to get more shapes."))
+            intro.setText(translate(
+                "Facet", "{0}: this plan admits only planes: there is nothing to mix. Change "
+                "the drawing (or lift it with moved vertices) to get more shapes.").format(name))
         else:
-            intro = QtGui.QLabel(translate(
-                "Facet", "The plan admits {0} non-planar liftings. Each slider adds one "
+            intro.setText(translate(
+                "Facet", "{0}: the plan admits {1} non-planar liftings. Each slider adds one "
                 "(smoothest first); every face stays exactly planar.").format(
-                    int(obj.Dimension) - 3))
+                    name, int(obj.Dimension) - 3))
         # wrapped: on one line it made the panel 479 px wide, and the task pane (258 px)
         # cut it and the value labels off (GUI review)
         intro.setWordWrap(True)
@@ -84,6 +89,11 @@ class LiftMixPanel:
         self.vertex.setToolTip(translate("Facet", "The plan vertex to raise or lower"))
         self.vertex.setRange(0, max(0, len(self.points) - 1))
         drag_row.addWidget(self.vertex)
+        drag_row.addStretch(1)
+        layout.addLayout(drag_row)
+        # the height slider on a line of its own: beside the label and the vertex box it
+        # was squeezed to 32 px in the task pane, too short to drag
+        drag_row = QtGui.QHBoxLayout()
         self.drag = QtGui.QSlider(QtCore.Qt.Horizontal)
         self.drag.setRange(-STEPS, STEPS)
         self.drag.setToolTip(translate(
