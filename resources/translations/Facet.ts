@@ -107,7 +107,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="169"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="191"/>
         <source>Surface to control mesh</source>
         <translation type="unfinished"></translation>
     </message>
@@ -117,17 +117,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="244"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="266"/>
         <source>Panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="283"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="305"/>
         <source>Cut sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="351"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="359"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
@@ -402,12 +402,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="308"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="316"/>
         <source>Choose the output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="317"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="324"/>
         <source>Folder for the cut files</source>
         <translation type="unfinished"></translation>
     </message>
@@ -661,6 +661,21 @@
         <source>{0}: the plan admits {1} non-planar liftings. Each slider adds one (smoothest first); every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="381"/>
+        <source>Points file (x, y, z)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="386"/>
+        <source>Choose the points file</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="406"/>
+        <source>Target heights</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>Facet_Cleanup</name>
@@ -717,25 +732,25 @@
 <context>
     <name>Facet_Lift</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="66"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="67"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="67"/>
-        <source>Select a plan (PlanGraph or Facet mesh), then a target surface (mesh or shape): every plan vertex gets a height so that every face is exactly planar, as close as possible to the surface straight above it.</source>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="68"/>
+        <source>Select a plan (PlanGraph or Facet mesh), then a target surface (mesh or shape), or the plan alone to lift it to the heights of a points file: every plan vertex gets a height so that every face is exactly planar, as close as possible to the surface straight above it or to the points.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>Facet_LiftMix</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="100"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="102"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="101"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="103"/>
         <source>Sliders for the selected Lifting: add the smoothest other planar-faced shapes over the same plan; the result follows live and every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -756,12 +771,12 @@
 <context>
     <name>Facet_PlanGraph</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="28"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="29"/>
         <source>Plan graph</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="29"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="30"/>
         <source>Make a plan graph (faces seen from above) from the selected Sketches, Draft wires or Part edges, or, with nothing selected, from a drawing file (.dxf, .csv, plan mesh). Crossings are split, dangling edges dropped. It follows changes of the drawing.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -813,28 +828,38 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/lifting.ui" line="10"/>
-        <source>Gives every vertex of the plan a height so that every face is exactly planar, as close as possible to the target surface.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/lifting.ui" line="16"/>
-        <source>Target surface</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/lifting.ui" line="22"/>
-        <source>The surface the roof should follow: every plan vertex gets the height that keeps every face planar and the roof closest to this surface</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/lifting.ui" line="27"/>
+        <location filename="../ui/lifting.ui" line="38"/>
         <source>Snap distance</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <location filename="../ui/lifting.ui" line="10"/>
+        <source>Gives every vertex of the plan a height so that every face is exactly planar, as close as possible to the target surface or to the heights of a points file.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/lifting.ui" line="16"/>
+        <source>Target</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/lifting.ui" line="22"/>
+        <source>The surface the roof should follow (every plan vertex gets the height that keeps every face planar and the roof closest to this surface), or the points of a file</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/lifting.ui" line="27"/>
+        <source>Points file</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <location filename="../ui/lifting.ui" line="33"/>
-        <source>Largest plan distance from a pinned point to its vertex (0: 1e-6 of the plan&apos;s size)</source>
+        <source>Target heights as x,y,z points (.csv, one point at a plan vertex each; the other vertices are free) or a mesh file, when the target is a points file</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/lifting.ui" line="44"/>
+        <source>Largest plan distance from a point of the points file to its vertex (0: 1e-6 of the plan&apos;s size)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

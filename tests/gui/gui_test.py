@@ -213,6 +213,7 @@ def run(out_dir):
     check(not box.ViewObject.Visibility, "the box is hidden")
     App.closeDocument(doc.Name)
     check_lifting(check, out_dir)
+    check_lift_from_file(check, out_dir)
     check_panels(check, out_dir)
     check_panel_clashes(check, out_dir)
     check_edit_control(check, out_dir)
@@ -698,6 +699,91 @@ def check_lifting(check, out_dir):
     lifting.Label = label
     if Gui.Control.activeDialog():
         Gui.Control.closeDialog()
+
+
+def check_lift_from_file(check, out_dir):
+    """The bundled roof without a surface: Facet_PlanGraph on examples/roof_plan.dxf (the
+    file dialog answered), then Facet_Lift with the plan alone to the heights of
+    examples/roof_heights.csv, chosen in its panel; neither file is changed."""
+    import hashlib
+
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    from PySide import QtGui
+
+    import facetwb
+    from facetwb.commands.lift import CommandLift
+    from facetwb.taskpanels import derive_panels, forms
+
+    dxf = os.path.join(ROOT, "examples", "roof_plan.dxf")
+    csv = os.path.join(ROOT, "examples", "roof_heights.csv")
+
+    def digest(path):
+        with open(path, "rb") as handle:
+            return hashlib.sha256(handle.read()).hexdigest()
+
+    before = {path: digest(path) for path in (dxf, csv)}
+    doc = App.newDocument("RoofFromFiles")
+    ask = QtGui.QFileDialog.getOpenFileName
+    try:
+        QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *args, **kw: (dxf, ""))
+        Gui.Selection.clearSelection()
+        Gui.runCommand("Facet_PlanGraph")
+        plans = [o for o in doc.Objects if facetwb.is_plan_graph(o)]
+        if not check(len(plans) == 1 and plans[0].isValid() and plans[0].FaceCount == 7,
+                     "Facet_PlanGraph reads examples/roof_plan.dxf: 7 faces"):
+            App.closeDocument(doc.Name)
+            return
+        plan = plans[0]
+        # with the plan alone selected Lift plan was inactive: a table of heights had no
+        # way into the GUI
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(plan)
+        check(CommandLift().IsActive(), "Lift plan: active with the plan alone")
+        Gui.runCommand("Facet_Lift")
+        Gui.updateGui()
+        panel = derive_panels.active
+        if not check(panel is not None and panel.from_file(),
+                     "its panel opens with the points file as the target"):
+            App.closeDocument(doc.Name)
+            return
+        names = [o.Name for o in doc.Objects]
+        check(panel.accept() is False and [o.Name for o in doc.Objects] == names
+              and "points file" in forms.widget(panel.form, "message").text(),
+              "OK without a file: nothing added, the panel asks for one")
+        QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *args, **kw: (csv, ""))
+        panel.browse.click()
+        check(forms.get_value(panel.form, "TargetFile") == csv
+              and not forms.widget(panel.form, "message").text(),
+              "Browse fills the points file")
+        for _ in range(20):
+            Gui.updateGui()
+            time.sleep(0.01)
+        panes = [w for w in Gui.getMainWindow().findChildren(QtGui.QScrollArea)
+                 if w.isVisible() and w.widget() and w.widget().isAncestorOf(panel.form)]
+        check(panes and panes[0].widget().width() <= panes[0].viewport().width(),
+              f"the Lift plan panel fits the task pane "
+              f"({panes[0].widget().width() if panes else '?'} px in "
+              f"{panes[0].viewport().width() if panes else '?'} px)")
+        import ui_checks
+
+        ui_checks.window_shot(os.path.join(out_dir, "taskpanel_lift_file.png"))
+        check(panel.accept() and derive_panels.active is None,
+              "Lift plan: OK applies and closes the panel")
+    finally:
+        QtGui.QFileDialog.getOpenFileName = ask
+    liftings = [o for o in doc.Objects if facetwb.is_lifting(o)]
+    lifting = liftings[0] if len(liftings) == 1 else None
+    check(lifting is not None and lifting.isValid() and lifting.TargetFile == csv
+          and lifting.Targets is None and lifting.Dimension == 7
+          and lifting.TargetMax.Value < 1e-2 and lifting.PlanarityMaxRel <= 1e-9,
+          f"the plan is lifted to the file's five heights, planar "
+          f"({lifting and lifting.getStatusString()})")
+    check({path: digest(path) for path in (dxf, csv)} == before,
+          "the DXF and the heights file are not changed")
+    doc.undo()
+    check(not any(facetwb.is_lifting(o) for o in doc.Objects), "undo removes the Lifting")
+    App.closeDocument(doc.Name)
 
 
 def check_panels(check, out_dir):

@@ -10,6 +10,7 @@ from facetwb.translation import QT_TRANSLATE_NOOP
 from facetwb.commands.macro import object_expression, run_as_macro
 
 PLAN_FILE_FILTER = "Plan drawings (*.dxf *.csv *.obj *.off *.json)"
+TARGET_FILE_FILTER = "Target heights (*.csv *.tsv *.txt *.obj *.off *.json)"
 
 
 def _has_edges(obj):
@@ -67,17 +68,18 @@ class CommandLift:
             "ToolTip": QT_TRANSLATE_NOOP(
                 "Facet_Lift",
                 "Select a plan (PlanGraph or Facet mesh), then a target surface (mesh or "
-                "shape): every plan vertex gets a height so that every face is exactly "
-                "planar, as close as possible to the surface straight above it."),
+                "shape), or the plan alone to lift it to the heights of a points file: "
+                "every plan vertex gets a height so that every face is exactly planar, as "
+                "close as possible to the surface straight above it or to the points."),
         }
 
     def _selection(self):
         from facetwb.objects.polymesh import is_polymesh
 
         selection = Gui.Selection.getSelection()
-        if len(selection) != 2 or not is_polymesh(selection[0]):
+        if len(selection) not in (1, 2) or not is_polymesh(selection[0]):
             return None
-        return selection[0], selection[1]
+        return tuple(selection)
 
     def IsActive(self):
         return (App.ActiveDocument is not None and Gui.Control.activeDialog() is False

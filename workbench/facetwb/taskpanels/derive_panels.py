@@ -144,6 +144,28 @@ class DerivePanel:
         return forms.ok_cancel_buttons()
 
 
+def _browse_button(form, name, tip):
+    """A "..." button beside the line edit ``name`` of ``form``'s grid; returns it."""
+    from facetwb.compat import qt_gui
+
+    QtGui = qt_gui()
+    field = forms.widget(form, name)
+    layout = form.layout()
+    index = layout.indexOf(field)
+    row, column, _rows, _columns = layout.getItemPosition(index)
+    box = QtGui.QWidget()
+    line = QtGui.QHBoxLayout(box)
+    line.setContentsMargins(0, 0, 0, 0)
+    layout.removeWidget(field)
+    line.addWidget(field, 1)
+    button = QtGui.QToolButton()
+    button.setText("...")
+    button.setToolTip(tip)
+    line.addWidget(button)
+    layout.addWidget(box, row, column)
+    return button
+
+
 def _abort(doc, shown):
     """Undo what a panel's OK did: the transaction, and the sources it hid (a view
     provider's Visibility is not always in the transaction)."""
@@ -291,23 +313,8 @@ class CutSheetsPanel(DerivePanel):
 
     def setup(self):
         """A Browse button beside the output folder."""
-        from facetwb.compat import qt_gui
-
-        QtGui = qt_gui()
-        field = forms.widget(self.form, "OutputDir")
-        layout = self.form.layout()
-        index = layout.indexOf(field)
-        row, column, _rows, _columns = layout.getItemPosition(index)
-        box = QtGui.QWidget()
-        line = QtGui.QHBoxLayout(box)
-        line.setContentsMargins(0, 0, 0, 0)
-        layout.removeWidget(field)
-        line.addWidget(field, 1)
-        self.browse = QtGui.QToolButton()
-        self.browse.setText("...")
-        self.browse.setToolTip(progress.translate("Facet", "Choose the output folder"))
-        line.addWidget(self.browse)
-        layout.addWidget(box, row, column)
+        self.browse = _browse_button(self.form, "OutputDir", progress.translate(
+            "Facet", "Choose the output folder"))
         self.browse.clicked.connect(self.choose_folder)
 
     def choose_folder(self):
@@ -345,11 +352,13 @@ class CutSheetsPanel(DerivePanel):
 
 
 class LiftPanel(DerivePanel):
-    """sources: [plan, target or None]."""
+    """sources: [plan, target or None]. The target is a surface of the document or, the
+    combo box's last item, a points file (x,y,z heights at plan vertices)."""
 
     UI = "lifting"
     TITLE = QT_TRANSLATE_NOOP("Facet", "Lift plan")
-    FIELDS = (("Snap", None, None, 0.0),)
+    FIELDS = (("TargetFile", None, None, ""),
+              ("Snap", None, None, 0.0))
 
     def setup(self):
         from facetwb.conversion import has_surface
@@ -361,19 +370,63 @@ class LiftPanel(DerivePanel):
                         if o is not self.plan and (has_surface(o) or (
                             is_polymesh(o) and o is not self.plan))]
         combo = forms.widget(self.form, "Target")
+        # as wide as the pane allows, not as its longest label: "Points file (x, y, z)"
+        # or a designer's long label widened the panel past the task pane
+        combo.setSizeAdjustPolicy(combo.AdjustToMinimumContentsLengthWithIcon)
+        combo.setMinimumContentsLength(8)
         for obj in self.targets:
             combo.addItem(obj.Label)
+        # a table of heights (examples/roof_heights.csv): with only the plan selected the
+        # command was inactive, and the panel offered surfaces only
+        combo.addItem(progress.translate("Facet", "Points file (x, y, z)"))
         if wanted in self.targets:
             combo.setCurrentIndex(self.targets.index(wanted))
+        else:
+            combo.setCurrentIndex(len(self.targets))
+        self.browse = _browse_button(self.form, "TargetFile", progress.translate(
+            "Facet", "Choose the points file"))
+        self.browse.clicked.connect(self.choose_file)
+        combo.currentIndexChanged.connect(self.target_changed)
+        self.target_changed()
+
+    def from_file(self):
+        return forms.widget(self.form, "Target").currentIndex() >= len(self.targets)
+
+    def target_changed(self, *_args):
+        self.show_message("")
+        for name in ("TargetFile", "label_TargetFile"):
+            forms.widget(self.form, name).setEnabled(self.from_file())
+        self.browse.setEnabled(self.from_file())
+
+    def choose_file(self):
+        from facetwb.commands.lift import TARGET_FILE_FILTER
+        from facetwb.compat import qt_gui
+
+        field = forms.widget(self.form, "TargetFile")
+        path, _ = qt_gui().QFileDialog.getOpenFileName(
+            Gui.getMainWindow(), progress.translate("Facet", "Target heights"), field.text(),
+            TARGET_FILE_FILTER)
+        if path:
+            field.setText(path)
+            self.show_message("")
 
     def check(self):
-        if not self.targets:
-            raise ValueError("there is no target surface in the document")
+        import os
+
+        if self.from_file():
+            path = self.values["TargetFile"]
+            if not path:
+                raise ValueError("choose a points file, or a target surface")
+            if not os.path.isfile(path):
+                raise ValueError(f"{path}: there is no such file")
 
     def lines(self):
-        target = self.targets[forms.widget(self.form, "Target").currentIndex()]
-        lines = [f"lifting = facetwb.make_lifting({object_expression(self.plan)}, "
-                 f"targets={object_expression(target)})"]
+        if self.from_file():
+            target = f"target_file={self.values['TargetFile']!r}"
+        else:
+            target = (f"targets="
+                      f"{object_expression(self.targets[forms.widget(self.form, 'Target').currentIndex()])}")
+        lines = [f"lifting = facetwb.make_lifting({object_expression(self.plan)}, {target})"]
         if self.values["Snap"]:
             lines.append(f"lifting.Snap = {self.values['Snap']!r}")
         return lines
