@@ -384,6 +384,38 @@ class TestPlanGraphSources(DocumentTestCase):
         self.assertEqual(plan.FaceCount, 1)
         self.assertGreater(plan.VertexCount, 20)
 
+    def test_targets_not_used_are_said(self):
+        # a heights file or pins typed into the property editor of a Lifting made towards a
+        # surface changed nothing, and nothing said why: Targets comes first
+        sketch = add_sketch(self.doc, nested_segments(), "Unused")
+        plan = facetwb.make_plan_graph([sketch])
+        surface = add_plane(self.doc, 1000.0, 0.0, 0.0, "Flat")
+        lifting = facetwb.make_lifting(plan, targets=surface)
+        self.doc.recompute()
+        self.assertEqual(list(lifting.Warnings), [])
+        path = os.path.join(self.tmp.name, "heights.csv")
+        with open(path, "w", encoding="utf-8") as handle:
+            handle.write("x,y,z\n0,0,3500\n")
+        lifting.TargetFile = path
+        lifting.PinnedPoints = [App.Vector(0, 0, 2000)]
+        self.doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        self.assertEqual(list(lifting.Warnings), [
+            "TargetFile and PinnedPoints are not used: the targets are Flat's surface "
+            "(empty Targets to use them)"], lifting.Warnings)
+        self.assertIn("warning: TargetFile and PinnedPoints are not used",
+                      facetwb.lifting_summary(lifting))
+        lifting.Targets = None
+        self.doc.recompute()
+        self.assertEqual(list(lifting.Warnings), [
+            "PinnedPoints are not used: the targets are the points of TargetFile (empty it "
+            "to use them)"], lifting.Warnings)
+        self.assertAlmostEqual(points_array(lifting)[0, 2], 3500.0, delta=1e-6)
+        lifting.TargetFile = ""
+        self.doc.recompute()
+        self.assertEqual(list(lifting.Warnings), [])
+        self.assertAlmostEqual(points_array(lifting)[0, 2], 2000.0, delta=1e-6)
+
     def test_no_targets_is_an_error(self):
         sketch = add_sketch(self.doc, nested_segments(), "S")
         plan = facetwb.make_plan_graph([sketch])

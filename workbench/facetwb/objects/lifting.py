@@ -78,6 +78,18 @@ class Lifting(PolyMesh):
         """(targets, weights); what reading them left out is appended to `notes`."""
         from facet.plan import read_targets, targets_from_mesh, targets_from_points
 
+        # what is set but not used (Targets comes first, then TargetFile): said, since a
+        # heights file typed into the property editor otherwise changed nothing silently
+        if obj.Targets is not None:
+            unused = {(True, False): "TargetFile is", (False, True): "PinnedPoints are",
+                      (True, True): "TargetFile and PinnedPoints are"}.get(
+                          (bool(obj.TargetFile), bool(obj.PinnedPoints)))
+            if unused:
+                notes.append(f"{unused} not used: the targets are {obj.Targets.Label}'s "
+                             "surface (empty Targets to use them)")
+        elif obj.TargetFile and obj.PinnedPoints:
+            notes.append("PinnedPoints are not used: the targets are the points of TargetFile "
+                         "(empty it to use them)")
         if obj.Targets is not None:
             surface = conversion.mesh_from_object(obj.Targets)
             return targets_from_mesh(plan, surface, source=obj.Targets.Label)
