@@ -297,6 +297,15 @@ def check_examples_open_with_view_providers(check, out_dir):
         undrawn = [o.Label for o in facet_objects if o.Proxy.Type not in (
             "Facet::PanelSet", "Facet::CutSheets") and not hasattr(o.ViewObject.Proxy, "coords")]
         check(not undrawn, f"{name}: every Facet mesh has its scene graph ({undrawn or 'all'})")
+        # no GuiDocument.xml, no camera: the view showed the default few millimetres about
+        # the origin, the results out of sight, until Fit all
+        view = Gui.ActiveDocument.ActiveView
+        size = view.getSize()
+        corners = [tuple(view.getPointOnScreen(p)) for o in planarized
+                   for p in (min(o.Points, key=lambda q: q.x + q.y + q.z),
+                             max(o.Points, key=lambda q: q.x + q.y + q.z))]
+        check(corners and all(0 <= x <= size[0] and 0 <= y <= size[1] for x, y in corners),
+              f"{name}: opened, its results are in view ({corners} in {tuple(size)} px)")
         for o in doc.Objects:  # the results alone, in the planarity map
             o.ViewObject.Visibility = o in planarized
         Gui.Selection.clearSelection()

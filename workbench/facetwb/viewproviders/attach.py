@@ -8,7 +8,8 @@ objects had no view provider: nothing drawn, no colour map or legend, no task pa
 double-click. Each Facet object's ``onDocumentRestored`` calls :func:`schedule`. Once the
 document has loaded, and its ``GuiDocument.xml`` with it, an object still without a view
 provider gets the same as :func:`give` gives, and its ``attach`` is called when FreeCAD
-does not call it (it attached the placeholder Proxy it restored instead).
+does not call it (it attached the placeholder Proxy it restored instead), and the
+document's 3D view is fitted to it (it had no saved camera either).
 """
 
 import FreeCAD as App
@@ -124,7 +125,10 @@ def attach_pending():
 
 
 def _finish(items):
+    documents = []
     for obj, view in _objects(items):
+        if obj.Document.Name not in documents:
+            documents.append(obj.Document.Name)
         proxy = view.Proxy
         if not view.DisplayMode and hasattr(proxy, "getDefaultDisplayMode"):
             try:
@@ -135,3 +139,20 @@ def _finish(items):
             except (ValueError, TypeError) as error:
                 App.Console.PrintWarning(f"Facet: {obj.Label}: display mode: {error}\n")
         hide_sources(obj)
+    _fit(documents)
+
+
+def _fit(documents):
+    """Fit the 3D views of ``documents`` to what they show: with no GuiDocument.xml there
+    was no camera either, and examples/roof.FCStd opened on an empty view (the default
+    camera's few millimetres about the origin, the 12 m roof out of sight)."""
+    import FreeCADGui as Gui
+
+    for name in documents:
+        try:
+            gui_doc = Gui.getDocument(name)
+        except (NameError, ReferenceError):
+            continue
+        view = getattr(gui_doc, "ActiveView", None) if gui_doc is not None else None
+        if view is not None and hasattr(view, "fitAll"):
+            view.fitAll()
