@@ -214,6 +214,7 @@ def run(out_dir):
     App.closeDocument(doc.Name)
     check_lifting(check, out_dir)
     check_lift_from_file(check, out_dir)
+    check_lift_mix_states(check, out_dir)
     check_panels(check, out_dir)
     check_panel_clashes(check, out_dir)
     check_edit_control(check, out_dir)
@@ -708,6 +709,41 @@ def check_lifting(check, out_dir):
     lifting.Label = label
     if Gui.Control.activeDialog():
         Gui.Control.closeDialog()
+
+
+def check_lift_mix_states(check, out_dir):
+    """The Shape lifting panel on a Lifting that failed says why there is nothing to shape."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+
+    import facetwb
+    from facetwb.taskpanels import lift_mix
+
+    doc = App.openDocument(os.path.join(ROOT, "examples", "roof.FCStd"))
+    for _ in range(20):
+        Gui.updateGui()
+        time.sleep(0.01)
+    lifting = [o for o in doc.Objects if facetwb.is_lifting(o)][0]
+    panels = [o for o in doc.Objects if facetwb.is_panelset(o)][0]
+    doc.recompute()
+    # a Lifting with no targets: its Dimension is 0, and the panel said "this plan admits
+    # only planes: there is nothing to mix"
+    lifting.PinnedPoints = []
+    doc.recompute()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(lifting)
+    Gui.runCommand("Facet_LiftMix")
+    Gui.updateGui()
+    panel = lift_mix.active
+    if check(panel is not None, "the Shape lifting panel opens on a Lifting that failed"):
+        text = panel.form.findChildren(type(panel.labels[0]) if panel.labels else
+                                       __import__("PySide").QtGui.QLabel)[0].text()
+        check(not panel.sliders and "no targets" in text and "only planes" not in text,
+              f"it says why there is nothing to shape ({text!r})")
+        panel.reject()
+        Gui.updateGui()
+    check(not Gui.Control.activeDialog(), "its Cancel closes it")
+    App.closeDocument(doc.Name)
 
 
 def check_lift_from_file(check, out_dir):

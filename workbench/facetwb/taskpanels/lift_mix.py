@@ -35,12 +35,17 @@ class LiftMixPanel:
         QtGui = qt_gui()
         self.obj = obj
         self.original = list(obj.Mix)
-        plan = get_mesh(obj.Plan)
-        xy = plan.vertices[:, :2]
-        extent = float((xy.max(axis=0) - xy.min(axis=0)).max()) or 1.0
+        #: Why there is nothing to shape (the Lifting failed or was never solved), or None.
+        #: Such a Lifting's Dimension is 0, or that of its last good solve: the panel said
+        #: "this plan admits only planes", or offered sliders that could only fail.
+        self.failed = _not_lifted(obj)
         #: Full slider travel: a quarter of the plan's size, in mm.
-        self.range = 0.25 * extent
-        self.count = max(0, min(MAX_SLIDERS, int(obj.Dimension) - 3))
+        self.range = 1.0
+        self.count = 0
+        if self.failed is None:
+            xy = get_mesh(obj.Plan).vertices[:, :2]
+            self.range = 0.25 * (float((xy.max(axis=0) - xy.min(axis=0)).max()) or 1.0)
+            self.count = max(0, min(MAX_SLIDERS, int(obj.Dimension) - 3))
         self.form = QtGui.QWidget()
         # the object's name in the intro, which wraps: in the title (which does not) a label
         # such as "Roof over the north wing lifted" widened the panel past the task pane,
@@ -49,7 +54,11 @@ class LiftMixPanel:
         layout = QtGui.QVBoxLayout(self.form)
         intro = QtGui.QLabel()
         name = forms.elided(intro, obj.Label)
-        if self.count == 0:
+        if self.failed is not None:
+            intro.setText(translate(
+                "Facet", "{0}: there is no lifting to shape: {1}. Fix it and recompute "
+                "first.").format(name, self.failed))
+        elif self.count == 0:
             intro.setText(translate(
                 "Facet", "{0}: this plan admits only planes: there is nothing to mix. Change "
                 "the drawing (or lift it with moved vertices) to get more shapes.").format(name))
@@ -82,7 +91,7 @@ class LiftMixPanel:
             slider.valueChanged.connect(self.changed)
         # Dragging one vertex: its fundamental lifting (the rest of the roof follows).
         self.original_drags = list(obj.Drags)
-        self.points = [(p.x, p.y) for p in obj.Plan.Points]
+        self.points = [] if self.failed else [(p.x, p.y) for p in obj.Plan.Points]
         drag_row = QtGui.QHBoxLayout()
         drag_row.addWidget(QtGui.QLabel(translate("Facet", "Raise vertex")))
         self.vertex = QtGui.QSpinBox()
@@ -106,6 +115,8 @@ class LiftMixPanel:
         self.drags = {}
         for d in self.original_drags:
             self.drags[(d.x, d.y)] = d.z
+        for widget in (self.vertex, self.drag):
+            widget.setEnabled(bool(self.points))
         self.vertex.valueChanged.connect(self.vertex_changed)
         self.drag.valueChanged.connect(self.drag_changed)
         self.vertex_changed()
@@ -167,3 +178,15 @@ class LiftMixPanel:
 
     def getStandardButtons(self):
         return forms.ok_cancel_buttons()
+
+
+def _not_lifted(obj):
+    """Why ``obj`` holds no lifting to shape (one line), or None when it holds one."""
+    from facetwb.recompute import failure
+
+    if not obj.isValid():
+        text = failure(obj)
+        return text[len(obj.Label) + 2:] if text.startswith(obj.Label + ": ") else text
+    if obj.Plan is None or int(obj.Dimension) < 3 or not obj.Points:
+        return "it is not lifted yet"
+    return None
