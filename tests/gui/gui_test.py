@@ -712,7 +712,8 @@ def check_lifting(check, out_dir):
 
 
 def check_lift_mix_states(check, out_dir):
-    """The Shape lifting panel on a Lifting that failed says why there is nothing to shape."""
+    """The Shape lifting panel on a Lifting that failed says why there is nothing to shape;
+    Cancel without a change leaves what is made from the Lifting as it was."""
     import FreeCAD as App
     import FreeCADGui as Gui
 
@@ -726,6 +727,37 @@ def check_lift_mix_states(check, out_dir):
     lifting = [o for o in doc.Objects if facetwb.is_lifting(o)][0]
     panels = [o for o in doc.Objects if facetwb.is_panelset(o)][0]
     doc.recompute()
+    # Cancel of an unchanged panel set Mix and Drags again and recomputed: the panels
+    # (and cut sheets, which rewrite their files) were rebuilt for nothing
+    stamp = panels.Shape.hashCode() if hasattr(panels.Shape, "hashCode") else None
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(lifting)
+    Gui.runCommand("Facet_LiftMix")
+    Gui.updateGui()
+    panel = lift_mix.active
+    if panel is not None:
+        panel.reject()
+        Gui.updateGui()
+    check(panel is not None and "Touched" not in lifting.State
+          and "Touched" not in panels.State
+          and (stamp is None or panels.Shape.hashCode() == stamp),
+          f"Cancel of an unchanged Shape lifting panel recomputes nothing ({panels.State})")
+    points = [tuple(p) for p in lifting.Points]
+    volume = panels.Shape.Volume
+    Gui.runCommand("Facet_LiftMix")
+    Gui.updateGui()
+    panel = lift_mix.active
+    if panel is not None:
+        panel.sliders[0].setValue(40)
+        Gui.updateGui()
+        moved = [tuple(p) for p in lifting.Points] != points
+        panel.reject()
+        Gui.updateGui()
+        check(moved and [tuple(p) for p in lifting.Points] == points and not lifting.Mix
+              and abs(panels.Shape.Volume - volume) < 1e-9 * volume
+              and "Touched" not in lifting.State and "Touched" not in panels.State,
+              f"Cancel after a slider's move puts the roof back, up to date "
+              f"({lifting.State}, {panels.State})")
     # a Lifting with no targets: its Dimension is 0, and the panel said "this plan admits
     # only planes: there is nothing to mix"
     lifting.PinnedPoints = []

@@ -121,6 +121,10 @@ class LiftMixPanel:
         self.drag.valueChanged.connect(self.drag_changed)
         self.vertex_changed()
         self._show_values()
+        # the Lifting and what is made from it that are up to date now: the sliders'
+        # recomputes touch them, and Cancel, which puts the same roof back, leaves them so
+        self.fresh = [o.Name for o in [obj] + list(obj.InListRecursive)
+                      if "Touched" not in o.State]
         self.obj.Document.openTransaction("Shape lifting")
         global active
         active = self
@@ -169,10 +173,18 @@ class LiftMixPanel:
         return True
 
     def reject(self):
-        self.obj.Document.abortTransaction()
-        self.obj.Mix = self.original
-        self.obj.Drags = self.original_drags
-        self.obj.Document.recompute()
+        doc = self.obj.Document
+        doc.abortTransaction()  # puts Mix, Drags, the roof and what is made from it back
+        # set again and recomputed even when unchanged, Mix and Drags rebuilt the panels and
+        # cut sheets made from the Lifting (files rewritten) for nothing
+        if list(self.obj.Mix) != self.original or list(self.obj.Drags) != self.original_drags:
+            self.obj.Mix = self.original
+            self.obj.Drags = self.original_drags
+            doc.recompute()
+        for name in self.fresh:
+            dependent = doc.getObject(name)
+            if dependent is not None and "Touched" in dependent.State:
+                dependent.purgeTouched()
         self._close()
         return True
 
