@@ -522,27 +522,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="79"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="80"/>
         <source>Lifting {0}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="82"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="83"/>
         <source>Height of this lifting at its peak; the faces stay planar</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="96"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="97"/>
         <source>Raise vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="98"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="99"/>
         <source>The plan vertex to raise or lower</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="108"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="109"/>
         <source>How far the vertex moves; the rest of the roof follows, every face planar</source>
         <translation type="unfinished"></translation>
     </message>
@@ -647,17 +647,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="53"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="206"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="62"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="63"/>
         <source>{0}: this plan admits only planes: there is nothing to mix. Change the drawing (or lift it with moved vertices) to get more shapes.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="66"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="67"/>
         <source>{0}: the plan admits {1} non-planar liftings. Each slider adds one (smoothest first); every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -677,7 +677,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="58"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="59"/>
         <source>{0}: there is no lifting to shape: {1}. Fix it and recompute first.</source>
         <translation type="unfinished"></translation>
     </message>

@@ -4,8 +4,9 @@ to the optimal one, and a vertex whose height can be dragged (its fundamental li
 rest of the roof follows), with the result following live. Every mix keeps every face exactly planar:
 the liftings form a linear space. Wiring only: the basis comes from ``facet.lift``.
 
-The sliders write the Lifting's ``Mix`` and ``Drags`` properties and recompute;
-OK keeps the mix (one undo step), Cancel restores the previous one.
+The sliders write the Lifting's ``Mix`` and ``Drags`` properties and recompute it; what is
+made from it (panels, cut sheets) is recomputed at OK, which keeps the mix (one undo step).
+Cancel restores the previous one.
 """
 
 import FreeCAD as App
@@ -125,6 +126,8 @@ class LiftMixPanel:
         # recomputes touch them, and Cancel, which puts the same roof back, leaves them so
         self.fresh = [o.Name for o in [obj] + list(obj.InListRecursive)
                       if "Touched" not in o.State]
+        #: Visibility before the panel changed it, by object name (:meth:`_show_roof`).
+        self.views = {}
         self.obj.Document.openTransaction("Shape lifting")
         global active
         active = self
@@ -153,22 +156,60 @@ class LiftMixPanel:
         self._show_drag()
         self.drags[self.points[self.vertex.value()]] = self.drag.value() / STEPS * self.range
         self.obj.Drags = [App.Vector(x, y, dz) for (x, y), dz in self.drags.items() if dz]
-        self.obj.Document.recompute()
-        Gui.updateGui()
+        self._follow()
 
     def changed(self, _value=None):
         self._show_values()
         self.obj.Mix = self.mix()
-        self.obj.Document.recompute()
+        self._follow()
+
+    def _follow(self):
+        """Re-solve the Lifting alone, live. What is made from it waits for OK: recomputed
+        at every slider step, 5,000 panels made each step take 10 s, and a drag across
+        the slider minutes."""
+        self.obj.recompute()
+        if self.obj.isValid():
+            self.obj.purgeTouched()
+        for dependent in self.obj.InListRecursive:
+            dependent.touch()
+        self._show_roof()
         Gui.updateGui()
+
+    def _show_roof(self):
+        """While the sliders move: the Lifting shown, what waits for OK hidden (the panels
+        usually hide the Lifting, and the roof would not seem to move). :meth:`_close` puts
+        the views back."""
+        if self.views:
+            return
+        for o in [self.obj] + list(self.obj.InListRecursive):
+            view = getattr(o, "ViewObject", None)
+            if view is not None and bool(view.Visibility) != (o is self.obj):
+                self.views[o.Name] = bool(view.Visibility)
+                view.Visibility = o is self.obj
 
     def _close(self):
         global active
+        for name, visible in self.views.items():
+            o = self.obj.Document.getObject(name)
+            if o is not None and getattr(o, "ViewObject", None) is not None:
+                o.ViewObject.Visibility = visible
+        self.views = {}
         active = None
         Gui.Control.closeDialog()
 
     def accept(self):
-        self.obj.Document.commitTransaction()
+        doc = self.obj.Document
+        if any("Touched" in o.State for o in self.obj.InListRecursive):
+            from facetwb import progress
+
+            # the panels and cut sheets made from the roof, in the same undo step
+            with progress.reporting(translate("Facet", "Shape lifting") + " ...") as reporter:
+                doc.recompute()
+            if reporter.cancelled:
+                App.Console.PrintWarning(
+                    f"Facet: Shape lifting: the roof is kept; what is made from it was not "
+                    f"recomputed (cancelled): recompute the document to update it\n")
+        doc.commitTransaction()
         self._close()
         return True
 
