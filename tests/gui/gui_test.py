@@ -840,6 +840,13 @@ def check_lift_from_file(check, out_dir):
             App.closeDocument(doc.Name)
             return
         plan = plans[0]
+        # read into an empty document, the plan is in view
+        view = Gui.ActiveDocument.ActiveView
+        size = view.getSize()
+        corners = [tuple(view.getPointOnScreen(p)) for p in plan.Points]
+        check(all(0 <= x <= size[0] and 0 <= y <= size[1] for x, y in corners),
+              f"the plan read into an empty document is in view "
+              f"({min(corners)}, {max(corners)} in {tuple(size)} px)")
         # with the plan alone selected Lift plan was inactive: a table of heights had no
         # way into the GUI
         Gui.Selection.clearSelection()

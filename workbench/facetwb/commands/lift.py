@@ -54,8 +54,14 @@ class CommandPlanGraph:
                 return
             lines = [f"facetwb.make_plan_graph(file={path!r}, "
                      f"doc=FreeCAD.getDocument({doc.Name!r}))"]
+        # nothing shown yet (a drawing read into a new document): the view is fitted to the
+        # plan, as an import does; it showed the default few millimetres about the origin,
+        # a 12 m plan one flat colour filling part of it
+        empty = not any(getattr(getattr(o, "ViewObject", None), "Visibility", False)
+                        for o in doc.Objects)
         lines.append(f'FreeCAD.getDocument("{doc.Name}").recompute()')
-        run_as_macro(doc, "Plan graph", lines)
+        if run_as_macro(doc, "Plan graph", lines) and empty:
+            Gui.SendMsgToActiveView("ViewFit")
 
 
 class CommandLift:
