@@ -522,27 +522,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="80"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="82"/>
         <source>Lifting {0}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="83"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="89"/>
         <source>Height of this lifting at its peak; the faces stay planar</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="97"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="100"/>
         <source>Raise vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="99"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="102"/>
         <source>The plan vertex to raise or lower</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="109"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="116"/>
         <source>How far the vertex moves; the rest of the roof follows, every face planar</source>
         <translation type="unfinished"></translation>
     </message>
@@ -647,7 +647,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="206"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="222"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
@@ -737,12 +737,12 @@
 <context>
     <name>Facet_Lift</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="67"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="73"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="68"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="74"/>
         <source>Select a plan (PlanGraph or Facet mesh), then a target surface (mesh or shape), or the plan alone to lift it to the heights of a points file: every plan vertex gets a height so that every face is exactly planar, as close as possible to the surface straight above it or to the points.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -750,12 +750,12 @@
 <context>
     <name>Facet_LiftMix</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="102"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="108"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="103"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="109"/>
         <source>Sliders for the selected Lifting: add the smoothest other planar-faced shapes over the same plan; the result follows live and every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>

@@ -674,8 +674,8 @@ def check_lifting(check, out_dir):
         check(panes and width <= panes[0].viewport().width(),
               f"the Shape lifting panel fits the task pane ({width} px in "
               f"{panes[0].viewport().width() if panes else '?'} px)")
-        # beside "Raise vertex" and its spin box the height slider was a 32 px stub
-        short = [s.width() for s in panel.sliders + [panel.drag] if s.width() < 80]
+        # beside their labels the sliders were 66 to 99 px, the height slider a 32 px stub
+        short = [s.width() for s in panel.sliders + [panel.drag] if s.width() < 150]
         check(not short, f"the panel's sliders are long enough to drag (short: {short} px)")
         # a plan graph made while the panel is open: its transaction committed the panel's,
         # and after Cancel the undo list held a 'Shape lifting' step
@@ -683,8 +683,13 @@ def check_lifting(check, out_dir):
 
         check(not CommandPlanGraph().IsActive(),
               "while the Shape lifting panel is open, Plan graph is inactive")
+        width = panel.sliders[0].width()
         panel.sliders[0].setValue(60)
         Gui.updateGui()
+        # the value label beside it grew with the value ("0.00 mm" to "1200.00 mm")
+        check(panel.sliders[0].width() == width,
+              f"the slider keeps its length as its value grows ({width} -> "
+              f"{panel.sliders[0].width()} px)")
         after = [p.z for p in lifting.Points]
         moved = max(abs(a - b) for a, b in zip(after, before))
         check(moved > 100 and lifting.PlanarityMaxRel <= 1e-9,
@@ -695,6 +700,13 @@ def check_lifting(check, out_dir):
         check_screenshot(check, path, "lifting mix", legend=False)
         mixed = [p.z for p in lifting.Points]
         panel.vertex.setValue(4)
+        panel.drag.setValue(-100)  # the widest value beside the vertex box
+        for _ in range(10):
+            Gui.updateGui()
+            time.sleep(0.01)
+        check(panes[0].widget().width() <= panes[0].viewport().width(),
+              f"the panel fits the task pane at the lowest vertex height "
+              f"({panes[0].widget().width()} px in {panes[0].viewport().width()} px)")
         panel.drag.setValue(20)
         Gui.updateGui()
         dragged = [p.z for p in lifting.Points]

@@ -75,18 +75,21 @@ class LiftMixPanel:
         self.sliders = []
         self.labels = []
         values = list(self.original) + [0.0] * self.count
+        # each slider on a line of its own under its name and value: beside them it was 66
+        # to 99 px long in the task pane, and shrank as its value label grew while dragged
         for k in range(self.count):
             row = QtGui.QHBoxLayout()
             row.addWidget(QtGui.QLabel(translate("Facet", "Lifting {0}").format(k + 1)))
+            row.addStretch(1)
+            label = self._value_label()
+            row.addWidget(label)
+            layout.addLayout(row)
             slider = QtGui.QSlider(QtCore.Qt.Horizontal)
             slider.setRange(-STEPS, STEPS)
             slider.setToolTip(translate(
                 "Facet", "Height of this lifting at its peak; the faces stay planar"))
             slider.setValue(int(round(values[k] / self.range * STEPS)))
-            label = QtGui.QLabel()
-            row.addWidget(slider, 1)
-            row.addWidget(label)
-            layout.addLayout(row)
+            layout.addWidget(slider)
             self.sliders.append(slider)
             self.labels.append(label)
             slider.valueChanged.connect(self.changed)
@@ -100,19 +103,20 @@ class LiftMixPanel:
         self.vertex.setRange(0, max(0, len(self.points) - 1))
         drag_row.addWidget(self.vertex)
         drag_row.addStretch(1)
+        # (sized to its text: beside the label and the spin box, a width for the widest
+        # value made the panel 3 px wider than the pane)
+        self.drag_label = QtGui.QLabel()
+        self.drag_label.setAlignment(QtCore.Qt.AlignRight | QtCore.Qt.AlignVCenter)
+        drag_row.addWidget(self.drag_label)
         layout.addLayout(drag_row)
         # the height slider on a line of its own: beside the label and the vertex box it
         # was squeezed to 32 px in the task pane, too short to drag
-        drag_row = QtGui.QHBoxLayout()
         self.drag = QtGui.QSlider(QtCore.Qt.Horizontal)
         self.drag.setRange(-STEPS, STEPS)
         self.drag.setToolTip(translate(
             "Facet", "How far the vertex moves; the rest of the roof follows, every face "
             "planar"))
-        drag_row.addWidget(self.drag, 1)
-        self.drag_label = QtGui.QLabel()
-        drag_row.addWidget(self.drag_label)
-        layout.addLayout(drag_row)
+        layout.addWidget(self.drag)
         self.drags = {}
         for d in self.original_drags:
             self.drags[(d.x, d.y)] = d.z
@@ -131,6 +135,18 @@ class LiftMixPanel:
         self.obj.Document.openTransaction("Shape lifting")
         global active
         active = self
+
+    def _value_label(self):
+        """A label as wide as the widest value it shows (right-aligned: the value does not
+        jump about as it grows)."""
+        from facetwb.compat import qt_gui
+        from PySide import QtCore
+
+        label = qt_gui().QLabel()
+        widest = App.Units.Quantity(-self.range, App.Units.Length).UserString
+        label.setMinimumWidth(label.fontMetrics().boundingRect(widest).width() + 4)
+        label.setAlignment(QtCore.Qt.AlignRight | QtCore.Qt.AlignVCenter)
+        return label
 
     def mix(self):
         return [s.value() / STEPS * self.range for s in self.sliders]
