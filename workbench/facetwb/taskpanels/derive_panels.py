@@ -424,8 +424,8 @@ class LiftPanel(DerivePanel):
         if self.from_file():
             target = f"target_file={self.values['TargetFile']!r}"
         else:
-            target = (f"targets="
-                      f"{object_expression(self.targets[forms.widget(self.form, 'Target').currentIndex()])}")
+            chosen = self.targets[forms.widget(self.form, "Target").currentIndex()]
+            target = f"targets={object_expression(chosen)}"
         lines = [f"lifting = facetwb.make_lifting({object_expression(self.plan)}, {target})"]
         if self.values["Snap"]:
             lines.append(f"lifting.Snap = {self.values['Snap']!r}")

@@ -223,8 +223,8 @@ class LiftMixPanel:
                 doc.recompute()
             if reporter.cancelled:
                 App.Console.PrintWarning(
-                    f"Facet: Shape lifting: the roof is kept; what is made from it was not "
-                    f"recomputed (cancelled): recompute the document to update it\n")
+                    "Facet: Shape lifting: the roof is kept; what is made from it was not "
+                    "recomputed (cancelled): recompute the document to update it\n")
         doc.commitTransaction()
         self._close()
         return True
