@@ -672,7 +672,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="406"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="409"/>
         <source>Target heights</source>
         <translation type="unfinished"></translation>
     </message>

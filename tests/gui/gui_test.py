@@ -875,6 +875,9 @@ def check_lift_from_file(check, out_dir):
         check(panel.accept() is False and [o.Name for o in doc.Objects] == names
               and "points file" in forms.widget(panel.form, "message").text(),
               "OK without a file: nothing added, the panel asks for one")
+        forms.widget(panel.form, "TargetFile").setText(csv[:-4])
+        check(not forms.widget(panel.form, "message").text(),
+              "a path typed in the field clears that message (it stayed until OK)")
         QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *args, **kw: (csv, ""))
         panel.browse.click()
         check(forms.get_value(panel.form, "TargetFile") == csv

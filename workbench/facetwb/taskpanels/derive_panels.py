@@ -386,6 +386,9 @@ class LiftPanel(DerivePanel):
         self.browse = _browse_button(self.form, "TargetFile", progress.translate(
             "Facet", "Choose the points file"))
         self.browse.clicked.connect(self.choose_file)
+        # a path typed or pasted: the last OK's "choose a points file" no longer holds
+        forms.widget(self.form, "TargetFile").textChanged.connect(
+            lambda *_: self.show_message(""))
         combo.currentIndexChanged.connect(self.target_changed)
         self.target_changed()
 
@@ -407,8 +410,7 @@ class LiftPanel(DerivePanel):
             Gui.getMainWindow(), progress.translate("Facet", "Target heights"), field.text(),
             TARGET_FILE_FILTER)
         if path:
-            field.setText(path)
-            self.show_message("")
+            field.setText(path)  # (clears the message)
 
     def check(self):
         import os
