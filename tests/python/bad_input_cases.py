@@ -331,6 +331,14 @@ def _panel_rows():
               files={"flat.obj": obj_text([[0, 0, 0], [1000, 0, 0], [1000, 1000, 0],
                                            [510, 1000, 0], [500, 300, 0], [490, 1000, 0],
                                            [0, 1000, 0]], [[0, 1, 2, 3, 4, 5, 6]])})
+    # the core names faces and a vertex by index, which a designer cannot find in a
+    # modeller: the vertex's point is said too
+    panel_row("panels_faces_fold_back", ["--thickness", "8"],
+              ["{dir}/flat.obj", "faces 0 and 1 fold back onto each other at vertex 1 "
+               "(1000, 0, 0)"],
+              files={"flat.obj": obj_text([[0, 0, 0], [1000, 0, 0], [1000, 1000, 0],
+                                           [0, 1000, 0], [500, 0, 0], [500, 1000, 0]],
+                                          [[0, 1, 2, 3], [2, 1, 4, 5]])})
     panel_row("panels_zero_area_face", ["--thickness", "0.01"],
               ["{dir}/flat.obj", "face 4", "no area"],
               files={"flat.obj": obj_text(v, f + [[0, 1, 2]])})

@@ -29,7 +29,7 @@ from facet import _core
 from facet.errors import Cancelled, InputError, from_core
 from facet.mesh import PolyMesh, next_corners
 from facet.quality import DEFAULT_SHORT_EDGE
-from facet.report import count_noun, first_names
+from facet.report import count_noun, first_names, point_text
 
 __all__ = ["PanelError", "Panel", "PanelSet", "panels", "OFFSETS", "EDGES", "ID_SCHEMES",
            "grid_positions", "DEFAULT_MIN_EDGE", "check_density", "mass_kg"]
@@ -940,7 +940,14 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             if name != "FACET_ERROR_NOT_PLANAR":
                 faces = [exc.face] if getattr(exc, "face", -1) >= 0 else []
             prefix_ = f"{source}: " if source else ""
-            raise PanelError(prefix_ + str(exc), faces=faces) from None
+            # where it is: the core names faces and a vertex by index, which a designer in
+            # FreeCAD or Rhino cannot find; their point can be
+            message, vertex = str(exc), getattr(exc, "vertex", -1)
+            if 0 <= vertex < len(mesh.vertices):
+                point = point_text(mesh.vertices[vertex])
+                message += (f" {point}" if message.endswith(f"vertex {vertex}")
+                            else f" (vertex {vertex} at {point})")
+            raise PanelError(prefix_ + message, faces=faces) from None
         raise from_core(exc, source=source) from None
 
     warnings = []
