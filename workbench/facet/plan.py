@@ -485,19 +485,30 @@ def _cells_text(cells):
     return text if len(text) <= 60 else text[:57] + "..."
 
 
-def _csv_segments(path):
-    segments = []
-    for number, cells in _csv_rows(path, PlanError):
+def _number_rows(path, error, names):
+    """The rows of a table of numbers (:func:`_csv_rows`): (line number, values), as many
+    values as ``names`` has ("x,y,z", "x1,y1,x2,y2"). A first line that is not numbers is a
+    header, skipped; any other, or a line with another count or a value not finite, is
+    ``error`` naming the line and quoting its cells."""
+    count = names.count(",") + 1
+    word = {3: "three", 4: "four"}[count]
+    for number, cells in _csv_rows(path, error):
         try:
             values = [float(c) for c in cells]
         except ValueError:
             if number == 1:  # a header line
                 continue
-            raise PlanError(f"{path}: line {number}: not four numbers x1,y1,x2,y2 "
-                            f"({_cells_text(cells)})")
-        if len(values) != 4 or not all(np.isfinite(values)):
-            raise PlanError(f"{path}: line {number}: need four finite numbers x1,y1,x2,y2 "
-                            f"({_cells_text(cells)})")
+            raise error(f"{path}: line {number}: not {word} numbers {names} "
+                        f"({_cells_text(cells)})") from None
+        if len(values) != count or not all(np.isfinite(values)):
+            raise error(f"{path}: line {number}: need {word} finite numbers {names} "
+                        f"({_cells_text(cells)})")
+        yield number, values
+
+
+def _csv_segments(path):
+    segments = []
+    for _number, values in _number_rows(path, PlanError, "x1,y1,x2,y2"):
         segments.append(((values[0], values[1]), (values[2], values[3])))
     if not segments:
         raise PlanError(f"{path}: no segments")
@@ -1197,17 +1208,7 @@ def read_targets(plan, path, *, tolerance=None, notes=None):
     xy, _ = _plan_xy(plan)
     if suffix in TABLE_SUFFIXES:
         rows, lines = [], []
-        for number, cells in _csv_rows(path, InputError):
-            try:
-                values = [float(c) for c in cells]
-            except ValueError:
-                if number == 1:
-                    continue
-                raise InputError(f"{path}: line {number}: not three numbers x,y,z "
-                                 f"({_cells_text(cells)})")
-            if len(values) != 3 or not all(np.isfinite(values)):
-                raise InputError(f"{path}: line {number}: need three finite numbers x,y,z "
-                                 f"({_cells_text(cells)})")
+        for number, values in _number_rows(path, InputError, "x,y,z"):
             rows.append(values)
             lines.append(f"line {number}")
         if tolerance is None:
