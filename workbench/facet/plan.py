@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from facet.errors import InputError
-from facet.report import count_noun, point_text
+from facet.report import count_noun, first_names, point_text
 from facet.mesh import PolyMesh, boundary_corners, cluster_points
 
 __all__ = [
@@ -247,8 +247,7 @@ def _dxf_model_segments(path, document, arc_tolerance, ezpath, notes=None):
                  if layout.name != "Model"]
         paper = [(name, n) for name, n in paper if n]
         if paper:
-            names = ", ".join(name for name, _ in paper[:3]) + (", ..." if len(paper) > 3
-                                                                   else "")
+            names = first_names((name for name, _ in paper), 3)
             count = sum(n for _, n in paper)
             found += (f"; {count} {'entity' if count == 1 else 'entities'} on the "
                       f"layout{'s' if len(paper) > 1 else ''} {names} (paper space), "
@@ -1035,9 +1034,10 @@ def targets_from_points(plan, points, *, tolerance, labels=None, notes=None):
         raise InputError(
             f"{near.size} of the {len(points)} target points "
             f"{'lies' if near.size == 1 else 'lie'} near a plan vertex but "
-            f"farther than the match distance {tolerance:g}; the nearest of them, {_point_label(labels, p)} "
-            f"at {point_text(points[p, :2])}, is {apart[p]:.3g} from vertex "
-            f"{int(vertex[p])}: give a larger snap distance (--snap) to match them")
+            f"farther than the match distance {tolerance:g}; the nearest of them, "
+            f"{_point_label(labels, p)} at {point_text(points[p, :2])}, is {apart[p]:.3g} "
+            f"from vertex {int(vertex[p])}: give a larger snap distance (--snap) to match "
+            "them")
     _check_one_height(points, tree.query_ball_point(xy[given], tolerance),
                       np.flatnonzero(given), labels)
     # points left out: said, as a table in other units or another origin matched a vertex
