@@ -451,10 +451,10 @@ def run_panels(args):
 def _units_warnings(mesh, units):
     """A warning when the panels' size in the declared units is far from any facade's: a
     mesh in metres cut as millimetres gives parts a thousandth of their size."""
-    from facet.cutsheets import PLAUSIBLE_EDGE_MM, length_unit
+    from facet.cutsheets import implausible_edge_mm
 
-    edge = mesh.mean_edge_length() * length_unit(units)[0]  # mm
-    if PLAUSIBLE_EDGE_MM[0] <= edge <= PLAUSIBLE_EDGE_MM[1]:
+    edge = implausible_edge_mm(mesh.mean_edge_length(), units)
+    if edge is None:
         return []
     return [f"the panels' edges are {edge:.3g} mm long on average, taking the mesh to be in "
             f"{units} (--units): if it is in other units, say which, or the DXF and STEP "

@@ -37,7 +37,7 @@ from facet.report import count_noun, json_safe
 
 __all__ = ["LAYERS", "LAYER_LINETYPES", "LAYER_MEANINGS", "write_dxf", "schedule_rows",
            "write_schedule_csv", "write_schedule_json", "write_svg", "write_png",
-           "sheet_offsets", "PREVIEW_COLOURS", "PLAUSIBLE_EDGE_MM"]
+           "sheet_offsets", "PREVIEW_COLOURS", "PLAUSIBLE_EDGE_MM", "implausible_edge_mm"]
 
 #: Layer name -> ACI colour.
 LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "TOP": 4, "SHEET": 8, "GRAIN": 6}
@@ -255,6 +255,15 @@ LENGTH_UNITS = {"mm": (1.0, 4, 1), "cm": (10.0, 5, 1), "m": (1000.0, 6, 1),
 #: (``facet panels`` warns outside it; FreeCAD's import asks for the units, its PanelSet
 #: warns).
 PLAUSIBLE_EDGE_MM = (10.0, 50000.0)
+
+
+def implausible_edge_mm(mean_edge, units="mm"):
+    """``mean_edge`` (a mesh's or panels' mean edge length, in ``units``) in millimetres
+    when it is outside :data:`PLAUSIBLE_EDGE_MM`, no facade's (a mesh in metres read as
+    millimetres), else None: the one test of ``facet panels``' units warning and FreeCAD's
+    import and PanelSet."""
+    edge = mean_edge * length_unit(units)[0]
+    return None if PLAUSIBLE_EDGE_MM[0] <= edge <= PLAUSIBLE_EDGE_MM[1] else edge
 
 
 def length_unit(units):

@@ -461,6 +461,12 @@ class PanelSet:
                 return p
         raise KeyError(part_id)
 
+    def mean_edge_length(self):
+        """The panels' mean edge length (their perimeters over their corners), model units;
+        0 without panels."""
+        corners = sum(p.corners for p in self.panels)
+        return sum(p.perimeter for p in self.panels) / corners if corners else 0.0
+
     def schedule(self):
         """List of schedule rows (dicts), in panel order."""
         return [p.schedule_row() for p in self.panels]

@@ -13,10 +13,6 @@ import os
 
 import FreeCAD as App
 
-# the mean edge lengths, in mm, of the meshes taken to be in the units they were read in
-# (``facet panels`` warns outside the same range); the PanelSet's warning uses it too
-from facet.cutsheets import PLAUSIBLE_EDGE_MM
-
 #: Show a message box for import errors when the GUI is up. Scripts and tests that drive the
 #: GUI set this to False so no modal dialog waits for a click.
 SHOW_DIALOGS = True
@@ -31,12 +27,13 @@ class MeshImportError(Exception):
 
 
 def size_warning(mesh, units="mm"):
-    """The warning for a mesh whose mean edge, read in ``units``, is outside
-    PLAUSIBLE_EDGE_MM (a facade in metres read as millimetres), or None."""
-    from facet.cutsheets import length_unit
+    """The warning for a mesh whose mean edge, read in ``units``, is no facade's
+    (facet.cutsheets.implausible_edge_mm: a facade in metres read as millimetres), or
+    None."""
+    from facet.cutsheets import implausible_edge_mm
 
-    edge = mesh.mean_edge_length() * length_unit(units)[0]
-    if PLAUSIBLE_EDGE_MM[0] <= edge <= PLAUSIBLE_EDGE_MM[1]:
+    edge = implausible_edge_mm(mesh.mean_edge_length(), units)
+    if edge is None:
         return None
     return (f"its edges are {edge:.3g} mm long on average, its numbers read as "
             f"{UNIT_NAMES[units]}: if the file is in other units, import it again with Facet "
@@ -49,11 +46,10 @@ def likely_units(mesh):
     make it plausible; "mm" when none does."""
     import math
 
-    from facet.cutsheets import length_unit
+    from facet.cutsheets import implausible_edge_mm, length_unit
 
     edge = mesh.mean_edge_length()
-    plausible = [u for u in UNIT_NAMES if PLAUSIBLE_EDGE_MM[0] <= edge * length_unit(u)[0]
-                 <= PLAUSIBLE_EDGE_MM[1]]
+    plausible = [u for u in UNIT_NAMES if implausible_edge_mm(edge, u) is None]
     if not plausible or "mm" in plausible:
         return "mm"
     return min(plausible, key=lambda u: abs(math.log(edge * length_unit(u)[0] / 1500.0)))

@@ -573,13 +573,13 @@ def cutsheets_summary(obj):
 
 
 def _size_warning(ps):
-    """A warning when the panels' mean edge is no facade's (importer.PLAUSIBLE_EDGE_MM): a
-    mesh in metres read as millimetres gave 40 mm thick sticks on 0.6 mm faces, and cut
-    sheets of specks, with no word about the units."""
-    from facetwb.importer import PLAUSIBLE_EDGE_MM
+    """A warning when the panels' mean edge is no facade's
+    (facet.cutsheets.implausible_edge_mm): a mesh in metres read as millimetres gave 40 mm
+    thick sticks on 0.6 mm faces, and cut sheets of specks, with no word about the units."""
+    from facet.cutsheets import implausible_edge_mm
 
-    edges = sum(p.perimeter for p in ps.panels) / max(1, sum(p.corners for p in ps.panels))
-    if not ps.panels or PLAUSIBLE_EDGE_MM[0] <= edges <= PLAUSIBLE_EDGE_MM[1]:
+    edges = implausible_edge_mm(ps.mean_edge_length()) if ps.panels else None
+    if edges is None:
         return None
     return translate("Facet", "the panels' edges are {0:.3g} mm long on average, which no "
                               "facade's are: a mesh drawn in metres and read as millimetres "
