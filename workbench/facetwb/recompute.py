@@ -64,6 +64,22 @@ def _run_after(doc):
             App.Console.PrintError(f"Facet: after recomputing {name}: {error}\n")
 
 
+def up_to_date(objects):
+    """The names of those of ``objects`` not marked for recompute: what a task panel's
+    Cancel, which puts the same result back, leaves up to date (:func:`keep_up_to_date`)."""
+    return [o.Name for o in objects if "Touched" not in o.State]
+
+
+def keep_up_to_date(doc, names):
+    """Unmark the objects ``names`` (:func:`up_to_date`'s) that the panel's live re-solves
+    marked: they stayed marked for a Recompute that would have rebuilt the panels and
+    rewritten the cut files for nothing."""
+    for name in names:
+        obj = doc.getObject(name)
+        if obj is not None and "Touched" in obj.State:
+            obj.purgeTouched()
+
+
 def after_recompute(doc, action):
     """Run ``action()`` once ``doc`` has finished recomputing, or now when it is not
     recomputing (an ``execute`` called by ``obj.recompute()``).

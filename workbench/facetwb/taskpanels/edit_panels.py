@@ -13,6 +13,7 @@ import FreeCADGui as Gui
 
 from facetwb.taskpanels import forms
 from facetwb.objects.planarized import METHODS
+from facetwb.recompute import keep_up_to_date, up_to_date
 from facetwb.taskpanels.derive_panels import check_planarize
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
 
@@ -52,7 +53,7 @@ class PlanarizeEditPanel:
             forms.set_value(self.form, name, _property_value(obj, name), choices)
         # what is made from the result (panels, cut sheets) and up to date now: a live
         # re-solve touches it, and Cancel, which puts the same result back, leaves it so
-        self.fresh = [o.Name for o in obj.InListRecursive if "Touched" not in o.State]
+        self.fresh = up_to_date(obj.InListRecursive)
         self.doc.openTransaction(f"Edit {obj.Label}")
         for name, _choices in FIELDS:
             forms.on_change(self.form, name, self.changed)
@@ -96,13 +97,8 @@ class PlanarizeEditPanel:
         self.doc.abortTransaction()  # the previous values, points and planarity
         if "Touched" in self.obj.State:
             self.doc.recompute([self.obj])
-        # the result is the one they were made from: they are up to date again (they
-        # stayed marked for a Recompute that would have rebuilt the panels and rewritten
-        # the cut files for nothing)
-        for name in self.fresh:
-            dependent = self.doc.getObject(name)
-            if dependent is not None and "Touched" in dependent.State:
-                dependent.purgeTouched()
+        # the result is the one they were made from: they are up to date again
+        keep_up_to_date(self.doc, self.fresh)
         self._close()
         return True
 

@@ -12,6 +12,7 @@ Cancel restores the previous one.
 import FreeCAD as App
 import FreeCADGui as Gui
 
+from facetwb.recompute import keep_up_to_date, up_to_date
 from facetwb.taskpanels import forms
 from facetwb.translation import translate
 
@@ -128,8 +129,7 @@ class LiftMixPanel:
         self._show_values()
         # the Lifting and what is made from it that are up to date now: the sliders'
         # recomputes touch them, and Cancel, which puts the same roof back, leaves them so
-        self.fresh = [o.Name for o in [obj] + list(obj.InListRecursive)
-                      if "Touched" not in o.State]
+        self.fresh = up_to_date([obj] + list(obj.InListRecursive))
         #: Visibility before the panel changed it, by object name (:meth:`_show_roof`).
         self.views = {}
         self.obj.Document.openTransaction("Shape lifting")
@@ -238,10 +238,7 @@ class LiftMixPanel:
             self.obj.Mix = self.original
             self.obj.Drags = self.original_drags
             doc.recompute()
-        for name in self.fresh:
-            dependent = doc.getObject(name)
-            if dependent is not None and "Touched" in dependent.State:
-                dependent.purgeTouched()
+        keep_up_to_date(doc, self.fresh)
         self._close()
         return True
 
