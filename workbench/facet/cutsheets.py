@@ -221,14 +221,15 @@ def _rotate_angle(pl, deg):
     return (deg + pl.angle_deg) % 360.0
 
 
-def _drawn(pl, d, off, tol):
+def _drawn(pl, d, sheet_size, off=0.0):
     """A placed part as the cut files draw it, on the sheet moved by ``off`` (x, y):
     ``(cut, top, texts, grain)``: the cut ring; the top face's ring, or None where it is
-    the cut's (within ``tol``); the texts ``(text, x, y, height, rotation_deg, layer)``,
+    the cut's (within 1e-9 of the sheet's size); the texts ``(text, x, y, height, rotation_deg, layer)``,
     the ID (LABEL) and the bevel angles (BEVEL), rotation counter-clockwise; and the grain
     arrow's segments ``(a, b)`` (none without a grain). The DXF, SVG and PNG draw these."""
     cut = pl.transform(d.cut) + off
-    top = None if np.allclose(d.top, d.cut, rtol=0, atol=tol) else pl.transform(d.top) + off
+    same = np.allclose(d.top, d.cut, rtol=0, atol=1e-9 * max(sheet_size))
+    top = None if same else pl.transform(d.top) + off
     lx, ly = pl.transform([d.label_position])[0] + off
     texts = [(d.id, lx, ly, d.label_height, pl.angle_deg % 360.0, "LABEL")]
     for s, bx, by, ang, bh in d.bevels:
@@ -357,7 +358,7 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
             report(done)
         msp = docs[pl.sheet if per_sheet else 0].modelspace()
         off = np.array([0.0 if per_sheet else offsets[pl.sheet], 0.0])
-        cut, top, texts, grain = _drawn(pl, d, off, 1e-9 * max(w, h))
+        cut, top, texts, grain = _drawn(pl, d, (w, h), off)
         msp.add_lwpolyline(cut.tolist(), close=True, dxfattribs={"layer": "CUT"})
         if top is not None:
             msp.add_lwpolyline(top.tolist(), close=True, dxfattribs={"layer": "TOP"})
@@ -513,7 +514,7 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm", progre
         layers = {name: [] for name in looks}
         layers["SHEET"].append(f'<rect x="0" y="0" width="{w!r}" height="{h!r}"/>')
         for pl, d in by_sheet.get(i, []):
-            cut, top, texts, grain = _drawn(pl, d, np.zeros(2), 1e-9 * max(w, h))
+            cut, top, texts, grain = _drawn(pl, d, (w, h))
             layers["CUT"].append(f'<path d="{_svg_path(cut)}"/>')
             if top is not None:
                 layers["TOP"].append(f'<path d="{_svg_path(top)}"/>')
@@ -590,7 +591,7 @@ def write_png(directory, nest_result, drawings, stem="sheet", dpi=100, progress=
         x0, x1 = ax.transData.transform([(0.0, 0.0), (1.0, 0.0)])[:, 0]
         points = (x1 - x0) * 72.0 / fig.dpi
         for pl, d in by_sheet.get(i, []):
-            cut, top, texts, grain = _drawn(pl, d, np.zeros(2), 1e-9 * max(w, h))
+            cut, top, texts, grain = _drawn(pl, d, (w, h))
             ax.add_patch(MplPolygon(cut, closed=True, facecolor="#c9d8e8",
                                     edgecolor=colour["CUT"], linewidth=0.6))
             if top is not None:
