@@ -168,12 +168,11 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
     if (sheet is not None and not margin_said and all(math.isfinite(v) for v in sheet)
             and 2 * margin >= min(sheet)):
         # (nest() says it too, but of a margin that nobody gave, and of no file)
-        source = mesh.info.get("source") if mesh.info else None
-        raise InputError(
-            f"{source + ': ' if source else ''}the default margin, {DEFAULT_MARGIN_MM:g} mm"
+        raise InputError(_of_source(
+            mesh, f"the default margin, {DEFAULT_MARGIN_MM:g} mm"
             + ("" if units == "mm" else f" ({margin:g} {units})")
             + f", leaves nothing of a {sheet[0]:g} x {sheet[1]:g} sheet: "
-            f"give a smaller --margin, or the mesh's --units if they are not {units}")
+            f"give a smaller --margin, or the mesh's --units if they are not {units}"))
     if dxf and sheet is None:
         raise InputError("--dxf needs --sheet WxH (the DXF holds nested sheets)")
     if (svg or png) and sheet is None:
@@ -223,6 +222,12 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
         raise
 
 
+def _of_source(mesh, message):
+    """``message`` after the name of the file ``mesh`` was read from, if any."""
+    source = mesh.info.get("source") if mesh.info else None
+    return f"{source}: {message}" if source else message
+
+
 def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,
                       dxf, per_sheet, text_outlines, step, schedule, svg, png, allow_unplaced,
                       solids,
@@ -251,13 +256,10 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         times["nest"] = time.perf_counter() - t
         check()
         if result.unplaced and not allow_unplaced:
-            source = mesh.info.get("source") if mesh.info else None
-            shown = first_names(result.unplaced, 4)
-            raise InputError(
-                f"{source + ': ' if source else ''}{len(result.unplaced)} of {len(drawings)} "
-                f"parts fit on no {sheet[0]:g} x {sheet[1]:g} {units} sheet (margin "
-                f"{margin:g} {units}): "
-                f"{shown}; use a larger sheet or a smaller margin")
+            raise InputError(_of_source(
+                mesh, f"{len(result.unplaced)} of {len(drawings)} parts fit on no "
+                f"{sheet[0]:g} x {sheet[1]:g} {units} sheet (margin {margin:g} {units}): "
+                f"{first_names(result.unplaced, 4)}; use a larger sheet or a smaller margin"))
     files = {}
     if dxf:
         check()
