@@ -224,10 +224,10 @@ def _place_bevel(inside, outline, i, a, u, length, text, height, taken=(), inset
     bevel texts'), which it was written over (conical1 planarized: 623 of 4,188). Returns
     (middle, height, the text's box); None where none fits (the smallest was put at the
     edge's middle, outside the part: a 0.03 mm text 0.08 mm past the cut outline of a
-    planarized hex mesh's part). ``inside``: the prepared face the texts go on (the cut outline within the
-    top face), ``outline``: the cut outline's edges as LineStrings; ``inset``: how far
-    inside the edge the face the text is engraved on begins (the top face, where the bevel
-    narrows it), which the text keeps off."""
+    planarized hex mesh's part). ``inside``: the prepared face the texts go on (the cut
+    outline within the top face), ``outline``: the cut outline's edges as LineStrings;
+    ``inset``: how far inside the edge the face the text is engraved on begins (the top
+    face, where the bevel narrows it), which the text keeps off."""
     from shapely.geometry import Polygon
 
     ux, uy = float(u[0]), float(u[1])
