@@ -112,7 +112,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="22"/>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="23"/>
         <source>Planarize</source>
         <translation type="unfinished"></translation>
     </message>
@@ -472,7 +472,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/recompute.py" line="147"/>
+        <location filename="../../workbench/facetwb/recompute.py" line="163"/>
         <source>Recomputing {0} ...</source>
         <translation type="unfinished"></translation>
     </message>
@@ -522,27 +522,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="82"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="83"/>
         <source>Lifting {0}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="89"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="90"/>
         <source>Height of this lifting at its peak; the faces stay planar</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="100"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="101"/>
         <source>Raise vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="102"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="103"/>
         <source>The plan vertex to raise or lower</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="116"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="117"/>
         <source>How far the vertex moves; the rest of the roof follows, every face planar</source>
         <translation type="unfinished"></translation>
     </message>
@@ -602,7 +602,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="47"/>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="48"/>
         <source>{0}: every change re-solves it at once. OK keeps the changes in one undo step; Cancel puts the previous values and result back.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -652,12 +652,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="63"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="64"/>
         <source>{0}: this plan admits only planes: there is nothing to mix. Change the drawing (or lift it with moved vertices) to get more shapes.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="67"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="68"/>
         <source>{0}: the plan admits {1} non-planar liftings. Each slider adds one (smoothest first); every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -677,7 +677,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="59"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="60"/>
         <source>{0}: there is no lifting to shape: {1}. Fix it and recompute first.</source>
         <translation type="unfinished"></translation>
     </message>
