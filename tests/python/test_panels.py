@@ -863,21 +863,78 @@ def test_previews_draw_the_grain(tmp_path):
     assert counts["GRAIN"] == 3 * len(ps)  # (a shaft and two barbs a part)
 
 
+def test_png_texts_are_as_tall_as_the_dxfs(tmp_path, monkeypatch):
+    """The PNG previews drew each text at a font size of its DXF height, so its capitals
+    were 0.73 of the DXF's (a font size is an em) and its middle at half the lower-case
+    letters' height: now the capitals are as tall, their middle on the DXF's point."""
+    import ezdxf
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    from matplotlib.axes import Axes
+
+    from facet.cutsheets import OUTLINE_FONT, sheet_offsets, write_png
+
+    _, ps, drawings, result = _made(tmp_path)
+    drawn = []
+    text = Axes.text
+
+    def recorded(ax, x, y, s, **kw):
+        (x0, y0), (x1, _) = ax.transData.transform([(0.0, 0.0), (1.0, 0.0)])
+        points = (x1 - x0) * 72.0 / ax.figure.dpi  # points per model unit
+        drawn.append((len(drawn_sheets) - 1, s, x, y, kw, points))
+        return text(ax, x, y, s, **kw)
+
+    drawn_sheets = []
+    monkeypatch.setattr(Axes, "text", recorded)
+    write_png(tmp_path / "png", result, drawings,
+              progress=lambda done, total: drawn_sheets.append(done) and False)
+    cap = _cap_height_in_ems(OUTLINE_FONT)
+    offsets = sheet_offsets(result)
+    dxf = {}
+    for e in ezdxf.readfile(tmp_path / "cut.dxf").modelspace().query("TEXT[layer!='SHEET']"):
+        k = int(np.searchsorted(offsets, e.dxf.align_point.x, side="right")) - 1
+        dxf.setdefault((k, e.dxf.text), []).append(e)
+    assert len(drawn) == sum(map(len, dxf.values())) > len(ps)
+    for k, s, x, y, kw, points in drawn:
+        assert kw["va"] == "baseline" and kw["ha"] == "center"
+        height = kw["fontsize"] / points * cap  # the capitals', in model units
+        turn = np.radians(kw["rotation"])
+        cx, cy = x - 0.5 * height * np.sin(turn), y + 0.5 * height * np.cos(turn)
+        (same,) = [e for e in dxf[(k, s)]
+                   if abs(e.dxf.align_point.x - offsets[k] - cx) < 1e-6
+                   and abs(e.dxf.align_point.y - cy) < 1e-6]
+        assert height == pytest.approx(same.dxf.height, rel=1e-9)
+        assert kw["rotation"] == pytest.approx(same.dxf.rotation, abs=1e-9)
+
+
+def _cap_height_in_ems(family):
+    """The height of the font's "H" in ems, read from the font file that matplotlib
+    finds for ``family`` (it ships DejaVu Sans)."""
+    from matplotlib import font_manager, ft2font
+
+    font = ft2font.FT2Font(font_manager.findfont(family, fallback_to_default=False))
+    glyph = font.load_char(ord("H"), flags=ft2font.LOAD_NO_SCALE)
+    return glyph.bbox[3] / font.units_per_EM
+
+
 def _svg_holds_what_the_dxf_holds(svgs, dxf_path, result):
     """Each SVG preview is its sheet of the DXF: a layer (an Inkscape layer, a group) for
     each DXF layer, with the same outlines (CUT, TOP), grain arrows and texts (LABEL,
-    BEVEL: the same text, at the same place, turned the same way). The previews drew the
-    IDs alone: no bevel angle, no top outline, no grain."""
+    BEVEL: the same text, its capitals as tall and centred at the same place, turned the
+    same way). The previews drew the IDs alone: no bevel angle, no top outline, no grain;
+    then their texts 0.73 of the DXF's height (a font size is an em, not a capital)."""
     import re
     import xml.etree.ElementTree as ET
 
     import ezdxf
 
-    from facet.cutsheets import sheet_offsets
+    from facet.cutsheets import OUTLINE_FONT, sheet_offsets
 
     svg_ns = "{http://www.w3.org/2000/svg}"
     ink = "{http://www.inkscape.org/namespaces/inkscape}"
     msp = ezdxf.readfile(dxf_path).modelspace()
+    cap_height = _cap_height_in_ems(OUTLINE_FONT)
     offsets = sheet_offsets(result)
     w = result.sheet_size[0]
 
@@ -920,13 +977,18 @@ def _svg_holds_what_the_dxf_holds(svgs, dxf_path, result):
             assert len(texts) == sum(map(len, dxf.values())), (svg.name, name)
             for text in texts:
                 x, y = float(text.get("x")), float(text.get("y"))
-                rotate = re.fullmatch(r"scale\(1 -1\) rotate\((\S+) (\S+) (\S+)\)",
-                                      text.get("transform")).group(1)
+                rotate = float(re.fullmatch(r"scale\(1 -1\) rotate\((\S+) (\S+) (\S+)\)",
+                                            text.get("transform")).group(1))
+                # its capitals as tall as the DXF's (a DXF height is theirs, a font size
+                # the em's), their middle at the DXF's middle-centre point
+                cap = float(text.get("font-size")) * cap_height
+                turn = np.radians(-rotate)
+                cx, cy = x - 0.5 * cap * np.sin(turn), -y + 0.5 * cap * np.cos(turn)
                 (same,) = [e for e in dxf[text.text]
-                           if abs(e.dxf.align_point.x - offsets[k] - x) < 1e-9
-                           and abs(e.dxf.align_point.y + y) < 1e-9]
-                assert float(rotate) == pytest.approx(-same.dxf.rotation, abs=1e-9)
-                assert float(text.get("font-size")) == pytest.approx(same.dxf.height)
+                           if abs(e.dxf.align_point.x - offsets[k] - cx) < 1e-9
+                           and abs(e.dxf.align_point.y - cy) < 1e-9]
+                assert rotate == pytest.approx(-same.dxf.rotation, abs=1e-9)
+                assert cap == pytest.approx(same.dxf.height)
                 turned += name == "LABEL" and same.dxf.rotation != 0.0
                 counts["BEVEL"] += name == "BEVEL"
     return turned, counts

@@ -70,6 +70,11 @@ LAYER_MEANINGS = {
 #: with a letter the font lacks (it would be cut as an empty box).
 OUTLINE_FONT = "DejaVu Sans"
 
+#: The height of :data:`OUTLINE_FONT`'s capitals in ems (its "H": 1493 of 2048 units). A
+#: DXF text's height is its capitals' height, a font size (SVG, matplotlib) the em's: the
+#: previews set the size to height / this, so their texts are as tall as the DXF's.
+OUTLINE_FONT_CAP_HEIGHT = 1493.0 / 2048.0
+
 #: The outlines' curves are flattened to within this fraction of the text height (0.3 mm
 #: on a 30 mm ID; the demo's 1,477 texts give a DXF of 8.7 MB against 0.56 MB as TEXT).
 OUTLINE_FLATNESS = 0.01
@@ -219,6 +224,18 @@ def _reporter(progress, total, what):
 
 def _rotate_angle(pl, deg):
     return (deg + pl.angle_deg) % 360.0
+
+
+def _preview_text(x, y, height, rotation_deg):
+    """A DXF text centred at (x, y) (MIDDLE_CENTER: the middle of its capitals), as a
+    preview draws it: ``(bx, by, size)``, the point on its baseline below the centre and
+    the font size in model units. Placed by the baseline, which every SVG viewer and
+    matplotlib put in the same place (SVG's dominant-baseline "middle" is half the
+    lower-case letters' height, and some viewers ignore it)."""
+    turn = np.radians(rotation_deg)
+    half = 0.5 * height
+    return (x + half * np.sin(turn), y - half * np.cos(turn),
+            height / OUTLINE_FONT_CAP_HEIGHT)
 
 
 def _drawn(pl, d, sheet_size, off=0.0):
@@ -498,8 +515,7 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm", progre
     written = []
     stroke = max(w, h) / 1500.0
     dashes = " ".join(repr(length / mm) for length in DASH_MM)
-    font = (f'font-family="{OUTLINE_FONT}, sans-serif" text-anchor="middle" '
-            'dominant-baseline="middle"')
+    font = f'font-family="{OUTLINE_FONT}, sans-serif" text-anchor="middle"'
     # each layer's group: its look, then its elements
     looks = {"SHEET": f'fill="#f4f1ea" stroke="{PREVIEW_COLOURS["SHEET"]}"',
              "CUT": f'fill="#c9d8e8" stroke="{PREVIEW_COLOURS["CUT"]}"',
@@ -522,13 +538,14 @@ def write_svg(directory, nest_result, drawings, stem="sheet", units="mm", progre
                 layers["GRAIN"].append(f'<line x1="{a[0]!r}" y1="{a[1]!r}" x2="{b[0]!r}" '
                                        f'y2="{b[1]!r}"/>')
             for text, x, y, height, rotation, layer in texts:
+                x, y, size = map(float, _preview_text(x, y, height, rotation))
                 # upright (scale), then turned as in the DXF: counter-clockwise on the
                 # sheet is a negative angle in the text's y-down frame
                 turn = -rotation
                 layers[layer].append(
                     f'<text x="{x!r}" y="{-y!r}" '
                     f'transform="scale(1 -1) rotate({turn!r} {x!r} {-y!r})" '
-                    f'font-size="{height!r}">{escape(text)}</text>')
+                    f'font-size="{size!r}">{escape(text)}</text>')
         out = [f'<svg xmlns="http://www.w3.org/2000/svg" '
                'xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" '
                f'viewBox="0 0 {w!r} {h!r}" '
@@ -600,9 +617,9 @@ def write_png(directory, nest_result, drawings, stem="sheet", dpi=100, progress=
             for a, b in grain:
                 ax.plot([a[0], b[0]], [a[1], b[1]], color=colour["GRAIN"], linewidth=0.6)
             for text, x, y, height, rotation, layer in texts:
-                size = height * points
-                if size >= 1.0:  # (smaller is a dot at this resolution)
-                    ax.text(x, y, text, ha="center", va="center", fontsize=size,
+                x, y, size = _preview_text(x, y, height, rotation)
+                if size * points >= 1.0:  # (smaller is a dot at this resolution)
+                    ax.text(x, y, text, ha="center", va="baseline", fontsize=size * points,
                             rotation=rotation, rotation_mode="anchor", color=colour[layer])
         target = numbered(_sheet_number(i + 1, len(nest_result.sheets)))
         try:
