@@ -293,6 +293,60 @@ class TestPlanGraphSources(DocumentTestCase):
         want = 3000.0 + 0.1 * lifted[:, 0] - 0.2 * lifted[:, 1]
         self.assertLess(np.abs(lifted[:, 2] - want).max(), 1e-6)
 
+    def test_file_units_name_the_drawings_unit_and_old_documents_keep_their_plan(self):
+        # a plan table in metres (a table has no unit) was read as millimetres with no way
+        # to say otherwise but to rescale the file; a DXF whose $INSUNITS is wrong, the
+        # same; and a document saved before DXFs were scaled by their $INSUNITS grew a
+        # thousand times on its next recompute, away from its targets and panels
+        import ezdxf
+
+        table = os.path.join(self.tmp.name, "metres_plan.csv")
+        with open(table, "w") as f:
+            f.write("x1,y1,x2,y2\n")
+            for a, b in [((0, 0), (9, 0)), ((9, 0), (9, 6)), ((9, 6), (0, 6)),
+                         ((0, 6), (0, 0)), ((3, 0), (3, 6))]:
+                f.write(f"{a[0]},{a[1]},{b[0]},{b[1]}\n")
+        plan = facetwb.make_plan_graph(file=table, doc=self.doc)
+        self.assertEqual(plan.FileUnits, "From file")
+        self.doc.recompute()
+        np.testing.assert_array_equal(np.ptp(points_array(plan)[:, :2], axis=0), [9.0, 6.0])
+        plan.FileUnits = "m"
+        self.doc.recompute()
+        self.assertTrue(plan.isValid(), plan.getStatusString())
+        np.testing.assert_array_equal(np.ptp(points_array(plan)[:, :2], axis=0),
+                                      [9000.0, 6000.0])
+        self.assertEqual(plan.FaceCount, 2)
+
+        document = ezdxf.new()
+        document.units = 6
+        space = document.modelspace()
+        space.add_lwpolyline([(0, 0), (9, 0), (9, 6), (0, 6)], close=True)
+        space.add_lwpolyline([(3, 0), (3, 6)], format="xy")
+        drawing = os.path.join(self.tmp.name, "said_metres.dxf")
+        document.saveas(drawing)
+        old = facetwb.make_plan_graph(file=drawing, doc=self.doc)
+        old.FileUnits = "mm"
+        self.doc.recompute()
+        np.testing.assert_array_equal(np.ptp(points_array(old)[:, :2], axis=0), [9.0, 6.0])
+        self.assertEqual(list(old.Warnings), [
+            "drawn in metres ($INSUNITS 6) but read in millimetres, as asked"])
+
+        # an older document: no FileUnits; reopened, it reads the DXF as it did then
+        old.removeProperty("FileUnits")
+        name = old.Name
+        path = os.path.join(self.tmp.name, "before_file_units.FCStd")
+        self.doc.saveCopy(path)
+        reopened = App.openDocument(path)
+        try:
+            again = reopened.getObject(name)
+            self.assertEqual(again.FileUnits, "mm")
+            again.touch()
+            reopened.recompute()
+            np.testing.assert_array_equal(np.ptp(points_array(again)[:, :2], axis=0),
+                                          [9.0, 6.0])
+        finally:
+            App.closeDocument(reopened.Name)
+
     def test_target_points_that_match_no_vertex_are_said(self):
         # a table of heights in metres for the millimetre plan: its point at 0, 0 matched a
         # vertex, the rest fell near none and were left out; the Lifting was valid, flat at

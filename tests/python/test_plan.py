@@ -778,6 +778,38 @@ def test_a_dxf_in_metres_or_inches_read_in_millimetres_on_request(tmp_path):
         assert not [w for w in drawn.warnings if "$INSUNITS" in w]
 
 
+def test_any_drawing_read_at_a_given_unit(tmp_path):
+    """A table or mesh has no unit and a DXF's $INSUNITS can be wrong: read_plan(units_mm=)
+    reads any of them at that many millimetres a unit, snap and arc tolerance in
+    millimetres, and says where a DXF's $INSUNITS disagrees; a unit that is no length is
+    refused, naming the file."""
+    rect = [((0, 0), (9, 0)), ((9, 0), (9, 6)), ((9, 6), (0, 6)), ((0, 6), (0, 0)),
+            ((3, 0), (3, 6))]
+    table = tmp_path / "plan.csv"
+    table.write_text("".join(f"{a[0]},{a[1]},{b[0]},{b[1]}\n" for a, b in rect))
+    document = ezdxf.new()
+    document.units = 1  # said inches, drawn in metres
+    for a, b in rect:
+        document.modelspace().add_line(a, b)
+    drawing = tmp_path / "plan.dxf"
+    document.saveas(drawing)
+    for path in (table, drawing):
+        plan = read_plan(path, units_mm=1000.0, to_mm=True, snap=1.0)
+        assert list(np.ptp(plan.mesh.vertices[:, :2], axis=0)) == [9000.0, 6000.0]
+        assert plan.n_faces == 2
+    assert [w for w in plan.warnings if "$INSUNITS" in w] == [
+        "drawn in inches ($INSUNITS 1) but read in metres, as asked"]
+    mesh = read_plan(table)
+    from facet.io import write_mesh
+
+    write_mesh(mesh.mesh, tmp_path / "plan.obj")
+    scaled = read_plan(tmp_path / "plan.obj", units_mm=25.4)
+    np.testing.assert_array_equal(scaled.mesh.vertices, mesh.mesh.vertices * 25.4)
+    for bad in (0.0, -1.0, float("nan"), "m"):
+        with pytest.raises(PlanError, match=r"plan\.csv: the drawing's unit must be"):
+            read_plan(table, units_mm=bad)
+
+
 def test_tables_from_a_european_excel_and_their_missing_values(tmp_path):
     """Excel writes "CSV" with semicolons and decimal commas where the decimal separator
     is a comma (most of Europe), and "Unicode Text" with tabs and decimal commas: both were

@@ -150,6 +150,32 @@ DXF_UNITS_MM = {1: (25.4, "inches"), 2: (304.8, "feet"), 3: (1609344.0, "miles")
                 16: (1e5, "hectometres")}
 
 
+def _units_scale(units_mm, path):
+    """`units_mm` checked: a finite number > 0, or None."""
+    if units_mm is None:
+        return None
+    try:
+        scale = float(units_mm)
+    except (TypeError, ValueError):
+        scale = math.nan
+    if not 0.0 < scale < math.inf:
+        raise PlanError(f"{path}: the drawing's unit must be a finite number of millimetres "
+                        f"> 0, not {units_mm!r}")
+    return scale
+
+
+def _unit_name(mm):
+    """The name of the unit of `mm` millimetres ("metres"), or "units of {mm} mm"."""
+    names = [name for scale, name in DXF_UNITS_MM.values() if scale == mm]
+    return names[0] if names else f"units of {mm:g} mm"
+
+
+def _scaled(segments, scale):
+    if scale is None or scale == 1.0:
+        return segments
+    return [((a[0] * scale, a[1] * scale), (b[0] * scale, b[1] * scale)) for a, b in segments]
+
+
 def _flatten(path_obj, tolerance, what="a curve", corners=0):
     """The straight segments of a path; at most MAX_CURVE_SEGMENTS of them besides its
     `corners` (a polyline's own vertices)."""
@@ -162,7 +188,7 @@ def _flatten(path_obj, tolerance, what="a curve", corners=0):
     return list(zip(points[:-1], points[1:]))
 
 
-def _dxf_segments(path, arc_tolerance, notes=None, to_mm=False):
+def _dxf_segments(path, arc_tolerance, notes=None, to_mm=False, units_mm=None):
     try:
         import ezdxf
         from ezdxf import path as ezpath
@@ -194,21 +220,22 @@ def _dxf_segments(path, arc_tolerance, notes=None, to_mm=False):
         # mean "ezdxf cannot read this file"; say so in one line.
         raise PlanError(f"{path}: not a valid DXF file ({_exception_line(exc)})") from None
     scale = 1.0
-    if to_mm:
+    if to_mm or units_mm is not None:
         code = document.header.get("$INSUNITS", 0)
         scale, unit = DXF_UNITS_MM.get(code if isinstance(code, int) else 0, (1.0, None))
-        if scale != 1.0:
-            if notes is not None:
-                notes.append(f"drawn in {unit} ($INSUNITS {code}): read in millimetres, "
-                             f"scaled by {scale:g}")
-            if arc_tolerance is not None:
-                arc_tolerance = float(arc_tolerance) / scale  # (given in mm)
+        if units_mm is not None:
+            if unit is not None and scale != units_mm and notes is not None:
+                notes.append(f"drawn in {unit} ($INSUNITS {code}) but read in "
+                             f"{_unit_name(units_mm)}, as asked")
+            scale = units_mm
+        elif scale != 1.0 and notes is not None:
+            notes.append(f"drawn in {unit} ($INSUNITS {code}): read in millimetres, "
+                         f"scaled by {scale:g}")
+        if arc_tolerance is not None:
+            arc_tolerance = float(arc_tolerance) / scale  # (given in mm)
     try:
-        segments = _dxf_model_segments(path, document, arc_tolerance, ezpath, notes)
-        if scale != 1.0:
-            segments = [((a[0] * scale, a[1] * scale), (b[0] * scale, b[1] * scale))
-                        for a, b in segments]
-        return segments
+        return _scaled(_dxf_model_segments(path, document, arc_tolerance, ezpath, notes),
+                       scale)
     except (PlanError, MemoryError):
         raise
     except Exception as exc:  # noqa: BLE001 - an entity ezdxf loaded but cannot answer for
@@ -514,7 +541,7 @@ def _csv_segments(path):
     return segments
 
 
-def read_segments(path, *, arc_tolerance=None, notes=None, to_mm=False):
+def read_segments(path, *, arc_tolerance=None, notes=None, to_mm=False, units_mm=None):
     """The straight segments of a DXF or CSV drawing, ``[((x1, y1), (x2, y2)), ...]``.
 
     A DXF's entities on layers that are off or frozen, and those flagged
@@ -522,7 +549,9 @@ def read_segments(path, *, arc_tolerance=None, notes=None, to_mm=False):
     (if given) as one line of text. With `to_mm` a DXF whose $INSUNITS names a
     length unit (:data:`DXF_UNITS_MM`) is scaled to millimetres (`arc_tolerance`
     is then in millimetres too), and a note says so; a unitless one, a CSV, are read
-    as they are. Without it every drawing is read in its own units."""
+    as they are. Without it every drawing is read in its own units. `units_mm`
+    (millimetres per drawing unit, > 0) reads every drawing at that scale instead,
+    whatever its $INSUNITS (a note says where they disagree)."""
     suffix = os.path.splitext(os.fspath(path))[1].lower()
     if arc_tolerance is not None:
         try:
@@ -532,10 +561,11 @@ def read_segments(path, *, arc_tolerance=None, notes=None, to_mm=False):
         if not 0.0 < tolerance < math.inf:
             raise PlanError(f"{path}: the arc tolerance must be a finite number > 0, not "
                             f"{arc_tolerance!r}")
+    scale = _units_scale(units_mm, path)
     if suffix == ".dxf":
-        return _dxf_segments(path, arc_tolerance, notes, to_mm)
+        return _dxf_segments(path, arc_tolerance, notes, to_mm, scale)
     if suffix in TABLE_SUFFIXES:
-        return _csv_segments(path)
+        return _scaled(_csv_segments(path), scale)
     raise PlanError(f"{path}: not a line drawing (.dxf, or a .csv, .tsv or .txt table)")
 
 
@@ -910,14 +940,17 @@ def _unjoined(plan):
     return warnings
 
 
-def read_plan(path, *, snap=None, arc_tolerance=None, openings=(), to_mm=False):
+def read_plan(path, *, snap=None, arc_tolerance=None, openings=(), to_mm=False,
+              units_mm=None):
     """A plan graph from a drawing file (see the module docstring). With `to_mm` a DXF
-    drawn in another length unit is read in millimetres (see :func:`read_segments`);
-    `snap`, `arc_tolerance` and `openings` are then in millimetres."""
+    drawn in another length unit is read in millimetres, with `units_mm` any drawing at
+    that many millimetres a unit (see :func:`read_segments`); `snap`, `arc_tolerance` and
+    `openings` are then in millimetres."""
     suffix = os.path.splitext(os.fspath(path))[1].lower()
     if suffix == ".dxf" or suffix in TABLE_SUFFIXES:
         notes = []
-        segments = read_segments(path, arc_tolerance=arc_tolerance, notes=notes, to_mm=to_mm)
+        segments = read_segments(path, arc_tolerance=arc_tolerance, notes=notes, to_mm=to_mm,
+                                 units_mm=units_mm)
         plan = plan_from_segments(segments, snap=snap, openings=openings, source=path)
         plan.warnings[:0] = notes
         return plan
@@ -925,6 +958,9 @@ def read_plan(path, *, snap=None, arc_tolerance=None, openings=(), to_mm=False):
         from facet.io import read_mesh, read_warnings
 
         mesh = read_mesh(path)
+        scale = _units_scale(units_mm, path)
+        if scale is not None and scale != 1.0:
+            mesh = mesh.with_vertices(np.asarray(mesh.vertices, dtype=np.float64) * scale)
         plan = plan_from_mesh(mesh, source=path)
         plan.warnings[:0] = read_warnings(mesh)  # (a face read with a vertex once)
         return plan

@@ -7,19 +7,27 @@ reads the drawing again and builds the graph with ``facet.plan``: endpoints snap
 split, duplicate edges merged, dangling edges dropped (counted in ``DanglingEdges``), faces
 found by polygonize, faces containing an ``Openings`` point left out; a DXF's layers that are off
 or frozen are not read (listed in ``Warnings``), and a DXF drawn in another unit ($INSUNITS:
-metres, inches...) is scaled to millimetres (said in ``Warnings``). The graph is stored as
-a flat polygon mesh (z = 0), like a PolyMesh, so a Lifting (or anything taking a Facet
-mesh) can use it.
+metres, inches...) is scaled to millimetres (said in ``Warnings``), unless ``FileUnits``
+names the file's unit (any file: a DXF whose $INSUNITS is wrong, a table or mesh in
+metres). A document saved before ``FileUnits`` keeps its plan as it was read then:
+``FileUnits`` "mm". The graph is stored as a flat polygon mesh (z = 0), like a PolyMesh, so
+a Lifting (or anything taking a Facet mesh) can use it.
 """
 
 import FreeCAD as App
 
 import facet
+from facet.cutsheets import LENGTH_UNITS
 from facetwb import compat
 from facetwb.recompute import guarded
 from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
 
 TYPE_PLANGRAPH = "Facet::PlanGraph"
+
+#: FileUnits' choices: the file's own ($INSUNITS of a DXF; tables and meshes are in mm),
+#: or a length unit.
+FROM_FILE = "From file"
+FILE_UNITS = [FROM_FILE] + list(LENGTH_UNITS)
 
 
 class PlanGraph(PolyMesh):
@@ -36,6 +44,12 @@ class PlanGraph(PolyMesh):
             obj, "App::PropertyFile", "File", "Plan",
             "A drawing file used when Sources is empty: .dxf (LINE, LWPOLYLINE, POLYLINE), "
             ".csv (x1,y1,x2,y2 per line) or a plan mesh (.obj, .off, .json)")
+        if compat.add_property(
+                obj, "App::PropertyEnumeration", "FileUnits", "Plan",
+                "The unit File is drawn in: From file (a DXF's $INSUNITS; a table or mesh in "
+                "mm), or a unit to read it in whatever the file says"):
+            obj.FileUnits = FILE_UNITS
+            obj.FileUnits = FROM_FILE
         compat.add_property(
             obj, "App::PropertyLength", "Snap", "Plan",
             "Endpoints closer than this are merged (0: 1e-6 of the drawing's size)")
@@ -60,6 +74,12 @@ class PlanGraph(PolyMesh):
                             "frozen) or found worth telling", attr=output,
                             editor_mode=read_only)
 
+    def onDocumentRestored(self, obj):
+        legacy = "FileUnits" not in obj.PropertiesList
+        super().onDocumentRestored(obj)
+        if legacy:  # (read as drawn then: the design built on it keeps its size)
+            obj.FileUnits = "mm"
+
     @guarded
     def execute(self, obj):
         from facet.plan import plan_from_segments, read_plan
@@ -74,8 +94,9 @@ class PlanGraph(PolyMesh):
             plan = plan_from_segments(segments, snap=snap, openings=openings, source=obj.Label)
         elif obj.File:
             # (a DXF drawn in metres or inches: in millimetres, as the document is)
+            units = None if obj.FileUnits == FROM_FILE else LENGTH_UNITS[obj.FileUnits][0]
             plan = read_plan(obj.File, snap=snap, arc_tolerance=arc, openings=openings,
-                             to_mm=True)
+                             to_mm=True, units_mm=units)
         else:
             raise ValueError(f"{obj.Label}: no drawing: set Sources or File")
         set_mesh(obj, plan.mesh)
