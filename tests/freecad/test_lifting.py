@@ -266,6 +266,28 @@ class TestPlanGraphSources(DocumentTestCase):
         self.doc.recompute()
         self.assertEqual((plan.FaceCount, list(plan.Warnings)), (2, []))
 
+    def test_reading_a_plan_shows_progress_and_can_be_cancelled(self):
+        # a 40,000-face plan took 8 s to read with no progress and no Cancel
+        path = os.path.join(self.tmp.name, "grid_plan.csv")
+        with open(path, "w") as f:
+            for k in range(9):
+                f.write(f"0,{k * 500},4000,{k * 500}\n{k * 500},0,{k * 500},4000\n")
+        plan = facetwb.make_plan_graph(file=path, doc=self.doc)
+        self.doc.recompute()
+        self.assertEqual(plan.FaceCount, 64)
+        before = points_array(plan)
+        plan.Snap = 1.0
+        reporter = self.recompute_cancelled(3)
+        self.assertTrue(reporter.cancelled)
+        self.assertEqual(reporter.total, facet.plan.PLAN_STAGES * facet.plan.PLAN_STEPS)
+        self.assertFalse(plan.isValid())
+        self.assertIn("cancelled", plan.getStatusString())
+        np.testing.assert_array_equal(points_array(plan), before)  # the last plan kept
+        plan.touch()
+        self.doc.recompute()
+        self.assertTrue(plan.isValid(), plan.getStatusString())
+        self.assertEqual(plan.FaceCount, 64)
+
     def test_a_dxf_drawn_in_metres_is_read_in_millimetres(self):
         # a canopy drawn in metres ($INSUNITS 6, as Rhino and AutoCAD set it) became a
         # 9 x 6 mm plan in the millimetre document, without a word: a target surface

@@ -56,11 +56,20 @@ def _point(text):
 DEFAULT_COUNT = 20
 
 
-def _read_plan(args):
-    from facet.plan import read_plan
+def _read_plan(args, prefix):
+    """The plan of ``args``, its stages shown on a terminal (a 40,000-face plan takes
+    seconds; Ctrl+C stops it between them)."""
+    from facet.cli_progress import ProgressLine
+    from facet.plan import PLAN_STAGES, PLAN_STEPS, read_plan
 
-    return read_plan(args.plan, snap=args.snap, arc_tolerance=args.arc_tolerance,
-                     openings=[_point(p) for p in args.opening])
+    line = ProgressLine(sys.stderr, prefix=prefix)
+    try:
+        return read_plan(args.plan, snap=args.snap, arc_tolerance=args.arc_tolerance,
+                         openings=[_point(p) for p in args.opening],
+                         progress=lambda done, total: line.steps(
+                             done // PLAN_STEPS, PLAN_STAGES, "reading the plan: stages done"))
+    finally:
+        line.close()
 
 
 def _read_weights(path, n):
@@ -139,7 +148,7 @@ def run_lift(args):
                 writes=[("-o", args.output), ("--report", args.report)])
     if (args.targets is None) == (not args.pin):
         raise InputError("give either --targets FILE or --pin VERTEX=HEIGHT (not both)")
-    plan = _read_plan(args)
+    plan = _read_plan(args, "facet lift")
     notes = []  # (target points left out)
     if args.targets is not None:
         targets, weights = read_targets(plan, args.targets, tolerance=args.snap, notes=notes)
@@ -219,7 +228,7 @@ def run_lifting_space(args):
 
     check_files(reads=[("PLAN", args.plan)], writes=[("--report", args.report)],
                 creates=[args.output])
-    plan = _read_plan(args)
+    plan = _read_plan(args, "facet lifting-space")
     with _factorizing("facet lifting-space") as progress:
         lifter = Lifter(plan, rank_tol=args.rank_tol, progress=progress)
     limit = plan.n_vertices if args.basis == "fundamental" else lifter.dimension

@@ -146,6 +146,13 @@ class Cancelled(FacetError):
     result = None
 
 
+def report_progress(progress, done, total, what):
+    """Call ``progress(done, total)`` when given; raise :class:`Cancelled` ("WHAT
+    cancelled") when it returns True."""
+    if progress is not None and progress(done, total):
+        raise Cancelled(f"{what} cancelled")
+
+
 def _index_or_none(value):
     try:
         value = int(value)

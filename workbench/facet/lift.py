@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from facet import _core
-from facet.errors import Cancelled, FacetError, InputError, from_core
+from facet.errors import Cancelled, FacetError, InputError, from_core, report_progress
 from facet.mesh import PolyMesh, next_corners
 from facet.plan import FREE_WEIGHT
 from facet.report import point_text
@@ -448,9 +448,9 @@ class Lifter:
                 raise InputError(f"count {count} is not between 0 and {n} vertices")
             basis = np.empty((count, n))
             for v in range(count):
-                _report(progress, v, count, "fundamental liftings")
+                report_progress(progress, v, count, "fundamental liftings")
                 self.fundamental(v, basis[v])
-            _report(progress, count, count, "fundamental liftings")
+            report_progress(progress, count, count, "fundamental liftings")
             edges = self._plan.edges()
             energies = np.array([np.sum((b[edges[:, 0]] - b[edges[:, 1]]) ** 2) for b in basis])
             return basis, energies
@@ -528,7 +528,7 @@ def _eigen_liftings(lifter, count, progress=None):
 
     def inverse(x):
         applied[0] += 1
-        _report(progress, min(applied[0], estimate - 1), estimate, "eigen-liftings")
+        report_progress(progress, min(applied[0], estimate - 1), estimate, "eigen-liftings")
         rhs = np.zeros(kkt.shape[0])
         rhs[:n] = np.ravel(x)
         return lu.solve(rhs)[:n]
@@ -547,7 +547,7 @@ def _eigen_liftings(lifter, count, progress=None):
     for function in basis:
         if function[np.argmax(np.abs(function))] < 0:
             function *= -1.0
-    _report(progress, estimate, estimate, "eigen-liftings")
+    report_progress(progress, estimate, estimate, "eigen-liftings")
     return np.vstack([trivial, basis]), np.concatenate([trivial_energies, energies])
 
 
@@ -590,12 +590,6 @@ def _echelon(rows):
     return a[:r]
 
 
-def _report(progress, done, total, what):
-    """Call ``progress(done, total)``; raise Cancelled when it says so."""
-    if progress is not None and progress(done, total):
-        raise Cancelled(f"{what} cancelled")
-
-
 def _sparse_liftings(lifter, count, progress=None):
     """Sparse liftings (see Lifter.basis): the trivial three, then liftings supported on
     rings of faces around each vertex in turn, kept when independent of those found so far,
@@ -624,7 +618,7 @@ def _sparse_liftings(lifter, count, progress=None):
     for v in range(n):
         if len(found) >= wanted:
             break
-        _report(progress, v, n, "sparse liftings")
+        report_progress(progress, v, n, "sparse liftings")
         support = {v}
         for _ in range(SPARSE_MAX_RINGS):
             ring_faces = {f for u in support for f in vertex_faces[u]}
@@ -678,7 +672,7 @@ def _sparse_liftings(lifter, count, progress=None):
             if np.linalg.norm(r) > 1e-6:
                 span.append(r / np.linalg.norm(r))
                 found.append(b / np.max(np.abs(b)))
-    _report(progress, n, n, "sparse liftings")
+    report_progress(progress, n, n, "sparse liftings")
     signs = [1.0 if z[np.argmax(np.abs(z))] > 0 else -1.0 for z in found]
     return np.vstack([trivial[:3]] + [s * z for s, z in zip(signs, found)])
 

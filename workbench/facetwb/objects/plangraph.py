@@ -18,7 +18,7 @@ import FreeCAD as App
 
 import facet
 from facet.cutsheets import LENGTH_UNITS
-from facetwb import compat
+from facetwb import compat, progress
 from facetwb.recompute import guarded
 from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
 
@@ -91,12 +91,14 @@ class PlanGraph(PolyMesh):
             from facetwb.plan_source import segments_from_objects
 
             segments = segments_from_objects(obj.Sources, arc or 0.0)
-            plan = plan_from_segments(segments, snap=snap, openings=openings, source=obj.Label)
+            plan = plan_from_segments(segments, snap=snap, openings=openings, source=obj.Label,
+                                      progress=progress.hook())
         elif obj.File:
             # (a DXF drawn in metres or inches: in millimetres, as the document is)
             units = None if obj.FileUnits == FROM_FILE else LENGTH_UNITS[obj.FileUnits][0]
+            # (progress and Cancel: a 40,000-face plan takes seconds)
             plan = read_plan(obj.File, snap=snap, arc_tolerance=arc, openings=openings,
-                             to_mm=True, units_mm=units)
+                             to_mm=True, units_mm=units, progress=progress.hook())
         else:
             raise ValueError(f"{obj.Label}: no drawing: set Sources or File")
         set_mesh(obj, plan.mesh)
