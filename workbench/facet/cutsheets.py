@@ -213,11 +213,10 @@ def _by_sheet(nest_result, drawings):
 def _reporter(progress, total, what):
     """``report(done)``: calls ``progress(done, total)`` (if given) and raises Cancelled
     ("writing the WHAT cancelled") when it returns True."""
-    def report(done):
-        if progress is not None and progress(done, total):
-            from facet.errors import Cancelled
+    from facet.errors import report_progress
 
-            raise Cancelled(f"writing the {what} cancelled")
+    def report(done):
+        report_progress(progress, done, total, f"writing the {what}")
 
     return report
 
