@@ -835,7 +835,8 @@ def test_any_drawing_read_at_a_given_unit(tmp_path):
     scaled = read_plan(tmp_path / "plan.obj", units_mm=25.4)
     np.testing.assert_array_equal(scaled.mesh.vertices, mesh.mesh.vertices * 25.4)
     for bad in (0.0, -1.0, float("nan"), "m"):
-        with pytest.raises(PlanError, match=r"plan\.csv: the drawing's unit must be"):
+        with pytest.raises(PlanError, match=r"plan\.csv: the drawing's unit in mm must be a "
+                                            r"finite number > 0"):
             read_plan(table, units_mm=bad)
 
 

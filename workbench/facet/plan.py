@@ -151,18 +151,16 @@ DXF_UNITS_MM = {1: (25.4, "inches"), 2: (304.8, "feet"), 3: (1609344.0, "miles")
                 16: (1e5, "hectometres")}
 
 
-def _units_scale(units_mm, path):
-    """`units_mm` checked: a finite number > 0, or None."""
-    if units_mm is None:
-        return None
+def _positive(value, path, what):
+    """`value` as a float, or PlanError naming the file and `what` (it must be a finite
+    number > 0)."""
     try:
-        scale = float(units_mm)
+        number = float(value)
     except (TypeError, ValueError):
-        scale = math.nan
-    if not 0.0 < scale < math.inf:
-        raise PlanError(f"{path}: the drawing's unit must be a finite number of millimetres "
-                        f"> 0, not {units_mm!r}")
-    return scale
+        number = math.nan
+    if not 0.0 < number < math.inf:
+        raise PlanError(f"{path}: {what} must be a finite number > 0, not {value!r}")
+    return number
 
 
 def _unit_name(mm):
@@ -555,14 +553,8 @@ def read_segments(path, *, arc_tolerance=None, notes=None, to_mm=False, units_mm
     whatever its $INSUNITS (a note says where they disagree)."""
     suffix = os.path.splitext(os.fspath(path))[1].lower()
     if arc_tolerance is not None:
-        try:
-            tolerance = float(arc_tolerance)
-        except (TypeError, ValueError):
-            tolerance = math.nan
-        if not 0.0 < tolerance < math.inf:
-            raise PlanError(f"{path}: the arc tolerance must be a finite number > 0, not "
-                            f"{arc_tolerance!r}")
-    scale = _units_scale(units_mm, path)
+        _positive(arc_tolerance, path, "the arc tolerance")
+    scale = None if units_mm is None else _positive(units_mm, path, "the drawing's unit in mm")
     if suffix == ".dxf":
         return _dxf_segments(path, arc_tolerance, notes, to_mm, scale)
     if suffix in TABLE_SUFFIXES:
@@ -1018,7 +1010,8 @@ def read_plan(path, *, snap=None, arc_tolerance=None, openings=(), to_mm=False,
         from facet.io import read_mesh, read_warnings
 
         mesh = read_mesh(path)
-        scale = _units_scale(units_mm, path)
+        scale = None if units_mm is None else _positive(units_mm, path,
+                                                        "the drawing's unit in mm")
         if scale is not None and scale != 1.0:
             mesh = mesh.with_vertices(np.asarray(mesh.vertices, dtype=np.float64) * scale)
         plan = plan_from_mesh(mesh, source=path)
