@@ -186,7 +186,7 @@ class TestBadInputFreeCAD(unittest.TestCase):
         with open(good, "w", encoding="utf-8") as handle:
             handle.write(cases.obj_text(v, f))
         source = importer.insert(good, self.doc.Name)
-        panels = make_panelset(source, thickness=0.01)
+        panels = make_panelset(source, thickness=0.01, gap=0.0)  # (a 1 mm mesh)
         self.doc.recompute()
         self.assertTrue(panels.isValid(), panels.getStatusString())
         options = row.argv

@@ -42,7 +42,7 @@ def build_document(doc, folder):
                              for j in range(4) for i in range(4)))
     plan = facetwb.make_plan_graph(file=plan_path, doc=doc)
     lifting = facetwb.make_lifting(plan, target_file=targets_path)
-    panels = facetwb.make_panelset(planarized, thickness=0.05)
+    panels = facetwb.make_panelset(planarized, thickness=0.05, gap=0.0)
     sheets = facetwb.make_cutsheets(panels, sheet=(3.0, 3.0), margin=0.01, spacing=0.01,
                                     write_step=False)
     import Part

@@ -118,6 +118,30 @@ class TestFacadeExample(ExampleChecks, unittest.TestCase):
         self.assertEqual(list(sheets.Unplaced), [])
         self.assertGreater(sheets.Utilisation, 0.2)
 
+    def test_a_fresh_panelset_with_the_defaults_is_clean(self):
+        """A designer's first PanelSet on the planarized facade, every property left as
+        it comes: the panels were cut edge to edge (Gap 0), square cuts overlapped on the
+        valleys and 16 of the 32 panels were red. The default joint (6 mm) clears them;
+        at Gap 0 they still overlap, by less than it."""
+        import facetwb
+        from facet.panels import DEFAULT_GAP_MM
+
+        fresh = facetwb.make_panelset(self.obj("Facet::Planarized"), name="Fresh")
+        try:
+            self.doc.recompute()
+            self.assertTrue(fresh.isValid(), fresh.getStatusString())
+            self.assertEqual((fresh.Gap.Value, fresh.EdgeMode), (DEFAULT_GAP_MM, "square"))
+            self.assertEqual(fresh.PanelCount, 32)
+            self.assertEqual(list(fresh.ClashingPanels), [])
+            self.assertEqual((fresh.OverlappingJoints, fresh.NodeClashes), (0, 0))
+            self.assertGreater(fresh.NarrowestJoint.Value, 0.0)
+            fresh.Gap = 0.0
+            self.doc.recompute()
+            self.assertGreater(len(fresh.ClashingPanels), 0)
+            self.assertLess(fresh.ClearingGap.Value, DEFAULT_GAP_MM)
+        finally:
+            self.doc.removeObject(fresh.Name)
+
 
 class TestRoofExample(ExampleChecks, unittest.TestCase):
     NAME = "roof.FCStd"
@@ -148,6 +172,24 @@ class TestRoofExample(ExampleChecks, unittest.TestCase):
         for i, a in enumerate(solids):
             for b in solids[i + 1:]:
                 self.assertLess(a.common(b).Volume, 1e-9 * a.Volume)
+
+    def test_the_default_gap_hides_no_real_overlap(self):
+        """The default joint (6 mm) is not a clash filter: the roof's valley, which its
+        30 mm square-cut panels close below 18.3 mm, still overlaps and is red."""
+        import facetwb
+        from facet.panels import DEFAULT_GAP_MM
+
+        fresh = facetwb.make_panelset(self.obj("Facet::Lifting"), thickness=30.0,
+                                      name="Fresh")
+        try:
+            self.doc.recompute()
+            self.assertTrue(fresh.isValid(), fresh.getStatusString())
+            self.assertEqual(fresh.Gap.Value, DEFAULT_GAP_MM)
+            self.assertGreater(fresh.OverlappingJoints, 0)
+            self.assertGreater(len(fresh.ClashingPanels), 0)
+            self.assertGreater(fresh.ClearingGap.Value, 3 * DEFAULT_GAP_MM)
+        finally:
+            self.doc.removeObject(fresh.Name)
 
 
 if __name__ == "__main__":

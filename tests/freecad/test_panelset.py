@@ -350,7 +350,7 @@ class TestPanelSet(DocumentTestCase):
         long the edges are and what to do. Panels a metre across get no such warning."""
         tiny = facetwb.make_polymesh(translational(nu=3, nv=2, step=0.6), label="tiny",
                                      doc=self.doc)
-        sticks = facetwb.make_panelset(tiny, thickness=40.0, name="Sticks")
+        sticks = facetwb.make_panelset(tiny, thickness=40.0, gap=0.0, name="Sticks")
         self.doc.recompute()
         self.assertTrue(sticks.isValid(), sticks.getStatusString())
         said = [w for w in sticks.Warnings if "long on average" in w]
@@ -493,6 +493,66 @@ class TestPanelSet(DocumentTestCase):
         np.testing.assert_allclose(list(obj.Volumes), volumes, rtol=1e-12)
 
 
+class TestPanelSetDefaults(DocumentTestCase):
+    """The joint a PanelSet starts with, and what a saved document keeps."""
+
+    def test_a_new_panelset_has_the_command_lines_default_gap(self):
+        """The Gap of a new PanelSet (from make_panelset, the task panel's preference, or
+        the bare proxy) is facet panels' default, DEFAULT_GAP_MM; it was 0."""
+        from facet.cli_panels import run_pipeline
+        from facet.panels import DEFAULT_GAP_MM
+        from facetwb import preferences
+        from facetwb.objects.panelset import PanelSet
+
+        mesh = translational(nu=3, nv=2, step=1000.0)
+        source = facetwb.make_polymesh(mesh, label="defaults", doc=self.doc)
+        made = facetwb.make_panelset(source, name="Made")
+        bare = self.doc.addObject("Part::FeaturePython", "Bare")
+        PanelSet(bare)
+        self.assertEqual(DEFAULT_GAP_MM, 6.0)
+        self.assertEqual(made.Gap.Value, DEFAULT_GAP_MM)
+        self.assertEqual(bare.Gap.Value, DEFAULT_GAP_MM)
+        self.assertEqual(preferences.DEFAULTS["PanelGap"], ("float", DEFAULT_GAP_MM))
+        self.assertEqual((made.EdgeMode, bare.EdgeMode), ("square", "square"))
+        self.doc.recompute()
+        self.assertTrue(made.isValid(), made.getStatusString())
+        _, ps, _, _ = run_pipeline(mesh, made.Thickness.Value)
+        self.assertEqual(ps.options["gap"], made.Gap.Value)
+        self.assertEqual(ps.options["edge"], made.EdgeMode)
+        np.testing.assert_allclose(made.Volumes, [p.volume for p in ps.panels], rtol=1e-9)
+
+    def test_a_mesh_too_small_for_the_gap_says_its_size(self):
+        """A facade in metres read as millimetres: the default 6 mm joint consumes its
+        0.6 mm panels, and the error named a face and a gap; it now says the size too."""
+        tiny = facetwb.make_polymesh(translational(nu=3, nv=2, step=0.6), label="tiny",
+                                     doc=self.doc)
+        obj = facetwb.make_panelset(tiny, name="Consumed")
+        self.doc.recompute()
+        self.assertFalse(obj.isValid())
+        self.assertRegex(obj.getStatusString(),
+                         r"the gap 6 leaves fewer than three edges .*; the panels' edges are "
+                         r"0\.6\d* mm long on average, which no facade's are: a mesh drawn in "
+                         r"metres")
+
+    def test_z_a_saved_document_keeps_its_gap(self):
+        """A PanelSet saved with Gap 0 (the old default) reopens with Gap 0, not the new
+        default, and recomputes to the same panels."""
+        source = facetwb.make_polymesh(translational(nu=3, nv=2, step=1000.0),
+                                       label="saved", doc=self.doc)
+        obj = facetwb.make_panelset(source, gap=0.0, name="Saved")
+        self.doc.recompute()
+        clashing, volumes = list(obj.ClashingPanels), list(obj.Volumes)
+        self.assertGreater(len(clashing), 0)
+        doc = self.save_and_reopen("saved_gap.FCStd")
+        obj = doc.getObject("Saved")
+        self.assertEqual(obj.Gap.Value, 0.0)
+        obj.touch()
+        doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(list(obj.ClashingPanels), clashing)
+        np.testing.assert_allclose(list(obj.Volumes), volumes, rtol=1e-12)
+
+
 class TestPanelSetOnPlanarized(DocumentTestCase):
     def test_cylinder_planarized_chain(self):
         source = facetwb.make_polymesh(cylinder(), label="cyl")
@@ -511,7 +571,7 @@ class TestPanelSetOnPlanarized(DocumentTestCase):
         # gap found) and its warning raised TypeError formatting it: no PanelSet at all
         source = facetwb.make_polymesh(facet.read_mesh(data_path("hypar.obj")), doc=self.doc)
         planar = facetwb.make_planarized(source, tolerance=1e-7)
-        ps = facetwb.make_panelset(planar, thickness=20.0)
+        ps = facetwb.make_panelset(planar, thickness=20.0, gap=0.0)
         self.doc.recompute()
         self.assertTrue(ps.isValid(), ps.getStatusString())
         self.assertGreater(ps.OverlappingJoints, 0)
@@ -623,7 +683,7 @@ class TestPanelSetVanishedEdge(DocumentTestCase):
 
         source = facetwb.make_polymesh(facet.read_mesh(data_path("hypar.obj")), label="hypar")
         planar = facetwb.make_planarized(source)
-        obj = facetwb.make_panelset(planar, thickness=0.01, name="HyparPanels")
+        obj = facetwb.make_panelset(planar, thickness=0.01, gap=0.0, name="HyparPanels")
         self.doc.recompute()
         self.assertTrue(planar.isValid(), planar.getStatusString())
         self.assertTrue(obj.isValid(), obj.getStatusString())

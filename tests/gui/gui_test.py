@@ -951,14 +951,18 @@ def check_panels(check, out_dir):
     check(colours > 50, f"panels: not a uniform image ({colours} colours)")
     middle = pixels[HEIGHT // 4: 3 * HEIGHT // 4, WIDTH // 4: 3 * WIDTH // 4].astype(int)
     # the panels are grey to light blue-grey, or red where they overlap another (square
-    # cuts with the default gap 0 overlap across every valley: here all of them);
+    # cuts 40 mm thick overlap across these sharp valleys up to a gap of 9.4 mm: with the
+    # default 6 mm, all of them);
     # FreeCAD's background gradient is a clearly blue-violet (blue channel 25+ above
     # red) in the middle of the view
     greyish = int((np.abs(middle[..., 2] - middle[..., 0]) < 20).sum())
     red = int(((middle[..., 0] > 2 * middle[..., 2]) & (middle[..., 0] > 40)).sum())
-    check(ps.Gap.Value == 0.0 and list(ps.ClashingPanels) == list(ps.PartIds),
-          f"with the default gap ({ps.Gap.Value} mm) every panel overlaps a neighbour "
-          f"({len(ps.ClashingPanels)} of 20)")
+    from facet.panels import DEFAULT_GAP_MM
+
+    check(ps.Gap.Value == DEFAULT_GAP_MM and list(ps.ClashingPanels) == list(ps.PartIds)
+          and ps.ClearingGap.Value > DEFAULT_GAP_MM,
+          f"with the default gap ({ps.Gap.Value} mm) every panel still overlaps a neighbour "
+          f"({len(ps.ClashingPanels)} of 20; ClearingGap {ps.ClearingGap.Value:.3g} mm)")
     check(greyish + red > 0.15 * middle.size / 3,
           f"panels: the solids are drawn ({greyish} grey and {red} red pixels)")
 
@@ -1531,7 +1535,7 @@ def check_edit_planarized(check, out_dir):
     doc = App.newDocument("EditPlanarized")
     control = facetwb.make_polymesh(facet.read_mesh(MESH), label="Control mesh")
     result = facetwb.make_planarized(control, tolerance=1e-3)  # "Control mesh planarized"
-    panels = facetwb.make_panelset(result, thickness=0.5)
+    panels = facetwb.make_panelset(result, thickness=0.5, gap=0.0)
     panels.Tolerance = 1e-2  # the result is planar to 1e-3 only
     doc.recompute()
     panels.ViewObject.Visibility = False

@@ -314,8 +314,8 @@ def _panel_rows():
     panel_row("panels_zero_thickness", ["--thickness", "0"], ["thickness", "0"])
     panel_row("panels_negative_thickness", ["--thickness", "-1"], ["thickness", "-1"])
     panel_row("panels_nan_thickness", ["--thickness", "nan"], ["thickness", "nan"])
-    panel_row("panels_sheet_smaller_than_panel", ["--thickness", "0.01", "--sheet", "0.5x0.5",
-                                                  "--margin", "0.01"],
+    panel_row("panels_sheet_smaller_than_panel", ["--thickness", "0.01", "--gap", "0",
+                                                  "--sheet", "0.5x0.5", "--margin", "0.01"],
               ["{dir}/flat.obj", "fit on no 0.5 x 0.5 mm sheet (margin 0.01 mm)", "P-",
                "use a larger sheet or a smaller margin"])  # (the workbench says it too)
     # a mesh in metres read as millimetres: the default margin (10 mm) is larger than the
@@ -346,7 +346,7 @@ def _panel_rows():
               ["{dir}/flat.obj", "not planar"],
               files={"flat.obj": obj_text(*grid(bump=0.05))})
     nm_v = v + [[1.0, 0.5, 1.0], [1.0, 1.5, 1.0]]
-    panel_row("panels_non_manifold", ["--thickness", "0.01"], [],
+    panel_row("panels_non_manifold", ["--thickness", "0.01", "--gap", "0"], [],
               files={"flat.obj": obj_text(nm_v, f + [[1, 4, 10, 9]])}, works=True)
 
 

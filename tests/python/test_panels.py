@@ -2,6 +2,7 @@
 """Panels: geometry, IDs, unfolding, nesting, cut files and the command line."""
 
 import csv
+import re
 import os
 import sys
 import json
@@ -17,7 +18,7 @@ import facet
 from facet.errors import Cancelled
 from facet.panels import PanelError, grid_positions, panels
 from facet.unfold import label_point, unfold
-from panel_meshes import cylinder, freecad_step, translational
+from panel_meshes import cylinder, folded_grid, freecad_step, translational
 
 
 def face_points(mesh, p):
@@ -192,6 +193,57 @@ def test_wave_facade_planarized(tmp_path):
     assert all(p.volume > 0 for p in ps)
     with pytest.raises(PanelError, match="not planar"):
         panels(mesh, 40.0)
+
+
+@pytest.mark.parametrize("thickness", [8.0, 40.0])  # make demo's; the PanelSet's default
+def test_cli_panels_default_gap_gives_the_bundled_facade_clean_joints(
+        facet_command, tmp_path, thickness):
+    """``facet panels`` without --gap cut the example facade's panels edge to edge (gap 0):
+    square cuts overlapped on every valley and at the nodes, 216 of its 280 panels, and a
+    designer's first run was a list of clashes. The default is a 6 mm joint
+    (DEFAULT_GAP_MM), which clears them: no overlap is hidden, --gap 0 still has them."""
+    from pathlib import Path
+
+    from facet import write_mesh
+    from facet.panels import DEFAULT_GAP_MM
+
+    example = Path(__file__).resolve().parents[2] / "examples" / "wave_facade.obj"
+    write_mesh(facet.planarize(facet.read_mesh(example), tol=1e-6).mesh, tmp_path / "p.obj")
+    done = facet_command("panels", tmp_path / "p.obj", "--thickness", str(thickness),
+                         "--report", tmp_path / "r.json")
+    assert done.returncode == 0, done.stderr
+    report = json.load(open(tmp_path / "r.json"))
+    assert DEFAULT_GAP_MM == 6.0 and report["options"]["gap"] == DEFAULT_GAP_MM
+    assert report["options"]["edge"] == "square"
+    assert report["overlapping_joints"] == 0 and report["node_clash_pairs"] == 0
+    assert report["narrowest_joint"] > 0 and report["clearing_gap"] is None
+    assert "overlap" not in done.stderr
+    assert f"(gap {DEFAULT_GAP_MM:g})" in done.stdout
+    # edge to edge the same panels overlap, and the gap that clears them is under 6 mm
+    done = facet_command("panels", tmp_path / "p.obj", "--thickness", str(thickness), "--gap",
+                         "0", "--report", tmp_path / "r0.json")
+    assert done.returncode == 0, done.stderr
+    zero = json.load(open(tmp_path / "r0.json"))
+    assert zero["overlapping_joints"] > 100 and zero["node_clash_pairs"] > 0
+    assert 0 < zero["clearing_gap"] < DEFAULT_GAP_MM
+
+
+def test_default_gap_is_in_the_given_units_and_hides_no_real_overlap(tmp_path):
+    """The default joint is 6 mm in --units (as the sheet's margin and spacing are); a fold
+    whose square joints need more than that still overlaps and is reported."""
+    from facet.cli_panels import run_pipeline
+    from facet.panels import DEFAULT_GAP_MM
+
+    mm = translational(nu=3, nv=2, step=400.0)
+    metres = facet.PolyMesh(mm.vertices / 1000.0, mm.face_start, mm.face_vertices)
+    report, ps, _, _ = run_pipeline(metres, 0.018, units="m")
+    assert ps.options["gap"] == pytest.approx(DEFAULT_GAP_MM / 1000.0)
+    assert report["options"]["gap"] == ps.options["gap"]
+    folded = folded_grid()  # valleys that 200 mm thick square cuts overlap by far more
+    report, ps, _, _ = run_pipeline(folded, 200.0)
+    assert ps.options["gap"] == DEFAULT_GAP_MM
+    assert report["overlapping_joints"] > 0
+    assert report["clearing_gap"] > DEFAULT_GAP_MM
 
 
 # ---- unfolding -------------------------------------------------------------
@@ -1202,9 +1254,17 @@ def test_cli_panels_in_metres(facet_command, tmp_path):
     assert shape.Volume == pytest.approx(sum(s.Volume for s in shape.Solids))
     assert shape.Volume > 0.9 * 18.0 * 1200.0 * 800.0
     # the same mesh cut as millimetres (the default) is said to be the wrong size
-    done = facet_command("panels", tmp_path / "m.obj", "--thickness", "0.018", *common[:2])
+    done = facet_command("panels", tmp_path / "m.obj", "--thickness", "0.018", "--gap", "0",
+                         *common[:2])
     assert done.returncode == 0, done.stderr
     assert "edges are 0.429 mm long on average, taking the mesh to be in mm" in done.stderr
+    # with the default joint (6 mm) its 0.4 mm panels vanish: the error, which named a face
+    # and a gap of 6, says the units too
+    done = facet_command("panels", tmp_path / "m.obj", "--thickness", "0.018", *common[:2])
+    assert done.returncode == 2
+    assert re.search(r"face \d+: the gap 6 leaves fewer than three edges .*; the panels' "
+                     r"edges are 0\.429 mm long on average, taking the mesh to be in mm "
+                     r"\(--units\)", done.stderr), done.stderr
 
 
 @pytest.mark.parametrize("args, text", [
@@ -1666,7 +1726,7 @@ def test_cli_panels_says_when_no_gap_clears_the_overlaps(data_dir, tmp_path, cap
     from facet import cli
 
     status = cli.main(["panels", str(data_dir / "crossvault_form_planar.obj"), "--thickness",
-                       "0.5", "--schedule", str(tmp_path / "s.csv")])
+                       "0.5", "--gap", "0", "--schedule", str(tmp_path / "s.csv")])
     out, err = capsys.readouterr()
     assert status == 0, err
     assert "no gap found that clears every overlap" in out

@@ -60,7 +60,7 @@ def add_commands(commands):
     """Add the ``panels`` sub-command to the argparse sub-parsers object."""
     from facet.cli import _non_negative_float
     from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
-    from facet.panels import DEFAULT_MIN_EDGE
+    from facet.panels import DEFAULT_GAP_MM, DEFAULT_MIN_EDGE
 
     p = commands.add_parser(
         "panels",
@@ -74,7 +74,10 @@ def add_commands(commands):
     p.add_argument("--thickness", type=float, required=True, help="panel thickness (model units)")
     p.add_argument("--offset", choices=("outer", "inner", "center"), default="outer",
                    help="panel on the outer side of the surface (default), inner, or centred")
-    p.add_argument("--gap", type=float, default=0.0, help="joint width between panels")
+    p.add_argument("--gap", type=float,
+                   help=f"joint width between panels (default {DEFAULT_GAP_MM:g} mm, in "
+                   "--units; 0 puts the panels' edges on the mesh's, and square cuts then "
+                   "overlap on every valley)")
     p.add_argument("--edge", choices=("square", "bisector"), default="square",
                    help="edge cuts square to the panel (default) or mitred")
     p.add_argument("--flip", action="store_true", help="swap the outer and inner sides")
@@ -122,7 +125,7 @@ def add_commands(commands):
     p.set_defaults(run=run_panels)
 
 
-def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False,
+def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=False,
                  ids="auto", prefix="P-", tol=1e-6, tol_abs=0.0, min_edge=None,
                  min_edge_abs=0.0, sheet=None, margin=None,
                  spacing=None, rotations="90", grain=None, dxf=None, per_sheet=False,
@@ -147,13 +150,15 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
     (nothing written) unless `allow_unplaced` is true. ``text_outlines``: the DXF's IDs
     and bevel angles as letter outlines (:func:`facet.cutsheets.write_dxf`). ``margin``
     and ``spacing`` (model units) default to :data:`facet.nest.DEFAULT_MARGIN_MM` and
-    :data:`facet.nest.DEFAULT_SPACING_MM` in ``units``. ``density`` (kg/m³, optional):
+    :data:`facet.nest.DEFAULT_SPACING_MM` in ``units``, ``gap`` to
+    :data:`facet.panels.DEFAULT_GAP_MM` (FreeCAD's PanelSet's too). ``density`` (kg/m³, optional):
     the schedule's and the report's masses (:func:`facet.panels.mass_kg`).
     """
     from facet.cutsheets import length_unit
     from facet.errors import InputError
     from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
-    from facet.panels import DEFAULT_MIN_EDGE, check_density, panels
+    from facet.panels import (DEFAULT_GAP_MM, DEFAULT_MIN_EDGE, PanelError, check_density,
+                              panels)
 
     mm_per_unit = length_unit(units)[0]
     if density is not None:
@@ -165,6 +170,9 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
         margin = DEFAULT_MARGIN_MM / mm_per_unit
     if spacing is None:
         spacing = DEFAULT_SPACING_MM / mm_per_unit
+    gap_said = gap is not None
+    if gap is None:
+        gap = DEFAULT_GAP_MM / mm_per_unit
     if (sheet is not None and not margin_said and all(math.isfinite(v) for v in sheet)
             and 2 * margin >= min(sheet)):
         # (nest() says it too, but of a margin that nobody gave, and of no file)
@@ -192,9 +200,18 @@ def run_pipeline(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=F
     if panel_set is not None:
         ps = panel_set
     else:
-        ps = panels(mesh, thickness, offset=offset, gap=gap, edge=edge, flip=flip, ids=ids,
-                    prefix=prefix, tol=tol, tol_abs=tol_abs, min_edge=min_edge,
-                    min_edge_abs=min_edge_abs, progress=stage_progress("panels"))
+        try:
+            ps = panels(mesh, thickness, offset=offset, gap=gap, edge=edge, flip=flip,
+                        ids=ids, prefix=prefix, tol=tol, tol_abs=tol_abs, min_edge=min_edge,
+                        min_edge_abs=min_edge_abs, progress=stage_progress("panels"))
+        except PanelError as error:
+            # a mesh in metres taken as millimetres: the default gap (6 mm) consumes its
+            # 1.5 mm panels, and the error named a face and a gap, not the units
+            units_said = [] if gap_said or "gap" not in str(error) else _units_warnings(
+                mesh, units)
+            if not units_said:
+                raise
+            raise PanelError(f"{error}; {units_said[0]}", error.faces) from None
     times["panels"] = time.perf_counter() - t
     job = None
     if step and (solids is None or len(solids) != len(ps.panels)):

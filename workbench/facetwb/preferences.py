@@ -9,6 +9,7 @@ works with an empty parameter group. Lengths are stored in mm (FreeCAD's interna
 import FreeCAD as App
 
 from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
+from facet.panels import DEFAULT_GAP_MM
 
 PATH = "User parameter:BaseApp/Preferences/Mod/Facet"
 
@@ -27,7 +28,7 @@ DEFAULTS = {
     # panels
     "PanelThickness": ("float", 40.0),
     "PanelOffset": ("string", "outer"),
-    "PanelGap": ("float", 0.0),
+    "PanelGap": ("float", DEFAULT_GAP_MM),
     "PanelEdge": ("string", "square"),
     "PanelIdPrefix": ("string", "P-"),
     # cut sheets

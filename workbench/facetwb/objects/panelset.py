@@ -21,6 +21,7 @@ import FreeCAD as App
 
 import facet.errors
 from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
+from facet.panels import DEFAULT_GAP_MM
 from facetwb import compat, progress
 from facetwb.recompute import guarded
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
@@ -89,8 +90,10 @@ class PanelSet(_Proxy):
         add(obj, "App::PropertyLength", "Thickness", "Panels", "Panel thickness", value=40.0)
         _enum(obj, "Offset", "Panels", "Panel on the outer (+normal) side of the surface, "
               "the inner side, or centred on it", OFFSETS, "outer")
+        # (a document keeps the Gap it was saved with: add_property adds what it lacks)
         add(obj, "App::PropertyLength", "Gap", "Panels",
-            "Joint width between neighbouring panels")
+            "Joint width between neighbouring panels (0: the panels' edges on the mesh's; "
+            "square cuts then overlap on every valley)", value=DEFAULT_GAP_MM)
         _enum(obj, "EdgeMode", "Panels", "Edge cuts square to the panel, or mitred on the "
               "bisector of the two panels' planes", EDGE_MODES, "square")
         add(obj, "App::PropertyBool", "Flip", "Panels", "Swap the outer and inner sides")
@@ -168,6 +171,11 @@ class PanelSet(_Proxy):
                           tol_abs=obj.ToleranceAbs.Value, min_edge=obj.MinEdge,
                           min_edge_abs=obj.MinEdgeAbs.Value, progress=progress.hook())
         except facet.errors.InputError as error:
+            size = _size_warning(mesh.mean_edge_length()) if "gap" in str(error) else None
+            if size:
+                # a mesh in metres read as millimetres: the Gap (6 mm by default) consumes
+                # its 1.5 mm panels, and the error named a face and a gap, not the units
+                raise ValueError(f"{error}; {size}") from None
             # "planarize first" of a source that was planarized, but stopped short
             src = obj.Source
             from facetwb.objects.planarized import STOP_REASONS, is_planarized
@@ -242,7 +250,7 @@ class PanelSet(_Proxy):
         obj.DeepestNodeClash = ps.node_clashes[0]["depth"] if ps.node_clashes else 0.0
         obj.NodeClashPanels = list(ps.deepest_node_clash_panels or ())
         obj.ClashingPanels = [p.id for p in ps.clashing_panels]
-        size = _size_warning(ps)
+        size = _size_warning(ps.mean_edge_length()) if ps.panels else None
         obj.Warnings = list(ps.warnings) + ([size] if size else [])
         if size:
             App.Console.PrintWarning(f"{obj.Label}: {size}\n")
@@ -572,13 +580,13 @@ def cutsheets_summary(obj):
                                                                      ", ".join(shown))
 
 
-def _size_warning(ps):
-    """A warning when the panels' mean edge is no facade's
+def _size_warning(mean_edge):
+    """A warning when the panels' (or their mesh's) mean edge, in mm, is no facade's
     (facet.cutsheets.implausible_edge_mm): a mesh in metres read as millimetres gave 40 mm
     thick sticks on 0.6 mm faces, and cut sheets of specks, with no word about the units."""
     from facet.cutsheets import implausible_edge_mm
 
-    edges = implausible_edge_mm(ps.mean_edge_length()) if ps.panels else None
+    edges = implausible_edge_mm(mean_edge)
     if edges is None:
         return None
     return translate("Facet", "the panels' edges are {0:.3g} mm long on average, which no "
@@ -617,9 +625,10 @@ def _stage_progress(hook, say=None):
     return stage_progress
 
 
-def make_panelset(source, thickness=40.0, offset="outer", gap=0.0, edge="square", flip=False,
-                  ids="auto", prefix="P-", one_per_panel=False, name="PanelSet"):
+def make_panelset(source, thickness=40.0, offset="outer", gap=DEFAULT_GAP_MM, edge="square",
+                  flip=False, ids="auto", prefix="P-", one_per_panel=False, name="PanelSet"):
     """Add a PanelSet on ``source`` (a PolyMesh or Planarized object); recompute to build.
+    ``gap`` (mm) defaults to :data:`facet.panels.DEFAULT_GAP_MM`, as ``facet panels``'.
 
     Returns
     -------
