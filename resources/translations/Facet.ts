@@ -442,17 +442,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="276"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="327"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="282"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="333"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="269"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="320"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -547,17 +547,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="259"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="310"/>
         <source>a Gap of {0:.4g} mm or EdgeMode bisector clears them</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="259"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="310"/>
         <source>no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="264"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="315"/>
         <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; {5}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -572,32 +572,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="600"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="652"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="602"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="654"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="603"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="655"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="604"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="656"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="605"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="657"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="606"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="658"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -617,7 +617,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="601"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="653"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -627,22 +627,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="592"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="644"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="573"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="625"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="579"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="631"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="185"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="190"/>
         <source>{0}; {1} stopped before its tolerance ({2}): raise its Max. iterations, or set it to 0 for the solver to decide</source>
         <translation type="unfinished"></translation>
     </message>

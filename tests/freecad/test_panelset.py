@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """PanelSet and CutSheets: valid OCC solids, volumes, gaps, DXF and STEP read back."""
 
+import contextlib
 import os
 import re
 import sys
@@ -21,6 +22,31 @@ from panel_meshes import cylinder, folded_grid, translational  # noqa: E402
 
 T = 30.0
 GAP = 6.0
+
+
+@contextlib.contextmanager
+def counting_builds():
+    """A list that records each call of facet's panels() ("panels") and panel_solids()
+    ("solids") while the block runs."""
+    import facet.step  # noqa: F401
+
+    # facet.panels is also the name of a function in facet: the modules by name
+    fpanels, fstep = sys.modules["facet.panels"], sys.modules["facet.step"]
+    calls = []
+    saved = fpanels.panels, fstep.panel_solids
+
+    def counting(name, f):
+        def wrapped(*a, **k):
+            calls.append(name)
+            return f(*a, **k)
+        return wrapped
+
+    fpanels.panels = counting("panels", saved[0])
+    fstep.panel_solids = counting("solids", saved[1])
+    try:
+        yield calls
+    finally:
+        fpanels.panels, fstep.panel_solids = saved
 
 
 class TestPanelSet(DocumentTestCase):
@@ -163,6 +189,72 @@ class TestPanelSet(DocumentTestCase):
         self.assertEqual(list(obj.Masses), [])
         self.doc.removeObject(sheets.Name)
         self.doc.removeObject(obj.Name)
+
+    def test_density_and_part_ids_change_no_solid(self):
+        """A Density change only changes masses, but every solid was built again (280
+        panels: 0.28 s a recompute, 0.001 s now); OnePerPanel and the part IDs (IdPrefix,
+        IdScheme) change no solid either. The Shape is kept; Thickness, Gap and the
+        Source's mesh build them again."""
+        from facet.panels import mass_kg
+
+        obj = facetwb.make_panelset(self.source, thickness=T, name="Light")
+        self.addCleanup(self.doc.removeObject, obj.Name)
+        self.doc.recompute()
+        shape = obj.Shape
+        with counting_builds() as calls:
+            obj.Density = 2700.0
+            self.doc.recompute()
+            self.assertTrue(obj.isValid(), obj.getStatusString())
+            self.assertEqual(calls, [])
+            self.assertTrue(obj.Shape.isSame(shape))
+            expected = [float(m) for m in mass_kg(obj.Volumes, 2700.0)]
+            np.testing.assert_allclose(list(obj.Masses), expected, rtol=1e-12)
+            self.assertAlmostEqual(obj.TotalMass / sum(expected), 1.0, places=12)
+            obj.OnePerPanel = True
+            self.doc.recompute()
+            self.assertEqual(calls, [])
+            self.assertEqual(len(obj.PanelObjects), 20)
+            for child, solid in zip(obj.PanelObjects, obj.Shape.Solids):
+                self.assertAlmostEqual(child.Shape.Volume / solid.Volume, 1.0, places=12)
+                self.assertTrue(child.Shape.BoundBox.isInside(solid.BoundBox.Center))
+            # a recompute marked by hand builds them again
+            obj.touch()
+            self.doc.recompute()
+            self.assertEqual(calls, ["panels", "solids"])
+            del calls[:]
+            shape = obj.Shape
+            obj.OnePerPanel = False
+            obj.IdPrefix = "G-"
+            self.doc.recompute()
+            self.assertEqual(calls, ["panels"])  # the IDs, not the solids
+            self.assertTrue(obj.Shape.isSame(shape))
+            self.assertEqual(obj.PartIds[0], "G-R01C01")
+            self.assertEqual(len(obj.PanelObjects), 0)
+            del calls[:]
+            obj.Thickness = 2 * T
+            obj.Density = 2500.0
+            self.doc.recompute()
+            self.assertEqual(calls, ["panels", "solids"])
+            self.assertFalse(obj.Shape.isSame(shape))
+            np.testing.assert_allclose(list(obj.Masses),
+                                       [float(m) for m in mass_kg(obj.Volumes, 2500.0)],
+                                       rtol=1e-12)
+            # the Source's mesh moved: the same properties, new solids
+            del calls[:]
+            shape = obj.Shape
+            moved = facetwb.make_polymesh(self.mesh, label="moved", doc=self.doc)
+            self.addCleanup(self.doc.removeObject, moved.Name)
+            obj.Source = moved
+            self.doc.recompute()
+            self.assertEqual(calls, ["panels", "solids"])
+            del calls[:]
+            from facetwb.objects.polymesh import set_mesh
+
+            set_mesh(moved, self.mesh.with_vertices(self.mesh.vertices + [0.0, 0.0, 100.0]))
+            self.doc.recompute()
+            self.assertEqual(calls, ["panels", "solids"])
+            self.assertAlmostEqual(obj.Shape.BoundBox.ZMin - shape.BoundBox.ZMin, 100.0,
+                                   places=6)
 
     def test_cutsheets_dxf_and_step_read_back(self):
         out = os.path.join(self.tmp.name, "cut")
@@ -442,28 +534,13 @@ class TestPanelSet(DocumentTestCase):
             self.assertTrue(all(e.closed for e in letters), layer)
 
     def test_cutsheets_reuse_the_panelsets_panels_and_solids(self):
-        import facet.step  # noqa: F401
-
-        # facet.panels is also the name of a function in facet: the modules by name
-        fpanels, fstep = sys.modules["facet.panels"], sys.modules["facet.step"]
         ps_obj = facetwb.make_panelset(self.source, thickness=T, name="Reused")
         sheets = facetwb.make_cutsheets(ps_obj, sheet=(2600.0, 1400.0), margin=10.0,
                                         spacing=6.0, output_dir=os.path.join(self.tmp.name,
                                                                              "reuse"))
         self.doc.recompute()
         self.assertTrue(sheets.isValid(), sheets.getStatusString())
-        calls = []
-        saved = fpanels.panels, fstep.panel_solids
-
-        def counting(name, f):
-            def wrapped(*a, **k):
-                calls.append(name)
-                return f(*a, **k)
-            return wrapped
-
-        fpanels.panels = counting("panels", saved[0])
-        fstep.panel_solids = counting("solids", saved[1])
-        try:
+        with counting_builds() as calls:
             sheets.touch()
             self.doc.recompute()
             self.assertTrue(sheets.isValid(), sheets.getStatusString())
@@ -474,8 +551,6 @@ class TestPanelSet(DocumentTestCase):
             self.assertEqual(calls, ["panels", "solids"])
             step = Part.read(os.path.join(self.tmp.name, "reuse", "panels.step"))
             self.assertAlmostEqual(step.Solids[0].Volume / ps_obj.Volumes[0], 1.0, places=9)
-        finally:
-            fpanels.panels, fstep.panel_solids = saved
         self.doc.removeObject(sheets.Name)
         self.doc.removeObject(ps_obj.Name)
 
