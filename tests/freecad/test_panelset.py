@@ -653,6 +653,9 @@ class TestPanelSetOnPlanarized(DocumentTestCase):
         self.assertEqual(ps.ClearingGap.Value, 0.0)
         self.assertTrue(any("no gap" in w or "thinner panels" in w for w in ps.Warnings),
                         list(ps.Warnings))
+        # its lengths in millimetres, the document's unit (they were bare numbers)
+        (joints,) = [w for w in ps.Warnings if "cut square on the inner side" in w]
+        self.assertRegex(joints, r"by [0-9.e+-]+ mm \(the deepest")
 
 
 class TestPanelSetJoints(DocumentTestCase):

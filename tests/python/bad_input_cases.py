@@ -327,7 +327,8 @@ def _panel_rows():
     panel_row("panels_gap_larger_than_panel", ["--thickness", "0.01", "--gap", "3"],
               ["{dir}/flat.obj", "face 0", "gap 3"])
     panel_row("panels_gap_closes_a_notch", ["--thickness", "8", "--gap", "10"],
-              ["{dir}/flat.obj", "face 0", "crosses itself", "gap (10)"],
+              # (in mm from the command line and FreeCAD, model units from Python)
+              ["{dir}/flat.obj", "face 0", "crosses itself", "gap (10"],
               files={"flat.obj": obj_text([[0, 0, 0], [1000, 0, 0], [1000, 1000, 0],
                                            [510, 1000, 0], [500, 300, 0], [490, 1000, 0],
                                            [0, 1000, 0]], [[0, 1, 2, 3, 4, 5, 6]])})

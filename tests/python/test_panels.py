@@ -218,7 +218,7 @@ def test_cli_panels_default_gap_gives_the_bundled_facade_clean_joints(
     assert report["overlapping_joints"] == 0 and report["node_clash_pairs"] == 0
     assert report["narrowest_joint"] > 0 and report["clearing_gap"] is None
     assert "overlap" not in done.stderr
-    assert f"(gap {DEFAULT_GAP_MM:g})" in done.stdout
+    assert f"(gap {DEFAULT_GAP_MM:g} mm)" in done.stdout  # (lengths in --units)
     # edge to edge the same panels overlap, and the gap that clears them is under 6 mm
     done = facet_command("panels", tmp_path / "p.obj", "--thickness", str(thickness), "--gap",
                          "0", "--report", tmp_path / "r0.json")

@@ -139,10 +139,12 @@ def test_the_command_line_names_the_overlaps(facet_command, tmp_path):
     (joints,) = [t for t in lines if t.strip().startswith("joints")]
     assert joints.split()[1:3] == ["4", "overlap,"]
     # (the gap that clears the nodes too: the joints warning gives the one for joints alone)
-    assert f"{_clearing():.4g} clears them and the nodes' overlaps" in joints
+    assert f"{_clearing():.4g} mm clears them and the nodes' overlaps" in joints
     (nodes,) = [t for t in lines if t.strip().startswith("nodes")]
     assert "2 pairs of panels overlap at 1 node, the deepest by" in nodes
     assert "meet at a node but not across a joint" in done.stderr
+    # lengths in the model's units (--units, mm by default), as the summary gives them
+    assert f"a gap of {_clearing():.3g} mm (now 10 mm) clears every overlap" in done.stderr
     r = json.load(open(tmp_path / "r.json"))
     assert r["overlapping_joints"] == 4 and r["clearing_gap"] == pytest.approx(_clearing())
     assert r["node_clash_pairs"] == 2 and [c["vertex"] for c in r["node_clashes"]] == [4]

@@ -203,7 +203,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
         try:
             ps = panels(mesh, thickness, offset=offset, gap=gap, edge=edge, flip=flip,
                         ids=ids, prefix=prefix, tol=tol, tol_abs=tol_abs, min_edge=min_edge,
-                        min_edge_abs=min_edge_abs, progress=stage_progress("panels"))
+                        min_edge_abs=min_edge_abs, progress=stage_progress("panels"),
+                        units=units)
         except PanelError as error:
             # a mesh in metres taken as millimetres: the default gap (6 mm) consumes its
             # 1.5 mm panels, and the error named a face and a gap, not the units
@@ -390,6 +391,7 @@ def run_panels(args):
     """Run ``facet panels``; return the exit status."""
     from facet.cli import EXIT_OK, _read, check_files, interrupted
     from facet.cli_progress import ProgressLine
+    from facet.panels import length_text
     from facet.report import write_json
 
     check_files(reads=[("MESH", args.input)],
@@ -425,26 +427,27 @@ def run_panels(args):
               f"({count_noun(len(ps.vanished_edges), 'edge')} under min_edge merged to a corner"
               + (f"; {len(ps.short_edges_kept)} kept" if ps.short_edges_kept else "") + ")"
               + (f": {shown}" if shown else ""), file=out)
+    length = length_text(args.units)
     if ps.narrowest_joint is not None:
         a, b = ps.narrowest_joint_panels
         if ps.overlapping_joints:
             # (with node clashes too, ClearingGap is the gap that clears those as well: the
             # joints' warning gives the smaller one for the joints alone)
-            clears = (f"a gap of {ps.clearing_gap:.4g} clears them"
+            clears = (f"a gap of {length(ps.clearing_gap, '.4g')} clears them"
                       + (" and the nodes' overlaps" if ps.node_clashes else "")
                       if ps.clearing_gap is not None else "no gap found that clears every overlap")
             print(f"  joints        {ps.overlapping_joints} overlap, the deepest by "
-                  f"{-ps.narrowest_joint:.4g} ({a} and {b}); {clears}", file=out)
+                  f"{length(-ps.narrowest_joint, '.4g')} ({a} and {b}); {clears}", file=out)
         else:
-            print(f"  joints        narrowest {ps.narrowest_joint:.4g} "
-                  f"(gap {ps.options['gap']:.4g}), between {a} and {b}", file=out)
+            print(f"  joints        narrowest {length(ps.narrowest_joint, '.4g')} "
+                  f"(gap {length(ps.options['gap'], '.4g')}), between {a} and {b}", file=out)
     print(f"  nodes         largest deviation from a common axis "
           f"{ps.max_node_deviation_deg:.3g} degrees"
           + (f"; {count_noun(ps.node_clash_pairs, 'pair')} of panels "
              f"overlap at {count_noun(len(ps.node_clashes), 'node')}, "
-             f"the deepest by {ps.node_clashes[0]['depth']:.4g} "
+             f"the deepest by {length(ps.node_clashes[0]['depth'], '.4g')} "
              f"({' and '.join(ps.deepest_node_clash_panels)})"
-             + (f"; a gap of {ps.clearing_gap:.4g} clears every overlap"
+             + (f"; a gap of {length(ps.clearing_gap, '.4g')} clears every overlap"
                 if ps.clearing_gap is not None else "") if ps.node_clashes else ""),
           file=out)
     if report.get("heaviest_panel"):

@@ -651,7 +651,17 @@ def _after(progress, first):
     return lambda done, total: progress(first + done, first + total)
 
 
-def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source, progress=None):
+def length_text(units=None):
+    """``text(x, spec=".3g")``: a length for a message, followed by `units` (the model's
+    unit, "mm") when given: "2.99 mm", or "2.99" in model units."""
+    def text(x, spec=".3g"):
+        return f"{x:{spec}} {units}" if units else f"{x:{spec}}"
+
+    return text
+
+
+def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source, progress=None,
+                       units=None):
     """Merge the two ends of every edge shorter than the limit into one corner.
 
     An edge is short when it is shorter than ``max(min_edge_abs, min_edge x
@@ -762,7 +772,8 @@ def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source, progr
             what = (f"{len(set(ring))} corners" if len(set(ring)) < 3 else "a corner twice")
             if edges[(u, v)] <= max(_SOLID_MIN_EDGE, tol_abs, tol * mean[f]):
                 raise PanelError(
-                    f"{where}face {f}: its edge {u}-{v} is {edges[(u, v)]:.3g} long, too short "
+                    f"{where}face {f}: its edge {u}-{v} is {length_text(units)(edges[(u, v)])} "
+                    "long, too short "
                     f"for a solid, and merging its ends would leave the face {what}: remove "
                     "the face (a sliver; facet cleanup does)", faces=[f])
             # a needle triangle: its short edge is a cut that can be made
@@ -823,7 +834,7 @@ def _unwelded_warnings(mesh):
 
 def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, ids="auto",
            prefix="P-", tol=1e-6, tol_abs=0.0, min_edge=DEFAULT_MIN_EDGE, min_edge_abs=0.0,
-           repair=True, progress=None):
+           repair=True, progress=None, units=None):
     """Make the panels of a planar mesh.
 
     Parameters
@@ -885,6 +896,9 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     progress : callable, optional
         ``progress(done, total)``; returning True cancels (raises
         :class:`facet.Cancelled`).
+    units : str, optional
+        The model's length unit ("mm"), written after the lengths in errors and
+        warnings; None writes them bare (model units).
 
     Returns
     -------
@@ -915,10 +929,12 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     if edge not in EDGES:
         raise PanelError(f"edge must be one of {', '.join(EDGES)}, not {edge!r}")
     source = mesh.info.get("source") if mesh.info else None
+    length = length_text(units)
     report = mesh.validate()
     _check_face_areas(mesh, source)
     input_mesh = mesh
-    merged = _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source, progress)
+    merged = _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source, progress,
+                                units)
     rep_of, vanished, kept, n_groups = None, [], [], 0
     if merged is not None:
         merged_mesh, rep_of, vanished, kept, n_groups = merged
@@ -989,8 +1005,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
                         f"({'its' if n_edges == 1 else 'their'} ends merged into one corner)")
     for reason, why, tail in (
             ("planarity", "would bend a face beyond the planarity tolerance",
-             lambda d: f": face {d['face']} {d['planarity']:.3g} from its plane); facet cleanup "
-                       "collapses them and planarizes again"),
+             lambda d: f": face {d['face']} {length(d['planarity'])} from its plane); "
+                       "facet cleanup collapses them and planarizes again"),
             ("corners", "would leave a face with fewer than 3 corners",
              lambda d: f", of face {d['face']}, a needle)")):
         hit = [d for d in kept if d["reason"] == reason]
@@ -999,7 +1015,7 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             warnings.append(f"{count_noun(len(hit), 'edge')} shorter than min_edge kept: "
                             f"merging {'its' if len(hit) == 1 else 'their'} ends "
                             f"{why} (edge {d['vertices'][0]}-{d['vertices'][1]}, "
-                            f"{d['length']:.3g} long{tail(d)}")
+                            f"{length(d['length'])} long{tail(d)}")
     if rep_of is not None:
         # a merged vertex's node is its group's
         out["node_deviation"] = out["node_deviation"][rep_of]
@@ -1072,9 +1088,9 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
                 # up and the far edges cross (a 20 mm slot with a 10 mm gap)
                 raise PanelError(
                     f"{source + ': ' if source else ''}face {f}: its {which} outline crosses "
-                    f"itself once the joint gap ({gap:g}) and the bevels are cut back: a notch "
-                    "or slot in it is narrower than that; use a smaller gap or thinner panels, "
-                    "or split the face at the notch", faces=[f])
+                    f"itself once the joint gap ({length(gap, 'g')}) and the bevels are cut "
+                    "back: a notch or slot in it is narrower than that; use a smaller gap or "
+                    "thinner panels, or split the face at the notch", faces=[f])
         lengths = np.linalg.norm(np.roll(fb, -1, axis=0) - fb, axis=1)
         nb = nbr[edges]
         result.append(Panel(
@@ -1100,8 +1116,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             ("squared_edges", "mitred joints cut as butt joints instead, square on one panel "
              "and with the whole fold on the other (the mitre would consume a short edge or "
              "meet beyond a nearly straight corner); square on",
-             f"; the narrowest of those joints is {narrowest:.3g} wide across its section "
-             f"(gap {gap:.3g})" if narrowest >= 0.0 else "")):
+             f"; the narrowest of those joints is {length(narrowest)} wide across its section "
+             f"(gap {length(gap)})" if narrowest >= 0.0 else "")):
         hit = [p.id for p in result if getattr(p, attr)]
         if hit:
             count = sum(getattr(p, attr) for p in result)
@@ -1114,9 +1130,10 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         warnings.append(
             f"{count_noun(overlapping, 'joint')} cut square on the inner side of a "
             f"fold overlap{'s' * (overlapping == 1)}: the panels "
-            f"{result[a].id} and {result[b].id} by {-res['narrowest_joint']:.3g} (the deepest, "
-            f"at the edge from vertex {res['narrowest_joint_vertex']}); a gap of "
-            f"{res['clearing_gap']:.3g} (now {gap:.3g}) or bisector edges would clear them")
+            f"{result[a].id} and {result[b].id} by {length(-res['narrowest_joint'])} (the "
+            f"deepest, at the edge from vertex {res['narrowest_joint_vertex']}); a gap of "
+            f"{length(res['clearing_gap'])} (now {length(gap)}) or bisector edges would clear "
+            "them")
     clashes = _node_clashes(result, out["node_clash"])
     fa, fb = res["node_clash_faces"]
     deepest_pair = None if fa < 0 else (result[fa].id, result[fb].id)
@@ -1130,10 +1147,10 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             f"{count_noun(pairs, 'pair')} of panels that meet at a node but not across a "
             f"joint overlap there (at {count_noun(len(clashes), 'node')}): the "
             f"panels {deepest_pair[0]} and {deepest_pair[1]} by "
-            f"{res['deepest_node_clash']:.3g} at vertex {res['node_clash_vertex']} (the "
+            f"{length(res['deepest_node_clash'])} at vertex {res['node_clash_vertex']} (the "
             "deepest); "
-            + (f"a gap of {clearing:.3g} (now {gap:.3g}) clears every overlap, as would "
-               "thinner panels" if clearing is not None else "thinner panels may clear them")
+            + (f"a gap of {length(clearing)} (now {length(gap)}) clears every overlap, as "
+               "would thinner panels" if clearing is not None else "thinner panels may clear them")
             + ", and where the node's edge planes miss a common axis (its node deviation) "
             "so does a mesh closer to torsion-free")
     worst = res["worst_node"]

@@ -174,7 +174,8 @@ class PanelSet(_Proxy):
                           edge=obj.EdgeMode, flip=bool(obj.Flip), ids=obj.IdScheme,
                           prefix=obj.IdPrefix, tol=obj.Tolerance,
                           tol_abs=obj.ToleranceAbs.Value, min_edge=obj.MinEdge,
-                          min_edge_abs=obj.MinEdgeAbs.Value, progress=progress.hook())
+                          min_edge_abs=obj.MinEdgeAbs.Value, progress=progress.hook(),
+                          units="mm")
         except facet.errors.InputError as error:
             size = _size_warning(mesh.mean_edge_length()) if "gap" in str(error) else None
             if size:
