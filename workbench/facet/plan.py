@@ -52,6 +52,8 @@ __all__ = [
     "targets_from_mesh",
     "targets_from_points",
     "pinned_targets",
+    "pin_vertices",
+    "match_tolerance",
     "read_targets",
     "FREE_WEIGHT",
 ]
@@ -1080,6 +1082,32 @@ def pinned_targets(plan, pins):
         targets[v] = h
         given[v] = True
     return _with_free(xy, targets, given)
+
+
+def match_tolerance(plan, snap=0.0):
+    """The plan distance within which a point is at a plan vertex: ``snap`` when it is
+    above 0, else 1e-6 of the plan's size (1e-6 for a plan of no extent)."""
+    if snap and snap > 0:
+        return float(snap)
+    xy, _ = _plan_xy(plan)
+    size = float(np.ptp(xy, axis=0).max()) if len(xy) else 0.0
+    return 1e-6 * (size or 1.0)
+
+
+def pin_vertices(plan, points, *, tolerance):
+    """The plan vertex at each point's x, y: an int array, -1 where no vertex is within
+    ``tolerance`` (in plan) of the point. Only x and y of ``points`` count."""
+    from scipy.spatial import cKDTree
+
+    xy, _ = _plan_xy(plan)
+    points = np.asarray(points, dtype=np.float64)
+    points = points.reshape(len(points), -1) if points.size else np.zeros((0, 2))
+    if points.shape[0] == 0 or len(xy) == 0:
+        return np.full(points.shape[0], -1, dtype=np.int64)
+    if not np.all(np.isfinite(points[:, :2])):
+        raise InputError("a pinned point has a NaN or infinite x or y")
+    distance, vertex = cKDTree(xy).query(points[:, :2])
+    return np.where(distance <= tolerance, vertex, -1).astype(np.int64)
 
 
 def targets_from_points(plan, points, *, tolerance, labels=None, notes=None):

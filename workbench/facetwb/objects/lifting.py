@@ -14,6 +14,7 @@ of the workbench (Planarize, panels) takes it as a source.
 import numpy as np
 
 import facet
+from facet.plan import match_tolerance
 from facet.report import point_text
 from facetwb import compat, conversion, progress
 from facetwb.recompute import guarded
@@ -97,8 +98,7 @@ class Lifting(PolyMesh):
             return read_targets(plan, obj.TargetFile, tolerance=obj.Snap.Value or None,
                                 notes=notes)
         if obj.PinnedPoints:
-            xy = plan.vertices[:, :2]
-            tolerance = obj.Snap.Value or 1e-6 * (float(np.ptp(xy, axis=0).max()) or 1.0)
+            tolerance = match_tolerance(plan, obj.Snap.Value)
             points = [(p.x, p.y, p.z) for p in obj.PinnedPoints]
             targets, weights = targets_from_points(plan, points, tolerance=tolerance)
             found = int(np.count_nonzero(weights == 1.0))
@@ -142,7 +142,7 @@ class Lifting(PolyMesh):
         asked height at that vertex (every fundamental lifting is a lifting: faces stay
         planar)."""
         xy = plan.vertices[:, :2]
-        tolerance = obj.Snap.Value or 1e-6 * (float(np.ptp(xy, axis=0).max()) or 1.0)
+        tolerance = match_tolerance(plan, obj.Snap.Value)
         heights = result.heights.copy()
         for drag in obj.Drags:
             distance = np.hypot(xy[:, 0] - drag.x, xy[:, 1] - drag.y)
