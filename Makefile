@@ -95,7 +95,7 @@ test-gui: deps-test build
 # the tutorial's screenshots, taken by the GUI test (tests/gui), into docs/images
 SCREENSHOTS = facade_surface taskpanel_surface_mesh facade_control_mesh taskpanel_planarize \
               facade_planarized taskpanel_panels facade_panels taskpanel_cutsheets \
-              facade_cutsheets lifting lifting_mix
+              facade_cutsheets lifting lifting_mix taskpanel_lift_pins lift_pins
 screenshots: deps-test build
 	$(FC_ENV) gui $(OUT)/gui
 	mkdir -p docs/images

@@ -647,7 +647,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="222"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="216"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
@@ -667,18 +667,118 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="386"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="395"/>
         <source>Choose the points file</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="409"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="422"/>
         <source>Target heights</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="60"/>
         <source>{0}: there is no lifting to shape: {1}. Fix it and recompute first.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="384"/>
+        <source>Pinned heights (pick vertices)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="25"/>
+        <source>Pin heights</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="50"/>
+        <source>Vertex</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="67"/>
+        <source>Height</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="68"/>
+        <source>The height the selected vertices are pinned at</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="77"/>
+        <source>Pin selected vertices</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="78"/>
+        <source>Pin the vertices selected in the 3D view (click near a corner of the plan or of the roof; Ctrl+click for more) at the height</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="84"/>
+        <source>Pins (lengths in mm):</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="88"/>
+        <source>The pins: the plan vertex, its x and y, and the height (double-click a height to edit it)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="99"/>
+        <source>Remove pin</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="100"/>
+        <source>Remove the pins selected in the table</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="138"/>
+        <source>none</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="184"/>
+        <source>Pinned {0} {1} at {2}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="184"/>
+        <source>vertex</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="184"/>
+        <source>vertices</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="192"/>
+        <source>Select the pins to remove in the table first</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="196"/>
+        <source>Removed {0} pin(s)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="207"/>
+        <source>Height of pin {0}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="245"/>
+        <source>{0}: click vertices of the roof or of its plan in the 3D view (Ctrl+click for more), type a height and press Pin selected vertices. The roof follows at once; the other vertices are free. OK keeps the pins in one undo step; Cancel puts the previous ones back.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="253"/>
+        <source>Pins are used only without other targets: the targets are now {0} (empty Targets and TargetFile to use the pins).</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -737,12 +837,12 @@
 <context>
     <name>Facet_Lift</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="73"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="81"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="74"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="82"/>
         <source>Select a plan (PlanGraph or Facet mesh), then a target surface (mesh or shape), or the plan alone to lift it to the heights of a points file: every plan vertex gets a height so that every face is exactly planar, as close as possible to the surface straight above it or to the points.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -750,13 +850,26 @@
 <context>
     <name>Facet_LiftMix</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="108"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="116"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="109"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="117"/>
         <source>Sliders for the selected Lifting: add the smoothest other planar-faced shapes over the same plan; the result follows live and every face stays exactly planar.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Facet_LiftPins</name>
+    <message>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="144"/>
+        <source>Pin heights</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="145"/>
+        <source>Pin heights of the selected Lifting: click vertices of the roof or of its plan in the 3D view, type a height and pin them; the roof follows, every face planar, the other vertices free. Also by double-clicking the Lifting.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -776,12 +889,12 @@
 <context>
     <name>Facet_PlanGraph</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="29"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="37"/>
         <source>Plan graph</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="30"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="38"/>
         <source>Make a plan graph (faces seen from above) from the selected Sketches, Draft wires or Part edges, or, with nothing selected, from a drawing file (.dxf, .csv, plan mesh). Crossings are split, dangling edges dropped. It follows changes of the drawing.</source>
         <translation type="unfinished"></translation>
     </message>

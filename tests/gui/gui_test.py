@@ -215,6 +215,9 @@ def run(out_dir):
     check_lifting(check, out_dir)
     check_lift_from_file(check, out_dir)
     check_lift_mix_states(check, out_dir)
+    import pins_checks
+
+    pins_checks.run(check, out_dir, sys.modules[__name__])
     check_panels(check, out_dir)
     check_panel_clashes(check, out_dir)
     check_edit_control(check, out_dir)
@@ -309,6 +312,15 @@ def check_examples_open_with_view_providers(check, out_dir):
               f"{name}: opened, its results are in view ({corners} in {tuple(size)} px)")
         for o in doc.Objects:  # the results alone, in the planarity map
             o.ViewObject.Visibility = o in planarized
+        # the roof is lifted to pinned heights: they are drawn (markers with labels), and
+        # hidden by ShowPins for the check of the roof's grey below
+        pinned = [o for o in planarized if o.Proxy.Type == "Facet::Lifting" and o.PinnedPoints]
+        for o in pinned:
+            drawn = o.ViewObject.Proxy.pins
+            check(len(drawn.points) == len(o.PinnedPoints) == len(drawn.texts),
+                  f"{name}: {o.Label} draws its {len(o.PinnedPoints)} pins")
+            o.ViewObject.ShowPins = False
+            check(not drawn.points, f"{name}: ShowPins off hides them")
         Gui.Selection.clearSelection()
         path = os.path.join(out_dir, f"example_{name.split('.')[0]}.png")
         save_view(Gui.ActiveDocument.ActiveView, path)

@@ -4,7 +4,8 @@
 #: Commands in toolbar and menu order.
 COMMANDS = ["Facet_ImportMesh", "Facet_ToPolyMesh", "Facet_SurfaceMesh",
             "Facet_Planarize", "Facet_EditControlMesh", "Facet_Cleanup",
-            "Facet_PlanGraph", "Facet_Lift", "Facet_LiftMix", "Facet_PanelSet",
+            "Facet_PlanGraph", "Facet_Lift", "Facet_LiftPins", "Facet_LiftMix",
+            "Facet_PanelSet",
             "Facet_CutSheets"]
 
 
@@ -15,7 +16,8 @@ def register():
     from facetwb.commands.cleanup import CommandCleanup
     from facetwb.commands.edit_control import CommandEditControlMesh
     from facetwb.commands.import_mesh import CommandImportMesh
-    from facetwb.commands.lift import CommandLift, CommandLiftMix, CommandPlanGraph
+    from facetwb.commands.lift import (CommandLift, CommandLiftMix, CommandLiftPins,
+                                       CommandPlanGraph)
     from facetwb.commands.panels import CommandCutSheets, CommandPanelSet
     from facetwb.commands.planarize import CommandPlanarize
     from facetwb.commands.surface_mesh import CommandSurfaceMesh
@@ -30,6 +32,7 @@ def register():
                           ("Facet_Cleanup", CommandCleanup()),
                           ("Facet_PlanGraph", CommandPlanGraph()),
                           ("Facet_Lift", CommandLift()),
+                          ("Facet_LiftPins", CommandLiftPins()),
                           ("Facet_LiftMix", CommandLiftMix()),
                           ("Facet_PanelSet", CommandPanelSet()),
                           ("Facet_CutSheets", CommandCutSheets())):

@@ -20,6 +20,14 @@ def _has_edges(obj):
     return not is_polymesh(obj) and shape_has(obj, "Edges")
 
 
+def _selected_lifting():
+    """The one Lifting selected (its vertices picked in the 3D view count), or None."""
+    from facetwb.objects.lifting import is_lifting
+
+    selection = Gui.Selection.getSelection()
+    return selection[0] if len(selection) == 1 and is_lifting(selection[0]) else None
+
+
 class CommandPlanGraph:
     """A PlanGraph from the selected Sketches, Draft wires or Part edges, or from a file."""
 
@@ -114,10 +122,7 @@ class CommandLiftMix:
         }
 
     def _selected(self):
-        from facetwb.objects.lifting import is_lifting
-
-        selection = Gui.Selection.getSelection()
-        return selection[0] if len(selection) == 1 and is_lifting(selection[0]) else None
+        return _selected_lifting()
 
     def IsActive(self):
         return self._selected() is not None and Gui.Control.activeDialog() is False
@@ -128,3 +133,32 @@ class CommandLiftMix:
         obj = self._selected()
         if obj is not None:
             Gui.Control.showDialog(LiftMixPanel(obj))
+
+
+class CommandLiftPins:
+    """Open the Pin heights panel of the selected Lifting."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": paths.icon_path("Facet_LiftPins"),
+            "MenuText": QT_TRANSLATE_NOOP("Facet_LiftPins", "Pin heights"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "Facet_LiftPins",
+                "Pin heights of the selected Lifting: click vertices of the roof or of its "
+                "plan in the 3D view, type a height and pin them; the roof follows, every "
+                "face planar, the other vertices free. Also by double-clicking the "
+                "Lifting."),
+        }
+
+    def _selected(self):
+        return _selected_lifting()
+
+    def IsActive(self):
+        return self._selected() is not None and Gui.Control.activeDialog() is False
+
+    def Activated(self):
+        from facetwb.taskpanels.lift_pins import edit
+
+        obj = self._selected()
+        if obj is not None:
+            edit(obj)

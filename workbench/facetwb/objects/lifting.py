@@ -218,6 +218,11 @@ class Lifting(PolyMesh):
         return list(cached[1])
 
 
+def pins_in_use(obj):
+    """True when ``obj``'s PinnedPoints are its targets (no Targets, no TargetFile)."""
+    return bool(obj.PinnedPoints) and obj.Targets is None and not obj.TargetFile
+
+
 def is_lifting(obj):
     """True if ``obj`` is a Facet Lifting."""
     return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE_LIFTING

@@ -379,6 +379,15 @@ class LiftPanel(DerivePanel):
         # a table of heights (examples/roof_heights.csv): with only the plan selected the
         # command was inactive, and the panel offered surfaces only
         combo.addItem(progress.translate("Facet", "Points file (x, y, z)"))
+        # heights typed at vertices picked in the 3D view (PinnedPoints): before, only
+        # through the property editor or the Python console
+        combo.addItem(progress.translate("Facet", "Pinned heights (pick vertices)"))
+        from facetwb.taskpanels.lift_pins import PinEditor
+
+        # (a pin added: the message asking for one no longer holds)
+        self.pins = PinEditor(self.plan, preview=True,
+                              changed=lambda _pins: self.show_message(""))
+        self.form.layout().addWidget(self.pins.widget, self.form.layout().rowCount(), 0, 1, 2)
         if wanted in self.targets:
             combo.setCurrentIndex(self.targets.index(wanted))
         else:
@@ -393,13 +402,17 @@ class LiftPanel(DerivePanel):
         self.target_changed()
 
     def from_file(self):
-        return forms.widget(self.form, "Target").currentIndex() >= len(self.targets)
+        return forms.widget(self.form, "Target").currentIndex() == len(self.targets)
+
+    def from_pins(self):
+        return forms.widget(self.form, "Target").currentIndex() == len(self.targets) + 1
 
     def target_changed(self, *_args):
         self.show_message("")
         for name in ("TargetFile", "label_TargetFile"):
             forms.widget(self.form, name).setEnabled(self.from_file())
         self.browse.setEnabled(self.from_file())
+        self.pins.widget.setVisible(self.from_pins())
 
     def choose_file(self):
         from facetwb.commands.lift import TARGET_FILE_FILTER
@@ -421,10 +434,16 @@ class LiftPanel(DerivePanel):
                 raise ValueError("choose a points file, or a target surface")
             if not os.path.isfile(path):
                 raise ValueError(f"{path}: there is no such file")
+        if self.from_pins() and not self.pins.pins:
+            raise ValueError("no pinned height yet: click plan vertices in the 3D view, type "
+                             "a height and press Pin selected vertices")
 
     def lines(self):
         if self.from_file():
             target = f"target_file={self.values['TargetFile']!r}"
+        elif self.from_pins():
+            target = "pins=[{}]".format(", ".join(
+                f"({x!r}, {y!r}, {z!r})" for x, y, z in self.pins.pins))
         else:
             chosen = self.targets[forms.widget(self.form, "Target").currentIndex()]
             target = f"targets={object_expression(chosen)}"
@@ -432,6 +451,10 @@ class LiftPanel(DerivePanel):
         if self.values["Snap"]:
             lines.append(f"lifting.Snap = {self.values['Snap']!r}")
         return lines
+
+    def _close(self):
+        self.pins.close()
+        super()._close()
 
     def is_result(self, obj):
         from facetwb.objects.lifting import is_lifting

@@ -180,14 +180,8 @@ class LiftMixPanel:
         self._follow()
 
     def _follow(self):
-        """Re-solve the Lifting alone, live. What is made from it waits for OK: recomputed
-        at every slider step, 5,000 panels made each step take 10 s, and a drag across
-        the slider minutes."""
-        self.obj.recompute()
-        if self.obj.isValid():
-            self.obj.purgeTouched()
-        for dependent in self.obj.InListRecursive:
-            dependent.touch()
+        """Re-solve the Lifting alone, live (:func:`resolve_alone`)."""
+        resolve_alone(self.obj, update=False)
         self._show_roof()
         Gui.updateGui()
 
@@ -244,6 +238,19 @@ class LiftMixPanel:
 
     def getStandardButtons(self):
         return forms.ok_cancel_buttons()
+
+
+def resolve_alone(obj, update=True):
+    """Re-solve the Lifting ``obj`` alone, live, and mark what is made from it for
+    recompute. What is made from it waits for OK: recomputed at every slider step, 5,000
+    panels made each step take 10 s, and a drag across the slider minutes."""
+    obj.recompute()
+    if obj.isValid():
+        obj.purgeTouched()
+    for dependent in obj.InListRecursive:
+        dependent.touch()
+    if update:
+        Gui.updateGui()
 
 
 def _not_lifted(obj):

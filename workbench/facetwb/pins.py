@@ -1,0 +1,126 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Pinned heights picked in the 3D view: selected plan vertices to a Lifting's
+``PinnedPoints`` (x, y of the vertex, z its height). Runs headless: the selection comes in
+as ``[(object, [sub-element names]), ...]`` (what ``Gui.Selection.getSelectionEx`` gives).
+
+A vertex is picked on the PlanGraph (or any Facet plan mesh) or on a Lifting of it; the
+view providers of both name the element near the click ``Vertex<n>`` (n counted from 0, as
+the Shape lifting panel and the Lifting's ``TargetMaxVertex`` count). Anything else (a face,
+an edge, another object, an object picked in the tree) is refused with a message saying
+what to click. Wiring only: finding a pin's vertex is ``facet.plan.pin_vertices``.
+"""
+
+import math
+
+from facet.plan import COORDINATE_MAX, match_tolerance, pin_vertices
+
+#: Sub-element names given by the plan's and the Lifting's view providers.
+VERTEX, EDGE, FACE = "Vertex", "Edge", "Face"
+
+
+class PinError(ValueError):
+    """The selection or a height cannot be pinned (one line saying what to do)."""
+
+
+def element_name(kind, index):
+    """``Vertex5``: the sub-element name of plan vertex (edge, face) ``index``."""
+    return f"{kind}{int(index)}"
+
+
+def parse_element(name):
+    """``(kind, index)`` of a sub-element name such as ``Vertex5``, or ``(None, None)``."""
+    for kind in (VERTEX, EDGE, FACE):
+        if name.startswith(kind) and name[len(kind):].isdigit():
+            return kind, int(name[len(kind):])
+    return None, None
+
+
+def plan_of(obj):
+    """The plan a Lifting lifts, or ``obj`` itself (a PlanGraph or Facet mesh)."""
+    from facetwb.objects.lifting import is_lifting
+
+    return obj.Plan if is_lifting(obj) else obj
+
+
+def _shows_plan(obj, plan):
+    """True when the vertices of ``obj`` are the vertices of ``plan``: the plan itself or a
+    Lifting of it."""
+    return obj is plan or plan_of(obj) is plan
+
+
+def selected_vertices(entries, plan):
+    """The plan vertices selected in ``entries`` (``[(object, [sub-element names])]``), in
+    the order picked, each once. ``plan`` is the plan the pins are for. A PinError says
+    what is wrong with the first entry that is not a vertex of the plan or of its roof."""
+    from facetwb.objects.polymesh import get_mesh
+
+    if not entries:
+        raise PinError(f"nothing is selected: click vertices of {plan.Label} (or of its "
+                       "roof) in the 3D view, Ctrl+click for more")
+    n_vertices = get_mesh(plan).n_vertices
+    found = []
+    for obj, names in entries:
+        if not _shows_plan(obj, plan):
+            raise PinError(f"{obj.Label} is not {plan.Label} nor a lifting of it: click "
+                           f"vertices of {plan.Label} or of its roof")
+        names = [name for name in names if name]
+        if not names:
+            raise PinError(f"{obj.Label} is selected as a whole (in the tree?): click its "
+                           "vertices in the 3D view")
+        for name in names:
+            kind, index = parse_element(name)
+            if kind == VERTEX and 0 <= index < n_vertices:
+                if index not in found:
+                    found.append(index)
+                continue
+            if kind == VERTEX:
+                raise PinError(f"{obj.Label}: {name} is not a vertex of {plan.Label}, which "
+                               f"has {n_vertices} vertices")
+            what = {EDGE: "an edge", FACE: "a face"}.get(kind, "not a vertex")
+            raise PinError(f"{obj.Label}: {name} is {what}, not a plan vertex: click "
+                           "closer to a corner (within a few pixels)")
+    return found
+
+
+def check_height(height, what="Height"):
+    """``height`` as a float (mm); a PinError when it is not a usable number."""
+    try:
+        value = float(height)
+    except (TypeError, ValueError):
+        raise PinError(f"{what}: {height!r} is not a number of mm") from None
+    if not (math.isfinite(value) and abs(value) <= COORDINATE_MAX):
+        raise PinError(f"{what}: {value!r} mm is not a finite height up to "
+                       f"{COORDINATE_MAX:g} mm")
+    return value
+
+
+def pins_vertices(plan_mesh, pins, snap=0.0):
+    """The plan vertex of each pin (x, y, z): a list of ints, -1 for a pin at no vertex."""
+    tolerance = match_tolerance(plan_mesh, snap)
+    return [int(v) for v in pin_vertices(plan_mesh, [p[:2] for p in pins],
+                                         tolerance=tolerance)]
+
+
+def pin(plan_mesh, pins, vertices, height, snap=0.0):
+    """``pins`` (list of (x, y, z)) with ``vertices`` pinned at ``height`` mm: a pin already
+    at one of them takes the new height (in its place), the others are appended in order.
+    Returns the new list; ``pins`` is not changed."""
+    height = check_height(height)
+    pins = [tuple(float(c) for c in p) for p in pins]
+    at = pins_vertices(plan_mesh, pins, snap)
+    xy = plan_mesh.vertices[:, :2]
+    for v in vertices:
+        if v in at:
+            k = at.index(v)
+            pins[k] = (pins[k][0], pins[k][1], height)
+        else:
+            pins.append((float(xy[v, 0]), float(xy[v, 1]), height))
+            at.append(v)
+    return pins
+
+
+def selection_entries():
+    """The GUI selection as ``[(object, [sub-element names])]``."""
+    import FreeCADGui as Gui
+
+    return [(s.Object, list(s.SubElementNames)) for s in Gui.Selection.getSelectionEx()]
