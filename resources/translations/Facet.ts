@@ -522,27 +522,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="83"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="86"/>
         <source>Lifting {0}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="90"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="93"/>
         <source>Height of this lifting at its peak; the faces stay planar</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="101"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="104"/>
         <source>Raise vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="103"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="106"/>
         <source>The plan vertex to raise or lower</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="117"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="120"/>
         <source>How far the vertex moves; the rest of the roof follows, every face planar</source>
         <translation type="unfinished"></translation>
     </message>
@@ -647,17 +647,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="216"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="241"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="64"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="67"/>
         <source>{0}: this plan admits only planes: there is nothing to mix. Change the drawing (or lift it with moved vertices) to get more shapes.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="68"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="71"/>
         <source>{0}: the plan admits {1} non-planar liftings. Each slider adds one (smoothest first); every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -677,7 +677,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="60"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="63"/>
         <source>{0}: there is no lifting to shape: {1}. Fix it and recompute first.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -779,6 +779,11 @@
     <message>
         <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="253"/>
         <source>Pins are used only without other targets: the targets are now {0} (empty Targets and TargetFile to use the pins).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="175"/>
+        <source>vertex {0}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

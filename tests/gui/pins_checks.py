@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""GUI checks of pinned heights picked in the 3D view
+"""GUI checks of pinned heights picked in the 3D view and of the Raise vertex marker
 (called by gui_test.py; ``g`` is the gui_test module, for its screenshot helpers).
 
 A hipped-roof plan (8 m x 5 m, ridge 3 m long): a click in the 3D view near a plan vertex
@@ -9,7 +9,8 @@ on the view, Ctrl+click) and pinned at 2.5 m, the ridge at 4.5 m, a face refused
 makes a Lifting meeting those heights, its pins drawn as markers (lift_pins.png,
 taskpanel_lift_pins.png). The Pin heights panel of the Lifting: the ridge pinned at 5 m
 live, a height edited in the table, a pin removed; Cancel puts the pins back, OK keeps them
-in one undo step.
+in one undo step. Shape lifting: a marker on the vertex of the Raise vertex spin box
+follows it (lifting_raise.png) and is gone when the panel closes.
 """
 
 import os
@@ -252,6 +253,35 @@ def run(check, out_dir, g):
           and len(doc.UndoNames) == undo + 1 and doc.UndoNames[0] == "Pin heights",
           f"OK keeps the ridge at 5 m in one undo step ({list(doc.UndoNames)[:2]})")
 
+    # Shape lifting: the Raise vertex row's vertex is marked in the 3D view
+    from facetwb.taskpanels import lift_mix
+
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(lifting)
+    Gui.runCommand("Facet_LiftMix")
+    settle()
+    panel = lift_mix.active
+    if check(panel is not None, "the Shape lifting panel opens"):
+        marker = panel.marker
+        v = ridge[1]
+        panel.vertex.setValue(v)
+        p = lifting.Points[v]
+        check(in_scene(marker) and marker.points == [(p.x, p.y, p.z)]
+              and marker.texts == [f"vertex {v}"],
+              f"a marker on vertex {v}, labelled, follows the spin box ({marker.texts})")
+        panel.drag.setValue(20)
+        Gui.Selection.clearSelection()  # selected objects are drawn in the highlight colour
+        settle()
+        p = lifting.Points[v]
+        check(marker.points == [(p.x, p.y, p.z)] and p.z > 5000.0 + 1.0,
+              f"the marker rises with the vertex ({p.z:.0f} mm)")
+        path = os.path.join(out_dir, "lifting_raise.png")
+        g.save_view(view, path)
+        check_markers_drawn(check, g, path, "lifting_raise.png", color=lift_mix.RAISE_COLOR)
+        panel.reject()
+        settle()
+        check(lift_mix.active is None and not in_scene(marker),
+              "the raise marker is gone when the panel closes")
     App.closeDocument(doc.Name)
 
 

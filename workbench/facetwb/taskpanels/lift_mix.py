@@ -24,6 +24,9 @@ STEPS = 100
 #: The open panel, if any (for scripts and the GUI test).
 active = None
 
+#: Colour of the marker on the vertex the Raise vertex row moves.
+RAISE_COLOR = (1.00, 0.45, 0.00)
+
 
 class LiftMixPanel:
     """Gui.Control task panel for one Lifting object."""
@@ -125,6 +128,13 @@ class LiftMixPanel:
             widget.setEnabled(bool(self.points))
         self.vertex.valueChanged.connect(self.vertex_changed)
         self.drag.valueChanged.connect(self.drag_changed)
+        # which vertex the spin box's number is: a marker on it in the 3D view
+        from facetwb.viewproviders.markers import RAISE_STYLE, Markers
+
+        self.marker = Markers(RAISE_COLOR, RAISE_STYLE)
+        view = getattr(Gui.ActiveDocument, "ActiveView", None)
+        if self.points and view is not None and hasattr(view, "getSceneGraph"):
+            self.marker.show_in(view)
         self.vertex_changed()
         self._show_values()
         # the Lifting and what is made from it that are up to date now: the sliders'
@@ -155,7 +165,19 @@ class LiftMixPanel:
         for label, value in zip(self.labels, self.mix()):
             label.setText(App.Units.Quantity(value, App.Units.Length).UserString)
 
+    def _mark_vertex(self):
+        """The raise marker on the chosen vertex of the roof, labelled with its number (a
+        spin box number alone did not tell which vertex it was)."""
+        points = self.obj.Points
+        v = self.vertex.value()
+        if self.points and 0 <= v < len(points):
+            p = points[v]
+            self.marker.set([(p.x, p.y, p.z)], [translate("Facet", "vertex {0}").format(v)])
+        else:
+            self.marker.clear()
+
     def vertex_changed(self, _value=None):
+        self._mark_vertex()
         key = self.points[self.vertex.value()] if self.points else None
         self.drag.blockSignals(True)
         self.drag.setValue(int(round(self.drags.get(key, 0.0) / self.range * STEPS)))
@@ -180,9 +202,11 @@ class LiftMixPanel:
         self._follow()
 
     def _follow(self):
-        """Re-solve the Lifting alone, live (:func:`resolve_alone`)."""
+        """Re-solve the Lifting alone, live (:func:`resolve_alone`); the raise marker
+        follows the roof."""
         resolve_alone(self.obj, update=False)
         self._show_roof()
+        self._mark_vertex()
         Gui.updateGui()
 
     def _show_roof(self):
@@ -199,6 +223,7 @@ class LiftMixPanel:
 
     def _close(self):
         global active
+        self.marker.remove()
         for name, visible in self.views.items():
             o = self.obj.Document.getObject(name)
             if o is not None and getattr(o, "ViewObject", None) is not None:
