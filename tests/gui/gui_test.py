@@ -224,6 +224,7 @@ def run(out_dir):
     check_edit_linked_control(check)
     check_edit_region(check)
     check_edit_planarized(check, out_dir)
+    check_hold_vertices(check, out_dir)
     check_recompute_cancel_and_failed_create(check)
     check_planarize_progress(check, out_dir)
     check_stop_and_keep(check)
@@ -1634,6 +1635,151 @@ def check_edit_planarized(check, out_dir):
     vobj.Proxy.doubleClicked(vobj)
     check(edit_panels.active.accept() and result.MaxIterations == 250000,
           f"OK keeps MaxIterations 250000 (now {result.MaxIterations})")
+    App.closeDocument(doc.Name)
+
+
+def click(view, position, ctrl=False):
+    """A left click (press and release) of the mouse at ``position`` (pixels, Coin's
+    convention: origin bottom left) in the 3D view's GL widget, through Qt: FreeCAD's own
+    event path selects what is under it (Ctrl: adds it)."""
+    from PySide import QtCore, QtGui
+    import FreeCADGui as Gui
+
+    widget = [w for w in Gui.getMainWindow().findChildren(QtGui.QWidget)
+              if type(w).__name__ == "QOpenGLWidget" and w.isVisible()][0]
+    ratio = float(widget.devicePixelRatioF())
+    height = view.getSize()[1]
+    pos = QtCore.QPoint(int(round(position[0] / ratio)),
+                        int(round((height - 1 - position[1]) / ratio)))
+    modifiers = QtCore.Qt.ControlModifier if ctrl else QtCore.Qt.NoModifier
+    left = QtCore.Qt.LeftButton
+    for kind, buttons in ((QtCore.QEvent.MouseButtonPress, left),
+                          (QtCore.QEvent.MouseButtonRelease, QtCore.Qt.NoButton)):
+        event = QtGui.QMouseEvent(kind, pos, widget.mapToGlobal(pos), left, buttons, modifiers)
+        QtGui.QApplication.sendEvent(widget, event)
+    Gui.updateGui()
+
+
+def check_hold_vertices(check, out_dir):
+    """The Planarize edit panel's Held vertices: a click near a corner of the planarized mesh
+    in the 3D view selects "VertexN" (N: the control mesh's vertex index), Ctrl+click adds
+    one; Hold selected puts them in FixedVertices and the live re-solve keeps them at the
+    control mesh's points; magenta markers show them; a panel selected instead gets a
+    message; Free selected, Cancel, OK and undo."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    import numpy as np
+
+    import facet
+    import facetwb
+    from facetwb.objects.polymesh import get_mesh
+    from facetwb.taskpanels import edit_panels
+    from facetwb.viewproviders.view_planarized import HELD_COLOR
+
+    doc = App.newDocument("HoldVertices")
+    mesh = facet.read_mesh(MESH)
+    control = facetwb.make_polymesh(mesh, label="Control mesh")
+    result = facetwb.make_planarized(control, tolerance=1e-3)
+    doc.recompute()
+    before = get_mesh(result).vertices.copy()
+    # the panel first: it narrows the 3D view, and moves what is drawn on the screen
+    result.ViewObject.Proxy.doubleClicked(result.ViewObject)
+    panel = edit_panels.active
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    Gui.updateGui()
+    from facetwb.viewproviders.view_polymesh import VERTEX_PICK_PIXELS
+
+    # a pick 3 pixels off a corner names that vertex; a panel's middle names the panel
+    named, wrong = [], []
+    for vertex, point in enumerate(before):
+        x, y = view.getPointOnScreen(App.Vector(*point))
+        info = view.getObjectInfo((int(x) + 3, int(y) + 3))
+        component = info.get("Component") if info and info.get("Object") == result.Name \
+            else None
+        if component == f"Vertex{vertex}":
+            named.append((vertex, (int(x), int(y))))
+        elif component and component.startswith("Vertex"):
+            # a hidden corner's pick lands on a panel in front: one of its corners if near
+            other = view.getPointOnScreen(App.Vector(*before[int(component[6:])]))
+            if np.hypot(other[0] - x - 3, other[1] - y - 3) > VERTEX_PICK_PIXELS + 1:
+                wrong.append((vertex, component))
+    check(len(named) >= before.shape[0] // 2 and not wrong,
+          f"a pick near a corner of the planarized mesh is that vertex, VertexN "
+          f"({len(named)} of {before.shape[0]} named, hidden ones aside; wrong: {wrong[:3]})")
+    centre = before[mesh.face_vertices[mesh.face_start[27]:mesh.face_start[28]]].mean(axis=0)
+    x, y = view.getPointOnScreen(App.Vector(*centre))
+    info = view.getObjectInfo((int(x), int(y))) or {}
+    check(str(info.get("Component", "")).startswith("Face"),
+          f"a pick in a panel's middle is the panel, FaceN ({info.get('Component')!r})")
+    if len(named) < 3:
+        panel.reject()
+        App.closeDocument(doc.Name)
+        return
+    Gui.Selection.clearSelection()
+    (a, at_a), (b, at_b), (c, at_c) = named[0], named[len(named) // 2], named[-1]
+    click(view, (at_a[0] + 3, at_a[1] + 3))  # where the pick named them
+    click(view, (at_b[0] + 3, at_b[1] + 3), ctrl=True)
+    picked = [(s.ObjectName, tuple(s.SubElementNames)) for s in Gui.Selection.getSelectionEx()]
+    check(picked == [(result.Name, (f"Vertex{a}", f"Vertex{b}"))]
+          and panel.selected_label.text() == "2 vertices selected"
+          and result.ViewObject.Proxy.selected.vertices == sorted([a, b]),
+          f"a click near a corner, then Ctrl+click near another, select both vertices; the "
+          f"panel counts them and marks them ({picked}, {panel.selected_label.text()!r})")
+    path = os.path.join(out_dir, "hold_selected.png")
+    view.saveImage(path, WIDTH, HEIGHT, "Current")
+    magenta_before = int(near(image_pixels(path), HELD_COLOR, 30).sum())
+    panel.buttons["HoldSelected"].click()
+    wait_for_live_resolve(result)
+    after = get_mesh(result).vertices
+    held = sorted([a, b])
+    check(list(result.FixedVertices) == held and panel.held_label.text() == "2 vertices held"
+          and "Touched" not in result.State and result.PlanarityMaxRel <= 1e-3
+          and np.array_equal(after[held], mesh.vertices[held])
+          and not np.array_equal(before[held], mesh.vertices[held]),
+          f"Hold selected: FixedVertices {list(result.FixedVertices)}, and the re-solve keeps "
+          f"them at the control mesh's points (they had moved "
+          f"{np.abs(before[held] - mesh.vertices[held]).max():.3g} mm to planarize), planarity "
+          f"{result.PlanarityMaxRel:.2g}")
+    Gui.Selection.clearSelection()
+    path = os.path.join(out_dir, "hold_vertices.png")
+    view.saveImage(path, WIDTH, HEIGHT, "Current")
+    magenta = int(near(image_pixels(path), HELD_COLOR, 30).sum())
+    check(magenta_before == 0 and magenta >= 2 * 80,
+          f"the held vertices show as magenta markers in {path} ({magenta} pixels, "
+          f"{magenta_before} before)")
+    Gui.Selection.addSelection(doc.Name, result.Name, "Face3")
+    check(not panel.hold_selected() and list(result.FixedVertices) == held
+          and "Face3" in panel.held_message.text()
+          and "is not a vertex" in panel.held_message.text(),
+          f"a panel selected: Hold says so and holds nothing ({panel.held_message.text()!r})")
+    Gui.Selection.clearSelection()
+    x, y = view.getPointOnScreen(App.Vector(*after[a]))  # held: it moved back
+    click(view, (int(x) + 3, int(y) + 3))
+    panel.buttons["FreeSelected"].click()
+    check(list(result.FixedVertices) == [b] and panel.held_label.text() == "1 vertex held",
+          f"Free selected lets it move again ({list(result.FixedVertices)})")
+    Gui.Selection.clearSelection()
+    panel.reject()
+    wait_for_live_resolve(result)
+    check(list(result.FixedVertices) == [] and np.array_equal(get_mesh(result).vertices, before)
+          and result.ViewObject.Proxy.held.vertices == [],
+          "Cancel frees them again and puts the previous result back")
+    result.ViewObject.Proxy.doubleClicked(result.ViewObject)
+    panel = edit_panels.active
+    Gui.Selection.addSelection(doc.Name, result.Name, f"Vertex{c}")
+    Gui.Selection.addSelection(doc.Name, control.Name, f"Vertex{a}")
+    panel.buttons["HoldSelected"].click()
+    Gui.Selection.clearSelection()
+    check(panel.accept() and list(result.FixedVertices) == sorted([a, c])
+          and "Touched" not in result.State
+          and np.array_equal(get_mesh(result).vertices[[a, c]], mesh.vertices[[a, c]]),
+          "vertices picked on the result and on its control mesh, held, kept by OK")
+    doc.undo()
+    wait_for_live_resolve(result)
+    check(list(result.FixedVertices) == [] and result.ViewObject.Proxy.held.vertices == [],
+          "undo frees them, the markers go")
     App.closeDocument(doc.Name)
 
 

@@ -3,7 +3,10 @@
 
 The Planarize form, filled from the object's properties. Every change of a field is set on
 the object at once, and :mod:`facetwb.live_parameters` re-solves it shortly after (debounced),
-so the planar result follows while the designer types or spins a box. All of it is one
+so the planar result follows while the designer types or spins a box. Below it, the held
+vertices: click corners of the mesh in the 3D view (Ctrl+click for more) and press Hold
+selected (FixedVertices; :mod:`facetwb.fixed_vertices`), Free selected or Free all; held
+vertices show as magenta squares, the selected ones framed in black. All of it is one
 transaction: OK keeps the changes as one undo step, Cancel puts the previous values and the
 previous result back. Wiring only.
 """
@@ -11,6 +14,7 @@ previous result back. Wiring only.
 import FreeCAD as App
 import FreeCADGui as Gui
 
+from facetwb import fixed_vertices
 from facetwb.taskpanels import forms
 from facetwb.objects.planarized import METHODS
 from facetwb.recompute import keep_up_to_date, up_to_date
@@ -57,7 +61,138 @@ class PlanarizeEditPanel:
         self.doc.openTransaction(f"Edit {obj.Label}")
         for name, _choices in FIELDS:
             forms.on_change(self.form, name, self.changed)
+        self.form = self._with_held(self.form)
+        self.show_held()
+        self.observing = False
+        try:
+            Gui.Selection.addObserver(self)
+            self.observing = True
+        except Exception:  # noqa: BLE001 - no selection observer: the buttons still work
+            pass
+        self.show_selected()
         active = self
+
+    def _with_held(self, planarize):
+        """The panel's widget: the Planarize form, then the Held vertices group (a hint, the
+        buttons, the count and a message line)."""
+        from facetwb.compat import qt_gui
+
+        qt = qt_gui()
+        form = qt.QWidget()
+        form.setObjectName("PlanarizeEdit")
+        form.setWindowTitle(planarize.windowTitle())
+        column = qt.QVBoxLayout(form)
+        column.setContentsMargins(0, 0, 0, 0)
+        column.addWidget(planarize)
+        group = qt.QGroupBox(translate("Facet", "Held vertices"))
+        group.setObjectName("HeldVertices")
+        column.addWidget(group)
+        layout = qt.QGridLayout(group)
+        hint = qt.QLabel(translate(
+            "Facet", "Click corners of the mesh in the 3D view (Ctrl+click for more) to hold "
+                     "them in place while it is planarized (FixedVertices). Held: magenta "
+                     "squares; selected: framed in black."))
+        hint.setWordWrap(True)
+        layout.addWidget(hint, 0, 0, 1, 2)
+        self.buttons = {}
+        for row, column, name, text, tip, action in (
+                (1, 0, "HoldSelected", translate("Facet", "Hold selected"),
+                 translate("Facet", "Hold the vertices selected in the 3D view in place"),
+                 self.hold_selected),
+                (1, 1, "FreeSelected", translate("Facet", "Free selected"),
+                 translate("Facet", "Let the selected held vertices move again"),
+                 self.free_selected),
+                (2, 1, "FreeAll", translate("Facet", "Free all"),
+                 translate("Facet", "Let every held vertex move again"), self.free_all)):
+            button = qt.QPushButton(text)
+            button.setObjectName(name)
+            button.setToolTip(tip)
+            button.clicked.connect(action)
+            layout.addWidget(button, row, column)
+            self.buttons[name] = button
+        self.held_label = qt.QLabel()
+        self.held_label.setObjectName("HeldCount")
+        layout.addWidget(self.held_label, 2, 0)
+        self.selected_label = qt.QLabel()
+        self.selected_label.setObjectName("SelectedCount")
+        layout.addWidget(self.selected_label, 3, 0, 1, 2)
+        self.held_message = qt.QLabel()
+        self.held_message.setObjectName("HeldMessage")
+        self.held_message.setWordWrap(True)
+        layout.addWidget(self.held_message, 4, 0, 1, 2)
+        return form
+
+    # --- held vertices --------------------------------------------------------------------
+
+    def _selected(self):
+        """The selected vertices' indices; a SelectionError says what else is selected."""
+        return fixed_vertices.selected_vertices(self.obj, fixed_vertices.gui_selection())
+
+    def hold_selected(self):
+        """Hold selected: FixedVertices gains the selected vertices (the result re-solves)."""
+        try:
+            vertices = self._selected()
+        except fixed_vertices.SelectionError as error:
+            self.held_message.setText(str(error))
+            return False
+        added = fixed_vertices.hold(self.obj, vertices)
+        self.held_message.setText(translate("Facet", "{0} of the {1} selected held now").format(
+            added, len(vertices)) if added < len(vertices) else "")
+        self.show_held()
+        return True
+
+    def free_selected(self):
+        """Free selected: the selected vertices leave FixedVertices."""
+        try:
+            vertices = self._selected()
+        except fixed_vertices.SelectionError as error:
+            self.held_message.setText(str(error))
+            return False
+        freed = fixed_vertices.free(self.obj, vertices)
+        self.held_message.setText(
+            "" if freed else translate("Facet", "None of the selected vertices was held"))
+        self.show_held()
+        return True
+
+    def free_all(self):
+        fixed_vertices.free(self.obj)
+        self.held_message.setText("")
+        self.show_held()
+        return True
+
+    def show_held(self):
+        self.held_label.setText(fixed_vertices.held_text(self.obj))
+
+    def show_selected(self):
+        """The count of selected vertices, and their markers."""
+        try:
+            vertices = self._selected()
+        except fixed_vertices.SelectionError:
+            vertices = []
+        count = len(vertices)
+        self.selected_label.setText(
+            translate("Facet", "No vertex selected") if count == 0 else
+            translate("Facet", "1 vertex selected") if count == 1 else
+            translate("Facet", "{0} vertices selected").format(count))
+        self._mark_selected(vertices)
+
+    def _mark_selected(self, vertices):
+        proxy = getattr(getattr(self.obj, "ViewObject", None), "Proxy", None)
+        if hasattr(proxy, "redraw_markers"):
+            proxy.redraw_markers(self.obj, selected=vertices)
+
+    # Gui.Selection observer: the count and markers follow the selection
+    def addSelection(self, *_args):  # noqa: N802 - FreeCAD's names
+        self.show_selected()
+
+    def removeSelection(self, *_args):  # noqa: N802
+        self.show_selected()
+
+    def setSelection(self, *_args):  # noqa: N802
+        self.show_selected()
+
+    def clearSelection(self, *_args):  # noqa: N802
+        self.show_selected()
 
     def read(self):
         """{property: value} from the fields; a ValueError names a field that cannot work."""
@@ -105,6 +240,13 @@ class PlanarizeEditPanel:
     def _close(self):
         global active
         active = None
+        if self.observing:
+            Gui.Selection.removeObserver(self)
+            self.observing = False
+        try:
+            self._mark_selected([])
+        except Exception:  # noqa: BLE001 - the object was deleted with the panel open
+            pass
         if Gui.ActiveDocument is not None:
             Gui.ActiveDocument.resetEdit()
         Gui.Control.closeDialog()

@@ -32,6 +32,10 @@ DISPLAY_MODES = ["Flat Lines", "Shaded", "Wireframe", "Planarity"]
 #: PlanarityEdges "Auto" draws edges up to this many faces.
 AUTO_EDGES_MAX_FACES = 20000
 
+#: A pick on a panel or an edge selects its corner ("VertexN") when the corner is drawn
+#: within this many pixels of the pick.
+VERTEX_PICK_PIXELS = 10
+
 
 class ViewProviderPolyMesh:
     """View provider of PolyMesh objects (Gui::ViewProviderPythonFeature)."""
@@ -108,15 +112,20 @@ class ViewProviderPolyMesh:
             "Planarity": (self.coords, hints, offset, per_face, self.planarity_material,
                           self.faces, self.planarity_edges, self.legend.root),
         }
+        overlays = self.overlay_nodes()
         for mode in DISPLAY_MODES:
             group = coin.SoSeparator()
-            for node in layouts[mode]:
+            for node in layouts[mode] + tuple(overlays):
                 group.addChild(node)
             vobj.addDisplayMode(group, mode)
 
         for prop in ("ShapeColor", "LineColor", "LineWidth"):
             self.onChanged(vobj, prop)
         self.redraw_mesh(vobj.Object)
+
+    def overlay_nodes(self):
+        """Nodes drawn over the mesh in every display mode (a subclass's markers)."""
+        return ()
 
     def getDisplayModes(self, vobj):
         return DISPLAY_MODES
@@ -223,6 +232,54 @@ class ViewProviderPolyMesh:
         self.planarity_edges.whichChild = coin.SO_SWITCH_ALL if show_edges else \
             coin.SO_SWITCH_NONE
 
+    # --- selection in the 3D view -----------------------------------------------------------
+
+    def getElementPicked(self, pp):  # noqa: N802 - FreeCAD's name
+        """The sub-element under a pick in the 3D view (the status bar and
+        ``Gui.Selection.getSelectionEx`` show it): "VertexN" when a corner of the picked
+        panel or edge is drawn within VERTEX_PICK_PIXELS of the pick (N: the vertex's index
+        in the mesh, from 0, as FixedVertices counts), else "FaceN" (the panel, from 0),
+        "EdgeN" (the edge, from 0, in the order of facet.PolyMesh.edges) or ""."""
+        element, corners = picked_element(pp.getDetail())
+        if element.startswith("Face"):
+            element, corners = self.picked_face(int(element[4:]), corners)
+        vertex = self.nearest_corner(corners, pp.getPoint().getValue())
+        return f"Vertex{vertex}" if vertex is not None else element
+
+    def picked_face(self, index, corners):
+        """("FaceN", all its corners) of the picked polygon ``index``: Coin's detail has
+        the corners of the triangle of it that was hit. While an Edit control mesh session
+        draws the panels as triangles, ("", the triangle's corners)."""
+        from facetwb import edit_control
+
+        session = edit_control.active_session()
+        drawn = getattr(self, "drawn_topology", None)
+        if (session is not None and session.vobj is self.ViewObject) or drawn is None \
+                or not 0 <= index < drawn[0].size - 1:
+            return "", corners
+        face_start, face_vertices = drawn
+        return f"Face{index}", face_vertices[face_start[index]:face_start[index + 1]].tolist()
+
+    def nearest_corner(self, corners, point):
+        """The one of ``corners`` (vertex indices) drawn nearest ``point`` (a picked point)
+        on the screen, if within VERTEX_PICK_PIXELS; or None."""
+        import FreeCAD as App
+
+        view = _view_of(self.Object)
+        if view is None or not corners or not hasattr(self, "coords"):
+            return None
+        drawn = self.coords.point
+        at = view.getPointOnScreen(App.Vector(*point))
+        best, best_pixels = None, VERTEX_PICK_PIXELS
+        for vertex in corners:
+            if not 0 <= vertex < drawn.getNum():
+                continue
+            x, y = view.getPointOnScreen(App.Vector(*drawn[vertex].getValue()))
+            pixels = float(np.hypot(x - at[0], y - at[1]))
+            if pixels <= best_pixels:
+                best, best_pixels = vertex, pixels
+        return best
+
     # --- tree -----------------------------------------------------------------------------
 
     def getIcon(self):
@@ -252,6 +309,37 @@ class ViewProviderPolyMesh:
 
     def __setstate__(self, state):
         self.loads(state)
+
+
+def picked_element(detail):
+    """``(element, corners)`` of a Coin pick's detail on a mesh drawn by this module:
+    "FaceN" and the coordinate indices of the picked polygon's corners, "EdgeN" and its two
+    ends, "VertexN" and that vertex; ("", ()) for anything else."""
+    if detail is None:
+        return "", ()
+    if detail.isOfType(coin.SoFaceDetail.getClassTypeId()):
+        face = coin.cast(detail, "SoFaceDetail")
+        corners = [face.getPoint(i).getCoordinateIndex() for i in range(face.getNumPoints())]
+        return f"Face{face.getFaceIndex()}", corners
+    if detail.isOfType(coin.SoLineDetail.getClassTypeId()):
+        line = coin.cast(detail, "SoLineDetail")
+        return f"Edge{line.getLineIndex()}", [line.getPoint0().getCoordinateIndex(),
+                                               line.getPoint1().getCoordinateIndex()]
+    if detail.isOfType(coin.SoPointDetail.getClassTypeId()):
+        index = coin.cast(detail, "SoPointDetail").getCoordinateIndex()
+        return f"Vertex{index}", [index]
+    return "", ()
+
+
+def _view_of(obj):
+    """The 3D view showing ``obj``'s document (the active one of it), or None."""
+    try:
+        import FreeCADGui as Gui
+
+        view = Gui.getDocument(obj.Document.Name).ActiveView
+    except Exception:  # noqa: BLE001 - no GUI document (closing)
+        return None
+    return view if hasattr(view, "getPointOnScreen") else None
 
 
 def _set_mfield(field, values):
