@@ -225,6 +225,7 @@ def run(out_dir):
     check_edit_region(check)
     check_edit_planarized(check, out_dir)
     check_hold_vertices(check, out_dir)
+    check_recompute_in_edit_then_cancel(check, out_dir)
     check_recompute_cancel_and_failed_create(check)
     check_planarize_progress(check, out_dir)
     check_stop_and_keep(check)
@@ -1780,6 +1781,53 @@ def check_hold_vertices(check, out_dir):
     wait_for_live_resolve(result)
     check(list(result.FixedVertices) == [] and result.ViewObject.Proxy.held.vertices == [],
           "undo frees them, the markers go")
+    App.closeDocument(doc.Name)
+
+
+def check_recompute_in_edit_then_cancel(check, out_dir):
+    """Recompute pressed while the Planarize edit panel is open rebuilds the panels and
+    rewrites the cut sheets' files from the panel's values; Cancel then rebuilds them from
+    the result it puts back: the files are those of before the panel, not stale ones."""
+    import hashlib
+
+    import FreeCAD as App
+    import FreeCADGui as Gui
+
+    import facet
+    import facetwb
+    from facetwb.taskpanels import edit_panels
+
+    doc = App.newDocument("RecomputeThenCancel")
+    files = os.path.join(out_dir, "recompute_then_cancel")
+    control = facetwb.make_polymesh(facet.read_mesh(MESH), label="Control mesh")
+    result = facetwb.make_planarized(control, tolerance=1e-3)
+    panels = facetwb.make_panelset(result, thickness=0.5)
+    panels.Tolerance = 1e-2  # the result is planar to 1e-3 only
+    sheets = facetwb.make_cutsheets(panels, sheet=(10.0, 10.0), margin=0.1, spacing=0.1,
+                                    output_dir=files, write_step=False)
+    doc.recompute()
+
+    def digest():
+        with open(os.path.join(files, "schedule.csv"), "rb") as f:
+            return hashlib.sha256(f.read()).hexdigest()
+
+    before = digest()
+    result.ViewObject.Proxy.doubleClicked(result.ViewObject)
+    panel = edit_panels.active
+    field = panel.form.findChild(__import__("PySide").QtGui.QLineEdit, "Tolerance")
+    field.setText("1e-09")
+    field.editingFinished.emit()
+    wait_for_live_resolve(result)
+    doc.recompute()  # Recompute pressed with the panel open
+    changed = digest()
+    panel.reject()
+    wait_for_live_resolve(result)
+    after = digest()
+    check(changed != before and after == before and result.Tolerance == 1e-3
+          and "Touched" not in panels.State and "Touched" not in sheets.State,
+          f"Recompute with the Planarize panel open rewrote the cut sheets' files; Cancel "
+          f"writes them again from the result it puts back (schedule.csv "
+          f"{before[:8]} -> {changed[:8]} -> {after[:8]}; {panels.State}, {sheets.State})")
     App.closeDocument(doc.Name)
 
 

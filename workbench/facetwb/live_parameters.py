@@ -61,6 +61,20 @@ def _schedule(key):
     timer.start(DELAY_MS)
 
 
+def forget(obj):
+    """Drop the scheduled re-solve of ``obj``: a task panel's Cancel put its values back
+    and solved them itself (a re-solve starting while a later recompute showed its
+    progress dialog would solve them again and mark what is made from it)."""
+    doc = getattr(obj, "Document", None)
+    if doc is None:
+        return
+    key = (doc.Name, obj.Name)
+    timer = _timers.pop(key, None)
+    if timer is not None:
+        timer.stop()
+    _late.discard(key)
+
+
 def pending():
     """Number of scheduled re-solves (tests)."""
     return sum(1 for timer in _timers.values() if timer.isActive())

@@ -28,11 +28,13 @@ import sys
 from facetwb import progress
 from facetwb.translation import translate
 
-__all__ = ["RecomputeError", "after_recompute", "failure", "guarded", "one_line"]
+__all__ = ["RecomputeError", "Recomputes", "after_recompute", "failure", "guarded",
+           "keep_up_to_date", "one_line", "up_to_date"]
 
 _saved_limit = []
 _observer = []
 _after = []  # (document name, action) to run once that document has recomputed
+_recorders = []  # the open Recomputes
 
 
 def _restore_traceback_limit():
@@ -49,6 +51,12 @@ class _DocumentObserver:
     def slotRecomputedDocument(self, doc):  # noqa: N802 - FreeCAD's name
         _restore_traceback_limit()
         _run_after(doc)
+
+    def slotRecomputedObject(self, obj):  # noqa: N802
+        doc = getattr(getattr(obj, "Document", None), "Name", None)
+        for recorder in _recorders:
+            if recorder.doc_name == doc:
+                recorder.names.add(obj.Name)
 
 
 def _run_after(doc):
@@ -70,14 +78,47 @@ def up_to_date(objects):
     return [o.Name for o in objects if "Touched" not in o.State]
 
 
-def keep_up_to_date(doc, names):
-    """Unmark the objects ``names`` (:func:`up_to_date`'s) that the panel's live re-solves
-    marked: they stayed marked for a Recompute that would have rebuilt the panels and
-    rewritten the cut files for nothing."""
-    for name in names:
+class Recomputes:
+    """The names of the objects of ``doc`` recomputed from now on (``names``), until
+    :meth:`stop`: a task panel's, whose Cancel recomputes again what a Recompute pressed
+    while it was open built from the values it takes back (:func:`keep_up_to_date`)."""
+
+    def __init__(self, doc):
+        self.doc_name = doc.Name
+        self.names = set()
+        _observe()
+        _recorders.append(self)
+
+    def take(self):
+        """The names recorded so far; the record starts again empty."""
+        names, self.names = self.names, set()
+        return names
+
+    def stop(self):
+        if self in _recorders:
+            _recorders.remove(self)
+
+
+def keep_up_to_date(doc, names, recomputed=()):
+    """After a task panel's Cancel: unmark the objects ``names`` (:func:`up_to_date`'s) that
+    the panel's live re-solves marked: they stayed marked for a Recompute that would have
+    rebuilt the panels and rewritten the cut files for nothing. Those of them in
+    ``recomputed`` (a Recompute pressed while the panel was open rebuilt them, and wrote
+    their files, from the values Cancel took back) are recomputed again; the others of
+    ``recomputed`` (marked when the panel opened) are marked again."""
+    again = []
+    for name in sorted(set(names) | set(recomputed)):
         obj = doc.getObject(name)
-        if obj is not None and "Touched" in obj.State:
+        if obj is None:
+            continue
+        if name in recomputed:
+            obj.touch()
+            if name in names:
+                again.append(obj)
+        elif "Touched" in obj.State:
             obj.purgeTouched()
+    if again:
+        doc.recompute(again)
 
 
 def after_recompute(doc, action):

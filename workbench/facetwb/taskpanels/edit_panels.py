@@ -17,7 +17,7 @@ import FreeCADGui as Gui
 from facetwb import fixed_vertices
 from facetwb.taskpanels import forms
 from facetwb.objects.planarized import METHODS
-from facetwb.recompute import keep_up_to_date, up_to_date
+from facetwb.recompute import Recomputes, keep_up_to_date, up_to_date
 from facetwb.taskpanels.derive_panels import check_planarize
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
 
@@ -58,6 +58,7 @@ class PlanarizeEditPanel:
         # what is made from the result (panels, cut sheets) and up to date now: a live
         # re-solve touches it, and Cancel, which puts the same result back, leaves it so
         self.fresh = up_to_date(obj.InListRecursive)
+        self.recomputes = Recomputes(self.doc)  # what a Recompute pressed meanwhile rebuilt
         self.doc.openTransaction(f"Edit {obj.Label}")
         for name, _choices in FIELDS:
             forms.on_change(self.form, name, self.changed)
@@ -229,17 +230,26 @@ class PlanarizeEditPanel:
         return True
 
     def reject(self):
+        # made from values Cancel takes back: the panels, cut sheets (and their files) a
+        # Recompute pressed while the panel was open rebuilt; this object's own results
+        # the transaction puts back
+        rebuilt = self.recomputes.take() & {o.Name for o in self.obj.InListRecursive}
         self.doc.abortTransaction()  # the previous values, points and planarity
         if "Touched" in self.obj.State:
             self.doc.recompute([self.obj])
-        # the result is the one they were made from: they are up to date again
-        keep_up_to_date(self.doc, self.fresh)
+        # the result is the one they were made from: they are up to date again, or
+        # rebuilt from it
+        keep_up_to_date(self.doc, self.fresh, rebuilt - self.recomputes.take())
+        from facetwb import live_parameters
+
+        live_parameters.forget(self.obj)  # the values put back are solved
         self._close()
         return True
 
     def _close(self):
         global active
         active = None
+        self.recomputes.stop()
         if self.observing:
             Gui.Selection.removeObserver(self)
             self.observing = False
