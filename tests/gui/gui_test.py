@@ -1646,8 +1646,7 @@ def click(view, position, ctrl=False):
     from PySide import QtCore, QtGui
     import FreeCADGui as Gui
 
-    widget = [w for w in Gui.getMainWindow().findChildren(QtGui.QWidget)
-              if type(w).__name__ == "QOpenGLWidget" and w.isVisible()][0]
+    widget = view.graphicsView().viewport()  # this view's GL widget, not another one's
     ratio = float(widget.devicePixelRatioF())
     height = view.getSize()[1]
     pos = QtCore.QPoint(int(round(position[0] / ratio)),
@@ -1719,7 +1718,7 @@ def check_hold_vertices(check, out_dir):
         App.closeDocument(doc.Name)
         return
     Gui.Selection.clearSelection()
-    (a, at_a), (b, at_b), (c, at_c) = named[0], named[len(named) // 2], named[-1]
+    (a, at_a), (b, at_b), (c, _at_c) = named[0], named[len(named) // 2], named[-1]
     click(view, (at_a[0] + 3, at_a[1] + 3))  # where the pick named them
     click(view, (at_b[0] + 3, at_b[1] + 3), ctrl=True)
     picked = [(s.ObjectName, tuple(s.SubElementNames)) for s in Gui.Selection.getSelectionEx()]
