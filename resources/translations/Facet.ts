@@ -112,7 +112,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="23"/>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="28"/>
         <source>Planarize</source>
         <translation type="unfinished"></translation>
     </message>
@@ -442,17 +442,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="327"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="328"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="333"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="334"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="320"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="321"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -472,7 +472,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/recompute.py" line="163"/>
+        <location filename="../../workbench/facetwb/recompute.py" line="204"/>
         <source>Recomputing {0} ...</source>
         <translation type="unfinished"></translation>
     </message>
@@ -547,17 +547,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="310"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="311"/>
         <source>a Gap of {0:.4g} mm or EdgeMode bisector clears them</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="310"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="311"/>
         <source>no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="315"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="316"/>
         <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; {5}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -572,37 +572,37 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="652"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="653"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="654"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="655"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="655"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="656"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="656"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="657"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="657"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="658"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="658"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="659"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="48"/>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="53"/>
         <source>{0}: every change re-solves it at once. OK keeps the changes in one undo step; Cancel puts the previous values and result back.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -617,7 +617,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="653"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="654"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -627,22 +627,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="644"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="645"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="625"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="626"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="631"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="632"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="190"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="191"/>
         <source>{0}; {1} stopped before its tolerance ({2}): raise its Max. iterations, or set it to 0 for the solver to decide</source>
         <translation type="unfinished"></translation>
     </message>
@@ -687,103 +687,233 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="25"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="26"/>
         <source>Pin heights</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="50"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="51"/>
         <source>Vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="67"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="68"/>
         <source>Height</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="68"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="69"/>
         <source>The height the selected vertices are pinned at</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="77"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="78"/>
         <source>Pin selected vertices</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="78"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="79"/>
         <source>Pin the vertices selected in the 3D view (click near a corner of the plan or of the roof; Ctrl+click for more) at the height</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="84"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="85"/>
         <source>Pins (lengths in mm):</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="88"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="89"/>
         <source>The pins: the plan vertex, its x and y, and the height (double-click a height to edit it)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="99"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="100"/>
         <source>Remove pin</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="100"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="101"/>
         <source>Remove the pins selected in the table</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="138"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="139"/>
         <source>none</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="184"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="185"/>
         <source>Pinned {0} {1} at {2}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="184"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="185"/>
         <source>vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="184"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="185"/>
         <source>vertices</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="192"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="193"/>
         <source>Select the pins to remove in the table first</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="196"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="197"/>
         <source>Removed {0} pin(s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="207"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="208"/>
         <source>Height of pin {0}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="245"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="246"/>
         <source>{0}: click vertices of the roof or of its plan in the 3D view (Ctrl+click for more), type a height and press Pin selected vertices. The roof follows at once; the other vertices are free. OK keeps the pins in one undo step; Cancel puts the previous ones back.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="253"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="254"/>
         <source>Pins are used only without other targets: the targets are now {0} (empty Targets and TargetFile to use the pins).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="175"/>
         <source>vertex {0}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/fixed_vertices.py" line="30"/>
+        <source>{0}: Source is empty, it has no vertices</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/fixed_vertices.py" line="34"/>
+        <source>{0} shows {1} vertices, its Source {2} has {3}: recompute it, then select its vertices</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/fixed_vertices.py" line="82"/>
+        <source>No vertex held</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/fixed_vertices.py" line="84"/>
+        <source>1 vertex held</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/fixed_vertices.py" line="85"/>
+        <source>{0} vertices held</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/picked.py" line="50"/>
+        <source>Nothing is selected: click vertices of {0} in the 3D view (Ctrl+click for more)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/picked.py" line="55"/>
+        <source>{0} is selected: click vertices of {1}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/picked.py" line="59"/>
+        <source>{0} is selected as a whole (in the tree?): click its vertices in the 3D view</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/picked.py" line="64"/>
+        <source>an edge</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/picked.py" line="65"/>
+        <source>a face</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/picked.py" line="66"/>
+        <source>{0} of {1} is {2}, not a vertex: click closer to a corner (within a few pixels)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/picked.py" line="66"/>
+        <source>something else</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/picked.py" line="70"/>
+        <source>{0} of {1}: {2} has {3} vertices (0 to {4})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="89"/>
+        <source>Held vertices</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="93"/>
+        <source>Click corners of the mesh in the 3D view (Ctrl+click for more) to hold them in place while it is planarized (FixedVertices). Held: magenta squares; selected: framed in black.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="100"/>
+        <source>Hold selected</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="100"/>
+        <source>Hold the vertices selected in the 3D view in place</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="100"/>
+        <source>Free selected</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="100"/>
+        <source>Let the selected held vertices move again</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="100"/>
+        <source>Free all</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="100"/>
+        <source>Let every held vertex move again</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="141"/>
+        <source>{0} of the {1} selected held now</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="154"/>
+        <source>None of the selected vertices was held</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="175"/>
+        <source>No vertex selected</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="175"/>
+        <source>1 vertex selected</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="175"/>
+        <source>{0} vertices selected</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

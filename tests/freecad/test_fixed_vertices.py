@@ -84,8 +84,8 @@ class TestFixedVertices(DocumentTestCase):
 
     def test_a_panel_or_an_edge_is_not_a_vertex(self):
         self.assert_refused([(self.result, ("Vertex3", "Face12"))], "Face12",
-                            "is not a vertex", self.result.Label)
-        self.assert_refused([(self.result, ("Edge4",))], "Edge4", "is not a vertex")
+                            "is a face, not a vertex", self.result.Label)
+        self.assert_refused([(self.result, ("Edge4",))], "Edge4", "is an edge, not a vertex")
 
     def test_a_whole_object(self):
         self.assert_refused([(self.result, ())], "as a whole", self.result.Label)

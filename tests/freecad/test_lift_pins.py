@@ -10,7 +10,7 @@ import FreeCAD as App
 import numpy as np
 
 import facetwb
-from facetwb import pins
+from facetwb import picked, pins
 from facet_test_support import DocumentTestCase, points_array
 from test_lifting import OUTER, add_plane, add_sketch, nested_segments
 
@@ -53,11 +53,11 @@ class TestPinsFromSelection(DocumentTestCase):
         xy = self.mesh.vertices[:, :2]
         outer = [int(np.argmin(np.hypot(*(xy - p).T))) for p in OUTER]
         inner = [v for v in range(len(xy)) if v not in outer]
-        names = [pins.element_name(pins.VERTEX, v) for v in outer]
+        names = [picked.element_name(picked.VERTEX, v) for v in outer]
         chosen = pins.selected_vertices([(self.lifting, names)], self.plan)
-        picked = pins.pin(self.mesh, [], chosen, 2000.0)
-        picked = pins.pin(self.mesh, picked, inner[:1], 3500.0)
-        lifting.PinnedPoints = [App.Vector(*p) for p in picked]
+        pinned = pins.pin(self.mesh, [], chosen, 2000.0)
+        pinned = pins.pin(self.mesh, pinned, inner[:1], 3500.0)
+        lifting.PinnedPoints = [App.Vector(*p) for p in pinned]
         self.doc.recompute()
         self.assertTrue(lifting.isValid(), lifting.getStatusString())
         z = points_array(lifting)[:, 2]
@@ -75,17 +75,17 @@ class TestPinsFromSelection(DocumentTestCase):
 
     def test_what_is_not_a_plan_vertex_is_refused_saying_what_to_click(self):
         label = self.plan.Label
-        self.assert_refused([], "nothing is selected", "click vertices of " + label)
-        self.assert_refused([(self.plan, ["Face2"])], "Face2 is a face, not a plan vertex",
+        self.assert_refused([], "Nothing is selected", "click vertices of " + label)
+        self.assert_refused([(self.plan, ["Face2"])], "Face2 of", "is a face, not a vertex",
                             "click closer to a corner")
-        self.assert_refused([(self.lifting, ["Edge5"])], "Edge5 is an edge, not a plan vertex")
+        self.assert_refused([(self.lifting, ["Edge5"])], "Edge5 of", "is an edge, not a vertex")
         self.assert_refused([(self.plan, [])], "is selected as a whole", "in the 3D view")
         self.assert_refused([(self.plan, ["Vertex6"])],
-                            "Vertex6 is not a vertex of", "which has 6 vertices")
+                            "Vertex6 of", f"{label} has 6 vertices (0 to 5)")
         self.assert_refused([(self.surface, ["Face1"])],
-                            f"{self.surface.Label} is not {label} nor a lifting of it")
+                            f"{self.surface.Label} is selected: click vertices of {label}")
         # a vertex of another plan's roof: not this plan's, though numbered alike
-        self.assert_refused([(self.other, ["Vertex1"])], f"{self.other.Label} is not")
+        self.assert_refused([(self.other, ["Vertex1"])], f"{self.other.Label} is selected")
         self.assert_refused([(self.plan, ["Vertex1"]), (self.plan, ["Face0"])], "Face0")
 
     def test_heights_must_be_finite_numbers_of_mm(self):
@@ -99,8 +99,8 @@ class TestPinsFromSelection(DocumentTestCase):
         self.assertIn("'three metres' is not a number of mm", str(caught.exception))
 
     def test_element_names(self):
-        self.assertEqual(pins.element_name(pins.VERTEX, 7), "Vertex7")
-        self.assertEqual(pins.parse_element("Vertex7"), ("Vertex", 7))
-        self.assertEqual(pins.parse_element("Face12"), ("Face", 12))
-        self.assertEqual(pins.parse_element("Vertex"), (None, None))
-        self.assertEqual(pins.parse_element("Shape"), (None, None))
+        self.assertEqual(picked.element_name(picked.VERTEX, 7), "Vertex7")
+        self.assertEqual(picked.parse_element("Vertex7"), ("Vertex", 7))
+        self.assertEqual(picked.parse_element("Face12"), ("Face", 12))
+        self.assertEqual(picked.parse_element("Vertex"), (None, None))
+        self.assertEqual(picked.parse_element("Shape"), (None, None))

@@ -1752,7 +1752,7 @@ def check_hold_vertices(check, out_dir):
     Gui.Selection.addSelection(doc.Name, result.Name, "Face3")
     check(not panel.hold_selected() and list(result.FixedVertices) == held
           and "Face3" in panel.held_message.text()
-          and "is not a vertex" in panel.held_message.text(),
+          and "is a face, not a vertex" in panel.held_message.text(),
           f"a panel selected: Hold says so and holds nothing ({panel.held_message.text()!r})")
     Gui.Selection.clearSelection()
     x, y = view.getPointOnScreen(App.Vector(*after[a]))  # held: it moved back
@@ -1800,7 +1800,7 @@ def check_recompute_in_edit_then_cancel(check, out_dir):
     files = os.path.join(out_dir, "recompute_then_cancel")
     control = facetwb.make_polymesh(facet.read_mesh(MESH), label="Control mesh")
     result = facetwb.make_planarized(control, tolerance=1e-3)
-    panels = facetwb.make_panelset(result, thickness=0.5)
+    panels = facetwb.make_panelset(result, thickness=0.5, gap=0.0)  # (a 1 mm mesh)
     panels.Tolerance = 1e-2  # the result is planar to 1e-3 only
     sheets = facetwb.make_cutsheets(panels, sheet=(10.0, 10.0), margin=0.1, spacing=0.1,
                                     output_dir=files, write_step=False)

@@ -10,25 +10,15 @@ vertices, it never renumbers them), so corners picked on the control mesh (a Fac
 mesh) count too. Runs headless: a selection is a list of ``(object, sub-element names)``.
 """
 
-import re
-
 from facetwb.objects.planarized import is_planarized
 from facetwb.objects.polymesh import is_polymesh
+from facetwb.picked import PickError, picked_vertices
 from facetwb.translation import translate
 
-_VERTEX = re.compile(r"^Vertex(\d+)$")
 
-
-class SelectionError(ValueError):
+class SelectionError(PickError):
     """The selection holds no vertex of the object, or something else (one line: what is
     selected and what to do)."""
-
-
-def gui_selection():
-    """The 3D view's selection as ``[(object, sub-element names), ...]``."""
-    import FreeCADGui as Gui
-
-    return [(s.Object, tuple(s.SubElementNames)) for s in Gui.Selection.getSelectionEx()]
 
 
 def vertex_count(obj):
@@ -56,35 +46,13 @@ def selected_vertices(obj, selection):
     selected."""
     if not is_planarized(obj):
         raise SelectionError(f"{getattr(obj, 'Label', obj)} is not a Planarized object")
-    if not selection:
-        raise SelectionError(translate(
-            "Facet", "Nothing is selected: click corners of {0} in the 3D view (Ctrl+click "
-                     "for more)").format(obj.Label))
-    count = vertex_count(obj)
     source = obj.Source
-    vertices = set()
-    for item, names in selection:
-        if item is not obj and not (item is source and is_polymesh(source)):
-            raise SelectionError(translate(
-                "Facet", "{0} is selected: select vertices of {1} (its corners in the 3D "
-                         "view)").format(item.Label, obj.Label))
-        if not names:
-            raise SelectionError(translate(
-                "Facet", "{0} is selected as a whole: click on its corners to select "
-                         "vertices").format(item.Label))
-        for name in names:
-            match = _VERTEX.match(name)
-            if match is None:
-                raise SelectionError(translate(
-                    "Facet", "{0} of {1} is not a vertex: click nearer a panel's "
-                             "corner").format(name, item.Label))
-            vertex = int(match.group(1))
-            if vertex >= count:
-                raise SelectionError(translate(
-                    "Facet", "{0} of {1}: the mesh has {2} vertices (0 to {3})").format(
-                    name, item.Label, count, count - 1))
-            vertices.add(vertex)
-    return sorted(vertices)
+
+    def accepts(item):
+        return item is obj or (item is source and is_polymesh(source))
+
+    count = vertex_count(obj) if selection else 0
+    return sorted(picked_vertices(selection, obj, count, accepts, SelectionError))
 
 
 def hold(obj, vertices):

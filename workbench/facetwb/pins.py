@@ -7,32 +7,18 @@ A vertex is picked on the PlanGraph (or any Facet plan mesh) or on a Lifting of 
 view providers of both name the element near the click ``Vertex<n>`` (n counted from 0, as
 the Shape lifting panel and the Lifting's ``TargetMaxVertex`` count). Anything else (a face,
 an edge, another object, an object picked in the tree) is refused with a message saying
-what to click. Wiring only: finding a pin's vertex is ``facet.plan.pin_vertices``.
+what to click (``facetwb.picked``). Wiring only: finding a pin's vertex is
+``facet.plan.pin_vertices``.
 """
 
 import math
 
 from facet.plan import COORDINATE_MAX, match_tolerance, pin_vertices
-
-#: Sub-element names given by the plan's and the Lifting's view providers.
-VERTEX, EDGE, FACE = "Vertex", "Edge", "Face"
+from facetwb.picked import PickError, picked_vertices
 
 
-class PinError(ValueError):
+class PinError(PickError):
     """The selection or a height cannot be pinned (one line saying what to do)."""
-
-
-def element_name(kind, index):
-    """``Vertex5``: the sub-element name of plan vertex (edge, face) ``index``."""
-    return f"{kind}{int(index)}"
-
-
-def parse_element(name):
-    """``(kind, index)`` of a sub-element name such as ``Vertex5``, or ``(None, None)``."""
-    for kind in (VERTEX, EDGE, FACE):
-        if name.startswith(kind) and name[len(kind):].isdigit():
-            return kind, int(name[len(kind):])
-    return None, None
 
 
 def plan_of(obj):
@@ -50,36 +36,12 @@ def _shows_plan(obj, plan):
 
 def selected_vertices(entries, plan):
     """The plan vertices selected in ``entries`` (``[(object, [sub-element names])]``), in
-    the order picked, each once. ``plan`` is the plan the pins are for. A PinError says
-    what is wrong with the first entry that is not a vertex of the plan or of its roof."""
+    the order picked, each once: vertices of ``plan`` (the plan the pins are for) or of a
+    Lifting of it. A PinError says what is wrong with the first entry that is not."""
     from facetwb.objects.polymesh import get_mesh
 
-    if not entries:
-        raise PinError(f"nothing is selected: click vertices of {plan.Label} (or of its "
-                       "roof) in the 3D view, Ctrl+click for more")
-    n_vertices = get_mesh(plan).n_vertices
-    found = []
-    for obj, names in entries:
-        if not _shows_plan(obj, plan):
-            raise PinError(f"{obj.Label} is not {plan.Label} nor a lifting of it: click "
-                           f"vertices of {plan.Label} or of its roof")
-        names = [name for name in names if name]
-        if not names:
-            raise PinError(f"{obj.Label} is selected as a whole (in the tree?): click its "
-                           "vertices in the 3D view")
-        for name in names:
-            kind, index = parse_element(name)
-            if kind == VERTEX and 0 <= index < n_vertices:
-                if index not in found:
-                    found.append(index)
-                continue
-            if kind == VERTEX:
-                raise PinError(f"{obj.Label}: {name} is not a vertex of {plan.Label}, which "
-                               f"has {n_vertices} vertices")
-            what = {EDGE: "an edge", FACE: "a face"}.get(kind, "not a vertex")
-            raise PinError(f"{obj.Label}: {name} is {what}, not a plan vertex: click "
-                           "closer to a corner (within a few pixels)")
-    return found
+    return picked_vertices(entries, plan, get_mesh(plan).n_vertices,
+                           lambda obj: _shows_plan(obj, plan), PinError)
 
 
 def check_height(height, what="Height"):
@@ -118,9 +80,3 @@ def pin(plan_mesh, pins, vertices, height, snap=0.0):
             at.append(v)
     return pins
 
-
-def selection_entries():
-    """The GUI selection as ``[(object, [sub-element names])]``."""
-    import FreeCADGui as Gui
-
-    return [(s.Object, list(s.SubElementNames)) for s in Gui.Selection.getSelectionEx()]

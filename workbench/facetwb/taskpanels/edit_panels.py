@@ -15,6 +15,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb import fixed_vertices
+from facetwb.picked import gui_selection
 from facetwb.taskpanels import forms
 from facetwb.objects.planarized import METHODS
 from facetwb.recompute import Recomputes, keep_up_to_date, up_to_date
@@ -127,7 +128,7 @@ class PlanarizeEditPanel:
 
     def _selected(self):
         """The selected vertices' indices; a SelectionError says what else is selected."""
-        return fixed_vertices.selected_vertices(self.obj, fixed_vertices.gui_selection())
+        return fixed_vertices.selected_vertices(self.obj, gui_selection())
 
     def hold_selected(self):
         """Hold selected: FixedVertices gains the selected vertices (the result re-solves)."""

@@ -15,6 +15,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from facetwb import pins as pin_logic
+from facetwb.picked import gui_selection
 from facetwb.recompute import failure, keep_up_to_date, up_to_date
 from facetwb.taskpanels import forms
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
@@ -172,7 +173,7 @@ class PinEditor:
         """Pin the selected vertices (``entries``: the selection, by default the GUI's) at
         the height field's value. False (message shown) when the selection is not plan
         vertices."""
-        entries = pin_logic.selection_entries() if entries in (None, False) else entries
+        entries = gui_selection() if entries in (None, False) else entries
         try:
             vertices = pin_logic.selected_vertices(entries, self.plan)
             height = pin_logic.check_height(self.height.property("rawValue"))

@@ -9,7 +9,8 @@ display modes (:meth:`Markers.add_to`), or in a 3D view's scene graph for as lon
 panel is open (:meth:`Markers.show_in` and :meth:`Markers.remove`).
 
 Used by the Lifting's pinned heights (``view_lifting``), the Pin heights panel and the Shape
-lifting panel's Raise vertex row.
+lifting panel's Raise vertex row; :class:`VertexMarkers`, on vertices of a drawn mesh, by the
+Planarized object's held vertices and those selected in its edit panel.
 """
 
 from pivy import coin
@@ -24,8 +25,8 @@ _registered = {}
 
 
 def _bitmap(shape, size):
-    """Rows of "x" (set) and " " for a filled ``shape`` ("circle", "diamond", "ring") of
-    ``size`` pixels."""
+    """Rows of "x" (set) and " " for a ``shape`` of ``size`` pixels: "circle", "diamond",
+    "square" (filled), "ring" or "frame" (a square's outline, 2 pixels wide)."""
     c = (size - 1) / 2.0
     rows = []
     for j in range(size):
@@ -34,6 +35,10 @@ def _bitmap(shape, size):
             dx, dy = i - c, j - c
             if shape == "diamond":
                 inside = abs(dx) + abs(dy) <= c + 0.25
+            elif shape == "square":
+                inside = True
+            elif shape == "frame":
+                inside = max(abs(dx), abs(dy)) >= c - 1.5
             elif shape == "ring":
                 inside = c - 2.2 <= (dx * dx + dy * dy) ** 0.5 <= c + 0.3
             else:
@@ -63,6 +68,8 @@ class Markers:
         pick.style = coin.SoPickStyle.UNPICKABLE
         unlit = coin.SoLightModel()
         unlit.model = coin.SoLightModel.BASE_COLOR
+        overall = coin.SoMaterialBinding()  # not a Planarity mode's per-face colours
+        overall.value = coin.SoMaterialBinding.OVERALL
         depth = coin.SoDepthBuffer()
         depth.test = False  # over the faces
         material = coin.SoMaterial()
@@ -78,7 +85,7 @@ class Markers:
         self.label_root = coin.SoSeparator()
         for node in (label_material, font, self.labels):
             self.label_root.addChild(node)
-        for node in (pick, unlit, depth, material, self.coords, self.marker,
+        for node in (pick, unlit, overall, depth, material, self.coords, self.marker,
                      self.label_root):
             self.root.addChild(node)
         self.points = []
@@ -130,6 +137,21 @@ class Markers:
             if index >= 0:
                 graph.removeChild(index)
         self._views = []
+
+
+class VertexMarkers(Markers):
+    """Markers (no labels) on some vertices of a drawn mesh: ``vertices``, their indices."""
+
+    def __init__(self, color, style):
+        super().__init__(color, style)
+        self.vertices = []
+
+    def show(self, vertices, drawn):
+        """Markers on ``vertices`` (indices) at their positions in ``drawn`` (the mesh's
+        SoCoordinate3 field); indices it does not have are left out."""
+        n = drawn.getNum()
+        self.vertices = sorted({int(v) for v in vertices if 0 <= int(v) < n})
+        self.set([drawn[v].getValue() for v in self.vertices])
 
 
 def length_text(value):

@@ -16,25 +16,23 @@ object's Source, the mesh before planarization):
 
 In every display mode the vertices held in place (``FixedVertices``) are drawn as magenta
 squares (11 pixels) and, while the Planarize edit panel is open, the vertices selected in
-the 3D view as black squares (17 pixels, under the magenta ones: a held vertex selected is
-framed in black), over the panels (SoAnnotation).
+the 3D view framed in black (17 pixels), over the panels (``markers.VertexMarkers``).
 """
 
 import numpy as np
-from pivy import coin
 
 from facetwb import compat
 from facetwb.objects.polymesh import MESH_PROPERTIES
-from facetwb.viewproviders.view_polymesh import ViewProviderPolyMesh, _set_mfield
+from facetwb.viewproviders.view_polymesh import ViewProviderPolyMesh
 
-#: Held vertices: colour and size (a square dot, screen pixels; Coin's and FreeCAD's
-#: markers stop at 9 pixels); magenta is not in the colour map.
+#: Held vertices: colour and marker (a filled square, screen pixels); magenta is not in the
+#: colour map.
 HELD_COLOR = (1.0, 0.0, 1.0)
-HELD_PIXELS = 11.0
-#: Vertices selected while the Planarize edit panel is open: drawn first and larger, so a
-#: selected held vertex is magenta in a black frame.
+HELD_STYLE = ("square", 11)
+#: Vertices selected while the Planarize edit panel is open: a black frame around the
+#: vertex, held or not.
 SELECTED_COLOR = (0.0, 0.0, 0.0)
-SELECTED_PIXELS = 17.0
+SELECTED_STYLE = ("frame", 17)
 
 #: ColorBy choices: (facet.QualityReport.per_face name, legend title, kind, reversed).
 COLOR_BY = {
@@ -46,37 +44,6 @@ COLOR_BY = {
     "Edge ratio change": ("ratio_change", "Edge ratio change", "ratio", False),
     "Straightest corner": ("straight_corner", "Straightest corner", "angle", True),
 }
-
-
-class VertexMarkers:
-    """A marker on some vertices of the drawn mesh, over everything, not pickable (a pick
-    there reaches the mesh under it, whose vertex it names)."""
-
-    def __init__(self, color, pixels):
-        self.root = coin.SoAnnotation()
-        pick = coin.SoPickStyle()
-        pick.style = coin.SoPickStyle.UNPICKABLE
-        unlit = coin.SoLightModel()
-        unlit.model = coin.SoLightModel.BASE_COLOR
-        overall = coin.SoMaterialBinding()  # not the Planarity mode's per-face colours
-        overall.value = coin.SoMaterialBinding.OVERALL
-        material = coin.SoMaterial()
-        material.diffuseColor.setValue(*color)
-        style = coin.SoDrawStyle()
-        style.pointSize = pixels
-        self.coords = coin.SoCoordinate3()
-        # points, not an SoMarkerSet: Coin's markers are at most 9 pixels
-        self.markers = coin.SoPointSet()
-        for node in (pick, unlit, overall, material, style, self.coords, self.markers):
-            self.root.addChild(node)
-        self.vertices = []
-
-    def show(self, vertices, drawn):
-        """Markers on ``vertices`` (indices) at their positions in ``drawn`` (the mesh's
-        SoCoordinate3 field); indices it does not have are left out."""
-        n = drawn.getNum()
-        self.vertices = sorted({int(v) for v in vertices if 0 <= int(v) < n})
-        _set_mfield(self.coords.point, [drawn[v].getValue() for v in self.vertices])
 
 
 class ViewProviderPlanarized(ViewProviderPolyMesh):
@@ -102,8 +69,10 @@ class ViewProviderPlanarized(ViewProviderPolyMesh):
             vobj.ColorBy = choice
 
     def overlay_nodes(self):
-        self.held = VertexMarkers(HELD_COLOR, HELD_PIXELS)
-        self.selected = VertexMarkers(SELECTED_COLOR, SELECTED_PIXELS)
+        from facetwb.viewproviders.markers import VertexMarkers
+
+        self.held = VertexMarkers(HELD_COLOR, HELD_STYLE)
+        self.selected = VertexMarkers(SELECTED_COLOR, SELECTED_STYLE)
         return (self.selected.root, self.held.root)
 
     def redraw_mesh(self, obj):
