@@ -332,12 +332,17 @@ class TestPlanGraphSources(DocumentTestCase):
         self.assertEqual(plan.FileUnits, "From file")
         self.doc.recompute()
         np.testing.assert_array_equal(np.ptp(points_array(plan)[:, :2], axis=0), [9.0, 6.0])
+        # (a 9 x 6 mm roof was made without a word)
+        self.assertEqual(list(plan.Warnings), [
+            "its edges are 5.14 mm long on average, which no roof's are: set File Units to "
+            "the unit the file is drawn in (m, cm, in or ft)"])
         plan.FileUnits = "m"
         self.doc.recompute()
         self.assertTrue(plan.isValid(), plan.getStatusString())
         np.testing.assert_array_equal(np.ptp(points_array(plan)[:, :2], axis=0),
                                       [9000.0, 6000.0])
         self.assertEqual(plan.FaceCount, 2)
+        self.assertEqual(list(plan.Warnings), [])
 
         document = ezdxf.new()
         document.units = 6
@@ -351,7 +356,9 @@ class TestPlanGraphSources(DocumentTestCase):
         self.doc.recompute()
         np.testing.assert_array_equal(np.ptp(points_array(old)[:, :2], axis=0), [9.0, 6.0])
         self.assertEqual(list(old.Warnings), [
-            "drawn in metres ($INSUNITS 6) but read in millimetres, as asked"])
+            "drawn in metres ($INSUNITS 6) but read in millimetres, as asked",
+            "its edges are 5.14 mm long on average, which no roof's are: set File Units to "
+            "the unit the file is drawn in (m, cm, in or ft)"])
 
         # an older document: no FileUnits; reopened, it reads the DXF as it did then
         old.removeProperty("FileUnits")

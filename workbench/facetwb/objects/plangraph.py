@@ -101,15 +101,31 @@ class PlanGraph(PolyMesh):
                              to_mm=True, units_mm=units, progress=progress.hook())
         else:
             raise ValueError(f"{obj.Label}: no drawing: set Sources or File")
+        warnings = list(plan.warnings)
+        if not obj.Sources:
+            warnings += _size_warnings(plan.mesh)
         set_mesh(obj, plan.mesh)
         set_planarity(obj, facet.planarity(plan.mesh))
         obj.DanglingEdges = len(plan.dangling)
         obj.OpeningCount = int(plan.openings)
         obj.SnappedEndpoints = int(plan.snapped)
-        if list(obj.Warnings) != list(plan.warnings):
-            obj.Warnings = list(plan.warnings)
-        for text in plan.warnings:
+        if list(obj.Warnings) != warnings:
+            obj.Warnings = warnings
+        for text in warnings:
             App.Console.PrintWarning(f"{obj.Label}: {text}\n")
+
+
+def _size_warnings(mesh):
+    """[the warning] when a plan read from a file has edges no roof has (a table in metres
+    read as millimetres: a 9 x 6 m canopy 9 x 6 mm), saying to set File Units; []
+    otherwise."""
+    from facet.cutsheets import implausible_edge_mm
+
+    edge = implausible_edge_mm(mesh.mean_edge_length())
+    if edge is None:
+        return []
+    return [f"its edges are {edge:.3g} mm long on average, which no roof's are: set File "
+            "Units to the unit the file is drawn in (m, cm, in or ft)"]
 
 
 def is_plan_graph(obj):
