@@ -283,6 +283,56 @@ def run(check, out_dir, g):
         check(lift_mix.active is None and not in_scene(marker),
               "the raise marker is gone when the panel closes")
     App.closeDocument(doc.Name)
+    check_cancel_keeps_what_is_made(check)
+
+
+def check_cancel_keeps_what_is_made(check):
+    """The Pin heights panel's Cancel re-solves the Lifting alone: the panels made from the
+    roof, up to date when the panel opened, are neither rebuilt nor marked (a Cancel that
+    recomputed the document rebuilt them, and rewrote cut sheets' files, for nothing); after
+    a Recompute pressed with the panel open, Cancel rebuilds them from the roof it puts
+    back."""
+    import FreeCAD as App
+
+    import facetwb
+    from facetwb.recompute import Recomputes
+    from facetwb.taskpanels import lift_pins
+
+    doc = App.newDocument("PinsCancel")
+    plan = hipped_plan(doc)
+    ridge = [vertex_of(plan, p) for p in RIDGE]
+    pinned = [(x, y, 2500.0) for x, y in CORNERS] + [(x, y, 4500.0) for x, y in RIDGE]
+    lifting = facetwb.make_lifting(plan, pins=pinned)
+    panels = facetwb.make_panelset(lifting, thickness=20.0)
+    doc.recompute()
+    volumes = list(panels.Volumes)
+    recorded = Recomputes(doc)
+    try:
+        for pressed in (False, True):
+            recorded.take()
+            if not check(lift_pins.edit(lifting), "the Pin heights panel opens"):
+                break
+            panel = lift_pins.active
+            select(lifting, [f"Vertex{v}" for v in ridge])
+            panel.editor.height.setProperty("rawValue", 5000.0)
+            panel.editor.pin_selection()
+            if pressed:
+                doc.recompute()  # Recompute pressed with the panel open
+            changed = list(panels.Volumes)
+            recorded.take()
+            panel.reject()
+            settle()
+            rebuilt = recorded.take()
+            check(panels.Name in rebuilt if pressed else panels.Name not in rebuilt,
+                  f"Pin heights' Cancel {'rebuilds' if pressed else 'leaves'} the panels "
+                  f"made from the roof{' after a Recompute' if pressed else ''} "
+                  f"(recomputed: {sorted(rebuilt)})")
+            check("Touched" not in panels.State and list(panels.Volumes) == volumes
+                  and (changed != volumes) == pressed,
+                  f"the panels are those of the pins put back, up to date ({panels.State})")
+    finally:
+        recorded.stop()
+        App.closeDocument(doc.Name)
 
 
 def z_before(pinned, lifting, eaves, ridge):

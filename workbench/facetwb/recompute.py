@@ -28,8 +28,8 @@ import sys
 from facetwb import progress
 from facetwb.translation import translate
 
-__all__ = ["RecomputeError", "Recomputes", "after_recompute", "failure", "guarded",
-           "keep_up_to_date", "one_line", "up_to_date"]
+__all__ = ["RecomputeError", "Recomputes", "after_recompute", "cancel_live_edit", "failure",
+           "guarded", "keep_up_to_date", "one_line", "up_to_date"]
 
 _saved_limit = []
 _observer = []
@@ -119,6 +119,24 @@ def keep_up_to_date(doc, names, recomputed=()):
             obj.purgeTouched()
     if again:
         doc.recompute(again)
+
+
+def cancel_live_edit(doc, obj, fresh, recomputes, restore=None):
+    """A task panel's Cancel, whose changes to ``obj`` were re-solved live (``obj`` alone)
+    in a transaction open on ``doc``: abort it (the previous values and result),
+    ``restore()`` (if given: what the transaction did not put back), re-solve ``obj`` alone
+    if that left it marked, then :func:`keep_up_to_date` with ``fresh`` (the names that
+    were up to date when the panel opened) and what a Recompute pressed meanwhile rebuilt
+    from ``obj`` (``recomputes``, a :class:`Recomputes` started with the panel). What is
+    made from ``obj`` is not recomputed otherwise: a document recompute here rebuilt the
+    panels, and rewrote cut sheets' files, made from the result Cancel puts back."""
+    rebuilt = recomputes.take() & {o.Name for o in obj.InListRecursive}
+    doc.abortTransaction()
+    if restore is not None:
+        restore()
+    if "Touched" in obj.State:
+        doc.recompute([obj])
+    keep_up_to_date(doc, fresh, rebuilt - recomputes.take())
 
 
 def after_recompute(doc, action):

@@ -18,7 +18,7 @@ from facetwb import fixed_vertices
 from facetwb.picked import gui_selection
 from facetwb.taskpanels import forms
 from facetwb.objects.planarized import METHODS
-from facetwb.recompute import Recomputes, keep_up_to_date, up_to_date
+from facetwb.recompute import Recomputes, cancel_live_edit, up_to_date
 from facetwb.taskpanels.derive_panels import check_planarize
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
 
@@ -231,16 +231,10 @@ class PlanarizeEditPanel:
         return True
 
     def reject(self):
-        # made from values Cancel takes back: the panels, cut sheets (and their files) a
-        # Recompute pressed while the panel was open rebuilt; this object's own results
-        # the transaction puts back
-        rebuilt = self.recomputes.take() & {o.Name for o in self.obj.InListRecursive}
-        self.doc.abortTransaction()  # the previous values, points and planarity
-        if "Touched" in self.obj.State:
-            self.doc.recompute([self.obj])
-        # the result is the one they were made from: they are up to date again, or
-        # rebuilt from it
-        keep_up_to_date(self.doc, self.fresh, rebuilt - self.recomputes.take())
+        # the previous values, points and planarity; what is made from the result is up
+        # to date again, or rebuilt from it after a Recompute pressed while the panel was
+        # open
+        cancel_live_edit(self.doc, self.obj, self.fresh, self.recomputes)
         from facetwb import live_parameters
 
         live_parameters.forget(self.obj)  # the values put back are solved

@@ -16,7 +16,7 @@ import FreeCADGui as Gui
 
 from facetwb import pins as pin_logic
 from facetwb.picked import gui_selection
-from facetwb.recompute import failure, keep_up_to_date, up_to_date
+from facetwb.recompute import Recomputes, cancel_live_edit, failure, up_to_date
 from facetwb.taskpanels import forms
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
 
@@ -265,6 +265,7 @@ class LiftPinsPanel:
         # what is made from the roof and up to date now: the live re-solves touch it, and
         # Cancel, which puts the same roof back, leaves it so
         self.fresh = up_to_date([obj] + list(obj.InListRecursive))
+        self.recomputes = Recomputes(self.doc)  # what a Recompute pressed meanwhile rebuilt
         self.doc.openTransaction(translate("Facet", TITLE))
         active = self
 
@@ -295,17 +296,19 @@ class LiftPinsPanel:
         return True
 
     def reject(self):
-        self.doc.abortTransaction()  # the previous pins and roof
-        if [tuple(p) for p in self.obj.PinnedPoints] != self.original:
-            self.obj.PinnedPoints = [App.Vector(*p) for p in self.original]
-        if "Touched" in self.obj.State:
-            self.doc.recompute()
-        keep_up_to_date(self.doc, self.fresh)
+        def restore():  # (a document without undo: the transaction put nothing back)
+            if [tuple(p) for p in self.obj.PinnedPoints] != self.original:
+                self.obj.PinnedPoints = [App.Vector(*p) for p in self.original]
+
+        # the previous pins and roof, re-solved alone: what is made from the roof is up to
+        # date again (rebuilt from it after a Recompute pressed while the panel was open)
+        cancel_live_edit(self.doc, self.obj, self.fresh, self.recomputes, restore)
         self._close()
         return True
 
     def _close(self):
         global active
+        self.recomputes.stop()
         self.editor.close()
         active = None
         if Gui.ActiveDocument is not None and Gui.ActiveDocument.getInEdit() is not None:
