@@ -472,7 +472,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/recompute.py" line="204"/>
+        <location filename="../../workbench/facetwb/recompute.py" line="222"/>
         <source>Recomputing {0} ...</source>
         <translation type="unfinished"></translation>
     </message>
@@ -767,17 +767,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="208"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="204"/>
         <source>Height of pin {0}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="246"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="242"/>
         <source>{0}: click vertices of the roof or of its plan in the 3D view (Ctrl+click for more), type a height and press Pin selected vertices. The roof follows at once; the other vertices are free. OK keeps the pins in one undo step; Cancel puts the previous ones back.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="254"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="250"/>
         <source>Pins are used only without other targets: the targets are now {0} (empty Targets and TargetFile to use the pins).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -914,6 +914,21 @@
     <message>
         <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="175"/>
         <source>{0} vertices selected</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/pins.py" line="55"/>
+        <source>{0}: {1} is not a number of mm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/pins.py" line="58"/>
+        <source>{0}: {1} mm is not a finite height up to {2} mm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/pins.py" line="75"/>
+        <source>{0}: {1} is not a length (a number of mm, or with a length unit: 2.4 m)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

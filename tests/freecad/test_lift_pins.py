@@ -98,6 +98,22 @@ class TestPinsFromSelection(DocumentTestCase):
             pins.check_height("three metres")
         self.assertIn("'three metres' is not a number of mm", str(caught.exception))
 
+    def test_a_height_typed_in_the_table_is_a_length(self):
+        # a quantity of another kind was taken as mm: "2.4 kg" a height of 2.4 mm, "3 m^2"
+        # one of 3,000,000 mm
+        self.assertEqual(pins.height_from_text("2.4 m"), 2400.0)
+        self.assertEqual(pins.height_from_text("2400 mm"), 2400.0)
+        self.assertEqual(pins.height_from_text("3500"), 3500.0)
+        for text in ("2.4 kg", "3 m^2", "45 deg"):
+            with self.assertRaises(pins.PinError) as caught:
+                pins.height_from_text(text, "Height of pin 2")
+            self.assertIn(f"Height of pin 2: '{text}' is not a length", str(caught.exception))
+        for text, said in (("high", "'high' is not a number of mm"),
+                           ("1e400", "inf mm is not a finite height")):
+            with self.assertRaises(pins.PinError) as caught:
+                pins.height_from_text(text)
+            self.assertIn(said, str(caught.exception))
+
     def test_element_names(self):
         self.assertEqual(picked.element_name(picked.VERTEX, 7), "Vertex7")
         self.assertEqual(picked.parse_element("Vertex7"), ("Vertex", 7))

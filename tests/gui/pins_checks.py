@@ -223,10 +223,12 @@ def run(check, out_dir, g):
     check(abs(lifting.PinnedPoints[row].z - 2400.0) < 1e-9,
           f"a height edited in the table ('2.4 m') is written "
           f"({lifting.PinnedPoints[row].z} mm)")
-    editor.table.item(row, 3).setText("high")
-    check(abs(lifting.PinnedPoints[row].z - 2400.0) < 1e-9
-          and "is not a number of mm" in editor.message.text(),
-          f"a height that is not a length is refused ({editor.message.text()!r})")
+    for text, said in (("high", "is not a number of mm"), ("2.4 kg", "is not a length")):
+        editor.table.item(row, 3).setText(text)
+        check(abs(lifting.PinnedPoints[row].z - 2400.0) < 1e-9
+              and said in editor.message.text(),
+              f"a height that is not a length ({text!r}) is refused "
+              f"({editor.message.text()!r})")
     editor.table.selectRow(row)
     check(editor.remove_selected() and len(lifting.PinnedPoints) == 5
           and editor.table.rowCount() == 5, "Remove pin takes the selected pin away")

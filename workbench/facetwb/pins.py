@@ -15,6 +15,7 @@ import math
 
 from facet.plan import COORDINATE_MAX, match_tolerance, pin_vertices
 from facetwb.picked import PickError, picked_vertices
+from facetwb.translation import translate
 
 
 class PinError(PickError):
@@ -44,16 +45,37 @@ def selected_vertices(entries, plan):
                            lambda obj: _shows_plan(obj, plan), PinError)
 
 
-def check_height(height, what="Height"):
-    """``height`` as a float (mm); a PinError when it is not a usable number."""
+def check_height(height, what=None):
+    """``height`` as a float (mm); a PinError when it is not a usable number. ``what``
+    names it in the message (default "Height")."""
+    what = translate("Facet", "Height") if what is None else what
     try:
         value = float(height)
     except (TypeError, ValueError):
-        raise PinError(f"{what}: {height!r} is not a number of mm") from None
+        raise PinError(translate("Facet", "{0}: {1} is not a number of mm").format(
+            what, repr(height))) from None
     if not (math.isfinite(value) and abs(value) <= COORDINATE_MAX):
-        raise PinError(f"{what}: {value!r} mm is not a finite height up to "
-                       f"{COORDINATE_MAX:g} mm")
+        raise PinError(translate("Facet", "{0}: {1} mm is not a finite height up to {2} mm")
+                       .format(what, repr(value), f"{COORDINATE_MAX:g}"))
     return value
+
+
+def height_from_text(text, what=None):
+    """The height in mm of ``text`` typed in the table of pins: a length ("2.4 m", "2400
+    mm") or a bare number of mm. A PinError for anything else: not a number, or a quantity
+    of another kind ("2.4 kg", "3 m^2" were taken as 2.4 and 3,000,000 mm)."""
+    import FreeCAD as App
+
+    try:
+        quantity = App.Units.Quantity(str(text))
+    except (ValueError, RuntimeError, TypeError):
+        return check_height(str(text), what)
+    if quantity.Unit not in (App.Units.Length, App.Units.Unit()):
+        what = translate("Facet", "Height") if what is None else what
+        raise PinError(translate("Facet", "{0}: {1} is not a length (a number of mm, or "
+                                          "with a length unit: 2.4 m)").format(what,
+                                                                              repr(str(text))))
+    return check_height(quantity.Value, what)
 
 
 def pins_vertices(plan_mesh, pins, snap=0.0):

@@ -201,12 +201,8 @@ class PinEditor:
         """Height of pin ``row`` from ``text`` (a length: "3.5 m", "3500 mm"; "3500": mm).
         False (message shown, the height as it was) when it is not one."""
         try:
-            value = App.Units.Quantity(str(text)).Value
-        except (ValueError, RuntimeError, TypeError):
-            value = str(text)
-        try:
-            height = pin_logic.check_height(value, translate("Facet", "Height of pin "
-                                                                      "{0}").format(row + 1))
+            height = pin_logic.height_from_text(text, translate("Facet", "Height of pin "
+                                                                         "{0}").format(row + 1))
         except pin_logic.PinError as error:
             self.fill()
             self.show_message(str(error), error=True)
