@@ -210,6 +210,17 @@ class TestPanelSet(DocumentTestCase):
             expected = [float(m) for m in mass_kg(obj.Volumes, 2700.0)]
             np.testing.assert_allclose(list(obj.Masses), expected, rtol=1e-12)
             self.assertAlmostEqual(obj.TotalMass / sum(expected), 1.0, places=12)
+            # hidden and shown in the tree, renamed: no input changed (they made the next
+            # Density change build every solid again)
+            obj.Visibility = False
+            obj.Visibility = True
+            obj.Label = "Light panels"
+            obj.Density = 2600.0
+            self.doc.recompute()
+            self.assertEqual(calls, [])
+            self.assertTrue(obj.Shape.isSame(shape))
+            obj.Density = 2700.0
+            self.doc.recompute()
             obj.OnePerPanel = True
             self.doc.recompute()
             self.assertEqual(calls, [])

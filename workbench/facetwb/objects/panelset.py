@@ -39,6 +39,9 @@ ROTATIONS = ["90", "none", "free"]
 #: The PanelSet's inputs that change no solid: a recompute after changes to these alone
 #: keeps its Shape (masses, part IDs and the per-panel objects only).
 NO_GEOMETRY = frozenset({"Density", "OnePerPanel", "IdScheme", "IdPrefix"})
+#: Properties that change nothing a recompute makes (hidden or shown in the tree, renamed):
+#: not counted as changes at all (after one, a Density change rebuilt every solid).
+NOT_INPUTS = frozenset({"Visibility", "Label", "Label2"})
 
 
 class _Proxy:
@@ -215,6 +218,8 @@ class PanelSet(_Proxy):
         return self._geometry_key(obj) + (obj.IdScheme, obj.IdPrefix)
 
     def onChanged(self, obj, prop):  # noqa: N802 - FreeCAD's name
+        if prop in NOT_INPUTS:
+            return
         changed = getattr(self, "_changed", None)
         if changed is None:
             changed = self._changed = set()
