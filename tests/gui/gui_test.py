@@ -784,6 +784,28 @@ def check_lift_mix_states(check, out_dir):
               and "Touched" not in lifting.State and "Touched" not in panels.State,
               f"Cancel after a slider's move puts the roof back, up to date "
               f"({lifting.State}, {panels.State})")
+    # Recompute pressed with the panel open rebuilt the panels from the moved roof; Cancel
+    # put the roof back and left them so, marked up to date
+    Gui.runCommand("Facet_LiftMix")
+    Gui.updateGui()
+    panel = lift_mix.active
+    if panel is not None:
+        panel.sliders[0].setValue(40)
+        Gui.updateGui()
+        doc.recompute()  # Recompute pressed
+        rebuilt = abs(panels.Shape.Volume - volume) > 1e-6 * volume
+        panel.reject()
+        Gui.updateGui()
+        # (the transaction put the Shape back; the panels the cut sheets take, and their
+        # files, stayed those of the moved roof)
+        computed = panels.Proxy.computed(panels)[0]
+        area = sum(p.area for p in computed.panels)
+        check(rebuilt and abs(panels.Shape.Volume - volume) < 1e-9 * volume
+              and abs(area - sum(panels.Areas)) < 1e-9 * area
+              and "Touched" not in panels.State,
+              f"Cancel after a Recompute with the Shape lifting panel open rebuilds the "
+              f"panels from the roof put back (their area {area:.9g}, the PanelSet's "
+              f"{sum(panels.Areas):.9g}; {panels.State})")
     # the sliders re-solve the Lifting alone: recomputing what is made from it at every
     # step took 10 s a step with 5,000 panels; OK recomputes it, in the same undo step
     shown = (lifting.ViewObject.Visibility, panels.ViewObject.Visibility)

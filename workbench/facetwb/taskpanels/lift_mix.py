@@ -12,7 +12,7 @@ Cancel restores the previous one.
 import FreeCAD as App
 import FreeCADGui as Gui
 
-from facetwb.recompute import keep_up_to_date, up_to_date
+from facetwb.recompute import Recomputes, keep_up_to_date, up_to_date
 from facetwb.taskpanels import forms
 from facetwb.translation import translate
 
@@ -140,6 +140,7 @@ class LiftMixPanel:
         # the Lifting and what is made from it that are up to date now: the sliders'
         # recomputes touch them, and Cancel, which puts the same roof back, leaves them so
         self.fresh = up_to_date([obj] + list(obj.InListRecursive))
+        self.recomputes = Recomputes(obj.Document)  # what a Recompute pressed meanwhile rebuilt
         #: Visibility before the panel changed it, by object name (:meth:`_show_roof`).
         self.views = {}
         self.obj.Document.openTransaction("Shape lifting")
@@ -223,6 +224,7 @@ class LiftMixPanel:
 
     def _close(self):
         global active
+        self.recomputes.stop()
         self.marker.remove()
         for name, visible in self.views.items():
             o = self.obj.Document.getObject(name)
@@ -250,6 +252,10 @@ class LiftMixPanel:
 
     def reject(self):
         doc = self.obj.Document
+        # what a Recompute pressed while the panel was open made from the roof Cancel takes
+        # back: the transaction puts their properties back, not the PanelSet's panels that
+        # cut sheets reuse nor the files written
+        rebuilt = self.recomputes.take() & {o.Name for o in self.obj.InListRecursive}
         doc.abortTransaction()  # puts Mix, Drags, the roof and what is made from it back
         # set again and recomputed even when unchanged, Mix and Drags rebuilt the panels and
         # cut sheets made from the Lifting (files rewritten) for nothing
@@ -257,7 +263,7 @@ class LiftMixPanel:
             self.obj.Mix = self.original
             self.obj.Drags = self.original_drags
             doc.recompute()
-        keep_up_to_date(doc, self.fresh)
+        keep_up_to_date(doc, self.fresh, rebuilt - self.recomputes.take())
         self._close()
         return True
 
