@@ -26,9 +26,11 @@ def test_each_point_finds_its_vertex_within_the_tolerance():
 
 
 def test_a_point_with_nan_is_refused():
+    # (naming which of them: it said "a pinned point")
     plan = plan_from_segments(SQUARE)
-    with pytest.raises(InputError, match="NaN or infinite"):
-        pin_vertices(plan, [(math.nan, 0.0, 1.0)], tolerance=1.0)
+    with pytest.raises(InputError, match=r"pinned point 2 of 2 has a NaN or infinite x or y "
+                                         r"\(nan, 0\.0\)"):
+        pin_vertices(plan, [(0.0, 0.0, 1.0), (math.nan, 0.0, 1.0)], tolerance=1.0)
 
 
 def test_match_tolerance_is_the_snap_or_a_millionth_of_the_plan():

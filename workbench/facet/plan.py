@@ -1130,8 +1130,11 @@ def pin_vertices(plan, points, *, tolerance):
     points = points.reshape(len(points), -1) if points.size else np.zeros((0, 2))
     if points.shape[0] == 0 or len(xy) == 0:
         return np.full(points.shape[0], -1, dtype=np.int64)
-    if not np.all(np.isfinite(points[:, :2])):
-        raise InputError("a pinned point has a NaN or infinite x or y")
+    finite = np.all(np.isfinite(points[:, :2]), axis=1)
+    if not finite.all():
+        bad = int(np.flatnonzero(~finite)[0])
+        raise InputError(f"pinned point {bad + 1} of {len(points)} has a NaN or infinite x "
+                         f"or y ({points[bad, 0]!r}, {points[bad, 1]!r})")
     distance, vertex = cKDTree(xy).query(points[:, :2])
     return np.where(distance <= tolerance, vertex, -1).astype(np.int64)
 
