@@ -565,6 +565,104 @@ class TestPanelSet(DocumentTestCase):
         self.doc.removeObject(sheets.Name)
         self.doc.removeObject(ps_obj.Name)
 
+    def test_cutsheets_keep_their_nesting_when_only_the_masses_change(self):
+        """A PanelSet's Density changes the schedules' masses, not the nesting (1,536
+        panels: 75 s a Density change, which nested them again and wrote every file, 0.4 s
+        now): the DXF, SVG and STEP files are left as they are, schedule.csv and
+        schedule.json are written again, the same as after a whole recompute. OnePerPanel
+        writes nothing; the part IDs, the CutSheets' own inputs, a missing file and a
+        recompute marked by hand nest again."""
+        import csv
+        import json
+
+        fnest = sys.modules["facet.nest"]
+        nests = []
+        saved = fnest.nest
+
+        def counting(*a, **k):
+            nests.append(1)
+            return saved(*a, **k)
+
+        fnest.nest = counting
+        self.addCleanup(setattr, fnest, "nest", saved)
+        ps_obj = facetwb.make_panelset(self.source, thickness=T, name="Glass")
+        out = os.path.join(self.tmp.name, "glass")
+        sheets = facetwb.make_cutsheets(ps_obj, sheet=(2600.0, 1400.0), output_dir=out)
+        self.addCleanup(self.doc.removeObject, ps_obj.Name)
+        self.addCleanup(self.doc.removeObject, sheets.Name)
+
+        def files():
+            """(inode, mtime) of each file written: a file written again is a new one"""
+            found = {}
+            for root, _dirs, names in os.walk(out):
+                for name in names:
+                    st = os.stat(os.path.join(root, name))
+                    found[os.path.relpath(os.path.join(root, name), out)] = (
+                        st.st_ino, st.st_mtime_ns)
+            return found
+
+        def changed(before):
+            now = files()
+            return sorted(k for k in now if now[k] != before.get(k))
+
+        def schedule():
+            with open(os.path.join(out, "schedule.csv"), "rb") as handle:
+                text = handle.read()
+            with open(os.path.join(out, "schedule.json"), encoding="utf-8") as handle:
+                meta = json.load(handle)["meta"]
+            return text, meta["density"]
+
+        self.doc.recompute()
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        self.assertEqual(len(nests), 1)
+        before = files()
+        self.assertIn("panels.step", before)
+        self.assertTrue(any(k.startswith("svg") for k in before))
+        del nests[:]
+        ps_obj.Density = 2500.0
+        self.doc.recompute()
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        self.assertEqual(nests, [])
+        self.assertEqual(changed(before), ["schedule.csv", "schedule.json"])
+        text, density = schedule()
+        self.assertEqual(density, 2500.0)
+        rows = list(csv.DictReader(text.decode("utf-8").splitlines()))
+        np.testing.assert_allclose([float(r["mass_kg"]) for r in rows], list(ps_obj.Masses),
+                                   rtol=1e-9)
+        # the same schedules as a whole recompute's (marked by hand: it nests again)
+        before = files()
+        sheets.touch()
+        self.doc.recompute()
+        self.assertEqual(len(nests), 1)
+        self.assertIn("sheets.dxf", changed(before))
+        self.assertEqual(schedule(), (text, 2500.0))
+        del nests[:]
+        before = files()
+        ps_obj.OnePerPanel = True
+        self.doc.recompute()
+        self.assertEqual((nests, changed(before)), ([], []))
+        ps_obj.OnePerPanel = False
+        ps_obj.Density = 0.0  # no mass: empty column, density null
+        self.doc.recompute()
+        self.assertEqual((nests, changed(before)), ([], ["schedule.csv", "schedule.json"]))
+        text, density = schedule()
+        self.assertIsNone(density)
+        self.assertEqual({r["mass_kg"] for r in csv.DictReader(
+            text.decode("utf-8").splitlines())}, {""})
+        # what the nesting or the files depend on nests again
+        ps_obj.IdPrefix = "G-"  # (the IDs are in the DXF)
+        self.doc.recompute()
+        self.assertEqual(len(nests), 1)
+        sheets.Spacing = 8.0
+        self.doc.recompute()
+        self.assertEqual(len(nests), 2)
+        os.remove(os.path.join(out, "sheets.dxf"))
+        ps_obj.Density = 2700.0
+        self.doc.recompute()
+        self.assertEqual(len(nests), 3)
+        self.assertTrue(os.path.exists(os.path.join(out, "sheets.dxf")))
+        self.assertEqual(schedule()[1], 2700.0)
+
     def test_z_save_reopen(self):
         ids = list(self.square.PartIds)
         volumes = list(self.square.Volumes)

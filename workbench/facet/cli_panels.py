@@ -25,7 +25,7 @@ import time
 
 from facet.report import count_noun, first_names
 
-__all__ = ["add_commands", "run_panels", "run_pipeline"]
+__all__ = ["add_commands", "run_panels", "run_pipeline", "write_schedule"]
 
 
 def _sheet(text):
@@ -246,12 +246,23 @@ def _of_source(mesh, message):
     return f"{source}: {message}" if source else message
 
 
+def write_schedule(path, ps, rows, density=None, units="mm"):
+    """Write the schedule ``rows`` (:func:`facet.cutsheets.schedule_rows` of the PanelSet
+    ``ps``) to ``path``: JSON when it ends with .json (``ps``'s options, ``units`` and
+    ``density`` as its meta), else CSV."""
+    from facet.cutsheets import write_schedule_csv, write_schedule_json
+
+    if path.lower().endswith(".json"):
+        write_schedule_json(path, rows, meta=dict(ps.options, units=units, density=density))
+    else:
+        write_schedule_csv(path, rows)
+
+
 def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,
                       dxf, per_sheet, text_outlines, step, schedule, svg, png, allow_unplaced,
                       solids,
                       stage_progress, cancelled, units, density):
-    from facet.cutsheets import (length_unit, schedule_rows, write_dxf, write_png,
-                                 write_schedule_csv, write_schedule_json, write_svg)
+    from facet.cutsheets import length_unit, schedule_rows, write_dxf, write_png, write_svg
     from facet.errors import Cancelled, InputError
     from facet.nest import nest
     from facet.unfold import small_text_warnings, unfold
@@ -290,11 +301,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         check()
         t = time.perf_counter()
         rows = schedule_rows(ps, result, drawings, density=density, units=units)
-        if schedule.lower().endswith(".json"):
-            write_schedule_json(schedule, rows, meta=dict(ps.options, units=units,
-                                                          density=density))
-        else:
-            write_schedule_csv(schedule, rows)
+        write_schedule(schedule, ps, rows, density=density, units=units)
         files["schedule"] = [schedule]
         times["schedule"] = time.perf_counter() - t
     if svg:

@@ -14,7 +14,9 @@ CutSheets (``Part::FeaturePython``) links a PanelSet, nests its flat parts on st
 (``facet.nest``) and, when ``OutputDir`` is set, writes the DXF, STEP, schedule and previews
 there. Its ``Shape`` is the sheet layout (sheet borders and cut outlines, flat, side by side).
 It reuses the panels and solids its PanelSet computed in this session (recomputing them
-only when the PanelSet has none, e.g. right after the document was opened).
+only when the PanelSet has none, e.g. right after the document was opened). When its
+PanelSet recomputed for its masses alone (Density, OnePerPanel: the same panels), it keeps
+its nesting and the DXF, SVG and STEP files, and writes only the schedules again.
 
 The source is never modified. The numerics are in ``facet``; this module is wiring.
 """
@@ -240,6 +242,11 @@ class PanelSet(_Proxy):
                 and np.array_equal(built.face_start, mesh.face_start)
                 and np.array_equal(built.face_vertices, mesh.face_vertices))
 
+    def record(self):
+        """What the last recompute left (a new object at each; None before the first):
+        the CutSheets tell from it that their PanelSet recomputed since they nested."""
+        return getattr(self, "_cache", None)
+
     def computed(self, obj):
         """(facet PanelSet, [(id, Part.Solid)] or None) as of the last recompute, when
         still current; else the panels computed afresh (and no solids)."""
@@ -459,7 +466,7 @@ class CutSheets(_Proxy):
 
         import Part
 
-        from facet.cli_panels import run_pipeline
+        from facet.cli_panels import run_pipeline, write_schedule
         from facetwb import conversion
 
         ps_obj = obj.Panels
@@ -470,8 +477,26 @@ class CutSheets(_Proxy):
         out = obj.OutputDir
         if out:
             os.makedirs(out, exist_ok=True)
-        mesh = conversion.mesh_from_object(ps_obj.Source)
         panel_set, solids = ps_obj.Proxy.computed(ps_obj)
+        density = _density(ps_obj)
+        kept, self._kept = getattr(self, "_kept", None), None
+        if self._nesting_kept(obj, ps_obj, panel_set, kept):
+            # the PanelSet recomputed for its masses (Density) or OnePerPanel alone: the
+            # nesting (1,536 panels: 75 s a Density change) and the DXF, SVG and STEP files
+            # do not depend on them; the schedules are written again with the masses
+            if out and (density != kept["density"] or not all(
+                    os.path.exists(p) for p in _schedule_paths(out))):
+                from facet.cutsheets import schedule_rows
+                from facet.io.files import staged
+
+                rows = schedule_rows(panel_set, kept["result"], kept["drawings"],
+                                     density=density)
+                with staged():  # both or neither
+                    for path in _schedule_paths(out):
+                        write_schedule(path, panel_set, rows, density=density, units="mm")
+            self._kept = dict(kept, density=density, record=ps_obj.Proxy.record())
+            return
+        mesh = conversion.mesh_from_object(ps_obj.Source)
         report, ps, drawings, result = run_pipeline(
             mesh, ps_obj.Thickness.Value, panel_set=panel_set, solids=solids, offset=ps_obj.Offset, gap=ps_obj.Gap.Value,
             edge=ps_obj.EdgeMode, flip=bool(ps_obj.Flip), ids=ps_obj.IdScheme,
@@ -483,14 +508,12 @@ class CutSheets(_Proxy):
             schedule=os.path.join(out, "schedule.csv") if out else None,
             svg=os.path.join(out, "svg") if out else None,
             step=os.path.join(out, "panels.step") if out and obj.WriteStep else None,
-            text_outlines=bool(obj.TextOutlines), density=_density(ps_obj),
+            text_outlines=bool(obj.TextOutlines), density=density,
             progress=_stage_progress(progress.hook(), progress.say_hook()))
         if out:
-            from facet.cutsheets import write_schedule_json
-
-            path = os.path.join(out, "schedule.json")
-            write_schedule_json(path, report["panels"],  # (the schedule's rows)
-                                meta=dict(ps.options, units="mm", density=report.get("density")))
+            path = _schedule_paths(out)[1]
+            write_schedule(path, ps, report["panels"],  # (the schedule's rows)
+                           density=density, units="mm")
             report["files"]["schedule"].append(path)
         # the layout: sheets side by side, flat in the xy plane
         from facet.cutsheets import sheet_offsets
@@ -517,6 +540,37 @@ class CutSheets(_Proxy):
         obj.Warnings = list(report["text_warnings"])
         for warning in obj.Warnings:
             App.Console.PrintWarning(f"{obj.Label}: {warning}\n")
+        self._kept = dict(key=self._nesting_key(obj, ps_obj), panels=panel_set,
+                          record=ps_obj.Proxy.record(), drawings=drawings, result=result,
+                          density=density, files=list(obj.Files))
+
+    @staticmethod
+    def _nesting_key(obj, ps_obj):
+        """The CutSheets' own inputs (sheet, nesting, files) and its PanelSet."""
+        g = obj.Grain
+        return (ps_obj.Name, obj.SheetWidth.Value, obj.SheetHeight.Value, obj.Margin.Value,
+                obj.Spacing.Value, obj.Rotations, (g.x, g.y, g.z), obj.OutputDir,
+                bool(obj.WriteStep), bool(obj.TextOutlines))
+
+    def _nesting_kept(self, obj, ps_obj, panel_set, kept):
+        """Whether the nesting and files of the last recompute (``kept``) are still those
+        of the current inputs: the PanelSet recomputed since without changing its panels
+        (the same ``panel_set``: a Density or OnePerPanel change, :data:`NO_GEOMETRY` less
+        the part IDs, which the DXF shows), nothing of the CutSheets' own changed and its
+        files are still there. A recompute of the CutSheets marked by hand nests again."""
+        import os
+
+        return (kept is not None and kept["panels"] is panel_set
+                and kept["record"] is not ps_obj.Proxy.record()
+                and kept["key"] == self._nesting_key(obj, ps_obj)
+                and all(os.path.exists(p) for p in kept["files"]))
+
+
+def _schedule_paths(out):
+    """The CutSheets' schedules in the folder ``out``: CSV and JSON."""
+    import os
+
+    return [os.path.join(out, "schedule.csv"), os.path.join(out, "schedule.json")]
 
 
 def is_panelset(obj):
