@@ -10,7 +10,7 @@ targets; its ``ShowPins`` view property hides them.
 """
 
 from facetwb import compat
-from facetwb.viewproviders.view_polymesh import ViewProviderPolyMesh
+from facetwb.viewproviders.view_polymesh import EditsInPanel, ViewProviderPolyMesh
 
 #: Colour of the pin markers and their labels.
 PIN_COLOR = (0.85, 0.10, 0.55)
@@ -24,7 +24,7 @@ class ViewProviderPlanGraph(ViewProviderPolyMesh):
     DEFAULT_DISPLAY_MODE = "Flat Lines"
 
 
-class ViewProviderLifting(ViewProviderPolyMesh):
+class ViewProviderLifting(EditsInPanel, ViewProviderPolyMesh):
     """A lifted plan: faces with their edges (Planarity mode shows they are flat), and its
     pinned heights."""
 
@@ -72,21 +72,8 @@ class ViewProviderLifting(ViewProviderPolyMesh):
         if prop == "ShowPins" and hasattr(self, "pins"):
             self.draw_pins(vobj.Object)
 
-    def setEdit(self, vobj, mode=0):  # noqa: N802 - FreeCAD's name
+    def open_panel(self, obj):
         """Double-click: the Pin heights panel of this Lifting."""
-        if mode != 0:
-            return None
         from facetwb.taskpanels import lift_pins
 
-        return lift_pins.edit(vobj.Object)
-
-    def unsetEdit(self, vobj, mode=0):  # noqa: N802
-        if mode != 0:
-            return None
-        return True
-
-    def doubleClicked(self, vobj):  # noqa: N802
-        import FreeCADGui as Gui
-
-        Gui.ActiveDocument.setEdit(vobj.Object.Name, 0)
-        return True
+        return lift_pins.edit(obj)

@@ -23,7 +23,7 @@ import numpy as np
 
 from facetwb import compat
 from facetwb.objects.polymesh import MESH_PROPERTIES
-from facetwb.viewproviders.view_polymesh import ViewProviderPolyMesh
+from facetwb.viewproviders.view_polymesh import EditsInPanel, ViewProviderPolyMesh
 
 #: Held vertices: colour and marker (a filled square, screen pixels); magenta is not in the
 #: colour map.
@@ -46,7 +46,7 @@ COLOR_BY = {
 }
 
 
-class ViewProviderPlanarized(ViewProviderPolyMesh):
+class ViewProviderPlanarized(EditsInPanel, ViewProviderPolyMesh):
     """View provider of Planarized objects: PolyMesh drawing, Planarity mode first."""
 
     TYPE = "Facet::ViewProviderPlanarized"
@@ -96,24 +96,11 @@ class ViewProviderPlanarized(ViewProviderPolyMesh):
 
         live_parameters.parameter_changed(obj, prop)
 
-    def setEdit(self, vobj, mode=0):  # noqa: N802 - FreeCAD's name
+    def open_panel(self, obj):
         """Double-click: the Planarize panel of this object, its parameters applied live."""
-        if mode != 0:
-            return None  # FreeCAD's own modes (transform, ...)
         from facetwb.taskpanels import edit_panels
 
-        return edit_panels.edit(vobj.Object)
-
-    def unsetEdit(self, vobj, mode=0):  # noqa: N802
-        if mode != 0:
-            return None
-        return True
-
-    def doubleClicked(self, vobj):  # noqa: N802
-        import FreeCADGui as Gui
-
-        Gui.ActiveDocument.setEdit(vobj.Object.Name, 0)
-        return True
+        return edit_panels.edit(obj)
 
     def onChanged(self, vobj, prop):
         super().onChanged(vobj, prop)

@@ -311,6 +311,31 @@ class ViewProviderPolyMesh:
         self.loads(state)
 
 
+class EditsInPanel:
+    """Mixin for a view provider whose double-click opens the object's task panel:
+    :meth:`open_panel` (``panel(obj)``, True when it opened); FreeCAD's own edit modes
+    (transform, ...) are left to FreeCAD."""
+
+    def open_panel(self, obj):
+        raise NotImplementedError
+
+    def setEdit(self, vobj, mode=0):  # noqa: N802 - FreeCAD's name
+        if mode != 0:
+            return None
+        return self.open_panel(vobj.Object)
+
+    def unsetEdit(self, vobj, mode=0):  # noqa: N802
+        if mode != 0:
+            return None
+        return True
+
+    def doubleClicked(self, vobj):  # noqa: N802
+        import FreeCADGui as Gui
+
+        Gui.ActiveDocument.setEdit(vobj.Object.Name, 0)
+        return True
+
+
 def picked_element(detail):
     """``(element, corners)`` of a Coin pick's detail on a mesh drawn by this module:
     "FaceN" and the coordinate indices of the picked polygon's corners, "EdgeN" and its two
