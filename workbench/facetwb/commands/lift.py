@@ -107,7 +107,17 @@ class CommandLift:
             Gui.Control.showDialog(LiftPanel(list(chosen)))
 
 
-class CommandLiftMix:
+class _OnSelectedLifting:
+    """A command on the one selected Lifting, active while no task panel is open."""
+
+    def _selected(self):
+        return _selected_lifting()
+
+    def IsActive(self):
+        return self._selected() is not None and Gui.Control.activeDialog() is False
+
+
+class CommandLiftMix(_OnSelectedLifting):
     """Open the task panel that mixes non-planar liftings into the selected Lifting."""
 
     def GetResources(self):
@@ -121,12 +131,6 @@ class CommandLiftMix:
                 "stays exactly planar."),
         }
 
-    def _selected(self):
-        return _selected_lifting()
-
-    def IsActive(self):
-        return self._selected() is not None and Gui.Control.activeDialog() is False
-
     def Activated(self):
         from facetwb.taskpanels.lift_mix import LiftMixPanel
 
@@ -135,7 +139,7 @@ class CommandLiftMix:
             Gui.Control.showDialog(LiftMixPanel(obj))
 
 
-class CommandLiftPins:
+class CommandLiftPins(_OnSelectedLifting):
     """Open the Pin heights panel of the selected Lifting."""
 
     def GetResources(self):
@@ -149,12 +153,6 @@ class CommandLiftPins:
                 "face planar, the other vertices free. Also by double-clicking the "
                 "Lifting."),
         }
-
-    def _selected(self):
-        return _selected_lifting()
-
-    def IsActive(self):
-        return self._selected() is not None and Gui.Control.activeDialog() is False
 
     def Activated(self):
         from facetwb.taskpanels.lift_pins import edit
