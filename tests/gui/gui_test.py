@@ -226,6 +226,7 @@ def run(out_dir):
     check_edit_planarized(check, out_dir)
     check_hold_vertices(check, out_dir)
     check_recompute_in_edit_then_cancel(check, out_dir)
+    check_recompute_in_lifting_panels_then_cancel(check, out_dir)
     check_recompute_cancel_and_failed_create(check)
     check_planarize_progress(check, out_dir)
     check_stop_and_keep(check)
@@ -1849,6 +1850,82 @@ def check_recompute_in_edit_then_cancel(check, out_dir):
           f"Recompute with the Planarize panel open rewrote the cut sheets' files; Cancel "
           f"writes them again from the result it puts back (schedule.csv "
           f"{before[:8]} -> {changed[:8]} -> {after[:8]}; {panels.State}, {sheets.State})")
+    App.closeDocument(doc.Name)
+
+
+def check_recompute_in_lifting_panels_then_cancel(check, out_dir):
+    """The Shape lifting and Pin heights panels: Recompute pressed while one is open
+    rebuilds the panels and rewrites the cut sheets' files from the moved roof; Cancel
+    rebuilds them from the roof it puts back (they stayed those of the cancelled values).
+    A Cancel after a change without Recompute writes nothing (the Pin heights panel solved
+    the roof put back again and rebuilt the panels and files, 1e-12 mm off)."""
+    import hashlib
+
+    import FreeCAD as App
+    import FreeCADGui as Gui
+
+    import facetwb
+    from facetwb.taskpanels import lift_mix, lift_pins
+
+    doc = App.openDocument(os.path.join(ROOT, "examples", "roof.FCStd"))
+    for _ in range(20):
+        Gui.updateGui()
+        time.sleep(0.01)
+    lifting = [o for o in doc.Objects if facetwb.is_lifting(o)][0]
+    panels = [o for o in doc.Objects if facetwb.is_panelset(o)][0]
+    files = os.path.join(out_dir, "lifting_recompute_then_cancel")
+    sheets = facetwb.make_cutsheets(panels, sheet=(20000.0, 20000.0), output_dir=files,
+                                    write_step=False)
+    doc.recompute()
+    schedule = os.path.join(files, "schedule.csv")
+
+    def digest():
+        with open(schedule, "rb") as f:
+            return hashlib.sha256(f.read()).hexdigest(), os.stat(schedule).st_mtime_ns
+
+    def change(name):
+        """Open the panel ``name`` and move the roof: a slider, a pin's height."""
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(lifting)
+        Gui.runCommand(name)
+        Gui.updateGui()
+        if name == "Facet_LiftMix":
+            panel = lift_mix.active
+            if panel is not None:
+                panel.sliders[0].setValue(40)
+        else:
+            panel = lift_pins.active
+            if panel is not None:
+                panel.editor.set_height(0, "5000 mm")
+        Gui.updateGui()
+        return panel
+
+    roof = [tuple(p) for p in lifting.Points]
+    for name, title in (("Facet_LiftMix", "Shape lifting"), ("Facet_LiftPins", "Pin heights")):
+        before = digest()
+        panel = change(name)
+        if not check(panel is not None, f"the {title} panel opens"):
+            continue
+        doc.recompute()  # Recompute pressed with the panel open
+        changed = digest()
+        panel.reject()
+        Gui.updateGui()
+        after = digest()
+        check(changed[0] != before[0] and after[0] == before[0]
+              and "Touched" not in panels.State and "Touched" not in sheets.State,
+              f"Recompute with the {title} panel open rewrote the cut sheets' files; Cancel "
+              f"writes them again from the roof it puts back (schedule.csv "
+              f"{before[0][:8]} -> {changed[0][:8]} -> {after[0][:8]}; {panels.State}, "
+              f"{sheets.State})")
+        panel = change(name)
+        if panel is not None:
+            panel.reject()
+            Gui.updateGui()
+        check(digest() == after and [tuple(p) for p in lifting.Points] == roof
+              and "Touched" not in panels.State and "Touched" not in lifting.State,
+              f"Cancel of the {title} panel after a change (no Recompute) puts the roof back "
+              f"as it was and writes no file (schedule.csv rewritten: "
+              f"{digest()[1] != after[1]}; {lifting.State}, {panels.State})")
     App.closeDocument(doc.Name)
 
 

@@ -121,20 +121,23 @@ def keep_up_to_date(doc, names, recomputed=()):
         doc.recompute(again)
 
 
-def cancel_live_edit(doc, obj, fresh, recomputes, restore=None):
+def cancel_live_edit(doc, obj, fresh, recomputes, restore=None, solve_again=True):
     """A task panel's Cancel, whose changes to ``obj`` were re-solved live (``obj`` alone)
     in a transaction open on ``doc``: abort it (the previous values and result),
-    ``restore()`` (if given: what the transaction did not put back), re-solve ``obj`` alone
-    if that left it marked, then :func:`keep_up_to_date` with ``fresh`` (the names that
-    were up to date when the panel opened) and what a Recompute pressed meanwhile rebuilt
-    from ``obj`` (``recomputes``, a :class:`Recomputes` started with the panel). What is
-    made from ``obj`` is not recomputed otherwise: a document recompute here rebuilt the
-    panels, and rewrote cut sheets' files, made from the result Cancel puts back."""
+    ``restore()`` (if given: what the transaction did not put back; True when it set
+    anything), re-solve ``obj`` alone when that set values, when ``obj`` is left in error
+    or, with ``solve_again``, when it is marked (an object whose proxy keeps what a
+    transaction does not put back); then :func:`keep_up_to_date` with ``fresh`` (the
+    names that were up to date when the panel opened) and what a Recompute pressed
+    meanwhile rebuilt from ``obj`` (``recomputes``, a :class:`Recomputes` started with the
+    panel). What is made from ``obj`` is not recomputed otherwise: a document recompute
+    here rebuilt the panels, and rewrote cut sheets' files, made from the result Cancel
+    puts back. Without ``solve_again`` the result the transaction put back is kept as it
+    is: solved again, it came out different in its last digits."""
     rebuilt = recomputes.take() & {o.Name for o in obj.InListRecursive}
     doc.abortTransaction()
-    if restore is not None:
-        restore()
-    if "Touched" in obj.State:
+    changed = bool(restore()) if restore is not None else False
+    if changed or not obj.isValid() or (solve_again and "Touched" in obj.State):
         doc.recompute([obj])
     keep_up_to_date(doc, fresh, rebuilt - recomputes.take())
 

@@ -293,12 +293,16 @@ class LiftPinsPanel:
 
     def reject(self):
         def restore():  # (a document without undo: the transaction put nothing back)
-            if [tuple(p) for p in self.obj.PinnedPoints] != self.original:
-                self.obj.PinnedPoints = [App.Vector(*p) for p in self.original]
+            if [tuple(p) for p in self.obj.PinnedPoints] == self.original:
+                return False
+            self.obj.PinnedPoints = [App.Vector(*p) for p in self.original]
+            return True
 
-        # the previous pins and roof, re-solved alone: what is made from the roof is up to
-        # date again (rebuilt from it after a Recompute pressed while the panel was open)
-        cancel_live_edit(self.doc, self.obj, self.fresh, self.recomputes, restore)
+        # the previous pins and roof as the transaction puts them back (re-solved alone only
+        # when it did not, or left the Lifting in error): what is made from the roof is up
+        # to date again (rebuilt from it after a Recompute pressed while the panel was open)
+        cancel_live_edit(self.doc, self.obj, self.fresh, self.recomputes, restore,
+                         solve_again=False)
         self._close()
         return True
 
