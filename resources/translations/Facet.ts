@@ -472,7 +472,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/recompute.py" line="222"/>
+        <location filename="../../workbench/facetwb/recompute.py" line="225"/>
         <source>Recomputing {0} ...</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1000,12 +1000,12 @@
 <context>
     <name>Facet_LiftMix</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="116"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="126"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="117"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="127"/>
         <source>Sliders for the selected Lifting: add the smoothest other planar-faced shapes over the same plan; the result follows live and every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1013,12 +1013,12 @@
 <context>
     <name>Facet_LiftPins</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="144"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="148"/>
         <source>Pin heights</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="145"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="149"/>
         <source>Pin heights of the selected Lifting: click vertices of the roof or of its plan in the 3D view, type a height and pin them; the roof follows, every face planar, the other vertices free. Also by double-clicking the Lifting.</source>
         <translation type="unfinished"></translation>
     </message>
