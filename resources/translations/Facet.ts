@@ -647,7 +647,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="243"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="245"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1019,7 +1019,7 @@
     </message>
     <message>
         <location filename="../../workbench/facetwb/commands/lift.py" line="149"/>
-        <source>Pin heights of the selected Lifting: click vertices of the roof or of its plan in the 3D view, type a height and pin them; the roof follows, every face planar, the other vertices free. Also by double-clicking the Lifting.</source>
+        <source>Pin heights of the selected Lifting: click vertices of the roof or of its plan in the 3D view, type a height and pin them; the roof follows, every face planar, the other vertices free. Also by double-clicking a Lifting that has no other targets.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

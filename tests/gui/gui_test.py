@@ -657,6 +657,23 @@ def check_lifting(check, out_dir):
     save_view(Gui.ActiveDocument.ActiveView, path)
     check_screenshot(check, path, "lifting", legend=False)
 
+    # a double-click on a Lifting that follows a surface opens its Shape lifting panel (it
+    # opened Pin heights, which said the pins were not used)
+    from facetwb.taskpanels import lift_mix, lift_pins
+
+    Gui.Selection.clearSelection()
+    lifting.ViewObject.Proxy.doubleClicked(lifting.ViewObject)
+    Gui.updateGui()
+    opened = lift_mix.active
+    check(opened is not None and lift_pins.active is None,
+          "a double-click on a Lifting that follows a surface opens Shape lifting")
+    if opened is not None:
+        opened.reject()
+    Gui.updateGui()
+    check(lift_mix.active is None and not Gui.Control.activeDialog()
+          and Gui.ActiveDocument.getInEdit() is None,
+          "its Cancel closes it and leaves no object in edit")
+
     # Facet_LiftMix: a slider reshapes the roof live; faces stay planar; Cancel restores.
     check("Facet_LiftMix" in Gui.listCommands(), "command Facet_LiftMix is registered")
     Gui.Selection.clearSelection()

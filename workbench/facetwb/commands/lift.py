@@ -132,11 +132,11 @@ class CommandLiftMix(_OnSelectedLifting):
         }
 
     def Activated(self):
-        from facetwb.taskpanels.lift_mix import LiftMixPanel
+        from facetwb.taskpanels.lift_mix import edit
 
         obj = self._selected()
         if obj is not None:
-            Gui.Control.showDialog(LiftMixPanel(obj))
+            edit(obj)
 
 
 class CommandLiftPins(_OnSelectedLifting):
@@ -150,8 +150,8 @@ class CommandLiftPins(_OnSelectedLifting):
                 "Facet_LiftPins",
                 "Pin heights of the selected Lifting: click vertices of the roof or of its "
                 "plan in the 3D view, type a height and pin them; the roof follows, every "
-                "face planar, the other vertices free. Also by double-clicking the "
-                "Lifting."),
+                "face planar, the other vertices free. Also by double-clicking a "
+                "Lifting that has no other targets."),
         }
 
     def Activated(self):

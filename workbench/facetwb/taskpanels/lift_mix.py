@@ -232,6 +232,8 @@ class LiftMixPanel:
                 o.ViewObject.Visibility = visible
         self.views = {}
         active = None
+        if Gui.ActiveDocument is not None and Gui.ActiveDocument.getInEdit() is not None:
+            Gui.ActiveDocument.resetEdit()  # (opened by a double-click)
         Gui.Control.closeDialog()
 
     def accept(self):
@@ -269,6 +271,16 @@ class LiftMixPanel:
 
     def getStandardButtons(self):
         return forms.ok_cancel_buttons()
+
+
+def edit(obj):
+    """Open the Shape lifting panel of the Lifting ``obj`` (the command, or a double-click
+    on a Lifting that follows a surface or points). True when it opened."""
+    if Gui.Control.activeDialog():
+        App.Console.PrintWarning(f"Facet: {obj.Label}: close the open task panel first\n")
+        return False
+    Gui.Control.showDialog(LiftMixPanel(obj))
+    return True
 
 
 def resolve_alone(obj, update=True):

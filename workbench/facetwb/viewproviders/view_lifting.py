@@ -73,7 +73,10 @@ class ViewProviderLifting(EditsInPanel, ViewProviderPolyMesh):
             self.draw_pins(vobj.Object)
 
     def open_panel(self, obj):
-        """Double-click: the Pin heights panel of this Lifting."""
-        from facetwb.taskpanels import lift_pins
+        """Double-click: the Pin heights panel of a Lifting lifted to pinned heights (or to
+        no targets yet), the Shape lifting panel of one that follows a surface or points
+        (Pin heights said there that its pins were not used)."""
+        from facetwb.taskpanels import lift_mix, lift_pins
 
-        return lift_pins.edit(obj)
+        follows = obj.Targets is not None or bool(obj.TargetFile)
+        return (lift_mix if follows else lift_pins).edit(obj)
