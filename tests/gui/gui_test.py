@@ -21,6 +21,7 @@ import traceback
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ui_checks import settle  # noqa: E402 - (after the path to it)
 MESH = os.path.join(ROOT, "tests", "data", "hypar.obj")
 WIDTH, HEIGHT = 1600, 1000
 
@@ -49,6 +50,26 @@ def image_pixels(path):
     buffer = bytes(data) if not hasattr(data, "asstring") else data.asstring(image.byteCount())
     rows = np.frombuffer(buffer, dtype=np.uint8)[: height * stride].reshape(height, stride)
     return rows[:, : width * 3].reshape(height, width, 3)
+
+
+def open_example(name):
+    """``examples/name`` opened, its view providers attached (they come once the event
+    loop runs)."""
+    import FreeCAD as App
+
+    doc = App.openDocument(os.path.join(ROOT, "examples", name))
+    settle(20)
+    return doc
+
+
+def open_roof_example():
+    """``(document, Lifting, PanelSet)`` of examples/roof.FCStd, opened."""
+    import facetwb
+
+    doc = open_example("roof.FCStd")
+    lifting = [o for o in doc.Objects if facetwb.is_lifting(o)][0]
+    panels = [o for o in doc.Objects if facetwb.is_panelset(o)][0]
+    return doc, lifting, panels
 
 
 def near(pixels, rgb, tolerance=40):
@@ -273,8 +294,6 @@ def check_examples_open_with_view_providers(check, out_dir):
     """The example documents are saved by freecadcmd (tools/make_examples.py), without
     GuiDocument.xml: opened in the GUI, their Facet objects had no view provider (nothing
     drawn, no colour map, no task panel). They get their own once the document loads."""
-    import time
-
     import FreeCAD as App
     import FreeCADGui as Gui
 
@@ -284,10 +303,7 @@ def check_examples_open_with_view_providers(check, out_dir):
               "Facet::Lifting": "ViewProviderLifting",
               "Facet::PanelSet": "ViewProviderPanels", "Facet::CutSheets": "ViewProviderPanels"}
     for name in ("facade.FCStd", "roof.FCStd"):
-        doc = App.openDocument(os.path.join(ROOT, "examples", name))
-        for _ in range(20):  # the providers come once the event loop runs
-            Gui.updateGui()
-            time.sleep(0.01)
+        doc = open_example(name)
         facet_objects = [o for o in doc.Objects
                          if getattr(getattr(o, "Proxy", None), "Type", "").startswith("Facet::")]
         missing = [o.Label for o in facet_objects
@@ -696,9 +712,7 @@ def check_lifting(check, out_dir):
         # with Cancel and the slider values off the screen
         from PySide import QtGui
 
-        for _ in range(20):  # the task pane is laid out once the event loop runs
-            Gui.updateGui()
-            time.sleep(0.01)
+        settle(20)  # the task pane is laid out once the event loop runs
         panes = [w for w in Gui.getMainWindow().findChildren(QtGui.QScrollArea)
                  if w.isVisible() and w.widget() and w.widget().isAncestorOf(panel.form)]
         width = max(panel.form.minimumSizeHint().width(),
@@ -761,15 +775,9 @@ def check_lift_mix_states(check, out_dir):
     import FreeCAD as App
     import FreeCADGui as Gui
 
-    import facetwb
     from facetwb.taskpanels import lift_mix
 
-    doc = App.openDocument(os.path.join(ROOT, "examples", "roof.FCStd"))
-    for _ in range(20):
-        Gui.updateGui()
-        time.sleep(0.01)
-    lifting = [o for o in doc.Objects if facetwb.is_lifting(o)][0]
-    panels = [o for o in doc.Objects if facetwb.is_panelset(o)][0]
+    doc, lifting, panels = open_roof_example()
     doc.recompute()
     # Cancel of an unchanged panel set Mix and Drags again and recomputed: the panels
     # (and cut sheets, which rewrite their files) were rebuilt for nothing
@@ -788,12 +796,19 @@ def check_lift_mix_states(check, out_dir):
           f"Cancel of an unchanged Shape lifting panel recomputes nothing ({panels.State})")
     points = [tuple(p) for p in lifting.Points]
     volume = panels.Shape.Volume
-    Gui.runCommand("Facet_LiftMix")
-    Gui.updateGui()
-    panel = lift_mix.active
-    if panel is not None:
-        panel.sliders[0].setValue(40)
+
+    def opened_and_moved():
+        """The Shape lifting panel, opened and its first slider moved to 40 (or None)."""
+        Gui.runCommand("Facet_LiftMix")
         Gui.updateGui()
+        opened = lift_mix.active
+        if opened is not None:
+            opened.sliders[0].setValue(40)
+            Gui.updateGui()
+        return opened
+
+    panel = opened_and_moved()
+    if panel is not None:
         moved = [tuple(p) for p in lifting.Points] != points
         panel.reject()
         Gui.updateGui()
@@ -804,12 +819,8 @@ def check_lift_mix_states(check, out_dir):
               f"({lifting.State}, {panels.State})")
     # Recompute pressed with the panel open rebuilt the panels from the moved roof; Cancel
     # put the roof back and left them so, marked up to date
-    Gui.runCommand("Facet_LiftMix")
-    Gui.updateGui()
-    panel = lift_mix.active
+    panel = opened_and_moved()
     if panel is not None:
-        panel.sliders[0].setValue(40)
-        Gui.updateGui()
         doc.recompute()  # Recompute pressed
         rebuilt = abs(panels.Shape.Volume - volume) > 1e-6 * volume
         panel.reject()
@@ -937,9 +948,7 @@ def check_lift_from_file(check, out_dir):
         check(forms.get_value(panel.form, "TargetFile") == csv
               and not forms.widget(panel.form, "message").text(),
               "Browse fills the points file")
-        for _ in range(20):
-            Gui.updateGui()
-            time.sleep(0.01)
+        settle(20)
         panes = [w for w in Gui.getMainWindow().findChildren(QtGui.QScrollArea)
                  if w.isVisible() and w.widget() and w.widget().isAncestorOf(panel.form)]
         check(panes and panes[0].widget().width() <= panes[0].viewport().width(),
@@ -1758,7 +1767,7 @@ def check_hold_vertices(check, out_dir):
         App.closeDocument(doc.Name)
         return
     Gui.Selection.clearSelection()
-    (a, at_a), (b, at_b), (c, _at_c) = named[0], named[len(named) // 2], named[-1]
+    (a, at_a), (b, at_b), (c, _) = named[0], named[len(named) // 2], named[-1]
     click(view, (at_a[0] + 3, at_a[1] + 3))  # where the pick named them
     click(view, (at_b[0] + 3, at_b[1] + 3), ctrl=True)
     picked = [(s.ObjectName, tuple(s.SubElementNames)) for s in Gui.Selection.getSelectionEx()]
@@ -1830,7 +1839,6 @@ def check_recompute_in_edit_then_cancel(check, out_dir):
     import hashlib
 
     import FreeCAD as App
-    import FreeCADGui as Gui
 
     import facet
     import facetwb
@@ -1884,12 +1892,7 @@ def check_recompute_in_lifting_panels_then_cancel(check, out_dir):
     import facetwb
     from facetwb.taskpanels import lift_mix, lift_pins
 
-    doc = App.openDocument(os.path.join(ROOT, "examples", "roof.FCStd"))
-    for _ in range(20):
-        Gui.updateGui()
-        time.sleep(0.01)
-    lifting = [o for o in doc.Objects if facetwb.is_lifting(o)][0]
-    panels = [o for o in doc.Objects if facetwb.is_panelset(o)][0]
+    doc, lifting, panels = open_roof_example()
     files = os.path.join(out_dir, "lifting_recompute_then_cancel")
     sheets = facetwb.make_cutsheets(panels, sheet=(20000.0, 20000.0), output_dir=files,
                                     write_step=False)

@@ -14,7 +14,8 @@ follows it (lifting_raise.png) and is gone when the panel closes.
 """
 
 import os
-import time
+
+from ui_checks import settle
 
 CORNERS = [(0, 0), (8000, 0), (8000, 5000), (0, 5000)]
 RIDGE = [(2500, 2500), (5500, 2500)]
@@ -41,14 +42,6 @@ def vertex_of(obj, xy):
     """The index of the point of ``obj`` at plan position ``xy``."""
     return min(range(len(obj.Points)),
                key=lambda v: (obj.Points[v].x - xy[0]) ** 2 + (obj.Points[v].y - xy[1]) ** 2)
-
-
-def settle(count=10):
-    import FreeCADGui as Gui
-
-    for _ in range(count):
-        Gui.updateGui()
-        time.sleep(0.01)
 
 
 def select(obj, names):

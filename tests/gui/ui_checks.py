@@ -14,6 +14,17 @@ gui_test runs as FreeCAD's script.
 
 import os
 import tempfile
+import time
+
+
+def settle(count=10):
+    """Let FreeCAD's event loop run ``count`` times, 10 ms apart: view providers attach,
+    task panes lay out, clicks reach the view."""
+    import FreeCADGui as Gui
+
+    for _ in range(count):
+        Gui.updateGui()
+        time.sleep(0.01)
 
 
 def facade_surface(doc):
