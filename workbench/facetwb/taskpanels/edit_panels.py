@@ -130,31 +130,34 @@ class PlanarizeEditPanel:
         """The selected vertices' indices; a SelectionError says what else is selected."""
         return fixed_vertices.selected_vertices(self.obj, gui_selection())
 
-    def hold_selected(self):
-        """Hold selected: FixedVertices gains the selected vertices (the result re-solves)."""
+    def _on_selected(self, act):
+        """``act(vertices)`` on the selected vertices, its text in the panel's message line;
+        False (the message says what else is selected) when they are not vertices."""
         try:
             vertices = self._selected()
         except fixed_vertices.SelectionError as error:
             self.held_message.setText(str(error))
             return False
-        added = fixed_vertices.hold(self.obj, vertices)
-        self.held_message.setText(translate("Facet", "{0} of the {1} selected held now").format(
-            added, len(vertices)) if added < len(vertices) else "")
+        self.held_message.setText(act(vertices))
         self.show_held()
         return True
 
+    def hold_selected(self):
+        """Hold selected: FixedVertices gains the selected vertices (the result re-solves)."""
+        def hold(vertices):
+            added = fixed_vertices.hold(self.obj, vertices)
+            return translate("Facet", "{0} of the {1} selected held now").format(
+                added, len(vertices)) if added < len(vertices) else ""
+
+        return self._on_selected(hold)
+
     def free_selected(self):
         """Free selected: the selected vertices leave FixedVertices."""
-        try:
-            vertices = self._selected()
-        except fixed_vertices.SelectionError as error:
-            self.held_message.setText(str(error))
-            return False
-        freed = fixed_vertices.free(self.obj, vertices)
-        self.held_message.setText(
-            "" if freed else translate("Facet", "None of the selected vertices was held"))
-        self.show_held()
-        return True
+        def free(vertices):
+            freed = fixed_vertices.free(self.obj, vertices)
+            return "" if freed else translate("Facet", "None of the selected vertices was held")
+
+        return self._on_selected(free)
 
     def free_all(self):
         fixed_vertices.free(self.obj)
