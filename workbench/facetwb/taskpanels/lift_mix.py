@@ -12,7 +12,7 @@ Cancel restores the previous one.
 import FreeCAD as App
 import FreeCADGui as Gui
 
-from facetwb.recompute import Recomputes, keep_up_to_date, up_to_date
+from facetwb.recompute import Recomputes, cancel_live_edit, up_to_date
 from facetwb.taskpanels import forms
 from facetwb.translation import translate
 
@@ -253,19 +253,19 @@ class LiftMixPanel:
         return True
 
     def reject(self):
-        doc = self.obj.Document
-        # what a Recompute pressed while the panel was open made from the roof Cancel takes
-        # back: the transaction puts their properties back, not the PanelSet's panels that
-        # cut sheets reuse nor the files written
-        rebuilt = self.recomputes.take() & {o.Name for o in self.obj.InListRecursive}
-        doc.abortTransaction()  # puts Mix, Drags, the roof and what is made from it back
-        # set again and recomputed even when unchanged, Mix and Drags rebuilt the panels and
-        # cut sheets made from the Lifting (files rewritten) for nothing
-        if list(self.obj.Mix) != self.original or list(self.obj.Drags) != self.original_drags:
+        def restore():  # (a document without undo: the transaction put nothing back)
+            if list(self.obj.Mix) == self.original and list(self.obj.Drags) == self.original_drags:
+                return False
             self.obj.Mix = self.original
             self.obj.Drags = self.original_drags
-            doc.recompute()
-        keep_up_to_date(doc, self.fresh, rebuilt - self.recomputes.take())
+            return True
+
+        # the previous Mix, Drags and roof as the transaction puts them back; what is made
+        # from the roof is up to date again, or rebuilt from it after a Recompute pressed
+        # while the panel was open (the transaction puts their properties back, not the
+        # PanelSet's panels that cut sheets reuse nor the files written)
+        cancel_live_edit(self.obj.Document, self.obj, self.fresh, self.recomputes, restore,
+                         solve_again=False)
         self._close()
         return True
 
