@@ -5,8 +5,10 @@ what is not a vertex of the object asked for.
 Every Facet mesh's view provider names what a click hits (``ViewProviderPolyMesh.
 getElementPicked``): ``Vertex<n>`` near vertex n (from 0), else ``Face<f>`` or ``Edge<e>``.
 A selection is ``[(object, [sub-element names])]``, what ``Gui.Selection.getSelectionEx``
-gives (:func:`gui_selection`), so all but that runs headless. Used by the Planarize edit
-panel's held vertices (``fixed_vertices``) and the Lifting's pinned heights (``pins``).
+gives (:func:`gui_selection`), so all but that runs headless. The names are made and read
+here (:func:`element_name`, :func:`parse_element`), by the view providers too. Used by the
+Planarize edit panel's held vertices (``fixed_vertices``) and the Lifting's pinned heights
+(``pins``).
 """
 
 from facetwb.translation import translate

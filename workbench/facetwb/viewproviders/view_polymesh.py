@@ -24,6 +24,7 @@ from pivy import coin
 import facet
 from facetwb import compat, paths
 from facetwb.objects.polymesh import MESH_PROPERTIES, mesh_arrays
+from facetwb.picked import EDGE, FACE, VERTEX, element_name, parse_element
 from facetwb.viewproviders import colormap
 from facetwb.viewproviders.legend import PlanarityLegend
 
@@ -241,10 +242,11 @@ class ViewProviderPolyMesh:
         in the mesh, from 0, as FixedVertices counts), else "FaceN" (the panel, from 0),
         "EdgeN" (the edge, from 0, in the order of facet.PolyMesh.edges) or ""."""
         element, corners = picked_element(pp.getDetail())
-        if element.startswith("Face"):
-            element, corners = self.picked_face(int(element[4:]), corners)
+        kind, index = parse_element(element)
+        if kind == FACE:
+            element, corners = self.picked_face(index, corners)
         vertex = self.nearest_corner(corners, pp.getPoint().getValue())
-        return f"Vertex{vertex}" if vertex is not None else element
+        return element_name(VERTEX, vertex) if vertex is not None else element
 
     def picked_face(self, index, corners):
         """("FaceN", all its corners) of the picked polygon ``index``: Coin's detail has
@@ -258,7 +260,8 @@ class ViewProviderPolyMesh:
                 or not 0 <= index < drawn[0].size - 1:
             return "", corners
         face_start, face_vertices = drawn
-        return f"Face{index}", face_vertices[face_start[index]:face_start[index + 1]].tolist()
+        return (element_name(FACE, index),
+                face_vertices[face_start[index]:face_start[index + 1]].tolist())
 
     def nearest_corner(self, corners, point):
         """The one of ``corners`` (vertex indices) drawn nearest ``point`` (a picked point)
@@ -345,14 +348,14 @@ def picked_element(detail):
     if detail.isOfType(coin.SoFaceDetail.getClassTypeId()):
         face = coin.cast(detail, "SoFaceDetail")
         corners = [face.getPoint(i).getCoordinateIndex() for i in range(face.getNumPoints())]
-        return f"Face{face.getFaceIndex()}", corners
+        return element_name(FACE, face.getFaceIndex()), corners
     if detail.isOfType(coin.SoLineDetail.getClassTypeId()):
         line = coin.cast(detail, "SoLineDetail")
-        return f"Edge{line.getLineIndex()}", [line.getPoint0().getCoordinateIndex(),
-                                               line.getPoint1().getCoordinateIndex()]
+        return element_name(EDGE, line.getLineIndex()), [
+            line.getPoint0().getCoordinateIndex(), line.getPoint1().getCoordinateIndex()]
     if detail.isOfType(coin.SoPointDetail.getClassTypeId()):
         index = coin.cast(detail, "SoPointDetail").getCoordinateIndex()
-        return f"Vertex{index}", [index]
+        return element_name(VERTEX, index), [index]
     return "", ()
 
 
