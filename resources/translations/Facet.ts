@@ -812,42 +812,42 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="50"/>
+        <location filename="../../workbench/facetwb/picked.py" line="52"/>
         <source>Nothing is selected: click vertices of {0} in the 3D view (Ctrl+click for more)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="55"/>
+        <location filename="../../workbench/facetwb/picked.py" line="57"/>
         <source>{0} is selected: click vertices of {1}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="59"/>
+        <location filename="../../workbench/facetwb/picked.py" line="61"/>
         <source>{0} is selected as a whole (in the tree?): click its vertices in the 3D view</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="64"/>
+        <location filename="../../workbench/facetwb/picked.py" line="66"/>
         <source>an edge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="65"/>
+        <location filename="../../workbench/facetwb/picked.py" line="67"/>
         <source>a face</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="66"/>
+        <location filename="../../workbench/facetwb/picked.py" line="68"/>
         <source>{0} of {1} is {2}, not a vertex: click closer to a corner (within a few pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="66"/>
+        <location filename="../../workbench/facetwb/picked.py" line="68"/>
         <source>something else</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="70"/>
+        <location filename="../../workbench/facetwb/picked.py" line="72"/>
         <source>{0} of {1}: {2} has {3} vertices (0 to {4})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -892,27 +892,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="141"/>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="149"/>
         <source>{0} of the {1} selected held now</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="154"/>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="158"/>
         <source>None of the selected vertices was held</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="175"/>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="178"/>
         <source>No vertex selected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="175"/>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="178"/>
         <source>1 vertex selected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="175"/>
+        <location filename="../../workbench/facetwb/taskpanels/edit_panels.py" line="178"/>
         <source>{0} vertices selected</source>
         <translation type="unfinished"></translation>
     </message>
