@@ -3,9 +3,10 @@
 
 Every panel's outline is laid flat in its own frame (the first edge of its
 face along +x; rotated so that the grain runs along +x when a grain
-direction is given), with its ID at the pole of inaccessibility of the outline
-(:func:`label_point`, the point polylabel finds) or its centroid, whichever holds the
-larger text on the part's top face (where it is engraved), each bevel angle written
+direction is given), with its ID at the centroid of the outline or its pole of
+inaccessibility (:func:`label_point`, the point polylabel finds), whichever holds the
+larger text on the part's top face (where it is engraved; the centroid where both hold
+it), each bevel angle written
 beside its edge, on that face, nearer that edge than any other and clear of the ID and
 the other angles, and a grain arrow inside the part when a grain direction is set.
 
@@ -267,14 +268,17 @@ def _fit_label(polygon, inside, pole, height, n_chars):
     """Where an ID of ``n_chars`` characters goes and how high, at most ``height``: its box
     (``_CHAR_WIDTH`` of the height per character wide and a tenth of the height at each
     end; 0.9 of the height above and below its middle, for the descenders) inside the
-    outline. At the pole of inaccessibility or the centroid,
-    whichever takes the larger text: the pole of a long strip lies near one end, where a
-    text as high as the strip ran past the end, and off the sheet. ``polygon``: the
-    outline's shapely Polygon, ``inside``: the same prepared."""
+    outline. At the centroid or the pole of inaccessibility, whichever takes the larger
+    text: the pole of a long strip lies near one end, where a text as high as the strip ran
+    past the end, and off the sheet. The centroid where both take it: it moves with the
+    outline, while the pole is picked among nearly equal depths across a near-rectangle's
+    middle (from the pole, a 1e-9 change of the model moved 118 of conical1's 1,080 IDs,
+    the wave facade's by up to 117 mm). ``polygon``: the outline's shapely Polygon,
+    ``inside``: the same prepared."""
     from shapely.geometry import Point
 
     centroid = polygon.centroid
-    candidates = [pole] + ([(centroid.x, centroid.y)] if inside.contains(Point(centroid)) else [])
+    candidates = ([(centroid.x, centroid.y)] if inside.contains(Point(centroid)) else []) + [pole]
 
     def fits(point, h):
         return inside.contains(_label_box(point[0], point[1], h, n_chars))
