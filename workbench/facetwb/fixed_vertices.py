@@ -12,7 +12,7 @@ mesh) count too. Runs headless: a selection is a list of ``(object, sub-element 
 
 from facetwb.objects.planarized import is_planarized
 from facetwb.objects.polymesh import is_polymesh
-from facetwb.picked import PickError, picked_vertices
+from facetwb.picked import PickError, mesh_vertex_count, picked_vertices
 from facetwb.translation import translate
 
 
@@ -24,12 +24,10 @@ class SelectionError(PickError):
 def vertex_count(obj):
     """Vertices of the Planarized object's Source, the mesh FixedVertices numbers; raises
     SelectionError when its result does not show that mesh (not recomputed since)."""
-    from facetwb import conversion
-
     if obj.Source is None:
         raise SelectionError(translate("Facet", "{0}: Source is empty, it has no vertices")
                              .format(obj.Label))
-    count = conversion.mesh_from_object(obj.Source).n_vertices
+    count = mesh_vertex_count(obj.Source)
     if obj.VertexCount != count:
         raise SelectionError(translate(
             "Facet", "{0} shows {1} vertices, its Source {2} has {3}: recompute it, then "

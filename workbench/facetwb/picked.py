@@ -8,7 +8,9 @@ A selection is ``[(object, [sub-element names])]``, what ``Gui.Selection.getSele
 gives (:func:`gui_selection`), so all but that runs headless. The names are made and read
 here (:func:`element_name`, :func:`parse_element`), by the view providers too. Used by the
 Planarize edit panel's held vertices (``fixed_vertices``) and the Lifting's pinned heights
-(``pins``).
+(``pins``). :func:`mesh_vertex_count`, the number a picked vertex is checked against, reads
+a mesh once and keeps the count until a document changes (the edit panel asks on every
+selection event).
 """
 
 from facetwb.translation import translate
@@ -33,6 +35,58 @@ def parse_element(name):
         if name.startswith(kind) and name[len(kind):].isdigit():
             return kind, int(name[len(kind):])
     return None, None
+
+
+#: mesh_vertex_count's counts, {(document name, object name): vertices}; emptied when any
+#: document object changes (_CountsObserver).
+_counts = {}
+#: The document observer that empties _counts, once added.
+_observer = []
+
+
+class _CountsObserver:
+    """Empties the counts on every change of a document object (a property set by an edit,
+    a recompute, undo or redo), a deletion or a document closed: a count never outlives
+    the mesh it was read from, whatever that mesh is made from (a Link's target, a
+    shape's inputs), and stays for a run of selection events."""
+
+    def slotChangedObject(self, _obj, _prop):  # noqa: N802 - FreeCAD's names
+        _counts.clear()
+
+    def slotDeletedObject(self, _obj):  # noqa: N802
+        _counts.clear()
+
+    def slotDeletedDocument(self, _doc):  # noqa: N802
+        _counts.clear()
+
+    def slotUndoDocument(self, _doc):  # noqa: N802
+        _counts.clear()
+
+    def slotRedoDocument(self, _doc):  # noqa: N802
+        _counts.clear()
+
+
+def mesh_vertex_count(obj):
+    """The number of vertices of ``obj``'s mesh (``conversion.mesh_from_object``: a Facet
+    polygon mesh, a Mesh, a shape with faces), read once and kept until a document object
+    changes (reading a 10,000-face mesh took 7.5 ms, on every selection event)."""
+    from facetwb import conversion
+
+    key = (obj.Document.Name, obj.Name)
+    if key in _counts:
+        return _counts[key]
+    count = conversion.mesh_from_object(obj).n_vertices
+    if not _observer:
+        try:
+            import FreeCAD as App
+
+            observer = _CountsObserver()
+            App.addDocumentObserver(observer)
+            _observer.append(observer)
+        except Exception:  # noqa: BLE001 - no observer: nothing is kept, every call reads
+            return count
+    _counts[key] = count
+    return count
 
 
 def gui_selection():

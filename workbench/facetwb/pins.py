@@ -14,7 +14,7 @@ what to click (``facetwb.picked``). Wiring only: finding a pin's vertex is
 import math
 
 from facet.plan import COORDINATE_MAX, match_tolerance, pin_vertices
-from facetwb.picked import PickError, picked_vertices
+from facetwb.picked import PickError, mesh_vertex_count, picked_vertices
 from facetwb.translation import translate
 
 
@@ -39,9 +39,7 @@ def selected_vertices(entries, plan):
     """The plan vertices selected in ``entries`` (``[(object, [sub-element names])]``), in
     the order picked, each once: vertices of ``plan`` (the plan the pins are for) or of a
     Lifting of it. A PinError says what is wrong with the first entry that is not."""
-    from facetwb.objects.polymesh import get_mesh
-
-    return picked_vertices(entries, plan, get_mesh(plan).n_vertices,
+    return picked_vertices(entries, plan, mesh_vertex_count(plan),
                            lambda obj: _shows_plan(obj, plan), PinError)
 
 
