@@ -246,6 +246,9 @@ def run(out_dir):
     check_edit_region(check)
     check_edit_planarized(check, out_dir)
     check_hold_vertices(check, out_dir)
+    import preselect_checks
+
+    preselect_checks.run(check, out_dir, sys.modules[__name__])
     check_recompute_in_edit_then_cancel(check, out_dir)
     check_recompute_in_lifting_panels_then_cancel(check, out_dir)
     check_recompute_cancel_and_failed_create(check)
@@ -1688,6 +1691,30 @@ def check_edit_planarized(check, out_dir):
     App.closeDocument(doc.Name)
 
 
+def view_widget_point(view, position):
+    """``(GL widget, QPoint)`` of ``position`` (pixels, Coin's convention: origin bottom
+    left) in the 3D view: the widget's own, device independent, pixels."""
+    from PySide import QtCore
+
+    widget = view.graphicsView().viewport()  # this view's GL widget, not another one's
+    ratio = float(widget.devicePixelRatioF())
+    height = view.getSize()[1]
+    return widget, QtCore.QPoint(int(round(position[0] / ratio)),
+                                 int(round((height - 1 - position[1]) / ratio)))
+
+
+def hover(view, position):
+    """The mouse moved (no button) to ``position`` (pixels, origin bottom left) in the 3D
+    view, through Qt: FreeCAD preselects what is under it."""
+    from PySide import QtCore, QtGui
+
+    widget, pos = view_widget_point(view, position)
+    event = QtGui.QMouseEvent(QtCore.QEvent.MouseMove, pos, widget.mapToGlobal(pos),
+                              QtCore.Qt.NoButton, QtCore.Qt.NoButton, QtCore.Qt.NoModifier)
+    QtGui.QApplication.sendEvent(widget, event)
+    settle(3)
+
+
 def click(view, position, ctrl=False):
     """A left click (press and release) of the mouse at ``position`` (pixels, Coin's
     convention: origin bottom left) in the 3D view's GL widget, through Qt: FreeCAD's own
@@ -1695,11 +1722,7 @@ def click(view, position, ctrl=False):
     from PySide import QtCore, QtGui
     import FreeCADGui as Gui
 
-    widget = view.graphicsView().viewport()  # this view's GL widget, not another one's
-    ratio = float(widget.devicePixelRatioF())
-    height = view.getSize()[1]
-    pos = QtCore.QPoint(int(round(position[0] / ratio)),
-                        int(round((height - 1 - position[1]) / ratio)))
+    widget, pos = view_widget_point(view, position)
     modifiers = QtCore.Qt.ControlModifier if ctrl else QtCore.Qt.NoModifier
     left = QtCore.Qt.LeftButton
     for kind, buttons in ((QtCore.QEvent.MouseButtonPress, left),

@@ -10,7 +10,8 @@ panel is open (:meth:`Markers.show_in` and :meth:`Markers.remove`).
 
 Used by the Lifting's pinned heights (``view_lifting``), the Pin heights panel and the Shape
 lifting panel's Raise vertex row; :class:`VertexMarkers`, on vertices of a drawn mesh, by the
-Planarized object's held vertices and those selected in its edit panel.
+Planarized object's held vertices and those selected in its edit panel, and by every Facet
+mesh's ring on the vertex under the cursor (``preselection``).
 """
 
 from pivy import coin

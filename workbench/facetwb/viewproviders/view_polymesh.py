@@ -37,6 +37,12 @@ AUTO_EDGES_MAX_FACES = 20000
 #: within this many pixels of the pick.
 VERTEX_PICK_PIXELS = 10
 
+#: The vertex a click would pick (preselected: the cursor near it) is ringed in this colour
+#: (FreeCAD's default preselection yellow is in the planarity colours) with a ring as wide
+#: as the pick's reach.
+PRESELECTED_COLOR = (1.0, 1.0, 1.0)
+PRESELECTED_STYLE = ("ring", 2 * VERTEX_PICK_PIXELS + 1)
+
 
 class ViewProviderPolyMesh:
     """View provider of PolyMesh objects (Gui::ViewProviderPythonFeature)."""
@@ -113,7 +119,12 @@ class ViewProviderPolyMesh:
             "Planarity": (self.coords, hints, offset, per_face, self.planarity_material,
                           self.faces, self.planarity_edges, self.legend.root),
         }
-        overlays = self.overlay_nodes()
+        from facetwb.viewproviders import preselection
+        from facetwb.viewproviders.markers import VertexMarkers
+
+        self.preselected = VertexMarkers(PRESELECTED_COLOR, PRESELECTED_STYLE)
+        overlays = (self.preselected.root,) + tuple(self.overlay_nodes())
+        preselection.watch()
         for mode in DISPLAY_MODES:
             group = coin.SoSeparator()
             for node in layouts[mode] + tuple(overlays):
@@ -164,12 +175,14 @@ class ViewProviderPolyMesh:
             _set_mfield(self.coords.point, [])
             _set_mfield(self.faces.coordIndex, [])
             _set_mfield(self.edges.coordIndex, [])
+            self.preselected.show([], self.coords.point)
             self.face_count = 0
             self.drawn_topology = None
             self.recolor(obj)
             return
         xyz, face_start, face_vertices = arrays
         _set_mfield(self.coords.point, xyz.tolist())
+        self.preselected.show(self.preselected.vertices, self.coords.point)  # a re-solve
         drawn = getattr(self, "drawn_topology", None)
         if not (drawn is not None and np.array_equal(drawn[0], face_start)
                 and np.array_equal(drawn[1], face_vertices)):
@@ -247,6 +260,14 @@ class ViewProviderPolyMesh:
             element, corners = self.picked_face(index, corners)
         vertex = self.nearest_corner(corners, pp.getPoint().getValue())
         return element_name(VERTEX, vertex) if vertex is not None else element
+
+    def preselect(self, vertex):
+        """Ring ``vertex`` (an index; None: none), where it is drawn: FreeCAD preselects it
+        while the cursor is near it (``preselection``). True when it is ringed."""
+        if not hasattr(self, "coords"):
+            return False
+        self.preselected.show([] if vertex is None else [vertex], self.coords.point)
+        return bool(self.preselected.vertices)
 
     def picked_face(self, index, corners):
         """("FaceN", all its corners) of the picked polygon ``index``: Coin's detail has
