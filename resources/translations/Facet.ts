@@ -787,67 +787,67 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/fixed_vertices.py" line="30"/>
+        <location filename="../../workbench/facetwb/fixed_vertices.py" line="28"/>
         <source>{0}: Source is empty, it has no vertices</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/fixed_vertices.py" line="34"/>
+        <location filename="../../workbench/facetwb/fixed_vertices.py" line="32"/>
         <source>{0} shows {1} vertices, its Source {2} has {3}: recompute it, then select its vertices</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/fixed_vertices.py" line="82"/>
+        <location filename="../../workbench/facetwb/fixed_vertices.py" line="80"/>
         <source>No vertex held</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/fixed_vertices.py" line="84"/>
+        <location filename="../../workbench/facetwb/fixed_vertices.py" line="82"/>
         <source>1 vertex held</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/fixed_vertices.py" line="85"/>
+        <location filename="../../workbench/facetwb/fixed_vertices.py" line="83"/>
         <source>{0} vertices held</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="52"/>
+        <location filename="../../workbench/facetwb/picked.py" line="106"/>
         <source>Nothing is selected: click vertices of {0} in the 3D view (Ctrl+click for more)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="57"/>
+        <location filename="../../workbench/facetwb/picked.py" line="111"/>
         <source>{0} is selected: click vertices of {1}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="61"/>
+        <location filename="../../workbench/facetwb/picked.py" line="115"/>
         <source>{0} is selected as a whole (in the tree?): click its vertices in the 3D view</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="66"/>
+        <location filename="../../workbench/facetwb/picked.py" line="120"/>
         <source>an edge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="67"/>
+        <location filename="../../workbench/facetwb/picked.py" line="121"/>
         <source>a face</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="68"/>
+        <location filename="../../workbench/facetwb/picked.py" line="122"/>
         <source>{0} of {1} is {2}, not a vertex: click closer to a corner (within a few pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="68"/>
+        <location filename="../../workbench/facetwb/picked.py" line="122"/>
         <source>something else</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/picked.py" line="72"/>
+        <location filename="../../workbench/facetwb/picked.py" line="126"/>
         <source>{0} of {1}: {2} has {3} vertices (0 to {4})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -917,17 +917,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/pins.py" line="55"/>
+        <location filename="../../workbench/facetwb/pins.py" line="53"/>
         <source>{0}: {1} is not a number of mm</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/pins.py" line="58"/>
+        <location filename="../../workbench/facetwb/pins.py" line="56"/>
         <source>{0}: {1} mm is not a finite height up to {2} mm</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/pins.py" line="75"/>
+        <location filename="../../workbench/facetwb/pins.py" line="73"/>
         <source>{0}: {1} is not a length (a number of mm, or with a length unit: 2.4 m)</source>
         <translation type="unfinished"></translation>
     </message>
