@@ -1982,3 +1982,60 @@ def test_texts_as_outlines_read_along_their_turn_upright(rotation):
     # the L's foot is its lower part: its centroid below the middle of its height
     heights = np.array(ell.exterior.coords) @ up
     assert first @ up < 0.5 * (heights.min() + heights.max()) - 1.0
+
+
+def test_new_part_ids_of_the_same_panels_keep_the_nesting(tmp_path, monkeypatch):
+    """Other part IDs (prefix, scheme) change the texts, not the outlines: run_pipeline
+    given the earlier run (``nested``) keeps its placements under the new IDs and writes
+    them in the DXF (1,536 panels: the nesting took most of a recompute); other panels, or
+    another sheet, are nested again."""
+    import ezdxf
+
+    import facet.nest
+    from facet.cli_panels import run_pipeline
+
+    calls = []
+    nest = facet.nest.nest
+    monkeypatch.setattr(facet.nest, "nest", lambda *a, **k: calls.append(1) or nest(*a, **k))
+    mesh = translational(nu=4, nv=3, step=1000.0)
+    options = dict(gap=6.0, sheet=(2600.0, 1400.0), margin=10.0, spacing=6.0)
+    _, ps0, drawings0, result0 = run_pipeline(mesh, 30.0, **options)
+    assert calls == [1]
+    dxf = str(tmp_path / "index.dxf")
+    report, ps, drawings, result = run_pipeline(
+        mesh, 30.0, ids="index", prefix="G-", dxf=dxf, nested=(ps0, drawings0, result0),
+        **options)
+    assert calls == [1] and report["nested"] is False
+    assert [p.id for p in ps.panels] == [f"G-{k:04d}" for k in range(12)]
+    for old, new in zip(ps0.panels, ps.panels):
+        a, b = result0.placements[old.id], result.placements[new.id]
+        assert (a.sheet, a.angle_deg, a.x, a.y) == (b.sheet, b.angle_deg, b.x, b.y)
+    assert [len(s.parts) for s in result.sheets] == [len(s.parts) for s in result0.sheets]
+    assert not facet.nest.verify(result, {d.id: d.footprint for d in drawings})
+    labels = {e.dxf.text for e in ezdxf.readfile(dxf).modelspace().query("TEXT[layer=='LABEL']")}
+    assert labels == {p.id for p in ps.panels}
+    # the same panels: the same nesting and drawings
+    report, _, again, same = run_pipeline(mesh, 30.0, panel_set=ps0,
+                                          nested=(ps0, drawings0, result0), **options)
+    assert (calls, report["nested"], again, same) == ([1], False, drawings0, result0)
+    # other outlines (a wider gap), or another sheet: nested again
+    report = run_pipeline(mesh, 30.0, nested=(ps0, drawings0, result0),
+                          **dict(options, gap=8.0))[0]
+    assert calls == [1, 1] and report["nested"] is True
+    report = run_pipeline(mesh, 30.0, nested=(ps0, drawings0, result0),
+                          **dict(options, sheet=(2700.0, 1400.0)))[0]
+    assert calls == [1, 1, 1] and report["nested"] is True
+
+
+def test_renamed_nesting_checks_its_names():
+    from facet.nest import NestError, renamed
+
+    result = facet.nest.nest({"a": [(0, 0), (10, 0), (10, 10), (0, 10)],
+                              "b": [(0, 0), (5, 0), (5, 5), (0, 5)]}, (100, 100))
+    moved = renamed(result, {"a": "x", "b": "y"})
+    assert moved.sheets[0].parts == ["x", "y"] and moved.placements["y"].id == "y"
+    assert result.sheets[0].parts == ["a", "b"]  # (the original is left as it was)
+    with pytest.raises(NestError, match="no new ID for part b"):
+        renamed(result, {"a": "x"})
+    with pytest.raises(NestError, match="not all different"):
+        renamed(result, {"a": "x", "b": "x"})

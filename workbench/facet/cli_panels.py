@@ -131,7 +131,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
                  spacing=None, rotations="90", grain=None, dxf=None, per_sheet=False,
                  step=None, schedule=None, svg=None, png=None, progress=None,
                  cancelled=None, panel_set=None, solids=None, allow_unplaced=False,
-                 units="mm", text_outlines=False, density=None):
+                 units="mm", text_outlines=False, density=None, nested=None):
     """Everything ``facet panels`` does, as a function (also used by the
     benchmark). Returns (report dict, PanelSet, drawings, NestResult or None).
 
@@ -153,6 +153,13 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
     :data:`facet.nest.DEFAULT_SPACING_MM` in ``units``, ``gap`` to
     :data:`facet.panels.DEFAULT_GAP_MM` (FreeCAD's PanelSet's too). ``density`` (kg/m³, optional):
     the schedule's and the report's masses (:func:`facet.panels.mass_kg`).
+    ``nested`` (optional): ``(panel_set, drawings, result)`` of an earlier run with the
+    same ``sheet``, ``margin``, ``spacing``, ``rotations`` and ``grain``: its drawings and
+    nesting are reused when ``panel_set`` is the PanelSet of this run, and its nesting,
+    under the new part IDs (:func:`facet.nest.renamed`), when this run's panels (in the
+    same order) unfold to the same cut outlines and footprints (other part IDs of the same
+    panels: their texts change, not their outlines); else the parts are nested again. The
+    report's ``nested`` says whether they were.
     """
     from facet.cutsheets import length_unit
     from facet.errors import InputError
@@ -233,7 +240,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
                 text_outlines=text_outlines, step=step,
                 schedule=schedule, svg=svg, png=png, allow_unplaced=allow_unplaced,
                 solids=solids, stage_progress=stage_progress, cancelled=cancelled, units=units,
-                density=density)
+                density=density, nested=nested)
     except BaseException:
         if job is not None:
             job.cancel()
@@ -260,8 +267,7 @@ def write_schedule(path, ps, rows, density=None, units="mm"):
 
 def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,
                       dxf, per_sheet, text_outlines, step, schedule, svg, png, allow_unplaced,
-                      solids,
-                      stage_progress, cancelled, units, density):
+                      solids, stage_progress, cancelled, units, density, nested):
     from facet.cutsheets import length_unit, schedule_rows, write_dxf, write_png, write_svg
     from facet.errors import Cancelled, InputError
     from facet.nest import nest
@@ -272,16 +278,19 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
             raise Cancelled("cancelled")
 
     t = time.perf_counter()
-    drawings = unfold(ps, grain=grain)
+    drawings = nested[1] if nested is not None and nested[0] is ps else unfold(ps, grain=grain)
     # the texts are in the DXF and the previews only: no warning about a text not written
     text_warnings = (small_text_warnings(drawings, length_unit(units)[0])
                      if dxf or svg or png else [])
     times["unfold"] = time.perf_counter() - t
-    result = None
+    result, nested_now = None, False
     if sheet is not None:
         t = time.perf_counter()
-        result = nest({d.id: d.footprint for d in drawings}, sheet, margin=margin,
-                      spacing=spacing, rotations=rotations, progress=stage_progress("nest"))
+        result = _kept_nesting(nested, ps, drawings, sheet, margin, spacing, rotations)
+        nested_now = result is None
+        if nested_now:
+            result = nest({d.id: d.footprint for d in drawings}, sheet, margin=margin,
+                          spacing=spacing, rotations=rotations, progress=stage_progress("nest"))
         times["nest"] = time.perf_counter() - t
         check()
         if result.unplaced and not allow_unplaced:
@@ -368,6 +377,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         "text_warnings": text_warnings,
         "files": files,
         "seconds": times,
+        "nested": nested_now,
     }
     if density is not None:
         masses = [row["mass_kg"] for row in report["panels"]]
@@ -376,6 +386,33 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
                       heaviest_panel=None if heaviest is None else
                       {"id": report["panels"][heaviest]["id"], "mass_kg": masses[heaviest]})
     return report, ps, drawings, result
+
+
+def _kept_nesting(nested, ps, drawings, sheet, margin, spacing, rotations):
+    """The nesting of ``nested`` (run_pipeline's) for ``ps``'s ``drawings``, under their
+    IDs, when it still holds: nested on this sheet with this margin, spacing and rotations,
+    and of the same panels (``ps`` itself) or of panels whose drawings have the same cut
+    outlines and footprints, in the same order. None when the parts must be nested again."""
+    import numpy as np
+
+    from facet.nest import renamed
+
+    if nested is None:
+        return None
+    ps0, drawings0, result = nested
+    if (result is None or tuple(result.sheet_size) != tuple(float(v) for v in sheet)
+            or result.margin != margin or result.spacing != spacing
+            or result.rotations != rotations):
+        return None
+    if ps0 is ps:
+        return result
+    if len(drawings0) != len(drawings) or not all(
+            np.array_equal(a.cut, b.cut) and np.array_equal(a.footprint, b.footprint)
+            for a, b in zip(drawings0, drawings)):
+        return None
+    if all(a.id == b.id for a, b in zip(drawings0, drawings)):
+        return result
+    return renamed(result, {a.id: b.id for a, b in zip(drawings0, drawings)})
 
 
 #: What each stage of run_pipeline counts, on the progress line.

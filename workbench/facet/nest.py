@@ -32,8 +32,8 @@ import numpy as np
 
 from facet.errors import Cancelled, FacetError, InputError
 
-__all__ = ["NestError", "Placement", "Sheet", "NestResult", "nest", "verify", "ROTATIONS",
-           "DEFAULT_MARGIN_MM", "DEFAULT_SPACING_MM"]
+__all__ = ["NestError", "Placement", "Sheet", "NestResult", "nest", "renamed", "verify",
+           "ROTATIONS", "DEFAULT_MARGIN_MM", "DEFAULT_SPACING_MM"]
 
 #: The clear border along the sheet's edges and the least distance between parts that
 #: ``facet panels`` and FreeCAD's cut sheets use unless told otherwise, in millimetres
@@ -119,6 +119,25 @@ class NestResult:
             return 0.0
         return sum(s.used_area for s in self.sheets) / (
             len(self.sheets) * self.sheet_size[0] * self.sheet_size[1])
+
+
+def renamed(result, names):
+    """``result`` with its parts renamed by ``names`` (old ID -> new ID, one for each of its
+    parts, all different): the same sheets, positions and rotations, for parts whose
+    outlines are those nested (new part IDs of the same panels)."""
+    from dataclasses import replace
+
+    missing = [pid for pid in list(result.placements) + list(result.unplaced)
+               if pid not in names]
+    if missing:
+        raise NestError(f"no new ID for part {missing[0]} ({len(missing)} parts in all)")
+    new = [names[pid] for pid in list(result.placements) + list(result.unplaced)]
+    if len(set(new)) != len(new):
+        raise NestError("the new part IDs are not all different")
+    sheets = [replace(s, parts=[names[pid] for pid in s.parts]) for s in result.sheets]
+    placements = {names[pid]: replace(pl, id=names[pid]) for pid, pl in result.placements.items()}
+    return replace(result, sheets=sheets, placements=placements,
+                   unplaced=[names[pid] for pid in result.unplaced])
 
 
 def _check(name, value, minimum, strict):
