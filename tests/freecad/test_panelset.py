@@ -49,6 +49,41 @@ def counting_builds():
         fpanels.panels, fstep.panel_solids = saved
 
 
+@contextlib.contextmanager
+def counting_nests():
+    """A list that gets an item at each call of facet.nest.nest while the block runs."""
+    fnest = sys.modules["facet.nest"]
+    nests = []
+    saved = fnest.nest
+
+    def counting(*a, **k):
+        nests.append(1)
+        return saved(*a, **k)
+
+    fnest.nest = counting
+    try:
+        yield nests
+    finally:
+        fnest.nest = saved
+
+
+def written(out):
+    """{path relative to ``out``: (inode, mtime)} of each file there: a file written again
+    is a new one."""
+    found = {}
+    for root, _dirs, names in os.walk(out):
+        for name in names:
+            st = os.stat(os.path.join(root, name))
+            found[os.path.relpath(os.path.join(root, name), out)] = (st.st_ino, st.st_mtime_ns)
+    return found
+
+
+def changed_since(out, before):
+    """The files in ``out`` written (or made) since ``before`` (:func:`written`)."""
+    now = written(out)
+    return sorted(k for k in now if now[k] != before.get(k))
+
+
 class TestPanelSet(DocumentTestCase):
     @classmethod
     def setUpClass(cls):
@@ -575,16 +610,7 @@ class TestPanelSet(DocumentTestCase):
         import csv
         import json
 
-        fnest = sys.modules["facet.nest"]
-        nests = []
-        saved = fnest.nest
-
-        def counting(*a, **k):
-            nests.append(1)
-            return saved(*a, **k)
-
-        fnest.nest = counting
-        self.addCleanup(setattr, fnest, "nest", saved)
+        nests = self.enterContext(counting_nests())
         ps_obj = facetwb.make_panelset(self.source, thickness=T, name="Glass")
         out = os.path.join(self.tmp.name, "glass")
         sheets = facetwb.make_cutsheets(ps_obj, sheet=(2600.0, 1400.0), output_dir=out)
@@ -592,18 +618,10 @@ class TestPanelSet(DocumentTestCase):
         self.addCleanup(self.doc.removeObject, sheets.Name)
 
         def files():
-            """(inode, mtime) of each file written: a file written again is a new one"""
-            found = {}
-            for root, _dirs, names in os.walk(out):
-                for name in names:
-                    st = os.stat(os.path.join(root, name))
-                    found[os.path.relpath(os.path.join(root, name), out)] = (
-                        st.st_ino, st.st_mtime_ns)
-            return found
+            return written(out)
 
         def changed(before):
-            now = files()
-            return sorted(k for k in now if now[k] != before.get(k))
+            return changed_since(out, before)
 
         def schedule():
             with open(os.path.join(out, "schedule.csv"), "rb") as handle:
@@ -649,19 +667,103 @@ class TestPanelSet(DocumentTestCase):
         self.assertIsNone(density)
         self.assertEqual({r["mass_kg"] for r in csv.DictReader(
             text.decode("utf-8").splitlines())}, {""})
-        # what the nesting or the files depend on nests again
-        ps_obj.IdPrefix = "G-"  # (the IDs are in the DXF)
-        self.doc.recompute()
-        self.assertEqual(len(nests), 1)
+        # what the nesting depends on nests again
         sheets.Spacing = 8.0
         self.doc.recompute()
-        self.assertEqual(len(nests), 2)
+        self.assertEqual(len(nests), 1)
+        # a file no longer there is written again, from the same nesting
         os.remove(os.path.join(out, "sheets.dxf"))
+        before = files()
         ps_obj.Density = 2700.0
         self.doc.recompute()
-        self.assertEqual(len(nests), 3)
-        self.assertTrue(os.path.exists(os.path.join(out, "sheets.dxf")))
+        self.assertEqual(len(nests), 1)
+        self.assertEqual(changed(before), ["schedule.csv", "schedule.json", "sheets.dxf"])
         self.assertEqual(schedule()[1], 2700.0)
+
+    def test_cutsheets_keep_their_nesting_for_new_part_ids_and_file_options(self):
+        """The part IDs (IdPrefix, IdScheme) are written in every file, but change no
+        part's outline: the CutSheets keep their nesting (1,536 panels: 75 s of nesting
+        a change) and write every file again with the new IDs. TextOutlines writes the DXF
+        alone, WriteStep on the STEP file alone, off removes the panels.step it wrote (it
+        would no longer be the panels of the sheets beside it), a new OutputDir gets every
+        file, the old one is left as it was."""
+        import csv
+
+        import ezdxf
+
+        nests = self.enterContext(counting_nests())
+        ps_obj = facetwb.make_panelset(self.source, thickness=T, name="Named")
+        out = os.path.join(self.tmp.name, "named")
+        sheets = facetwb.make_cutsheets(ps_obj, sheet=(2600.0, 1400.0), output_dir=out)
+        self.addCleanup(self.doc.removeObject, ps_obj.Name)
+        self.addCleanup(self.doc.removeObject, sheets.Name)
+
+        def places(folder=out):
+            """The schedule's ID and place of each part, in the order of the panels."""
+            with open(os.path.join(folder, "schedule.csv"), encoding="utf-8") as handle:
+                rows = list(csv.DictReader(handle))
+            return ([r["id"] for r in rows],
+                    [(r["sheet"], r["x"], r["y"], r["rotation_deg"]) for r in rows])
+
+        def labels(folder=out):
+            dxf = ezdxf.readfile(os.path.join(folder, "sheets.dxf"))
+            return sorted(e.dxf.text for e in dxf.modelspace().query("TEXT[layer=='LABEL']"))
+
+        def step_names(folder=out):
+            with open(os.path.join(folder, "panels.step"), encoding="latin-1") as handle:
+                return re.findall(r"PRODUCT\('([^']*)'", handle.read())
+
+        self.doc.recompute()
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        self.assertEqual(len(nests), 1)
+        ids, placed = places()
+        self.assertEqual(ids, list(ps_obj.PartIds))
+        layout = sheets.Shape
+        everything = sorted(written(out))
+        for prefix, scheme, first in (("G-", "auto", "G-R01C01"), ("G-", "index", "G-0000")):
+            before = written(out)
+            ps_obj.IdPrefix, ps_obj.IdScheme = prefix, scheme
+            self.doc.recompute()
+            self.assertTrue(sheets.isValid(), sheets.getStatusString())
+            self.assertEqual(len(nests), 1)  # not nested again
+            self.assertEqual(changed_since(out, before), everything)
+            ids, now = places()
+            self.assertEqual((ids[0], ids), (first, list(ps_obj.PartIds)))
+            self.assertEqual(now, placed)  # each part where it was
+            self.assertEqual(labels(), sorted(ps_obj.PartIds))
+            self.assertEqual([n for n in step_names() if n.startswith(prefix)],
+                             list(ps_obj.PartIds))
+            self.assertTrue(sheets.Shape.isSame(layout))
+        # the files' own options: the files they change alone
+        before = written(out)
+        sheets.TextOutlines = True
+        self.doc.recompute()
+        self.assertEqual((len(nests), changed_since(out, before)), (1, ["sheets.dxf"]))
+        self.assertEqual(labels(), [])  # (the IDs are letters' outlines now)
+        before = written(out)
+        sheets.WriteStep = False
+        self.doc.recompute()
+        self.assertEqual((len(nests), changed_since(out, before)), (1, []))
+        self.assertNotIn("panels.step", written(out))
+        self.assertNotIn(os.path.join(out, "panels.step"), sheets.Files)
+        sheets.WriteStep = True
+        self.doc.recompute()
+        self.assertEqual((len(nests), changed_since(out, before)), (1, ["panels.step"]))
+        self.assertEqual([n for n in step_names() if n.startswith("G-")], list(ps_obj.PartIds))
+        self.assertEqual(sorted(sheets.Files), sorted(os.path.join(out, f) for f in everything))
+        before = written(out)
+        other = os.path.join(self.tmp.name, "named2")
+        sheets.OutputDir = other
+        self.doc.recompute()
+        self.assertEqual(len(nests), 1)
+        self.assertEqual(changed_since(out, before), [])  # the old folder left as it was
+        self.assertEqual(sorted(written(other)), everything)
+        self.assertEqual(sorted(sheets.Files), sorted(os.path.join(other, f) for f in everything))
+        self.assertEqual(places(other), (list(ps_obj.PartIds), placed))
+        # an outline that changes (Thickness moves the top face, Gap the cut) nests again
+        ps_obj.Gap = 2 * GAP
+        self.doc.recompute()
+        self.assertEqual(len(nests), 2)
 
     def test_z_save_reopen(self):
         ids = list(self.square.PartIds)

@@ -14,9 +14,14 @@ CutSheets (``Part::FeaturePython``) links a PanelSet, nests its flat parts on st
 (``facet.nest``) and, when ``OutputDir`` is set, writes the DXF, STEP, schedule and previews
 there. Its ``Shape`` is the sheet layout (sheet borders and cut outlines, flat, side by side).
 It reuses the panels and solids its PanelSet computed in this session (recomputing them
-only when the PanelSet has none, e.g. right after the document was opened). When its
-PanelSet recomputed for its masses alone (Density, OnePerPanel: the same panels), it keeps
-its nesting and the DXF, SVG and STEP files, and writes only the schedules again.
+only when the PanelSet has none, e.g. right after the document was opened). It keeps its
+nesting while the parts' outlines and its sheet are the same: when its PanelSet recomputed
+for its masses (Density), OnePerPanel or the part IDs (IdPrefix, IdScheme: the same
+outlines under other names), or when only its :data:`FILE_INPUTS` changed (OutputDir,
+WriteStep, TextOutlines); it then writes only the files that changed (the IDs: all of
+them; Density: the schedules; TextOutlines: the DXF; WriteStep on: the STEP file; a new
+OutputDir: all of them there) and those no longer there. WriteStep off removes the
+panels.step it wrote.
 
 The source is never modified. The numerics are in ``facet``; this module is wiring.
 """
@@ -44,6 +49,11 @@ NO_GEOMETRY = frozenset({"Density", "OnePerPanel", "IdScheme", "IdPrefix"})
 #: Properties that change nothing a recompute makes (hidden or shown in the tree, renamed):
 #: not counted as changes at all (after one, a Density change rebuilt every solid).
 NOT_INPUTS = frozenset({"Visibility", "Label", "Label2"})
+#: The CutSheets' inputs that change which files are written, where and how, not the
+#: nesting: a recompute after changes to these alone keeps it.
+FILE_INPUTS = frozenset({"OutputDir", "WriteStep", "TextOutlines"})
+#: The kinds of files a CutSheets writes (run_pipeline's), in the order of its Files.
+FILE_KINDS = ("dxf", "schedule", "svg", "step")
 
 
 class _Proxy:
@@ -60,8 +70,15 @@ class _Proxy:
 
         attach.schedule(obj)  # a document saved without the GUI has no view provider
 
-    def onChanged(self, obj, prop):
-        pass
+    def onChanged(self, obj, prop):  # noqa: N802 - FreeCAD's name
+        """Note what changed since the last recompute (``_changed``, emptied by a whole
+        one): what it may keep depends on it."""
+        if prop in NOT_INPUTS:
+            return
+        changed = getattr(self, "_changed", None)
+        if changed is None:
+            changed = self._changed = set()
+        changed.add(prop)
 
     def dumps(self):
         return {"Type": self.Type}
@@ -218,14 +235,6 @@ class PanelSet(_Proxy):
     def _key(self, obj):
         """What the computed panels depend on, besides the Source's geometry."""
         return self._geometry_key(obj) + (obj.IdScheme, obj.IdPrefix)
-
-    def onChanged(self, obj, prop):  # noqa: N802 - FreeCAD's name
-        if prop in NOT_INPUTS:
-            return
-        changed = getattr(self, "_changed", None)
-        if changed is None:
-            changed = self._changed = set()
-        changed.add(prop)
 
     def _same_solids(self, obj, cache, mesh):
         """Whether the Shape's solids, built at the last recompute (``cache``), are still
@@ -464,8 +473,6 @@ class CutSheets(_Proxy):
     def execute(self, obj):
         import os
 
-        import Part
-
         from facet.cli_panels import run_pipeline, write_schedule
         from facetwb import conversion
 
@@ -480,90 +487,127 @@ class CutSheets(_Proxy):
         panel_set, solids = ps_obj.Proxy.computed(ps_obj)
         density = _density(ps_obj)
         kept, self._kept = getattr(self, "_kept", None), None
-        if self._nesting_kept(obj, ps_obj, panel_set, kept):
-            # the PanelSet recomputed for its masses (Density) or OnePerPanel alone: the
-            # nesting (1,536 panels: 75 s a Density change) and the DXF, SVG and STEP files
-            # do not depend on them; the schedules are written again with the masses
-            if out and (density != kept["density"] or not all(
-                    os.path.exists(p) for p in _schedule_paths(out))):
-                from facet.cutsheets import schedule_rows
-                from facet.io.files import staged
+        if not self._nesting_kept(obj, ps_obj, kept):
+            kept = None
+        write = self._to_write(obj, panel_set, density, kept)
 
-                rows = schedule_rows(panel_set, kept["result"], kept["drawings"],
-                                     density=density)
-                with staged():  # both or neither
-                    for path in _schedule_paths(out):
-                        write_schedule(path, panel_set, rows, density=density, units="mm")
-            self._kept = dict(kept, density=density, record=ps_obj.Proxy.record())
-            return
+        def path(kind, name):
+            return os.path.join(out, name) if kind in write else None
+
         mesh = conversion.mesh_from_object(ps_obj.Source)
-        report, ps, drawings, result = run_pipeline(
-            mesh, ps_obj.Thickness.Value, panel_set=panel_set, solids=solids, offset=ps_obj.Offset, gap=ps_obj.Gap.Value,
-            edge=ps_obj.EdgeMode, flip=bool(ps_obj.Flip), ids=ps_obj.IdScheme,
-            prefix=ps_obj.IdPrefix, tol=ps_obj.Tolerance, tol_abs=ps_obj.ToleranceAbs.Value,
-            min_edge=ps_obj.MinEdge, min_edge_abs=ps_obj.MinEdgeAbs.Value,
-            sheet=(obj.SheetWidth.Value, obj.SheetHeight.Value), margin=obj.Margin.Value,
-            spacing=obj.Spacing.Value, rotations=obj.Rotations, grain=grain,
-            dxf=os.path.join(out, "sheets.dxf") if out else None,
-            schedule=os.path.join(out, "schedule.csv") if out else None,
-            svg=os.path.join(out, "svg") if out else None,
-            step=os.path.join(out, "panels.step") if out and obj.WriteStep else None,
-            text_outlines=bool(obj.TextOutlines), density=density,
-            progress=_stage_progress(progress.hook(), progress.say_hook()))
-        if out:
-            path = _schedule_paths(out)[1]
-            write_schedule(path, ps, report["panels"],  # (the schedule's rows)
-                           density=density, units="mm")
-            report["files"]["schedule"].append(path)
-        # the layout: sheets side by side, flat in the xy plane
-        from facet.cutsheets import sheet_offsets
+        from facet.io.files import staged, when_staged
 
-        offsets = sheet_offsets(result)
-        w, h = result.sheet_size
-        V = App.Vector
-        wires = []
-        for x0 in offsets:
-            wires.append(Part.makePolygon([V(x0, 0, 0), V(x0 + w, 0, 0), V(x0 + w, h, 0),
-                                           V(x0, h, 0), V(x0, 0, 0)]))
-        by_id = {d.id: d for d in drawings}
-        for pid, pl in result.placements.items():
-            pts = pl.transform(by_id[pid].cut)
-            x0 = offsets[pl.sheet]
-            ring = [V(float(x) + x0, float(y), 0) for x, y in pts]
-            wires.append(Part.makePolygon(ring + [ring[0]]))
-        obj.Shape = Part.makeCompound(wires)
-        obj.SheetCount = len(result.sheets)
-        obj.Utilisation = float(result.utilisation)
-        obj.SheetUtilisation = [float(s.utilisation) for s in result.sheets]
+        with staged():  # the files of a run together, or none of them
+            report, ps, drawings, result = run_pipeline(
+                mesh, ps_obj.Thickness.Value, panel_set=panel_set, solids=solids,
+                offset=ps_obj.Offset, gap=ps_obj.Gap.Value, edge=ps_obj.EdgeMode,
+                flip=bool(ps_obj.Flip), ids=ps_obj.IdScheme, prefix=ps_obj.IdPrefix,
+                tol=ps_obj.Tolerance, tol_abs=ps_obj.ToleranceAbs.Value,
+                min_edge=ps_obj.MinEdge, min_edge_abs=ps_obj.MinEdgeAbs.Value,
+                sheet=(obj.SheetWidth.Value, obj.SheetHeight.Value), margin=obj.Margin.Value,
+                spacing=obj.Spacing.Value, rotations=obj.Rotations, grain=grain,
+                dxf=path("dxf", "sheets.dxf"), schedule=path("schedule", "schedule.csv"),
+                svg=path("svg", "svg"), step=path("step", "panels.step"),
+                text_outlines=bool(obj.TextOutlines), density=density,
+                progress=_stage_progress(progress.hook(), progress.say_hook()),
+                nested=None if kept is None else (kept["panels"], kept["drawings"],
+                                                  kept["result"]))
+            files = dict(kept["files"]) if kept is not None and kept["out"] == out else {}
+            files.update(report["files"])
+            if "schedule" in write:
+                json_path = _schedule_paths(out)[1]
+                write_schedule(json_path, ps, report["panels"],  # (the schedule's rows)
+                               density=density, units="mm")
+                files["schedule"] = files["schedule"] + [json_path]
+            step = os.path.join(out, "panels.step") if out else None
+            if not obj.WriteStep:
+                files.pop("step", None)
+                if step in obj.Files and os.path.isfile(step):
+                    # the STEP file of an earlier recompute (WriteStep turned off): left
+                    # there, it would no longer be the panels of the sheets beside it
+                    when_staged(lambda: os.remove(step))
+        if report["nested"] or kept is None:
+            obj.Shape = _layout(result, drawings)
+            obj.SheetCount = len(result.sheets)
+            obj.Utilisation = float(result.utilisation)
+            obj.SheetUtilisation = [float(s.utilisation) for s in result.sheets]
+        # (else the same parts in the same places: the same layout)
         obj.Unplaced = list(result.unplaced)
-        obj.Files = [f for paths in report["files"].values() for f in paths]
-        obj.Warnings = list(report["text_warnings"])
-        for warning in obj.Warnings:
-            App.Console.PrintWarning(f"{obj.Label}: {warning}\n")
-        self._kept = dict(key=self._nesting_key(obj, ps_obj), panels=panel_set,
+        obj.Files = [f for kind in FILE_KINDS for f in files.get(kind, [])]
+        if not out or report["files"].get("dxf") or report["files"].get("svg"):
+            # (else the texts of the files kept are those warned about at the time)
+            obj.Warnings = list(report["text_warnings"])
+            for warning in obj.Warnings:
+                App.Console.PrintWarning(f"{obj.Label}: {warning}\n")
+        self._kept = dict(layout=self._layout_key(obj, ps_obj), panels=panel_set,
                           record=ps_obj.Proxy.record(), drawings=drawings, result=result,
-                          density=density, files=list(obj.Files))
+                          density=density, out=out, text_outlines=bool(obj.TextOutlines),
+                          files=files)
+        self._changed = set()
 
     @staticmethod
-    def _nesting_key(obj, ps_obj):
-        """The CutSheets' own inputs (sheet, nesting, files) and its PanelSet."""
+    def _layout_key(obj, ps_obj):
+        """What the nesting depends on besides the parts: the PanelSet, sheet and nesting
+        inputs."""
         g = obj.Grain
         return (ps_obj.Name, obj.SheetWidth.Value, obj.SheetHeight.Value, obj.Margin.Value,
-                obj.Spacing.Value, obj.Rotations, (g.x, g.y, g.z), obj.OutputDir,
-                bool(obj.WriteStep), bool(obj.TextOutlines))
+                obj.Spacing.Value, obj.Rotations, (g.x, g.y, g.z))
 
-    def _nesting_kept(self, obj, ps_obj, panel_set, kept):
-        """Whether the nesting and files of the last recompute (``kept``) are still those
-        of the current inputs: the PanelSet recomputed since without changing its panels
-        (the same ``panel_set``: a Density or OnePerPanel change, :data:`NO_GEOMETRY` less
-        the part IDs, which the DXF shows), nothing of the CutSheets' own changed and its
-        files are still there. A recompute of the CutSheets marked by hand nests again."""
+    def _nesting_kept(self, obj, ps_obj, kept):
+        """Whether the nesting of the last recompute (``kept``) may be kept: the sheet and
+        nesting inputs are the same, and since then the PanelSet recomputed or only
+        :data:`FILE_INPUTS` of the CutSheets' own changed. run_pipeline keeps it when the
+        parts' outlines are the same (other part IDs, masses), else it nests again. A
+        recompute of the CutSheets marked by hand nests again."""
+        changed = getattr(self, "_changed", None) or set()
+        return (kept is not None and kept["layout"] == self._layout_key(obj, ps_obj)
+                and (kept["record"] is not ps_obj.Proxy.record()
+                     or bool(changed) and changed <= FILE_INPUTS))
+
+    @staticmethod
+    def _to_write(obj, panel_set, density, kept):
+        """The kinds of files (:data:`FILE_KINDS`) the recompute writes: all of them without
+        a nesting ``kept``, for new panels (other part IDs: in every file) or in another
+        OutputDir; else those whose inputs changed (the schedules: Density; the DXF:
+        TextOutlines; STEP: WriteStep turned on) and those no longer there."""
         import os
 
-        return (kept is not None and kept["panels"] is panel_set
-                and kept["record"] is not ps_obj.Proxy.record()
-                and kept["key"] == self._nesting_key(obj, ps_obj)
-                and all(os.path.exists(p) for p in kept["files"]))
+        if not obj.OutputDir:
+            return set()
+        every = {"dxf", "schedule", "svg"} | ({"step"} if obj.WriteStep else set())
+        if kept is None or kept["panels"] is not panel_set or kept["out"] != obj.OutputDir:
+            return every
+        write = {kind for kind in every
+                 if not kept["files"].get(kind)
+                 or not all(os.path.exists(p) for p in kept["files"][kind])}
+        if density != kept["density"]:
+            write.add("schedule")
+        if bool(obj.TextOutlines) != kept["text_outlines"]:
+            write.add("dxf")
+        return write
+
+
+def _layout(result, drawings):
+    """The sheets side by side, flat in the xy plane: their borders and the parts' cut
+    outlines where ``result`` placed them."""
+    import Part
+
+    from facet.cutsheets import sheet_offsets
+
+    offsets = sheet_offsets(result)
+    w, h = result.sheet_size
+    V = App.Vector
+    wires = []
+    for x0 in offsets:
+        wires.append(Part.makePolygon([V(x0, 0, 0), V(x0 + w, 0, 0), V(x0 + w, h, 0),
+                                       V(x0, h, 0), V(x0, 0, 0)]))
+    by_id = {d.id: d for d in drawings}
+    for pid, pl in result.placements.items():
+        pts = pl.transform(by_id[pid].cut)
+        x0 = offsets[pl.sheet]
+        ring = [V(float(x) + x0, float(y), 0) for x, y in pts]
+        wires.append(Part.makePolygon(ring + [ring[0]]))
+    return Part.makeCompound(wires)
 
 
 def _schedule_paths(out):
