@@ -765,6 +765,52 @@ class TestPanelSet(DocumentTestCase):
         self.doc.recompute()
         self.assertEqual(len(nests), 2)
 
+    def test_undo_after_files_were_written_marks_the_cut_sheets_for_recompute(self):
+        """Undo (and redo) after a recompute wrote the files: FreeCAD marks the PanelSet
+        whose Gap it put back, but left its CutSheets shown up to date, their files those
+        of the Gap undone. They are marked now, and the next recompute writes the files of
+        the values the document holds; a CutSheets property undone was marked already."""
+        import csv
+
+        doc = App.newDocument("UndoFiles")
+        self.addCleanup(App.closeDocument, doc.Name)
+        doc.UndoMode = 1
+        source = facetwb.make_polymesh(self.mesh, label="undone", doc=doc)
+        ps_obj = facetwb.make_panelset(source, thickness=T)
+        out = os.path.join(self.tmp.name, "undo")
+        sheets = facetwb.make_cutsheets(ps_obj, sheet=(2600.0, 1400.0), output_dir=out)
+        doc.recompute()
+
+        def areas():
+            with open(os.path.join(out, "schedule.csv"), encoding="utf-8") as handle:
+                return [float(r["area"]) for r in csv.DictReader(handle)]
+
+        np.testing.assert_allclose(areas(), list(ps_obj.Areas), rtol=1e-12)
+        for obj, prop, value in ((ps_obj, "Gap", 2 * GAP), (sheets, "SheetWidth", 2800.0)):
+            old = getattr(obj, prop)
+            doc.openTransaction(f"Set {prop}")
+            setattr(obj, prop, value)
+            doc.commitTransaction()
+            doc.recompute()
+            self.assertTrue(sheets.isValid(), sheets.getStatusString())
+            self.assertEqual(sheets.State, ["Up-to-date"])
+            before = written(out)
+            for step in (doc.undo, doc.redo, doc.undo):
+                step()
+                self.assertIn("Touched", sheets.State, (prop, step.__name__))
+            self.assertEqual(getattr(obj, prop), old)
+            self.assertEqual(changed_since(out, before), [])  # (nothing written on undo)
+            doc.recompute()
+            self.assertEqual((ps_obj.State, sheets.State), (["Up-to-date"], ["Up-to-date"]))
+            self.assertIn("sheets.dxf", changed_since(out, before))
+            np.testing.assert_allclose(areas(), list(ps_obj.Areas), rtol=1e-12)
+        # nothing upstream marked: nothing more is
+        doc.openTransaction("Set Label")
+        sheets.Label = "renamed"
+        doc.commitTransaction()
+        doc.undo()
+        self.assertEqual((ps_obj.State, sheets.State), (["Up-to-date"], ["Up-to-date"]))
+
     def test_z_save_reopen(self):
         ids = list(self.square.PartIds)
         volumes = list(self.square.Volumes)

@@ -28,13 +28,14 @@ import sys
 from facetwb import progress
 from facetwb.translation import translate
 
-__all__ = ["RecomputeError", "Recomputes", "after_recompute", "cancel_live_edit", "failure",
-           "guarded", "keep_up_to_date", "one_line", "up_to_date"]
+__all__ = ["RecomputeError", "Recomputes", "after_recompute", "after_undo", "cancel_live_edit",
+           "failure", "guarded", "keep_up_to_date", "one_line", "up_to_date"]
 
 _saved_limit = []
 _observer = []
 _after = []  # (document name, action) to run once that document has recomputed
 _recorders = []  # the open Recomputes
+_undo_actions = []  # action(doc) to run after each undo or redo of a document
 
 
 def _restore_traceback_limit():
@@ -51,6 +52,12 @@ class _DocumentObserver:
     def slotRecomputedDocument(self, doc):  # noqa: N802 - FreeCAD's name
         _restore_traceback_limit()
         _run_after(doc)
+
+    def slotUndoDocument(self, doc):  # noqa: N802 - FreeCAD's name
+        _run_undo_actions(doc)
+
+    def slotRedoDocument(self, doc):  # noqa: N802
+        _run_undo_actions(doc)
 
     def slotRecomputedObject(self, obj):  # noqa: N802
         doc = getattr(getattr(obj, "Document", None), "Name", None)
@@ -70,6 +77,26 @@ def _run_after(doc):
             import FreeCAD as App
 
             App.Console.PrintError(f"Facet: after recomputing {name}: {error}\n")
+
+
+def after_undo(action):
+    """Run ``action(doc)`` after each undo and redo of any document, once the properties
+    are put back (FreeCAD's ``signalUndo``, ``signalRedo``); an action given again is
+    still run once."""
+    if action not in _undo_actions:
+        _undo_actions.append(action)
+    _observe()
+
+
+def _run_undo_actions(doc):
+    for action in list(_undo_actions):
+        try:
+            action(doc)
+        except Exception as error:  # noqa: BLE001 - one failed action must not stop the rest
+            import FreeCAD as App
+
+            App.Console.PrintError(f"Facet: after undo in {getattr(doc, 'Name', doc)}: "
+                                   f"{error}\n")
 
 
 def up_to_date(objects):

@@ -468,6 +468,9 @@ class CutSheets(_Proxy):
         _output(obj, "App::PropertyStringList", "Files", "Files written")
         _output(obj, "App::PropertyStringList", "Warnings",
                 "What was found worth telling about the sheets (texts too small to engrave)")
+        from facetwb.recompute import after_undo
+
+        after_undo(mark_stale_after_undo)
 
     @guarded
     def execute(self, obj):
@@ -608,6 +611,18 @@ def _layout(result, drawings):
         ring = [V(float(x) + x0, float(y), 0) for x, y in pts]
         wires.append(Part.makePolygon(ring + [ring[0]]))
     return Part.makeCompound(wires)
+
+
+def mark_stale_after_undo(doc):
+    """After an undo or redo in ``doc``: mark for recompute each CutSheets that has written
+    files (``Files``) when anything it is made from (its PanelSet, the PanelSet's mesh and
+    what that is made from) is marked. FreeCAD marks the objects whose properties the undo
+    put back, not what is made from them: undoing a PanelSet's Gap left its CutSheets shown
+    up to date, its Files those of the Gap undone, until the next recompute."""
+    for obj in doc.Objects:
+        if (is_cutsheets(obj) and obj.Files and "Touched" not in obj.State
+                and any("Touched" in o.State for o in obj.OutListRecursive)):
+            obj.touch()
 
 
 def _schedule_paths(out):
