@@ -528,7 +528,7 @@ class CutSheets(_Proxy):
                 if step in obj.Files and os.path.isfile(step):
                     # the STEP file of an earlier recompute (WriteStep turned off): left
                     # there, it would no longer be the panels of the sheets beside it
-                    when_staged(lambda: os.remove(step))
+                    when_staged(lambda: _remove(step))
         if report["nested"] or kept is None:
             obj.Shape = _layout(result, drawings)
             obj.SheetCount = len(result.sheets)
@@ -623,6 +623,15 @@ def mark_stale_after_undo(doc):
         if (is_cutsheets(obj) and obj.Files and "Touched" not in obj.State
                 and any("Touched" in o.State for o in obj.OutListRecursive)):
             obj.touch()
+
+
+def _remove(path):
+    """Remove the file ``path`` if it is still there."""
+    import contextlib
+    import os
+
+    with contextlib.suppress(FileNotFoundError):
+        os.remove(path)
 
 
 def _schedule_paths(out):
