@@ -11,6 +11,7 @@ import pytest
 import facet
 from facet.cutsheets import schedule_rows
 from facet.mesh import PolyMesh
+from facet.unfold import unfold
 from panel_meshes import cylinder, freecad_step, grid_faces
 
 OFFSET = np.array([2.6e9, 1.2e9, 4.0e5])  # mm
@@ -94,6 +95,12 @@ def test_panels_and_schedule_at_map_coordinates_equal_the_origin_run():
         assert np.abs(np.asarray(q.bottom) - OFFSET - p.bottom).max() <= 4 * ULP
         assert np.abs(np.asarray(q.flat_bottom) - p.flat_bottom).max() <= 8 * ULP
         assert np.abs(np.asarray(q.flat_top) - p.flat_top).max() <= 8 * ULP
+    # the IDs and bevel angles are written at the same places on the parts
+    for a, b in zip(unfold(here), unfold(there)):
+        assert np.hypot(*np.subtract(a.label_position, b.label_position)) <= 16 * ULP
+        assert [t[0] for t in a.bevels] == [t[0] for t in b.bevels]
+        assert np.abs(np.array([t[1:3] for t in a.bevels])
+                      - np.array([t[1:3] for t in b.bevels])).max() <= 16 * ULP
 
 
 @pytest.mark.parametrize("scale", [1.0, 1000.0], ids=["mm", "m"])
