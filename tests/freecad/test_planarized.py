@@ -61,6 +61,16 @@ class TestPlanarized(DocumentTestCase):
         self.assertIn("64 panels", text)
         self.assertIn("tolerance reached", text)
 
+    def test_summary_counts_straight_corners(self):
+        # the hypar's skew quads planarize to triangles with a kink (a corner turning
+        # under 5 degrees): `facet planarize` said so, the report view did not
+        quality = facet.quality(facetwb.get_mesh(self.result), input=self.source_mesh)
+        count = int(quality.straight_corner_faces.size)
+        self.assertGreater(count, 0)
+        self.assertEqual(facet.quality(self.source_mesh).straight_corner_faces.size, 0)
+        self.assertIn(f"  {count} panels with a corner within 5 degrees of straight (the "
+                      "source had 0)", facetwb.planarize_summary(self.result))
+
     def test_z_save_reopen(self):  # last: it replaces the class's document
         names = {"source": self.source.Name, "result": self.result.Name}
         before = {key: points_array(self.doc.getObject(name)) for key, name in names.items()}

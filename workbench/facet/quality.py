@@ -45,8 +45,8 @@ from facet.mesh import PolyMesh, next_corners
 from facet.planarity import PlanarityReport, planarity
 from facet.surface import Surface
 
-__all__ = ["QualityReport", "quality", "DEFAULT_MIN_ANGLE", "DEFAULT_SHORT_EDGE",
-           "DEFAULT_STRAIGHT_CORNER"]
+__all__ = ["QualityReport", "quality", "straight_corner_faces", "DEFAULT_MIN_ANGLE",
+           "DEFAULT_SHORT_EDGE", "DEFAULT_STRAIGHT_CORNER"]
 
 #: Faces with a smaller interior angle (degrees) count as degenerate.
 DEFAULT_MIN_ANGLE = 5.0
@@ -255,6 +255,13 @@ def _straightest_corners(mesh, after):
     cos = np.einsum("ij,ij->i", before, after) / np.where(den > 0.0, den, 1.0)
     turn = np.where(den > 0.0, np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))), 180.0)
     return np.minimum.reduceat(turn, fs[:-1])
+
+
+def straight_corner_faces(mesh, threshold=DEFAULT_STRAIGHT_CORNER):
+    """Indices of the faces of ``mesh`` with a nearly straight corner (one that turns the
+    outline by less than ``threshold`` degrees), as :class:`QualityReport` counts them,
+    without the rest of the quality measures."""
+    return np.flatnonzero(_straightest_corners(mesh, _edge_vectors(mesh)) < float(threshold))
 
 
 def _shortest_edges(mesh, after):

@@ -198,6 +198,13 @@ class Planarized(PolyMesh):
         # the source's planarity over the faces the result's figure counts (the same)
         self.source_max_abs = float(
             facet.planarity(mesh).leaving_out(result.planarity.exempt).max_abs_all)
+        # faces with a nearly straight corner, the result's and the source's: a quad
+        # made a triangle with a kink, which the CLI's summary counted and the report
+        # view did not (the summary's, not saved)
+        from facet.quality import straight_corner_faces
+
+        self.straight_corners = (int(straight_corner_faces(result.mesh).size),
+                                 int(straight_corner_faces(mesh).size))
         obj.Iterations = int(result.iterations)
         obj.StopReason = str(result.stop_reason)
         obj.Converged = bool(result.converged)
@@ -421,6 +428,14 @@ def planarize_summary(obj):
                ", not re-solved: the solve stopped short of the tolerance")
         lines.append(f"  {obj.NarrowCorners} panel corners under 5 degrees that the source "
                      f"did not have{why} (see the quality report)")
+    straight, source_straight = getattr(proxy, "straight_corners", None) or (0, 0)
+    if straight > source_straight:
+        from facet.quality import DEFAULT_STRAIGHT_CORNER
+
+        lines.append(f"  {straight} panel{'s' if straight != 1 else ''} with a corner within "
+                     f"{DEFAULT_STRAIGHT_CORNER:g} degrees of straight (the source had "
+                     f"{source_straight}): triangles with a kink to a fabricator, where "
+                     "mitred panel edges may not fit; ColorBy Straightest corner shows them")
     for text in getattr(obj, "Warnings", ()):
         if "that the input did not have" in text:  # said above; its advice is not
             if QUAD_LAYOUT_ADVICE in text:
