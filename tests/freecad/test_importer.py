@@ -79,6 +79,31 @@ class TestImporter(DocumentTestCase):
             importer.read_polymesh(data_path("bad_index.off"))
         self.assertIn("face 1", str(caught.exception))
 
+    def test_an_import_says_what_it_made(self):
+        """A successful import said nothing in the report view: now one line gives the
+        faces by kind, the vertices, the size in millimetres and the units read in."""
+        said = []
+        keep, importer.report_message = importer.report_message, said.append
+        try:
+            obj = importer.insert(data_path("panels.off"), self.doc.Name, "m")
+        finally:
+            importer.report_message = keep
+        self.assertIsNotNone(obj)
+        self.assertEqual(len(said), 1, said)
+        from facetwb.objects.polymesh import get_mesh
+
+        mesh = get_mesh(obj)
+        lower, upper = mesh.bounds()
+        self.assertIn(f"{mesh.n_faces:,} faces (", said[0])
+        self.assertIn(f"{mesh.n_vertices:,} vertices", said[0])
+        self.assertIn(" x ".join(f"{v:,.0f}" for v in upper - lower) + " mm", said[0])
+        self.assertIn("read as metres", said[0])
+        self.assertTrue(said[0].endswith(f"as {obj.Label}"), said[0])
+        kinds = {k: int((mesh.degrees == k).sum()) for k in (3, 4)}
+        for k, name in ((3, "triangle"), (4, "quad")):
+            if kinds[k]:
+                self.assertIn(f"{kinds[k]:,} {name}", said[0])
+
     def imported_saying(self, *texts, units="m"):
         """Import each OBJ text with importer.insert, its numbers in ``units`` (metres: the
         texts' panels are 1 unit across, which no facade's are in millimetres); (the report

@@ -99,16 +99,42 @@ def import_mesh(filename, doc, units="mm"):
 
     Raises MeshImportError, with ``doc`` unchanged, if the file cannot be read.
     """
-    return _add_polymesh(read_polymesh(filename, units), filename, doc)
+    return _add_polymesh(read_polymesh(filename, units), filename, doc, units)
 
 
-def _add_polymesh(mesh, filename, doc):
+def _add_polymesh(mesh, filename, doc, units="mm"):
     from facetwb.make.make_polymesh import make_polymesh
 
     label = os.path.splitext(os.path.basename(filename))[0]
     obj = make_polymesh(mesh, label=label, doc=doc)
     doc.recompute()
+    report_message(f"Facet: {filename}: {imported_summary(mesh, units)}, as {obj.Label}")
     return obj
+
+
+def imported_summary(mesh, units="mm"):
+    """What an import made of ``mesh`` (in millimetres, its file's numbers read in
+    ``units``), for the report view: its faces by corner count, its vertices, its size
+    and the units it was read in; a designer sees at once a mesh of the wrong size or
+    kind (before, a successful import said nothing)."""
+    import numpy as np
+
+    corners = np.bincount(mesh.degrees)
+    kinds = [(3, "triangle"), (4, "quad"), (6, "hexagon")]
+    parts = [f"{corners[k]:,} {name}{'s' if corners[k] != 1 else ''}"
+             for k, name in kinds if k < len(corners) and corners[k]]
+    other = mesh.n_faces - sum(corners[k] for k, _ in kinds if k < len(corners))
+    if other:
+        parts.append(f"{other:,} other polygon{'s' if other != 1 else ''}")
+    lower, upper = mesh.bounds()
+    size = " x ".join(f"{v:,.0f}" for v in upper - lower)
+    return (f"{mesh.n_faces:,} faces ({', '.join(parts)}), {mesh.n_vertices:,} vertices, "
+            f"{size} mm, its numbers read as {UNIT_NAMES[units]}")
+
+
+def report_message(message):
+    """One line in the report view."""
+    App.Console.PrintMessage(message + "\n")
 
 
 def report_warning(message):
@@ -152,4 +178,4 @@ def insert(filename, docname, units="mm"):
         doc = App.getDocument(docname)
     except NameError:
         doc = App.newDocument(docname)
-    return _add_polymesh(mesh, filename, doc)
+    return _add_polymesh(mesh, filename, doc, units)
