@@ -80,8 +80,9 @@ def ask_units(filename, edge, likely):
     names = [f"{importer.UNIT_NAMES[u]} ({u})" for u in units]
     item, ok = qt_gui().QInputDialog.getItem(
         Gui.getMainWindow(), translate("Facet", "Import polygon mesh"),
-        translate("Facet", "{0}: its edges are {1:.3g} long on average, which is no facade's "
-                           "panel in millimetres. Which units are its numbers in?").format(
+        translate("Facet", "{0}: its edges are {1:.3g} of its units long on average; as "
+                           "millimetres, no facade's panel is that small or large. Which "
+                           "units are its numbers in?").format(
             os.path.basename(filename), edge),
         names, units.index(likely), False)
     return units[names.index(item)] if ok else None
