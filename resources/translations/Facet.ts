@@ -417,47 +417,47 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="252"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="259"/>
         <source>Planarize {0}: solving by local/local too, for a result closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="255"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="262"/>
         <source>Planarize {0}: solving by local/global again with a finer hold, closer to the design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="260"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="267"/>
         <source>Planarize {0}: re-solving for panel quality (stage {1} of {2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="238"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="245"/>
         <source>planarity {0:.2g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="238"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="245"/>
         <source>planarity {0:.2g} (tolerance {1:.2g})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="340"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="349"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="346"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="355"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="333"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="342"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/planarized.py" line="258"/>
+        <location filename="../../workbench/facetwb/objects/planarized.py" line="265"/>
         <source>Planarize {0}: local/local closed a panel, solving by local/global</source>
         <translation type="unfinished"></translation>
     </message>
@@ -472,7 +472,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/recompute.py" line="225"/>
+        <location filename="../../workbench/facetwb/recompute.py" line="252"/>
         <source>Recomputing {0} ...</source>
         <translation type="unfinished"></translation>
     </message>
@@ -547,17 +547,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="323"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="332"/>
         <source>a Gap of {0:.4g} mm or EdgeMode bisector clears them</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="323"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="332"/>
         <source>no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="328"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="337"/>
         <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; {5}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -572,32 +572,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="712"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="780"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="714"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="782"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="715"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="783"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="716"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="784"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="717"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="785"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="718"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="786"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -612,12 +612,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="81"/>
-        <source>{0}: its edges are {1:.3g} long on average, which is no facade&apos;s panel in millimetres. Which units are its numbers in?</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="713"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="781"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -627,22 +622,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="704"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="772"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="685"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="753"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="691"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="759"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="196"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="213"/>
         <source>{0}; {1} stopped before its tolerance ({2}): raise its Max. iterations, or set it to 0 for the solver to decide</source>
         <translation type="unfinished"></translation>
     </message>
@@ -929,6 +924,11 @@
     <message>
         <location filename="../../workbench/facetwb/pins.py" line="73"/>
         <source>{0}: {1} is not a length (a number of mm, or with a length unit: 2.4 m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="81"/>
+        <source>{0}: its edges are {1:.3g} of its units long on average; as millimetres, no facade&apos;s panel is that small or large. Which units are its numbers in?</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
