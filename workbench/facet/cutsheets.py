@@ -24,8 +24,6 @@ side by side along +x, ``sheet_gap`` apart, in one file, or one file per
 sheet (``per_sheet=True``).
 """
 
-import csv
-import io
 import json
 import math
 import os
@@ -462,15 +460,30 @@ def _cell(value):
     return str(value)
 
 
+#: The characters a spreadsheet may split a CSV line at: LibreOffice Calc's text import
+#: splits at a comma, a semicolon and a tab unless told otherwise (its default separators),
+#: Excel at the list separator of its locale (a semicolon in much of Europe).
+_CSV_SEPARATORS = ",;\t"
+
+
+def _csv_field(text):
+    """A CSV field: quoted (its quotes doubled) when it holds a separator of
+    :data:`_CSV_SEPARATORS`, a quote or a line break, so that a spreadsheet splitting at any
+    of them keeps it one cell (the list cells, "1471.1;1474.5;...", were cut into as many
+    cells by LibreOffice's default import, every later column moved to the right)."""
+    if any(c in text for c in _CSV_SEPARATORS + '"\r\n'):
+        return '"' + text.replace('"', '""') + '"'
+    return text
+
+
 def write_schedule_csv(path, rows):
-    """CSV, one row per panel; list cells joined with ';' (floats as repr,
-    17 significant digits where needed)."""
-    buf = io.StringIO()
-    writer = csv.writer(buf, lineterminator="\n")
-    writer.writerow(_CSV_COLUMNS)
+    """CSV, one row per panel, comma-separated, the header the column names; list cells
+    joined with ';' and quoted (see :func:`_csv_field`); floats as repr (17 significant
+    digits where needed), a point as the decimal separator."""
+    lines = [",".join(_csv_field(c) for c in _CSV_COLUMNS)]
     for row in rows:
-        writer.writerow([_cell(row.get(c)) for c in _CSV_COLUMNS])
-    write_text(path, [buf.getvalue()])
+        lines.append(",".join(_csv_field(_cell(row.get(c))) for c in _CSV_COLUMNS))
+    write_text(path, ["\n".join(lines) + "\n"])
 
 
 def write_schedule_json(path, rows, meta=None):

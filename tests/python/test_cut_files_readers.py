@@ -1,0 +1,81 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The cut files as other programs read them (docs/fabrication.md): the properties of the
+files that LibreOffice Calc, FreeCAD's DXF importer and LibreCAD depend on, checked on the
+files themselves (none of those programs is needed here)."""
+
+import csv
+import math
+
+import numpy as np
+import pytest
+
+from panel_meshes import translational
+
+
+def _made(tmp_path, **kw):
+    from facet.cli_panels import run_pipeline
+
+    mesh = translational(nu=6, nv=5, step=400.0)
+    return run_pipeline(mesh, 18.0, edge="bisector", gap=4, sheet=(1300, 900), margin=15,
+                        spacing=8, dxf=str(tmp_path / "cut.dxf"),
+                        schedule=str(tmp_path / "schedule.csv"), **kw)
+
+
+def _split_like_calc(line, separators=",;\t"):
+    """A CSV line's cells as LibreOffice Calc's text import cuts them with its default
+    separators (comma, semicolon and tab, all three ticked): at any separator outside
+    double quotes, a doubled quote inside them standing for one."""
+    cells, cell, quoted, i = [], [], False, 0
+    while i < len(line):
+        c = line[i]
+        if quoted:
+            if c == '"' and line[i + 1:i + 2] == '"':
+                cell.append('"')
+                i += 1
+            elif c == '"':
+                quoted = False
+            else:
+                cell.append(c)
+        elif c == '"':
+            quoted = True
+        elif c in separators:
+            cells.append("".join(cell))
+            cell = []
+        else:
+            cell.append(c)
+        i += 1
+    cells.append("".join(cell))
+    return cells
+
+
+def test_schedule_csv_keeps_its_columns_in_a_spreadsheet(tmp_path):
+    """The list cells (edge lengths, bevel angles, ... joined with ';') were written bare:
+    LibreOffice Calc, whose import splits at ';' too by default, cut each into as many
+    cells, so that every column after edge_lengths stood under another's header (the sheet
+    number under "joint_widths"). They are quoted now; Python's csv reads the same rows."""
+    _, ps, _, result = _made(tmp_path)
+    text = (tmp_path / "schedule.csv").read_text(encoding="utf-8")
+    lines = text.splitlines()
+    header = _split_like_calc(lines[0])
+    assert "edge_lengths" in header and "sheet" in header
+    for line in lines[1:]:
+        cells = _split_like_calc(line)
+        assert len(cells) == len(header), line
+        row = dict(zip(header, cells))
+        p = ps.by_id(row["id"])
+        assert [float(x) for x in row["edge_lengths"].split(";")] == list(p.edge_lengths)
+        assert int(row["sheet"]) == result.placements[p.id].sheet + 1
+        float(row["x"]), float(row["rotation_deg"])  # numbers with a point, not text
+    with open(tmp_path / "schedule.csv", newline="", encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    assert [r["id"] for r in rows] == [_split_like_calc(line)[0] for line in lines[1:]]
+    assert all(";" in r["bevel_deg"] for r in rows)
+
+
+def test_csv_field_quotes_what_a_spreadsheet_splits_at():
+    from facet.cutsheets import _csv_field
+
+    assert _csv_field("P-R01C01") == "P-R01C01"
+    assert _csv_field("1.5;2.5") == '"1.5;2.5"'
+    assert _csv_field('a "b", c') == '"a ""b"", c"'
+    assert next(csv.reader([_csv_field('a "b", c\td')])) == ['a "b", c\td']
