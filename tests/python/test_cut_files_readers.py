@@ -79,3 +79,65 @@ def test_csv_field_quotes_what_a_spreadsheet_splits_at():
     assert _csv_field("1.5;2.5") == '"1.5;2.5"'
     assert _csv_field('a "b", c') == '"a ""b"", c"'
     assert next(csv.reader([_csv_field('a "b", c\td')])) == ['a "b", c\td']
+
+
+def _ink_box(text_entity):
+    """The bounding box (xmin, ymin, xmax, ymax) of a TEXT's letters as ezdxf draws them."""
+    from ezdxf import path
+    from ezdxf.addons import text2path
+
+    box = path.bbox(text2path.make_paths_from_entity(text_entity), fast=True)
+    return np.array([box.extmin.x, box.extmin.y, box.extmax.x, box.extmax.y])
+
+
+def _cut_dxf(tmp_path, units):
+    """The test mesh's cut sheets as DXF in `units` (the mesh, sheet and lengths scaled)."""
+    import ezdxf
+
+    from facet.cli_panels import run_pipeline
+
+    scale = {"mm": 1.0, "m": 1e-3}[units]
+    mesh = translational(nu=6, nv=5, step=400.0 * scale)
+    run_pipeline(mesh, 18.0 * scale, edge="bisector", gap=4 * scale,
+                 sheet=(1300 * scale, 900 * scale), margin=15 * scale, spacing=8 * scale,
+                 dxf=str(tmp_path / "cut.dxf"), units=units)
+    return ezdxf.readfile(tmp_path / "cut.dxf")
+
+
+@pytest.mark.parametrize("units", ["mm", "m"])
+def test_dxf_texts_start_where_they_are_drawn(tmp_path, units):
+    """A centred TEXT's group 10 was its centre (ezdxf writes the alignment point there
+    too): FreeCAD 0.20's DXF importer, which places a text by group 10 alone, put every ID
+    and bevel angle half its width to the right and half its height up, across the cut
+    line. Group 10 now holds the start of its baseline, as AutoCAD writes it: a text drawn
+    from there left-aligned covers what the centred one covers."""
+    from ezdxf.enums import TextEntityAlignment
+
+    doc = _cut_dxf(tmp_path, units)
+    texts = doc.modelspace().query("TEXT")
+    assert {t.dxf.layer for t in texts} == {"LABEL", "BEVEL", "SHEET"}
+    turned = 0
+    for t in texts:
+        assert t.get_align_enum() == TextEntityAlignment.MIDDLE_CENTER
+        height = t.dxf.height
+        left = t.copy()
+        left.set_placement(t.dxf.insert, align=TextEntityAlignment.LEFT)
+        # (within a tenth of the height: ezdxf centres a text's ink, the start is put by
+        # the ink's right end, the first letter's left bearing, 0.05 of the height, apart)
+        assert np.allclose(_ink_box(left), _ink_box(t), rtol=0, atol=0.1 * height), t.dxf.text
+        turned += not math.isclose(math.sin(math.radians(t.dxf.rotation)), 0.0, abs_tol=1e-9)
+    assert turned > 0  # (bevel angles along slanted edges: the start turned with the text)
+
+
+def test_dxf_texts_are_in_the_outline_font(tmp_path):
+    """The TEXTs' style was ezdxf's Standard, font "txt" (an SHX font each reader maps to
+    one of its own); it is a style of the outlines' and previews' font now."""
+    from ezdxf.tools.fonts import find_font_face
+
+    from facet.cutsheets import OUTLINE_FONT, TEXT_FONT_FILE, TEXT_STYLE
+
+    doc = _cut_dxf(tmp_path, "mm")
+    assert doc.styles.get(TEXT_STYLE).dxf.font == TEXT_FONT_FILE
+    assert doc.header["$TEXTSTYLE"] == TEXT_STYLE
+    assert find_font_face(TEXT_FONT_FILE).family == OUTLINE_FONT
+    assert {t.dxf.style for t in doc.modelspace().query("TEXT")} == {TEXT_STYLE}

@@ -18,6 +18,10 @@ The top face's outline crosses the cut outline where a bevel leans out (394 of h
 398 parts mitred at 20 mm), so a layer that held it with texts to engrave (BEVEL did)
 could not be engraved without it.
 
+The IDs, bevel angles and sheet names are TEXT entities of style FACET_SANS (font DejaVu
+Sans, the outlines' and previews'), centred (groups 11, 72, 73) with group 10 at the start of
+their baseline, for readers that ignore the alignment (see :func:`_text_starts`).
+
 Units are the model's, declared in $INSUNITS: millimetres unless `units` says
 otherwise (see LENGTH_UNITS). Sheets lie
 side by side along +x, ``sheet_gap`` apart, in one file, or one file per
@@ -67,6 +71,14 @@ LAYER_MEANINGS = {
 #: not there. It has Latin, Greek and Cyrillic letters, not CJK: write_dxf refuses a text
 #: with a letter the font lacks (it would be cut as an empty box).
 OUTLINE_FONT = "DejaVu Sans"
+
+#: The font file of the TEXT entities' style :data:`TEXT_STYLE` (:data:`OUTLINE_FONT`'s), so
+#: that a reader that draws TrueType fonts (ezdxf, AutoCAD) shows the texts in the font of
+#: the outlines and the previews, not in whatever it maps the SHX font "txt" to.
+TEXT_FONT_FILE = "DejaVuSans.ttf"
+
+#: The text style of the DXF's TEXT entities (the IDs, bevel angles and sheet names).
+TEXT_STYLE = "FACET_SANS"
 
 #: The height of :data:`OUTLINE_FONT`'s capitals in ems (its "H": 1493 of 2048 units). A
 #: DXF text's height is its capitals' height, a font size (SVG, matplotlib) the em's: the
@@ -147,6 +159,33 @@ def _outline_writer(align):
                                dxfattribs={"layer": layer})
 
     return outline
+
+
+def _text_starts():
+    """``start(s, x, y, height, rotation_deg)``: where a text of :data:`TEXT_FONT_FILE`
+    centred at (x, y) (MIDDLE_CENTER, the middle of its capitals) starts on its baseline: the
+    point a TEXT's group 10 holds, as AutoCAD writes it. Readers that honour the alignment
+    (groups 11, 72, 73: AutoCAD, ezdxf, LibreCAD) place the text by its centre; those that
+    ignore it (FreeCAD 0.20's DXF importer, simple CAM importers) put the start of the
+    baseline at group 10, which was the centre: the text stood half its width to the right
+    and half its height up, across the part's cut line. Widths by ezdxf's font measurement
+    (to the ink's right end; ezdxf centres the ink, which starts a left bearing, 0.05 of the
+    height, further right), once per distinct text."""
+    try:  # ezdxf 1.1 and later
+        from ezdxf.fonts.fonts import make_font
+    except ImportError:  # ezdxf 0.18 (Debian 12)
+        from ezdxf.tools.fonts import make_font
+    font = make_font(TEXT_FONT_FILE, 1.0)
+    widths = {}
+
+    def start(s, x, y, height, rotation):
+        if s not in widths:
+            widths[s] = float(font.text_width(s))
+        c, si = math.cos(math.radians(rotation)), math.sin(math.radians(rotation))
+        half_w, half_h = 0.5 * widths[s] * height, 0.5 * height
+        return (x - half_w * c + half_h * si, y - half_w * si - half_h * c)
+
+    return start
 
 
 def _sheet_number(k, count):
@@ -343,15 +382,22 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         dash, gap = (length / mm_per_unit for length in DASH_MM)
         doc.linetypes.add("FACET_DASHED", pattern=[dash + gap, dash, -gap],
                           description=f"Dashed, {DASH_MM[0]:g} mm __  __  __")
+        if TEXT_STYLE not in doc.styles:
+            doc.styles.add(TEXT_STYLE, font=TEXT_FONT_FILE)
+        doc.header["$TEXTSTYLE"] = TEXT_STYLE
         for name, colour in LAYERS.items():
             layer = doc.layers.add(name, color=colour,
                                    linetype=LAYER_LINETYPES.get(name, "Continuous"))
             layer.description = LAYER_MEANINGS[name]
         return doc
 
+    starts = _text_starts()
+
     def text(msp, s, x, y, height, rotation, layer):
-        t = msp.add_text(s, dxfattribs={"height": height, "rotation": rotation, "layer": layer})
+        t = msp.add_text(s, dxfattribs={"height": height, "rotation": rotation, "layer": layer,
+                                        "style": TEXT_STYLE})
         t.set_placement((x, y), align=TextEntityAlignment.MIDDLE_CENTER)
+        t.dxf.insert = (*starts(s, x, y, height, rotation), 0.0)  # (see _text_starts)
 
     # the IDs and bevel angles: TEXT, or their letters' outlines (the sheet names stay TEXT)
     engraved = _outline_writer(TextEntityAlignment.MIDDLE_CENTER) if text_outlines else text
