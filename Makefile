@@ -22,7 +22,7 @@ JOBS ?= 2
 
 PKGS_BUILD = gcc make cmake pkg-config libsuitesparse-dev liblapack-dev python3-dev python3-numpy
 PKGS_PYTHON = python3-pytest python3-numpy python3-scipy python3-shapely python3-ezdxf \
-              python3-matplotlib python3-pynest2d
+              python3-matplotlib python3-pynest2d fonts-dejavu-core
 PKGS_FREECAD = freecad xvfb xauth
 PKGS_MEMCHECK = valgrind
 PKGS_FUZZ = clang libclang-rt-14-dev libomp-14-dev python3.11-dev
