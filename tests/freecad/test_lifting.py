@@ -288,6 +288,34 @@ class TestPlanGraphSources(DocumentTestCase):
         self.assertTrue(plan.isValid(), plan.getStatusString())
         self.assertEqual(plan.FaceCount, 64)
 
+    def test_reading_a_plan_mesh_shows_progress_and_can_be_cancelled(self):
+        # a plan mesh (.obj, .off, .json) was read with no progress and no Cancel: a
+        # 320 x 320 grid took 3 s
+        import facet.io
+        from facet.mesh import PolyMesh
+
+        k = [i * 500.0 for i in range(9)]
+        xyz = [(x, y, 0.0) for y in k for x in k]
+        faces = [[j * 9 + i, j * 9 + i + 1, j * 9 + i + 10, j * 9 + i + 9]
+                 for j in range(8) for i in range(8)]
+        path = os.path.join(self.tmp.name, "grid_plan.obj")
+        facet.io.write_mesh(PolyMesh.from_faces(np.array(xyz), faces), path)
+        plan = facetwb.make_plan_graph(file=path, doc=self.doc)
+        self.doc.recompute()
+        self.assertEqual(plan.FaceCount, 64)
+        before = points_array(plan)
+        plan.FileUnits = "m"
+        reporter = self.recompute_cancelled(3)
+        self.assertTrue(reporter.cancelled)
+        self.assertEqual(reporter.total, facet.plan.PLAN_STAGES * facet.plan.PLAN_STEPS)
+        self.assertFalse(plan.isValid())
+        self.assertIn("cancelled", plan.getStatusString())
+        np.testing.assert_array_equal(points_array(plan), before)  # the last plan kept
+        plan.touch()
+        self.doc.recompute()
+        self.assertTrue(plan.isValid(), plan.getStatusString())
+        np.testing.assert_array_equal(points_array(plan), np.asarray(before) * 1000.0)
+
     def test_a_dxf_drawn_in_metres_is_read_in_millimetres(self):
         # a canopy drawn in metres ($INSUNITS 6, as Rhino and AutoCAD set it) became a
         # 9 x 6 mm plan in the millimetre document, without a word: a target surface

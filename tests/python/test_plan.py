@@ -807,6 +807,58 @@ def test_reading_a_plan_reports_its_stages_and_can_be_cancelled(tmp_path):
         plan_from_segments(segments, progress=lambda done, total: done >= 4 * PLAN_STEPS)
 
 
+def grid_mesh(n, size=1.0):
+    """An n x n grid of square faces (z 0.5: a plan mesh exported from a 3D model)."""
+    k = np.arange(n + 1) * size
+    xy = np.array([(x, y) for y in k for x in k])
+    faces = [[j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1,
+              (j + 1) * (n + 1) + i] for j in range(n) for i in range(n)]
+    return PolyMesh.from_faces(np.column_stack([xy, np.full(len(xy), 0.5)]), faces)
+
+
+@pytest.mark.parametrize("suffix", [".obj", ".off", ".json"])
+def test_reading_a_plan_mesh_reports_its_stages_and_can_be_cancelled(tmp_path, suffix):
+    """Reading a plan mesh (a 200 x 200 grid .obj, 40,000 faces, took 1.2 s, a 320 x 320 one
+    3 s, half of it in the union of the faces) reported nothing and could not be stopped:
+    it now reports the same PLAN_STAGES stages as a drawing (and steps through the faces),
+    and True from progress cancels."""
+    from facet.errors import Cancelled
+    from facet.io import write_mesh
+    from facet.plan import PLAN_STAGES, PLAN_STEPS
+
+    n = 50
+    path = tmp_path / f"grid{suffix}"
+    mesh = grid_mesh(n)
+    if suffix == ".json":  # (the old compas layout: no writer of it in facet)
+        path.write_text(json.dumps({
+            "vertex": {str(v): dict(zip("xyz", map(float, p))) for v, p in
+                       enumerate(mesh.vertices)},
+            "face": {str(f): [int(v) for v in face] for f, face in enumerate(mesh.faces())}}))
+    else:
+        write_mesh(mesh, path)
+    calls = []
+    plan = read_plan(path, progress=lambda done, total: calls.append((done, total)) and False)
+    assert plan.n_faces == n * n
+    total = PLAN_STAGES * PLAN_STEPS
+    assert {t for _, t in calls} == {total}
+    done = [d for d, _ in calls]
+    assert done == sorted(done) and done[0] == 0 and done[-1] == total
+    assert {d // PLAN_STEPS for d in done} == set(range(PLAN_STAGES + 1))
+    assert len(calls) > PLAN_STAGES + 1  # steps through the 2,500 faces too
+    for stop in (1, 3, 5, len(calls) - 1):
+        seen = []
+        with pytest.raises(Cancelled, match="reading the plan cancelled"):
+            read_plan(path, progress=lambda done, total: seen.append(done) or len(seen) == stop)
+        assert len(seen) == stop
+    with pytest.raises(Cancelled, match="reading the plan cancelled"):
+        plan_from_mesh(grid_mesh(n), progress=lambda done, total: done >= 4 * PLAN_STEPS)
+    # without a check of overlaps (the Lifting's plan) its stages are skipped
+    calls.clear()
+    plan_from_mesh(grid_mesh(3), check_overlap=False,
+                   progress=lambda done, total: calls.append(done) and False)
+    assert [d // PLAN_STEPS for d in calls] == [1, 2, 5, PLAN_STAGES]
+
+
 def test_any_drawing_read_at_a_given_unit(tmp_path):
     """A table or mesh has no unit and a DXF's $INSUNITS can be wrong: read_plan(units_mm=)
     reads any of them at that many millimetres a unit, snap and arc tolerance in
