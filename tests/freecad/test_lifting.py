@@ -195,8 +195,8 @@ class TestPlanGraphAndLifting(DocumentTestCase):
         Cancel stops it (it was one uninterruptible call: seconds on a large plan); the
         object says so, and recomputed again it lifts."""
         lifting = facetwb.make_lifting(self.plan, targets=self.surface)
-        reporter = self.recompute_cancelled(1)
-        self.assertTrue(reporter.cancelled and reporter.calls >= 1)
+        reporter = self.recompute_cancelled(3)  # (after matching the targets: 2 calls)
+        self.assertTrue(reporter.cancelled and reporter.calls >= 3)
         self.assertEqual((reporter.done, reporter.total), (1, 3))
         self.assertFalse(lifting.isValid())
         self.assertIn("cancelled", lifting.getStatusString())
@@ -552,3 +552,47 @@ class TestLiftingTargetsFromMesh(DocumentTestCase):
         self.doc.recompute()
         self.assertTrue(lifting.isValid(), lifting.getStatusString())
         np.testing.assert_allclose(points_array(lifting)[:, 2], xyz[:, 2], atol=1e-9)
+
+
+class TestLiftingProgress(DocumentTestCase):
+    """Progress and Cancel in a Lifting's recompute beyond its factorization."""
+
+    def _grid(self, n, size, z=0.0, at=0.0):
+        k = [at + i * size for i in range(n + 1)]
+        xyz = [(x, y, z) for y in k for x in k]
+        m = n + 1
+        faces = [[j * m + i, j * m + i + 1, (j + 1) * m + i + 1, (j + 1) * m + i]
+                 for j in range(n) for i in range(n)]
+        return facet.PolyMesh.from_faces(np.array(xyz), faces)
+
+    def test_matching_targets_shows_progress_and_can_be_cancelled(self):
+        # the ray cast of a plan's vertices on a target mesh (2 s for 100,000 vertices)
+        # had no progress and no Cancel
+        import facet.io
+
+        plan = facetwb.make_polymesh(self._grid(8, 500.0), name="GridPlan", doc=self.doc)
+        files = []
+        for height in (3000.0, 3500.0):
+            files.append(os.path.join(self.tmp.name, f"target{int(height)}.obj"))
+            facet.io.write_mesh(self._grid(3, 1500.0, height, at=-250.0), files[-1])
+        target = facetwb.make_polymesh(self._grid(3, 1500.0, 3500.0, at=-250.0),
+                                       name="HighTarget", doc=self.doc)
+        lifting = facetwb.make_lifting(plan, target_file=files[0])
+        self.doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        before = points_array(lifting)
+        np.testing.assert_allclose(before[:, 2], 3000.0)
+        for change in (lambda: setattr(lifting, "TargetFile", files[1]),
+                       lambda: (setattr(lifting, "TargetFile", ""),
+                                setattr(lifting, "Targets", target))):
+            change()
+            reporter = self.recompute_cancelled(1)  # (the factorization is kept: same plan)
+            self.assertTrue(reporter.cancelled)
+            self.assertEqual(reporter.total, 81)  # the plan's vertices
+            self.assertFalse(lifting.isValid())
+            self.assertIn("matching the targets cancelled", lifting.getStatusString())
+            np.testing.assert_array_equal(points_array(lifting), before)
+        lifting.touch()
+        self.doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        np.testing.assert_allclose(points_array(lifting)[:, 2], 3500.0)

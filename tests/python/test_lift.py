@@ -396,6 +396,37 @@ def test_lift_with_move_tolerance_shows_progress_on_a_terminal(tmp_path, monkeyp
     assert "facet lift: moving the plan: iteration 1 of at most " in terminal.getvalue()
 
 
+def test_lift_matching_a_target_mesh_shows_progress_on_a_terminal(tmp_path, monkeypatch):
+    # `facet lift --targets MESH` ray-cast a 100,000-vertex plan for seconds with no line
+    import io
+    import sys
+
+    from facet.cli import main
+    from facet.cli_progress import ProgressLine
+    from facet.io import write_mesh
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    plan = straight_grid(list(range(8)), list(range(6)))
+    write_mesh(plan, tmp_path / "plan.obj")
+    target = straight_grid([-1, 4, 9], [-1, 3, 7])
+    write_mesh(target.with_vertices(target.vertices + [[0.0, 0.0, 2.0]]),
+               tmp_path / "target.obj")
+    terminal = Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    monkeypatch.setattr(ProgressLine, "_due", lambda self, at_once=False: True)  # (fast)
+    code = main(["lift", str(tmp_path / "plan.obj"), "-o", str(tmp_path / "roof.obj"),
+                 "--targets", str(tmp_path / "target.obj")])
+    assert code == 0
+    n = plan.n_vertices
+    assert f"facet lift: matching the targets: vertices 0 of {n}" in terminal.getvalue()
+    assert f"facet lift: matching the targets: vertices {n} of {n}" in terminal.getvalue()
+    # (and the plan mesh its stages)
+    assert "facet lift: reading the plan: stages done 6 of 6" in terminal.getvalue()
+
+
 def _voronoi_plan(sites, seed):
     """The Voronoi cells of random sites in the unit square, those inside [0.05, 0.95]^2 (a
     hexagon-like plan, three faces at a vertex), and the heights of its paraboloid lifting:

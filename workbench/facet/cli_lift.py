@@ -151,7 +151,17 @@ def run_lift(args):
     plan = _read_plan(args, "facet lift")
     notes = []  # (target points left out)
     if args.targets is not None:
-        targets, weights = read_targets(plan, args.targets, tolerance=args.snap, notes=notes)
+        from facet.cli_progress import ProgressLine
+
+        # (a target mesh: each plan vertex's ray cast, seconds for 100,000 vertices)
+        line = ProgressLine(sys.stderr, prefix="facet lift")  # a terminal only
+        try:
+            targets, weights = read_targets(
+                plan, args.targets, tolerance=args.snap, notes=notes,
+                progress=lambda done, total: line.steps(done, total,
+                                                        "matching the targets: vertices"))
+        finally:
+            line.close()
     else:
         targets, weights = pinned_targets(plan, _pins(args.pin))
     if args.weights is not None:

@@ -93,10 +93,12 @@ class Lifting(PolyMesh):
                          "(empty it to use them)")
         if obj.Targets is not None:
             surface = conversion.mesh_from_object(obj.Targets)
-            return targets_from_mesh(plan, surface, source=obj.Targets.Label)
+            # (progress and Cancel: a 100,000-vertex plan's ray cast takes seconds)
+            return targets_from_mesh(plan, surface, source=obj.Targets.Label,
+                                     progress=progress.hook())
         if obj.TargetFile:
             return read_targets(plan, obj.TargetFile, tolerance=obj.Snap.Value or None,
-                                notes=notes)
+                                notes=notes, progress=progress.hook())
         if obj.PinnedPoints:
             tolerance = match_tolerance(plan, obj.Snap.Value)
             points = [(p.x, p.y, p.z) for p in obj.PinnedPoints]
