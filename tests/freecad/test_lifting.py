@@ -596,3 +596,27 @@ class TestLiftingProgress(DocumentTestCase):
         self.doc.recompute()
         self.assertTrue(lifting.isValid(), lifting.getStatusString())
         np.testing.assert_allclose(points_array(lifting)[:, 2], 3500.0)
+
+    def test_the_first_mix_value_shows_progress_and_can_be_cancelled(self):
+        # the eigen-liftings a Mix value needs (ARPACK beyond the dense solver's dimension
+        # 2,000: a Voronoi plan's) were computed with no progress and no Cancel
+        from scipy.spatial import Delaunay
+
+        p = np.random.default_rng(0).random((2500, 2)) * 5000.0
+        mesh = facet.PolyMesh.from_faces(np.column_stack([p, np.zeros(len(p))]),
+                                         [list(t) for t in Delaunay(p).simplices])
+        plan = facetwb.make_polymesh(mesh, name="TrianglePlan", doc=self.doc)
+        lifting = facetwb.make_lifting(plan, pins=[(*p[v], 3000.0) for v in (0, 1, 2)])
+        self.doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        before = points_array(lifting)
+        lifting.Mix = [500.0]
+        reporter = self.recompute_cancelled(1)  # (the factorization is kept: same plan)
+        self.assertTrue(reporter.cancelled)
+        self.assertFalse(lifting.isValid())
+        self.assertIn("eigen-liftings cancelled", lifting.getStatusString())
+        np.testing.assert_array_equal(points_array(lifting), before)
+        lifting.touch()
+        self.doc.recompute()
+        self.assertTrue(lifting.isValid(), lifting.getStatusString())
+        self.assertGreater(np.abs(points_array(lifting)[:, 2] - before[:, 2]).max(), 1.0)

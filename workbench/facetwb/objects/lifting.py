@@ -133,7 +133,8 @@ class Lifting(PolyMesh):
         if count <= 0:
             return np.zeros((0, plan.n_vertices))
         if store.get("count", 0) < count:
-            basis, _ = lifter.basis("eigen", 3 + count)
+            # (progress and Cancel: 10 s for a 100,000-face plan's first Mix value)
+            basis, _ = lifter.basis("eigen", 3 + count, progress=progress.hook())
             peaks = np.max(np.abs(basis[3:]), axis=1)
             store["basis"] = basis[3:] / np.where(peaks > 0, peaks, 1.0)[:, None]
             store["count"] = count
