@@ -172,3 +172,40 @@ class TestPreferencesAndProgress(DocumentTestCase):
         result.touch()
         self.doc.recompute()
         self.assertTrue(result.isValid(), result.getStatusString())
+
+    def test_triangulating_a_surface_shows_progress_and_can_be_cancelled(self):
+        # tri-quad's triangulation (FreeCAD's mesher, one call) took over three minutes for
+        # 130,000 triangles with no progress and no Cancel: a large one runs in a worker
+        # process, the same triangles, a busy bar meanwhile, Cancel stops it
+        import Part
+
+        from facetwb.tessellation import WORKER_TRIANGLES, estimated_triangles
+
+        poles = [[App.Vector(i * 3000.0, j * 3000.0, 250.0 * ((i - 2) ** 2 + (j - 2) ** 2))
+                  for j in range(5)] for i in range(5)]
+        surface = Part.BSplineSurface()
+        surface.interpolate(poles)
+        feature = self.doc.addObject("Part::Feature", "Canopy")
+        feature.Shape = surface.toShape()
+        obj = facetwb.make_surface_mesh(feature, "tri-quad", 100, 100)
+        length = feature.Shape.BoundBox.DiagonalLength / 100
+        self.assertGreater(estimated_triangles(feature.Shape, length), WORKER_TRIANGLES)
+        self.doc.recompute()  # (no one listens: made here)
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        here = points_array(obj)
+        self.assertGreater(obj.FaceCount, 2000)
+        obj.touch()
+        with progress.reporting("test") as reporter:  # in a worker: the same mesh
+            self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        np.testing.assert_array_equal(points_array(obj), here)
+        self.assertGreater(reporter.calls, 2)
+        obj.CountU = obj.CountV = 110
+        progress.cancel_after(1)
+        with progress.reporting("test") as reporter:
+            self.doc.recompute()
+        self.assertTrue(reporter.cancelled)
+        self.assertEqual((reporter.done, reporter.total), (0, 0))  # (a busy bar)
+        self.assertFalse(obj.isValid())
+        self.assertIn("triangulating Canopy cancelled", obj.getStatusString())
+        np.testing.assert_array_equal(points_array(obj), here)  # the last mesh kept

@@ -61,9 +61,14 @@ def mesh_from_mesh(mesh, label="mesh", offset=None):
     """A triangle ``facet.PolyMesh`` from a FreeCAD ``Mesh.Mesh`` (its points plus
     ``offset``, added in double precision)."""
     points, facets = mesh.Topology
+    return mesh_from_topology([(p.x, p.y, p.z) for p in points], facets, label, offset)
+
+
+def mesh_from_topology(points, facets, label="mesh", offset=None):
+    """:func:`mesh_from_mesh` of a ``Mesh.Mesh``'s ``Topology``, its points as (x, y, z)."""
     if not facets:
         raise SourceError(f"{label} has no triangles")
-    xyz = np.array([(p.x, p.y, p.z) for p in points], dtype=np.float64).reshape(-1, 3)
+    xyz = np.array(points, dtype=np.float64).reshape(-1, 3)
     if offset is not None:
         xyz += np.asarray(offset, dtype=np.float64)
     return facet.PolyMesh.from_faces(xyz, [list(f) for f in facets])

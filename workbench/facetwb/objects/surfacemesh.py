@@ -137,11 +137,11 @@ def surface_control_mesh(obj):
     diagonal = shape.BoundBox.DiagonalLength or 1.0
     weld_tol = float(obj.WeldTolerance.Value) or 1e-7 * diagonal
     if pattern == "tri-quad":
-        import MeshPart
+        from facetwb.tessellation import triangles_from_shape
 
         length = size or diagonal / max(obj.CountU, obj.CountV, 1)
-        tessellation = MeshPart.meshFromShape(Shape=shape, MaxLength=length)
-        triangles = conversion.mesh_from_mesh(tessellation, source.Label)
+        # (progress and Cancel: FreeCAD's mesher took minutes for 130,000 triangles)
+        triangles = triangles_from_shape(shape, length, source.Label, hook)
         triangles = gridding.weld([triangles], weld_tol)
         return gridding.pair_triangles(triangles, obj.MaxCornerDeviation, obj.MaxFold, hook)
     parts = []
