@@ -427,6 +427,29 @@ def test_lift_matching_a_target_mesh_shows_progress_on_a_terminal(tmp_path, monk
     assert "facet lift: reading the plan: stages done 6 of 6" in terminal.getvalue()
 
 
+def test_lifting_space_says_what_it_computes_on_a_terminal(tmp_path, monkeypatch):
+    # `facet lifting-space` showed nothing while the dense eigen-solver ran (seconds on a
+    # large plan: it reports no steps)
+    import io
+    import sys
+
+    from facet.cli import main
+    from facet.cli_progress import ProgressLine
+    from facet.io import write_mesh
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    write_mesh(straight_grid(list(range(6)), list(range(5))), tmp_path / "plan.obj")
+    terminal = Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    monkeypatch.setattr(ProgressLine, "_due", lambda self, at_once=False: True)  # (fast)
+    assert main(["lifting-space", str(tmp_path / "plan.obj"), "-o", str(tmp_path / "space"),
+                 "--count", "5"]) == 0
+    assert "facet lifting-space: liftings 0 of 5" in terminal.getvalue()
+
+
 def _voronoi_plan(sites, seed):
     """The Voronoi cells of random sites in the unit square, those inside [0.05, 0.95]^2 (a
     hexagon-like plan, three faces at a vertex), and the heights of its paraboloid lifting:
