@@ -860,6 +860,19 @@ def test_reading_a_plan_mesh_reports_its_stages_and_can_be_cancelled(tmp_path, s
     assert [d // PLAN_STEPS for d in calls] == [1, 2, 5, PLAN_STAGES]
 
 
+def test_reading_a_plan_mesh_file_steps_through_its_first_stage(tmp_path):
+    """The file of a plan mesh (2.3 s for a 100,000-face compas JSON) is read in steps of
+    the first stage, not one."""
+    from facet.io import write_mesh
+    from facet.plan import PLAN_STEPS
+
+    path = tmp_path / "grid.obj"
+    write_mesh(grid_mesh(130), path)  # 34,000 lines: steps at 16,384 and 32,768
+    calls = []
+    read_plan(path, progress=lambda done, total: calls.append(done) and False)
+    assert len([d for d in calls if 0 < d < PLAN_STEPS]) == 2
+
+
 def test_matching_targets_on_a_mesh_reports_progress_and_can_be_cancelled(tmp_path):
     """The ray cast of a 320 x 320 plan's vertices (103,041) on a target mesh took 2 s with
     no progress and no way to stop it (the Lifting's recompute, facet lift --targets):

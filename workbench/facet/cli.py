@@ -475,7 +475,9 @@ def print_check_summary(report, out=None):
 
 
 def _read(args):
-    """The input mesh; what the reader changed in reading it is warned about."""
+    """The input mesh, its reading shown on a terminal (a 100,000-face compas JSON takes
+    seconds); what the reader changed in reading it is warned about."""
+    from facet.cli_progress import ProgressLine
     from facet.io import read_mesh, read_warnings
 
     options = {}
@@ -483,7 +485,14 @@ def _read(args):
         if os.path.splitext(args.input)[1].lower() != ".json":
             raise _UsageError("--item applies to .json files only")
         options["item"] = args.item
-    mesh = read_mesh(args.input, **options)
+    command = getattr(args, "command", None)
+    line = ProgressLine(sys.stderr, prefix=f"facet {command}" if command else "facet")
+    what = f"reading {os.path.basename(args.input)}"
+    try:
+        mesh = read_mesh(args.input, progress=lambda done, total: line.steps(
+            done, total, what), **options)
+    finally:
+        line.close()
     for warning in read_warnings(mesh):
         print(f"facet: warning: {args.input}: {warning}", file=sys.stderr)
     return mesh

@@ -1056,8 +1056,10 @@ def read_plan(path, *, snap=None, arc_tolerance=None, openings=(), to_mm=False,
     if suffix in (".obj", ".off", ".json"):
         from facet.io import read_mesh, read_warnings
 
-        _stage_reporter(progress)(0)
-        mesh = read_mesh(path)
+        report = _stage_reporter(progress)
+        report(0)
+        mesh = read_mesh(path, progress=None if progress is None else
+                         lambda done, total: report(0, done / total if total else 0.0))
         scale = None if units_mm is None else _positive(units_mm, path,
                                                         "the drawing's unit in mm")
         if scale is not None and scale != 1.0:

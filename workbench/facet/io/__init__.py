@@ -84,7 +84,8 @@ def read_mesh(path, **options):
     path : str or os.PathLike
         A ``.obj``, ``.off`` or ``.json`` file.
     **options
-        Passed to the reader: ``validate`` for all, ``item`` for compas JSON.
+        Passed to the reader: ``validate`` and ``progress`` (``progress(done, total)``,
+        True cancels: :class:`facet.Cancelled`) for all, ``item`` for compas JSON.
 
     Returns
     -------

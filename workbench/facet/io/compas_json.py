@@ -28,7 +28,7 @@ import json
 
 from facet.errors import MeshError
 from facet.io.checks import build_mesh
-from facet.io.files import _plain, read_text, split_lines
+from facet.io.files import PROGRESS_EVERY, _plain, read_text, reading_progress, split_lines
 
 __all__ = ["read_compas_json", "PREFERRED_SCENE_ITEM"]
 
@@ -193,7 +193,7 @@ def _coordinate(record, defaults, axis, key, source):
     return number
 
 
-def read_compas_json(path, *, item=None, validate=True):
+def read_compas_json(path, *, item=None, validate=True, progress=None):
     """Read a mesh saved by compas, RhinoVAULT or compas_tno.
 
     Parameters
@@ -205,6 +205,10 @@ def read_compas_json(path, *, item=None, validate=True):
         ThrustDiagram, else the first mesh.
     validate : bool
         Check the mesh fully (:meth:`PolyMesh.validate`). Default True.
+    progress : callable, optional
+        ``progress(done, total)`` in face and vertex records, once the JSON is parsed
+        (every :data:`facet.io.files.PROGRESS_EVERY`, and at the end); True cancels
+        (:class:`facet.Cancelled`, "reading NAME cancelled").
 
     Returns
     -------
@@ -256,7 +260,11 @@ def read_compas_json(path, *, item=None, validate=True):
 
     kept_faces = []
     opening_keys = []
-    for face_key in _ordered_keys(face_records):
+    report = reading_progress(progress, path)
+    total = len(face_records) + len(vertex_records)
+    for done, face_key in enumerate(_ordered_keys(face_records)):
+        if done % PROGRESS_EVERY == 0:
+            report(done, total)
         corners = face_records[face_key]
         loaded = _attribute(face_data.get(face_key), face_defaults, _OPENING_ATTRIBUTES)
         if loaded is False:
@@ -293,6 +301,8 @@ def read_compas_json(path, *, item=None, validate=True):
     coordinates = []
     supports = []
     for index, key in enumerate(vertex_keys):
+        if index % PROGRESS_EVERY == 0:
+            report(len(face_records) + index, total)
         record = vertex_records[key]
         for axis in ("x", "y", "z"):
             coordinates.append(_coordinate(record, vertex_defaults, axis, key, source))
@@ -320,6 +330,7 @@ def read_compas_json(path, *, item=None, validate=True):
         "face_keys": face_keys,
         "support_vertices": supports,
     }
+    report(total, total)
     return build_mesh(
         coordinates,
         face_start,

@@ -29,7 +29,25 @@ __all__ = [
     "staged",
     "when_staged",
     "format_float",
+    "reading_progress",
+    "PROGRESS_EVERY",
 ]
+
+#: Lines or records a mesh reader reads between two progress calls.
+PROGRESS_EVERY = 16384
+
+
+def reading_progress(progress, path):
+    """``report(done, total)`` for a mesh reader: ``progress(done, total)`` when `progress`
+    is given; True from it cancels (:class:`facet.Cancelled`, "reading NAME cancelled")."""
+    from facet.errors import report_progress
+
+    what = f"reading {os.path.basename(os.fspath(path))}"
+
+    def report(done, total):
+        report_progress(progress, done, total, what)
+
+    return report
 
 #: Per thread, while :func:`staged` runs: ``stage``, [(temporary file, its path)] and
 #: clean-ups in order, and ``depth``, the blocks open.

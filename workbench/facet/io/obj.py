@@ -27,7 +27,8 @@ import numpy as np
 
 from facet.errors import MeshError
 from facet.io.checks import build_mesh
-from facet.io.files import parse_float, parse_int, read_lines, write_mesh_records
+from facet.io.files import (PROGRESS_EVERY, parse_float, parse_int, read_lines,
+                            reading_progress, write_mesh_records)
 
 __all__ = ["read_obj", "write_obj"]
 
@@ -60,7 +61,7 @@ def _statements(lines):
         yield pending_line, pending
 
 
-def read_obj(path, *, validate=True):
+def read_obj(path, *, validate=True, progress=None):
     """Read the vertices and faces of a Wavefront OBJ file.
 
     Parameters
@@ -68,6 +69,10 @@ def read_obj(path, *, validate=True):
     path : str or os.PathLike
     validate : bool
         Check the mesh fully (:meth:`PolyMesh.validate`). Default True.
+    progress : callable, optional
+        ``progress(done, total)`` in lines of the file (every
+        :data:`facet.io.files.PROGRESS_EVERY`, and at the end); True cancels
+        (:class:`facet.Cancelled`, "reading NAME cancelled").
 
     Returns
     -------
@@ -96,7 +101,13 @@ def read_obj(path, *, validate=True):
     sections = []  # (faces before it, statement): g, o, usemtl
     mtllib = []
     lines = read_lines(path)
+    report = reading_progress(progress, path)
+    report(0, len(lines))
+    due = PROGRESS_EVERY
     for number, text in _statements(lines):
+        if number >= due:
+            report(number, len(lines))
+            due = number + PROGRESS_EVERY
         tokens = text.split()
         if not tokens:
             continue
@@ -160,6 +171,7 @@ def read_obj(path, *, validate=True):
             f"no faces: the file holds {n_polylines} lines or curves ('l', 'curv'), not panels",
             source=source,
         )
+    report(len(lines), len(lines))
     return build_mesh(
         np.array(coordinates, dtype=np.float64).reshape(-1, 3),
         face_start,

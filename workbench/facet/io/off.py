@@ -31,7 +31,8 @@ import numpy as np
 
 from facet.errors import MeshError
 from facet.io.checks import build_mesh
-from facet.io.files import parse_float, parse_int, read_lines, write_mesh_records
+from facet.io.files import (PROGRESS_EVERY, parse_float, parse_int, read_lines,
+                            reading_progress, write_mesh_records)
 
 __all__ = ["read_off", "write_off"]
 
@@ -95,7 +96,7 @@ class _TokenReader:
             self.at += 1
 
 
-def read_off(path, *, validate=True):
+def read_off(path, *, validate=True, progress=None):
     """Read the vertices and faces of an OFF file.
 
     Parameters
@@ -103,6 +104,10 @@ def read_off(path, *, validate=True):
     path : str or os.PathLike
     validate : bool
         Check the mesh fully (:meth:`PolyMesh.validate`). Default True.
+    progress : callable, optional
+        ``progress(done, total)`` in vertices and faces read (every
+        :data:`facet.io.files.PROGRESS_EVERY`, and at the end); True cancels
+        (:class:`facet.Cancelled`, "reading NAME cancelled").
 
     Returns
     -------
@@ -161,7 +166,11 @@ def read_off(path, *, validate=True):
     coordinates = []
     vertex_lines = []
     line_structured = prefix != ""
+    report = reading_progress(progress, path)
+    total = n_vertices + n_faces
     for vertex in range(n_vertices):
+        if vertex % PROGRESS_EVERY == 0:
+            report(vertex, total)
         if stream.left() < 3:
             raise MeshError(f"file ends after {vertex} of {n_vertices} vertices", source=source)
         for axis in range(3):
@@ -176,6 +185,8 @@ def read_off(path, *, validate=True):
     face_vertices = []
     face_lines = []
     for face in range(n_faces):
+        if face % PROGRESS_EVERY == 0:
+            report(n_vertices + face, total)
         if not stream.left():
             raise MeshError(f"file ends after {face} of {n_faces} faces", source=source)
         token, first_line = stream.take()
@@ -210,6 +221,7 @@ def read_off(path, *, validate=True):
             line=line,
         )
 
+    report(total, total)
     return build_mesh(
         np.array(coordinates, dtype=np.float64).reshape(-1, 3),
         face_start,
