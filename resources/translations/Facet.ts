@@ -577,27 +577,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="782"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="783"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="783"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="784"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="784"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="785"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="785"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="786"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="786"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="787"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -929,6 +929,11 @@
     <message>
         <location filename="../../workbench/facetwb/commands/import_mesh.py" line="81"/>
         <source>{0}: its edges are {1:.3g} of its units long on average; as millimetres, no facade&apos;s panel is that small or large. Which units are its numbers in?</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="782"/>
+        <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

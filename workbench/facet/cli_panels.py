@@ -278,7 +278,8 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
             raise Cancelled("cancelled")
 
     t = time.perf_counter()
-    drawings = nested[1] if nested is not None and nested[0] is ps else unfold(ps, grain=grain)
+    drawings = (nested[1] if nested is not None and nested[0] is ps
+                else unfold(ps, grain=grain, progress=stage_progress("unfold")))
     # the texts are in the DXF and the previews only: no warning about a text not written
     text_warnings = (small_text_warnings(drawings, length_unit(units)[0])
                      if dxf or svg or png else [])
@@ -416,7 +417,8 @@ def _kept_nesting(nested, ps, drawings, sheet, margin, spacing, rotations):
 
 
 #: What each stage of run_pipeline counts, on the progress line.
-_STAGE_WORDS = {"panels": "building the panels", "nest": "nesting the parts",
+_STAGE_WORDS = {"panels": "building the panels", "unfold": "unfolding the parts",
+                "nest": "nesting the parts",
                 "step": "making the STEP solids", "dxf": "drawing the DXF's parts",
                 "svg": "writing the SVG sheets", "png": "writing the PNG sheets"}
 

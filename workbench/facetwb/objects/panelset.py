@@ -779,6 +779,7 @@ def _size_warning(mean_edge):
 _STAGE_TEXTS = {
     "panels": QT_TRANSLATE_NOOP("Facet", "Building the panels"),
     "solids": QT_TRANSLATE_NOOP("Facet", "Making the panel solids"),
+    "unfold": QT_TRANSLATE_NOOP("Facet", "Unfolding the parts"),
     "nest": QT_TRANSLATE_NOOP("Facet", "Nesting the parts on the sheets"),
     "step": QT_TRANSLATE_NOOP("Facet", "Making the solids for STEP"),
     "dxf": QT_TRANSLATE_NOOP("Facet", "Drawing the parts in the DXF"),
