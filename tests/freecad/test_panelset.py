@@ -465,8 +465,8 @@ class TestPanelSet(DocumentTestCase):
         self.assertEqual(list(large.Warnings), [])
 
     def test_cutsheets_progress_names_each_stage(self):
-        """The progress bar starts again from 0 at each stage (nesting, the DXF, the
-        previews): the dialog's text now names the stage, which nothing said."""
+        """The progress bar starts again from 0 at each stage (unfolding, nesting, the DXF,
+        the previews): the dialog's text now names the stage, which nothing said."""
         from facetwb import progress
 
         out = os.path.join(self.tmp.name, "staged")
@@ -479,8 +479,8 @@ class TestPanelSet(DocumentTestCase):
             self.doc.recompute()
         self.assertTrue(sheets.isValid(), sheets.getStatusString())
         said = [t.split("\n", 1)[1] for t in reporter.texts if "\n" in t]
-        self.assertEqual(said, ["Nesting the parts on the sheets", "Drawing the parts in the DXF",
-                                "Writing the SVG sheets"])
+        self.assertEqual(said, ["Unfolding the parts", "Nesting the parts on the sheets",
+                                "Drawing the parts in the DXF", "Writing the SVG sheets"])
 
     def test_panels_of_no_facades_size_are_warned_about(self):
         """A facade in metres read as millimetres (panels 0.6 mm across) made 40 mm thick
