@@ -817,10 +817,13 @@ typedef struct facet_panel_options {
                                   its mitres cut square first (default 1); 0: an error */
     facet_count_progress_fn progress; /* may be NULL */
     void *progress_user;
+    const char *length_unit;   /* the model's unit ("mm"), written after every
+                                  length in error messages; NULL or "" writes
+                                  them bare (model units) */
 } facet_panel_options;
 
 /* thickness 1, outer, gap 0, square, no flip, tol_abs 0, tol_rel 1e-6,
- * repair_consumed 1. */
+ * repair_consumed 1, length_unit NULL. */
 void facet_panel_options_default(facet_panel_options *options);
 
 /* Caller-allocated outputs; any pointer may be NULL. nc = face_start[n_faces]
@@ -901,6 +904,12 @@ typedef struct facet_panel_result {
     int64_t node_clash_vertex;    /* its vertex, or -1 */
     int32_t node_clash_faces[2];  /* its two faces, or -1 -1 */
     double seconds;
+    int32_t failed_joint_faces[2]; /* on the FACET_ERROR_PANEL_GEOMETRY of a joint
+                                      that had to be cut square on both panels
+                                      and whose panels overlap: its two faces (the
+                                      first is error->face, whose edge from
+                                      error->vertex it is); else -1 -1 */
+    double failed_joint_overlap;  /* how deep they overlap there, model units */
 } facet_panel_result;
 
 /* Computes the panels. The mesh must be valid (facet_mesh_validate); sizes
@@ -912,7 +921,8 @@ typedef struct facet_panel_result {
  * neighbours, or a gap/bevel that consumes an edge of the outline; names the
  * face and corner), FACET_ERROR_CANCELLED. Returns
  * FACET_WARNING_PANEL_NON_MANIFOLD when edges with more than two faces were
- * treated as boundary. result may be NULL. Unlike the general contract, a
+ * treated as boundary. result may be NULL; on the error of a joint square on
+ * both panels that overlaps (failed_joint_faces) *result is written too. Unlike the general contract, a
  * failing call may have written part of the outputs (except on
  * FACET_ERROR_INVALID_ARGUMENT): discard them. Serial and O(corners log
  * corners); deterministic. */

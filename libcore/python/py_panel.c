@@ -16,7 +16,7 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
                                "bottom", "frame", "reversed", "neighbor", "dihedral", "bevel",
                                "node_deviation", "planarity", "nonplanar", "dropped", "squared",
                                "joint", "node_clash", "clash", "progress", "repair_consumed",
-                               NULL};
+                               "length_unit", NULL};
     PyObject *xyz, *start, *faces, *progress = Py_None;
     PyObject *outs[N_OUT];
     for (int k = 0; k < N_OUT; ++k)
@@ -26,12 +26,12 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
     const char *offset = "outer", *edge = "square";
     int flip = 0, repair = 1;
     if (!PyArg_ParseTupleAndKeywords(
-            args, kwargs, "OOO|$dsdspddOOOOOOOOOOOOOOOOOp:panels", keywords, &xyz, &start, &faces,
+            args, kwargs, "OOO|$dsdspddOOOOOOOOOOOOOOOOOpz:panels", keywords, &xyz, &start, &faces,
             &o.thickness, &offset, &o.gap, &edge, &flip, &o.planarity_tol_abs,
             &o.planarity_tol_rel, &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
             &outs[6], &outs[7], &outs[8], &outs[9], &outs[10], &outs[11], &outs[12], &outs[13],
             &outs[14], &outs[15], &progress,
-            &repair))
+            &repair, &o.length_unit))
         return NULL;
     if (strcmp(offset, "outer") == 0)
         o.offset = FACET_PANEL_OFFSET_OUTER;
@@ -89,6 +89,7 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
         o.progress_user = &ps;
         facet_panel_result r;
         memset(&r, 0, sizeof r);
+        r.failed_joint_faces[0] = r.failed_joint_faces[1] = -1;
         facet_error error;
         facet_status status;
         Py_BEGIN_ALLOW_THREADS
@@ -98,6 +99,25 @@ static PyObject *core_panels(PyObject *module, PyObject *args, PyObject *kwargs)
             PyErr_Restore(ps.exc_type, ps.exc_value, ps.exc_tb);
         } else if (status < 0) {
             py_raise_status(py_state(module), status, &error);
+            if (r.failed_joint_faces[0] >= 0 && PyErr_Occurred()) {
+                /* the joint that had to be square on both panels: its faces and
+                 * overlap on the exception (joint_faces, joint_overlap) */
+                PyObject *type, *value, *tb;
+                PyErr_Fetch(&type, &value, &tb);
+                PyErr_NormalizeException(&type, &value, &tb);
+                if (value &&
+                    (py_set_attr(value, "joint_faces",
+                                 Py_BuildValue("(ii)", (int)r.failed_joint_faces[0],
+                                               (int)r.failed_joint_faces[1])) < 0 ||
+                     py_set_attr(value, "joint_overlap",
+                                 PyFloat_FromDouble(r.failed_joint_overlap)) < 0)) {
+                    Py_XDECREF(type);
+                    Py_XDECREF(value);
+                    Py_XDECREF(tb);
+                } else {
+                    PyErr_Restore(type, value, tb);
+                }
+            }
         } else {
             ret = Py_BuildValue(
                 "{s:L,s:L,s:L,s:i,s:L,s:d,s:d,s:L,s:L,s:L,s:d,s:d,s:L,s:(ii),s:L,s:d,s:L,s:d,s:L,"
@@ -135,9 +155,11 @@ static PyMethodDef panel_methods[] = {
      "       bottom=None, frame=None, reversed=None, neighbor=None, dihedral=None,\n"
      "       bevel=None, node_deviation=None, planarity=None, nonplanar=None,\n"
      "       dropped=None, squared=None, joint=None, node_clash=None, clash=None,\n"
-     "       progress=None, repair_consumed=True) -> dict\n\n"
+     "       progress=None, repair_consumed=True, length_unit=None) -> dict\n\n"
      "Panel geometry (facet_panels) into the given writable buffers (float64 or int32,\n"
-     "sizes as in facet.h). progress(done, total) returning True cancels."},
+     "sizes as in facet.h). progress(done, total) returning True cancels. length_unit\n"
+     "(\"mm\") follows every length in an error message. The error of a joint\n"
+     "square on both panels that overlaps has joint_faces and joint_overlap."},
     {NULL, NULL, 0, NULL}};
 
 int py_add_panel(PyObject *module)

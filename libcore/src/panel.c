@@ -857,6 +857,10 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
         return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
                           "planarity tolerances must be finite numbers >= 0");
 
+    /* " mm": written after every length in a message (nothing in model units) */
+    char unit[40] = "";
+    if (o->length_unit && o->length_unit[0])
+        snprintf(unit, sizeof unit, " %s", o->length_unit);
     const facet_mesh *m = mesh;
     const int32_t nf = m->n_faces, nv = m->n_vertices;
     work w;
@@ -890,6 +894,7 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
     r.narrowest_joint_faces[0] = r.narrowest_joint_faces[1] = -1;
     r.node_clash_vertex = -1;
     r.node_clash_faces[0] = r.node_clash_faces[1] = -1;
+    r.failed_joint_faces[0] = r.failed_joint_faces[1] = -1;
 
     /* Centre and scale. */
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -985,8 +990,8 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                                    NULL, &maxd, NULL);
             const double tol = fmax(o->planarity_tol_abs, o->planarity_tol_rel * me * scale);
             if (maxd * scale > tol) {
-                int len = snprintf(list + used, sizeof list - used, "%s%d (%.3g)",
-                                   shown ? ", " : "", (int)f, maxd * scale);
+                int len = snprintf(list + used, sizeof list - used, "%s%d (%.3g%s)",
+                                   shown ? ", " : "", (int)f, maxd * scale, unit);
                 if (len > 0 && (size_t)len < sizeof list - used)
                     used += (size_t)len;
                 ++shown;
@@ -1118,15 +1123,16 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                 work_free(&w);
                 if (repair)
                     return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[worst],
-                                      "face %d: the gap %.6g leaves fewer than three edges of its "
-                                      "outline (the edge from vertex %d is %.6g long)",
-                                      (int)f, o->gap, (int)m->face_vertices[worst], worst_length);
+                                      "face %d: the gap %.6g%s leaves fewer than three edges of its "
+                                      "outline (the edge from vertex %d is %.6g%s long)",
+                                      (int)f, o->gap, unit, (int)m->face_vertices[worst],
+                                      worst_length, unit);
                 return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[worst],
-                                  "face %d: the %s outline loses its edge from vertex %d, %.6g "
-                                  "long (gap %.6g or bevel too large for the panel; or collapse "
+                                  "face %d: the %s outline loses its edge from vertex %d, %.6g%s "
+                                  "long (gap %.6g%s or bevel too large for the panel; or collapse "
                                   "short edges first)",
                                   (int)f, worst_side ? "bottom" : "top",
-                                  (int)m->face_vertices[worst], worst_length, o->gap);
+                                  (int)m->face_vertices[worst], worst_length, unit, o->gap, unit);
             }
             w.drop[worst] = 1;
             --active;
@@ -1149,10 +1155,10 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                 work_free(&w);
                 if (dropped)
                     return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
-                                      "face %d: the gap %.6g consumes edges of its outline until "
+                                      "face %d: the gap %.6g%s consumes edges of its outline until "
                                       "two parallel ones meet (at vertex %d); use a smaller gap "
                                       "or split the face",
-                                      (int)f, o->gap, (int)m->face_vertices[c]);
+                                      (int)f, o->gap, unit, (int)m->face_vertices[c]);
                 return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
                                   "face %d: the edges at vertex %d are collinear; remove the "
                                   "vertex or split the face",
@@ -1227,27 +1233,34 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             double width;
             const double depth = joint_overlap(&w, f, c, up, down, 0.0, &width);
             const int repaired = w.square[c] == CUT_SQUARED || w.square[t] == CUT_SQUARED;
+            /* a panel has no side there (or the section has no corners: planes
+             * that do not meet, which the outlines would have refused): no joint.
+             * The section would have measured a side the panel does not have (the
+             * dropped edge's plane): its panels are measured as a node's (the
+             * node test below), an overlap there counted, not an error. */
+            if (w.drop[c] || w.drop[t] || !isfinite(width)) {
+                if (out->joint)
+                    out->joint[c] = out->joint[t] = 0.0;
+                continue;
+            }
             if (repaired) {
                 narrowest_repaired = fmin(narrowest_repaired, width);
                 if (depth > JOINT_TOUCH) {
                     const int32_t other = w.corner_face[t];
                     work_free(&w);
+                    r.failed_joint_faces[0] = f, r.failed_joint_faces[1] = other;
+                    r.failed_joint_overlap = depth * scale;
+                    r.seconds = facet_now() - t_start;
+                    if (result)
+                        *result = r;
                     return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
                                       "faces %d and %d: their mitre at the edge from vertex %d "
                                       "cannot be cut (it would consume a short edge or meet "
-                                      "beyond a nearly straight corner), and cut square the "
-                                      "panels overlap by %.3g there: use a larger gap or "
-                                      "thinner panels, or collapse short edges first",
+                                      "beyond a nearly straight corner on both panels), and "
+                                      "cut square on both the panels overlap by %.3g%s there",
                                       (int)f, (int)other, (int)m->face_vertices[c],
-                                      depth * scale);
+                                      depth * scale, unit);
                 }
-            }
-            /* a panel has no side there (or the section has no corners: planes
-             * that do not meet, which the outlines would have refused): no joint */
-            if (w.drop[c] || w.drop[t] || !isfinite(width)) {
-                if (out->joint)
-                    out->joint[c] = out->joint[t] = 0.0;
-                continue;
             }
             if (out->joint)
                 out->joint[c] = out->joint[t] = width * scale;

@@ -862,7 +862,7 @@ class TestPanelSetDefaults(DocumentTestCase):
         self.doc.recompute()
         self.assertFalse(obj.isValid())
         self.assertRegex(obj.getStatusString(),
-                         r"the gap 6 leaves fewer than three edges .*; the panels' edges are "
+                         r"the gap 6 mm leaves fewer than three edges .*; the panels' edges are "
                          r"0\.6\d* mm long on average, which no facade's are: a mesh drawn in "
                          r"metres")
 

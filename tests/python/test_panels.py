@@ -1306,7 +1306,7 @@ def test_cli_panels_in_metres(facet_command, tmp_path):
     # and a gap of 6, says the units too
     done = facet_command("panels", tmp_path / "m.obj", "--thickness", "0.018", *common[:2])
     assert done.returncode == 2
-    assert re.search(r"face \d+: the gap 6 leaves fewer than three edges .*; the panels' "
+    assert re.search(r"face \d+: the gap 6 mm leaves fewer than three edges .*; the panels' "
                      r"edges are 0\.429 mm long on average, taking the mesh to be in mm "
                      r"\(--units\)", done.stderr), done.stderr
 

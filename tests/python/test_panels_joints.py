@@ -3,12 +3,15 @@ side of a fold (facet_panel_output.joint; Panel.joint_widths,
 PanelSet.narrowest_joint, overlapping_joints, clearing_gap)."""
 import csv
 import math
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
 from panel_meshes import FOLDS, folded_grid, freecad_step
 
-from facet.panels import panels
+from facet.mesh import PolyMesh
+from facet.panels import PanelError, panels
 
 STEP = 1000.0
 THICKNESS = 200.0
@@ -207,3 +210,77 @@ def test_an_edge_a_panel_dropped_has_no_joint():
     k = [list(top.vertices[[k, (k + 1) % 4]]) for k in range(4)].index([3, 2])
     assert top.neighbors[k] == 0 and top.joint_widths[k] is None
     assert ps.narrowest_joint is None and ps.overlapping_joints == 0
+
+
+# Faces 6-9 and 42-45 of WWmore/DOS pillow_1.obj in mm, planarized with the defaults: faces
+# 1 and 2 (the pillow's 7 and 8) share an 88 mm edge folded 43 degrees, between a 9 degree
+# and a 210 degree corner of face 1 and a 23 and a 194 degree corner of face 2: at 40 mm
+# mitred it is consumed on both panels, which are then cut square there.
+STUB = Path(__file__).resolve().parents[1] / "data" / "pillow_stub_edge.obj"
+
+
+def _stub():
+    from facet.io import read_mesh
+
+    return read_mesh(str(STUB))
+
+
+def test_a_joint_one_panel_dropped_is_no_failed_joint():
+    """At a 15 mm gap face 1 drops the short edge (its neighbours' edge lines meet before
+    it): it has no side there, so the joint is not measured across a section with a
+    side the panel lacks; that refused it ("faces 1 and 2 ... overlap by 14.4"). The
+    two panels are measured as a node's instead: they do not overlap, and every solid
+    is valid and closed."""
+    ps = panels(_stub(), 40.0, gap=15.0, edge="bisector", units="mm")
+    assert ps.panels[1].dropped_edges == 1
+    assert ps.node_clash_pairs == 0 and ps.overlapping_joints == 0
+    assert all(p.clash == 0.0 for p in ps)
+    step = freecad_step()
+    for _pid, solid in step.panel_solids(ps):
+        assert solid.isValid() and solid.isClosed() and solid.Volume > 0.0
+    solids = dict(step.panel_solids(ps))
+    a, b = solids[ps.panels[1].id], solids[ps.panels[2].id]
+    assert a.common(b).Volume < 1e-9 * a.Volume
+
+
+def test_a_failed_joint_says_what_builds_the_panels():
+    """At a 10 mm gap the joint had to be cut square on both panels and they overlap: the
+    error names the edge, its fold and the corners at its ends, in mm, and the ways that
+    were tried and build the panels: the least larger gap, square edges. The advice was
+    "use a larger gap or thinner panels, or collapse short edges first", with the
+    overlap in no unit ("by 18.7"), and no gap named."""
+    mesh = _stub()
+    with pytest.raises(PanelError) as caught:
+        panels(mesh, 40.0, gap=10.0, edge="bisector", units="mm")
+    text = str(caught.value)
+    assert caught.value.faces == [1, 2]
+    assert "faces 1 and 2:" in text and "overlap by 18.7 mm there" in text, text
+    assert "is 88 mm long and folds 43.2 degrees" in text, text
+    assert "face 1 210 and 9.06 degrees, face 2 23.3 and 194 degrees" in text, text
+    found = re.search(r"a gap of ([0-9.]+) mm \(now 10 mm\) builds the panels", text)
+    assert found, text
+    built = float(found.group(1))
+    assert 10.0 < built < 20.0
+    ps = panels(mesh, 40.0, gap=built, edge="bisector", units="mm")
+    assert len(ps.panels) == mesh.n_faces
+    assert "so do square edges" in text, text
+    panels(mesh, 40.0, gap=10.0, edge="square", units="mm")
+
+
+def test_panel_error_lengths_name_their_unit():
+    """Every length in a panel error is followed by the model's unit when it is given
+    (the core formatted "the gap 3 leaves ... (the edge ... is 1 long)" and "0 (0.0125)"
+    bare, and the point a bare triple), and by none without one."""
+    flat = PolyMesh.from_faces([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [[0, 1, 2, 3]])
+    with pytest.raises(PanelError, match=r"the gap 3 mm leaves fewer than three edges of its "
+                       r"outline \(the edge from vertex \d is 1 mm long\) \(vertex \d at "
+                       r"\([0-9, ]+\) mm\)"):
+        panels(flat, 0.01, gap=3.0, units="mm")
+    with pytest.raises(PanelError, match=r"the gap 3 leaves .* is 1 long\) \(vertex \d at "
+                       r"\([0-9, ]+\)\)$"):
+        panels(flat, 0.01, gap=3.0)
+    warped = PolyMesh.from_faces([[0, 0, 0], [1, 0, 0], [1, 1, 0.05], [0, 1, 0]], [[0, 1, 2, 3]])
+    with pytest.raises(PanelError, match=r"not planar within the tolerance: 0 \(0\.0125 mm\)"):
+        panels(warped, 0.01, units="mm")
+    with pytest.raises(PanelError, match=r"faces 1 and 2: .* overlap by 18\.7 ft there"):
+        panels(_stub(), 40.0, gap=10.0, edge="bisector", units="ft")

@@ -296,13 +296,15 @@ _CLEARING_TRIALS = 40
 BEVEL_ZERO_DEG = 1e-9
 
 
-def _clearing_gap(xyz, mesh, options, gap, joints, progress, done):
+def _clearing_gap(xyz, mesh, options, gap, joints, progress, done, builds_only=False):
     """The least gap (to _CLEARING_REL) at which no joint and no node overlaps, by
     bisection over whole panel computations (a wider gap moves every outline, so
     the nodes' overlaps have no closed form), from the joints' own clearing gap
     `joints` (None when no joint overlaps) up; None when none up to 2^20 times the
-    first trial clears them, or the panels fail first. Reports
-    ``progress(done + trial, done + _CLEARING_TRIALS)``; a true return cancels."""
+    first trial clears them, or the panels fail first. With `builds_only`, the least
+    gap at which the panels are built at all (overlaps allowed: they are counted);
+    the gap returned was tried. Reports ``progress(done + trial, done +
+    _CLEARING_TRIALS)``; a true return cancels."""
     trials = 0
 
     def clears(trial_gap):
@@ -314,7 +316,7 @@ def _clearing_gap(xyz, mesh, options, gap, joints, progress, done):
             r = _core.panels(xyz, mesh.face_start, mesh.face_vertices, gap=trial_gap, **options)
         except _core.CoreError:
             return False
-        return r["n_overlapping_joints"] == 0 and r["n_node_clashes"] == 0
+        return builds_only or (r["n_overlapping_joints"] == 0 and r["n_node_clashes"] == 0)
 
     lo = gap
     hi = max(joints or 0.0, 2.0 * gap, 0.01 * options["thickness"])
@@ -329,6 +331,88 @@ def _clearing_gap(xyz, mesh, options, gap, joints, progress, done):
         else:
             lo = mid
     return float(hi)
+
+
+def _builds(xyz, mesh, options, gap):
+    """Whether the core builds the panels with these options at this gap."""
+    try:
+        _core.panels(xyz, mesh.face_start, mesh.face_vertices, gap=gap, **options)
+    except _core.CoreError:
+        return False
+    return True
+
+
+def _corner_angles(mesh, f):
+    """Face f's interior angles (degrees, over 180 at a reflex corner), by corner, in its
+    plane (the winding's side of its Newell normal)."""
+    p = np.asarray(mesh.vertices)[mesh.face_vertices[mesh.face_start[f]:mesh.face_start[f + 1]]]
+    n = np.cross(p, np.roll(p, -1, axis=0)).sum(axis=0)
+    before, after = p - np.roll(p, 1, axis=0), np.roll(p, -1, axis=0) - p
+    turn = np.degrees(np.arctan2(np.cross(before, after) @ n / np.linalg.norm(n),
+                                 np.einsum("ij,ij->i", before, after)))
+    return 180.0 - turn, n / np.linalg.norm(n)
+
+
+def _failed_joint_advice(xyz, mesh, options, gap, joint, vertex, length, progress):
+    """What a designer can do about the joint of faces `joint` at face joint[0]'s edge from
+    `vertex`, which had to be cut square on both panels and overlaps (the core's
+    error): the edge and the corners at its ends on both panels (a nearly straight one
+    named), then what was tried and builds the panels: the least larger gap, square
+    edges; else that only a change of the mesh there does."""
+    from facet.quality import DEFAULT_STRAIGHT_CORNER
+
+    f, h = (int(x) for x in joint)
+    start, fv = mesh.face_start, mesh.face_vertices
+    corners = [int(c) for c in range(start[f], start[f + 1]) if fv[c] == vertex]
+    if not corners:
+        return ""
+    c = corners[0]
+    other = int(fv[c + 1] if c + 1 < start[f + 1] else fv[start[f]])
+    points = np.asarray(mesh.vertices)
+    edge = float(np.linalg.norm(points[other] - points[vertex]))
+    parts, straight = [], []
+    normals = []
+    for g in (f, h):
+        angles, n = _corner_angles(mesh, g)
+        normals.append(n)
+        ring = [int(v) for v in fv[start[g]:start[g + 1]]]
+        at = {v: float(angles[ring.index(v)]) for v in (vertex, other) if v in ring}
+        parts.append(f"face {g} {at[vertex]:.3g} and {at[other]:.3g} degrees")
+        straight += [(abs(180.0 - a), g, v, a) for v, a in at.items()
+                     if abs(180.0 - a) < DEFAULT_STRAIGHT_CORNER]
+    # the windings run the shared edge opposite ways when they agree
+    ring_h = [int(v) for v in fv[start[h]:start[h + 1]]]
+    same = ring_h[(ring_h.index(vertex) + 1) % len(ring_h)] == other
+    fold = math.degrees(math.acos(float(np.clip(
+        np.dot(normals[0], -normals[1] if same else normals[1]), -1.0, 1.0))))
+    text = (f". The edge from vertex {vertex} to vertex {other} is {length(edge)} long and "
+            f"folds {fold:.3g} degrees; the corners at its ends (vertices {vertex} and "
+            f"{other}): {parts[0]}, {parts[1]}")
+    if straight:
+        _, g, v, a = min(straight)
+        text += f" (face {g}'s at vertex {v}, {a:.4g} degrees, is nearly straight)"
+    ways = []
+    built = _clearing_gap(xyz, mesh, options, gap, None, progress, 0, builds_only=True)
+    if built is not None:
+        # the gap as the message writes it, rounded up, is the one said to build them
+        for digits in (3, 4, 6, 17):
+            said = float(f"{built:.{digits}g}")
+            if said < built:  # up by one in the last digit written
+                said = float(f"{said + 10.0 ** (math.floor(math.log10(said)) - digits + 1):.{digits}g}")
+            if said >= built and _builds(xyz, mesh, options, said):
+                ways.append(f"a gap of {length(said, f'.{digits}g')} (now {length(gap)}) "
+                            "builds the panels")
+                break
+    if options["edge"] != "square" and _builds(xyz, mesh, dict(options, edge="square"), gap):
+        ways.append("so do square edges (their joints then report the gap that clears them)"
+                    if ways else "square edges build the panels")
+    mesh_change = (f"a mesh without the short edge or the sharp corner there (merge "
+                   f"vertices {vertex} and {other}, or planarize so that faces {f} and {h} "
+                   "keep their shape)")
+    if ways:
+        return text + ": " + "; ".join(ways) + f"; or {mesh_change}"
+    return (text + f": neither a larger gap (tried) nor square edges build them: change the "
+            f"mesh, {mesh_change}")
 
 
 def _node_clashes(result, depth):
@@ -965,7 +1049,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
                     "tol_abs": tol_abs, "tol_rel": tol, "repair_consumed": bool(repair)}
     try:
         res = _core.panels(xyz, mesh.face_start, mesh.face_vertices, gap=gap,
-                           progress=_after(progress, n_groups), **core_options, **out)
+                           progress=_after(progress, n_groups), length_unit=units or None,
+                           **core_options, **out)
     except _core.CoreError as exc:
         name = getattr(exc, "status_name", None)
         if name == "FACET_ERROR_CANCELLED" or isinstance(exc, _core.Cancelled):
@@ -979,9 +1064,15 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             # FreeCAD or Rhino cannot find; their point can be
             message, vertex = str(exc), getattr(exc, "vertex", -1)
             if 0 <= vertex < len(mesh.vertices):
-                point = point_text(mesh.vertices[vertex])
+                point = point_text(mesh.vertices[vertex]) + (f" {units}" if units else "")
                 message += (f" {point}" if message.endswith(f"vertex {vertex}")
                             else f" (vertex {vertex} at {point})")
+            joint = getattr(exc, "joint_faces", None)
+            if joint is not None:
+                faces = list(joint)
+                message += _failed_joint_advice(
+                    xyz, mesh, core_options, gap, joint, vertex, length,
+                    _after(progress, n_groups + 2 * nf))
             raise PanelError(prefix_ + message, faces=faces) from None
         raise from_core(exc, source=source) from None
 
