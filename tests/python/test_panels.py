@@ -1865,6 +1865,102 @@ def test_texts_as_outlines_for_cam_that_imports_no_text(tmp_path):
             assert 0.95 * height < max(across) - min(across) < 1.4 * height, text.dxf.text
 
 
+def test_texts_read_upright_on_the_sheet(tmp_path):
+    """A part nested turned by 180 or 270 degrees had its ID written upside down on the
+    sheet, and every part the bevel angles of its edges that run left or down (the
+    fabricator reads IDs off the sheet). Every ID and bevel angle now reads from the
+    sheet's bottom or its right side (its angle in (-90, 90]), on the line it lay on,
+    centred where it was: in the DXF's TEXT, its outlines (the letters of the upright
+    text), the SVG and so the PNG (drawn at the DXF's angles); on the sheet its letters
+    lie on the part's top face, clear of the part's other texts."""
+    import xml.etree.ElementTree as ET
+
+    import ezdxf
+    from ezdxf.addons import text2path
+    from ezdxf.enums import TextEntityAlignment
+    from shapely.geometry import MultiPoint, Polygon
+
+    from facet.cutsheets import OUTLINE_FONT, write_dxf
+
+    try:  # ezdxf 1.x
+        from ezdxf.fonts.fonts import FontFace
+    except ImportError:  # ezdxf 0.18
+        from ezdxf.tools.fonts import FontFace
+
+    _, ps, drawings, result = _made(tmp_path)
+    assert {180, 270} <= {round(pl.angle_deg) % 360 for pl in result.placements.values()}
+    # one file a sheet: each sheet at the origin, as nested
+    as_text = write_dxf(tmp_path / "t.dxf", result, drawings, per_sheet=True)
+    as_lines = write_dxf(tmp_path / "o.dxf", result, drawings, per_sheet=True,
+                         text_outlines=True)
+    face = FontFace(family=OUTLINE_FONT)
+    literal = ((lambda s: s.replace("$", r"\$")) if hasattr(text2path, "TextPath")
+               else (lambda s: s))
+
+    @functools.lru_cache(maxsize=None)
+    def letters(s):  # the upright text's outline points at height 1, centred
+        paths = text2path.make_paths_from_str(literal(s), face, size=1.0,
+                                              align=TextEntityAlignment.MIDDLE_CENTER)
+        return np.array([(v.x, v.y) for p in paths for v in p.flattening(0.001)])
+
+    by_id = {d.id: d for d in drawings}
+    on_sheet = {}
+    for pid, pl in result.placements.items():
+        on_sheet.setdefault(pl.sheet, []).append((pl, by_id[pid]))
+    flipped = checked = 0
+    for k, (text_file, line_file) in enumerate(zip(as_text, as_lines)):
+        texts = ezdxf.readfile(text_file).modelspace()
+        lines = ezdxf.readfile(line_file).modelspace()
+        rings = {layer: [np.array(e.get_points("xy"))
+                         for e in lines.query(f"LWPOLYLINE[layer=='{layer}']")]
+                 for layer in ("LABEL", "BEVEL")}
+        for pl, d in on_sheet[k]:
+            top = Polygon(pl.transform(d.cut)).intersection(Polygon(pl.transform(d.top)))
+            wanted = [("LABEL", d.id, d.label_position, d.label_height, 0.0)] + [
+                ("BEVEL", s, (x, y), h, angle) for s, x, y, angle, h in d.bevels]
+            inks = []
+            for layer, s, xy, h, angle in wanted:
+                x, y = pl.transform([xy])[0]
+                along = angle + pl.angle_deg  # the text's line on the sheet
+                (text,) = [t for t in texts.query(f"TEXT[layer=='{layer}']")
+                           if t.dxf.text == s and np.hypot(t.dxf.align_point.x - x,
+                                                           t.dxf.align_point.y - y) < 1e-9 * h]
+                turn = text.dxf.rotation
+                # (a vertical one, to a rounding, reads from the right)
+                assert -90.0 + 1e-9 < turn <= 90.0 + 1e-9, (d.id, s, turn)
+                assert abs(math.remainder(turn - along, 180.0)) < 1e-9, (d.id, s)
+                flipped += abs(math.remainder(turn - along, 360.0)) > 90.0
+                # its letters' outlines: the upright text's, turned and placed as the TEXT
+                c, si = math.cos(math.radians(turn)), math.sin(math.radians(turn))
+                back = np.array([[c, -si], [si, c]]) / h  # sheet -> text frame
+                ref = letters(s)
+                mine = []
+                for ring in rings[layer]:
+                    local = (ring - (x, y)) @ back
+                    if np.abs(local).max() > 0.6 * len(s) + 1.0:
+                        continue  # another text's
+                    gap = np.min(np.hypot(*(local[:, None, :] - ref[None, :, :]).T), axis=0)
+                    if gap.max() < 2e-3:  # (within the flattening's tolerance)
+                        mine.append(ring)
+                ink = MultiPoint(np.concatenate(mine)) if mine else None
+                assert ink is not None and ink.convex_hull.area > 0.3 * h * h, (d.id, s)
+                # (all the letters: as wide as the upright text)
+                span = np.concatenate(mine) @ np.array([c, si])
+                assert np.ptp(span) == pytest.approx(np.ptp(ref[:, 0]) * h, rel=1e-2), s
+                assert top.contains(ink.convex_hull), (d.id, s)
+                inks.append(ink.convex_hull)
+                checked += 1
+            for i, a in enumerate(inks):
+                assert all(a.intersection(b).area == 0 for b in inks[i + 1:]), d.id
+    assert flipped > 0.2 * checked > 10  # (upside down before)
+    # the SVG previews: the texts turned as in the DXF (the PNG's angles are the DXF's,
+    # test_png_texts_are_as_tall_as_the_dxfs)
+    for svg in (tmp_path / "svg").glob("*.svg"):
+        for text in ET.parse(svg).getroot().iter("{http://www.w3.org/2000/svg}text"):
+            rotate = float(re.search(r"rotate\((\S+) ", text.get("transform")).group(1))
+            assert -90.0 - 1e-9 <= rotate < 90.0 + 1e-9  # (y down: clockwise)
+
+
 def test_writing_the_dxf_shows_progress_and_cancels_leaving_no_file(tmp_path):
     """Writing texts as outlines takes about 6 ms a part (a minute for 10,000 parts) and
     showed no progress and could not be cancelled: now progress(done, total) is called as

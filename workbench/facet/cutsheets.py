@@ -258,8 +258,24 @@ def _reporter(progress, total, what):
     return report
 
 
+def _upright(deg):
+    """A text's angle on the sheet (degrees, counter-clockwise) turned by half a turn where
+    it would read upside down: into (-90, 90], so that it reads from the sheet's bottom or
+    its right side, as a drawing's texts do. A part nested turned by 180 or 270 degrees had
+    its ID written upside down, and the bevel angles of its edges that run left or down too
+    (the fabricator reads them off the sheet). Turned about its middle, where the DXF
+    places it (MIDDLE_CENTER) and the outlines and previews centre it, the text stays on
+    its place: the ID's box (``facet.unfold._label_box``) is the same either way up, and a
+    bevel angle ("+12.5\u00b0", no descender) is as high either side of its middle. Within
+    1e-9 degrees of vertical it reads from the right (90), not flipped by a rounding."""
+    turn = deg % 360.0
+    if 90.0 + 1e-9 < turn <= 270.0 + 1e-9:
+        return turn - 180.0
+    return turn - 360.0 if turn > 270.0 + 1e-9 else turn
+
+
 def _rotate_angle(pl, deg):
-    return (deg + pl.angle_deg) % 360.0
+    return _upright(deg + pl.angle_deg)
 
 
 def _preview_text(x, y, height, rotation_deg):
@@ -279,13 +295,13 @@ def _drawn(pl, d, sheet_size, off=0.0):
     ``(cut, top, texts, grain)``: the cut ring; the top face's ring, or None where it is
     the cut's (within 1e-9 of the sheet's size); the texts ``(text, x, y, height,
     rotation_deg, layer)``, the ID (LABEL) and the bevel angles (BEVEL), rotation
-    counter-clockwise; and the grain arrow's segments ``(a, b)`` (none without a grain).
+    counter-clockwise, upright on the sheet (:func:`_upright`); and the grain arrow's segments ``(a, b)`` (none without a grain).
     The DXF, SVG and PNG draw these."""
     cut = pl.transform(d.cut) + off
     same = np.allclose(d.top, d.cut, rtol=0, atol=1e-9 * max(sheet_size))
     top = None if same else pl.transform(d.top) + off
     lx, ly = pl.transform([d.label_position])[0] + off
-    texts = [(d.id, lx, ly, d.label_height, pl.angle_deg % 360.0, "LABEL")]
+    texts = [(d.id, lx, ly, d.label_height, _upright(pl.angle_deg), "LABEL")]
     for s, bx, by, ang, bh in d.bevels:
         px, py = pl.transform([(bx, by)])[0] + off
         texts.append((s, px, py, bh, _rotate_angle(pl, ang), "BEVEL"))

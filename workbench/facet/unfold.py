@@ -229,7 +229,11 @@ def _place_bevel(inside, outline, i, a, u, length, text, height, taken=(), inset
     planarized hex mesh's part). ``inside``: the prepared face the texts go on (the cut
     outline within the top face), ``outline``: the cut outline's edges as LineStrings;
     ``inset``: how far inside the edge the face the text is engraved on begins (the top
-    face, where the bevel narrows it), which the text keeps off."""
+    face, where the bevel narrows it), which the text keeps off. On the sheet the text is
+    turned half a turn about its middle where it would read upside down
+    (``facet.cutsheets._upright``): a bevel angle ("+12.5\u00b0") has no descender, its
+    letters reach 0.52 of its height either side of its middle, so turned it takes the
+    same place."""
     from shapely.geometry import Polygon
 
     ux, uy = float(u[0]), float(u[1])
