@@ -559,6 +559,41 @@ class TestPanelSet(DocumentTestCase):
         self.doc.recompute([self.square])
         self.assertTrue(self.square.isValid(), self.square.getStatusString())
 
+    def test_cutsheets_lay_their_sheets_in_rows_as_the_dxf(self):
+        """The CutSheets' Shape laid the sheets in one row (161 sheets of 3000 mm: a thin
+        red line 483 m long in the top view); now in rows, about as wide as high, each
+        sheet's border where the DXF's SHEET rectangle is, each part on it."""
+        import ezdxf
+
+        out = os.path.join(self.tmp.name, "rows")
+        sheets = facetwb.make_cutsheets(self.mitred, sheet=(1300.0, 1300.0), margin=10.0,
+                                        spacing=6.0, output_dir=out, write_step=False,
+                                        name="RowSheets")
+        self.doc.recompute()
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        self.assertEqual(list(sheets.Unplaced), [])
+        self.assertGreaterEqual(sheets.SheetCount, 16)
+        box = sheets.Shape.BoundBox
+        self.assertTrue(0.5 <= box.XLength / box.YLength <= 2.0, box)
+
+        def corners(points):  # a closed rectangle's lower-left and upper-right corners
+            points = np.asarray(points)
+            return tuple(np.round(np.concatenate([points.min(axis=0), points.max(axis=0)]), 6))
+
+        msp = ezdxf.readfile(os.path.join(out, "sheets.dxf")).modelspace()
+        dxf = sorted(corners(e.get_points("xy")) for e in msp.query("LWPOLYLINE[layer=='SHEET']"))
+        wires = [[(v.X, v.Y) for v in w.Vertexes] for w in sheets.Shape.Wires]
+        borders = sorted(corners(w) for w in wires
+                         if np.allclose(np.ptp(np.asarray(w), axis=0), 1300.0))
+        self.assertEqual(len(borders), sheets.SheetCount)
+        self.assertEqual(borders, dxf)
+        parts = [corners(w) for w in wires
+                 if not np.allclose(np.ptp(np.asarray(w), axis=0), 1300.0)]
+        self.assertEqual(len(parts), 20)
+        for part in parts:  # (inside one sheet)
+            self.assertEqual(sum(b[0] <= part[0] and b[1] <= part[1] and part[2] <= b[2]
+                                 and part[3] <= b[3] for b in borders), 1, part)
+
     def test_cutsheets_write_texts_as_outlines_when_asked(self):
         """TextOutlines: sheets.dxf holds the IDs and bevel angles as closed outlines on
         their layers, no TEXT there (many CAM importers skip TEXT)."""

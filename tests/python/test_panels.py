@@ -849,13 +849,13 @@ def test_dxf_layers_units_audit_and_outlines(tmp_path):
     sheets = msp.query("LWPOLYLINE[layer=='SHEET']")
     assert len(sheets) == len(result.sheets)
     # every CUT outline is a placed part's outline, point for point
-    from facet.cutsheets import sheet_offsets
+    from facet.cutsheets import sheet_origins
 
-    offsets = sheet_offsets(result)
+    origins = sheet_origins(result)
     by_id = {d.id: d for d in drawings}
     expected = []
     for pid, pl in result.placements.items():
-        expected.append(pl.transform(by_id[pid].cut) + (offsets[pl.sheet], 0))
+        expected.append(pl.transform(by_id[pid].cut) + origins[pl.sheet])
     got = [np.array([(x, y) for x, y, *_ in c.get_points()]) for c in cuts]
     for e in expected:
         assert any(g.shape == e.shape and np.allclose(g, e, atol=1e-9) for g in got)
@@ -870,7 +870,7 @@ def test_the_top_outline_is_a_reference_layer_of_its_own(tmp_path):
     import ezdxf
     from shapely.geometry import Polygon
 
-    from facet.cutsheets import LAYERS, sheet_offsets
+    from facet.cutsheets import LAYERS, sheet_origins
 
     report, ps, drawings, result = _made(tmp_path)
     doc = ezdxf.readfile(tmp_path / "cut.dxf")
@@ -880,10 +880,10 @@ def test_the_top_outline_is_a_reference_layer_of_its_own(tmp_path):
         assert doc.layers.get(name).description  # (what it is for, for the fabricator)
     assert doc.layers.get("TOP").dxf.linetype == "FACET_DASHED"
     tops = list(msp.query("LWPOLYLINE[layer=='TOP']"))
-    offsets = sheet_offsets(result)
+    origins = sheet_origins(result)
     by_id = {d.id: d for d in drawings}
     expected = [result.placements[pid].transform(by_id[pid].top)
-                + (offsets[result.placements[pid].sheet], 0)
+                + origins[result.placements[pid].sheet]
                 for pid in result.placements
                 if not np.allclose(by_id[pid].top, by_id[pid].cut, atol=1e-6)]
     assert len(tops) == len(expected) > 0
@@ -895,6 +895,55 @@ def test_the_top_outline_is_a_reference_layer_of_its_own(tmp_path):
     cuts = [Polygon([(x, y) for x, y, *_ in c.get_points()])
             for c in msp.query("LWPOLYLINE[layer=='CUT']")]
     assert any(not any(c.contains(Polygon(g)) for c in cuts) for g in got)
+
+
+def test_the_sheets_of_one_dxf_lie_in_rows_read_like_pages(tmp_path):
+    """The sheets of a run lay in one row: 161 sheets 3000 mm wide were a line 483 m long
+    in the DXF (and the FreeCAD CutSheets' Shape), a thin line to whoever viewed it all.
+    They lie in rows now, the whole about as wide as high; each sheet's name under it,
+    clear of the others; numbered as a book's pages are read (left to right, row under
+    row), and every part inside the sheet its name says it is on."""
+    import ezdxf
+    from shapely.geometry import Point, Polygon, box
+
+    from facet.cli_panels import run_pipeline
+
+    _, ps, drawings, result = run_pipeline(
+        translational(nu=8, nv=5, step=400.0), 18.0, sheet=(900, 500), margin=5, spacing=8,
+        dxf=str(tmp_path / "cut.dxf"))
+    count = len(result.sheets)
+    assert count >= 20
+    msp = ezdxf.readfile(tmp_path / "cut.dxf").modelspace()
+    rects = [Polygon(e.get_points("xy")) for e in msp.query("LWPOLYLINE[layer=='SHEET']")]
+    assert len(rects) == count
+    lo = np.min([r.bounds[:2] for r in rects], axis=0)
+    hi = np.max([r.bounds[2:] for r in rects], axis=0)
+    assert 0.5 <= (hi - lo)[0] / (hi - lo)[1] <= 2.0
+    # each sheet's name: under its sheet, nearer it than any other
+    named = {}
+    for t in msp.query("TEXT[layer=='SHEET']"):
+        where = Point(t.dxf.align_point.x, t.dxf.align_point.y)
+        (number,) = re.fullmatch(r"SHEET (\d+)", t.dxf.text).groups()
+        sheet = min(rects, key=where.distance)
+        x0, y0, x1, _ = sheet.bounds
+        assert x0 < where.x < x1 and where.y < y0, t.dxf.text
+        named[int(number)] = sheet
+    assert sorted(named) == list(range(1, count + 1))
+    assert len({id(r) for r in named.values()}) == count
+    for k in range(1, count):  # (left to right, then the next row down, on its left)
+        a, b = named[k].bounds, named[k + 1].bounds
+        assert (b[1] == a[1] and b[0] > a[2]) or (b[3] < a[1] and b[0] < a[0]), k
+    for a in rects:
+        grown = box(*a.bounds).buffer(0.05 * 500)  # (with its name under it)
+        assert sum(grown.intersects(b) for b in rects) == 1
+    # each part (its ID and its cut outline) on the sheet its placement says
+    cuts = [Polygon(e.get_points("xy")) for e in msp.query("LWPOLYLINE[layer=='CUT']")]
+    labels = list(msp.query("TEXT[layer=='LABEL']"))
+    assert len(labels) == len(cuts) == len(result.placements)
+    for t in labels:
+        where = Point(t.dxf.align_point.x, t.dxf.align_point.y)
+        (cut,) = [c for c in cuts if c.contains(where)]
+        assert named[result.placements[t.dxf.text].sheet + 1].contains(cut), t.dxf.text
 
 
 @pytest.mark.parametrize("units, mm", [("mm", 1.0), ("m", 1000.0), ("in", 25.4)])
@@ -969,7 +1018,7 @@ def test_png_texts_are_as_tall_as_the_dxfs(tmp_path, monkeypatch):
     matplotlib.use("Agg", force=False)
     from matplotlib.axes import Axes
 
-    from facet.cutsheets import OUTLINE_FONT, sheet_offsets, write_png
+    from facet.cutsheets import OUTLINE_FONT, sheet_origins, write_png
 
     _, ps, drawings, result = _made(tmp_path)
     drawn = []
@@ -986,10 +1035,12 @@ def test_png_texts_are_as_tall_as_the_dxfs(tmp_path, monkeypatch):
     write_png(tmp_path / "png", result, drawings,
               progress=lambda done, total: drawn_sheets.append(done) and False)
     cap = _cap_height_in_ems(OUTLINE_FONT)
-    offsets = sheet_offsets(result)
+    origins = np.array(sheet_origins(result))
+    w, h = result.sheet_size
     dxf = {}
     for e in ezdxf.readfile(tmp_path / "cut.dxf").modelspace().query("TEXT[layer!='SHEET']"):
-        k = int(np.searchsorted(offsets, e.dxf.align_point.x, side="right")) - 1
+        at = np.array([e.dxf.align_point.x, e.dxf.align_point.y])
+        (k,) = np.flatnonzero(np.all((origins <= at) & (at <= origins + (w, h)), axis=1))
         dxf.setdefault((k, e.dxf.text), []).append(e)
     assert len(drawn) == sum(map(len, dxf.values())) > len(ps)
     for k, s, x, y, kw, points in drawn:
@@ -998,8 +1049,8 @@ def test_png_texts_are_as_tall_as_the_dxfs(tmp_path, monkeypatch):
         turn = np.radians(kw["rotation"])
         cx, cy = x - 0.5 * height * np.sin(turn), y + 0.5 * height * np.cos(turn)
         (same,) = [e for e in dxf[(k, s)]
-                   if abs(e.dxf.align_point.x - offsets[k] - cx) < 1e-6
-                   and abs(e.dxf.align_point.y - cy) < 1e-6]
+                   if abs(e.dxf.align_point.x - origins[k][0] - cx) < 1e-6
+                   and abs(e.dxf.align_point.y - origins[k][1] - cy) < 1e-6]
         assert height == pytest.approx(same.dxf.height, rel=1e-9)
         assert kw["rotation"] == pytest.approx(same.dxf.rotation, abs=1e-9)
 
@@ -1025,17 +1076,18 @@ def _svg_holds_what_the_dxf_holds(svgs, dxf_path, result):
 
     import ezdxf
 
-    from facet.cutsheets import OUTLINE_FONT, sheet_offsets
+    from facet.cutsheets import OUTLINE_FONT, sheet_origins
 
     svg_ns = "{http://www.w3.org/2000/svg}"
     ink = "{http://www.inkscape.org/namespaces/inkscape}"
     msp = ezdxf.readfile(dxf_path).modelspace()
     cap_height = _cap_height_in_ems(OUTLINE_FONT)
-    offsets = sheet_offsets(result)
-    w = result.sheet_size[0]
+    origins = np.array(sheet_origins(result))
+    size = np.array(result.sheet_size)
 
-    def on_sheet(k, xs):
-        return (xs >= offsets[k] - 1e-9) & (xs <= offsets[k] + w + 1e-9)
+    def on_sheet(k, points):  # (n, 2) -> whether each lies on sheet k
+        return np.all((points >= origins[k] - 1e-9) & (points <= origins[k] + size + 1e-9),
+                      axis=1)
 
     turned = 0
     counts = {"TOP": 0, "BEVEL": 0, "GRAIN": 0}
@@ -1050,7 +1102,7 @@ def _svg_holds_what_the_dxf_holds(svgs, dxf_path, result):
 
             rings = [np.array(e.get_points("xy"))
                      for e in msp.query(f"LWPOLYLINE[layer=='{name}']")]
-            rings = ordered([r - (offsets[k], 0) for r in rings if on_sheet(k, r[:, 0]).all()])
+            rings = ordered([r - origins[k] for r in rings if on_sheet(k, r).all()])
             paths = [] if name not in layers else layers[name].findall(f"{svg_ns}path")
             got = ordered([np.array([[float(v) for v in xy.split()]
                                      for xy in p.get("d")[2:-2].split(" L ")])
@@ -1060,14 +1112,13 @@ def _svg_holds_what_the_dxf_holds(svgs, dxf_path, result):
             counts["TOP"] += len(got) if name == "TOP" else 0
         lines = [] if "GRAIN" not in layers else layers["GRAIN"].findall(f"{svg_ns}line")
         dxf_lines = [e for e in msp.query("LINE[layer=='GRAIN']")
-                     if on_sheet(k, np.array([e.dxf.start.x]))[0]]
+                     if on_sheet(k, np.array([(e.dxf.start.x, e.dxf.start.y)]))[0]]
         assert len(lines) == len(dxf_lines)
         counts["GRAIN"] += len(lines)
         for name in ("LABEL", "BEVEL"):
             dxf = {}
             for e in msp.query(f"TEXT[layer=='{name}']"):
-                x = e.dxf.align_point.x - offsets[k]
-                if 0 <= x <= w:
+                if on_sheet(k, np.array([(e.dxf.align_point.x, e.dxf.align_point.y)]))[0]:
                     dxf.setdefault(e.dxf.text, []).append(e)
             texts = list(layers[name].iter(f"{svg_ns}text")) if name in layers else []
             assert len(texts) == sum(map(len, dxf.values())), (svg.name, name)
@@ -1081,8 +1132,8 @@ def _svg_holds_what_the_dxf_holds(svgs, dxf_path, result):
                 turn = np.radians(-rotate)
                 cx, cy = x - 0.5 * cap * np.sin(turn), -y + 0.5 * cap * np.cos(turn)
                 (same,) = [e for e in dxf[text.text]
-                           if abs(e.dxf.align_point.x - offsets[k] - cx) < 1e-9
-                           and abs(e.dxf.align_point.y - cy) < 1e-9]
+                           if abs(e.dxf.align_point.x - origins[k][0] - cx) < 1e-9
+                           and abs(e.dxf.align_point.y - origins[k][1] - cy) < 1e-9]
                 assert rotate == pytest.approx(-same.dxf.rotation, abs=1e-9)
                 assert cap == pytest.approx(same.dxf.height)
                 turned += name == "LABEL" and same.dxf.rotation != 0.0

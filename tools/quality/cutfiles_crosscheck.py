@@ -184,9 +184,19 @@ def main():
             print("  !! open polyline on", e.dxf.layer)
         (cuts if e.dxf.layer == "CUT" else tops if e.dxf.layer == "TOP" else []).append(
             pts[:, :2])
-    sheet_rects = sorted([np.array(e.get_points("xy")) for e in msp.query("LWPOLYLINE[layer=='SHEET']")], key=lambda r: r[:, 0].min())
-    sheets_x0 = [r[:, 0].min() for r in sheet_rects]
-    sheet_w = np.ptp(sheet_rects[0][:, 0])
+    # the sheets in the order of their names ("SHEET n", under each sheet: they lie in
+    # rows), each by its lower-left corner
+    rects = [np.array(e.get_points("xy")) for e in msp.query("LWPOLYLINE[layer=='SHEET']")]
+    names = {}
+    for t in msp.query("TEXT[layer=='SHEET']"):
+        x, y = t.dxf.align_point.x, t.dxf.align_point.y
+        under = [q for q, r in enumerate(rects)
+                 if r[:, 0].min() <= x <= r[:, 0].max() and y < r[:, 1].min()]
+        names[int(t.dxf.text.split()[-1])] = max(under, key=lambda q: -rects[q][:, 1].min())
+    if sorted(names) != list(range(1, len(rects) + 1)) or len(set(names.values())) != len(rects):
+        print("  !! the sheets' names are not 1 to", len(rects), "each under its own sheet")
+    sheet_rects = [rects[names[n]] for n in sorted(names)]
+    sheets_xy0 = [r.min(axis=0) for r in sheet_rects]
     labels = [(t.dxf.text, np.array(tuple(t.get_placement()[1])[:2])) for t in msp.query("TEXT[layer=='LABEL']")]
     bevels = [(t.dxf.text, np.array(tuple(t.get_placement()[1])[:2]), t.dxf.rotation)
               for t in msp.query("TEXT[layer=='BEVEL']")]
@@ -286,8 +296,8 @@ def main():
         if row["sheet"]:
             th = math.radians(float(row["rotation_deg"]))
             R = np.array([[math.cos(th), -math.sin(th)], [math.sin(th), math.cos(th)]])
-            t_sheet = np.array([float(row["x"]) + sheets_x0[int(row["sheet"]) - 1],
-                                float(row["y"])])
+            t_sheet = np.array([float(row["x"]), float(row["y"])]) + sheets_xy0[
+                int(row["sheet"]) - 1]
         candidates = []
         for m_, ((f, ring, c), (_, other_ring, c_other)) in enumerate(
                 (((fa, ra, ca), (fb, rb, cb)), ((fb, rb, cb), (fa, ra, ca)))):
@@ -449,8 +459,9 @@ def main():
         # the sheet the DXF has the part on, against the schedule's
         if row["sheet"]:
             # which sheet the DXF part is on
-            cx = cut[:, 0].mean()
-            on = [q for q, x in enumerate(sheets_x0) if x <= cx <= x + sheet_w]
+            cx, cy = cut.mean(axis=0)
+            on = [q for q, r in enumerate(sheet_rects)
+                  if (r.min(axis=0) <= (cx, cy)).all() and ((cx, cy) <= r.max(axis=0)).all()]
             if on != [int(row["sheet"]) - 1]:
                 print(f"  !! {pid}: schedule sheet {row['sheet']} but DXF sheet {on}")
         # dimensions: width along the mesh face's first edge
@@ -536,7 +547,9 @@ def main():
     name = {i: pid for pid, i in dxf_part.items()}
     for i, f in enumerate(feet):
         x0, y0, x1, y1 = f.bounds
-        on = [r for r in sheet_rects if r[:, 0].min() <= 0.5 * (x0 + x1) <= r[:, 0].max()]
+        cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+        on = [r for r in sheet_rects if r[:, 0].min() <= cx <= r[:, 0].max()
+              and r[:, 1].min() <= cy <= r[:, 1].max()]
         if len(on) != 1:
             print("  !! a part on", len(on), "sheets")
             continue

@@ -23,9 +23,9 @@ Sans, the outlines' and previews'), centred (groups 11, 72, 73) with group 10 at
 their baseline, for readers that ignore the alignment (see :func:`_text_starts`).
 
 Units are the model's, declared in $INSUNITS: millimetres unless `units` says
-otherwise (see LENGTH_UNITS). Sheets lie
-side by side along +x, ``sheet_gap`` apart, in one file, or one file per
-sheet (``per_sheet=True``).
+otherwise (see LENGTH_UNITS). Sheets lie in rows
+like a book's pages (:func:`sheet_origins`), each named under it on SHEET, in one file,
+or one file per sheet (``per_sheet=True``).
 """
 
 import json
@@ -39,7 +39,7 @@ from facet.report import count_noun, json_safe
 
 __all__ = ["LAYERS", "LAYER_LINETYPES", "LAYER_MEANINGS", "write_dxf", "schedule_rows",
            "write_schedule_csv", "write_schedule_json", "write_svg", "write_png",
-           "sheet_offsets", "PREVIEW_COLOURS", "PLAUSIBLE_EDGE_MM", "implausible_edge_mm"]
+           "sheet_origins", "PREVIEW_COLOURS", "PLAUSIBLE_EDGE_MM", "implausible_edge_mm"]
 
 #: Layer name -> ACI colour.
 LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "TOP": 4, "SHEET": 8, "GRAIN": 6}
@@ -226,11 +226,21 @@ def _remove_stale(numbered, written):
     when_staged(remove)
 
 
-def sheet_offsets(nest_result, sheet_gap=None):
-    """x offset of each sheet when laid side by side."""
+def sheet_origins(nest_result, sheet_gap=None):
+    """The lower-left corner (x, y) of each sheet where a whole run's layout lays it (the
+    DXF in one file, the FreeCAD CutSheets' Shape): in rows read like a book's pages, sheet
+    1 at the origin, then left to right and row under row; ``sheet_gap`` apart across
+    (default a tenth of the sheet's width) and a tenth of its height more down, where each
+    sheet's name stands under it; as many sheets a row as make the whole about as wide as
+    high. The sheets lay in one row: 161 sheets 3000 mm wide were a line 483 m long, a thin
+    line in a view of it all."""
     w, h = nest_result.sheet_size
-    gap = 0.1 * w if sheet_gap is None else sheet_gap
-    return [i * (w + gap) for i in range(len(nest_result.sheets))]
+    count = len(nest_result.sheets)
+    across = 0.1 * w if sheet_gap is None else sheet_gap
+    down = across + 0.1 * h
+    columns = max(1, min(count, math.ceil(math.sqrt(count * (h + down) / (w + across)))))
+    return [(float(i % columns * (w + across)), float(-(i // columns) * (h + down)))
+            for i in range(count)]
 
 
 def _placed(nest_result, drawings):
@@ -362,7 +372,8 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
     drawings : list of facet.unfold.PartDrawing
     per_sheet : bool
     sheet_gap : float, optional
-        Distance between sheets side by side (default a tenth of the width).
+        Distance between the sheets of one file (:func:`sheet_origins`; default a tenth
+        of the width).
     units : str
         The model's length unit (a key of LENGTH_UNITS), declared in $INSUNITS and
         $MEASUREMENT; the coordinates are written as they are.
@@ -388,7 +399,7 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
 
     mm_per_unit, insunits, measurement = length_unit(units)
     w, h = nest_result.sheet_size
-    offsets = sheet_offsets(nest_result, sheet_gap)
+    origins = sheet_origins(nest_result, sheet_gap)
     path = os.fspath(path)
 
     def new_doc():
@@ -424,17 +435,17 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         if key not in docs:
             docs[key] = new_doc()
         msp = docs[key].modelspace()
-        x0 = 0.0 if per_sheet else offsets[i]
-        msp.add_lwpolyline([(x0, 0), (x0 + w, 0), (x0 + w, h), (x0, h)], close=True,
-                           dxfattribs={"layer": "SHEET"})
-        text(msp, f"SHEET {i + 1}", x0 + 0.5 * w, -0.04 * h, 0.02 * h, 0.0, "SHEET")
+        x0, y0 = (0.0, 0.0) if per_sheet else origins[i]
+        msp.add_lwpolyline([(x0, y0), (x0 + w, y0), (x0 + w, y0 + h), (x0, y0 + h)],
+                           close=True, dxfattribs={"layer": "SHEET"})
+        text(msp, f"SHEET {i + 1}", x0 + 0.5 * w, y0 - 0.04 * h, 0.02 * h, 0.0, "SHEET")
     placed = list(_placed(nest_result, drawings))
     report = _reporter(progress, len(placed), "DXF")
     for done, (pl, d) in enumerate(placed):
         if done % 16 == 0:
             report(done)
         msp = docs[pl.sheet if per_sheet else 0].modelspace()
-        off = np.array([0.0 if per_sheet else offsets[pl.sheet], 0.0])
+        off = np.array((0.0, 0.0) if per_sheet else origins[pl.sheet])
         cut, top, texts, grain = _drawn(pl, d, (w, h), off)
         msp.add_lwpolyline(cut.tolist(), close=True, dxfattribs={"layer": "CUT"})
         if top is not None:

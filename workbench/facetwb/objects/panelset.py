@@ -591,24 +591,24 @@ class CutSheets(_Proxy):
 
 
 def _layout(result, drawings):
-    """The sheets side by side, flat in the xy plane: their borders and the parts' cut
-    outlines where ``result`` placed them."""
+    """The sheets in rows as the DXF lays them (``facet.cutsheets.sheet_origins``), flat in
+    the xy plane: their borders and the parts' cut outlines where ``result`` placed them."""
     import Part
 
-    from facet.cutsheets import sheet_offsets
+    from facet.cutsheets import sheet_origins
 
-    offsets = sheet_offsets(result)
+    origins = sheet_origins(result)
     w, h = result.sheet_size
     V = App.Vector
     wires = []
-    for x0 in offsets:
-        wires.append(Part.makePolygon([V(x0, 0, 0), V(x0 + w, 0, 0), V(x0 + w, h, 0),
-                                       V(x0, h, 0), V(x0, 0, 0)]))
+    for x0, y0 in origins:
+        wires.append(Part.makePolygon([V(x0, y0, 0), V(x0 + w, y0, 0), V(x0 + w, y0 + h, 0),
+                                       V(x0, y0 + h, 0), V(x0, y0, 0)]))
     by_id = {d.id: d for d in drawings}
     for pid, pl in result.placements.items():
         pts = pl.transform(by_id[pid].cut)
-        x0 = offsets[pl.sheet]
-        ring = [V(float(x) + x0, float(y), 0) for x, y in pts]
+        x0, y0 = origins[pl.sheet]
+        ring = [V(float(x) + x0, float(y) + y0, 0) for x, y in pts]
         wires.append(Part.makePolygon(ring + [ring[0]]))
     return Part.makeCompound(wires)
 
