@@ -268,20 +268,25 @@ def _reporter(progress, total, what):
     return report
 
 
+#: How far past vertical, degrees, a text still reads from the sheet's right side before it
+#: is turned half a turn (Civil 3D's "readability bias" of 110 degrees): the texts of the
+#: near-vertical edges of a part (a left edge at -88 degrees, a right one at 88) all read
+#: from the right, not some from the left.
+READABLE_PAST_VERTICAL = 20.0
+
+
 def _upright(deg):
     """A text's angle on the sheet (degrees, counter-clockwise) turned by half a turn where
-    it would read upside down: into (-90, 90], so that it reads from the sheet's bottom or
-    its right side, as a drawing's texts do. A part nested turned by 180 or 270 degrees had
-    its ID written upside down, and the bevel angles of its edges that run left or down too
-    (the fabricator reads them off the sheet). Turned about its middle, where the DXF
-    places it (MIDDLE_CENTER) and the outlines and previews centre it, the text stays on
-    its place: the ID's box (``facet.unfold._label_box``) is the same either way up, and a
-    bevel angle ("+12.5\u00b0", no descender) is as high either side of its middle. Within
-    1e-9 degrees of vertical it reads from the right (90), not flipped by a rounding."""
-    turn = deg % 360.0
-    if 90.0 + 1e-9 < turn <= 270.0 + 1e-9:
-        return turn - 180.0
-    return turn - 360.0 if turn > 270.0 + 1e-9 else turn
+    it would read upside down: into (-70, 110] (:data:`READABLE_PAST_VERTICAL`), so that
+    it reads from the sheet's bottom or its right side, as a drawing's texts do. A part
+    nested turned by 180 or 270 degrees had its ID written upside down, and the bevel
+    angles of its edges that run left or down too (the fabricator reads them off the
+    sheet). Turned about its middle, where the DXF places it (MIDDLE_CENTER) and the
+    outlines and previews centre it, the text stays on its place: the ID's box
+    (``facet.unfold._label_box``) is the same either way up, and a bevel angle
+    ("+12.5\u00b0", no descender) is as high either side of its middle."""
+    high = 90.0 + READABLE_PAST_VERTICAL
+    return high - (high - deg) % 180.0
 
 
 def _rotate_angle(pl, deg):
