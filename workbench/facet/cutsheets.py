@@ -310,8 +310,8 @@ def _drawn(pl, d, sheet_size, off=0.0):
     ``(cut, top, texts, grain)``: the cut ring; the top face's ring, or None where it is
     the cut's (within 1e-9 of the sheet's size); the texts ``(text, x, y, height,
     rotation_deg, layer)``, the ID (LABEL) and the bevel angles (BEVEL), rotation
-    counter-clockwise, upright on the sheet (:func:`_upright`); and the grain arrow's segments ``(a, b)`` (none without a grain).
-    The DXF, SVG and PNG draw these."""
+    counter-clockwise, upright on the sheet (:func:`_upright`); and the grain arrow's
+    segments ``(a, b)`` (none without a grain). The DXF, SVG and PNG draw these."""
     cut = pl.transform(d.cut) + off
     same = np.allclose(d.top, d.cut, rtol=0, atol=1e-9 * max(sheet_size))
     top = None if same else pl.transform(d.top) + off
