@@ -1565,7 +1565,7 @@ def check_import_units(check):
         QtGui.QFileDialog.getOpenFileName, QtGui.QInputDialog.getItem = dialogs
         importer.SHOW_DIALOGS = False
     meshes = [obj for obj in doc.Objects if facetwb.is_polymesh(obj)]
-    check(len(asked) == 2 and "edges are 0.566 long on average" in asked[0][0]
+    check(len(asked) == 2 and "edges are 0.566 of its units long on average" in asked[0][0]
           and asked[0][1] == "metres (m)",
           f"Facet_ImportMesh of a facade in metres asks for its units, metres first ({asked})")
     width = max(p.x for p in meshes[0].Points) if meshes else 0
