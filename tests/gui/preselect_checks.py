@@ -43,7 +43,8 @@ def run(check, out_dir, g):
     import facet
     import facetwb
     from facetwb.objects.polymesh import get_mesh
-    from facetwb.viewproviders.view_polymesh import PRESELECTED_COLOR, VERTEX_PICK_PIXELS
+    from facetwb.viewproviders.view_polymesh import (PRESELECTED_COLOR, PRESELECTED_HALO,
+                                                      VERTEX_PICK_PIXELS)
 
     doc = App.newDocument("Preselect")
     mesh = facet.read_mesh(g.MESH)
@@ -135,6 +136,9 @@ def run(check, out_dir, g):
     control.ViewObject.Visibility = True
     settle(5)
     x, y = view.getPointOnScreen(App.Vector(*mesh.vertices[vertex]))
+    g.hover(view, (5, 5))
+    dark_before = ring_pixels(g, shot("preselect_control_none.png"), view,
+                              mesh.vertices[vertex], PRESELECTED_HALO, reach + 2)
     g.hover(view, (int(x) + 3, int(y) + 3))
     path = shot("preselect_control.png")
     check(ringed(control.ViewObject.Proxy)[0] == [vertex]
@@ -142,5 +146,10 @@ def run(check, out_dir, g):
                           reach) >= 60,
           f"on the control mesh too ({path}: "
           f"{Gui.Selection.getPreselection().SubElementNames})")
+    # white on the light grey faces was faint: a dark halo sets the ring off
+    dark = ring_pixels(g, path, view, mesh.vertices[vertex], PRESELECTED_HALO, reach + 2)
+    check(dark - dark_before >= 60,
+          f"a dark halo around the ring on the light grey faces ({dark} dark pixels within "
+          f"{reach + 2} px, {dark_before} before)")
     g.hover(view, (5, 5))
     App.closeDocument(doc.Name)

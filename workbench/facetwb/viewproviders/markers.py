@@ -25,10 +25,22 @@ RAISE_STYLE = ("diamond", 19)
 _registered = {}
 
 
+#: How much wider a halo's bitmap is than the marker it surrounds, in pixels.
+HALO_GROWTH = 4
+
+
 def _bitmap(shape, size):
     """Rows of "x" (set) and " " for a ``shape`` of ``size`` pixels: "circle", "diamond",
-    "square" (filled), "ring" or "frame" (a square's outline, 2 pixels wide)."""
+    "square" (filled), "ring", "frame" (a square's outline, 2 pixels wide) or "halo" (a
+    pixel or so either side of the "ring" :data:`HALO_GROWTH` pixels smaller, whose
+    colour it sets off on any background)."""
     c = (size - 1) / 2.0
+    if shape == "halo":
+        ring = c - HALO_GROWTH / 2.0  # the ring's centre radius, as "ring" draws it
+        return ["".join("x" if (ring - 3.4 <= r < ring - 2.2 or ring + 0.3 < r <= ring + 1.6)
+                        else " " for r in (((i - c) ** 2 + (j - c) ** 2) ** 0.5
+                                           for i in range(size)))
+                for j in range(size)]
     rows = []
     for j in range(size):
         row = ""
@@ -63,7 +75,8 @@ def marker_index(style):
 class Markers:
     """Markers of one colour with labels."""
 
-    def __init__(self, color, style=PIN_STYLE, label_color=None):
+    def __init__(self, color, style=PIN_STYLE, label_color=None, halo=None):
+        """``halo``: a colour drawn around each "ring" marker (see :func:`_bitmap`)."""
         self.root = coin.SoSeparator()
         pick = coin.SoPickStyle()
         pick.style = coin.SoPickStyle.UNPICKABLE
@@ -86,8 +99,15 @@ class Markers:
         self.label_root = coin.SoSeparator()
         for node in (label_material, font, self.labels):
             self.label_root.addChild(node)
-        for node in (pick, unlit, overall, depth, material, self.coords, self.marker,
-                     self.label_root):
+        behind = ()
+        if halo is not None:
+            halo_material = coin.SoMaterial()
+            halo_material.diffuseColor.setValue(*halo)
+            self.halo = coin.SoMarkerSet()
+            self.halo.markerIndex = marker_index(("halo", style[1] + HALO_GROWTH))
+            behind = (halo_material, self.halo)
+        for node in (pick, unlit, overall, depth, self.coords) + behind + (
+                material, self.marker, self.label_root):
             self.root.addChild(node)
         self.points = []
         self.texts = []
@@ -101,6 +121,8 @@ class Markers:
         if points:
             self.coords.point.setValues(0, len(points), points)
         self.marker.numPoints = len(points)
+        if hasattr(self, "halo"):
+            self.halo.numPoints = len(points)
         self.labels.removeAllChildren()
         for point, text in zip(points, labels):
             one = coin.SoSeparator()
@@ -143,8 +165,8 @@ class Markers:
 class VertexMarkers(Markers):
     """Markers (no labels) on some vertices of a drawn mesh: ``vertices``, their indices."""
 
-    def __init__(self, color, style):
-        super().__init__(color, style)
+    def __init__(self, color, style, halo=None):
+        super().__init__(color, style, halo=halo)
         self.vertices = []
 
     def show(self, vertices, drawn):

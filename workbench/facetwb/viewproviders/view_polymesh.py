@@ -39,8 +39,10 @@ VERTEX_PICK_PIXELS = 10
 
 #: The vertex a click would pick (preselected: the cursor near it) is ringed in this colour
 #: (FreeCAD's default preselection yellow is in the planarity colours) with a ring as wide
-#: as the pick's reach.
+#: as the pick's reach, in a halo of the other colour: white alone was faint on FreeCAD's
+#: light grey faces.
 PRESELECTED_COLOR = (1.0, 1.0, 1.0)
+PRESELECTED_HALO = (0.1, 0.1, 0.1)
 PRESELECTED_STYLE = ("ring", 2 * VERTEX_PICK_PIXELS + 1)
 
 
@@ -122,7 +124,8 @@ class ViewProviderPolyMesh:
         from facetwb.viewproviders import preselection
         from facetwb.viewproviders.markers import VertexMarkers
 
-        self.preselected = VertexMarkers(PRESELECTED_COLOR, PRESELECTED_STYLE)
+        self.preselected = VertexMarkers(PRESELECTED_COLOR, PRESELECTED_STYLE,
+                                         halo=PRESELECTED_HALO)
         overlays = (self.preselected.root,) + tuple(self.overlay_nodes())
         preselection.watch()
         for mode in DISPLAY_MODES:
