@@ -79,6 +79,8 @@ def main():
     result.ViewObject.Visibility = True
     render(view, result, os.path.join(out_dir, "planarity.png"))
     path = os.path.join(out_dir, "demo.FCStd")
+    if os.path.exists(path):  # (a run's own: FreeCAD would keep it as demo.FCStd1)
+        os.remove(path)
     doc.saveAs(path)
     print(f"wrote {path}")
     converged = result.Converged
