@@ -1675,9 +1675,18 @@ def check_edit_planarized(check, out_dir):
     forms.set_value(panel.form, "MaxIterations", 7)
     field = forms.widget(panel.form, "Tolerance")
     field.setText("1e-08")
-    check(panel.accept() and result.Tolerance == 1e-8 and result.MaxIterations == 7
+    said = []
+    keep, forms.report_summary = forms.report_summary, lambda obj, text: said.append(text)
+    try:
+        accepted = panel.accept()
+    finally:
+        forms.report_summary = keep
+    check(accepted and result.Tolerance == 1e-8 and result.MaxIterations == 7
           and "Touched" not in result.State and f"Edit {result.Label}" in doc.UndoNames,
           "OK keeps the changes, recomputed, as one undo step")
+    check(len(said) == 1 and said[0].startswith(f"{result.Source.Label} planarized:")
+          and f"{result.Iterations} iterations" in said[0],
+          f"OK says the result in the report view ({said[:1]})")
     doc.undo()
     wait_for_live_resolve(result)
     check(result.Tolerance == 1e-3 and result.MaxIterations == 0,

@@ -120,8 +120,7 @@ class DerivePanel:
         doc.commitTransaction()
         self.made = [obj for obj in doc.Objects if obj not in before and self.is_result(obj)]
         for obj in self.made:
-            printer = App.Console.PrintMessage if obj.isValid() else App.Console.PrintError
-            printer(self.summary(obj) + "\n")
+            forms.report_summary(obj, self.summary(obj))
         Gui.Selection.clearSelection()
         for obj in self.made:
             Gui.Selection.addSelection(obj)

@@ -17,7 +17,7 @@ import FreeCADGui as Gui
 from facetwb import fixed_vertices
 from facetwb.picked import gui_selection
 from facetwb.taskpanels import forms
-from facetwb.objects.planarized import METHODS
+from facetwb.objects.planarized import METHODS, planarize_summary
 from facetwb.recompute import Recomputes, cancel_live_edit, up_to_date
 from facetwb.taskpanels.derive_panels import check_planarize
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
@@ -230,6 +230,8 @@ class PlanarizeEditPanel:
         if "Touched" in self.obj.State:
             self.doc.recompute([self.obj])
         self.doc.commitTransaction()
+        # the result the edit ends with (the live re-solves said nothing in the report view)
+        forms.report_summary(self.obj, planarize_summary(self.obj))
         self._close()
         return True
 

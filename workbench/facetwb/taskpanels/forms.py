@@ -117,3 +117,13 @@ def ok_cancel_buttons():
 
     buttons = qt_gui().QDialogButtonBox
     return int(buttons.Ok | buttons.Cancel)
+
+
+def report_summary(obj, summary):
+    """``summary`` (an object's summary text, e.g. ``planarize_summary(obj)``) in the report
+    view when a task panel's OK makes or changes ``obj``: a message, an error when the
+    object failed."""
+    import FreeCAD as App
+
+    printer = App.Console.PrintMessage if obj.isValid() else App.Console.PrintError
+    printer(summary + "\n")
