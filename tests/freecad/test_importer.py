@@ -104,6 +104,19 @@ class TestImporter(DocumentTestCase):
             if kinds[k]:
                 self.assertIn(f"{kinds[k]:,} {name}", said[0])
 
+    def test_an_import_says_a_small_size_as_it_is(self):
+        """The summary's size in whole millimetres said "1 x 0 x 0 mm" of a 0.6 x 0.45 mesh
+        (a panel in metres read as millimetres): a size it does not have. Below 100 mm it
+        has three significant digits."""
+        import facet
+
+        mesh = facet.PolyMesh.from_faces(
+            [(0, 0, 0), (0.6, 0, 0), (0.6, 0.45, 0.0125), (0, 0.45, 0)], [[0, 1, 2, 3]])
+        self.assertIn("0.6 x 0.45 x 0.0125 mm", importer.imported_summary(mesh, "mm"))
+        mesh = facet.PolyMesh.from_faces(
+            [(0, 0, 0), (12000, 0, 0), (12000, 99.96, 0), (0, 99.96, 0)], [[0, 1, 2, 3]])
+        self.assertIn("12,000 x 100 x 0 mm", importer.imported_summary(mesh, "mm"))
+
     def imported_saying(self, *texts, units="m"):
         """Import each OBJ text with importer.insert, its numbers in ``units`` (metres: the
         texts' panels are 1 unit across, which no facade's are in millimetres); (the report

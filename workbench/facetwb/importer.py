@@ -127,9 +127,16 @@ def imported_summary(mesh, units="mm"):
     if other:
         parts.append(f"{other:,} other polygon{'s' if other != 1 else ''}")
     lower, upper = mesh.bounds()
-    size = " x ".join(f"{v:,.0f}" for v in upper - lower)
+    size = " x ".join(_extent_text(float(v)) for v in upper - lower)
     return (f"{mesh.n_faces:,} faces ({', '.join(parts)}), {mesh.n_vertices:,} vertices, "
             f"{size} mm, its numbers read as {UNIT_NAMES[units]}")
+
+
+def _extent_text(length):
+    """A mesh's extent (mm) for :func:`imported_summary`: whole millimetres from 100 mm
+    ("12,000"), three significant digits below ("0.6": a mesh in metres read as
+    millimetres was "1 x 0 x 0 mm", a size it does not have)."""
+    return f"{length:,.0f}" if length >= 100.0 else f"{length:.3g}"
 
 
 def report_message(message):
