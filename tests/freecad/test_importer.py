@@ -117,6 +117,15 @@ class TestImporter(DocumentTestCase):
             [(0, 0, 0), (12000, 0, 0), (12000, 99.96, 0), (0, 99.96, 0)], [[0, 1, 2, 3]])
         self.assertIn("12,000 x 100 x 0 mm", importer.imported_summary(mesh, "mm"))
 
+    def test_an_import_of_one_face_says_one_face(self):
+        """The summary said "1 faces" of a one-face mesh."""
+        import facet
+
+        mesh = facet.PolyMesh.from_faces([(0, 0, 0), (600, 0, 0), (0, 450, 0)], [[0, 1, 2]])
+        self.assertTrue(importer.imported_summary(mesh, "mm").startswith(
+            "1 face (1 triangle), 3 vertices, 600 x 450 x 0 mm"),
+            importer.imported_summary(mesh, "mm"))
+
     def imported_saying(self, *texts, units="m"):
         """Import each OBJ text with importer.insert, its numbers in ``units`` (metres: the
         texts' panels are 1 unit across, which no facade's are in millimetres); (the report

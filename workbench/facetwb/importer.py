@@ -119,17 +119,23 @@ def imported_summary(mesh, units="mm"):
     kind (before, a successful import said nothing)."""
     import numpy as np
 
+    from facet.report import count_noun
+
+    def counted(number, noun):  # "1,536 quads", "1 face"
+        return f"{number:,} {count_noun(number, noun).split(' ', 1)[1]}"
+
     corners = np.bincount(mesh.degrees)
     kinds = [(3, "triangle"), (4, "quad"), (6, "hexagon")]
-    parts = [f"{corners[k]:,} {name}{'s' if corners[k] != 1 else ''}"
-             for k, name in kinds if k < len(corners) and corners[k]]
+    parts = [counted(int(corners[k]), name) for k, name in kinds
+             if k < len(corners) and corners[k]]
     other = mesh.n_faces - sum(corners[k] for k, _ in kinds if k < len(corners))
     if other:
-        parts.append(f"{other:,} other polygon{'s' if other != 1 else ''}")
+        parts.append(counted(int(other), "other polygon"))
     lower, upper = mesh.bounds()
     size = " x ".join(_extent_text(float(v)) for v in upper - lower)
-    return (f"{mesh.n_faces:,} faces ({', '.join(parts)}), {mesh.n_vertices:,} vertices, "
-            f"{size} mm, its numbers read as {UNIT_NAMES[units]}")
+    return (f"{counted(mesh.n_faces, 'face')} ({', '.join(parts)}), "
+            f"{counted(mesh.n_vertices, 'vertex')}, {size} mm, its numbers read as "
+            f"{UNIT_NAMES[units]}")
 
 
 def _extent_text(length):
