@@ -173,6 +173,47 @@ class TestPreferencesAndProgress(DocumentTestCase):
         self.doc.recompute()
         self.assertTrue(result.isValid(), result.getStatusString())
 
+    def test_a_mesher_failing_in_its_worker_is_an_error_not_a_second_run(self):
+        # a worker that found no FreeCAD falls back to meshing here; one whose mesher
+        # failed or crashed made it all again here, minutes with no Cancel (and a crash
+        # would take FreeCAD down): it is now an error that names the source
+        import MeshPart
+        import Part
+
+        import facet.parallel
+        from facetwb import tessellation
+        from facetwb.conversion import SourceError
+
+        shape = Part.makePlane(20000.0, 20000.0)
+        length = 100.0
+        self.assertGreater(tessellation.estimated_triangles(shape, length),
+                           tessellation.WORKER_TRIANGLES)
+        here = []
+        keep_run, keep_mesh = facet.parallel.run_chunks, MeshPart.meshFromShape
+
+        def mesh_here(**kwargs):
+            here.append(kwargs)
+            return keep_mesh(**kwargs)
+
+        try:
+            MeshPart.meshFromShape = mesh_here
+
+            def crashed(*args, **kwargs):
+                raise facet.parallel.WorkerError("worker process 0 stopped: EOFError()")
+
+            facet.parallel.run_chunks = crashed
+            with self.assertRaisesRegex(SourceError, "^Plane: FreeCAD's mesher failed"):
+                tessellation.triangles_from_shape(shape, length, "Plane",
+                                                  lambda done, total: False)
+            self.assertEqual(here, [])  # not made here again
+            facet.parallel.run_chunks = lambda *args, **kwargs: [None]  # no FreeCAD there
+            mesh = tessellation.triangles_from_shape(shape, length, "Plane",
+                                                     lambda done, total: False)
+            self.assertEqual(len(here), 1)
+            self.assertGreater(mesh.n_faces, tessellation.WORKER_TRIANGLES // 2)
+        finally:
+            facet.parallel.run_chunks, MeshPart.meshFromShape = keep_run, keep_mesh
+
     def test_triangulating_a_surface_shows_progress_and_can_be_cancelled(self):
         # tri-quad's triangulation (FreeCAD's mesher, one call) took over three minutes for
         # 130,000 triangles with no progress and no Cancel: a large one runs in a worker

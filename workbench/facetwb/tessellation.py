@@ -32,13 +32,16 @@ def triangles_from_shape(shape, max_length, label, progress=None):
     and at least :data:`WORKER_TRIANGLES` estimated triangles, made in a worker process:
     ``progress(0, 0)`` (a busy bar) every 0.2 s meanwhile, True from it stops the worker and
     raises ``facet.Cancelled`` ("triangulating LABEL cancelled"). Where no worker can run
-    (no Python interpreter, or FreeCAD not found by it), made here as without ``progress``.
+    (no Python interpreter, or FreeCAD not found by it), made here as without ``progress``;
+    where the mesher fails or crashes in the worker, a ``conversion.SourceError`` names the
+    source (made here again, it would have taken as long with no Cancel, and a crash would
+    have taken FreeCAD down).
     """
     import MeshPart
 
     from facet.errors import Cancelled
     from facet.parallel import WorkerError, python_executable, run_chunks
-    from facetwb.conversion import mesh_from_mesh, mesh_from_topology
+    from facetwb.conversion import SourceError, mesh_from_mesh, mesh_from_topology
 
     if (progress is not None and estimated_triangles(shape, max_length) >= WORKER_TRIANGLES
             and python_executable() is not None):
@@ -46,21 +49,28 @@ def triangles_from_shape(shape, max_length, label, progress=None):
             (topology,) = run_chunks("facetwb.tessellation:_triangulate",
                                      [(shape.exportBrepToString(), float(max_length))], None,
                                      1, progress=lambda done, total: progress(0, 0))
-            return mesh_from_topology(*topology, label)
         except Cancelled:
             raise Cancelled(f"triangulating {label} cancelled") from None
-        except WorkerError:  # (the worker could not start FreeCAD: made here, as before)
-            pass
+        except WorkerError as error:
+            raise SourceError(f"{label}: FreeCAD's mesher failed in a worker process "
+                              f"({error})") from None
+        if topology is not None:
+            return mesh_from_topology(*topology, label)
+        # (None: the worker found no FreeCAD: made here, as before)
     return mesh_from_mesh(MeshPart.meshFromShape(Shape=shape, MaxLength=max_length), label)
 
 
 def _triangulate(chunk, settings):
-    """In a worker process: the BREP's triangulation's ``Topology``, points as (x, y, z)."""
-    from facet.step import import_freecad
+    """In a worker process: the BREP's triangulation's ``Topology``, points as (x, y, z);
+    None where FreeCAD or its mesher cannot be imported here."""
+    from facet.step import FreeCADMissing, import_freecad
 
-    import_freecad()
-    import MeshPart
-    import Part
+    try:
+        import_freecad()
+        import MeshPart
+        import Part
+    except (FreeCADMissing, ImportError):
+        return None
 
     brep, max_length = chunk
     shape = Part.Shape()
