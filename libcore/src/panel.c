@@ -839,12 +839,18 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
         return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
                           "options and out must not be NULL");
     const facet_panel_options *o = options;
+    /* " mm": written after every length in a message (nothing in model units) */
+    char unit[40] = "";
+    if (o->length_unit && o->length_unit[0])
+        snprintf(unit, sizeof unit, " %s", o->length_unit);
     if (!(o->thickness > 0.0) || !isfinite(o->thickness))
         return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
-                          "thickness must be a finite number > 0, not %.17g", o->thickness);
+                          "thickness must be a finite number > 0, not %.17g%s", o->thickness,
+                          isfinite(o->thickness) ? unit : "");
     if (!(o->gap >= 0.0) || !isfinite(o->gap))
         return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
-                          "gap must be a finite number >= 0, not %.17g", o->gap);
+                          "gap must be a finite number >= 0, not %.17g%s", o->gap,
+                          isfinite(o->gap) ? unit : "");
     if (o->offset != FACET_PANEL_OFFSET_OUTER && o->offset != FACET_PANEL_OFFSET_INNER &&
         o->offset != FACET_PANEL_OFFSET_CENTER)
         return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
@@ -857,10 +863,6 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
         return facet_fail(error, FACET_ERROR_INVALID_ARGUMENT, -1, -1,
                           "planarity tolerances must be finite numbers >= 0");
 
-    /* " mm": written after every length in a message (nothing in model units) */
-    char unit[40] = "";
-    if (o->length_unit && o->length_unit[0])
-        snprintf(unit, sizeof unit, " %s", o->length_unit);
     const facet_mesh *m = mesh;
     const int32_t nf = m->n_faces, nv = m->n_vertices;
     work w;
@@ -909,8 +911,8 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             if (!facet_point_in_range(&x, 1)) {
                 work_free(&w);
                 return facet_fail(error, FACET_ERROR_COORDINATE_RANGE, -1, v,
-                                  "vertex %d has a coordinate beyond 1e30 in magnitude (%g)",
-                                  (int)v, x);
+                                  "vertex %d has a coordinate beyond 1e30 in magnitude (%g%s)",
+                                  (int)v, x, unit);
             }
             lo[k] = fmin(lo[k], x), hi[k] = fmax(hi[k], x);
         }

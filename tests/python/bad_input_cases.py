@@ -311,8 +311,8 @@ def _panel_rows():
         row(name, files or {"flat.obj": mesh}, argv,
             [] if works else expect, works=works, mesh="flat.obj", kind="panels")
 
-    panel_row("panels_zero_thickness", ["--thickness", "0"], ["thickness", "0"])
-    panel_row("panels_negative_thickness", ["--thickness", "-1"], ["thickness", "-1"])
+    panel_row("panels_zero_thickness", ["--thickness", "0"], ["thickness", "not 0.0 mm"])
+    panel_row("panels_negative_thickness", ["--thickness", "-1"], ["thickness", "not -1.0 mm"])
     panel_row("panels_nan_thickness", ["--thickness", "nan"], ["thickness", "nan"])
     panel_row("panels_sheet_smaller_than_panel", ["--thickness", "0.01", "--gap", "0",
                                                   "--sheet", "0.5x0.5", "--margin", "0.01"],

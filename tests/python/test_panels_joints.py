@@ -284,3 +284,35 @@ def test_panel_error_lengths_name_their_unit():
         panels(warped, 0.01, units="mm")
     with pytest.raises(PanelError, match=r"faces 1 and 2: .* overlap by 18\.7 ft there"):
         panels(_stub(), 40.0, gap=10.0, edge="bisector", units="ft")
+
+
+def test_option_errors_name_the_length_unit():
+    """A length option out of range is followed by the model's unit ("not 0.0" was bare),
+    in facet.panels and in the core; a number that is not finite, or not a length, is
+    not."""
+    from facet import _core
+
+    flat = PolyMesh.from_faces([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [[0, 1, 2, 3]])
+    for kwargs, said in ((dict(thickness=0.0), "thickness must be a finite number > 0, "
+                                               "not 0.0 mm"),
+                         (dict(thickness=1.0, gap=-1.0), "gap must be a finite number >= 0, "
+                                                        "not -1.0 mm"),
+                         (dict(thickness=1.0, min_edge_abs=-2.0), "not -2.0 mm"),
+                         (dict(thickness=1.0, tol_abs=-2.0), "not -2.0 mm")):
+        with pytest.raises(PanelError, match=re.escape(said) + "$"):
+            panels(flat, units="mm", **kwargs)
+    with pytest.raises(PanelError, match=r"not 0\.0$"):
+        panels(flat, 0.0)
+    with pytest.raises(PanelError, match=r"not nan$"):
+        panels(flat, float("nan"), units="mm")
+    with pytest.raises(PanelError, match=r"min_edge must be a finite number >= 0, not -1\.0$"):
+        panels(flat, 1.0, min_edge=-1.0, units="mm")
+    xyz = np.array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 2e30])
+    start, faces = np.array([0, 4], dtype=np.int32), np.arange(4, dtype=np.int32)
+    with pytest.raises(_core.CoreError, match=r"not 0 mm$"):
+        _core.panels(np.where(xyz > 1e30, 0.0, xyz), start, faces, thickness=0.0,
+                     length_unit="mm")
+    with pytest.raises(_core.CoreError, match=r"not -1 mm$"):
+        _core.panels(xyz, start, faces, thickness=1.0, gap=-1.0, length_unit="mm")
+    with pytest.raises(_core.CoreError, match=r"beyond 1e30 in magnitude \(2e\+30 mm\)"):
+        _core.panels(xyz, start, faces, thickness=1.0, length_unit="mm")

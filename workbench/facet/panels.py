@@ -583,14 +583,17 @@ def mass_kg(volume, density, mm_per_unit=1.0):
     return np.asarray(volume, dtype=float) * (metres * metres * metres) * density
 
 
-def _check_float(name, value, minimum, strict):
+def _check_float(name, value, minimum, strict, unit=None):
+    """`value` as a float, finite and > (`strict`) or >= `minimum`; else a PanelError
+    naming `name` and the value, followed by `unit` (a length's, "mm") when finite."""
     try:
         value = float(value)
     except (TypeError, ValueError):
         raise PanelError(f"{name} must be a number, not {value!r}") from None
     if not math.isfinite(value) or value < minimum or (strict and value == minimum):
         op = ">" if strict else ">="
-        raise PanelError(f"{name} must be a finite number {op} {minimum:g}, not {value!r}")
+        said = f"{value!r} {unit}" if unit and math.isfinite(value) else f"{value!r}"
+        raise PanelError(f"{name} must be a finite number {op} {minimum:g}, not {said}")
     return value
 
 
@@ -998,12 +1001,12 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     facet.MeshError
         The mesh is not valid.
     """
-    thickness = _check_float("thickness", thickness, 0.0, True)
-    gap = _check_float("gap", gap, 0.0, False)
+    thickness = _check_float("thickness", thickness, 0.0, True, units)
+    gap = _check_float("gap", gap, 0.0, False, units)
     tol = _check_float("tol", tol, 0.0, False)
-    tol_abs = _check_float("tol_abs", tol_abs, 0.0, False)
+    tol_abs = _check_float("tol_abs", tol_abs, 0.0, False, units)
     min_edge = _check_float("min_edge", min_edge, 0.0, False)
-    min_edge_abs = _check_float("min_edge_abs", min_edge_abs, 0.0, False)
+    min_edge_abs = _check_float("min_edge_abs", min_edge_abs, 0.0, False, units)
     if min_edge >= 1.0:
         # below 1 a face always keeps an edge at least its mean long
         raise PanelError(f"min_edge must be below 1 (a fraction of the face's mean edge), "
