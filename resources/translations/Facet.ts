@@ -572,32 +572,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="780"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="788"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="783"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="791"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="784"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="792"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="785"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="793"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="786"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="794"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="787"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="795"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -612,7 +612,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="781"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="789"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,17 +622,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="772"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="780"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="753"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="754"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="759"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="760"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -932,8 +932,18 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="782"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="790"/>
         <source>Unfolding the parts</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="767"/>
+        <source>the PanelSet&apos;s MinEdge</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="768"/>
+        <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -901,6 +901,28 @@ class TestPanelSetDefaults(DocumentTestCase):
                          r"0\.6\d* mm long on average, which no facade's are: a mesh drawn in "
                          r"metres")
 
+    def test_a_failed_joint_names_the_panelsets_min_edge(self):
+        """A mitred joint that cannot be cut names the MinEdge that builds the panels as
+        the PanelSet's (facet panels says --min-edge), and its MinEdgeAbs when one is set;
+        the message named neither."""
+        from facet.io import read_mesh
+
+        stub = read_mesh(os.path.join(os.path.dirname(__file__), "..", "data",
+                                      "pillow_stub_edge.obj"))
+        source = facetwb.make_polymesh(stub, label="stub", doc=self.doc)
+        obj = facetwb.make_panelset(source, thickness=40.0, gap=10.0, edge="bisector",
+                                    name="Stub")
+        obj.MinEdgeAbs = 5.0
+        self.doc.recompute()
+        self.assertFalse(obj.isValid())
+        status = obj.getStatusString()
+        found = re.search(r"; so does the PanelSet's MinEdge ([0-9.]+) \(now 0\.01\); so "
+                          r"does the PanelSet's MinEdgeAbs ([0-9.]+) mm \(now 5 mm\);", status)
+        self.assertTrue(found, status)
+        obj.MinEdge = float(found.group(1))
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+
     def test_z_a_saved_document_keeps_its_gap(self):
         """A PanelSet saved with Gap 0 (the old default) reopens with Gap 0, not the new
         default, and recomputes to the same panels."""

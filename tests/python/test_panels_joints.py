@@ -286,6 +286,65 @@ def test_panel_error_lengths_name_their_unit():
         panels(_stub(), 40.0, gap=10.0, edge="bisector", units="ft")
 
 
+def test_a_failed_joint_says_which_min_edge_builds_the_panels(facet_command):
+    """The least larger min_edge (relative, as it is given) that builds the panels is
+    tried and named, in the caller's terms: a larger min_edge merges the short edge's
+    ends into one corner before the panels are cut. The value written was run again and
+    builds them; the one a digit below it does not. The advice named no min_edge."""
+    mesh = _stub()
+    with pytest.raises(PanelError) as caught:
+        panels(mesh, 40.0, gap=10.0, edge="bisector", units="mm")
+    text = str(caught.value)
+    found = re.search(r"; so does min_edge ([0-9.]+) \(now 0\.01\);", text)
+    assert found, text
+    said = found.group(1)
+    ps = panels(mesh, 40.0, gap=10.0, edge="bisector", units="mm", min_edge=float(said))
+    assert ps.vanished_edges and ps.overlapping_joints == 0 and ps.node_clash_pairs == 0
+    below = float(said) - 10.0 ** (len(said.split(".")[1]) * -1)
+    with pytest.raises(PanelError):
+        panels(mesh, 40.0, gap=10.0, edge="bisector", units="mm", min_edge=below)
+    # the command line names its option
+    done = facet_command("panels", STUB, "--thickness", "40", "--gap", "10", "--edge",
+                         "bisector")
+    assert done.returncode == 2
+    assert f"; so does --min-edge {said} (now 0.01);" in done.stderr, done.stderr
+
+
+def test_a_failed_joint_says_which_min_edge_abs_builds_the_panels():
+    """With an absolute min_edge given, its least larger value that builds the panels is
+    named too, in the model's unit, as it is given; the value written builds them."""
+    mesh = _stub()
+    with pytest.raises(PanelError) as caught:
+        panels(mesh, 40.0, gap=10.0, edge="bisector", units="mm", min_edge_abs=5.0,
+               option_names={"min_edge": "MinEdge", "min_edge_abs": "MinEdgeAbs"})
+    text = str(caught.value)
+    assert re.search(r"; so does MinEdge [0-9.]+ \(now 0\.01\);", text), text
+    found = re.search(r"; so does MinEdgeAbs ([0-9.]+) mm \(now 5 mm\);", text)
+    assert found, text
+    panels(mesh, 40.0, gap=10.0, edge="bisector", min_edge_abs=float(found.group(1)))
+    with pytest.raises(PanelError) as bare:
+        panels(mesh, 40.0, gap=10.0, edge="bisector")
+    assert "min_edge_abs" not in str(bare.value)
+
+
+def test_a_failed_joint_reads_as_one_sentence():
+    """The core gives either of two reasons ("it would consume a short edge or meet beyond
+    a nearly straight corner"); the message says the one the edge's corners give, once,
+    and no generic one beside it."""
+    with pytest.raises(PanelError) as caught:
+        panels(_stub(), 40.0, gap=10.0, edge="bisector", units="mm")
+    text = str(caught.value)
+    assert "would consume a short edge or meet beyond" not in text, text
+    assert text.count("cannot be cut") == 1 and text.count("overlap by") == 1, text
+    assert re.search(
+        r"faces 1 and 2: their mitre at the edge from vertex 7 to vertex 2 cannot be cut: the "
+        r"edge is 88 mm long and folds 43\.2 degrees, the corners at its ends \(vertices 7 and "
+        r"2\) are face 1 210 and 9\.06 degrees, face 2 23\.3 and 194 degrees; the gap and the "
+        r"bevels consume the edge between those corners on both panels; cut square on both, "
+        r"the panels overlap by 18\.7 mm there \(vertex 7 at \([0-9., -]+\) mm\): a gap of ",
+        text), text
+
+
 def test_option_errors_name_the_length_unit():
     """A length option out of range is followed by the model's unit ("not 0.0" was bare),
     in facet.panels and in the core; a number that is not finite, or not a length, is

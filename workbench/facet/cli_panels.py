@@ -125,13 +125,18 @@ def add_commands(commands):
     p.set_defaults(run=run_panels)
 
 
+#: How the panels' errors name the options they advise (facet.panels.OPTION_NAMES).
+OPTION_NAMES = {"min_edge": "--min-edge", "min_edge_abs": "--min-edge-abs"}
+
+
 def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=False,
                  ids="auto", prefix="P-", tol=1e-6, tol_abs=0.0, min_edge=None,
                  min_edge_abs=0.0, sheet=None, margin=None,
                  spacing=None, rotations="90", grain=None, dxf=None, per_sheet=False,
                  step=None, schedule=None, svg=None, png=None, progress=None,
                  cancelled=None, panel_set=None, solids=None, allow_unplaced=False,
-                 units="mm", text_outlines=False, density=None, nested=None):
+                 units="mm", text_outlines=False, density=None, nested=None,
+                 option_names=None):
     """Everything ``facet panels`` does, as a function (also used by the
     benchmark). Returns (report dict, PanelSet, drawings, NestResult or None).
 
@@ -153,6 +158,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
     :data:`facet.nest.DEFAULT_SPACING_MM` in ``units``, ``gap`` to
     :data:`facet.panels.DEFAULT_GAP_MM` (FreeCAD's PanelSet's too). ``density`` (kg/m³, optional):
     the schedule's and the report's masses (:func:`facet.panels.mass_kg`).
+    ``option_names``: how the user sets the options the panels' errors advise
+    (:func:`facet.panels.panels`; the command line's: :data:`OPTION_NAMES`).
     ``nested`` (optional): ``(panel_set, drawings, result)`` of an earlier run with the
     same ``sheet``, ``margin``, ``spacing``, ``rotations`` and ``grain``: its drawings and
     nesting are reused when ``panel_set`` is the PanelSet of this run, and its nesting,
@@ -211,7 +218,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
             ps = panels(mesh, thickness, offset=offset, gap=gap, edge=edge, flip=flip,
                         ids=ids, prefix=prefix, tol=tol, tol_abs=tol_abs, min_edge=min_edge,
                         min_edge_abs=min_edge_abs, progress=stage_progress("panels"),
-                        units=units)
+                        units=units, option_names=option_names)
         except PanelError as error:
             # a mesh in metres taken as millimetres: the default gap (6 mm) consumes its
             # 1.5 mm panels, and the error named a face and a gap, not the units
@@ -456,7 +463,7 @@ def run_panels(args):
             per_sheet=args.per_sheet, text_outlines=args.text_outlines, step=args.step,
             schedule=args.schedule, svg=args.svg, png=args.png,
             progress=panels_progress(line, interrupted), cancelled=interrupted,
-            units=args.units, density=args.density)
+            units=args.units, density=args.density, option_names=OPTION_NAMES)
     finally:
         line.close()  # (before the summary, or an error's message)
     report["input"] = args.input

@@ -296,6 +296,35 @@ _CLEARING_TRIALS = 40
 BEVEL_ZERO_DEG = 1e-9
 
 
+def _least_passing(passes, lo, hi, progress, done, limit=math.inf):
+    """The least value above `lo` (which fails) for which ``passes(value)``, to
+    _CLEARING_REL of itself, by bisection: `hi` is tried first and doubled (up to
+    `limit`, at most 20 times) until it passes; None when none does. The value returned
+    was tried. Each trial reports ``progress(done + trial, done + _CLEARING_TRIALS)``; a
+    true return cancels."""
+    trials = 0
+
+    def trial(value):
+        nonlocal trials
+        trials += 1
+        if progress is not None and progress(done + trials, done + _CLEARING_TRIALS):
+            raise Cancelled("panels cancelled")
+        return passes(value)
+
+    hi = min(hi, limit)
+    while not trial(hi):
+        if trials >= 20 or hi >= limit:
+            return None
+        lo, hi = hi, min(2.0 * hi, limit)
+    while hi - lo > _CLEARING_REL * hi and trials < _CLEARING_TRIALS:
+        mid = 0.5 * (lo + hi)
+        if trial(mid):
+            hi = mid
+        else:
+            lo = mid
+    return float(hi)
+
+
 def _clearing_gap(xyz, mesh, options, gap, joints, progress, done, builds_only=False):
     """The least gap (to _CLEARING_REL) at which no joint and no node overlaps, by
     bisection over whole panel computations (a wider gap moves every outline, so
@@ -305,32 +334,15 @@ def _clearing_gap(xyz, mesh, options, gap, joints, progress, done, builds_only=F
     gap at which the panels are built at all (overlaps allowed: they are counted);
     the gap returned was tried. Reports ``progress(done + trial, done +
     _CLEARING_TRIALS)``; a true return cancels."""
-    trials = 0
-
     def clears(trial_gap):
-        nonlocal trials
-        trials += 1
-        if progress is not None and progress(done + trials, done + _CLEARING_TRIALS):
-            raise Cancelled("panels cancelled")
         try:
             r = _core.panels(xyz, mesh.face_start, mesh.face_vertices, gap=trial_gap, **options)
         except _core.CoreError:
             return False
         return builds_only or (r["n_overlapping_joints"] == 0 and r["n_node_clashes"] == 0)
 
-    lo = gap
-    hi = max(joints or 0.0, 2.0 * gap, 0.01 * options["thickness"])
-    while not clears(hi):
-        if trials >= 20:
-            return None
-        lo, hi = hi, 2.0 * hi
-    while hi - lo > _CLEARING_REL * hi and trials < _CLEARING_TRIALS:
-        mid = 0.5 * (lo + hi)
-        if clears(mid):
-            hi = mid
-        else:
-            lo = mid
-    return float(hi)
+    return _least_passing(clears, gap, max(joints or 0.0, 2.0 * gap, 0.01 * options["thickness"]),
+                          progress, done)
 
 
 def _builds(xyz, mesh, options, gap):
@@ -340,6 +352,19 @@ def _builds(xyz, mesh, options, gap):
     except _core.CoreError:
         return False
     return True
+
+
+def _rounded_up(value, passes):
+    """(said, digits): `value` as a message writes it (3 significant digits, more when
+    those do not pass), rounded up, and checked: ``passes(said)``; None when no
+    rounding passes."""
+    for digits in (3, 4, 6, 17):
+        said = float(f"{value:.{digits}g}")
+        if said < value:  # up by one in the last digit written
+            said = float(f"{said + 10.0 ** (math.floor(math.log10(said)) - digits + 1):.{digits}g}")
+        if said >= value and passes(said):
+            return said, digits
+    return None
 
 
 def _corner_angles(mesh, f):
@@ -353,66 +378,101 @@ def _corner_angles(mesh, f):
     return 180.0 - turn, n / np.linalg.norm(n)
 
 
-def _failed_joint_advice(xyz, mesh, options, gap, joint, vertex, length, progress):
-    """What a designer can do about the joint of faces `joint` at face joint[0]'s edge from
-    `vertex`, which had to be cut square on both panels and overlaps (the core's
-    error): the edge and the corners at its ends on both panels (a nearly straight one
-    named), then what was tried and builds the panels: the least larger gap, square
-    edges; else that only a change of the mesh there does."""
+#: How ``panels()``'s messages name the options a caller's user sets (the value follows):
+#: the Python keywords; the command line and the FreeCAD PanelSet give theirs
+#: (``panels(option_names=...)``).
+OPTION_NAMES = {"min_edge": "min_edge", "min_edge_abs": "min_edge_abs"}
+
+#: The largest min_edge tried for a failed joint: an edge half its face's mean edge long
+#: is no short edge to merge (and min_edge_abs is tried up to this times the largest
+#: face's mean edge).
+_MIN_EDGE_TRIED = 0.5
+
+
+def _failed_joint_message(exc, mesh, options, gap, length, progress, rebuild, min_edge,
+                          min_edge_abs, names, where):
+    """The error of the joint of faces ``exc.joint_faces`` at the first's edge from
+    ``exc.vertex``, which had to be cut square on both panels and overlaps
+    (``exc.joint_overlap`` deep), as one sentence: the edge (length, fold), the corners at
+    its ends on both panels and why each consumes its mitre (a nearly straight corner
+    named), then only what was tried and builds the panels: the least larger gap, the
+    least larger min_edge (and min_edge_abs when one was given; ``rebuild(min_edge,
+    min_edge_abs)`` tells whether they build the panels), square edges; else that only a
+    change of the mesh there does. None when the edge is not found."""
     from facet.quality import DEFAULT_STRAIGHT_CORNER
 
-    f, h = (int(x) for x in joint)
+    f, h = (int(x) for x in exc.joint_faces)
+    vertex = int(exc.vertex)
     start, fv = mesh.face_start, mesh.face_vertices
     corners = [int(c) for c in range(start[f], start[f + 1]) if fv[c] == vertex]
     if not corners:
-        return ""
+        return None
     c = corners[0]
     other = int(fv[c + 1] if c + 1 < start[f + 1] else fv[start[f]])
     points = np.asarray(mesh.vertices)
     edge = float(np.linalg.norm(points[other] - points[vertex]))
-    parts, straight = [], []
-    normals = []
+    parts, why, normals = [], [], []
     for g in (f, h):
         angles, n = _corner_angles(mesh, g)
         normals.append(n)
         ring = [int(v) for v in fv[start[g]:start[g + 1]]]
         at = {v: float(angles[ring.index(v)]) for v in (vertex, other) if v in ring}
         parts.append(f"face {g} {at[vertex]:.3g} and {at[other]:.3g} degrees")
-        straight += [(abs(180.0 - a), g, v, a) for v, a in at.items()
-                     if abs(180.0 - a) < DEFAULT_STRAIGHT_CORNER]
+        straight = min((abs(180.0 - a), v, a) for v, a in at.items())
+        why.append(None if straight[0] >= DEFAULT_STRAIGHT_CORNER else
+                   f"on face {g} it meets the next edge's beyond the nearly straight corner "
+                   f"at vertex {straight[1]} ({straight[2]:.4g} degrees)")
+    consumed = "the gap and the bevels consume the edge between those corners"
+    if why == [None, None]:
+        why = f"{consumed} on both panels"
+    else:
+        why = ", and ".join(w or f"on face {g} {consumed}" for w, g in zip(why, (f, h)))
     # the windings run the shared edge opposite ways when they agree
     ring_h = [int(v) for v in fv[start[h]:start[h + 1]]]
     same = ring_h[(ring_h.index(vertex) + 1) % len(ring_h)] == other
     fold = math.degrees(math.acos(float(np.clip(
         np.dot(normals[0], -normals[1] if same else normals[1]), -1.0, 1.0))))
-    text = (f". The edge from vertex {vertex} to vertex {other} is {length(edge)} long and "
-            f"folds {fold:.3g} degrees; the corners at its ends (vertices {vertex} and "
-            f"{other}): {parts[0]}, {parts[1]}")
-    if straight:
-        _, g, v, a = min(straight)
-        text += f" (face {g}'s at vertex {v}, {a:.4g} degrees, is nearly straight)"
-    ways = []
+    text = (f"faces {f} and {h}: their mitre at the edge from vertex {vertex} to "
+            f"vertex {other} cannot be cut: the edge is {length(edge)} long and folds "
+            f"{fold:.3g} degrees, the corners at its ends (vertices {vertex} and {other}) are "
+            f"{parts[0]}, {parts[1]}; {why}; cut square on both, the panels "
+            f"overlap by {length(float(exc.joint_overlap))} there{where}")
+    xyz = np.ascontiguousarray(mesh.vertices, dtype=np.float64).reshape(-1)
+    ways = []  # (what builds the panels, whether its verb is plural)
     built = _clearing_gap(xyz, mesh, options, gap, None, progress, 0, builds_only=True)
-    if built is not None:
-        # the gap as the message writes it, rounded up, is the one said to build them
-        for digits in (3, 4, 6, 17):
-            said = float(f"{built:.{digits}g}")
-            if said < built:  # up by one in the last digit written
-                said = float(f"{said + 10.0 ** (math.floor(math.log10(said)) - digits + 1):.{digits}g}")
-            if said >= built and _builds(xyz, mesh, options, said):
-                ways.append(f"a gap of {length(said, f'.{digits}g')} (now {length(gap)}) "
-                            "builds the panels")
-                break
+    said = None if built is None else _rounded_up(
+        built, lambda g: _builds(xyz, mesh, options, g))
+    if said is not None:
+        ways.append((f"a gap of {length(said[0], f'.{said[1]}g')} (now {length(gap)})", False))
+    # a larger min_edge merges the short edge's (or another's) ends into one corner
+    # before the core runs; tried as the user gives it: relative, and absolute if used
+    tries = [("min_edge", min_edge, _MIN_EDGE_TRIED, lambda m: rebuild(m, min_edge_abs),
+              lambda x, spec: f"{x:{spec}}")]
+    if min_edge_abs > 0.0:
+        means = [np.mean(np.linalg.norm(np.diff(points[fv[start[g]:start[g + 1]]], axis=0,
+                                                append=points[fv[start[g]]][None]), axis=1))
+                 for g in range(mesh.n_faces)]
+        tries.append(("min_edge_abs", min_edge_abs, _MIN_EDGE_TRIED * max(means),
+                      lambda m: rebuild(min_edge, m), length))
+    for k, (name, now, limit, passes, text_of) in enumerate(tries):
+        least = _least_passing(passes, now, 2.0 * (now or DEFAULT_MIN_EDGE), progress,
+                               (k + 1) * _CLEARING_TRIALS, limit)
+        said = None if least is None else _rounded_up(least, passes)
+        if said is not None:
+            ways.append((f"{names[name]} {text_of(said[0], f'.{said[1]}g')} (now "
+                         f"{text_of(now, 'g')})", False))
     if options["edge"] != "square" and _builds(xyz, mesh, dict(options, edge="square"), gap):
-        ways.append("so do square edges (their joints then report the gap that clears them)"
-                    if ways else "square edges build the panels")
+        ways.append(("square edges (their joints then report the gap that clears them)", True))
     mesh_change = (f"a mesh without the short edge or the sharp corner there (merge "
                    f"vertices {vertex} and {other}, or planarize so that faces {f} and {h} "
                    "keep their shape)")
     if ways:
-        return text + ": " + "; ".join(ways) + f"; or {mesh_change}"
-    return (text + f": neither a larger gap (tried) nor square edges build them: change the "
-            f"mesh, {mesh_change}")
+        first, plural = ways[0]
+        return (f"{text}: {first} {'build' if plural else 'builds'} the panels"
+                + "".join(f"; so {'do' if plural else 'does'} {w}" for w, plural in ways[1:])
+                + f"; or {mesh_change}")
+    return (f"{text}: neither a larger gap, a larger {names['min_edge']} nor square edges "
+            f"(tried) build them: change the mesh, {mesh_change}")
 
 
 def _node_clashes(result, depth):
@@ -921,7 +981,7 @@ def _unwelded_warnings(mesh):
 
 def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, ids="auto",
            prefix="P-", tol=1e-6, tol_abs=0.0, min_edge=DEFAULT_MIN_EDGE, min_edge_abs=0.0,
-           repair=True, progress=None, units=None):
+           repair=True, progress=None, units=None, option_names=None):
     """Make the panels of a planar mesh.
 
     Parameters
@@ -986,6 +1046,10 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     units : str, optional
         The model's length unit ("mm"), written after the lengths in errors and
         warnings; None writes them bare (model units).
+    option_names : dict, optional
+        How the user sets the options an error advises (:data:`OPTION_NAMES`'s keys,
+        "min_edge" and "min_edge_abs"): the command line's "--min-edge", FreeCAD's
+        "the PanelSet's MinEdge"; the Python keywords by default.
 
     Returns
     -------
@@ -1065,17 +1129,30 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             prefix_ = f"{source}: " if source else ""
             # where it is: the core names faces and a vertex by index, which a designer in
             # FreeCAD or Rhino cannot find; their point can be
-            message, vertex = str(exc), getattr(exc, "vertex", -1)
+            message, vertex, where = str(exc), getattr(exc, "vertex", -1), ""
             if 0 <= vertex < len(mesh.vertices):
                 point = point_text(mesh.vertices[vertex]) + (f" {units}" if units else "")
-                message += (f" {point}" if message.endswith(f"vertex {vertex}")
-                            else f" (vertex {vertex} at {point})")
-            joint = getattr(exc, "joint_faces", None)
-            if joint is not None:
-                faces = list(joint)
-                message += _failed_joint_advice(
-                    xyz, mesh, core_options, gap, joint, vertex, length,
-                    _after(progress, n_groups + 2 * nf))
+                where = f" (vertex {vertex} at {point})"
+                message += (f" {point}" if message.endswith(f"vertex {vertex}") else where)
+            if getattr(exc, "joint_faces", None) is not None:
+                # the core's reason is either of two; the edge's corners tell which, and
+                # what builds the panels is tried: the message says it in one sentence
+                def rebuild(trial_min_edge, trial_min_edge_abs):
+                    try:
+                        trial = _merge_short_edges(input_mesh, trial_min_edge,
+                                                   trial_min_edge_abs, tol, tol_abs, source)
+                    except PanelError:
+                        return False
+                    trial = input_mesh if trial is None or trial[0] is None else trial[0]
+                    return _builds(np.ascontiguousarray(trial.vertices, dtype=np.float64)
+                                   .reshape(-1), trial, core_options, gap)
+
+                said = _failed_joint_message(
+                    exc, mesh, core_options, gap, length, _after(progress, n_groups + 2 * nf),
+                    rebuild, min_edge, min_edge_abs, dict(OPTION_NAMES, **(option_names or {})),
+                    where)
+                faces = [int(x) for x in exc.joint_faces]
+                message = said or message
             raise PanelError(prefix_ + message, faces=faces) from None
         raise from_core(exc, source=source) from None
 

@@ -197,7 +197,7 @@ class PanelSet(_Proxy):
                           prefix=obj.IdPrefix, tol=obj.Tolerance,
                           tol_abs=obj.ToleranceAbs.Value, min_edge=obj.MinEdge,
                           min_edge_abs=obj.MinEdgeAbs.Value, progress=progress.hook(),
-                          units="mm")
+                          units="mm", option_names=option_names())
         except facet.errors.InputError as error:
             size = _size_warning(mesh.mean_edge_length()) if "gap" in str(error) else None
             if size:
@@ -507,6 +507,7 @@ class CutSheets(_Proxy):
                 flip=bool(ps_obj.Flip), ids=ps_obj.IdScheme, prefix=ps_obj.IdPrefix,
                 tol=ps_obj.Tolerance, tol_abs=ps_obj.ToleranceAbs.Value,
                 min_edge=ps_obj.MinEdge, min_edge_abs=ps_obj.MinEdgeAbs.Value,
+                option_names=option_names(),
                 sheet=(obj.SheetWidth.Value, obj.SheetHeight.Value), margin=obj.Margin.Value,
                 spacing=obj.Spacing.Value, rotations=obj.Rotations, grain=grain,
                 dxf=path("dxf", "sheets.dxf"), schedule=path("schedule", "schedule.csv"),
@@ -758,6 +759,13 @@ def cutsheets_summary(obj):
                                                    if svg else [])
     return text + translate("Facet", "; written to {0}: {1}").format(obj.OutputDir,
                                                                      ", ".join(shown))
+
+
+def option_names():
+    """How the panels' errors name the options they advise (facet.panels.OPTION_NAMES):
+    the PanelSet's properties."""
+    return {"min_edge": translate("Facet", "the PanelSet's MinEdge"),
+            "min_edge_abs": translate("Facet", "the PanelSet's MinEdgeAbs")}
 
 
 def _size_warning(mean_edge):
