@@ -1522,6 +1522,46 @@ def test_step_job_writes_the_solids_in_a_worker_while_this_process_goes_on(tmp_p
     assert all(f"'{p.id}'" in text for p in ps.panels)  # each product named by its ID
 
 
+def _step_root(path):
+    """The STEP file's top assembly: the product no other one holds (its
+    NEXT_ASSEMBLY_USAGE_OCCURRENCEs' relating definitions name it)."""
+    text = path.read_text()
+    products = re.findall(r"PRODUCT\('([^']*)'", text)
+    children = set(re.findall(r"NEXT_ASSEMBLY_USAGE_OCCURRENCE\('[^']*','([^']*)'", text))
+    return [p for p in products if p not in children]
+
+
+def test_the_step_files_assembly_is_named_after_the_job(tmp_path):
+    """A fabricator importing the STEP file sees its top assembly as the root: it was
+    "FacetStepExport" (FreeCAD's temporary document) in every file; it is the file's stem,
+    written by the worker (which writes a temporary file first) or here, and FreeCAD
+    reads it back as an App::Part of that label holding the panels by ID."""
+    step = freecad_step()
+    FreeCAD, Part = step.import_freecad()
+    import Import
+
+    ps = panels(translational(nu=3, nv=2, step=400.0), 18.0, edge="bisector", gap=4)
+    worker = tmp_path / "wave_facade_panels.step"
+    assert step.start_step(worker, ps).wait() == str(worker)
+    assert _step_root(worker) == ["wave_facade_panels"]
+    here = tmp_path / "Roof east (rev 2).stp"
+    step.write_step(here, step.panel_solids(ps))
+    assert _step_root(here) == ["Roof east (rev 2)"]
+    step.write_step(here, step.panel_solids(ps), name="job 7")
+    assert _step_root(here) == ["job 7"]
+    assert step.step_name(tmp_path / ".step") == "panels"
+    back = FreeCAD.newDocument("StepRoot", hidden=True, temp=True)
+    try:
+        Import.insert(str(worker), back.Name, useLinkGroup=False)
+        roots = [o for o in back.Objects if o.TypeId == "App::Part"]
+        assert [o.Label for o in roots] == ["wave_facade_panels"]
+        held = sorted(o.Label for o in roots[0].Group if o.TypeId == "Part::Feature")
+        assert held == sorted(p.id for p in ps.panels)
+    finally:
+        FreeCAD.closeDocument(back.Name)
+    assert len(Part.read(str(worker)).Solids) == len(ps.panels)
+
+
 def test_step_job_cancelled_or_failed_writes_nothing(tmp_path):
     step = freecad_step()
     ps = panels(translational(nu=4, nv=3, step=400.0), 18.0, edge="bisector", gap=4)

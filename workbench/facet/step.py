@@ -348,9 +348,19 @@ def panel_solids(panel_set, progress=None, brepcheck=True):
     return out
 
 
-def write_step(path, named_solids, pcurves=False, scale=1.0):
+def step_name(path):
+    """The name of a STEP file's top assembly: the file's stem ("wave_facade_panels" for
+    wave_facade_panels.step), "panels" for a file named only by its extension."""
+    stem = os.path.basename(os.fspath(path))
+    for ext in (".step", ".stp"):
+        if stem.lower().endswith(ext):
+            stem = stem[:-len(ext)]
+    return stem or "panels"
+
+
+def write_step(path, named_solids, pcurves=False, scale=1.0, name=None):
     """Write solids to a STEP file, each named by its ID (the product name
-    FreeCAD's importer and other CAD systems show).
+    FreeCAD's importer and other CAD systems show), in one assembly named `name`.
 
     Parameters
     ----------
@@ -365,11 +375,16 @@ def write_step(path, named_solids, pcurves=False, scale=1.0):
     scale : float
         Millimetres per model unit: STEP files are written in millimetres (OCC's
         unit), so a model in metres is scaled by 1000 on the way out.
+    name : str, optional
+        The top assembly's name, which a fabricator importing the file sees as its
+        root (FreeCAD's App::Part, gmsh's ``Shapes/<name>/<ID>/<ID>``): by default
+        :func:`step_name` of `path`, its stem. It was FreeCAD's temporary document's
+        name, "FacetStepExport", in every file.
 
     Notes
     -----
-    The solids are written as one assembly (FreeCAD's ``Import.export``), one
-    product per solid named by its ID. To read it back headless with FreeCAD
+    The solids are written as one assembly (FreeCAD's ``Import.export`` of an App::Part
+    holding them, labelled `name`), one product per solid named by its ID. To read it back headless with FreeCAD
     0.20, call ``Import.insert(path, doc, useLinkGroup=False)`` (or
     ``merge=False``): with the defaults (merge into one App::LinkGroup),
     ``Import.insert`` / ``Import.open`` crash freecadcmd on any STEP
@@ -394,17 +409,22 @@ def write_step(path, named_solids, pcurves=False, scale=1.0):
     try:
         labels.SetBool("DuplicateLabels", True)
         objs = []
-        for i, (name, solid) in enumerate(named_solids):
+        for i, (part_id, solid) in enumerate(named_solids):
             obj = doc.addObject("Part::Feature", f"Panel{i:07d}")
-            obj.Label = name
+            obj.Label = part_id
             if scale != 1.0:
                 solid = solid.copy()
                 solid.scale(scale)
             obj.Shape = solid
             objs.append(obj)
+        # the root product is the exported App::Part's label (exporting the solids
+        # alone named it after the document, which FreeCAD's names restrict)
+        job = doc.addObject("App::Part", "Job")
+        job.Label = step_name(path) if name is None else str(name)
+        job.addObjects(objs)
         labels.SetBool("DuplicateLabels", user_duplicates)
         Part.setStaticValue("write.surfacecurve.mode", 1 if pcurves else 0)
-        Import.export(objs, tmp)
+        Import.export([job], tmp)
         os.replace(tmp, path)
     finally:
         labels.SetBool("DuplicateLabels", user_duplicates)
@@ -421,7 +441,7 @@ def _step_job(job, settings):
     import time
 
     path, ids, tops, bottoms = job  # path: the temporary file the parent renames
-    brepcheck, pcurves, scale = settings
+    brepcheck, pcurves, scale, name = settings
     try:
         t = time.perf_counter()
         FreeCAD, Part = import_freecad()
@@ -431,7 +451,7 @@ def _step_job(job, settings):
             solids.extend(_read_solids(Part, ids[c0:c1], tops[c0:c1], bottoms[c0:c1],
                                        brepcheck))
         t1 = time.perf_counter()
-        write_step(path, list(zip(ids, solids)), pcurves=pcurves, scale=scale)
+        write_step(path, list(zip(ids, solids)), pcurves=pcurves, scale=scale, name=name)
         return ("ok", {"solids": t1 - t, "step": time.perf_counter() - t1})
     except (SolidError, FreeCADMissing) as exc:
         return ("error", type(exc).__name__, str(exc))
@@ -459,7 +479,8 @@ class StepJob:
         # `path` unless the whole job succeeded and was waited for
         self._tmp = f"{self.path}.part{os.getpid()}-{id(self):x}.step"
         self._panels = list(panel_set.panels)
-        self._settings = (bool(brepcheck), bool(pcurves), float(scale))
+        # (the assembly is named after `path`, not the temporary file)
+        self._settings = (bool(brepcheck), bool(pcurves), float(scale), step_name(self.path))
         self._cancel = threading.Event()
         self._result = None
         self.seconds = {}
