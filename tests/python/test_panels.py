@@ -819,6 +819,46 @@ def test_nesting_in_chunks_is_the_same_for_any_number_of_workers(monkeypatch):
         fn.nest(parts, (1300, 900), workers=0)
 
 
+def test_tight_nesting_regroups_the_least_filled_sheets(monkeypatch):
+    """Batches close their sheets before smaller parts come: squares just over half the
+    sheet's width stay alone on their sheets beside room for the smaller squares, which
+    then pair on sheets of their own. ``tight`` nests the parts of the least-filled
+    sheets again together: fewer sheets, every one verified, the same for any number of
+    workers; with nothing to gain it keeps the sheets it had."""
+    import facet.nest as fn
+
+    def square(a):
+        return [(0, 0), (a, 0), (a, a), (0, a)]
+
+    parts = {f"L{k}": square(520 + k) for k in range(20)}
+    parts.update({f"S{k}": square(440 + k) for k in range(20)})
+    plain = fn.nest(parts, (1000, 700), margin=5, spacing=4, rotations="none", workers=1)
+    tight = fn.nest(parts, (1000, 700), margin=5, spacing=4, rotations="none", workers=1,
+                    tight=True)
+    assert fn.verify(plain, parts) == [] and fn.verify(tight, parts) == []
+    assert not tight.unplaced and len(tight.placements) == len(parts)
+    assert tight.tight and not plain.tight
+    # no two of the larger squares share a sheet (1,040 mm > 990 mm); a larger and a
+    # smaller one can
+    big = [s for s in plain.sheets if any(pid.startswith("L") for pid in s.parts)]
+    assert len(big) == 20
+    assert len(tight.sheets) < len(plain.sheets)
+    assert len(tight.sheets) >= 20
+    assert sum(s.used_area for s in tight.sheets) == pytest.approx(plain.utilisation * len(
+        plain.sheets) * 1000 * 700)
+    # chunks in workers: the same sheets
+    monkeypatch.setattr(fn, "_CHUNK", 16)
+    one = fn.nest(parts, (1000, 700), margin=5, spacing=4, workers=1, tight=True)
+    two = fn.nest(parts, (1000, 700), margin=5, spacing=4, workers=2, tight=True)
+    assert fn.verify(one, parts) == [] and one.placements == two.placements
+    # nothing to gain (one part a sheet): the sheets stay
+    alone = {k: v for k, v in parts.items() if k.startswith("L")}
+    r = fn.nest(alone, (1000, 700), margin=5, spacing=4, workers=1, tight=True)
+    assert len(r.sheets) == 20 and fn.verify(r, alone) == []
+    with pytest.raises(Cancelled):
+        fn.nest(parts, (1000, 700), tight=True, workers=1, progress=lambda d, t: d == t)
+
+
 # ---- files -----------------------------------------------------------------
 
 def _made(tmp_path, **kw):
@@ -2232,6 +2272,11 @@ def test_new_part_ids_of_the_same_panels_keep_the_nesting(tmp_path, monkeypatch)
     report = run_pipeline(mesh, 30.0, nested=(ps0, drawings0, result0),
                           **dict(options, sheet=(2700.0, 1400.0)))[0]
     assert calls == [1, 1, 1] and report["nested"] is True
+    # a tight nesting asked for: nested again (tightly), and the report says so
+    report, _, _, tight = run_pipeline(mesh, 30.0, nested=(ps0, drawings0, result0),
+                                       tight=True, **options)
+    assert calls == [1, 1, 1, 1] and report["nested"] is True
+    assert tight.tight and report["options"]["tight"] is True
 
 
 def test_renamed_nesting_checks_its_names():

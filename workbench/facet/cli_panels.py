@@ -7,7 +7,7 @@
         [--gap G] [--edge square|bisector] [--flip] [--ids auto|grid|index]
         [--prefix P] [--tol T] [--min-edge F] [--min-edge-abs L] [--sheet WxH]
         [--margin M] [--spacing S]
-        [--rotations none|90|free] [--grain X,Y,Z] [--dxf OUT.dxf] [--per-sheet]
+        [--rotations none|90|free] [--tight] [--grain X,Y,Z] [--dxf OUT.dxf] [--per-sheet]
         [--text-outlines]
         [--step OUT.step] [--schedule OUT.csv|OUT.json] [--svg DIR] [--png DIR]
         [--report R.json]
@@ -103,6 +103,9 @@ def add_commands(commands):
                    f"{DEFAULT_SPACING_MM:g} mm, in --units; 0 lets parts share a cut line)")
     p.add_argument("--rotations", choices=("none", "90", "free"), default="90",
                    help="rotations allowed in nesting (none with --grain)")
+    p.add_argument("--tight", action="store_true",
+                   help="slower nesting, often on fewer sheets: the parts of the least-filled "
+                   "sheets are nested again together")
     p.add_argument("--grain", type=_vector, metavar="X,Y,Z",
                    help="grain direction in model space: parts turned to it, rotations locked")
     p.add_argument("--dxf", metavar="OUT.dxf", help="cut sheets as DXF (needs --sheet)")
@@ -133,6 +136,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
                  ids="auto", prefix="P-", tol=1e-6, tol_abs=0.0, min_edge=None,
                  min_edge_abs=0.0, sheet=None, margin=None,
                  spacing=None, rotations="90", grain=None, dxf=None, per_sheet=False,
+                 tight=False,
                  step=None, schedule=None, svg=None, png=None, progress=None,
                  cancelled=None, panel_set=None, solids=None, allow_unplaced=False,
                  units="mm", text_outlines=False, density=None, nested=None,
@@ -166,7 +170,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
     under the new part IDs (:func:`facet.nest.renamed`), when this run's panels (in the
     same order) unfold to the same cut outlines and footprints (other part IDs of the same
     panels: their texts change, not their outlines); else the parts are nested again. The
-    report's ``nested`` says whether they were.
+    report's ``nested`` says whether they were. ``tight``: the slower nesting that
+    regroups the least-filled sheets (:func:`facet.nest.nest`'s ``tight``).
     """
     from facet.cutsheets import length_unit
     from facet.errors import InputError
@@ -243,7 +248,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
         with staged():
             return _rest_of_pipeline(
                 mesh, ps, job, times, t_start, sheet=sheet, margin=margin, spacing=spacing,
-                rotations=rotations, grain=grain, dxf=dxf, per_sheet=per_sheet,
+                rotations=rotations, grain=grain, dxf=dxf, per_sheet=per_sheet, tight=tight,
                 text_outlines=text_outlines, step=step,
                 schedule=schedule, svg=svg, png=png, allow_unplaced=allow_unplaced,
                 solids=solids, stage_progress=stage_progress, cancelled=cancelled, units=units,
@@ -273,7 +278,7 @@ def write_schedule(path, ps, rows, density=None, units="mm"):
 
 
 def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,
-                      dxf, per_sheet, text_outlines, step, schedule, svg, png, allow_unplaced,
+                      tight, dxf, per_sheet, text_outlines, step, schedule, svg, png, allow_unplaced,
                       solids, stage_progress, cancelled, units, density, nested):
     from facet.cutsheets import length_unit, schedule_rows, write_dxf, write_png, write_svg
     from facet.errors import Cancelled, InputError
@@ -294,11 +299,12 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
     result, nested_now = None, False
     if sheet is not None:
         t = time.perf_counter()
-        result = _kept_nesting(nested, ps, drawings, sheet, margin, spacing, rotations)
+        result = _kept_nesting(nested, ps, drawings, sheet, margin, spacing, rotations, tight)
         nested_now = result is None
         if nested_now:
             result = nest({d.id: d.footprint for d in drawings}, sheet, margin=margin,
-                          spacing=spacing, rotations=rotations, progress=stage_progress("nest"))
+                          spacing=spacing, rotations=rotations, tight=tight,
+                          progress=stage_progress("nest"))
         times["nest"] = time.perf_counter() - t
         check()
         if result.unplaced and not allow_unplaced:
@@ -355,7 +361,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         "kind": "panels",
         "input": mesh.info.get("source") if mesh.info else None,
         "options": dict(ps.options, sheet=sheet, margin=margin, spacing=spacing,
-                        rotations=rotations, grain=grain),
+                        rotations=rotations, grain=grain, tight=tight),
         "units": units,
         "n_panels": len(ps),
         "id_scheme": ps.id_scheme,
@@ -396,9 +402,10 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
     return report, ps, drawings, result
 
 
-def _kept_nesting(nested, ps, drawings, sheet, margin, spacing, rotations):
+def _kept_nesting(nested, ps, drawings, sheet, margin, spacing, rotations, tight=False):
     """The nesting of ``nested`` (run_pipeline's) for ``ps``'s ``drawings``, under their
-    IDs, when it still holds: nested on this sheet with this margin, spacing and rotations,
+    IDs, when it still holds: nested on this sheet with this margin, spacing, rotations
+    and ``tight``,
     and of the same panels (``ps`` itself) or of panels whose drawings have the same cut
     outlines and footprints, in the same order. None when the parts must be nested again."""
     import numpy as np
@@ -410,7 +417,7 @@ def _kept_nesting(nested, ps, drawings, sheet, margin, spacing, rotations):
     ps0, drawings0, result = nested
     if (result is None or tuple(result.sheet_size) != tuple(float(v) for v in sheet)
             or result.margin != margin or result.spacing != spacing
-            or result.rotations != rotations):
+            or result.rotations != rotations or result.tight != tight):
         return None
     if ps0 is ps:
         return result
@@ -459,7 +466,7 @@ def run_panels(args):
             flip=args.flip, ids=args.ids, prefix=args.prefix, tol=args.tol,
             tol_abs=args.tol_abs, min_edge=args.min_edge, min_edge_abs=args.min_edge_abs,
             sheet=args.sheet, margin=args.margin, spacing=args.spacing,
-            rotations=args.rotations, grain=args.grain, dxf=args.dxf,
+            rotations=args.rotations, tight=args.tight, grain=args.grain, dxf=args.dxf,
             per_sheet=args.per_sheet, text_outlines=args.text_outlines, step=args.step,
             schedule=args.schedule, svg=args.svg, png=args.png,
             progress=panels_progress(line, interrupted), cancelled=interrupted,

@@ -111,6 +111,7 @@ class NestResult:
     placements: dict
     unplaced: list
     seconds: float = 0.0
+    tight: bool = False
 
     @property
     def utilisation(self):
@@ -152,7 +153,7 @@ def _check(name, value, minimum, strict):
 
 
 def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
-         progress=None, workers=None):
+         progress=None, workers=None, tight=False):
     """Nest flat parts on as many sheets as needed.
 
     Parameters
@@ -175,6 +176,11 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
         Processes nesting chunks of the parts side by side; default: two
         per CPU, at most eight, when there are several chunks (1 nests in
         this process). The result is the same for any number of workers.
+    tight : bool
+        Regroup the least-filled sheets after the nesting (slower, often
+        fewer sheets): the parts of a few of the least-filled sheets are
+        nested again together, and their new sheets kept when they are
+        fewer (:func:`_regroup`).
 
     Returns
     -------
@@ -286,6 +292,9 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
                                                   settings, keep_last=False)
         bins.extend(last_bins)
         unplaced.extend(last_unplaced)
+    if tight:
+        bins = _regroup(bins, items, settings, {pid: p.area for pid, p in polys.items()},
+                        progress=(None if progress is None else lambda: progress(total, total)))
     if progress is not None and progress(total, total):
         raise Cancelled("nesting cancelled")
     rank = {pid: k for k, pid in enumerate(order)}
@@ -306,7 +315,7 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
         sheets.append(sheet_obj)
     result = NestResult(sheet_size=(width, height), margin=margin, spacing=spacing,
                         rotations=rotations, sheets=sheets, placements=placements,
-                        unplaced=unplaced, seconds=time.perf_counter() - t0)
+                        unplaced=unplaced, seconds=time.perf_counter() - t0, tight=bool(tight))
     _onto_sheets(result, polys, _EDGE_SLACK / scale)
     # libnest2d can leave parts closer than the spacing, or overlapping (parts with short
     # edges, some rotations): every such part goes again, on sheets of its own
@@ -316,7 +325,7 @@ def nest(parts, sheet, margin=0.0, spacing=0.0, rotations="90", accuracy=0.65,
         settled = total - len(crowded)  # the bar goes on from the parts that stay; Cancel works
         step = None if progress is None else (lambda d, _t: progress(settled + d, total))
         again = nest({pid: polys[pid] for pid in crowded}, (width, height), margin, spacing,
-                     rotations, accuracy, progress=step, workers=1)
+                     rotations, accuracy, progress=step, workers=1, tight=tight)
         _replace(result, crowded, again, {pid: poly.area for pid, poly in polys.items()})
         problems = _problems(result, polys)
     if problems:  # never a cut sheet with parts too close
@@ -461,6 +470,61 @@ def _nest_chunk(chunk, settings, keep_last, progress=None):
         if progress is not None and progress(total - len(order)):
             raise Cancelled("nesting cancelled")
     return bins_out, pending, unplaced
+
+
+#: :func:`_regroup`'s pools: the parts of this many batches (see nest()) at most
+_POOL_BATCHES = 4
+
+
+def _regroup(bins, items, settings, areas, progress=None):
+    """Fewer sheets, by nesting the parts of the least-filled sheets again together.
+
+    Batches (and chunks) close their sheets before the parts of later batches are seen,
+    so a sheet can keep a hole that a later, smaller part would fill, and a large part
+    can stay alone on a sheet beside room for its like. Sheets are taken from the
+    least-filled up into a pool of at most :data:`_POOL_BATCHES` batches' parts (two
+    sheets at least); the pool is nested in one call (first fit over all its sheets),
+    and its new sheets replace the pool's when they are fewer. A pool that saves no
+    sheet leaves its sheets as they were, and they are not pooled again; the pass ends
+    when fewer than two sheets are left to pool. Each pool either saves a sheet or
+    retires two, so it ends; it depends on the bins only (not on the workers).
+
+    ``bins``: [[(pid, angle, tx, ty)] per sheet] as :func:`_nest_chunk` returns them;
+    ``items``: pid -> (integer outline, half-turn symmetric). ``progress()`` returning
+    True (asked between pools) cancels. Returns the new bins.
+    """
+    box, dist, rotations, accuracy, batch_size = settings
+    pool_size = _POOL_BATCHES * batch_size
+    pool_settings = None
+    serial = iter(range(1 << 62))
+    tagged = [(next(serial), b) for b in bins]
+    settled = set()
+
+    def fill(tb):
+        return sum(areas[p[0]] for p in tb[1])
+
+    while True:
+        if progress is not None and progress():
+            raise Cancelled("nesting cancelled")
+        group, pool = [], []
+        for tb in sorted((tb for tb in tagged if tb[0] not in settled), key=fill):
+            if len(group) >= 2 and len(pool) + len(tb[1]) > pool_size:
+                break
+            group.append(tb[0])
+            pool.extend(p[0] for p in tb[1])
+        if len(group) < 2:
+            break
+        pool.sort(key=lambda pid: -areas[pid])
+        pool_settings = (box, dist, rotations, accuracy, len(pool))
+        new_bins, _, lost = _nest_chunk([(pid,) + items[pid] for pid in pool], pool_settings,
+                                        keep_last=False)
+        if not lost and len(new_bins) < len(group):
+            gone = set(group)
+            tagged = [tb for tb in tagged if tb[0] not in gone]
+            tagged.extend((next(serial), b) for b in new_bins)
+        else:
+            settled.update(group)
+    return [b for _, b in tagged]
 
 
 def _workers(workers, n_chunks):
