@@ -614,6 +614,33 @@ class TestPanelSet(DocumentTestCase):
             self.assertGreater(len(letters), 0, layer)
             self.assertTrue(all(e.closed for e in letters), layer)
 
+    def test_cutsheets_nest_tightly_when_asked(self):
+        """TightNesting (off by default): the parts are nested again with
+        facet.nest.nest's tight pass, on no more sheets than before."""
+        sheets = facetwb.make_cutsheets(self.mitred, sheet=(2600.0, 1400.0), margin=10.0,
+                                        spacing=6.0, name="TightSheets")
+        self.doc.recompute()
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        self.assertFalse(sheets.TightNesting)
+        count = sheets.SheetCount
+        fnest = sys.modules["facet.nest"]
+        saved, asked = fnest.nest, []
+
+        def recording(*a, **k):
+            asked.append(k.get("tight"))
+            return saved(*a, **k)
+
+        fnest.nest = recording
+        try:
+            sheets.TightNesting = True
+            self.doc.recompute()
+        finally:
+            fnest.nest = saved
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        self.assertEqual(asked, [True])
+        self.assertLessEqual(sheets.SheetCount, count)
+        self.doc.removeObject(sheets.Name)
+
     def test_cutsheets_reuse_the_panelsets_panels_and_solids(self):
         ps_obj = facetwb.make_panelset(self.source, thickness=T, name="Reused")
         sheets = facetwb.make_cutsheets(ps_obj, sheet=(2600.0, 1400.0), margin=10.0,

@@ -453,6 +453,9 @@ class CutSheets(_Proxy):
               "is set)", ROTATIONS, "90")
         add(obj, "App::PropertyVector", "Grain", "Sheet",
             "Grain direction in model space (zero: no grain)")
+        add(obj, "App::PropertyBool", "TightNesting", "Sheet",
+            "Slower nesting, often on fewer sheets: the parts of the least-filled sheets "
+            "are nested again together", value=False)
         add(obj, "App::PropertyPath", "OutputDir", "Files",
             "Folder for sheets.dxf, panels.step, schedule.csv/.json and previews "
             "(empty: write nothing)")
@@ -510,7 +513,7 @@ class CutSheets(_Proxy):
                 option_names=option_names(),
                 sheet=(obj.SheetWidth.Value, obj.SheetHeight.Value), margin=obj.Margin.Value,
                 spacing=obj.Spacing.Value, rotations=obj.Rotations, grain=grain,
-                dxf=path("dxf", "sheets.dxf"), schedule=path("schedule", "schedule.csv"),
+                tight=bool(obj.TightNesting), dxf=path("dxf", "sheets.dxf"), schedule=path("schedule", "schedule.csv"),
                 svg=path("svg", "svg"), step=path("step", "panels.step"),
                 text_outlines=bool(obj.TextOutlines), density=density,
                 progress=_stage_progress(progress.hook(), progress.say_hook()),
@@ -555,7 +558,7 @@ class CutSheets(_Proxy):
         inputs."""
         g = obj.Grain
         return (ps_obj.Name, obj.SheetWidth.Value, obj.SheetHeight.Value, obj.Margin.Value,
-                obj.Spacing.Value, obj.Rotations, (g.x, g.y, g.z))
+                obj.Spacing.Value, obj.Rotations, (g.x, g.y, g.z), bool(obj.TightNesting))
 
     def _nesting_kept(self, obj, ps_obj, kept):
         """Whether the nesting of the last recompute (``kept``) may be kept: the sheet and
