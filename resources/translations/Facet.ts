@@ -107,7 +107,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="191"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="190"/>
         <source>Surface to control mesh</source>
         <translation type="unfinished"></translation>
     </message>
@@ -117,17 +117,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="266"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="265"/>
         <source>Panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="305"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="304"/>
         <source>Cut sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="359"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="358"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
@@ -402,12 +402,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="316"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="315"/>
         <source>Choose the output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="324"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="323"/>
         <source>Folder for the cut files</source>
         <translation type="unfinished"></translation>
     </message>
@@ -572,32 +572,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="788"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="791"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="791"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="794"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="792"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="795"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="793"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="796"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="794"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="797"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="795"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="798"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -612,7 +612,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="789"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="792"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,17 +622,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="780"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="783"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="754"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="757"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="760"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="763"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -657,17 +657,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="381"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="380"/>
         <source>Points file (x, y, z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="395"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="394"/>
         <source>Choose the points file</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="422"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="421"/>
         <source>Target heights</source>
         <translation type="unfinished"></translation>
     </message>
@@ -677,7 +677,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="384"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="383"/>
         <source>Pinned heights (pick vertices)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -932,17 +932,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="790"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="793"/>
         <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="767"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="770"/>
         <source>the PanelSet&apos;s MinEdge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="768"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="771"/>
         <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
