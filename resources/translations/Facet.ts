@@ -946,6 +946,11 @@
         <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="115"/>
+        <source>{0} holds no plan to lift ({1}): correct the drawing or the plan&apos;s properties and recompute it first</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>Facet_Cleanup</name>
@@ -1015,12 +1020,12 @@
 <context>
     <name>Facet_LiftMix</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="126"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="140"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="127"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="141"/>
         <source>Sliders for the selected Lifting: add the smoothest other planar-faced shapes over the same plan; the result follows live and every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1028,12 +1033,12 @@
 <context>
     <name>Facet_LiftPins</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="148"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="162"/>
         <source>Pin heights</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="149"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="163"/>
         <source>Pin heights of the selected Lifting: click vertices of the roof or of its plan in the 3D view, type a height and pin them; the roof follows, every face planar, the other vertices free. Also by double-clicking a Lifting that has no other targets.</source>
         <translation type="unfinished"></translation>
     </message>

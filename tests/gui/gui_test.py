@@ -235,6 +235,7 @@ def run(out_dir):
     App.closeDocument(doc.Name)
     check_lifting(check, out_dir)
     check_lift_from_file(check, out_dir)
+    check_lift_failed_plan(check)
     check_lift_mix_states(check, out_dir)
     import pins_checks
 
@@ -976,6 +977,52 @@ def check_lift_from_file(check, out_dir):
           "the DXF and the heights file are not changed")
     doc.undo()
     check(not any(facetwb.is_lifting(o) for o in doc.Objects), "undo removes the Lifting")
+    App.closeDocument(doc.Name)
+
+
+def report_view_text():
+    """What the report view holds now."""
+    import FreeCADGui as Gui
+    from PySide import QtGui
+
+    return "\n".join(report.toPlainText() for report in
+                     Gui.getMainWindow().findChildren(QtGui.QTextEdit, "Report view"))
+
+
+def check_lift_failed_plan(check):
+    """Lift plan on a plan whose drawing failed to read (a face with a hole) says so in the
+    report view and opens no panel: it broke with a traceback ending "Plan holds no mesh"."""
+    import tempfile
+
+    import FreeCAD as App
+    import FreeCADGui as Gui
+
+    import facetwb
+    from facetwb.taskpanels import derive_panels
+
+    doc = App.newDocument("HolePlan")
+    with tempfile.TemporaryDirectory() as tmp:
+        drawing = os.path.join(tmp, "hole.csv")
+        with open(drawing, "w") as handle:
+            for ring in ([(0, 0), (9000, 0), (9000, 6000), (0, 6000)],
+                         [(3000, 2000), (6000, 2000), (6000, 4000), (3000, 4000)]):
+                for a, b in zip(ring, ring[1:] + ring[:1]):
+                    handle.write(f"{a[0]},{a[1]},{b[0]},{b[1]}\n")
+        plan = facetwb.make_plan_graph(file=drawing, doc=doc)
+        doc.recompute()
+    check(not plan.isValid() and not plan.FaceStart, "a plan with a hole fails to read")
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(plan)
+    settle(5)  # (the recompute's messages reach the report view)
+    before = len(report_view_text())
+    Gui.runCommand("Facet_Lift")
+    settle(5)
+    said = report_view_text()[before:]
+    lines = [line for line in said.splitlines() if "holds no plan to lift" in line]
+    check(derive_panels.active is None and not Gui.Control.activeDialog()
+          and len(lines) == 1 and "has a hole" in lines[0] and "Traceback" not in said,
+          f"Lift plan on the failed plan says why, no panel, no traceback ({said.strip()!r})")
+    Gui.Selection.clearSelection()
     App.closeDocument(doc.Name)
 
 

@@ -103,8 +103,22 @@ class CommandLift:
         from facetwb.taskpanels.derive_panels import LiftPanel
 
         chosen = self._selection()
-        if chosen is not None:
-            Gui.Control.showDialog(LiftPanel(list(chosen)))
+        if chosen is None:
+            return
+        # a plan whose drawing failed to read (an arc, a face with a hole) holds no faces:
+        # the panel broke on it with a traceback ending "Plan holds no mesh"
+        if not chosen[0].FaceStart:
+            from facetwb.recompute import failure
+            from facetwb.translation import translate
+
+            reason = failure(chosen[0]) if not chosen[0].isValid() else chosen[0].Label
+            App.Console.PrintError("Facet: {0}: {1}\n".format(
+                translate("Facet", "Lift plan"), translate(
+                    "Facet", "{0} holds no plan to lift ({1}): correct the drawing or the "
+                    "plan's properties and recompute it first").format(
+                        chosen[0].Label, reason)))
+            return
+        Gui.Control.showDialog(LiftPanel(list(chosen)))
 
 
 class _OnSelectedLifting:
