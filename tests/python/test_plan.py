@@ -1013,12 +1013,22 @@ def test_target_points_that_match_no_vertex_are_said(facet_command, tmp_path):
     assert notes == [f"{points}: 3 of the 4 target points lie farther than the match "
                      "distance 0.012 from every plan vertex, left out (the nearest of "
                      "them, line 4 at (0, 6), is 6 from vertex 3); 1 of the 6 plan vertices "
-                     "has a target height"]
+                     "has a target height; the points span 12 and the plan 12000, 1000 "
+                     "times less: is the table in other units than the plan (metres for "
+                     "millimetres)?"]
     out, report = tmp_path / "roof.obj", tmp_path / "r.json"
     done = facet_command("lift", plan_file, "-o", out, "--targets", points, "--report", report)
     assert done.returncode == 0, done.stderr
     assert "warning       " + notes[0] in done.stdout
     assert notes[0] in json.loads(report.read_text())["warnings"]
+    # points left out of a table as large as the plan (a survey denser than the plan):
+    # said, with no word of units
+    points.write_text("x,y,z\n0,0,3.5\n12000,0,3.6\n0,6000,4.2\n12000,6000,3.3\n"
+                      "3000,3000,4\n")
+    notes = []
+    read_targets(plan, points, notes=notes)
+    assert len(notes) == 1 and "1 of the 5 target points" in notes[0]
+    assert "units" not in notes[0]
     # every point on a vertex: nothing said
     points.write_text("x,y,z\n0,0,3.5\n12000,0,3.6\n0,6000,4.2\n12000,6000,3.3\n")
     notes = []

@@ -1221,9 +1221,23 @@ def targets_from_points(plan, points, *, tolerance, labels=None, notes=None):
             f"{_point_label(labels, p)} at {point_text(points[p, :2])}, is {apart[p]:.3g} "
             f"from vertex {int(vertex[p])}); {int(np.count_nonzero(given))} of the "
             f"{len(xy)} plan vertices {'has' if np.count_nonzero(given) == 1 else 'have'} "
-            "a target height")
+            "a target height" + _units_hint(points[:, :2], xy))
     targets = np.where(given, points[np.minimum(nearest, len(points) - 1), 2], 0.0)
     return _with_free(xy, targets, given)
+
+
+def _units_hint(points, xy):
+    """"; the points span ... and the plan ...: ..." when the points' extent and the plan's
+    differ five times or more (a table in metres for a plan in millimetres: the note said
+    which points were left out, not why), else ""."""
+    span = float(np.ptp(points, axis=0).max())
+    plan = float(np.ptp(xy, axis=0).max())
+    if span <= 0 or plan <= 0 or 0.2 < span / plan < 5:
+        return ""
+    ratio = plan / span
+    return (f"; the points span {span:.6g} and the plan {plan:.6g}, "
+            f"{max(ratio, 1 / ratio):.4g} times {'less' if ratio > 1 else 'more'}: is the "
+            "table in other units than the plan (metres for millimetres)?")
 
 
 def _point_label(labels, k):
