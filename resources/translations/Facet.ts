@@ -522,27 +522,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="86"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="94"/>
         <source>Lifting {0}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="93"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="101"/>
         <source>Height of this lifting at its peak; the faces stay planar</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="104"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="112"/>
         <source>Raise vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="106"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="114"/>
         <source>The plan vertex to raise or lower</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="120"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="128"/>
         <source>How far the vertex moves; the rest of the roof follows, every face planar</source>
         <translation type="unfinished"></translation>
     </message>
@@ -642,18 +642,13 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="245"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="253"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="67"/>
         <source>{0}: this plan admits only planes: there is nothing to mix. Change the drawing (or lift it with moved vertices) to get more shapes.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="71"/>
-        <source>{0}: the plan admits {1} non-planar liftings. Each slider adds one (smoothest first); every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -777,7 +772,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="176"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="184"/>
         <source>vertex {0}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -949,6 +944,16 @@
     <message>
         <location filename="../../workbench/facetwb/commands/lift.py" line="115"/>
         <source>{0} holds no plan to lift ({1}): correct the drawing or the plan&apos;s properties and recompute it first</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="73"/>
+        <source>{0}: besides tilting it as one plane, the plan admits one other shape of the roof with planar faces. The slider adds it; every face stays exactly planar.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="78"/>
+        <source>{0}: besides tilting it as one plane, the plan admits {1} other shapes of the roof with planar faces. Each slider adds one (smoothest first); every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

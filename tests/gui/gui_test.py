@@ -712,6 +712,15 @@ def check_lifting(check, out_dir):
           "the Shape lifting panel is open")
     if panel is not None:
         check(len(panel.sliders) == 1, f"one slider for dimension 4 ({len(panel.sliders)})")
+        # "the plan admits 1 non-planar liftings ...; every face stays exactly planar":
+        # liftings that are not one plane, read as faces that are not planar
+        from PySide import QtGui
+
+        intro = [w.text() for w in panel.form.findChildren(QtGui.QLabel)
+                 if "slider" in w.text()]
+        check(len(intro) == 1 and "non-planar" not in intro[0]
+              and "one other shape of the roof with planar faces" in intro[0],
+              f"the Shape lifting panel says what its sliders add ({intro})")
         # it fits the task pane: a one-line text made it 479 px wide in a 258 px pane,
         # with Cancel and the slider values off the screen
         from PySide import QtGui

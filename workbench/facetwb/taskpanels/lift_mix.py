@@ -67,9 +67,17 @@ class LiftMixPanel:
             intro.setText(translate(
                 "Facet", "{0}: this plan admits only planes: there is nothing to mix. Change "
                 "the drawing (or lift it with moved vertices) to get more shapes.").format(name))
+        elif int(obj.Dimension) == 4:
+            # ("the plan admits 1 non-planar liftings": liftings other than one plane, read
+            # as faces that are not planar beside "every face stays exactly planar")
+            intro.setText(translate(
+                "Facet", "{0}: besides tilting it as one plane, the plan admits one other "
+                "shape of the roof with planar faces. The slider adds it; every face stays "
+                "exactly planar.").format(name))
         else:
             intro.setText(translate(
-                "Facet", "{0}: the plan admits {1} non-planar liftings. Each slider adds one "
+                "Facet", "{0}: besides tilting it as one plane, the plan admits {1} "
+                "other shapes of the roof with planar faces. Each slider adds one "
                 "(smoothest first); every face stays exactly planar.").format(
                     name, int(obj.Dimension) - 3))
         # wrapped: on one line it made the panel 479 px wide, and the task pane (258 px)
