@@ -107,7 +107,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="190"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="199"/>
         <source>Surface to control mesh</source>
         <translation type="unfinished"></translation>
     </message>
@@ -117,17 +117,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="265"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="274"/>
         <source>Panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="304"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="313"/>
         <source>Cut sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="358"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="367"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
@@ -402,12 +402,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="315"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="324"/>
         <source>Choose the output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="323"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="332"/>
         <source>Folder for the cut files</source>
         <translation type="unfinished"></translation>
     </message>
@@ -652,17 +652,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="380"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="389"/>
         <source>Points file (x, y, z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="394"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="403"/>
         <source>Choose the points file</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="421"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="430"/>
         <source>Target heights</source>
         <translation type="unfinished"></translation>
     </message>
@@ -672,7 +672,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="383"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="392"/>
         <source>Pinned heights (pick vertices)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -954,6 +954,11 @@
     <message>
         <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="78"/>
         <source>{0}: besides tilting it as one plane, the plan admits {1} other shapes of the roof with planar faces. Each slider adds one (smoothest first); every face stays exactly planar.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="95"/>
+        <source>In error: {0}. Correct it and recompute it first.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -236,6 +236,7 @@ def run(out_dir):
     check_lifting(check, out_dir)
     check_lift_from_file(check, out_dir)
     check_lift_failed_plan(check)
+    check_panels_from_failed_lifting(check)
     check_lift_mix_states(check, out_dir)
     import pins_checks
 
@@ -1031,6 +1032,42 @@ def check_lift_failed_plan(check):
     check(derive_panels.active is None and not Gui.Control.activeDialog()
           and len(lines) == 1 and "has a hole" in lines[0] and "Traceback" not in said,
           f"Lift plan on the failed plan says why, no panel, no traceback ({said.strip()!r})")
+    Gui.Selection.clearSelection()
+    App.closeDocument(doc.Name)
+
+
+def check_panels_from_failed_lifting(check):
+    """Panels on a Lifting in error (its pin near no plan vertex) is refused in its panel,
+    naming the Lifting: it made an empty PanelSet and said "0 panels"."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+
+    import facetwb
+    from facetwb.taskpanels import derive_panels, forms
+
+    doc = App.newDocument("FailedLifting")
+    plan = facetwb.make_plan_graph(doc=doc, file=os.path.join(ROOT, "examples", "roof_plan.dxf"))
+    doc.recompute()
+    lifting = facetwb.make_lifting(plan, pins=[(123.0, 456.0, 3000.0)])
+    doc.recompute()
+    check(plan.isValid() and not lifting.isValid(), "a Lifting whose pin is at no vertex fails")
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(lifting)
+    names = [o.Name for o in doc.Objects]
+    Gui.runCommand("Facet_PanelSet")
+    Gui.updateGui()
+    panel = derive_panels.active
+    if check(panel is not None, "Panels opens on it"):
+        refused = panel.accept() is False
+        # (accepted, the panel is closed and its form gone)
+        message = forms.widget(panel.form, "message").text() if refused else ""
+        check(refused and [o.Name for o in doc.Objects] == names
+              and lifting.Label in message and "in error" in message.lower(),
+              f"Panels on the failed Lifting is refused, nothing added ({message!r}, "
+              f"{[o.Label for o in doc.Objects]})")
+        if derive_panels.active is panel:
+            panel.reject()
+    Gui.updateGui()
     Gui.Selection.clearSelection()
     App.closeDocument(doc.Name)
 

@@ -87,6 +87,15 @@ class DerivePanel:
     def accept(self):
         if not self.read():
             return False
+        # a source in error (a Lifting whose pins missed its plan): FreeCAD does not
+        # recompute what is made from it, and Panels made an empty PanelSet reported as
+        # "0 panels", Cut sheets "0 sheets ... written to"
+        broken = [obj for obj in self.sources if obj is not None and not obj.isValid()]
+        if broken:
+            self.show_message(progress.translate(
+                "Facet", "In error: {0}. Correct it and recompute it first.").format(
+                    failure(broken[0])))
+            return False
         doc = self.doc
         before = set(doc.Objects)
         shown = {obj.Name: obj.ViewObject.Visibility for obj in before
