@@ -53,7 +53,8 @@ class Lifting(PolyMesh):
                             "the roof follows by the vertex's fundamental lifting")
         compat.add_property(obj, "App::PropertyLength", "Snap", "Lift",
                             "Largest plan distance from a pinned or CSV point to its vertex "
-                            "(0: 1e-6 of the plan's size)")
+                            "(0: the plan graph's Snap if it has one, else 1e-6 of the plan's "
+                            "size)")
         read_only = compat.EDITOR_READ_ONLY
         output = compat.PROP_OUTPUT
         for kind, name, doc in (
@@ -97,10 +98,10 @@ class Lifting(PolyMesh):
             return targets_from_mesh(plan, surface, source=obj.Targets.Label,
                                      progress=progress.hook())
         if obj.TargetFile:
-            return read_targets(plan, obj.TargetFile, tolerance=obj.Snap.Value or None,
+            return read_targets(plan, obj.TargetFile, tolerance=_snap(obj) or None,
                                 notes=notes, progress=progress.hook())
         if obj.PinnedPoints:
-            tolerance = match_tolerance(plan, obj.Snap.Value)
+            tolerance = match_tolerance(plan, _snap(obj))
             points = [(p.x, p.y, p.z) for p in obj.PinnedPoints]
             targets, weights = targets_from_points(plan, points, tolerance=tolerance)
             found = int(np.count_nonzero(weights == 1.0))
@@ -145,7 +146,7 @@ class Lifting(PolyMesh):
         asked height at that vertex (every fundamental lifting is a lifting: faces stay
         planar)."""
         xy = plan.vertices[:, :2]
-        tolerance = match_tolerance(plan, obj.Snap.Value)
+        tolerance = match_tolerance(plan, _snap(obj))
         heights = result.heights.copy()
         for drag in obj.Drags:
             distance = np.hypot(xy[:, 0] - drag.x, xy[:, 1] - drag.y)
@@ -224,6 +225,18 @@ class Lifting(PolyMesh):
 def pins_in_use(obj):
     """True when ``obj``'s PinnedPoints are its targets (no Targets, no TargetFile)."""
     return bool(obj.PinnedPoints) and obj.Targets is None and not obj.TargetFile
+
+
+def _snap(obj):
+    """The distance within which a pinned, CSV or drag point is at a plan vertex: the
+    Lifting's Snap, else its plan graph's (its vertices moved by up to that as their
+    endpoints were merged: pins typed at the drawn corners, 0.1 mm off the merged ones,
+    failed with "no target point lies within 0.021 of a plan vertex"), else 0 (the
+    default, 1e-6 of the plan's size)."""
+    if obj.Snap.Value > 0:
+        return obj.Snap.Value
+    snap = getattr(obj.Plan, "Snap", None)  # (a PlanGraph's)
+    return float(snap.Value) if snap is not None else 0.0
 
 
 def is_lifting(obj):
