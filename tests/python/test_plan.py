@@ -71,7 +71,10 @@ def test_crossings_split_duplicates_merged_dangling_listed():
 
 def test_snapping_closes_a_gap():
     gap = [((0, 0), (2, 0)), ((2, 0), (2, 2)), ((2, 2), (0, 2)), ((0, 2), (0, 1e-4))]
-    with pytest.raises(PlanError, match="no bounded face"):
+    # the message names where the outline is open (it said "4 dangling edges", no place)
+    with pytest.raises(PlanError, match=r"no bounded face \(4 dangling edges\); lines end "
+                       r"without meeting another at \(0, 0\) and \(0, 0\.0001\): close "
+                       r"the outline there"):
         plan_from_segments(gap, snap=1e-6)
     plan = plan_from_segments(gap, snap=1e-3)
     assert plan.n_faces == 1 and plan.snapped == 2

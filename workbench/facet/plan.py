@@ -829,10 +829,17 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
                 "mark the face around the hole as an opening"
             )
     if not kept:
+        # where: an outline left open ("4 dangling edges" named no place to close it)
+        ends = _free_ends(noded) if dangling else []
         raise PlanError(
             f"{where}the drawing has no bounded face"
             + (f" ({len(dangling)} dangling edges)" if dangling else "")
             + (f" besides {n_openings} openings" if n_openings else "")
+            + (f"; lines end without meeting another at "
+               f"{_and_list([point_text(p) for p in ends[:3]])}"
+               + (f" and {len(ends) - 3} more" if len(ends) > 3 else "")
+               + ": close the outline there (or give a snap distance that joins them)"
+               if ends else "")
         )
     # Vertices: the exact noded coordinates; faces counter-clockwise.
     index = {}
@@ -872,6 +879,21 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
     report(PLAN_STAGES)
     return PlanGraph(mesh, source=source, snap=snap, dangling=dangling, openings=n_openings,
                      snapped=snapped, warnings=warnings)
+
+
+def _free_ends(noded):
+    """The ends of the noded drawing's lines that meet no other line, in drawing order."""
+    count = {}
+    for line in getattr(noded, "geoms", [noded]):
+        coords = [tuple(c[:2]) for c in line.coords]
+        for p in (coords[0], coords[-1]):
+            count[p] = count.get(p, 0) + 1
+    return [p for p, n in count.items() if n == 1]
+
+
+def _and_list(items):
+    """'a', 'a and b', 'a, b and c'."""
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
 
 
 def _nearest_gap(noded, dangling, limit, report=None):
