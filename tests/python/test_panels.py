@@ -1562,6 +1562,33 @@ def test_step_job_writes_the_solids_in_a_worker_while_this_process_goes_on(tmp_p
     assert all(f"'{p.id}'" in text for p in ps.panels)  # each product named by its ID
 
 
+def test_step_job_takes_its_place_with_the_staged_files(tmp_path):
+    """Inside facet.io.files.staged (a run's files together, or none of them) the worker's
+    STEP file took its place as soon as it was waited for: a later failure in the block
+    left a new panels.step beside the last run's DXF and schedule. It now takes its place
+    when the block ends well, and a failure removes it, leaving the old file."""
+    from facet.io.files import staged
+
+    step = freecad_step()
+    ps = panels(translational(nu=3, nv=2, step=400.0), 18.0, edge="bisector", gap=4)
+    path = tmp_path / "p.step"
+    path.write_text("the last run's")
+    with pytest.raises(RuntimeError, match="a later file failed"):
+        with staged():
+            job = step.start_step(path, ps)
+            assert job.in_worker
+            job.wait()
+            assert path.read_text() == "the last run's"  # not yet in place
+            raise RuntimeError("a later file failed")
+    assert path.read_text() == "the last run's"
+    assert os.listdir(tmp_path) == ["p.step"]  # the worker's file removed
+    with staged():
+        step.start_step(path, ps).wait()
+        assert path.read_text() == "the last run's"
+    assert "ISO-10303-21" in path.read_text()
+    assert os.listdir(tmp_path) == ["p.step"]
+
+
 def _step_root(path):
     """The STEP file's top assembly: the product no other one holds (its
     NEXT_ASSEMBLY_USAGE_OCCURRENCEs' relating definitions name it)."""

@@ -547,8 +547,12 @@ class StepJob:
         if result[0] != "ok":
             self._cleanup()
         if result[0] == "ok":
+            from facet.io.files import put_in_place
+
             self.seconds = result[1]
-            os.replace(self._tmp, self.path)
+            # (inside facet.io.files.staged, with the run's other files: before, it took
+            # its place at once, beside the files of the last run if a later one failed)
+            put_in_place(self._tmp, self.path)
             if progress is not None:
                 progress(1, 1)
             return self.path

@@ -28,6 +28,7 @@ __all__ = [
     "write_replacing",
     "staged",
     "when_staged",
+    "put_in_place",
     "format_float",
     "reading_progress",
     "PROGRESS_EVERY",
@@ -277,6 +278,17 @@ def write_replacing(path, write, suffix=""):
         except OSError:
             pass
         raise
+
+
+def put_in_place(partial, path):
+    """Move the finished file ``partial`` (written beside ``path`` by someone else, e.g. a
+    worker process) to ``path``: now, or inside :func:`staged` when its files take their
+    places (after an error there, ``partial`` is removed and ``path`` is as it was)."""
+    partial, path = os.fspath(partial), os.fspath(path)
+    if getattr(_local, "depth", 0):
+        _stage().append((partial, path))
+    else:
+        _put_in_place(partial, path)
 
 
 def _put_in_place(partial, path):
