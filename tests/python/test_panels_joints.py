@@ -345,6 +345,25 @@ def test_a_failed_joint_reads_as_one_sentence():
         text), text
 
 
+def test_a_failed_joint_whose_other_face_lacks_the_edge_is_not_explained():
+    """The explanation reads the edge on both faces the core names: where the second does
+    not hold it (a pinched face), it raised KeyError instead of leaving the core's
+    message as it is (review)."""
+    from types import SimpleNamespace
+
+    from facet.panels import _failed_joint_message
+
+    mesh = _stub()
+    f = 1
+    ring = set(int(v) for v in mesh.face_vertices[mesh.face_start[f]:mesh.face_start[f + 1]])
+    h = next(g for g in range(mesh.n_faces) if g != f and not ring & set(
+        int(v) for v in mesh.face_vertices[mesh.face_start[g]:mesh.face_start[g + 1]]))
+    vertex = int(mesh.face_vertices[mesh.face_start[f]])
+    exc = SimpleNamespace(joint_faces=(f, h), vertex=vertex, joint_overlap=1.0)
+    assert _failed_joint_message(exc, mesh, {}, 10.0, str, None, None, 0.0, None, {},
+                                 "") is None
+
+
 def test_option_errors_name_the_length_unit():
     """A length option out of range is followed by the model's unit ("not 0.0" was bare),
     in facet.panels and in the core; a number that is not finite, or not a length, is

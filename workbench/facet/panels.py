@@ -409,6 +409,8 @@ def _failed_joint_message(exc, mesh, options, gap, length, progress, rebuild, mi
         return None
     c = corners[0]
     other = int(fv[c + 1] if c + 1 < start[f + 1] else fv[start[f]])
+    if not {vertex, other} <= {int(v) for v in fv[start[h]:start[h + 1]]}:
+        return None  # (the other face does not hold that edge: no joint to explain)
     points = np.asarray(mesh.vertices)
     edge = float(np.linalg.norm(points[other] - points[vertex]))
     parts, why, normals = [], [], []
