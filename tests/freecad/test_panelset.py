@@ -841,6 +841,8 @@ class TestPanelSet(DocumentTestCase):
         ps_obj = facetwb.make_panelset(source, thickness=T)
         out = os.path.join(self.tmp.name, "undo")
         sheets = facetwb.make_cutsheets(ps_obj, sheet=(2600.0, 1400.0), output_dir=out)
+        # no files, but a layout (Shape, SheetCount) of the panels all the same
+        unwritten = facetwb.make_cutsheets(ps_obj, sheet=(2600.0, 1400.0))
         doc.recompute()
 
         def areas():
@@ -860,10 +862,13 @@ class TestPanelSet(DocumentTestCase):
             for step in (doc.undo, doc.redo, doc.undo):
                 step()
                 self.assertIn("Touched", sheets.State, (prop, step.__name__))
+                if obj is ps_obj:
+                    self.assertIn("Touched", unwritten.State, (prop, step.__name__))
             self.assertEqual(getattr(obj, prop), old)
             self.assertEqual(changed_since(out, before), [])  # (nothing written on undo)
             doc.recompute()
-            self.assertEqual((ps_obj.State, sheets.State), (["Up-to-date"], ["Up-to-date"]))
+            self.assertEqual((ps_obj.State, sheets.State, unwritten.State),
+                             (["Up-to-date"], ["Up-to-date"], ["Up-to-date"]))
             self.assertIn("sheets.dxf", changed_since(out, before))
             np.testing.assert_allclose(areas(), list(ps_obj.Areas), rtol=1e-12)
         # nothing upstream marked: nothing more is
@@ -871,7 +876,8 @@ class TestPanelSet(DocumentTestCase):
         sheets.Label = "renamed"
         doc.commitTransaction()
         doc.undo()
-        self.assertEqual((ps_obj.State, sheets.State), (["Up-to-date"], ["Up-to-date"]))
+        self.assertEqual((ps_obj.State, sheets.State, unwritten.State),
+                         (["Up-to-date"], ["Up-to-date"], ["Up-to-date"]))
 
     def test_z_save_reopen(self):
         ids = list(self.square.PartIds)

@@ -618,13 +618,14 @@ def _layout(result, drawings):
 
 
 def mark_stale_after_undo(doc):
-    """After an undo or redo in ``doc``: mark for recompute each CutSheets that has written
-    files (``Files``) when anything it is made from (its PanelSet, the PanelSet's mesh and
-    what that is made from) is marked. FreeCAD marks the objects whose properties the undo
-    put back, not what is made from them: undoing a PanelSet's Gap left its CutSheets shown
-    up to date, its Files those of the Gap undone, until the next recompute."""
+    """After an undo or redo in ``doc``: mark for recompute each CutSheets when anything it
+    is made from (its PanelSet, the PanelSet's mesh and what that is made from) is marked.
+    FreeCAD marks the objects whose properties the undo put back, not what is made from
+    them: undoing a PanelSet's Gap left its CutSheets shown up to date, their Files (and,
+    without an OutputDir, their layout Shape and sheet counts) those of the Gap undone,
+    until the next recompute."""
     for obj in doc.Objects:
-        if (is_cutsheets(obj) and obj.Files and "Touched" not in obj.State
+        if (is_cutsheets(obj) and "Touched" not in obj.State
                 and any("Touched" in o.State for o in obj.OutListRecursive)):
             obj.touch()
 
