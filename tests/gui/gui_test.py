@@ -241,6 +241,9 @@ def run(out_dir):
     import pins_checks
 
     pins_checks.run(check, out_dir, sys.modules[__name__])
+    import lift_look_checks
+
+    lift_look_checks.run(check, out_dir, sys.modules[__name__])
     check_panels(check, out_dir)
     check_panel_clashes(check, out_dir)
     check_edit_control(check, out_dir)

@@ -31,6 +31,10 @@ class ViewProviderLifting(EditsInPanel, ViewProviderPolyMesh):
     TYPE = "Facet::ViewProviderLifting"
     ICON = "Facet_Lifting"
     DEFAULT_DISPLAY_MODE = "Flat Lines"
+    #: A roof is seen from above, where the headlight lit the slopes of one pitch alike:
+    #: a light from above the -x, -y corner (as the sun from the south-west) shades each
+    #: slope by the way it faces.
+    KEY_LIGHT = ((0.35, 0.6, -0.72), 0.4)
 
     def init_properties(self, vobj):
         super().init_properties(vobj)

@@ -6,7 +6,10 @@ Scene graph (nodes are shared between the display modes)::
     SoCoordinate3               all vertices
     SoShapeHints                UNKNOWN_FACE_TYPE: faces may be non-convex polygons, which
                                 Coin triangulates; two-sided lighting; flat shading
-    SoIndexedFaceSet            one polygon per face
+    SoSeparator                 (Flat Lines and Shaded)
+      SoDirectionalLight        the key light (KEY_LIGHT; off when None)
+      SoMaterial                ShapeColor
+      SoIndexedFaceSet          one polygon per face
     SoIndexedLineSet            each edge once
 
 Display modes:
@@ -52,6 +55,14 @@ class ViewProviderPolyMesh:
     TYPE = "Facet::ViewProviderPolyMesh"
     ICON = "Facet_PolyMesh"
     DEFAULT_DISPLAY_MODE = "Flat Lines"
+    #: A light fixed in the model that shades the faces in Flat Lines and Shaded besides
+    #: FreeCAD's headlight: (direction it travels in the model, share of the light), or
+    #: None. The headlight shines along the line of sight: in an isometric view, faces as
+    #: steep as each other facing -y and +x (a roof of one pitch) were lit alike, one flat
+    #: grey, and the form did not read. The faces take ``1 - share`` of the headlight
+    #: (ShapeColor scaled) and ``share`` of the key light: lit head-on by both, they show
+    #: ShapeColor, never brighter (washed out to white).
+    KEY_LIGHT = None
 
     def __init__(self, vobj):
         self.Type = self.TYPE
@@ -97,6 +108,18 @@ class ViewProviderPolyMesh:
         offset = coin.SoPolygonOffset()  # faces slightly back, so their edges show
 
         self.face_material = coin.SoMaterial()
+        # the key light in a separator with the faces: it lights them alone, not the edges,
+        # markers or other objects drawn after them
+        self.key_light = coin.SoDirectionalLight()
+        if self.KEY_LIGHT is None:
+            self.key_light.on = False
+        else:
+            direction, share = self.KEY_LIGHT
+            self.key_light.direction.setValue(*direction)
+            self.key_light.intensity = share / (1.0 - share)
+        lit_faces = coin.SoSeparator()
+        for node in (self.key_light, self.face_material, self.faces):
+            lit_faces.addChild(node)
         self.planarity_material = coin.SoMaterial()
         per_face = coin.SoMaterialBinding()
         per_face.value = coin.SoMaterialBinding.PER_FACE
@@ -114,9 +137,8 @@ class ViewProviderPolyMesh:
         self.planarity_edges.addChild(edge_group)
 
         layouts = {
-            "Flat Lines": (self.coords, hints, offset, self.face_material, self.faces,
-                           edge_group),
-            "Shaded": (self.coords, hints, self.face_material, self.faces),
+            "Flat Lines": (self.coords, hints, offset, lit_faces, edge_group),
+            "Shaded": (self.coords, hints, lit_faces),
             "Wireframe": (self.coords, edge_group),
             "Planarity": (self.coords, hints, offset, per_face, self.planarity_material,
                           self.faces, self.planarity_edges, self.legend.root),
@@ -163,7 +185,9 @@ class ViewProviderPolyMesh:
         if not hasattr(self, "coords"):
             return
         if prop == "ShapeColor":
-            self.face_material.diffuseColor.setValue(*vobj.ShapeColor[:3])
+            share = self.KEY_LIGHT[1] if self.KEY_LIGHT is not None else 0.0
+            self.face_material.diffuseColor.setValue(
+                *[c * (1.0 - share) for c in vobj.ShapeColor[:3]])
         elif prop == "LineColor":
             self.line_material.diffuseColor.setValue(*vobj.LineColor[:3])
         elif prop == "LineWidth":
