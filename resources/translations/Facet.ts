@@ -522,27 +522,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="94"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="100"/>
         <source>Lifting {0}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="101"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="107"/>
         <source>Height of this lifting at its peak; the faces stay planar</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="112"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="118"/>
         <source>Raise vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="114"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="120"/>
         <source>The plan vertex to raise or lower</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="128"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="134"/>
         <source>How far the vertex moves; the rest of the roof follows, every face planar</source>
         <translation type="unfinished"></translation>
     </message>
@@ -642,7 +642,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="253"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="266"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
@@ -772,7 +772,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="184"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="191"/>
         <source>vertex {0}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -959,6 +959,26 @@
     <message>
         <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="95"/>
         <source>In error: {0}. Correct it and recompute it first.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="326"/>
+        <source>The roof is in error: no distance from its targets.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="328"/>
+        <source>Roof to its pins (the markers): {0} at most (vertex {1}), {2} RMS.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="331"/>
+        <source>Roof to its targets: {0} at most (vertex {1}), {2} RMS.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="332"/>
+        <source>With every slider at 0 and no vertex raised the roof is closest to them.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -2,6 +2,8 @@
 """GUI checks of how a lifted roof reads (called by gui_test.py; ``g`` is the gui_test
 module, for its screenshot helpers).
 
+- Shape lifting: a line under the intro says how far the roof is from its pins (largest,
+  where, RMS, in model units) and follows the sliders (taskpanel_lifting_mix_distance.png).
 - Shading: the hipped roof of pins_checks (all four slopes of one pitch) in its default look
   (Flat Lines), isometric: under FreeCAD's headlight alone, which shines along the line of
   sight, the slopes facing -y and +x were one flat grey (lifting_shading.png); each slope is
@@ -99,5 +101,68 @@ def check_shading(check, out_dir, g):
         App.closeDocument(doc.Name)
 
 
+def pinned_roof(doc):
+    """The hipped roof of pins_checks lifted to its pins: eaves 2.5 m, ridge 4.5 m."""
+    import facetwb
+    import pins_checks
+
+    plan = pins_checks.hipped_plan(doc)
+    pinned = [(x, y, 2500.0) for x, y in pins_checks.CORNERS] + \
+        [(x, y, 4500.0) for x, y in pins_checks.RIDGE]
+    lifting = facetwb.make_lifting(plan, pins=pinned)
+    doc.recompute()
+    settle()
+    return lifting
+
+
+def check_mix_distance(check, out_dir, g):
+    """Shape lifting says how far the sliders take the roof from its pins (the markers stay
+    at the pinned heights), in mm, as they move."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+
+    import ui_checks
+    from facetwb.taskpanels import forms, lift_mix
+
+    doc = App.newDocument("MixDistance")
+    try:
+        lifting = pinned_roof(doc)
+        if not check(lift_mix.edit(lifting), "mix distance: the Shape lifting panel opens"):
+            return
+        settle()
+        panel = lift_mix.active
+        try:
+            label = forms.widget(panel.form, "distance")
+        except KeyError:
+            label = None
+        text = label.text() if label is not None else ""
+        zero = App.Units.Quantity(0.0, App.Units.Length).UserString
+        check(label is not None and label.isVisible() and "pins" in text
+              and f"{zero} at most" in text,
+              f"mix distance: the panel says the roof meets its pins ({text!r})")
+        panel.sliders[0].setValue(40)
+        settle()
+        text = label.text() if label is not None else ""
+        far = lifting.TargetMax
+        check(far.Value > 100.0 and far.UserString in text
+              and f"vertex {lifting.TargetMaxVertex}" in text
+              and lifting.TargetRms.UserString in text,
+              f"mix distance: moved by a slider, the roof is {far.UserString} from its pins, "
+              f"and the panel says so ({text!r})")
+        Gui.Selection.clearSelection()
+        view = Gui.ActiveDocument.ActiveView
+        view.viewIsometric()
+        view.fitAll()
+        settle()
+        ui_checks.window_shot(os.path.join(out_dir, "taskpanel_lifting_mix_distance.png"))
+        panel.reject()
+        settle()
+    finally:
+        if lift_mix.active is not None:
+            lift_mix.active.reject()
+        App.closeDocument(doc.Name)
+
+
 def run(check, out_dir, g):
     check_shading(check, out_dir, g)
+    check_mix_distance(check, out_dir, g)

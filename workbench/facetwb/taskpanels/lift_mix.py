@@ -84,6 +84,12 @@ class LiftMixPanel:
         # cut it and the value labels off (GUI review)
         intro.setWordWrap(True)
         layout.addWidget(intro)
+        # how far the roof is from its targets: the pin markers stay at the pinned heights
+        # while the sliders move the roof away from them, and nothing said how far
+        self.distance = QtGui.QLabel()
+        self.distance.setObjectName("distance")
+        self.distance.setWordWrap(True)
+        layout.addWidget(self.distance)
         self.sliders = []
         self.labels = []
         values = list(self.original) + [0.0] * self.count
@@ -145,6 +151,7 @@ class LiftMixPanel:
             self.marker.show_in(view)
         self.vertex_changed()
         self._show_values()
+        self._show_distance()
         # the Lifting and what is made from it that are up to date now: the sliders'
         # recomputes touch them, and Cancel, which puts the same roof back, leaves them so
         self.fresh = up_to_date([obj] + list(obj.InListRecursive))
@@ -193,6 +200,11 @@ class LiftMixPanel:
         self.drag.blockSignals(False)
         self._show_drag()
 
+    def _show_distance(self):
+        text = "" if self.failed is not None else target_distance_text(self.obj)
+        self.distance.setText(text)
+        self.distance.setVisible(bool(text))
+
     def _show_drag(self):
         value = self.drag.value() / STEPS * self.range
         self.drag_label.setText(App.Units.Quantity(value, App.Units.Length).UserString)
@@ -216,6 +228,7 @@ class LiftMixPanel:
         resolve_alone(self.obj, update=False)
         self._show_roof()
         self._mark_vertex()
+        self._show_distance()
         Gui.updateGui()
 
     def _show_roof(self):
@@ -302,6 +315,24 @@ def resolve_alone(obj, update=True):
         dependent.touch()
     if update:
         Gui.updateGui()
+
+
+def target_distance_text(obj):
+    """How far the roof ``obj`` is from its targets (pins, surface or points), as the Shape
+    lifting panel says it: largest distance, where, and RMS (or that it is in error)."""
+    from facetwb.objects.lifting import pins_in_use
+
+    if not obj.isValid():
+        return translate("Facet", "The roof is in error: no distance from its targets.")
+    if pins_in_use(obj):
+        text = translate("Facet", "Roof to its pins (the markers): {0} at most (vertex {1}), "
+                                  "{2} RMS.")
+    else:
+        text = translate("Facet", "Roof to its targets: {0} at most (vertex {1}), {2} RMS.")
+    return (text.format(obj.TargetMax.UserString, int(obj.TargetMaxVertex),
+                        obj.TargetRms.UserString) + " "
+            + translate("Facet", "With every slider at 0 and no vertex raised the roof is "
+                                 "closest to them."))
 
 
 def _not_lifted(obj):
