@@ -707,67 +707,67 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="85"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="90"/>
         <source>Pins (lengths in mm):</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="89"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="94"/>
         <source>The pins: the plan vertex, its x and y, and the height (double-click a height to edit it)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="100"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="105"/>
         <source>Remove pin</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="101"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="106"/>
         <source>Remove the pins selected in the table</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="139"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="143"/>
         <source>none</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="185"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="190"/>
         <source>Pinned {0} {1} at {2}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="185"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="190"/>
         <source>vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="185"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="190"/>
         <source>vertices</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="193"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="198"/>
         <source>Select the pins to remove in the table first</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="197"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="202"/>
         <source>Removed {0} pin(s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="204"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="209"/>
         <source>Height of pin {0}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="242"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="247"/>
         <source>{0}: click vertices of the roof or of its plan in the 3D view (Ctrl+click for more), type a height and press Pin selected vertices. The roof follows at once; the other vertices are free. OK keeps the pins in one undo step; Cancel puts the previous ones back.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="250"/>
+        <location filename="../../workbench/facetwb/taskpanels/lift_pins.py" line="255"/>
         <source>Pins are used only without other targets: the targets are now {0} (empty Targets and TargetFile to use the pins).</source>
         <translation type="unfinished"></translation>
     </message>

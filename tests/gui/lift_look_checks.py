@@ -4,6 +4,8 @@ module, for its screenshot helpers).
 
 - Shape lifting: a line under the intro says how far the roof is from its pins (largest,
   where, RMS, in model units) and follows the sliders (taskpanel_lifting_mix_distance.png).
+- Pins table: at the task pane's default width its cells read in full and a refusal
+  shows without scrolling (taskpanel_pins_table.png).
 - Shading: the hipped roof of pins_checks (all four slopes of one pitch) in its default look
   (Flat Lines), isometric: under FreeCAD's headlight alone, which shines along the line of
   sight, the slopes facing -y and +x were one flat grey (lifting_shading.png); each slope is
@@ -163,6 +165,100 @@ def check_mix_distance(check, out_dir, g):
         App.closeDocument(doc.Name)
 
 
+def grid_plan(doc):
+    """A plan of 2 x 2 panels 10 m x 8 m: nine vertices, x up to 20000 mm, y to 16000.17
+    (as drawn in metres, the Roof designer's)."""
+    import FreeCAD as App
+    import Part
+
+    import facetwb
+
+    sketch = doc.addObject("Sketcher::SketchObject", "GridPlan")
+    xs, ys = (0.0, 10000.0, 20000.0), (0.0, 8000.0 + 1 / 6, 16000.0 + 1 / 6)
+    for x in xs:
+        for a, b in zip(ys, ys[1:]):
+            sketch.addGeometry(Part.LineSegment(App.Vector(x, a, 0), App.Vector(x, b, 0)))
+    for y in ys:
+        for a, b in zip(xs, xs[1:]):
+            sketch.addGeometry(Part.LineSegment(App.Vector(a, y, 0), App.Vector(b, y, 0)))
+    plan = facetwb.make_plan_graph([sketch])
+    doc.recompute()
+    return plan
+
+
+def check_pins_table(check, out_dir, g):
+    """The Lift plan panel's pins table at the task pane's default width: a plan 20 m x
+    16 m (:func:`grid_plan`), its nine vertices pinned, a face refused: every cell reads in
+    full (y was cut to "160...") and the refusal shows without scrolling (it was below the
+    fold)."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+
+    import pins_checks
+    import ui_checks
+    from facetwb.compat import qt_gui
+    from facetwb.taskpanels import derive_panels, forms
+
+    QtGui = qt_gui()
+    doc = App.newDocument("PinsTable")
+    panel = None
+    try:
+        plan = grid_plan(doc)
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(plan)
+        Gui.runCommand("Facet_Lift")
+        settle()
+        panel = derive_panels.active
+        if not check(panel is not None and hasattr(panel, "pins"),
+                     "pins table: the Lift plan panel opens"):
+            return
+        combo = forms.widget(panel.form, "Target")
+        combo.setCurrentIndex(combo.count() - 1)
+        editor = panel.pins
+        middle = pins_checks.vertex_of(plan, (10000.0, 8000.0 + 1 / 6))
+        for vertices, height in (([v for v in range(len(plan.Points)) if v != middle], 3000.0),
+                                 ([middle], 7000.0)):
+            pins_checks.select(plan, [f"Vertex{v}" for v in vertices])
+            editor.height.setProperty("rawValue", height)
+            editor.pin_selection()
+        pins_checks.select(plan, ["Face0"])
+        refused = editor.pin_selection() is False
+        settle()
+        table = editor.table
+        metrics = table.fontMetrics()
+        cut = []
+        for row in range(table.rowCount()):
+            for column in range(table.columnCount()):
+                text = table.item(row, column).text()
+                # (Qt's cell margins: 3 px each side, and the grid line)
+                if metrics.boundingRect(text).width() + 8 > table.columnWidth(column):
+                    cut.append(text)
+        check(table.rowCount() == 9 and not cut,
+              f"pins table: every cell reads in full at the default width "
+              f"({table.viewport().width()} px; cut: {cut})")
+        area = editor.widget.parent()
+        while area is not None and not isinstance(area, QtGui.QScrollArea):
+            area = area.parent()
+        message = editor.message
+        top = message.mapTo(area.viewport(), message.rect().topLeft()).y() if area else -1
+        bottom = top + message.height()
+        check(refused and "is a face, not a vertex" in message.text() and area is not None
+              and 0 <= top and bottom <= area.viewport().height(),
+              f"pins table: the refusal shows without scrolling (rows {top}..{bottom} of "
+              f"{area.viewport().height() if area else '?'} px: {message.text()!r})")
+        view = Gui.ActiveDocument.ActiveView
+        view.viewTop()
+        view.fitAll()
+        settle()
+        ui_checks.window_shot(os.path.join(out_dir, "taskpanel_pins_table.png"))
+    finally:
+        if derive_panels.active is not None:
+            derive_panels.active.reject()
+            settle()
+        App.closeDocument(doc.Name)
+
+
 def run(check, out_dir, g):
     check_shading(check, out_dir, g)
     check_mix_distance(check, out_dir, g)
+    check_pins_table(check, out_dir, g)

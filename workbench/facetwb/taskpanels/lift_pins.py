@@ -80,10 +80,15 @@ class PinEditor:
             "Facet", "Pin the vertices selected in the 3D view (click near a corner of the "
             "plan or of the roof; Ctrl+click for more) at the height"))
         layout.addWidget(self.pin_button, 1, 0, 1, 2)
+        # what Pin selected vertices did or why it refused, right under it: under the table
+        # it was below the task pane's fold
+        self.message = QtGui.QLabel()
+        self.message.setWordWrap(True)
+        layout.addWidget(self.message, 2, 0, 1, 2)
         # the unit above the table: in each header ("Height (mm)") the task pane's narrow
         # table cut them off
         caption = QtGui.QLabel(translate("Facet", "Pins (lengths in mm):"))
-        layout.addWidget(caption, 2, 0, 1, 2)
+        layout.addWidget(caption, 3, 0, 1, 2)
         self.table = QtGui.QTableWidget(0, len(self.COLUMNS))
         self.table.setHorizontalHeaderLabels([translate("Facet", c) for c in self.COLUMNS])
         self.table.setToolTip(translate(
@@ -96,14 +101,11 @@ class PinEditor:
         header.setSectionResizeMode(0, QtGui.QHeaderView.ResizeToContents)
         self.table.verticalHeader().setDefaultSectionSize(self.table.fontMetrics().height() + 6)
         self.table.setMinimumHeight(120)
-        layout.addWidget(self.table, 3, 0, 1, 2)
+        layout.addWidget(self.table, 4, 0, 1, 2)
         self.remove_button = QtGui.QPushButton(translate("Facet", "Remove pin"))
         self.remove_button.setToolTip(translate("Facet", "Remove the pins selected in the "
                                                          "table"))
-        layout.addWidget(self.remove_button, 4, 0, 1, 2)
-        self.message = QtGui.QLabel()
-        self.message.setWordWrap(True)
-        layout.addWidget(self.message, 5, 0, 1, 2)
+        layout.addWidget(self.remove_button, 5, 0, 1, 2)
         self.markers = None
         if preview:
             from facetwb.viewproviders.markers import Markers
@@ -136,10 +138,13 @@ class PinEditor:
         for row, ((x, y, z), vertex) in enumerate(zip(self.pins, self.vertices())):
             # in mm, the unit in the header: "2500.00 mm" in each cell of the task pane's
             # narrow table was cut to "250..."
+            # x and y to the mm, which tells the vertex: a plan drawn in metres has
+            # "16000.17", cut to "160..." (in full in the tooltip)
             texts = (str(vertex) if vertex >= 0 else translate("Facet", "none"),
-                     _mm(x), _mm(y), _mm(z))
+                     f"{x:.0f}", f"{y:.0f}", _mm(z))
             for column, text in enumerate(texts):
                 item = QtGui.QTableWidgetItem(text)
+                item.setToolTip(_mm((x, y, z)[column - 1]) if column else text)
                 flags = QtCore.Qt.ItemIsSelectable | QtCore.Qt.ItemIsEnabled
                 if column == 3:
                     flags |= QtCore.Qt.ItemIsEditable
