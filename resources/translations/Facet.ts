@@ -572,32 +572,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="791"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="792"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="794"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="795"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="795"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="796"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="796"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="797"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="797"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="798"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="798"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="799"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -612,7 +612,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="792"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="793"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,17 +622,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="783"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="784"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="757"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="758"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="763"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="764"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -927,17 +927,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="793"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="794"/>
         <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="770"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="771"/>
         <source>the PanelSet&apos;s MinEdge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="771"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="772"/>
         <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
@@ -979,6 +979,21 @@
     <message>
         <location filename="../../workbench/facetwb/taskpanels/lift_mix.py" line="332"/>
         <source>With every slider at 0 and no vertex raised the roof is closest to them.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/lifting.py" line="232"/>
+        <source>the Lifting&apos;s Snap</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/plangraph.py" line="124"/>
+        <source>the PlanGraph&apos;s Snap</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/plangraph.py" line="125"/>
+        <source>the PlanGraph&apos;s ArcTolerance</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -343,6 +343,38 @@ class TestPlanGraphSources(DocumentTestCase):
         want = 3000.0 + 0.1 * lifted[:, 0] - 0.2 * lifted[:, 1]
         self.assertLess(np.abs(lifted[:, 2] - want).max(), 1e-6)
 
+    def test_a_dangling_edge_is_said_in_mm_with_the_plangraphs_snap(self):
+        # a ridge drawn to miss the outline bounds no face: the PlanGraph was valid with
+        # DanglingEdges 1, no warning, the ridge not drawn; an arc was named by its handle
+        # alone ("ARC 31 is curved"); both in mm and the PlanGraph's terms now
+        import ezdxf
+
+        document = ezdxf.new()
+        document.units = 6
+        document.layers.add("RIDGE")
+        space = document.modelspace()
+        space.add_lwpolyline([(0, 0), (9, 0), (9, 6), (0, 6)], close=True)
+        space.add_line((2, 3), (7, 3), dxfattribs={"layer": "RIDGE"})
+        path = os.path.join(self.tmp.name, "ridge.dxf")
+        document.saveas(path)
+        plan = facetwb.make_plan_graph(file=path, doc=self.doc)
+        self.doc.recompute()
+        self.assertTrue(plan.isValid(), plan.getStatusString())
+        self.assertEqual(plan.DanglingEdges, 1)
+        self.assertEqual(list(plan.Warnings)[1:], [
+            "1 dangling edge bounds no face and was dropped, not part of the plan: from "
+            "(2000, 3000) to (7000, 3000) mm: extend or join it to the lines it should meet, "
+            "or give a larger snap distance (the PlanGraph's Snap) that joins its ends to "
+            "them"])
+        arc = space.add_arc((4.5, 6), 4.5, 0, 180, dxfattribs={"layer": "RIDGE"})
+        document.saveas(path)
+        plan.touch()
+        self.doc.recompute()
+        self.assertFalse(plan.isValid())
+        self.assertIn(f"ARC {arc.dxf.handle} on layer RIDGE from (9000, 6000) to (0, 6000) "
+                      "mm is curved: give an arc tolerance (the PlanGraph's ArcTolerance)",
+                      plan.getStatusString())
+
     def test_file_units_name_the_drawings_unit_and_old_documents_keep_their_plan(self):
         # a plan table in metres (a table has no unit) was read as millimetres with no way
         # to say otherwise but to rescale the file; a DXF whose $INSUNITS is wrong, the
@@ -416,9 +448,12 @@ class TestPlanGraphSources(DocumentTestCase):
         self.doc.recompute()
         self.assertTrue(lifting.isValid(), lifting.getStatusString())
         self.assertEqual(len(lifting.Warnings), 1, lifting.Warnings)
+        # (in mm, named as the Lifting's Snap: "the match distance 0.021" had no unit)
         self.assertTrue(lifting.Warnings[0].startswith(
             f"{path}: 2 of the 3 target points lie farther than the match distance"),
             lifting.Warnings)
+        self.assertRegex(lifting.Warnings[0], r"match distance [0-9.e-]+ mm \(the Lifting's "
+                         r"Snap\) from every plan vertex")
         self.assertIn("1 of the 6 plan vertices has a target height", lifting.Warnings[0])
 
     def test_pins_at_the_drawn_corners_of_a_snapped_plan(self):
@@ -458,7 +493,7 @@ class TestPlanGraphSources(DocumentTestCase):
                                                    (0, 6000, 3600)])
         self.doc.recompute()
         self.assertTrue(lifting.isValid(), lifting.getStatusString())
-        expected = facet.lift(facet.read_plan(path), np.zeros(16)).warnings
+        expected = facet.lift(facet.read_plan(path, units="mm"), np.zeros(16)).warnings
         self.assertEqual(len(expected), 2, expected)  # unjoined vertices, 4 pieces
         self.assertEqual(list(lifting.Warnings), expected)
         from facetwb.objects.lifting import lifting_summary

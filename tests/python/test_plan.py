@@ -370,7 +370,7 @@ def test_dxf_layers_that_are_off_or_frozen_are_not_read(facet_command, tmp_path)
         layer.on(), layer.thaw()
     document.saveas(tmp_path / "shown.dxf")
     shown = read_plan(tmp_path / "shown.dxf")
-    assert shown.n_faces > 2 and not shown.warnings
+    assert shown.n_faces > 2 and [w for w in shown.warnings if "left out" in w] == []
 
 
 def test_dxf_block_arrays_and_spline_fit_polylines_are_read_as_drawn(tmp_path):
@@ -405,7 +405,7 @@ def test_dxf_messages_name_an_entity_of_a_block_by_its_block_and_insert(tmp_path
     insert = document.modelspace().add_blockref("ROUND", (0, 0))
     document.saveas(tmp_path / "round.dxf")
     with pytest.raises(PlanError, match=rf"LWPOLYLINE in block ROUND of INSERT "
-                       rf"{insert.dxf.handle} has arc segments"):
+                       rf"{insert.dxf.handle} on layer 0 at \(0, 0\) m has arc segments"):
         read_plan(tmp_path / "round.dxf")
 
 
@@ -419,8 +419,8 @@ def test_a_snap_distance_that_chains_endpoints_is_refused():
     segments += [((10000.0, 0.0), (10000.0, 6000.0)), ((10000.0, 6000.0), (0.0, 6000.0)),
                  ((0.0, 6000.0), (0.0, 0.0)), ((5000.0, -300.0), (5000.0, 6000.0))]
     assert plan_from_segments(segments, snap=10.0).n_faces == 2
-    with pytest.raises(PlanError, match=r"the snap distance 25 joins 502 endpoints in a chain "
-                       r"10000 wide, from \(0, 0\) to \(10000, "):
+    with pytest.raises(PlanError, match=r"the snap distance 25 \(snap\) joins 502 endpoints in a "
+                       r"chain 10000 wide, from \(0, 0\) to \(10000, "):
         plan_from_segments(segments, snap=25.0)
     # endpoints scattered about a node within the snap distance are one vertex, as before
     node = [((0.0, 0.0), (10.0, 0.0)), ((10.4, 0.3), (10.0, 10.0)), ((9.7, 10.2), (0.0, 10.0)),
@@ -433,13 +433,14 @@ def test_dxf_entities_flagged_invisible_are_not_read():
     import ezdxf
     from ezdxf import path as ezpath
 
-    from facet.plan import _dxf_model_segments
+    from facet.plan import _dxf_model_segments, _DxfReader
 
     document = ezdxf.new()
     document.modelspace().add_line((0, 0), (1, 0))
     document.modelspace().add_line((0, 1), (1, 1), dxfattribs={"invisible": 1})
     notes = []
-    segments = _dxf_model_segments("plan.dxf", document, None, ezpath, notes)
+    reader = _DxfReader("plan.dxf", document, None, ezpath)
+    segments = _dxf_model_segments(reader, document, notes)
     assert segments == [((0.0, 0.0), (1.0, 0.0))]
     assert notes == ["left out 1 entity flagged invisible: make the entity visible to read "
                      "what is drawn there"]
@@ -464,7 +465,8 @@ def test_dxf_with_everything_hidden_says_so(tmp_path):
     (-1.0, "the arc tolerance must be a finite number > 0, not -1.0"),
     (float("nan"), "the arc tolerance must be a finite number > 0, not nan"),
     # millions of segments: ten minutes and 6 GB before it was stopped
-    (1e-9, "ARC .*: the arc tolerance 1e-09 would split it into more than 2000 straight"),
+    (1e-9, "ARC .*: the arc tolerance 1e-09 m \\(arc_tolerance\\) would split it into more "
+     "than 2000 straight"),
 ])
 def test_arc_tolerance_is_checked(tmp_path, tolerance, says):
     # a bad tolerance was reported as "a malformed entity", blaming the drawing
@@ -721,9 +723,10 @@ def test_target_points_that_reach_no_vertex_are_refused_by_line(tmp_path):
     table = tmp_path / "heights.csv"
     table.write_text("x,y,z\n" + "".join(f"{x:.4f},{y:.4f},20\n" for x, y in xy))
     with pytest.raises(InputError, match=r"heights.csv: 84 of the 121 target points lie "
-                       r"near a plan vertex but farther than the match distance 3.059\d*e-05; "
-                       r"the nearest of them, "
-                       r"line \d+ at \(512\d{3}\.\d+, 57\d{5}\.\d+\), .*--snap"):
+                       r"near a plan vertex but farther than the match distance 3.059\d*e-05 "
+                       r"\(tolerance\); the nearest of them, "
+                       r"line \d+ at \(512\d{3}\.\d+, 57\d{5}\.\d+\), .*give a larger "
+                       r"match distance"):
         read_targets(plan, table)
     targets, weights = read_targets(plan, table, tolerance=1e-4)
     assert np.all(weights == 1) and np.all(targets == 20)
@@ -1013,25 +1016,29 @@ def test_target_points_that_match_no_vertex_are_said(facet_command, tmp_path):
     notes = []
     targets, weights = read_targets(plan, points, notes=notes)
     assert np.count_nonzero(weights == 1) == 1
+    # (a table's plan is in its drawing's units; the match distance named as the caller's
+    # user sets it: --snap on the command line)
     assert notes == [f"{points}: 3 of the 4 target points lie farther than the match "
-                     "distance 0.012 from every plan vertex, left out (the nearest of "
-                     "them, line 4 at (0, 6), is 6 from vertex 3); 1 of the 6 plan vertices "
-                     "has a target height; the points span 12 and the plan 12000, 1000 "
+                     "distance 0.012 drawing units (tolerance) from every plan vertex, left "
+                     "out (the nearest of them, line 4 at (0, 6) drawing units, is 6 drawing "
+                     "units from vertex 3); 1 of the 6 plan vertices has a target height; the "
+                     "points span 12 drawing units and the plan 12000 drawing units, 1000 "
                      "times less: is the table in other units than the plan (metres for "
                      "millimetres)?"]
     out, report = tmp_path / "roof.obj", tmp_path / "r.json"
     done = facet_command("lift", plan_file, "-o", out, "--targets", points, "--report", report)
     assert done.returncode == 0, done.stderr
-    assert "warning       " + notes[0] in done.stdout
-    assert notes[0] in json.loads(report.read_text())["warnings"]
+    said = notes[0].replace("(tolerance)", "(--snap)")
+    assert "warning       " + said in done.stdout
+    assert said in json.loads(report.read_text())["warnings"]
     # points left out of a table as large as the plan (a survey denser than the plan):
-    # said, with no word of units
+    # said, with no word of other units
     points.write_text("x,y,z\n0,0,3.5\n12000,0,3.6\n0,6000,4.2\n12000,6000,3.3\n"
                       "3000,3000,4\n")
     notes = []
     read_targets(plan, points, notes=notes)
     assert len(notes) == 1 and "1 of the 5 target points" in notes[0]
-    assert "units" not in notes[0]
+    assert "other units" not in notes[0]
     # every point on a vertex: nothing said
     points.write_text("x,y,z\n0,0,3.5\n12000,0,3.6\n0,6000,4.2\n12000,6000,3.3\n")
     notes = []
@@ -1044,7 +1051,7 @@ def test_a_line_drawn_just_short_of_another_is_said(tmp_path):
     mm on this 12 x 6 m plan) bounds no face: it was dropped with the face it should have
     split, and the only trace was "1 dangling edges dropped". Now a warning says where,
     and the snap distance that joins it; an overhang past the outline (as far from it as
-    it is long) says nothing."""
+    it is long) names no gap."""
     document = ezdxf.new()
     space = document.modelspace()
     space.add_lwpolyline([(0, 0), (12000, 0), (12000, 6000), (0, 6000)], close=True)
@@ -1054,16 +1061,23 @@ def test_a_line_drawn_just_short_of_another_is_said(tmp_path):
     document.saveas(tmp_path / "gap.dxf")
     plan = read_plan(tmp_path / "gap.dxf")
     assert plan.n_faces == 3 and len(plan.dangling) == 3
+    # (ezdxf.new() draws in metres: $INSUNITS 6, read as drawn)
     assert plan.warnings == [
-        "an edge ends 1 short of another at (5999, 3000): it bounds no face and was dropped "
-        "(3 dangling edges in all), and a face there is lost if they should meet: a snap "
-        "distance above 1 joins them"]
+        "3 dangling edges bound no face and were dropped, not part of the plan: from "
+        "(6000, 6000) to (6000, 6050) m, from (6000, -50) to (6000, 0) m and from (0, 3000) "
+        "to (5999, 3000) m; an edge ends 1 m short of another at (5999, 3000) m, and a face "
+        "there is lost if they should meet: a snap distance (snap) above 1 m joins them"]
     assert read_plan(tmp_path / "gap.dxf", snap=1.5).n_faces == 4
     assert facet.lift(plan, np.zeros(plan.n_vertices)).warnings[0] == plan.warnings[0]
     space.add_line((5999, 3000), (6000, 3000))
     document.saveas(tmp_path / "closed.dxf")
     closed = read_plan(tmp_path / "closed.dxf")
-    assert closed.n_faces == 4 and len(closed.dangling) == 2 and closed.warnings == []
+    # the overhangs are dropped too, and said: no gap named
+    assert closed.n_faces == 4 and len(closed.dangling) == 2 and closed.warnings == [
+        "2 dangling edges bound no face and were dropped, not part of the plan: from "
+        "(6000, 6000) to (6000, 6050) m and from (6000, -50) to (6000, 0) m: extend or join "
+        "them to the lines they should meet, or give a larger snap distance (snap) that "
+        "joins their ends to them"]
 
 
 def test_the_search_for_lines_drawn_short_finds_the_nearest(monkeypatch):
@@ -1162,3 +1176,126 @@ def test_the_endpoint_search_tests_a_bounded_number_of_candidates_at_once(monkey
     np.testing.assert_array_equal(plan.mesh.face_vertices, whole.mesh.face_vertices)
     one_segment = 2 * n + 8  # (at most every endpoint; and the plan's vertices)
     assert sizes and max(sizes) <= 500 + one_segment, max(sizes)
+
+
+def test_a_dangling_edge_is_said_where_and_how_to_join_it(facet_command, tmp_path):
+    """A ridge drawn to miss the outline by more than the snap distance (and more than a
+    twentieth of its length: no gap found) bounds no face: it was dropped without a word,
+    DanglingEdges 1 the only trace. Now a warning names how many, their ends in the
+    drawing's unit and what joins them, in the caller's terms (--snap on the command
+    line), and `facet lift` prints it."""
+    document = ezdxf.new()  # ($INSUNITS 6: metres)
+    space = document.modelspace()
+    space.add_lwpolyline([(0, 0), (12, 0), (12, 6), (0, 6)], close=True)
+    space.add_line((3, 3), (9, 3))  # a ridge that meets nothing
+    document.saveas(tmp_path / "ridge.dxf")
+    plan = read_plan(tmp_path / "ridge.dxf")
+    assert plan.n_faces == 1 and len(plan.dangling) == 1 and plan.units == "m"
+    assert plan.warnings == [
+        "1 dangling edge bounds no face and was dropped, not part of the plan: from (3, 3) "
+        "to (9, 3) m: extend or join it to the lines it should meet, or give a larger snap "
+        "distance (snap) that joins its ends to them"]
+    # read in millimetres (as FreeCAD reads it), named as the PlanGraph's property
+    read = read_plan(tmp_path / "ridge.dxf", to_mm=True, units="mm",
+                     option_names={"snap": "the PlanGraph's Snap"})
+    assert read.warnings[-1].startswith("1 dangling edge bounds no face")
+    assert "from (3000, 3000) to (9000, 3000) mm" in read.warnings[-1]
+    assert "(the PlanGraph's Snap)" in read.warnings[-1]
+    done = facet_command("lift", tmp_path / "ridge.dxf", "-o", tmp_path / "roof.obj",
+                         "--pin", "0=0", "--pin", "1=0", "--pin", "2=1")
+    assert done.returncode == 0, done.stderr
+    assert ("warning       " + plan.warnings[0].replace("(snap)", "(--snap)")
+            in done.stdout), done.stdout
+    # more than three: the first three named, the rest counted
+    for k in range(4):
+        space.add_line((1 + k, 1), (1 + k, 2))
+    document.saveas(tmp_path / "stubs.dxf")
+    many = read_plan(tmp_path / "stubs.dxf").warnings
+    assert len(many) == 1 and many[0].startswith("5 dangling edges bound no face and were "
+                                                 "dropped") and " and 2 more: " in many[0]
+
+
+def test_plan_messages_name_the_unit_and_the_option(facet_command, tmp_path):
+    """Lengths in the plan's messages were bare numbers ("an edge ends 0.354 short ...",
+    "the snap distance 1 joins 19 endpoints ..."): they are in the unit the plan is read in
+    (a DXF's $INSUNITS on the command line, "drawing units" when it names none; mm when
+    scaled), and the advice names the option as the caller's user sets it."""
+    document = ezdxf.new()
+    document.header["$INSUNITS"] = 6  # metres
+    space = document.modelspace()
+    space.add_lwpolyline([(0, 0), (12, 0), (12, 6), (0, 6)], close=True)
+    space.add_line((6, 0), (6, 5.999))  # 1 mm short of the outline
+    document.saveas(tmp_path / "gap.dxf")
+    done = facet_command("lift", tmp_path / "gap.dxf", "-o", tmp_path / "roof.obj",
+                         "--pin", "0=0", "--pin", "1=0", "--pin", "2=1")
+    assert done.returncode == 0, done.stderr
+    assert ("an edge ends 0.001 m short of another at (6, 5.999) m, and a face there is lost "
+            "if they should meet: a snap distance (--snap) above 0.001 m joins them"
+            in done.stdout), done.stdout
+    read = read_plan(tmp_path / "gap.dxf", to_mm=True, units="mm",
+                     option_names={"snap": "the PlanGraph's Snap"})
+    assert ("an edge ends 1 mm short of another at (6000, 5999) mm, and a face there is lost "
+            "if they should meet: a snap distance (the PlanGraph's Snap) above 1 mm joins "
+            "them") in read.warnings[-1]
+    # a drawing that names no unit: its lengths in "drawing units"
+    document.header["$INSUNITS"] = 0
+    document.saveas(tmp_path / "plain.dxf")
+    assert read_plan(tmp_path / "plain.dxf").units == "drawing units"
+    with pytest.raises(PlanError, match=r"the snap distance 0.5 drawing units \(--snap\) "
+                       r"joins 4 endpoints in a chain 1.2 drawing units wide, from \(0, 0\) to "
+                       r"\(1.2, 0\) drawing units"):
+        read_plan(_chain_csv(tmp_path), snap=0.5, option_names={"snap": "--snap"})
+    # the match distance of target points, on the command line
+    table = tmp_path / "heights.csv"
+    table.write_text("x,y,z\n100,100,1\n")
+    done = facet_command("lift", tmp_path / "plain.dxf", "-o", tmp_path / "roof.obj",
+                         "--targets", table)
+    assert done.returncode == 2
+    assert "no target point lies within the match distance 1.2e-05 drawing units" in done.stderr
+    assert "units (--snap) of a plan vertex" in done.stderr, done.stderr
+
+
+def _chain_csv(tmp_path):
+    """A table whose four endpoints 0.4 apart chain across a snap distance of 0.5."""
+    path = tmp_path / "chain.csv"
+    path.write_text("0,0,0.4,0\n0.4,0,0.8,0\n0.8,0,1.2,0\n1.2,0,1.2,5\n1.2,5,0,5\n0,5,0,0\n")
+    return path
+
+
+def test_a_curve_refused_is_named_by_layer_and_place(tmp_path):
+    """"ARC 31 is curved" named the DXF's handle, which no designer can find: it names the
+    layer and where the curve is, in the unit the plan is read in (mm when scaled), and
+    the option that splits it."""
+    document = ezdxf.new()  # metres
+    space = document.modelspace()
+    document.layers.add("ROOF")
+    space.add_lwpolyline([(0, 0), (12, 0), (12, 6)], dxfattribs={"layer": "ROOF"})
+    arc = space.add_arc((6, 6), 6, 0, 180, dxfattribs={"layer": "ROOF"})
+    document.saveas(tmp_path / "canopy.dxf")
+    with pytest.raises(PlanError, match=rf"ARC {arc.dxf.handle} on layer ROOF from "
+                       r"\(12, 6\) to \(0, 6\) m is curved: give an arc tolerance "
+                       r"\(--arc-tolerance\)"):
+        read_plan(tmp_path / "canopy.dxf", option_names={"arc_tolerance": "--arc-tolerance"})
+    with pytest.raises(PlanError, match=r"on layer ROOF from \(12000, 6000\) to \(0, 6000\) "
+                       r"mm is curved: give an arc tolerance \(the PlanGraph's ArcTolerance\)"):
+        read_plan(tmp_path / "canopy.dxf", to_mm=True, units="mm",
+                  option_names={"arc_tolerance": "the PlanGraph's ArcTolerance"})
+    # a circle: around its centre; a polyline's arc segment: where it starts
+    space.add_circle((3, 3), 1, dxfattribs={"layer": "ROOF"})
+    arc.destroy()
+    document.saveas(tmp_path / "circle.dxf")
+    with pytest.raises(PlanError, match=r"CIRCLE \w+ on layer ROOF around \(3, 3\) m is "
+                       r"curved"):
+        read_plan(tmp_path / "circle.dxf")
+    # a tolerance too small names itself as given, in its unit
+    with pytest.raises(PlanError, match=r"the arc tolerance 1e-09 mm \(the PlanGraph's "
+                       r"ArcTolerance\) would split it"):
+        read_plan(tmp_path / "circle.dxf", to_mm=True, units="mm", arc_tolerance=1e-9,
+                  option_names={"arc_tolerance": "the PlanGraph's ArcTolerance"})
+    bulged = ezdxf.new()
+    bulged.modelspace().add_lwpolyline([(0, 0, 0), (4, 0, 0.5), (4, 4, 0)], format="xyb",
+                                       dxfattribs={"layer": "EAVES"})
+    bulged.saveas(tmp_path / "bulge.dxf")
+    with pytest.raises(PlanError, match=r"LWPOLYLINE \w+ on layer EAVES at \(4, 0\) m has arc "
+                       r"segments \(bulges\)"):
+        read_plan(tmp_path / "bulge.dxf")

@@ -25,6 +25,11 @@ import sys
 
 __all__ = ["add_commands"]
 
+#: How the plan's messages name the options they advise (facet.plan.OPTION_NAMES). Their
+#: lengths are in the drawing's own units (a DXF's $INSUNITS names them): the command line
+#: does not scale a plan.
+OPTION_NAMES = {"snap": "--snap", "arc_tolerance": "--arc-tolerance", "tolerance": "--snap"}
+
 
 def _plan_options(parser):
     parser.add_argument("plan", metavar="PLAN", help="plan drawing (.dxf, .csv/.tsv/.txt) or mesh "
@@ -66,7 +71,7 @@ def _read_plan(args, prefix):
     try:
         return read_plan(args.plan, snap=args.snap, arc_tolerance=args.arc_tolerance,
                          openings=[_point(p) for p in args.opening],
-                         progress=lambda done, total: line.steps(
+                         option_names=OPTION_NAMES, progress=lambda done, total: line.steps(
                              done // PLAN_STEPS, PLAN_STAGES, "reading the plan: stages done"))
     finally:
         line.close()
@@ -158,7 +163,7 @@ def run_lift(args):
         try:
             targets, weights = read_targets(
                 plan, args.targets, tolerance=args.snap, notes=notes,
-                progress=lambda done, total: line.steps(done, total,
+                option_names=OPTION_NAMES, progress=lambda done, total: line.steps(done, total,
                                                         "matching the targets: vertices"))
         finally:
             line.close()

@@ -29,7 +29,7 @@ from facet import _core
 from facet.errors import Cancelled, InputError, from_core
 from facet.mesh import PolyMesh, next_corners
 from facet.quality import DEFAULT_SHORT_EDGE
-from facet.report import count_noun, first_names, point_text
+from facet.report import count_noun, first_names, length_text, point_text
 
 __all__ = ["PanelError", "Panel", "PanelSet", "panels", "OFFSETS", "EDGES", "ID_SCHEMES",
            "grid_positions", "DEFAULT_GAP_MM", "DEFAULT_MIN_EDGE", "check_density",
@@ -798,15 +798,6 @@ def _after(progress, first):
     if progress is None or first == 0:
         return progress
     return lambda done, total: progress(first + done, first + total)
-
-
-def length_text(units=None):
-    """``text(x, spec=".3g")``: a length for a message, followed by `units` (the model's
-    unit, "mm") when given: "2.99 mm", or "2.99" in model units."""
-    def text(x, spec=".3g"):
-        return f"{x:{spec}} {units}" if units else f"{x:{spec}}"
-
-    return text
 
 
 def _merge_short_edges(mesh, min_edge, min_edge_abs, tol, tol_abs, source, progress=None,

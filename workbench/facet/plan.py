@@ -39,7 +39,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from facet.errors import InputError, report_progress
-from facet.report import count_noun, first_names, point_text
+from facet.report import count_noun, first_names, length_text, point_text
 from facet.mesh import PolyMesh, boundary_corners, cluster_points
 
 __all__ = [
@@ -56,6 +56,7 @@ __all__ = [
     "match_tolerance",
     "read_targets",
     "FREE_WEIGHT",
+    "OPTION_NAMES",
 ]
 
 #: Weight of a vertex with no target of its own (pinned heights, point
@@ -69,6 +70,21 @@ FREE_WEIGHT = 1e-6
 
 #: Largest coordinate magnitude accepted (FACET_COORDINATE_MAX of the core).
 COORDINATE_MAX = 1e30
+
+
+#: How the plan's messages name the options they advise (the value follows, in the plan's
+#: unit): the Python keywords ("tolerance": the match distance of target points); `facet
+#: lift` and the FreeCAD PlanGraph and Lifting give theirs (``option_names=``).
+OPTION_NAMES = {"snap": "snap", "arc_tolerance": "arc_tolerance", "tolerance": "tolerance"}
+
+#: The unit of lengths in messages about a plan read in its drawing's own units when the
+#: drawing does not say which ($INSUNITS 0, a table, a mesh).
+DRAWING_UNITS = "drawing units"
+
+
+def _option_names(option_names):
+    """OPTION_NAMES with the caller's names."""
+    return dict(OPTION_NAMES, **(option_names or {}))
 
 
 class PlanError(InputError):
@@ -98,7 +114,10 @@ class PlanGraph:
         segment they lay within the snap distance of.
     warnings : list of str
         What the lifting should know about the plan (a plan mesh whose faces meet in
-        plan without sharing their vertices: lifted apart).
+        plan without sharing their vertices: lifted apart; dangling edges dropped).
+    units : str or None
+        The unit its lengths are in, as its messages name it ("mm", "m", "drawing
+        units"); None: not known (no unit named).
     """
 
     mesh: PolyMesh
@@ -108,6 +127,7 @@ class PlanGraph:
     openings: int = 0
     snapped: int = 0
     warnings: list = field(default_factory=list)
+    units: object = None
 
     @property
     def n_vertices(self):
@@ -152,6 +172,10 @@ DXF_UNITS_MM = {1: (25.4, "inches"), 2: (304.8, "feet"), 3: (1609344.0, "miles")
                 13: (1e-3, "micrometres"), 14: (100.0, "decimetres"), 15: (1e4, "decametres"),
                 16: (1e5, "hectometres")}
 
+#: The symbols of the common units of DXF_UNITS_MM, by $INSUNITS (messages give lengths in
+#: a drawing's unit: "0.354 m"); the others by name.
+DXF_UNIT_SYMBOLS = {1: "in", 2: "ft", 4: "mm", 5: "cm", 6: "m", 7: "km", 10: "yd"}
+
 
 def _positive(value, path, what):
     """`value` as a float, or PlanError naming the file and `what` (it must be a finite
@@ -177,19 +201,26 @@ def _scaled(segments, scale):
     return [((a[0] * scale, a[1] * scale), (b[0] * scale, b[1] * scale)) for a, b in segments]
 
 
-def _flatten(path_obj, tolerance, what="a curve", corners=0):
+def _flatten(path_obj, tolerance, what="a curve", corners=0, said=None):
     """The straight segments of a path; at most MAX_CURVE_SEGMENTS of them besides its
-    `corners` (a polyline's own vertices)."""
+    `corners` (a polyline's own vertices). `said`: the arc tolerance as the user gave it
+    ("5 mm (the PlanGraph's ArcTolerance)"), for the message."""
     points = []
     for p in path_obj.flattening(tolerance):
         points.append((float(p.x), float(p.y)))
         if len(points) > MAX_CURVE_SEGMENTS + corners + 1:
-            raise PlanError(f"{what}: the arc tolerance {tolerance:g} would split it into more "
-                            f"than {MAX_CURVE_SEGMENTS} straight segments; give a larger one")
+            what = what() if callable(what) else what
+            raise PlanError(f"{what}: the arc tolerance {said or format(tolerance, 'g')} would "
+                            f"split it into more than {MAX_CURVE_SEGMENTS} straight segments; "
+                            "give a larger one")
     return list(zip(points[:-1], points[1:]))
 
 
-def _dxf_segments(path, arc_tolerance, notes=None, to_mm=False, units_mm=None):
+def _dxf_segments(path, arc_tolerance, notes=None, to_mm=False, units_mm=None, units=None,
+                  option_names=None, info=None):
+    """The segments of a DXF (see read_segments); ``info["units"]``, if given, is set to
+    the unit they are in as messages name it: `units` when given, else mm when scaled,
+    else the drawing's $INSUNITS, else DRAWING_UNITS."""
     try:
         import ezdxf
         from ezdxf import path as ezpath
@@ -221,9 +252,13 @@ def _dxf_segments(path, arc_tolerance, notes=None, to_mm=False, units_mm=None):
         # mean "ezdxf cannot read this file"; say so in one line.
         raise PlanError(f"{path}: not a valid DXF file ({_exception_line(exc)})") from None
     scale = 1.0
+    code = document.header.get("$INSUNITS", 0)
+    code = code if isinstance(code, int) else 0
+    drawn = DXF_UNIT_SYMBOLS.get(code, DXF_UNITS_MM.get(code, (None, DRAWING_UNITS))[1])
+    given = arc_tolerance
     if to_mm or units_mm is not None:
-        code = document.header.get("$INSUNITS", 0)
-        scale, unit = DXF_UNITS_MM.get(code if isinstance(code, int) else 0, (1.0, None))
+        scale, unit = DXF_UNITS_MM.get(code, (1.0, None))
+        drawn = "mm" if unit is not None or units_mm is not None else drawn
         if units_mm is not None:
             if unit is not None and scale != units_mm and notes is not None:
                 notes.append(f"drawn in {unit} ($INSUNITS {code}) but read in "
@@ -234,9 +269,15 @@ def _dxf_segments(path, arc_tolerance, notes=None, to_mm=False, units_mm=None):
                          f"scaled by {scale:g}")
         if arc_tolerance is not None:
             arc_tolerance = float(arc_tolerance) / scale  # (given in mm)
+    units = units or drawn
+    if info is not None:
+        info["units"] = units
+    reader = _DxfReader(path, document, arc_tolerance, ezpath, scale, units,
+                        _option_names(option_names))
+    if given is not None:
+        reader.said = f"{length_text(units)(float(given), 'g')} ({reader.names['arc_tolerance']})"
     try:
-        return _scaled(_dxf_model_segments(path, document, arc_tolerance, ezpath, notes),
-                       scale)
+        return _scaled(_dxf_model_segments(reader, document, notes), scale)
     except (PlanError, MemoryError):
         raise
     except Exception as exc:  # noqa: BLE001 - an entity ezdxf loaded but cannot answer for
@@ -254,11 +295,8 @@ def _exception_line(exc):
     return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
 
 
-def _dxf_model_segments(path, document, arc_tolerance, ezpath, notes=None):
-    segments = []
-    skipped = {}
-    hidden = {}
-    reader = _DxfReader(path, document, arc_tolerance, ezpath, segments, skipped, hidden)
+def _dxf_model_segments(reader, document, notes=None):
+    path, segments, skipped, hidden = reader.path, reader.segments, reader.skipped, reader.hidden
     reader.entities(document.modelspace())
     if hidden and notes is not None:
         ways = (["turn a layer on (and thaw it)"] if set(hidden) - {None} else []) + \
@@ -315,11 +353,19 @@ class _DxfReader:
     invisible, and entities on a layer that is off or frozen, counted by layer
     in `hidden`. An entity of a block on layer 0 takes the layer of the INSERT
     that places it, and everything an INSERT on a frozen layer places is hidden.
-    Other entities are counted by type in `skipped`."""
+    Other entities are counted by type in `skipped`.
 
-    def __init__(self, path, document, arc_tolerance, ezpath, segments, skipped, hidden):
+    A curve refused is named with its layer and where it is, its points times `scale`
+    followed by `units` (the unit the drawing is read in); the arc tolerance it asks for
+    by ``names["arc_tolerance"]``."""
+
+    def __init__(self, path, document, arc_tolerance, ezpath, scale=1.0, units=None,
+                 names=None):
         self.path, self.arc_tolerance, self.ezpath = path, arc_tolerance, ezpath
-        self.segments, self.skipped, self.hidden = segments, skipped, hidden
+        self.segments, self.skipped, self.hidden = [], {}, {}
+        self.scale, self.units = scale, units
+        self.names = names or dict(OPTION_NAMES)
+        self.said = None  # the arc tolerance as given, for messages
         self.layer_state = {}  # by lower-case name: (off, frozen, the table's spelling)
         for layer in document.layers:
             name = layer.dxf.name
@@ -348,7 +394,7 @@ class _DxfReader:
             elif off or frozen:
                 self._hide(spelled)
             else:
-                self.entity(entity, kind, block)
+                self.entity(entity, kind, block, spelled)
 
     def insert(self, entity, layer, depth, block):
         where = self._name(entity, "INSERT", block)
@@ -370,7 +416,38 @@ class _DxfReader:
             return f"{kind} {handle}"
         return f"{kind} in {block}" if block else kind
 
-    def entity(self, entity, kind, block=None):
+    def _place(self, entity, kind, layer):
+        """Where a curve is, for a message: "on layer ROOF from (0, 0) to (5, 5) m" (an
+        open curve's ends), "... around (2.5, 2.5) m" (a closed one's middle), "... at
+        (0, 0) m" (a polyline's first arc segment's start), in the unit the drawing is
+        read in."""
+        def point(p, units=self.units):
+            return point_text((float(p[0]) * self.scale, float(p[1]) * self.scale), units)
+
+        on = f" on layer {layer}" if layer else ""
+        try:
+            if kind in ("LWPOLYLINE", "POLYLINE"):
+                if kind == "LWPOLYLINE":
+                    elevation = float(entity.dxf.get("elevation", 0.0))
+                    rows = [(x, y, elevation, b) for x, y, b in entity.get_points("xyb")]
+                else:
+                    rows = [tuple(v.dxf.location) + (v.dxf.get("bulge", 0.0),)
+                            for v in entity.vertices]
+                first = next(k for k, row in enumerate(rows) if abs(row[3]) > 0)
+                corner = [rows[first][:3]]
+                if kind == "LWPOLYLINE" or entity.is_2d_polyline:
+                    corner = list(entity.ocs().points_to_wcs(corner))
+                return f"{on} at {point(corner[0])}"
+            path = self.ezpath.make_path(entity)
+            start, end = path.start, path.end
+            if start.isclose(end):
+                middle = self.ezpath.bbox([path]).center
+                return f"{on} around {point(middle)}"
+            return f"{on} from {point(start, None)} to {point(end)}"
+        except Exception:  # noqa: BLE001 - a place is a help; a malformed entity is named
+            return on
+
+    def entity(self, entity, kind, block=None, layer=None):
         path, segments, arc_tolerance, ezpath = (self.path, self.segments, self.arc_tolerance,
                                                  self.ezpath)
         name = self._name(entity, kind, block)
@@ -385,11 +462,14 @@ class _DxfReader:
             if any(abs(b) > 0 for b in bulges):
                 if arc_tolerance is None:
                     raise PlanError(
-                        f"{path}: {name} has arc segments (bulges): "
-                        "give an arc tolerance to split arcs into straight segments"
+                        f"{path}: {name}{self._place(entity, kind, layer)} has arc segments "
+                        f"(bulges): give an arc tolerance ({self.names['arc_tolerance']}) to "
+                        "split arcs into straight segments"
                     )
                 segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance,
-                                         f"{path}: {name}", corners=len(bulges)))
+                                         lambda: f"{path}: {name}"
+                                         f"{self._place(entity, kind, layer)}",
+                                         corners=len(bulges), said=self.said))
                 return
             if kind == "LWPOLYLINE":
                 elevation = float(entity.dxf.get("elevation", 0.0))
@@ -412,11 +492,13 @@ class _DxfReader:
         elif kind in ("ARC", "CIRCLE", "ELLIPSE", "SPLINE"):
             if arc_tolerance is None:
                 raise PlanError(
-                    f"{path}: {name} is curved: give an arc tolerance to split it "
-                    "into straight segments"
+                    f"{path}: {name}{self._place(entity, kind, layer)} is curved: give an arc "
+                    f"tolerance ({self.names['arc_tolerance']}) to split it into straight "
+                    "segments"
                 )
             segments.extend(_flatten(ezpath.make_path(entity), arc_tolerance,
-                                     f"{path}: {name}"))
+                                     lambda: f"{path}: {name}"
+                                     f"{self._place(entity, kind, layer)}", said=self.said))
         else:
             self.skipped[kind] = self.skipped.get(kind, 0) + 1
 
@@ -542,7 +624,8 @@ def _csv_segments(path):
     return segments
 
 
-def read_segments(path, *, arc_tolerance=None, notes=None, to_mm=False, units_mm=None):
+def read_segments(path, *, arc_tolerance=None, notes=None, to_mm=False, units_mm=None,
+                  units=None, option_names=None, info=None):
     """The straight segments of a DXF or CSV drawing, ``[((x1, y1), (x2, y2)), ...]``.
 
     A DXF's entities on layers that are off or frozen, and those flagged
@@ -552,14 +635,22 @@ def read_segments(path, *, arc_tolerance=None, notes=None, to_mm=False, units_mm
     is then in millimetres too), and a note says so; a unitless one, a CSV, are read
     as they are. Without it every drawing is read in its own units. `units_mm`
     (millimetres per drawing unit, > 0) reads every drawing at that scale instead,
-    whatever its $INSUNITS (a note says where they disagree)."""
+    whatever its $INSUNITS (a note says where they disagree).
+
+    Messages name lengths and points in `units` (default: the unit the drawing is read in,
+    which is also set as ``info["units"]`` when a dict `info` is given: mm when scaled, a
+    DXF's $INSUNITS unit ("m"), else DRAWING_UNITS) and the arc tolerance they advise by
+    ``option_names["arc_tolerance"]`` (:data:`OPTION_NAMES`)."""
     suffix = os.path.splitext(os.fspath(path))[1].lower()
     if arc_tolerance is not None:
         _positive(arc_tolerance, path, "the arc tolerance")
     scale = None if units_mm is None else _positive(units_mm, path, "the drawing's unit in mm")
     if suffix == ".dxf":
-        return _dxf_segments(path, arc_tolerance, notes, to_mm, scale)
+        return _dxf_segments(path, arc_tolerance, notes, to_mm, scale, units, option_names,
+                             info)
     if suffix in TABLE_SUFFIXES:
+        if info is not None:
+            info["units"] = units or ("mm" if scale is not None else DRAWING_UNITS)
         return _scaled(_csv_segments(path), scale)
     raise PlanError(f"{path}: not a line drawing (.dxf, or a .csv, .tsv or .txt table)")
 
@@ -567,10 +658,12 @@ def read_segments(path, *, arc_tolerance=None, notes=None, to_mm=False, units_mm
 # ------------------------------------------------------------------ plan graphs
 
 
-def _check_chains(points, roots, snap, where):
+def _check_chains(points, roots, snap, where, units=None, names=OPTION_NAMES):
     """Refuse a cluster of snapped endpoints wider than twice the snap distance: points
     joined pairwise within it, in a chain (a curve drawn in steps shorter than the snap
-    distance), which would collapse whole edges into one vertex."""
+    distance), which would collapse whole edges into one vertex. Lengths in `units`; the
+    snap distance named by ``names["snap"]``."""
+    length = length_text(units)
     lo = np.full((len(points), 2), np.inf)
     hi = np.full((len(points), 2), -np.inf)
     np.minimum.at(lo, roots, points)
@@ -586,10 +679,11 @@ def _check_chains(points, roots, snap, where):
             continue
         a, b = a + 0.0, b + 0.0  # (+ 0.0: no "-0")
         raise PlanError(
-            f"{where}the snap distance {snap:g} joins {len(members)} endpoints in a chain "
-            f"{spread:.6g} wide, from {point_text(a[:2])} to {point_text(b[:2])}: "
-            "each is within the snap distance of the next, and all would become one "
-            "vertex; give a snap distance smaller than the drawing's shortest edge")
+            f"{where}the snap distance {length(snap, 'g')} ({names['snap']}) joins "
+            f"{len(members)} endpoints in a chain {length(spread, '.6g')} wide, from "
+            f"{point_text(a[:2])} to {point_text(b[:2], units)}: each is within the snap "
+            "distance of the next, and all would become one vertex; give a snap distance "
+            "smaller than the drawing's shortest edge")
 
 
 def _farthest_pair(points):
@@ -711,7 +805,8 @@ def _counter_clockwise(ring):
     return ring if area >= 0.0 else ring[::-1]
 
 
-def plan_from_segments(segments, *, snap=None, openings=(), source=None, progress=None):
+def plan_from_segments(segments, *, snap=None, openings=(), source=None, progress=None,
+                       units=None, option_names=None):
     """A plan graph from straight segments.
 
     Parameters
@@ -729,6 +824,17 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
         ``progress(done, total)`` between the stages (:data:`PLAN_STAGES`; the first,
         reading a file, is :func:`read_plan`'s) and through the faces; True cancels
         (:class:`facet.Cancelled`). A 40,000-face plan takes seconds.
+    units : str, optional
+        The unit of the segments ("mm"), named after every length and point in the
+        messages and warnings (none named by default); kept as ``PlanGraph.units``.
+    option_names : dict, optional
+        How the user sets the options the messages advise (:data:`OPTION_NAMES`'s keys:
+        `facet lift` "--snap", the PlanGraph "the PlanGraph's Snap"); the keywords by
+        default.
+
+    Dangling edges (they bound no face) are dropped and said in a warning: how many, the
+    first three's ends, and what joins them (the nearest gap within 1% of the drawing's
+    size and a twentieth of the edge: the snap distance above it).
 
     Raises
     ------
@@ -740,6 +846,12 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
     from shapely.ops import polygonize_full, unary_union
 
     where = _where(source)
+    names = _option_names(option_names)
+    length = length_text(units)
+
+    def at(point):
+        return point_text(point, units)
+
     array = np.asarray(list(segments), dtype=np.float64).reshape(-1, 2, 2)
     if array.shape[0] == 0:
         raise PlanError(f"{where}the drawing has no segments")
@@ -760,7 +872,7 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
     if not np.all(np.isfinite(opening_xy)):
         bad = int(np.flatnonzero(~np.all(np.isfinite(opening_xy), axis=1))[0])
         x, y = opening_xy[bad]
-        raise PlanError(f"{where}opening {bad} at {point_text((x, y))} is not a finite point")
+        raise PlanError(f"{where}opening {bad} at {at((x, y))} is not a finite point")
     points = array.reshape(-1, 2)
     lower, upper = points.min(axis=0), points.max(axis=0)
     size = float(np.hypot(*(upper - lower)))
@@ -768,13 +880,13 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
         raise PlanError(f"{where}the drawing has no extent (all points coincide)")
     snap = 1e-6 * size if snap is None else float(snap)
     if not snap >= 0:
-        raise PlanError(f"{where}snap distance must be >= 0, not {snap}")
+        raise PlanError(f"{where}snap distance ({names['snap']}) must be >= 0, not {snap}")
     report = _stage_reporter(progress)
     report(1)
     snapped = 0
     if snap > 0:
         roots = cluster_points(points, snap)
-        _check_chains(points, roots, snap, where)
+        _check_chains(points, roots, snap, where, units, names)
         # Each cluster goes to its mean position.
         sums = np.zeros_like(points)
         counts = np.zeros(len(points))
@@ -795,7 +907,8 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
     keep = np.any(array[:, 0] != array[:, 1], axis=1)
     lines = [LineString(s) for s in array[keep]]
     if not lines:
-        raise PlanError(f"{where}every segment is shorter than the snap distance {snap:g}")
+        raise PlanError(f"{where}every segment is shorter than the snap distance "
+                        f"{length(snap, 'g')} ({names['snap']})")
     noded = unary_union(MultiLineString(lines))
     polygons, dangles, cuts, invalids = polygonize_full(noded)
     dangling = []
@@ -805,14 +918,14 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
     if len(getattr(invalids, "geoms", [])):
         g = invalids.geoms[0]
         x, y = g.coords[0]
-        raise PlanError(f"{where}the edges near {point_text((x, y))} form a self-crossing ring")
+        raise PlanError(f"{where}the edges near {at((x, y))} form a self-crossing ring")
     faces = list(getattr(polygons, "geoms", []))
     opened = set()  # the faces holding an opening point (one each: faces do not overlap)
     for x, y in opening_xy:
         point = Point(x, y)
         face = next((k for k, polygon in enumerate(faces) if polygon.contains(point)), None)
         if face is None:
-            raise PlanError(f"{where}the opening at {point_text((x, y))} lies in no face of the "
+            raise PlanError(f"{where}the opening at {at((x, y))} lies in no face of the "
                             "drawing (outside it, or on an edge): give a point inside the face "
                             "to leave open")
         opened.add(face)
@@ -822,8 +935,8 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
         if len(polygon.interiors):
             x, y = polygon.interiors[0].coords[0]
             raise PlanError(
-                f"{where}the face around {point_text(polygon.representative_point().coords[0])} "
-                f"has a hole at {point_text((x, y))}, "
+                f"{where}the face around {at(polygon.representative_point().coords[0])} "
+                f"has a hole at {at((x, y))}, "
                 "and a face must be a simple polygon: draw two or more edges from the hole "
                 "to the outline, which split the ring into faces (one edge is not enough), or "
                 "mark the face around the hole as an opening"
@@ -836,9 +949,10 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
             + (f" ({len(dangling)} dangling edges)" if dangling else "")
             + (f" besides {n_openings} openings" if n_openings else "")
             + (f"; lines end without meeting another at "
-               f"{_and_list([point_text(p) for p in ends[:3]])}"
+               f"{_and_list([point_text(p) for p in ends[:3]])}{' ' + units if units else ''}"
                + (f" and {len(ends) - 3} more" if len(ends) > 3 else "")
-               + ": close the outline there (or give a snap distance that joins them)"
+               + f": close the outline there (or give a snap distance ({names['snap']}) that "
+               "joins them)"
                if ends else "")
         )
     # Vertices: the exact noded coordinates; faces counter-clockwise.
@@ -868,17 +982,37 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
     mesh = PolyMesh.from_faces(xyz, face_lists, info=info)
     report(5)
     gap = _nearest_gap(noded, dangling, 0.01 * size, lambda f: report(5, f))
-    warnings = []
-    if gap is not None:
-        distance, end = gap
-        warnings.append(
-            f"an edge ends {distance:.3g} short of another at {point_text(end)}: it bounds "
-            f"no face and was dropped ({count_noun(len(dangling), 'dangling edge')} in "
-            f"all), and a face there is lost if they should meet: a snap distance above "
-            f"{distance:.3g} joins them")
+    warnings = [_dangling_warning(dangling, gap, units, names)] if dangling else []
     report(PLAN_STAGES)
     return PlanGraph(mesh, source=source, snap=snap, dangling=dangling, openings=n_openings,
-                     snapped=snapped, warnings=warnings)
+                     snapped=snapped, warnings=warnings, units=units)
+
+
+#: The dangling edges a warning names by their ends (the rest are counted).
+DANGLING_NAMED = 3
+
+
+def _dangling_warning(dangling, gap, units, names):
+    """The warning for the dangling edges dropped: how many, the first DANGLING_NAMED ones'
+    ends, and what joins them: where a gap was found (``gap``: (distance, end)), the snap
+    distance above it; else extending them or a larger snap distance. A dangling ridge was
+    dropped without a word (DanglingEdges 1, nothing drawn there)."""
+    length = length_text(units)
+    n = len(dangling)
+    listed = _and_list([f"from {point_text(a)} to {point_text(b, units)}"
+                        for a, b in dangling[:DANGLING_NAMED]])
+    more = f" and {n - DANGLING_NAMED} more" if n > DANGLING_NAMED else ""
+    text = (f"{count_noun(n, 'dangling edge')} {'bounds' if n == 1 else 'bound'} no face and "
+            f"{'was' if n == 1 else 'were'} dropped, not part of the plan: {listed}{more}")
+    if gap is not None:
+        distance, end = gap
+        return (f"{text}; an edge ends {length(distance)} short of another at "
+                f"{point_text(end, units)}, and a face there is lost if they should meet: a "
+                f"snap distance ({names['snap']}) above {length(distance)} joins them")
+    them, they = ("it", "it") if n == 1 else ("them", "they")
+    return (f"{text}: extend or join {them} to the lines {they} should meet, or give a "
+            f"larger snap distance ({names['snap']}) that joins {'its' if n == 1 else 'their'} "
+            "ends to them")
 
 
 def _free_ends(noded):
@@ -955,13 +1089,14 @@ def _nearest_gap(noded, dangling, limit, report=None):
     return best
 
 
-def plan_from_mesh(mesh, *, source=None, check_overlap=True, progress=None):
+def plan_from_mesh(mesh, *, source=None, check_overlap=True, progress=None, units=None):
     """A plan from a mesh: its faces projected vertically (z is dropped).
 
     `progress` as :func:`plan_from_segments`'s: ``progress(done, total)`` between the
     stages (:data:`PLAN_STAGES`; the first, reading a file, is :func:`read_plan`'s) and
     through the faces; True cancels (:class:`facet.Cancelled`). A 100,000-face plan mesh
     takes seconds, half of them in the union of its faces (one call: no step inside it).
+    `units`: the mesh's unit, named after the points in its warnings.
 
     Raises
     ------
@@ -1006,12 +1141,12 @@ def plan_from_mesh(mesh, *, source=None, check_overlap=True, progress=None):
                         raise PlanError(f"{where}faces {i} and {int(j)} overlap in plan")
             raise PlanError(f"{where}faces overlap in plan")
     report(5)
-    warnings = _unjoined(plan)
+    warnings = _unjoined(plan, units)
     report(PLAN_STAGES)
-    return PlanGraph(plan, source=source, warnings=warnings)
+    return PlanGraph(plan, source=source, warnings=warnings, units=units)
 
 
-def _unjoined(plan):
+def _unjoined(plan, units=None):
     """Warnings for faces that meet in plan without sharing a vertex there: a vertex where
     another one is (an export that gives each face its own copies), or one on another
     face's edge (a T-junction). The lifting lifts such faces apart, as at a step in the
@@ -1033,7 +1168,8 @@ def _unjoined(plan):
         i, j = (int(used[k]) for k in pairs[0])
         warnings.append(
             "vertices at one point in plan but not one vertex: "
-            f"{count_noun(len(pairs), 'pair')} (vertices {i} and {j} at {point_text(xy[i, :2])}); the faces there are "
+            f"{count_noun(len(pairs), 'pair')} (vertices {i} and {j} at "
+            f"{point_text(xy[i, :2], units)}); the faces there are "
             "lifted apart, as at a step in the roof: weld them where the faces should meet")
     coincident = {int(used[k]) for pair in pairs for k in pair}
     # a vertex on another face's edge without being its corner leaves that edge to one
@@ -1059,20 +1195,26 @@ def _unjoined(plan):
 
 
 def read_plan(path, *, snap=None, arc_tolerance=None, openings=(), to_mm=False,
-              units_mm=None, progress=None):
+              units_mm=None, progress=None, units=None, option_names=None):
     """A plan graph from a drawing file (see the module docstring). With `to_mm` a DXF
     drawn in another length unit is read in millimetres, with `units_mm` any drawing at
     that many millimetres a unit (see :func:`read_segments`); `snap`, `arc_tolerance` and
     `openings` are then in millimetres. `progress` as :func:`plan_from_segments`'s (or
-    :func:`plan_from_mesh`'s, for a plan mesh)."""
+    :func:`plan_from_mesh`'s, for a plan mesh). Messages name lengths and points in
+    `units` (default: the unit the plan is read in: mm when scaled, a DXF's $INSUNITS unit,
+    else DRAWING_UNITS; it is ``PlanGraph.units``) and the options they advise by
+    `option_names` (:data:`OPTION_NAMES`)."""
     suffix = os.path.splitext(os.fspath(path))[1].lower()
     if suffix == ".dxf" or suffix in TABLE_SUFFIXES:
         _stage_reporter(progress)(0)
         notes = []
+        info = {}
         segments = read_segments(path, arc_tolerance=arc_tolerance, notes=notes, to_mm=to_mm,
-                                 units_mm=units_mm)
+                                 units_mm=units_mm, units=units, option_names=option_names,
+                                 info=info)
         plan = plan_from_segments(segments, snap=snap, openings=openings, source=path,
-                                  progress=progress)
+                                  progress=progress, units=info["units"],
+                                  option_names=option_names)
         plan.warnings[:0] = notes
         return plan
     if suffix in (".obj", ".off", ".json"):
@@ -1086,7 +1228,8 @@ def read_plan(path, *, snap=None, arc_tolerance=None, openings=(), to_mm=False,
                                                         "the drawing's unit in mm")
         if scale is not None and scale != 1.0:
             mesh = mesh.with_vertices(np.asarray(mesh.vertices, dtype=np.float64) * scale)
-        plan = plan_from_mesh(mesh, source=path, progress=progress)
+        plan = plan_from_mesh(mesh, source=path, progress=progress, units=units or (
+            DRAWING_UNITS if scale is None else "mm"))
         plan.warnings[:0] = read_warnings(mesh)  # (a face read with a vertex once)
         return plan
     raise PlanError(f"{path}: cannot read {suffix or 'files without an extension'} plans "
@@ -1183,17 +1326,23 @@ def pin_vertices(plan, points, *, tolerance):
     return np.where(distance <= tolerance, vertex, -1).astype(np.int64)
 
 
-def targets_from_points(plan, points, *, tolerance, labels=None, notes=None):
+def targets_from_points(plan, points, *, tolerance, labels=None, notes=None, units=None,
+                        option_names=None):
     """Targets from x, y, z points: each plan vertex takes the z of the
     nearest point within `tolerance` (in plan); vertices with none are free
     (see :func:`pinned_targets`). No interpolation. A point beyond `tolerance`
     but within 1% of an edge of a vertex (meant for it, rounded) is an error naming it
     (``labels[k]``, default "point k+1") when no point matches that vertex; points farther
     out, or beside a vertex matched, are left out, and a line saying how many is appended
-    to the list `notes` (if given)."""
+    to the list `notes` (if given). Lengths and points in the messages are followed by
+    `units` (default the plan's ``units``, when it is a PlanGraph), the match distance
+    named by ``option_names["tolerance"]`` (:data:`OPTION_NAMES`)."""
     from scipy.spatial import cKDTree
 
     xy, xy_mesh = _plan_xy(plan)
+    units = units or getattr(plan, "units", None)
+    in_units = length_text(units)
+    match = f"{in_units(tolerance, 'g')} ({_option_names(option_names)['tolerance']})"
     points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
     if points.shape[0] == 0:
         raise InputError("no target points")
@@ -1203,7 +1352,8 @@ def targets_from_points(plan, points, *, tolerance, labels=None, notes=None):
     distance, nearest = tree.query(xy)
     given = distance <= tolerance
     if not np.any(given):
-        raise InputError(f"no target point lies within {tolerance:g} of a plan vertex")
+        raise InputError(f"no target point lies within the match distance {match} of a plan "
+                         "vertex")
     # A point just beyond the match distance of a vertex was meant for it, and would leave
     # it free without a word: a table rounded to 0.1 mm for a 30 m plan (distance 3e-5)
     # gave 37 of 121 vertices their heights and the lifting missed the rest by 5 cm,
@@ -1224,12 +1374,12 @@ def targets_from_points(plan, points, *, tolerance, labels=None, notes=None):
         raise InputError(
             f"{near.size} of the {len(points)} target points "
             f"{'lies' if near.size == 1 else 'lie'} near a plan vertex but "
-            f"farther than the match distance {tolerance:g}; the nearest of them, "
-            f"{_point_label(labels, p)} at {point_text(points[p, :2])}, is {apart[p]:.3g} "
-            f"from vertex {int(vertex[p])}: give a larger snap distance (--snap) to match "
-            "them")
+            f"farther than the match distance {match}; the nearest of them, "
+            f"{_point_label(labels, p)} at {point_text(points[p, :2], units)}, is "
+            f"{in_units(apart[p])} from vertex {int(vertex[p])}: give a larger match distance "
+            "to match them")
     _check_one_height(points, tree.query_ball_point(xy[given], tolerance),
-                      np.flatnonzero(given), labels)
+                      np.flatnonzero(given), labels, units)
     # points left out: said, as a table in other units or another origin matched a vertex
     # or two by chance (a table in metres for a plan in mm: its point at 0, 0 matched, the
     # others fell inside the plan, near no vertex, and the lifting met the one height)
@@ -1239,16 +1389,17 @@ def targets_from_points(plan, points, *, tolerance, labels=None, notes=None):
         notes.append(
             f"{out.size} of the {len(points)} target points "
             f"{'lies' if out.size == 1 else 'lie'} farther than the match distance "
-            f"{tolerance:g} from every plan vertex, left out (the nearest of them, "
-            f"{_point_label(labels, p)} at {point_text(points[p, :2])}, is {apart[p]:.3g} "
-            f"from vertex {int(vertex[p])}); {int(np.count_nonzero(given))} of the "
+            f"{match} from every plan vertex, left out (the nearest of them, "
+            f"{_point_label(labels, p)} at {point_text(points[p, :2], units)}, is "
+            f"{in_units(apart[p])} from vertex {int(vertex[p])}); "
+            f"{int(np.count_nonzero(given))} of the "
             f"{len(xy)} plan vertices {'has' if np.count_nonzero(given) == 1 else 'have'} "
-            "a target height" + _units_hint(points[:, :2], xy))
+            "a target height" + _units_hint(points[:, :2], xy, units))
     targets = np.where(given, points[np.minimum(nearest, len(points) - 1), 2], 0.0)
     return _with_free(xy, targets, given)
 
 
-def _units_hint(points, xy):
+def _units_hint(points, xy, units=None):
     """"; the points span ... and the plan ...: ..." when the points' extent and the plan's
     differ five times or more (a table in metres for a plan in millimetres: the note said
     which points were left out, not why), else ""."""
@@ -1257,7 +1408,8 @@ def _units_hint(points, xy):
     if span <= 0 or plan <= 0 or 0.2 < span / plan < 5:
         return ""
     ratio = plan / span
-    return (f"; the points span {span:.6g} and the plan {plan:.6g}, "
+    length = length_text(units)
+    return (f"; the points span {length(span, '.6g')} and the plan {length(plan, '.6g')}, "
             f"{max(ratio, 1 / ratio):.4g} times {'less' if ratio > 1 else 'more'}: is the "
             "table in other units than the plan (metres for millimetres)?")
 
@@ -1267,7 +1419,7 @@ def _point_label(labels, k):
     return labels[k] if labels is not None else f"point {k + 1}"
 
 
-def _check_one_height(points, matched, vertices, labels):
+def _check_one_height(points, matched, vertices, labels, units=None):
     """Refuse two target points at one vertex (within the match distance) whose heights
     differ by more than rounding: the nearest was taken without a word, the other's
     height dropped (a survey's two readings, a table joined from two). ``matched[k]``: the
@@ -1280,10 +1432,11 @@ def _check_one_height(points, matched, vertices, labels):
         if np.ptp(z) <= 1e-9 * max(span, float(np.abs(z).max())):
             continue
         a, b = int(found[np.argmin(z)]), int(found[np.argmax(z)])
+        length = length_text(units)
         raise InputError(
             f"two target points at plan vertex {int(vertex)} give it different heights: "
-            f"{_point_label(labels, a)} gives {points[a, 2]:.10g} and "
-            f"{_point_label(labels, b)} {points[b, 2]:.10g}, both "
+            f"{_point_label(labels, a)} gives {length(points[a, 2], '.10g')} and "
+            f"{_point_label(labels, b)} {length(points[b, 2], '.10g')}, both "
             "within the match distance of it: keep the one meant")
 
 
@@ -1353,7 +1506,7 @@ def _nearest_edge_height(point, vertices, triangles, boxes, tolerance):
     return height if height > -math.inf else math.nan
 
 
-def targets_from_mesh(plan, mesh, *, source=None, tolerance=None, progress=None):
+def targets_from_mesh(plan, mesh, *, source=None, tolerance=None, progress=None, units=None):
     """Targets from a mesh.
 
     When the mesh has the plan's vertices in the same order (same count and
@@ -1367,7 +1520,7 @@ def targets_from_mesh(plan, mesh, *, source=None, tolerance=None, progress=None)
 
     ``progress(done, total)`` through the plan's vertices as they are matched (every
     4096th; a 100,000-vertex plan takes seconds); True cancels (:class:`facet.Cancelled`,
-    "matching the targets cancelled").
+    "matching the targets cancelled"). `units` as :func:`targets_from_points`'s.
 
     Returns
     -------
@@ -1375,6 +1528,7 @@ def targets_from_mesh(plan, mesh, *, source=None, tolerance=None, progress=None)
     """
     where = _where(source)
     xy, plan_mesh = _plan_xy(plan)
+    units = units or getattr(plan, "units", None)
 
     def report(done):
         report_progress(progress, done, len(xy), "matching the targets")
@@ -1404,18 +1558,19 @@ def targets_from_mesh(plan, mesh, *, source=None, tolerance=None, progress=None)
         v = int(missing[0])
         raise InputError(
             f"{where}the target surface does not cover plan vertex {v} at "
-            f"{point_text(xy[v, :2])} ({missing.size} vertices uncovered, none "
-            f"within {tolerance:.3g} of its edge in plan)"
+            f"{point_text(xy[v, :2], units)} ({missing.size} vertices uncovered, none "
+            f"within {length_text(units)(tolerance)} of its edge in plan)"
         )
     report(len(xy))
     return z, np.ones(len(xy))
 
 
-def read_targets(plan, path, *, tolerance=None, notes=None, progress=None):
+def read_targets(plan, path, *, tolerance=None, notes=None, progress=None, units=None,
+                 option_names=None):
     """Targets from a file: a mesh (.obj, .off, .json; see
     :func:`targets_from_mesh`, and for `progress`) or a CSV of x,y,z points (see
     :func:`targets_from_points`; tolerance default 1e-6 of the plan's size; points left
-    out are said in the list `notes`, if given).
+    out are said in the list `notes`, if given; `units` and `option_names` as its).
 
     Returns
     -------
@@ -1433,7 +1588,7 @@ def read_targets(plan, path, *, tolerance=None, notes=None, progress=None):
         try:
             found = []
             result = targets_from_points(plan, rows, tolerance=tolerance, labels=lines,
-                                         notes=found)
+                                         notes=found, units=units, option_names=option_names)
             if notes is not None:
                 notes.extend(f"{path}: {text}" for text in found)
             return result
@@ -1444,6 +1599,6 @@ def read_targets(plan, path, *, tolerance=None, notes=None, progress=None):
 
         report_progress(progress, 0, len(xy), "matching the targets")
         return targets_from_mesh(plan, read_mesh(path), source=path, tolerance=tolerance,
-                                 progress=progress)
+                                 progress=progress, units=units)
     raise InputError(f"{path}: cannot read targets from {suffix or 'files without an extension'} "
                      "files (Facet reads .obj, .off, .json meshes and .csv, .tsv or .txt points)")

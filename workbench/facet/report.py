@@ -20,18 +20,29 @@ import numpy as np
 from facet.io.files import write_text
 
 __all__ = ["planarize_report", "check_report", "quality_figures", "json_safe", "write_json",
-           "count_noun", "first_names", "point_text"]
+           "count_noun", "first_names", "point_text", "length_text"]
 
 #: Keys of ``mesh.info`` copied into reports (lists of keys are left out).
 _INFO_KEYS = ("format", "header", "dtype", "item", "openings_skipped", "unused_vertices_dropped",
               "repeated_corners_merged", "repeated_corners_first")
 
 
-def point_text(point):
+def point_text(point, units=None):
     """A point in a message, "(512346.25, 5712360.5)": ten significant digits, so that a
     point of a georeferenced plan reads to the millimetre, where six gave
-    "(512346, 5.71236e+06)", ten metres out; no "-0"."""
-    return "(" + ", ".join(f"{float(value) + 0.0:.10g}" for value in point) + ")"
+    "(512346, 5.71236e+06)", ten metres out; no "-0". Followed by `units` when given:
+    "(5999, 3000) mm"."""
+    text = "(" + ", ".join(f"{float(value) + 0.0:.10g}" for value in point) + ")"
+    return f"{text} {units}" if units else text
+
+
+def length_text(units=None):
+    """``text(x, spec=".3g")``: a length for a message, followed by `units` (the model's
+    unit, "mm") when given: "2.99 mm", or "2.99" in model units."""
+    def text(x, spec=".3g"):
+        return f"{x:{spec}} {units}" if units else f"{x:{spec}}"
+
+    return text
 
 
 def count_noun(number, noun):

@@ -18,6 +18,7 @@ from facet.plan import match_tolerance
 from facet.report import point_text
 from facetwb import compat, conversion, progress
 from facetwb.recompute import guarded
+from facetwb.translation import translate
 from facetwb.objects.polymesh import PolyMesh, get_mesh, set_mesh, set_planarity
 
 TYPE_LIFTING = "Facet::Lifting"
@@ -96,14 +97,16 @@ class Lifting(PolyMesh):
             surface = conversion.mesh_from_object(obj.Targets)
             # (progress and Cancel: a 100,000-vertex plan's ray cast takes seconds)
             return targets_from_mesh(plan, surface, source=obj.Targets.Label,
-                                     progress=progress.hook())
+                                     progress=progress.hook(), units="mm")
         if obj.TargetFile:
             return read_targets(plan, obj.TargetFile, tolerance=_snap(obj) or None,
-                                notes=notes, progress=progress.hook())
+                                notes=notes, progress=progress.hook(), units="mm",
+                                option_names=option_names())
         if obj.PinnedPoints:
             tolerance = match_tolerance(plan, _snap(obj))
             points = [(p.x, p.y, p.z) for p in obj.PinnedPoints]
-            targets, weights = targets_from_points(plan, points, tolerance=tolerance)
+            targets, weights = targets_from_points(plan, points, tolerance=tolerance,
+                                                   units="mm", option_names=option_names())
             found = int(np.count_nonzero(weights == 1.0))
             if found < len(points):
                 raise ValueError(f"{obj.Label}: {len(points) - found} of the {len(points)} "
@@ -217,9 +220,16 @@ class Lifting(PolyMesh):
                plan.face_vertices.tobytes())
         cached = getattr(self, "_unjoined_cache", None)
         if cached is None or cached[0] != key:
-            graph = plan_from_mesh(plan, source=obj.Plan.Label, check_overlap=False)
+            graph = plan_from_mesh(plan, source=obj.Plan.Label, check_overlap=False,
+                                   units="mm")
             cached = self._unjoined_cache = (key, list(graph.warnings))
         return list(cached[1])
+
+
+def option_names():
+    """How the plan's messages name the option they advise (facet.plan.OPTION_NAMES): the
+    Lifting's Snap, within which its points are matched."""
+    return {"tolerance": translate("Facet", "the Lifting's Snap")}
 
 
 def pins_in_use(obj):

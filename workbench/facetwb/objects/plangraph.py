@@ -20,6 +20,7 @@ import facet
 from facet.cutsheets import LENGTH_UNITS
 from facetwb import compat, progress
 from facetwb.recompute import guarded
+from facetwb.translation import translate
 from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
 
 TYPE_PLANGRAPH = "Facet::PlanGraph"
@@ -92,13 +93,15 @@ class PlanGraph(PolyMesh):
 
             segments = segments_from_objects(obj.Sources, arc or 0.0)
             plan = plan_from_segments(segments, snap=snap, openings=openings, source=obj.Label,
-                                      progress=progress.hook())
+                                      progress=progress.hook(), units="mm",
+                                      option_names=option_names())
         elif obj.File:
             # (a DXF drawn in metres or inches: in millimetres, as the document is)
             units = None if obj.FileUnits == FROM_FILE else LENGTH_UNITS[obj.FileUnits][0]
             # (progress and Cancel: a 40,000-face plan takes seconds)
             plan = read_plan(obj.File, snap=snap, arc_tolerance=arc, openings=openings,
-                             to_mm=True, units_mm=units, progress=progress.hook())
+                             to_mm=True, units_mm=units, progress=progress.hook(), units="mm",
+                             option_names=option_names())
         else:
             raise ValueError(f"{obj.Label}: no drawing: set Sources or File")
         warnings = list(plan.warnings)
@@ -113,6 +116,13 @@ class PlanGraph(PolyMesh):
             obj.Warnings = warnings
         for text in warnings:
             App.Console.PrintWarning(f"{obj.Label}: {text}\n")
+
+
+def option_names():
+    """How the plan's messages name the options they advise (facet.plan.OPTION_NAMES): the
+    PlanGraph's properties."""
+    return {"snap": translate("Facet", "the PlanGraph's Snap"),
+            "arc_tolerance": translate("Facet", "the PlanGraph's ArcTolerance")}
 
 
 def _size_warnings(mesh):
