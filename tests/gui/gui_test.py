@@ -235,6 +235,7 @@ def run(out_dir):
     App.closeDocument(doc.Name)
     check_lifting(check, out_dir)
     check_lift_from_file(check, out_dir)
+    check_plan_fitted_once_fixed(check, out_dir)
     check_lift_failed_plan(check)
     check_panels_from_failed_lifting(check)
     check_lift_mix_states(check, out_dir)
@@ -897,6 +898,60 @@ def check_lift_mix_states(check, out_dir):
         panel.reject()
         Gui.updateGui()
     check(not Gui.Control.activeDialog(), "its Cancel closes it")
+    App.closeDocument(doc.Name)
+
+
+def check_plan_fitted_once_fixed(check, out_dir):
+    """A drawing whose first read fails (an arc, refused without ArcTolerance) into an
+    empty document: the view was fitted to nothing then, and once ArcTolerance was set the
+    plan showed as a corner at the default camera's few millimetres about the origin. It
+    is fitted when the fix first draws it."""
+    import tempfile
+
+    import ezdxf
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    from PySide import QtGui
+
+    import facetwb
+
+    folder = tempfile.mkdtemp()
+    path = os.path.join(folder, "arc_plan.dxf")
+    drawing = ezdxf.new()
+    drawing.header["$INSUNITS"] = 4
+    msp = drawing.modelspace()
+    for a, b in (((0, 0), (12000, 0)), ((12000, 0), (12000, 8000)),
+                 ((12000, 8000), (0, 8000)), ((0, 0), (12000, 8000))):
+        msp.add_line(a, b)
+    msp.add_arc((4000, 4000), 4000 * 2 ** 0.5, 135, 225)  # (0, 8000) round to (0, 0)
+    drawing.saveas(path)
+    doc = App.newDocument("ArcPlan")
+    ask = QtGui.QFileDialog.getOpenFileName
+    try:
+        QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *args, **kw: (path, ""))
+        Gui.Selection.clearSelection()
+        Gui.runCommand("Facet_PlanGraph")
+    finally:
+        QtGui.QFileDialog.getOpenFileName = ask
+    settle(5)
+    plans = [o for o in doc.Objects if facetwb.is_plan_graph(o)]
+    if not check(len(plans) == 1 and not plans[0].isValid() and "ARC" in
+                 plans[0].getStatusString(), "a plan with an arc is refused at first"):
+        App.closeDocument(doc.Name)
+        return
+    plan = plans[0]
+    plan.ArcTolerance = 50.0
+    doc.recompute()
+    settle(10)
+    view = Gui.ActiveDocument.ActiveView
+    size = view.getSize()
+    corners = [tuple(view.getPointOnScreen(p)) for p in plan.Points]
+    view.saveImage(os.path.join(out_dir, "plan_fitted_once_fixed.png"), size[0], size[1],
+                   "Current")
+    check(plan.isValid() and plan.FaceCount >= 2 and corners
+          and all(0 <= x <= size[0] and 0 <= y <= size[1] for x, y in corners),
+          f"the plan drawn once ArcTolerance is set is in view ({plan.FaceCount} faces, "
+          f"{min(corners, default=None)}, {max(corners, default=None)} in {tuple(size)} px)")
     App.closeDocument(doc.Name)
 
 

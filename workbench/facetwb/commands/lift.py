@@ -67,9 +67,18 @@ class CommandPlanGraph:
         # a 12 m plan one flat colour filling part of it
         empty = not any(getattr(getattr(o, "ViewObject", None), "Visibility", False)
                         for o in doc.Objects)
+        before = {o.Name for o in doc.Objects}
         lines.append(f'FreeCAD.getDocument("{doc.Name}").recompute()')
         if run_as_macro(doc, "Plan graph", lines) and empty:
             Gui.SendMsgToActiveView("ViewFit")
+            for obj in doc.Objects:
+                if obj.Name not in before and not getattr(obj, "FaceCount", 0):
+                    # its first read failed (an arc, say): the view is fitted once the
+                    # designer's fix draws it (fitted now, the view kept the default few
+                    # millimetres about the origin, a corner of the plan in sight)
+                    proxy = getattr(getattr(obj, "ViewObject", None), "Proxy", None)
+                    if proxy is not None:
+                        proxy.fit_when_drawn = True
 
 
 class CommandLift:

@@ -49,6 +49,16 @@ PRESELECTED_HALO = (0.1, 0.1, 0.1)
 PRESELECTED_STYLE = ("ring", 2 * VERTEX_PICK_PIXELS + 1)
 
 
+def _fit_view(obj):
+    """Fit the 3D view of ``obj``'s document to what it shows."""
+    import FreeCADGui as Gui
+
+    gui_doc = Gui.getDocument(obj.Document.Name) if obj.Document else None
+    view = getattr(gui_doc, "ActiveView", None)
+    if view is not None and hasattr(view, "fitAll"):
+        view.fitAll()
+
+
 class ViewProviderPolyMesh:
     """View provider of PolyMesh objects (Gui::ViewProviderPythonFeature)."""
 
@@ -215,6 +225,13 @@ class ViewProviderPolyMesh:
                 and np.array_equal(drawn[1], face_vertices)):
             self.draw_topology(xyz, face_start, face_vertices)
         self.recolor(obj)
+        if getattr(self, "fit_when_drawn", False) and self.face_count:
+            # (set by a command whose first result was empty: a drawing that failed to
+            # read into an empty view; fitted then, the view showed nothing of it)
+            self.fit_when_drawn = False
+            from PySide import QtCore
+
+            QtCore.QTimer.singleShot(0, lambda: _fit_view(obj))
 
     def draw_topology(self, xyz, face_start, face_vertices):
         """Face and edge indices; skipped when only the coordinates change (a re-solve)."""
