@@ -1589,6 +1589,34 @@ def test_step_job_takes_its_place_with_the_staged_files(tmp_path):
     assert os.listdir(tmp_path) == ["p.step"]
 
 
+def test_step_written_here_takes_its_place_with_the_staged_files(tmp_path):
+    """As the worker's: the STEP file write_step makes in this process (the cut sheets'
+    STEP from the PanelSet's solids, or a StepJob without a worker) took its place at once
+    inside facet.io.files.staged, and a later failure in the block (the JSON schedule)
+    left it beside the last run's files. It takes its place when the block ends well."""
+    from facet.io.files import staged
+
+    step = freecad_step()
+    ps = panels(translational(nu=3, nv=2, step=400.0), 18.0, edge="bisector", gap=4)
+    solids = step.panel_solids(ps)
+    path = tmp_path / "p.step"
+    path.write_text("the last run's")
+    with pytest.raises(RuntimeError, match="a later file failed"):
+        with staged():
+            step.write_step(path, solids)
+            assert path.read_text() == "the last run's"  # not yet in place
+            raise RuntimeError("a later file failed")
+    assert path.read_text() == "the last run's"
+    assert os.listdir(tmp_path) == ["p.step"]  # its temporary file removed
+    with staged():
+        step.write_step(path, solids)
+        assert path.read_text() == "the last run's"
+    assert "ISO-10303-21" in path.read_text()
+    assert os.listdir(tmp_path) == ["p.step"]
+    step.write_step(path, solids[:1])  # (outside staged: at once)
+    assert path.read_text().count("MANIFOLD_SOLID_BREP") == 1
+
+
 def _step_root(path):
     """The STEP file's top assembly: the product no other one holds (its
     NEXT_ASSEMBLY_USAGE_OCCURRENCEs' relating definitions name it)."""

@@ -395,6 +395,8 @@ def write_step(path, named_solids, pcurves=False, scale=1.0, name=None):
     FreeCAD, Part = import_freecad()
     import Import
 
+    from facet.io.files import put_in_place
+
     path = os.fspath(path)
     doc = FreeCAD.newDocument("FacetStepExport", hidden=True, temp=True)
     user_mode = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Mod/Part/General") \
@@ -425,12 +427,15 @@ def write_step(path, named_solids, pcurves=False, scale=1.0, name=None):
         labels.SetBool("DuplicateLabels", user_duplicates)
         Part.setStaticValue("write.surfacecurve.mode", 1 if pcurves else 0)
         Import.export([job], tmp)
-        os.replace(tmp, path)
+        # (inside facet.io.files.staged, with the run's other files, as StepJob's: the
+        # cut sheets' STEP made from the PanelSet's solids took its place at once)
+        put_in_place(tmp, path)
+        tmp = None
     finally:
         labels.SetBool("DuplicateLabels", user_duplicates)
         Part.setStaticValue("write.surfacecurve.mode", user_mode)
         FreeCAD.closeDocument(doc.Name)
-        if os.path.exists(tmp):
+        if tmp is not None and os.path.exists(tmp):
             os.remove(tmp)
 
 
