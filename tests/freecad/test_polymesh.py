@@ -101,3 +101,16 @@ class TestOlderDocumentsGainProperties(DocumentTestCase):
         self.assertEqual(result.FaceCount, 64)
         doc.recompute()
         self.assertTrue(result.isValid(), result.getStatusString())
+
+
+class TestFitView(DocumentTestCase):
+    def test_fit_of_an_object_deleted_before_its_timer_fires_does_nothing(self):
+        """The view is fitted by a timer once a plan graph whose first read failed draws:
+        the object deleted (its document closed) before the timer fired raised
+        ReferenceError ("Cannot access attribute 'Document' of deleted object") there."""
+        from facetwb.viewproviders.view_polymesh import _fit_view
+
+        doc = App.newDocument("FitGone")
+        obj = doc.addObject("App::FeaturePython", "Plan")
+        App.closeDocument(doc.Name)
+        self.assertIsNone(_fit_view(obj))

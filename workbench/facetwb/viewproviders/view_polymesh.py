@@ -50,10 +50,15 @@ PRESELECTED_STYLE = ("ring", 2 * VERTEX_PICK_PIXELS + 1)
 
 
 def _fit_view(obj):
-    """Fit the 3D view of ``obj``'s document to what it shows."""
+    """Fit the 3D view of ``obj``'s document to what it shows; nothing when ``obj`` was
+    deleted (its document closed) before the timer that calls this fired."""
     import FreeCADGui as Gui
 
-    gui_doc = Gui.getDocument(obj.Document.Name) if obj.Document else None
+    try:
+        doc = obj.Document
+    except ReferenceError:  # ("Cannot access attribute 'Document' of deleted object")
+        return
+    gui_doc = Gui.getDocument(doc.Name) if doc else None
     view = getattr(gui_doc, "ActiveView", None)
     if view is not None and hasattr(view, "fitAll"):
         view.fitAll()
