@@ -394,3 +394,15 @@ def test_option_errors_name_the_length_unit():
         _core.panels(xyz, start, faces, thickness=1.0, gap=-1.0, length_unit="mm")
     with pytest.raises(_core.CoreError, match=r"beyond 1e30 in magnitude \(2e\+30 mm\)"):
         _core.panels(xyz, start, faces, thickness=1.0, length_unit="mm")
+
+
+def test_a_failed_joint_names_no_smaller_min_edge_abs_as_the_larger_one():
+    """The min_edge_abs tried stops at half the largest face's mean edge: given above it,
+    the advice named that smaller value as the one that builds the panels ("so does
+    min_edge_abs 288 mm (now 10000 mm)"), where it says the least larger one. It names
+    none then; the gap's advice stays."""
+    with pytest.raises(PanelError) as caught:
+        panels(_stub(), 40.0, gap=10.0, edge="bisector", units="mm", min_edge_abs=1e4)
+    text = str(caught.value)
+    assert "a gap of " in text, text
+    assert "min_edge_abs" not in text, text

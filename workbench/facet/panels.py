@@ -299,8 +299,8 @@ BEVEL_ZERO_DEG = 1e-9
 def _least_passing(passes, lo, hi, progress, done, limit=math.inf):
     """The least value above `lo` (which fails) for which ``passes(value)``, to
     _CLEARING_REL of itself, by bisection: `hi` is tried first and doubled (up to
-    `limit`, at most 20 times) until it passes; None when none does. The value returned
-    was tried. Each trial reports ``progress(done + trial, done + _CLEARING_TRIALS)``; a
+    `limit`, at most 20 times) until it passes; None when none does (or `lo` is `limit`
+    or above: no larger value is tried). The value returned was tried. Each trial reports ``progress(done + trial, done + _CLEARING_TRIALS)``; a
     true return cancels."""
     trials = 0
 
@@ -312,6 +312,8 @@ def _least_passing(passes, lo, hi, progress, done, limit=math.inf):
         return passes(value)
 
     hi = min(hi, limit)
+    if not hi > lo:  # (a min_edge_abs given above the largest tried: not a larger one)
+        return None
     while not trial(hi):
         if trials >= 20 or hi >= limit:
             return None
