@@ -472,6 +472,18 @@ class TestPlanGraphSources(DocumentTestCase):
         self.assertTrue(plan.isValid() and plan.FaceCount == 2, plan.getStatusString())
         self.assertTrue(lifting.isValid(), lifting.getStatusString())
         self.assertLess(lifting.TargetMax.Value, 0.1)  # (mm: the corner moved 0.2 mm)
+        # Pin heights matches the pins as the Lifting does: it took the Lifting's Snap (0),
+        # found the pin at the drawn corner at no vertex, and pinning that corner again
+        # added a second pin there, which the Lifting refused (two heights at one vertex)
+        from facetwb import pins
+        from facetwb.objects.lifting import match_snap
+
+        self.assertEqual(match_snap(lifting), 1.0)
+        mesh = facetwb.conversion.mesh_from_object(plan)
+        at = pins.pins_vertices(mesh, lifting.PinnedPoints, match_snap(lifting))
+        self.assertNotIn(-1, at)
+        self.assertEqual(len(pins.pin(mesh, lifting.PinnedPoints, at[:1], 3100.0,
+                                      match_snap(lifting))), 4)
         # the Lifting's own Snap, when set, is the one used
         lifting.Snap = 0.05
         self.doc.recompute()

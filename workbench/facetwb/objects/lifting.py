@@ -99,11 +99,11 @@ class Lifting(PolyMesh):
             return targets_from_mesh(plan, surface, source=obj.Targets.Label,
                                      progress=progress.hook(), units="mm")
         if obj.TargetFile:
-            return read_targets(plan, obj.TargetFile, tolerance=_snap(obj) or None,
+            return read_targets(plan, obj.TargetFile, tolerance=match_snap(obj) or None,
                                 notes=notes, progress=progress.hook(), units="mm",
                                 option_names=option_names())
         if obj.PinnedPoints:
-            tolerance = match_tolerance(plan, _snap(obj))
+            tolerance = match_tolerance(plan, match_snap(obj))
             points = [(p.x, p.y, p.z) for p in obj.PinnedPoints]
             targets, weights = targets_from_points(plan, points, tolerance=tolerance,
                                                    units="mm", option_names=option_names())
@@ -149,7 +149,7 @@ class Lifting(PolyMesh):
         asked height at that vertex (every fundamental lifting is a lifting: faces stay
         planar)."""
         xy = plan.vertices[:, :2]
-        tolerance = match_tolerance(plan, _snap(obj))
+        tolerance = match_tolerance(plan, match_snap(obj))
         heights = result.heights.copy()
         for drag in obj.Drags:
             distance = np.hypot(xy[:, 0] - drag.x, xy[:, 1] - drag.y)
@@ -237,7 +237,7 @@ def pins_in_use(obj):
     return bool(obj.PinnedPoints) and obj.Targets is None and not obj.TargetFile
 
 
-def _snap(obj):
+def match_snap(obj):
     """The distance within which a pinned, CSV or drag point is at a plan vertex: the
     Lifting's Snap, else its plan graph's (its vertices moved by up to that as their
     endpoints were merged: pins typed at the drawn corners, 0.1 mm off the merged ones,

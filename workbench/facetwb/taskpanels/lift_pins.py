@@ -258,8 +258,11 @@ class LiftPinsPanel:
                     forms.elided(intro, target))
         intro.setText(text)
         layout.addWidget(intro)
+        from facetwb.objects.lifting import match_snap
+
+        # (within the plan graph's Snap when the Lifting's is 0, as the Lifting matches them)
         self.editor = PinEditor(obj.Plan, self.original, changed=self.changed,
-                                snap=obj.Snap.Value)
+                                snap=match_snap(obj))
         if self.original:
             self.editor.height.setProperty("rawValue", self.original[-1][2])
         layout.addWidget(self.editor.widget)
