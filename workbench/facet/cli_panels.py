@@ -278,8 +278,9 @@ def write_schedule(path, ps, rows, density=None, units="mm"):
 
 
 def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,
-                      tight, dxf, per_sheet, text_outlines, step, schedule, svg, png, allow_unplaced,
-                      solids, stage_progress, cancelled, units, density, nested):
+                      tight, dxf, per_sheet, text_outlines, step, schedule, svg, png,
+                      allow_unplaced, solids, stage_progress, cancelled, units, density,
+                      nested):
     from facet.cutsheets import length_unit, schedule_rows, write_dxf, write_png, write_svg
     from facet.errors import Cancelled, InputError
     from facet.nest import nest

@@ -300,8 +300,8 @@ def _least_passing(passes, lo, hi, progress, done, limit=math.inf):
     """The least value above `lo` (which fails) for which ``passes(value)``, to
     _CLEARING_REL of itself, by bisection: `hi` is tried first and doubled (up to
     `limit`, at most 20 times) until it passes; None when none does (or `lo` is `limit`
-    or above: no larger value is tried). The value returned was tried. Each trial reports ``progress(done + trial, done + _CLEARING_TRIALS)``; a
-    true return cancels."""
+    or above: no larger value is tried). The value returned was tried. Each trial reports
+    ``progress(done + trial, done + _CLEARING_TRIALS)``; a true return cancels."""
     trials = 0
 
     def trial(value):

@@ -384,8 +384,8 @@ def write_step(path, named_solids, pcurves=False, scale=1.0, name=None):
     Notes
     -----
     The solids are written as one assembly (FreeCAD's ``Import.export`` of an App::Part
-    holding them, labelled `name`), one product per solid named by its ID. To read it back headless with FreeCAD
-    0.20, call ``Import.insert(path, doc, useLinkGroup=False)`` (or
+    holding them, labelled `name`), one product per solid named by its ID. To read it back
+    headless with FreeCAD 0.20, call ``Import.insert(path, doc, useLinkGroup=False)`` (or
     ``merge=False``): with the defaults (merge into one App::LinkGroup),
     ``Import.insert`` / ``Import.open`` crash freecadcmd on any STEP
     assembly, ours or not (the importer's link-group path needs the GUI). The
