@@ -68,3 +68,20 @@ def freecad_step():
     except step.FreeCADMissing:
         pytest.skip("FreeCAD is not installed")
     return step
+
+
+def write_mesh_file(mesh, path):
+    """``mesh`` written to ``path`` (a pathlib.Path) in the format its suffix names; .json in
+    the old compas layout ({"vertex": {...}, "face": {...}}), which facet reads but has no
+    writer of."""
+    import json
+
+    from facet.io import write_mesh
+
+    if path.suffix == ".json":
+        path.write_text(json.dumps({
+            "vertex": {str(v): dict(zip("xyz", map(float, p))) for v, p in
+                       enumerate(mesh.vertices)},
+            "face": {str(f): [int(v) for v in face] for f, face in enumerate(mesh.faces())}}))
+    else:
+        write_mesh(mesh, path)

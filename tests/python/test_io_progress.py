@@ -1,7 +1,6 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Mesh readers' progress and Cancel."""
 
-import json
 import re
 
 import numpy as np
@@ -9,6 +8,7 @@ import pytest
 
 from facet import PolyMesh, read_mesh, write_mesh
 from facet.errors import Cancelled
+from panel_meshes import write_mesh_file
 
 
 def grid(n):
@@ -26,13 +26,7 @@ def test_reading_a_mesh_reports_progress_and_can_be_cancelled(tmp_path, suffix):
     readers count lines or records, and True from progress cancels."""
     mesh = grid(130)  # 17,161 vertices, 16,900 faces: steps between start and end
     path = tmp_path / f"grid{suffix}"
-    if suffix == ".json":  # (the old compas layout: no writer of it in facet)
-        path.write_text(json.dumps({
-            "vertex": {str(v): dict(zip("xyz", map(float, p))) for v, p in
-                       enumerate(mesh.vertices)},
-            "face": {str(f): [int(v) for v in face] for f, face in enumerate(mesh.faces())}}))
-    else:
-        write_mesh(mesh, path)
+    write_mesh_file(mesh, path)
     calls = []
     read = read_mesh(path, progress=lambda done, total: calls.append((done, total)) and False)
     np.testing.assert_array_equal(read.vertices, read_mesh(path).vertices)

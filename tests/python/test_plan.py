@@ -13,6 +13,7 @@ import pytest
 import facet
 from facet.errors import InputError
 from facet.mesh import PolyMesh
+from panel_meshes import write_mesh_file
 from facet.plan import (
     FREE_WEIGHT,
     PlanError,
@@ -785,30 +786,41 @@ def test_a_dxf_in_metres_or_inches_read_in_millimetres_on_request(tmp_path):
         assert not [w for w in drawn.warnings if "$INSUNITS" in w]
 
 
-def test_reading_a_plan_reports_its_stages_and_can_be_cancelled(tmp_path):
-    """Reading a 200 x 200 grid plan (40,000 faces) took 8 s with no progress and no way to
-    stop it but to kill FreeCAD: read_plan and plan_from_segments now report their stages
-    (and steps through the faces), and True from progress cancels."""
+def _read_in_stages(path, faces, stops):
+    """read_plan(path) with progress: its ``faces`` faces read in PLAN_STAGES stages with
+    steps between them (through the faces), and cancelled at each of ``stops`` calls and
+    at the last; returns the calls, [(done, total)]."""
     from facet.errors import Cancelled
     from facet.plan import PLAN_STAGES, PLAN_STEPS
 
-    n = 60
-    path = tmp_path / "grid.csv"
-    path.write_text("".join(f"0,{k},{n},{k}\n{k},0,{k},{n}\n" for k in range(n + 1)))
     calls = []
     plan = read_plan(path, progress=lambda done, total: calls.append((done, total)) and False)
-    assert plan.n_faces == n * n
+    assert plan.n_faces == faces
     total = PLAN_STAGES * PLAN_STEPS
     assert {t for _, t in calls} == {total}
     done = [d for d, _ in calls]
     assert done == sorted(done) and done[0] == 0 and done[-1] == total
     assert {d // PLAN_STEPS for d in done} == set(range(PLAN_STAGES + 1))
-    assert len(calls) > PLAN_STAGES + 1  # steps through the 3,600 faces too
-    for stop in (1, 4, len(calls) - 1):
+    assert len(calls) > PLAN_STAGES + 1  # steps through the faces too
+    for stop in stops + (len(calls) - 1,):
         seen = []
         with pytest.raises(Cancelled, match="reading the plan cancelled"):
             read_plan(path, progress=lambda done, total: seen.append(done) or len(seen) == stop)
         assert len(seen) == stop
+    return calls
+
+
+def test_reading_a_plan_reports_its_stages_and_can_be_cancelled(tmp_path):
+    """Reading a 200 x 200 grid plan (40,000 faces) took 8 s with no progress and no way to
+    stop it but to kill FreeCAD: read_plan and plan_from_segments now report their stages
+    (and steps through the faces), and True from progress cancels."""
+    from facet.errors import Cancelled
+    from facet.plan import PLAN_STEPS
+
+    n = 60
+    path = tmp_path / "grid.csv"
+    path.write_text("".join(f"0,{k},{n},{k}\n{k},0,{k},{n}\n" for k in range(n + 1)))
+    _read_in_stages(path, n * n, (1, 4))
     segments = [((0, k), (n, k)) for k in range(n + 1)] + [((k, 0), (k, n)) for k in range(n + 1)]
     with pytest.raises(Cancelled):
         plan_from_segments(segments, progress=lambda done, total: done >= 4 * PLAN_STEPS)
@@ -830,33 +842,12 @@ def test_reading_a_plan_mesh_reports_its_stages_and_can_be_cancelled(tmp_path, s
     it now reports the same PLAN_STAGES stages as a drawing (and steps through the faces),
     and True from progress cancels."""
     from facet.errors import Cancelled
-    from facet.io import write_mesh
     from facet.plan import PLAN_STAGES, PLAN_STEPS
 
     n = 50
     path = tmp_path / f"grid{suffix}"
-    mesh = grid_mesh(n)
-    if suffix == ".json":  # (the old compas layout: no writer of it in facet)
-        path.write_text(json.dumps({
-            "vertex": {str(v): dict(zip("xyz", map(float, p))) for v, p in
-                       enumerate(mesh.vertices)},
-            "face": {str(f): [int(v) for v in face] for f, face in enumerate(mesh.faces())}}))
-    else:
-        write_mesh(mesh, path)
-    calls = []
-    plan = read_plan(path, progress=lambda done, total: calls.append((done, total)) and False)
-    assert plan.n_faces == n * n
-    total = PLAN_STAGES * PLAN_STEPS
-    assert {t for _, t in calls} == {total}
-    done = [d for d, _ in calls]
-    assert done == sorted(done) and done[0] == 0 and done[-1] == total
-    assert {d // PLAN_STEPS for d in done} == set(range(PLAN_STAGES + 1))
-    assert len(calls) > PLAN_STAGES + 1  # steps through the 2,500 faces too
-    for stop in (1, 3, 5, len(calls) - 1):
-        seen = []
-        with pytest.raises(Cancelled, match="reading the plan cancelled"):
-            read_plan(path, progress=lambda done, total: seen.append(done) or len(seen) == stop)
-        assert len(seen) == stop
+    write_mesh_file(grid_mesh(n), path)
+    calls = _read_in_stages(path, n * n, (1, 3, 5))
     with pytest.raises(Cancelled, match="reading the plan cancelled"):
         plan_from_mesh(grid_mesh(n), progress=lambda done, total: done >= 4 * PLAN_STEPS)
     # without a check of overlaps (the Lifting's plan) its stages are skipped
