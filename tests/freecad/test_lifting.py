@@ -266,17 +266,15 @@ class TestPlanGraphSources(DocumentTestCase):
         self.doc.recompute()
         self.assertEqual((plan.FaceCount, list(plan.Warnings)), (2, []))
 
-    def test_reading_a_plan_shows_progress_and_can_be_cancelled(self):
-        # a 40,000-face plan took 8 s to read with no progress and no Cancel
-        path = os.path.join(self.tmp.name, "grid_plan.csv")
-        with open(path, "w") as f:
-            for k in range(9):
-                f.write(f"0,{k * 500},4000,{k * 500}\n{k * 500},0,{k * 500},4000\n")
+    def read_cancelled_then_again(self, path, prop, value):
+        """A PlanGraph of the 64-face grid at ``path``; its read again after ``prop`` is set
+        to ``value`` cancelled at the third progress call (the object in error, its last
+        plan kept), then recomputed: (the PlanGraph, its points before)."""
         plan = facetwb.make_plan_graph(file=path, doc=self.doc)
         self.doc.recompute()
         self.assertEqual(plan.FaceCount, 64)
         before = points_array(plan)
-        plan.Snap = 1.0
+        setattr(plan, prop, value)
         reporter = self.recompute_cancelled(3)
         self.assertTrue(reporter.cancelled)
         self.assertEqual(reporter.total, facet.plan.PLAN_STAGES * facet.plan.PLAN_STEPS)
@@ -286,6 +284,15 @@ class TestPlanGraphSources(DocumentTestCase):
         plan.touch()
         self.doc.recompute()
         self.assertTrue(plan.isValid(), plan.getStatusString())
+        return plan, before
+
+    def test_reading_a_plan_shows_progress_and_can_be_cancelled(self):
+        # a 40,000-face plan took 8 s to read with no progress and no Cancel
+        path = os.path.join(self.tmp.name, "grid_plan.csv")
+        with open(path, "w") as f:
+            for k in range(9):
+                f.write(f"0,{k * 500},4000,{k * 500}\n{k * 500},0,{k * 500},4000\n")
+        plan, before = self.read_cancelled_then_again(path, "Snap", 1.0)
         self.assertEqual(plan.FaceCount, 64)
 
     def test_reading_a_plan_mesh_shows_progress_and_can_be_cancelled(self):
@@ -300,20 +307,7 @@ class TestPlanGraphSources(DocumentTestCase):
                  for j in range(8) for i in range(8)]
         path = os.path.join(self.tmp.name, "grid_plan.obj")
         facet.io.write_mesh(PolyMesh.from_faces(np.array(xyz), faces), path)
-        plan = facetwb.make_plan_graph(file=path, doc=self.doc)
-        self.doc.recompute()
-        self.assertEqual(plan.FaceCount, 64)
-        before = points_array(plan)
-        plan.FileUnits = "m"
-        reporter = self.recompute_cancelled(3)
-        self.assertTrue(reporter.cancelled)
-        self.assertEqual(reporter.total, facet.plan.PLAN_STAGES * facet.plan.PLAN_STEPS)
-        self.assertFalse(plan.isValid())
-        self.assertIn("cancelled", plan.getStatusString())
-        np.testing.assert_array_equal(points_array(plan), before)  # the last plan kept
-        plan.touch()
-        self.doc.recompute()
-        self.assertTrue(plan.isValid(), plan.getStatusString())
+        plan, before = self.read_cancelled_then_again(path, "FileUnits", "m")
         np.testing.assert_array_equal(points_array(plan), np.asarray(before) * 1000.0)
 
     def test_a_dxf_drawn_in_metres_is_read_in_millimetres(self):
