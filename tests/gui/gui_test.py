@@ -901,6 +901,20 @@ def check_lift_mix_states(check, out_dir):
     App.closeDocument(doc.Name)
 
 
+def plan_graph_from_file(path):
+    """Facet_PlanGraph with nothing selected, its file dialog answered with ``path``."""
+    import FreeCADGui as Gui
+    from PySide import QtGui
+
+    ask = QtGui.QFileDialog.getOpenFileName
+    try:
+        QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *args, **kw: (path, ""))
+        Gui.Selection.clearSelection()
+        Gui.runCommand("Facet_PlanGraph")
+    finally:
+        QtGui.QFileDialog.getOpenFileName = ask
+
+
 def check_plan_fitted_once_fixed(check, out_dir):
     """A drawing whose first read fails (an arc, refused without ArcTolerance) into an
     empty document: the view was fitted to nothing then, and once ArcTolerance was set the
@@ -911,7 +925,6 @@ def check_plan_fitted_once_fixed(check, out_dir):
     import ezdxf
     import FreeCAD as App
     import FreeCADGui as Gui
-    from PySide import QtGui
 
     import facetwb
 
@@ -926,13 +939,7 @@ def check_plan_fitted_once_fixed(check, out_dir):
     msp.add_arc((4000, 4000), 4000 * 2 ** 0.5, 135, 225)  # (0, 8000) round to (0, 0)
     drawing.saveas(path)
     doc = App.newDocument("ArcPlan")
-    ask = QtGui.QFileDialog.getOpenFileName
-    try:
-        QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *args, **kw: (path, ""))
-        Gui.Selection.clearSelection()
-        Gui.runCommand("Facet_PlanGraph")
-    finally:
-        QtGui.QFileDialog.getOpenFileName = ask
+    plan_graph_from_file(path)
     settle(5)
     plans = [o for o in doc.Objects if facetwb.is_plan_graph(o)]
     if not check(len(plans) == 1 and not plans[0].isValid() and "ARC" in
@@ -980,9 +987,7 @@ def check_lift_from_file(check, out_dir):
     doc = App.newDocument("RoofFromFiles")
     ask = QtGui.QFileDialog.getOpenFileName
     try:
-        QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *args, **kw: (dxf, ""))
-        Gui.Selection.clearSelection()
-        Gui.runCommand("Facet_PlanGraph")
+        plan_graph_from_file(dxf)
         plans = [o for o in doc.Objects if facetwb.is_plan_graph(o)]
         if not check(len(plans) == 1 and plans[0].isValid() and plans[0].FaceCount == 7,
                      "Facet_PlanGraph reads examples/roof_plan.dxf: 7 faces"):

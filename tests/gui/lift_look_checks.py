@@ -20,10 +20,9 @@ from ui_checks import settle
 
 def face_colours(g, view, obj, path):
     """The colour drawn at the middle of each face of ``obj`` in the screenshot ``path``
-    (saved isometric, all in view, at the view's size), as (r, g, b) 0..255, or None for a face not seen
-    there (behind another: a pick there is not the face)."""
+    (saved isometric, all in view, at the view's size), as (r, g, b) 0..255, or None for a
+    face not seen there (behind another: a pick there is not the face)."""
     import FreeCAD as App
-    import numpy as np
 
     from facetwb.objects.polymesh import get_mesh
 
@@ -55,18 +54,11 @@ def check_shading(check, out_dir, g):
     import FreeCAD as App
     import FreeCADGui as Gui
 
-    import facetwb
     import pins_checks
-    from facetwb.viewproviders import colormap
 
     doc = App.newDocument("Shading")
     try:
-        plan = pins_checks.hipped_plan(doc)
-        pinned = [(x, y, 2500.0) for x, y in pins_checks.CORNERS] + \
-            [(x, y, 4500.0) for x, y in pins_checks.RIDGE]
-        lifting = facetwb.make_lifting(plan, pins=pinned)
-        doc.recompute()
-        settle()
+        lifting = pinned_roof(doc)
         Gui.Selection.clearSelection()  # (selected: drawn in the highlight colour)
         view = Gui.ActiveDocument.ActiveView
         check(lifting.ViewObject.DisplayMode == "Flat Lines", "shading: the roof shows in "
