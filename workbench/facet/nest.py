@@ -24,6 +24,7 @@ sheet go back into the next batch.
 0.41
 """
 
+import itertools
 import math
 import warnings
 from dataclasses import dataclass, field
@@ -495,8 +496,7 @@ def _regroup(bins, items, settings, areas, progress=None):
     """
     box, dist, rotations, accuracy, batch_size = settings
     pool_size = _POOL_BATCHES * batch_size
-    pool_settings = None
-    serial = iter(range(1 << 62))
+    serial = itertools.count()
     tagged = [(next(serial), b) for b in bins]
     settled = set()
 
