@@ -289,10 +289,6 @@ def _upright(deg):
     return high - (high - deg) % 180.0
 
 
-def _rotate_angle(pl, deg):
-    return _upright(deg + pl.angle_deg)
-
-
 def _preview_text(x, y, height, rotation_deg):
     """A DXF text centred at (x, y) (MIDDLE_CENTER: the middle of its capitals), as a
     preview draws it: ``(bx, by, size)``, the point on its baseline below the centre and
@@ -319,7 +315,7 @@ def _drawn(pl, d, sheet_size, off=0.0):
     texts = [(d.id, lx, ly, d.label_height, _upright(pl.angle_deg), "LABEL")]
     for s, bx, by, ang, bh in d.bevels:
         px, py = pl.transform([(bx, by)])[0] + off
-        texts.append((s, px, py, bh, _rotate_angle(pl, ang), "BEVEL"))
+        texts.append((s, px, py, bh, _upright(ang + pl.angle_deg), "BEVEL"))
     grain = []
     if d.grain is not None:
         a, b = pl.transform(d.grain) + off
