@@ -139,10 +139,10 @@ def _finish(items):
             except (ValueError, TypeError) as error:
                 App.Console.PrintWarning(f"Facet: {obj.Label}: display mode: {error}\n")
         hide_sources(obj)
-    _fit(documents)
+    fit_views(documents)
 
 
-def _fit(documents):
+def fit_views(documents):
     """Fit the 3D views of ``documents`` to what they show: with no GuiDocument.xml there
     was no camera either, and examples/roof.FCStd opened on an empty view (the default
     camera's few millimetres about the origin, the 12 m roof out of sight)."""

@@ -50,18 +50,17 @@ PRESELECTED_STYLE = ("ring", 2 * VERTEX_PICK_PIXELS + 1)
 
 
 def _fit_view(obj):
-    """Fit the 3D view of ``obj``'s document to what it shows; nothing when ``obj`` was
-    deleted (its document closed) before the timer that calls this fired."""
-    import FreeCADGui as Gui
+    """Fit the 3D view of ``obj``'s document to what it shows (``attach.fit_views``);
+    nothing when ``obj`` was deleted (its document closed) before the timer that calls
+    this fired."""
+    from facetwb.viewproviders import attach
 
     try:
         doc = obj.Document
     except ReferenceError:  # ("Cannot access attribute 'Document' of deleted object")
         return
-    gui_doc = Gui.getDocument(doc.Name) if doc else None
-    view = getattr(gui_doc, "ActiveView", None)
-    if view is not None and hasattr(view, "fitAll"):
-        view.fitAll()
+    if doc is not None:
+        attach.fit_views([doc.Name])
 
 
 class ViewProviderPolyMesh:
