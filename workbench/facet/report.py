@@ -20,7 +20,7 @@ import numpy as np
 from facet.io.files import write_text
 
 __all__ = ["planarize_report", "check_report", "quality_figures", "json_safe", "write_json",
-           "count_noun", "first_names", "point_text", "length_text"]
+           "count_noun", "face_degrees", "first_names", "point_text", "length_text"]
 
 #: Keys of ``mesh.info`` copied into reports (lists of keys are left out).
 _INFO_KEYS = ("format", "header", "dtype", "item", "openings_skipped", "unused_vertices_dropped",
@@ -69,7 +69,7 @@ def _path(path):
     return None if path is None else os.fspath(path)
 
 
-def _face_degrees(mesh):
+def face_degrees(mesh):
     """Number of faces of each degree, as {"3": n, "4": m, ...}."""
     degrees, counts = np.unique(mesh.degrees, return_counts=True)
     return {str(int(d)): int(c) for d, c in zip(degrees, counts)}
@@ -155,7 +155,7 @@ def planarize_report(source, result, input_path=None, output_path=None, input_pl
         "output": _path(output_path),
         "faces": source.n_faces,
         "vertices": source.n_vertices,
-        "face_degrees": _face_degrees(source),
+        "face_degrees": face_degrees(source),
         "mean_edge_length": mean_edge,
         "method": result.method,
         "tol": options.get("tol", options.get("tol_rel")),
@@ -248,7 +248,7 @@ def check_report(mesh, planarity_report, validation_report, path=None):
         "input": _path(path),
         "faces": mesh.n_faces,
         "vertices": mesh.n_vertices,
-        "face_degrees": _face_degrees(mesh),
+        "face_degrees": face_degrees(mesh),
         "edges": validation.get("n_edges"),
         "boundary_edges": validation.get("n_boundary_edges"),
         "non_manifold_edges": validation.get("n_non_manifold_edges"),

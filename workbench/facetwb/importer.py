@@ -117,18 +117,15 @@ def imported_summary(mesh, units="mm"):
     ``units``), for the report view: its faces by corner count, its vertices, its size
     and the units it was read in; a designer sees at once a mesh of the wrong size or
     kind (before, a successful import said nothing)."""
-    import numpy as np
-
-    from facet.report import count_noun
+    from facet.report import count_noun, face_degrees
 
     def counted(number, noun):  # "1,536 quads", "1 face"
         return f"{number:,} {count_noun(number, noun).split(' ', 1)[1]}"
 
-    corners = np.bincount(mesh.degrees)
-    kinds = [(3, "triangle"), (4, "quad"), (6, "hexagon")]
-    parts = [counted(int(corners[k]), name) for k, name in kinds
-             if k < len(corners) and corners[k]]
-    other = mesh.n_faces - sum(corners[k] for k, _ in kinds if k < len(corners))
+    degrees = face_degrees(mesh)  # {"4": faces with 4 corners, ...}
+    kinds = [("3", "triangle"), ("4", "quad"), ("6", "hexagon")]
+    parts = [counted(degrees[k], name) for k, name in kinds if degrees.get(k)]
+    other = mesh.n_faces - sum(degrees.get(k, 0) for k, _ in kinds)
     if other:
         parts.append(counted(int(other), "other polygon"))
     lower, upper = mesh.bounds()
