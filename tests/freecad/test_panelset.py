@@ -662,22 +662,29 @@ class TestPanelSet(DocumentTestCase):
         self.doc.removeObject(sheets.Name)
         self.doc.removeObject(ps_obj.Name)
 
+    def counted_cutsheets(self, name):
+        """A PanelSet ``name`` of the source and its CutSheets writing to a folder of that
+        name (lower case), removed after the test, with the nestings counted: (the list
+        of nest calls, the PanelSet, the CutSheets, the folder)."""
+        nests = self.enterContext(counting_nests())
+        ps_obj = facetwb.make_panelset(self.source, thickness=T, name=name)
+        out = os.path.join(self.tmp.name, name.lower())
+        sheets = facetwb.make_cutsheets(ps_obj, sheet=(2600.0, 1400.0), output_dir=out)
+        self.addCleanup(self.doc.removeObject, ps_obj.Name)
+        self.addCleanup(self.doc.removeObject, sheets.Name)
+        return nests, ps_obj, sheets, out
+
     def test_cutsheets_keep_their_nesting_when_only_the_masses_change(self):
         """A PanelSet's Density changes the schedules' masses, not the nesting (1,536
         panels: 75 s a Density change, which nested them again and wrote every file, 0.4 s
         now): the DXF, SVG and STEP files are left as they are, schedule.csv and
         schedule.json are written again, the same as after a whole recompute. OnePerPanel
-        writes nothing; the part IDs, the CutSheets' own inputs, a missing file and a
-        recompute marked by hand nest again."""
+        writes nothing; the sheet's inputs and a recompute marked by hand nest again, and a
+        missing file is written again from the same nesting."""
         import csv
         import json
 
-        nests = self.enterContext(counting_nests())
-        ps_obj = facetwb.make_panelset(self.source, thickness=T, name="Glass")
-        out = os.path.join(self.tmp.name, "glass")
-        sheets = facetwb.make_cutsheets(ps_obj, sheet=(2600.0, 1400.0), output_dir=out)
-        self.addCleanup(self.doc.removeObject, ps_obj.Name)
-        self.addCleanup(self.doc.removeObject, sheets.Name)
+        nests, ps_obj, sheets, out = self.counted_cutsheets("Glass")
 
         def files():
             return written(out)
@@ -753,12 +760,7 @@ class TestPanelSet(DocumentTestCase):
 
         import ezdxf
 
-        nests = self.enterContext(counting_nests())
-        ps_obj = facetwb.make_panelset(self.source, thickness=T, name="Named")
-        out = os.path.join(self.tmp.name, "named")
-        sheets = facetwb.make_cutsheets(ps_obj, sheet=(2600.0, 1400.0), output_dir=out)
-        self.addCleanup(self.doc.removeObject, ps_obj.Name)
-        self.addCleanup(self.doc.removeObject, sheets.Name)
+        nests, ps_obj, sheets, out = self.counted_cutsheets("Named")
 
         def places(folder=out):
             """The schedule's ID and place of each part, in the order of the panels."""
