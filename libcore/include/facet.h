@@ -770,6 +770,13 @@ const char *facet_lifter_message(const facet_lifter *lifter);
  * 0 a consumed edge is an error naming the face, the vertex and the edge's
  * length.
  *
+ * Straight corners (a vertex on a straight edge, as where two panels meet
+ * along one side of a third): the corner is the point of the edge's offset
+ * line nearest the vertex, in both outlines, where the two edges are cut
+ * alike (square, or mitred at one angle, as a planar mesh makes them). A
+ * mitre beside a cut of another angle there (a free edge, a butt joint)
+ * becomes a butt joint as above; with repair_consumed 0 that is an error.
+ *
  * Angles (radians), per face corner k, for the edge from corner k to k+1:
  *  dihedral  angle between the two panels on their bottom (-n) side: pi
  *            when flat, below pi where the top side is convex (a ridge);

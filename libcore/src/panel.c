@@ -234,6 +234,34 @@ static double solve3(const double a[3], double da, const double b[3], double db,
     return det;
 }
 
+/* The corner of a panel's outline on the plane n.x = h (n the face's unit
+ * normal) between the edge planes a (before) and b (after) of vertex p: where
+ * the three planes meet. At a straight corner (a vertex on a straight edge, as
+ * where two panels meet along one side of a third) a and b meet that plane in
+ * one line when they are cut alike: the corner is then the point of that line
+ * nearest p. Returns 0 where there is no one corner (a and b parallel and
+ * apart there). */
+static int corner_point(const double n[3], double h, const double a[4], const double b[4],
+                        const double p[3], double x[3])
+{
+    const double det = solve3(n, h, a, a[3], b, b[3], x);
+    if (fabs(det) >= 1e-9)
+        return 1;
+    /* p + s n + t a on both n and a: a 2 x 2 system (n, a unit, not parallel) */
+    const double c = dot3(n, a), r1 = h - dot3(n, p), r2 = a[3] - dot3(a, p);
+    const double g = 1.0 - c * c;
+    if (!(g > 1e-12))
+        return det != 0.0;
+    const double s = (r1 - c * r2) / g, t = (r2 - c * r1) / g;
+    const double y[3] = {p[0] + s * n[0] + t * a[0], p[1] + s * n[1] + t * a[1],
+                         p[2] + s * n[2] + t * a[2]};
+    if (fabs(dot3(b, y) - b[3]) <= 1e-9) {
+        x[0] = y[0], x[1] = y[1], x[2] = y[2];
+        return 1;
+    }
+    return det != 0.0;
+}
+
 /* v projected onto the plane of unit normal n, then made a unit vector (when
  * not zero); returns its length before that. */
 static double in_plane_unit(double v[3], const double n[3])
@@ -328,6 +356,34 @@ static facet_status edge_plane(work *w, int32_t f, int64_t c, double half_gap, f
         out->bevel[c] = atan2(dot3(pl, nf_), dot3(pl, mi));
     return FACET_OK;
 }
+
+/* Cuts the joints of corners around[0] and around[1] of face f square on
+ * this panel: butt joints, the neighbour taking the whole fold (or, if it is
+ * square already, square on both). *again is the first face they touch, to
+ * outline again from. */
+static facet_status square_joints(work *w, int32_t f, const int64_t around[2], double half_gap,
+                                  facet_panel_output *out, facet_error *error, int32_t *again)
+{
+    *again = f;
+    for (int k = 0; k < 2; ++k) {
+        const int64_t c = around[k], t = w->nbr_corner[c];
+        if (is_square(w->square[c]))
+            continue;
+        w->square[c] = CUT_SQUARED;
+        facet_status status = edge_plane(w, f, c, half_gap, out, error);
+        if (status < 0)
+            return status;
+        if (t >= 0 && w->square[t] == CUT_MITRE) {
+            w->square[t] = CUT_BUTT;
+            status = edge_plane(w, w->corner_face[t], t, half_gap, out, error);
+            if (status < 0)
+                return status;
+            *again = *again < w->corner_face[t] ? *again : w->corner_face[t];
+        }
+    }
+    return FACET_OK;
+}
+
 
 /* The squared distance from x to the segment from a to b. */
 static double segment_distance2(const double x[3], const double a[3], const double b[3])
@@ -1072,10 +1128,10 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
                 for (int side = 0; side < 2; ++side) {
                     const double h = side ? down : up;
                     double x0[3], x1[3];
-                    /* parallel planes: no corner, which the corners' pass
-                     * below reports (collinear edges) */
-                    if (solve3(n, h - n[3], a, a[3], b, b[3], x0) == 0.0 ||
-                        solve3(n, h - n[3], b, b[3], bb, bb[3], x1) == 0.0)
+                    /* parallel planes apart: no corner, which the corners'
+                     * pass below reports (collinear edges) */
+                    if (!corner_point(n, h - n[3], a, b, p, x0) ||
+                        !corner_point(n, h - n[3], b, bb, q, x1))
                         continue;
                     const double od[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
                     const double ratio = dot3(ed, od) / dot3(ed, ed);
@@ -1094,30 +1150,10 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             if (is_square(w.square[around[0]]) && is_square(w.square[around[1]]))
                 around[0] = around[1] = worst;
             if (repair && !(is_square(w.square[around[0]]) && is_square(w.square[around[1]]))) {
-                /* cut these joints square on this panel: butt joints, the
-                 * neighbour taking the whole fold (or, if it is square
-                 * already, square on both); outline again from the first
-                 * face they touch */
-                again = f;
-                for (int k = 0; k < 2; ++k) {
-                    const int64_t c = around[k], t = w.nbr_corner[c];
-                    if (is_square(w.square[c]))
-                        continue;
-                    w.square[c] = CUT_SQUARED;
-                    status = edge_plane(&w, f, c, half_gap, out, error);
-                    if (status < 0) {
-                        work_free(&w);
-                        return status;
-                    }
-                    if (t >= 0 && w.square[t] == CUT_MITRE) {
-                        w.square[t] = CUT_BUTT;
-                        status = edge_plane(&w, w.corner_face[t], t, half_gap, out, error);
-                        if (status < 0) {
-                            work_free(&w);
-                            return status;
-                        }
-                        again = again < w.corner_face[t] ? again : w.corner_face[t];
-                    }
+                status = square_joints(&w, f, around, half_gap, out, error, &again);
+                if (status < 0) {
+                    work_free(&w);
+                    return status;
                 }
                 break;
             }
@@ -1147,23 +1183,41 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             /* the edges before and after the corner that are kept */
             const double *a = w.eplane + 4 * active_before(&w, f, c),
                          *b = w.eplane + 4 * (w.drop[c] ? active_after(&w, f, c) : c);
+            /* the input's edges, or two that the gap brought together by
+             * consuming those between them (an L's arm) */
+            const int64_t before = active_before(&w, f, c);
+            const int dropped = w.drop[c] || before != prev_corner(m, f, c);
+            const double *p = w.xyz + 3 * m->face_vertices[c];
             double xt[3], xb[3];
-            const double dt = solve3(n, up - n[3], a, a[3], b, b[3], xt);
-            const double db = solve3(n, down - n[3], a, a[3], b, b[3], xb);
-            if (dt == 0.0 || db == 0.0) {
-                /* the input's edges, or two that the gap brought together by consuming
-                 * those between them (an L's arm): then the gap is what to change */
-                const int dropped = w.drop[c] || active_before(&w, f, c) != prev_corner(m, f, c);
+            const int found = dropped ? solve3(n, up - n[3], a, a[3], b, b[3], xt) != 0.0 &&
+                                            solve3(n, down - n[3], a, a[3], b, b[3], xb) != 0.0
+                                      : corner_point(n, up - n[3], a, b, p, xt) &&
+                                            corner_point(n, down - n[3], a, b, p, xb);
+            if (!found) {
+                /* a straight corner between joints cut at different angles
+                 * (a mitre beside a free edge, or beside a repaired joint):
+                 * square them, as a consumed mitre is */
+                const int64_t around[2] = {before, c};
+                if (!dropped && repair &&
+                    !(is_square(w.square[before]) && is_square(w.square[c]))) {
+                    status = square_joints(&w, f, around, half_gap, out, error, &again);
+                    if (status < 0) {
+                        work_free(&w);
+                        return status;
+                    }
+                    break;
+                }
                 work_free(&w);
-                if (dropped)
+                if (dropped) /* the gap is what to change */
                     return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
                                       "face %d: the gap %.6g%s consumes edges of its outline until "
                                       "two parallel ones meet (at vertex %d); use a smaller gap "
                                       "or split the face",
                                       (int)f, o->gap, unit, (int)m->face_vertices[c]);
                 return facet_fail(error, FACET_ERROR_PANEL_GEOMETRY, f, m->face_vertices[c],
-                                  "face %d: the edges at vertex %d are collinear; remove the "
-                                  "vertex or split the face",
+                                  "face %d: the edges at vertex %d are collinear and their joints "
+                                  "are cut at different angles, which would need a step in the "
+                                  "panel's side; cut them square or split the face",
                                   (int)f, (int)m->face_vertices[c]);
             }
             for (int k = 0; k < 3; ++k) {
@@ -1176,6 +1230,10 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             }
             if (out->dropped)
                 out->dropped[c] = w.drop[c];
+        }
+        if (again >= 0) {
+            f = again - 1; /* (the loop's ++f) */
+            continue;
         }
         if (out->plane) {
             out->plane[4 * f + 0] = n[0];

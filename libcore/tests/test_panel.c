@@ -403,6 +403,58 @@ static void node_clashes(void)
     CHECK(r.n_node_clashes == 0 && r.n_overlapping_joints == 0 && face_clash[0] == 0.0);
 }
 
+/* A T-junction at georeferenced coordinates: face 0, 2 x 1, has a straight
+ * corner (vertex 3) in the middle of its far edge, along which faces 1 and 2
+ * rise by 30 degrees (coplanar, as a planar mesh makes them). The corner was
+ * an error ("the edges at vertex 3 are collinear"). */
+static void straight_corner(void)
+{
+    const double ox = 2.5e6, oy = 1.2e6, tz = 0.5773502691896258; /* tan 30 */
+    double q[24] = {0, 0, 0, 2, 0, 0, 2, 1, 0, 1, 1, 0, 0, 1, 0, 0, 2, tz, 1, 2, tz, 2, 2, tz};
+    for (int v = 0; v < 8; ++v)
+        q[3 * v] += ox, q[3 * v + 1] += oy;
+    int32_t qs[4] = {0, 5, 9, 13}, qf[13] = {0, 1, 2, 3, 4, 3, 2, 7, 6, 4, 3, 6, 5};
+    facet_mesh qm = {8, 3, q, qs, qf};
+    double top[39], bottom[39];
+    int32_t squared[13];
+    facet_panel_output out;
+    memset(&out, 0, sizeof out);
+    out.top = top, out.bottom = bottom, out.squared = squared;
+    facet_panel_options o = panel_options(0.02, 0.01, FACET_PANEL_EDGE_BISECTOR);
+    facet_panel_result r;
+    facet_error e;
+    for (int edge = 0; edge < 2; ++edge) {
+        o.edge = edge ? FACET_PANEL_EDGE_SQUARE : FACET_PANEL_EDGE_BISECTOR;
+        CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+        CHECK(r.n_squared_edges == 0 && r.n_dropped_edges == 0);
+        /* corners 2, 3, 4 of face 0 on one line in each outline, half the
+         * gap in from the edge; corner 3 beside vertex 3 */
+        for (int side = 0; side < 2; ++side) {
+            const double *x = side ? top : bottom;
+            CHECK_NEAR(line_distance(x + 9, x + 6, x + 12), 0.0, 1e-9);
+            CHECK_NEAR(x[9] - ox, 1.0, 1e-9);
+        }
+        /* half the gap; mitred, half the slot across the 15-degree mitre */
+        CHECK_NEAR(q[10] - bottom[10], edge ? 0.005 : 0.005 / cos(PI / 12), 1e-9);
+    }
+    /* face 1 left out: the edge is free left of vertex 3 and mitred right of
+     * it; the mitre becomes a butt joint (square on face 0), or without
+     * repair an error */
+    qm.n_faces = 2;
+    o.edge = FACET_PANEL_EDGE_BISECTOR;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_squared_edges == 1 && r.n_butt_edges == 1 && squared[2] == 1 && squared[5] == 2);
+    for (int side = 0; side < 2; ++side) {
+        const double *x = side ? top : bottom;
+        CHECK_NEAR(line_distance(x + 9, x + 6, x + 12), 0.0, 1e-9);
+        CHECK_NEAR(q[10] - x[10], 0.005, 1e-9);
+    }
+    o.repair_consumed = 0;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
+    CHECK(strstr(e.message, "face 0: the edges at vertex 3 are collinear and their joints are "
+                            "cut at different angles") != NULL);
+}
+
 int main(void)
 {
     const double R = 5000.0, da = 0.2, h = 800.0, t = 40.0;
@@ -595,6 +647,7 @@ int main(void)
         CHECK(gr.max_node_deviation < 1e-12); /* a flat grid: every node is torsion-free */
     }
     consumed_edge();
+    straight_corner();
     squared_mitre();
     square_joint_overlap();
     joint_widths();

@@ -614,14 +614,67 @@ def test_a_gap_that_eats_an_arm_says_so():
                        r"until two parallel ones meet \(at vertex \d\); use a smaller gap"):
         panels(ell, 8.0, gap=301.0)
     assert len(panels(ell, 8.0, gap=290.0)) == 1
-    # a vertex truly on a straight edge is still named as such when the gap consumes a
-    # chamfer elsewhere on the face
+    # a vertex on a straight edge stays a (straight) corner on its offset edge, also
+    # when the gap consumes a chamfer elsewhere on the face
     chamfered = facet.PolyMesh.from_faces(
         np.array([[0, 0, 0], [10, 0, 0], [20, 0, 0], [20, 9.9, 0], [19.9, 10, 0],
                   [0, 10, 0.0]]), [[0, 1, 2, 3, 4, 5]])
     for gap in (0.0, 1.0):
-        with pytest.raises(PanelError, match="the edges at vertex 1 are collinear"):
-            panels(chamfered, 0.5, gap=gap)
+        p = panels(chamfered, 0.5, gap=gap).panels[0]
+        np.testing.assert_allclose(p.top[1], [10, gap / 2, 0.5], atol=1e-9)
+        np.testing.assert_allclose(p.bottom[1], [10, gap / 2, 0], atol=1e-9)
+
+
+def t_junction(fold_deg, left=True):
+    """A 2 x 1 m panel A under two 1 x 1 m panels B and C that meet at the middle of
+    A's top edge (A's vertex 3 is a straight corner), folded up by fold_deg along that
+    edge; left=False leaves B out, A's edge free there."""
+    t = math.tan(math.radians(fold_deg))
+    xyz = np.array([[0, 0, 0], [2000, 0, 0], [2000, 1000, 0], [1000, 1000, 0], [0, 1000, 0],
+                    [0, 2000, 1000 * t], [1000, 2000, 1000 * t], [2000, 2000, 1000 * t]])
+    faces = [[0, 1, 2, 3, 4], [3, 2, 7, 6]] + ([[4, 3, 6, 5]] if left else [])
+    return facet.PolyMesh.from_faces(xyz, faces)
+
+
+@pytest.mark.parametrize("edge", ["square", "bisector"])
+@pytest.mark.parametrize("fold", [0.0, 30.0])
+def test_two_panels_along_one_side_of_a_third(edge, fold):
+    # a T-junction: B and C share A's top edge (a planar mesh makes them coplanar); A's
+    # straight corner there was refused ("the edges at vertex 3 are collinear")
+    ps = panels(t_junction(fold), 20.0, gap=10.0, edge=edge)
+    a = ps.panels[0]
+    assert len(a.top) == 5 and a.dropped_edges == a.squared_edges == 0
+    for outline, h in ((a.top, 20.0), (a.bottom, 0.0)):
+        # A's top edge is one line, 5 mm (half the gap) in, at the straight corner too
+        side = outline[2:5]
+        np.testing.assert_allclose(side[:, 2], h, atol=1e-9)
+        assert np.ptp(side[:, 1]) < 1e-9
+        np.testing.assert_allclose(outline[3, 0], 1000.0, atol=1e-9)
+    # both joints along that edge alike: the gap's width where mitred or flat
+    assert a.joint_widths[2] == pytest.approx(a.joint_widths[3])
+    if edge == "bisector" or fold == 0:
+        assert a.joint_widths[2] == pytest.approx(10.0)
+        assert max(p.clash for p in ps) == 0.0
+    assert a.bevel_deg[2] == pytest.approx(a.bevel_deg[3])
+
+
+def test_a_straight_corner_between_a_mitre_and_a_free_edge_squares_the_mitre():
+    # A's top edge is free left of its straight corner and mitred to C right of it: the two
+    # cuts would need a step in A's side. The mitre becomes a butt joint (square on A);
+    # without repair it is an error that says why
+    mesh = t_junction(30.0, left=False)
+    ps = panels(mesh, 20.0, gap=10.0, edge="bisector")
+    a, c = ps.panels
+    assert (a.squared_edges, c.butt_edges) == (1, 1)
+    assert a.bevel_deg[2] == pytest.approx(0.0, abs=1e-9)
+    assert a.bevel_deg[3] == pytest.approx(0.0, abs=1e-9)
+    assert abs(c.bevel_deg[0]) == pytest.approx(30.0)  # the whole fold
+    np.testing.assert_allclose(a.top[2:5, 1], 995.0, atol=1e-9)
+    np.testing.assert_allclose(a.bottom[2:5, 1], 995.0, atol=1e-9)
+    with pytest.raises(PanelError, match=r"face 0: the edges at vertex 3 are collinear and "
+                       r"their joints are cut at different angles, .*cut them square or "
+                       r"split the face"):
+        panels(mesh, 20.0, gap=10.0, edge="bisector", repair=False)
 
 
 @pytest.mark.parametrize("grain", [None, (0, 0, 1), (1, 0, 1)])

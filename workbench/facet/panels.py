@@ -124,7 +124,8 @@ class Panel:
         face (`vertices` keeps the last mesh vertex of each merged corner).
     squared_edges : int
         Mitred edges cut square instead, because their mitre would consume a
-        short edge or meet beyond a nearly straight corner (bevel 0): butt
+        short edge, meet beyond a nearly straight corner, or meet a cut of
+        another angle at a straight corner (bevel 0): butt
         joints, whose other half is the neighbour's...
     butt_edges : int
         ... edge cut on this panel's square plane, with the whole fold (the
@@ -1027,7 +1028,9 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
     repair : bool
         Where the joint gap or a bevel turns an edge of a panel's outline
         around (a short edge, or two mitres of different angles meeting far
-        beyond a nearly straight corner), repair it as a fabricator would:
+        beyond a nearly straight corner), or where a mitre and a cut of
+        another angle meet at a straight corner (a vertex on a straight
+        edge), repair it as a fabricator would:
         mitred joints there become butt joints (square on this panel, the
         whole fold on the neighbour's, the joint's width kept), and an edge
         still consumed is dropped from the outline as a CAD offset drops it
@@ -1280,8 +1283,9 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
             ("dropped_edges", "short edges that the joint gap or a bevel consumes dropped from "
              "the outlines of", ""),
             ("squared_edges", "mitred joints cut as butt joints instead, square on one panel "
-             "and with the whole fold on the other (the mitre would consume a short edge or "
-             "meet beyond a nearly straight corner); square on",
+             "and with the whole fold on the other (the mitre would consume a short edge, "
+             "meet beyond a nearly straight corner or meet a cut of another angle at a "
+             "straight corner); square on",
              f"; the narrowest of those joints is {length(narrowest)} wide across its section "
              f"(gap {length(gap)})" if narrowest >= 0.0 else "")):
         hit = [p.id for p in result if getattr(p, attr)]
