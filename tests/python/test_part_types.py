@@ -1,0 +1,111 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Part types: panels that are one part within a tolerance."""
+
+from collections import Counter
+
+import numpy as np
+import pytest
+
+import facet
+from facet.errors import Cancelled
+from facet.panels import panels
+from facet.part_types import part_types
+from panel_meshes import cylinder, grid_faces, translational
+
+
+def rotation(axis, angle):
+    """The rotation matrix about a unit axis."""
+    x, y, z = np.asarray(axis, float) / np.linalg.norm(axis)
+    c, s = np.cos(angle), np.sin(angle)
+    k = np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])
+    return np.eye(3) + s * k + (1 - c) * k @ k
+
+
+def apart(*outlines):
+    """One face per (k, 3) outline, each its own piece of mesh."""
+    xyz = np.vstack(outlines)
+    faces, n = [], 0
+    for o in outlines:
+        faces.append(list(range(n, n + len(o))))
+        n += len(o)
+    return facet.PolyMesh.from_faces(xyz, faces)
+
+
+# a trapezoid with no symmetry, 1.2 x 0.8 m
+TRAPEZOID = np.array([[0, 0, 0], [1200, 0, 0], [1000, 800, 0], [150, 700, 0.0]])
+
+
+def test_the_quads_of_a_cylinder_are_one_part_with_square_edges():
+    ps = panels(cylinder(), 20.0, gap=6.0)
+    assert Counter(part_types(ps, 0.5)) == {"T1": 24}
+
+
+def test_mitred_the_cylinders_edge_columns_are_a_second_part():
+    # the first and last columns have a square (free) side, the others two mitres; a
+    # half turn makes the first column's panels the last column's
+    ps = panels(cylinder(), 20.0, gap=6.0, edge="bisector")
+    types = part_types(ps, 0.5)
+    assert Counter(types) == {"T1": 16, "T2": 8}
+    edge_column = [any(n is None for n in p.neighbors[1::2]) for p in ps]
+    assert all((t == "T2") == e for t, e in zip(types, edge_column))
+
+
+def test_a_turned_and_moved_copy_is_the_same_part_a_mirror_image_is_not():
+    r = rotation([1, 2, 3], 0.7)
+    moved = TRAPEZOID @ r.T + [5e5, -3e6, 2e3]
+    # the same side up (a mirrored face wound the other way is the panel turned over)
+    mirrored = (TRAPEZOID * [-1, 1, 1])[::-1] + [3000, 0, 0]
+    ps = panels(apart(TRAPEZOID, moved, mirrored), 30.0, gap=10.0)
+    assert part_types(ps, 0.5) == ["T1", "T1", "T2"]
+
+
+def test_the_tolerance_is_the_distance_between_matching_corners():
+    # the copy's far corner moved by 0.4 and by 1.0: one part within 0.5, two beyond (the
+    # copy fitted to the first in the least squares sense spreads a shift over the corners)
+    for shift, same in ((0.4, True), (1.0, False)):
+        copy = TRAPEZOID + [3000, 0, 0]
+        copy[2, 0] += shift
+        types = part_types(panels(apart(TRAPEZOID, copy), 30.0, gap=10.0), 0.5)
+        assert (types[0] == types[1]) == same, shift
+    assert part_types(panels(apart(TRAPEZOID, TRAPEZOID + [0, 0, 1e3]), 30.0), 0.0) == \
+        ["T1", "T1"]
+
+
+def test_a_corner_on_a_straight_edge_makes_no_other_part():
+    rect = np.array([[0, 0, 0], [1000, 0, 0], [1000, 600, 0], [0, 600, 0.0]])
+    with_t = np.insert(rect, 2, [1000, 250, 0], axis=0) + [2000, 0, 0]
+    ps = panels(apart(rect, with_t), 30.0, gap=10.0)
+    assert [p.corners for p in ps] == [4, 5]
+    assert part_types(ps, 0.5) == ["T1", "T1"]
+
+
+def test_types_are_numbered_from_the_most_panels():
+    mirrored = (TRAPEZOID * [-1, 1, 1])[::-1]
+    ps = panels(apart(TRAPEZOID, mirrored + [3000, 0, 0], mirrored + [6000, 0, 0]), 30.0)
+    assert part_types(ps, 0.5) == ["T2", "T1", "T1"]
+
+
+def test_a_doubly_curved_surface_pairs_only_the_panels_a_half_turn_maps():
+    # z = a (x - 2500)^2 - b (y - 2000)^2 on 5 x 4 quads: a half turn about its centre
+    # maps face f onto face 19 - f, and no two other panels are alike
+    ps = panels(translational(), 20.0, gap=6.0)
+    types = part_types(ps, 0.5)
+    assert len(set(types)) == 10
+    assert all(types[f] == types[19 - f] for f in range(20))
+
+
+def test_a_bad_tolerance_is_refused_and_a_long_run_can_be_cancelled():
+    ps = panels(cylinder(), 20.0)
+    for bad in (-1.0, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="part type tolerance must be a finite length"):
+            part_types(ps, bad)
+    xyz = np.array([[i * 100.0, j * 100.0, 0.0] for j in range(21) for i in range(21)])
+    grid = panels(facet.PolyMesh.from_faces(xyz, grid_faces(20, 20)), 5.0)
+    seen = []
+
+    def cancel(done, total):
+        seen.append((done, total))
+        return True
+    with pytest.raises(Cancelled):
+        part_types(grid, 0.5, progress=cancel)
+    assert seen == [(256, 400)]
