@@ -40,9 +40,12 @@ def _shape(panel, tol):
     return pts
 
 
-def _perimeter(shape):
-    return float(np.linalg.norm(np.diff(shape[:, :2], axis=0, append=shape[:1, :2]),
-                                axis=1).sum())
+def _edge_lengths(shape):
+    """The bottom and the top outline's edge lengths, each sorted: within 2 tol of
+    another panel's where every corner is within tol of its match."""
+    return tuple(np.concatenate([np.sort(np.linalg.norm(
+        np.diff(shape[:, o:o + 2], axis=0, append=shape[:1, o:o + 2]), axis=1))
+        for o in (0, 2)]).tolist())
 
 
 def _fits(p, q, tol):
@@ -92,26 +95,29 @@ def part_types(panels, tol, progress=None):
         raise ValueError(f"part type tolerance must be a finite length >= 0, not {tol!r}")
     panels = list(panels)
     first = []  # per type, its first panel's index
-    shapes = []  # per type, its first panel's shape
+    shapes = []  # per type, its first panel's shape and edge lengths
     windows = {}  # corners -> sorted [(perimeter, type)]
     found = []
     for i, panel in enumerate(panels):
         shape = _shape(panel, tol)
-        k, per = len(shape), _perimeter(shape)
+        k, lengths = len(shape), _edge_lengths(shape)
         # matching corners within tol: each edge within 2 tol, the perimeter within 2 k tol
+        per, slack = sum(lengths[:k]), 2 * tol + 1e-12 * max(lengths)
         window = windows.setdefault(k, [])
-        lo = bisect.bisect_left(window, (per - 2 * k * tol - 1e-12 * per, -1))
+        lo = bisect.bisect_left(window, (per - k * slack, -1))
         hit = None
         for other_per, t in window[lo:]:
-            if other_per > per + 2 * k * tol + 1e-12 * per:
+            if other_per > per + k * slack:
                 break
-            if _fits(shapes[t], shape, tol):
+            other, other_lengths = shapes[t]
+            if (all(abs(a - b) <= slack for a, b in zip(lengths, other_lengths))
+                    and _fits(other, shape, tol)):
                 hit = t
                 break
         if hit is None:
             hit = len(first)
             first.append(i)
-            shapes.append(shape)
+            shapes.append((shape, lengths))
             bisect.insort(window, (per, hit))
         found.append(hit)
         if progress is not None and (i & 255) == 255 and progress(i + 1, len(panels)):
