@@ -409,3 +409,20 @@ def test_cancelled_solve_exits_130(monkeypatch, capsys, data_dir, tmp_path):
 def test_main_returns_zero_in_process(capsys, data_dir):
     assert cli.main(["check", str(data_dir / "hypar.obj")]) == 0
     assert "81 vertices, 64 faces (64 quads)" in capsys.readouterr().out
+
+
+def test_help_names_the_default_of_every_choice():
+    """`facet COMMAND --help` names the default of every option with choices, as the README
+    says ("`facet --help` and `facet COMMAND --help` list every option"): `panels
+    --rotations` and `--ids` did not (90 and auto), and a reader of --help alone could not
+    tell what a run without them does."""
+    import argparse
+
+    commands = next(a for a in cli.build_parser()._actions
+                    if isinstance(a, argparse._SubParsersAction))
+    missing = [(name, action.option_strings[0], action.default)
+               for name, parser in commands.choices.items() for action in parser._actions
+               if action.option_strings and action.choices and action.default is not None
+               and not ("default" in (action.help or "")
+                        and str(action.default) in action.help)]
+    assert not missing

@@ -82,7 +82,8 @@ def add_commands(commands):
                    help="edge cuts square to the panel (default) or mitred")
     p.add_argument("--flip", action="store_true", help="swap the outer and inner sides")
     p.add_argument("--ids", choices=("auto", "grid", "index"), default="auto",
-                   help="part IDs from grid row/column (auto: when the mesh is a grid) or index")
+                   help="part IDs from grid row/column or face index (default auto: grid "
+                   "when the mesh is a grid, else index)")
     p.add_argument("--prefix", default="P-", help="part ID prefix (default P-)")
     p.add_argument("--tol", type=_non_negative_float, default=1e-6,
                    help="planarity tolerance relative to each face's mean edge (default 1e-6)")
@@ -102,7 +103,8 @@ def add_commands(commands):
                    help="least distance between parts: the kerf and more (default "
                    f"{DEFAULT_SPACING_MM:g} mm, in --units; 0 lets parts share a cut line)")
     p.add_argument("--rotations", choices=("none", "90", "free"), default="90",
-                   help="rotations allowed in nesting (none with --grain)")
+                   help="rotations allowed in nesting (default 90: quarter turns; none "
+                   "with --grain)")
     p.add_argument("--tight", action="store_true",
                    help="slower nesting, often on fewer sheets: the parts of the least-filled "
                    "sheets are nested again together")
