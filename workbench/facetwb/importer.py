@@ -17,6 +17,10 @@ import FreeCAD as App
 #: GUI set this to False so no modal dialog waits for a click.
 SHOW_DIALOGS = True
 
+#: The mesh (or the error) of the file :func:`read_kept` read, with that file's state, for
+#: the next :func:`read_polymesh` of it: {filename: (state, mesh or exception)}.
+_KEPT = {}
+
 #: The units a file can be read in (facet.cutsheets.LENGTH_UNITS), as the designer reads them.
 UNIT_NAMES = {"mm": "millimetres", "cm": "centimetres", "m": "metres", "in": "inches",
               "ft": "feet"}
@@ -71,7 +75,7 @@ def read_polymesh(filename, units="mm"):
         raise MeshImportError(f"Cannot import {filename}: units {units!r}: use one of "
                               f"{', '.join(UNIT_NAMES)}")
     try:
-        mesh = facet.read_mesh(filename)
+        mesh = _kept_or_read(filename)
         for warning in read_warnings(mesh):
             report_warning(f"Facet: {filename}: {warning}")
         seam = unwelded_warning(mesh, "the faces there are not joined")
@@ -91,6 +95,50 @@ def read_polymesh(filename, units="mm"):
             if message.startswith(prefix):  # facet names the file; so does our message
                 message = message[len(prefix):]
         raise MeshImportError(f"Cannot import {filename}: {message}") from error
+
+
+def read_kept(filename):
+    """``facet.read_mesh(filename)`` (its errors raised as it raises them), kept for the
+    next :func:`read_polymesh` of the file while it is unchanged (same size, time and
+    inode): Facet_ImportMesh reads a file to ask for its units, then runs the macro line
+    ``importer.insert(filename, ...)``, which read the whole file a second time (a
+    replayed macro, with nothing kept, reads it). :func:`forget_kept` drops it."""
+    import facet
+
+    state = _file_state(filename)
+    try:
+        mesh = facet.read_mesh(filename)
+    except (facet.errors.FacetError, OSError, ValueError) as error:
+        _KEPT[filename] = (state, error)
+        raise
+    _KEPT[filename] = (state, mesh)
+    return mesh
+
+
+def forget_kept():
+    """Drop what :func:`read_kept` kept and no read has taken."""
+    _KEPT.clear()
+
+
+def _file_state(filename):
+    try:
+        stat = os.stat(filename)
+    except OSError:
+        return None
+    return stat.st_size, stat.st_mtime_ns, stat.st_ino
+
+
+def _kept_or_read(filename):
+    """What :func:`read_kept` kept of ``filename`` if it is unchanged since (used once),
+    else ``facet.read_mesh(filename)``."""
+    import facet
+
+    state, kept = _KEPT.pop(filename, (None, None))
+    if kept is not None and state == _file_state(filename):
+        if isinstance(kept, Exception):
+            raise kept
+        return kept
+    return facet.read_mesh(filename)
 
 
 def import_mesh(filename, doc, units="mm"):

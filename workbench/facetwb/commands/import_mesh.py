@@ -40,29 +40,37 @@ class CommandImportMesh:
         if not filename:
             return
         parameters.SetString("LastImportDir", os.path.dirname(filename))
-        units = file_units(filename)
-        if units is None:
-            return
-        doc = App.ActiveDocument or App.newDocument()
-        # importer.insert reports a file it cannot read and leaves the document unchanged.
-        arguments = f'{filename!r}, "{doc.Name}"' + (f", units={units!r}" if units != "mm" else "")
-        run_as_macro(doc, "Import polygon mesh", [f"facetwb.importer.insert({arguments})"],
-                     modules=("facetwb.importer",))
+        from facetwb import importer
+
+        try:
+            units = file_units(filename)
+            if units is None:
+                return
+            doc = App.ActiveDocument or App.newDocument()
+            # importer.insert reports a file it cannot read and leaves the document
+            # unchanged; it takes the mesh file_units read instead of reading it again.
+            arguments = (f'{filename!r}, "{doc.Name}"'
+                         + (f", units={units!r}" if units != "mm" else ""))
+            run_as_macro(doc, "Import polygon mesh", [f"facetwb.importer.insert({arguments})"],
+                         modules=("facetwb.importer",))
+        finally:
+            importer.forget_kept()
 
 
 def file_units(filename):
     """The units of ``filename``'s numbers: "mm", FreeCAD's unit, unless its mean edge read
     so is no facade's (a mesh in metres has edges of a few millimetres then), when the
     designer is asked (:func:`ask_units`; not when importer.SHOW_DIALOGS is off: the
-    report view's warning then says it). None: the designer cancelled the import."""
-    import facet
+    report view's warning then says it). None: the designer cancelled the import.
 
+    The file is read once: importer.insert of it takes the mesh read here
+    (importer.read_kept)."""
     from facetwb import importer
 
     if not importer.SHOW_DIALOGS:
         return "mm"
     try:
-        mesh = facet.read_mesh(filename)
+        mesh = importer.read_kept(filename)
     except Exception:  # noqa: BLE001 - importer.insert reports what is wrong with the file
         return "mm"
     if importer.size_warning(mesh) is None:
