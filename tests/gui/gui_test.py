@@ -919,7 +919,8 @@ def check_plan_fitted_once_fixed(check, out_dir):
     """A drawing whose first read fails (an arc, refused without ArcTolerance) into an
     empty document: the view was fitted to nothing then, and once ArcTolerance was set the
     plan showed as a corner at the default camera's few millimetres about the origin. It
-    is fitted when the fix first draws it."""
+    is fitted when the fix first draws it; unless the designer has moved the view since
+    (it was fitted all the same, the view they chose taken from them)."""
     import tempfile
 
     import ezdxf
@@ -927,6 +928,7 @@ def check_plan_fitted_once_fixed(check, out_dir):
     import FreeCADGui as Gui
 
     import facetwb
+    from facetwb.viewproviders import attach
 
     folder = tempfile.mkdtemp()
     path = os.path.join(folder, "arc_plan.dxf")
@@ -938,28 +940,42 @@ def check_plan_fitted_once_fixed(check, out_dir):
         msp.add_line(a, b)
     msp.add_arc((4000, 4000), 4000 * 2 ** 0.5, 135, 225)  # (0, 8000) round to (0, 0)
     drawing.saveas(path)
-    doc = App.newDocument("ArcPlan")
-    plan_graph_from_file(path)
-    settle(5)
-    plans = [o for o in doc.Objects if facetwb.is_plan_graph(o)]
-    if not check(len(plans) == 1 and not plans[0].isValid() and "ARC" in
-                 plans[0].getStatusString(), "a plan with an arc is refused at first"):
+    for moved in (False, True):
+        doc = App.newDocument("ArcPlan")
+        plan_graph_from_file(path)
+        settle(5)
+        plans = [o for o in doc.Objects if facetwb.is_plan_graph(o)]
+        if not check(len(plans) == 1 and not plans[0].isValid() and "ARC" in
+                     plans[0].getStatusString(), "a plan with an arc is refused at first"):
+            App.closeDocument(doc.Name)
+            return
+        plan = plans[0]
+        view = Gui.ActiveDocument.ActiveView
+        if moved:  # the designer pans the view (as a drag does: the camera moves)
+            camera = view.getCameraNode()
+            x, y, z = camera.position.getValue().getValue()
+            camera.position.setValue(x + 250.0, y - 100.0, z)
+            settle(2)
+        chosen = attach.view_pose(doc.Name)
+        plan.ArcTolerance = 50.0
+        doc.recompute()
+        settle(10)
+        size = view.getSize()
+        if moved:
+            check(plan.isValid() and plan.FaceCount >= 2
+                  and attach.view_pose(doc.Name) == chosen,
+                  "a view the designer moved before the fix drew the plan is left as they "
+                  f"chose ({chosen} before, {attach.view_pose(doc.Name)} after)")
+        else:
+            corners = [tuple(view.getPointOnScreen(p)) for p in plan.Points]
+            view.saveImage(os.path.join(out_dir, "plan_fitted_once_fixed.png"), size[0],
+                           size[1], "Current")
+            check(plan.isValid() and plan.FaceCount >= 2 and corners
+                  and all(0 <= x <= size[0] and 0 <= y <= size[1] for x, y in corners),
+                  f"the plan drawn once ArcTolerance is set is in view ({plan.FaceCount} "
+                  f"faces, {min(corners, default=None)}, {max(corners, default=None)} in "
+                  f"{tuple(size)} px)")
         App.closeDocument(doc.Name)
-        return
-    plan = plans[0]
-    plan.ArcTolerance = 50.0
-    doc.recompute()
-    settle(10)
-    view = Gui.ActiveDocument.ActiveView
-    size = view.getSize()
-    corners = [tuple(view.getPointOnScreen(p)) for p in plan.Points]
-    view.saveImage(os.path.join(out_dir, "plan_fitted_once_fixed.png"), size[0], size[1],
-                   "Current")
-    check(plan.isValid() and plan.FaceCount >= 2 and corners
-          and all(0 <= x <= size[0] and 0 <= y <= size[1] for x, y in corners),
-          f"the plan drawn once ArcTolerance is set is in view ({plan.FaceCount} faces, "
-          f"{min(corners, default=None)}, {max(corners, default=None)} in {tuple(size)} px)")
-    App.closeDocument(doc.Name)
 
 
 def check_lift_from_file(check, out_dir):

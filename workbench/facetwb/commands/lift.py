@@ -70,15 +70,19 @@ class CommandPlanGraph:
         before = {o.Name for o in doc.Objects}
         lines.append(f'FreeCAD.getDocument("{doc.Name}").recompute()')
         if run_as_macro(doc, "Plan graph", lines) and empty:
+            from facetwb.viewproviders import attach
+
             Gui.SendMsgToActiveView("ViewFit")
+            pose = attach.view_pose(doc.Name)
             for obj in doc.Objects:
                 if obj.Name not in before and not getattr(obj, "FaceCount", 0):
                     # its first read failed (an arc, say): the view is fitted once the
                     # designer's fix draws it (fitted now, the view kept the default few
-                    # millimetres about the origin, a corner of the plan in sight)
+                    # millimetres about the origin, a corner of the plan in sight), if
+                    # they have not moved it from this pose meanwhile
                     proxy = getattr(getattr(obj, "ViewObject", None), "Proxy", None)
                     if proxy is not None:
-                        proxy.fit_when_drawn = True
+                        proxy.fit_when_drawn = pose
 
 
 class CommandLift:

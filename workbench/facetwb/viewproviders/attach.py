@@ -146,13 +146,45 @@ def fit_views(documents):
     """Fit the 3D views of ``documents`` to what they show: with no GuiDocument.xml there
     was no camera either, and examples/roof.FCStd opened on an empty view (the default
     camera's few millimetres about the origin, the 12 m roof out of sight)."""
-    import FreeCADGui as Gui
-
     for name in documents:
-        try:
-            gui_doc = Gui.getDocument(name)
-        except (NameError, ReferenceError):
-            continue
-        view = getattr(gui_doc, "ActiveView", None) if gui_doc is not None else None
+        view = _active_view(name)
         if view is not None and hasattr(view, "fitAll"):
             view.fitAll()
+
+
+def view_pose(name):
+    """Where document ``name``'s 3D view looks from, as the designer moves it: its
+    camera's type, position, orientation, focal distance and height (angle); None
+    without a view. (Not the near and far planes, which Coin sets itself at each
+    redraw.)"""
+    view = _active_view(name)
+    camera = view.getCameraNode() if hasattr(view, "getCameraNode") else None
+    if camera is None:
+        return None
+    pose = [camera.getTypeId().getName().getString(),
+            tuple(camera.position.getValue().getValue()),
+            tuple(camera.orientation.getValue().getValue()),
+            camera.focalDistance.getValue()]
+    for field in ("height", "heightAngle"):
+        if camera.getField(field) is not None:
+            pose.append(camera.getField(field).getValue())
+    return tuple(pose)
+
+
+def fit_view_unmoved(name, pose):
+    """Fit document ``name``'s 3D view (:func:`fit_views`) if it still looks from ``pose``
+    (:func:`view_pose`): a designer who has turned, panned or zoomed it since keeps the
+    view they chose."""
+    if pose is not None and view_pose(name) == pose:
+        fit_views([name])
+
+
+def _active_view(name):
+    """Document ``name``'s active 3D view, or None (closed, no GUI document, no view)."""
+    import FreeCADGui as Gui
+
+    try:
+        gui_doc = Gui.getDocument(name)
+    except (NameError, ReferenceError):
+        return None
+    return getattr(gui_doc, "ActiveView", None) if gui_doc is not None else None

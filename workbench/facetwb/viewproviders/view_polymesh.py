@@ -49,10 +49,10 @@ PRESELECTED_HALO = (0.1, 0.1, 0.1)
 PRESELECTED_STYLE = ("ring", 2 * VERTEX_PICK_PIXELS + 1)
 
 
-def _fit_view(obj):
-    """Fit the 3D view of ``obj``'s document to what it shows (``attach.fit_views``);
-    nothing when ``obj`` was deleted (its document closed) before the timer that calls
-    this fired."""
+def _fit_view(obj, pose):
+    """Fit the 3D view of ``obj``'s document to what it shows if it still looks from
+    ``pose`` (``attach.fit_view_unmoved``); nothing when ``obj`` was deleted (its document
+    closed) before the timer that calls this fired."""
     from facetwb.viewproviders import attach
 
     try:
@@ -60,7 +60,7 @@ def _fit_view(obj):
     except ReferenceError:  # ("Cannot access attribute 'Document' of deleted object")
         return
     if doc is not None:
-        attach.fit_views([doc.Name])
+        attach.fit_view_unmoved(doc.Name, pose)
 
 
 class ViewProviderPolyMesh:
@@ -229,13 +229,15 @@ class ViewProviderPolyMesh:
                 and np.array_equal(drawn[1], face_vertices)):
             self.draw_topology(xyz, face_start, face_vertices)
         self.recolor(obj)
-        if getattr(self, "fit_when_drawn", False) and self.face_count:
-            # (set by a command whose first result was empty: a drawing that failed to
-            # read into an empty view; fitted then, the view showed nothing of it)
-            self.fit_when_drawn = False
+        pose = getattr(self, "fit_when_drawn", None)
+        if pose and self.face_count:
+            # (the view's pose, set by a command whose first result was empty: a drawing
+            # that failed to read into an empty view; fitted then, the view showed nothing
+            # of it. A designer who has moved the view since keeps it.)
+            self.fit_when_drawn = None
             from PySide import QtCore
 
-            QtCore.QTimer.singleShot(0, lambda: _fit_view(obj))
+            QtCore.QTimer.singleShot(0, lambda: _fit_view(obj, pose))
 
     def draw_topology(self, xyz, face_start, face_vertices):
         """Face and edge indices; skipped when only the coordinates change (a re-solve)."""
