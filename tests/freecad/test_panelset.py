@@ -207,7 +207,7 @@ class TestPanelSet(DocumentTestCase):
         self.assertEqual([r["id"] for r in rows], list(obj.PartIds))
         # (the schedule's volumes are facet's, the object's OCC's: the same solids)
         np.testing.assert_allclose([float(r["mass_kg"]) for r in rows], expected, rtol=1e-9)
-        np.testing.assert_allclose([float(r["volume"]) for r in rows], list(obj.Volumes),
+        np.testing.assert_allclose([float(r["volume_mm3"]) for r in rows], list(obj.Volumes),
                                    rtol=1e-9)
         before = (len(obj.Shape.Solids), obj.Shape.Volume, list(obj.Masses))
         for bad in (-1.0, float("nan")):
@@ -767,7 +767,7 @@ class TestPanelSet(DocumentTestCase):
             with open(os.path.join(folder, "schedule.csv"), encoding="utf-8") as handle:
                 rows = list(csv.DictReader(handle))
             return ([r["id"] for r in rows],
-                    [(r["sheet"], r["x"], r["y"], r["rotation_deg"]) for r in rows])
+                    [(r["sheet"], r["x_mm"], r["y_mm"], r["rotation_deg"]) for r in rows])
 
         def labels(folder=out):
             dxf = ezdxf.readfile(os.path.join(folder, "sheets.dxf"))
@@ -849,7 +849,7 @@ class TestPanelSet(DocumentTestCase):
 
         def areas():
             with open(os.path.join(out, "schedule.csv"), encoding="utf-8") as handle:
-                return [float(r["area"]) for r in csv.DictReader(handle)]
+                return [float(r["area_mm2"]) for r in csv.DictReader(handle)]
 
         np.testing.assert_allclose(areas(), list(ps_obj.Areas), rtol=1e-12)
         for obj, prop, value in ((ps_obj, "Gap", 2 * GAP), (sheets, "SheetWidth", 2800.0)):

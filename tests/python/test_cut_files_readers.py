@@ -57,19 +57,57 @@ def test_schedule_csv_keeps_its_columns_in_a_spreadsheet(tmp_path):
     text = (tmp_path / "schedule.csv").read_text(encoding="utf-8")
     lines = text.splitlines()
     header = _split_like_calc(lines[0])
-    assert "edge_lengths" in header and "sheet" in header
+    assert "edge_lengths_mm" in header and "sheet" in header
     for line in lines[1:]:
         cells = _split_like_calc(line)
         assert len(cells) == len(header), line
         row = dict(zip(header, cells))
         p = ps.by_id(row["id"])
-        assert [float(x) for x in row["edge_lengths"].split(";")] == list(p.edge_lengths)
+        assert [float(x) for x in row["edge_lengths_mm"].split(";")] == list(p.edge_lengths)
         assert int(row["sheet"]) == result.placements[p.id].sheet + 1
-        float(row["x"]), float(row["rotation_deg"])  # numbers with a point, not text
+        float(row["x_mm"]), float(row["rotation_deg"])  # numbers with a point, not text
     with open(tmp_path / "schedule.csv", newline="", encoding="utf-8") as f:
         rows = list(csv.DictReader(f))
     assert [r["id"] for r in rows] == [_split_like_calc(line)[0] for line in lines[1:]]
     assert all(";" in r["bevel_deg"] for r in rows)
+
+
+def test_schedule_headers_give_the_units(tmp_path):
+    """The CSV's headers named no units ("area", "width", "x"): a fabricator opening it in
+    Calc could not tell mm from m, mm² from m². They give the model's unit (--units), its
+    square and cube (ASCII: area_mm2, volume_m3); the values keep all their digits. The
+    JSON schedule keeps its keys and gives their units in meta.column_units."""
+    import json
+
+    from facet.cli_panels import run_pipeline
+    from facet.cutsheets import csv_header
+
+    _, ps, _, result = _made(tmp_path)
+    for units, area, volume in (("mm", "area_mm2", "volume_mm3"), ("m", "area_m2", "volume_m3"),
+                                ("in", "area_in2", "volume_in3")):
+        header = csv_header(units)
+        assert {area, f"area_top_{area[5:]}", volume, f"width_{units}", f"height_{units}",
+                f"perimeter_{units}", f"thickness_{units}", f"edge_lengths_{units}",
+                f"joint_widths_{units}", f"narrowest_joint_{units}", f"clash_{units}",
+                f"x_{units}", f"y_{units}", "mass_kg", "bevel_deg", "rotation_deg", "id",
+                "sheet", "corners"} <= set(header), header
+        assert not {"area", "width", "x", "volume"} & set(header)
+    with open(tmp_path / "schedule.csv", newline="", encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    for row in rows:
+        p = ps.by_id(row["id"])
+        assert float(row["area_mm2"]) == p.area and float(row["volume_mm3"]) == p.volume
+        assert float(row["width_mm"]) == p.size[0]
+    mesh = translational(nu=3, nv=2, step=0.4)  # the same panels in metres
+    run_pipeline(mesh, 0.018, units="m", schedule=str(tmp_path / "m.csv"))
+    run_pipeline(mesh, 0.018, units="m", schedule=str(tmp_path / "m.json"))
+    with open(tmp_path / "m.csv", newline="", encoding="utf-8") as f:
+        header = next(csv.reader(f))
+    assert header == csv_header("m") and "area_m2" in header and "width_m" in header
+    meta = json.loads((tmp_path / "m.json").read_text(encoding="utf-8"))["meta"]
+    assert meta["units"] == "m"
+    assert meta["column_units"]["area"] == "m2" and meta["column_units"]["x"] == "m"
+    assert meta["column_units"]["volume"] == "m3" and "mass_kg" not in meta["column_units"]
 
 
 def test_csv_field_quotes_what_a_spreadsheet_splits_at():

@@ -1074,10 +1074,10 @@ def test_schedule_csv_and_json(tmp_path):
     assert len(rows) == len(ps)
     first = rows[0]
     p = ps.by_id(first["id"])
-    assert float(first["area"]) == p.area  # repr round-trips exactly
+    assert float(first["area_mm2"]) == p.area  # repr round-trips exactly
     assert [float(x) for x in first["bevel_deg"].split(";")] == p.bevel_deg
     assert int(first["sheet"]) == result.placements[p.id].sheet + 1
-    assert float(first["thickness"]) == 18.0
+    assert float(first["thickness_mm"]) == 18.0
     from facet.cutsheets import schedule_rows, write_schedule_json
 
     write_schedule_json(tmp_path / "s.json", schedule_rows(ps, result))
@@ -1375,10 +1375,10 @@ def test_schedule_gives_each_panel_its_volume_and_mass(facet_command, tmp_path):
     report, ps, _, _ = run_pipeline(mm, 18.0, edge="bisector", gap=4, density=2500.0,
                                     schedule=str(tmp_path / "s.csv"))
     rows = list(csv.DictReader(open(tmp_path / "s.csv", encoding="utf-8")))
-    volumes = np.array([float(r["volume"]) for r in rows])
+    volumes = np.array([float(r["volume_mm3"]) for r in rows])
     assert volumes == pytest.approx([p.volume for p in ps.panels], rel=1e-15)
     # mitred: not area x thickness
-    assert not np.allclose(volumes, [18.0 * float(r["area"]) for r in rows], rtol=1e-3)
+    assert not np.allclose(volumes, [18.0 * float(r["area_mm2"]) for r in rows], rtol=1e-3)
     masses = np.array([float(r["mass_kg"]) for r in rows])
     assert masses == pytest.approx(volumes * 1e-9 * 2500.0, rel=1e-12)
     assert report["total_mass_kg"] == pytest.approx(masses.sum(), rel=1e-12)
@@ -1399,7 +1399,7 @@ def test_schedule_gives_each_panel_its_volume_and_mass(facet_command, tmp_path):
     # without a density: volumes, and no mass
     run_pipeline(mm, 18.0, schedule=str(tmp_path / "n.csv"))
     rows = list(csv.DictReader(open(tmp_path / "n.csv", encoding="utf-8")))
-    assert all(float(r["volume"]) > 0 and r["mass_kg"] == "" for r in rows)
+    assert all(float(r["volume_mm3"]) > 0 and r["mass_kg"] == "" for r in rows)
     for bad in (0.0, -2500.0, float("nan"), float("inf")):
         with pytest.raises(InputError, match="density"):
             run_pipeline(mm, 18.0, density=bad, schedule=str(tmp_path / "bad.csv"))

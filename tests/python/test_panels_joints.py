@@ -184,14 +184,14 @@ def test_schedule_has_each_panels_joint_widths(tmp_path):
         rows = {r["id"]: r for r in csv.DictReader(f)}
     for p in ps:
         row = rows[p.id]
-        cells = row["joint_widths"].split(";")
+        cells = row["joint_widths_mm"].split(";")
         assert len(cells) == len(p.vertices)
         for cell, width in zip(cells, p.joint_widths):
             assert (cell == "") == (width is None)
             if width is not None:
                 assert float(cell) == width  # full precision
-        assert float(row["narrowest_joint"]) == min(w for w in p.joint_widths if w is not None)
-        assert float(row["clash"]) == p.clash
+        assert float(row["narrowest_joint_mm"]) == min(w for w in p.joint_widths if w is not None)
+        assert float(row["clash_mm"]) == p.clash
     assert report["overlapping_joints"] == 2
     assert report["clearing_gap"] == ps.clearing_gap
     assert tuple(report["narrowest_joint_panels"]) == ps.narrowest_joint_panels

@@ -262,7 +262,7 @@ def test_dxf_audits_and_the_schedule_marks_exactly_the_triangles(tmp_path, facet
     marked = [r["id"] for r in rows if r["corners"] != r["input_corners"]]
     assert marked == ["P-R01C02", "P-R01C03"]
     assert {(r["corners"], r["input_corners"]) for r in rows if r["id"] in marked} == {("3", "4")}
-    assert all(len(r["edge_lengths"].split(";")) == int(r["corners"]) for r in rows)
+    assert all(len(r["edge_lengths_mm"].split(";")) == int(r["corners"]) for r in rows)
     data = json.loads(report.read_text())
     assert data["n_vanished_panels"] == 2
     assert [d["vertices"] for d in data["vanished_edges"]] == [[2, 7]]

@@ -163,7 +163,12 @@ def main():
             findings[name] = (float(value), where)
 
     # ---- schedule / report
-    rows = list(csv.DictReader(open(f"{out}/s.csv")))
+    from facet.cutsheets import column_units
+
+    # (the headers give the columns' units, "area_mm2": read by the rows' keys, "area")
+    keys = {f"{key}_{unit}": key for key, unit in column_units(units).items()}
+    rows = [{keys.get(h, h): v for h, v in r.items()}
+            for r in csv.DictReader(open(f"{out}/s.csv"))]
     sched = {r["id"]: r for r in rows}
     rep = json.load(open(f"{out}/r.json"))
     rep_ids = [p["id"] for p in rep["panels"]]

@@ -269,14 +269,16 @@ def _of_source(mesh, message):
 
 def write_schedule(path, ps, rows, density=None, units="mm"):
     """Write the schedule ``rows`` (:func:`facet.cutsheets.schedule_rows` of the PanelSet
-    ``ps``) to ``path``: JSON when it ends with .json (``ps``'s options, ``units`` and
-    ``density`` as its meta), else CSV."""
+    ``ps``) to ``path``: JSON when it ends with .json (``ps``'s options, ``units``,
+    ``density`` and the columns' units as its meta), else CSV (the columns' units in its
+    header)."""
     from facet.cutsheets import write_schedule_csv, write_schedule_json
 
     if path.lower().endswith(".json"):
-        write_schedule_json(path, rows, meta=dict(ps.options, units=units, density=density))
+        write_schedule_json(path, rows, meta=dict(ps.options, units=units, density=density),
+                            units=units)
     else:
-        write_schedule_csv(path, rows)
+        write_schedule_csv(path, rows, units)
 
 
 def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,

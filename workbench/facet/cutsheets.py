@@ -38,8 +38,8 @@ from facet.io.files import when_staged, write_replacing, write_text
 from facet.report import count_noun, json_safe
 
 __all__ = ["LAYERS", "LAYER_LINETYPES", "LAYER_MEANINGS", "write_dxf", "schedule_rows",
-           "write_schedule_csv", "write_schedule_json", "write_svg", "write_png",
-           "sheet_origins", "PREVIEW_COLOURS", "PLAUSIBLE_EDGE_MM", "implausible_edge_mm"]
+           "write_schedule_csv", "write_schedule_json", "csv_header", "column_units",
+           "write_svg", "write_png", "sheet_origins", "PREVIEW_COLOURS", "PLAUSIBLE_EDGE_MM", "implausible_edge_mm"]
 
 #: Layer name -> ACI colour.
 LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "TOP": 4, "SHEET": 8, "GRAIN": 6}
@@ -523,6 +523,31 @@ _CSV_COLUMNS = ["id", "face", "corners", "input_corners", "area", "area_top", "p
                 "sheet", "x", "y",
                 "rotation_deg"]
 
+#: The schedule's columns measured in the model's length unit, by its power: lengths
+#: (1), areas (2), volumes (3). The others are IDs, counts or name their unit (mass_kg,
+#: bevel_deg, ...).
+_COLUMN_POWERS = {"area": 2, "area_top": 2, "perimeter": 1, "width": 1, "height": 1,
+                  "thickness": 1, "volume": 3, "edge_lengths": 1, "joint_widths": 1,
+                  "narrowest_joint": 1, "clash": 1, "x": 1, "y": 1}
+
+
+def column_units(units="mm"):
+    """{schedule column: its unit} for the columns in the model's length unit ``units``
+    (a key of LENGTH_UNITS) or its square or cube: ``"mm"``, ``"mm2"``, ``"mm3"`` (ASCII,
+    which any spreadsheet's import reads whatever character set it assumes). The JSON
+    schedule's ``meta.column_units``; the CSV's headers append them (:func:`csv_header`)."""
+    length_unit(units)  # a unit it knows
+    return {c: units + ("" if k == 1 else str(k)) for c, k in _COLUMN_POWERS.items()}
+
+
+def csv_header(units="mm"):
+    """The CSV schedule's column names: each row key, with its unit (:func:`column_units`)
+    for a length, area or volume: ``area_mm2``, ``width_mm``, ``x_mm`` (``area_m2`` with
+    ``--units m``). A fabricator opening the file in a spreadsheet sees mm or m, mm² or
+    m², in the header; the bare names said nothing of it."""
+    named = column_units(units)
+    return [f"{c}_{named[c]}" if c in named else c for c in _CSV_COLUMNS]
+
 
 def _cell(value):
     if value is None:
@@ -550,19 +575,22 @@ def _csv_field(text):
     return text
 
 
-def write_schedule_csv(path, rows):
-    """CSV, one row per panel, comma-separated, the header the column names; list cells
-    joined with ';' and quoted (see :func:`_csv_field`); floats as repr (17 significant
-    digits where needed), a point as the decimal separator."""
-    lines = [",".join(_csv_field(c) for c in _CSV_COLUMNS)]
+def write_schedule_csv(path, rows, units="mm"):
+    """CSV, one row per panel, comma-separated, the header the column names with the
+    units of the model's length unit ``units`` (:func:`csv_header`); list cells joined with
+    ';' and quoted (see :func:`_csv_field`); floats as repr (17 significant digits where
+    needed), a point as the decimal separator."""
+    lines = [",".join(_csv_field(c) for c in csv_header(units))]
     for row in rows:
         lines.append(",".join(_csv_field(_cell(row.get(c))) for c in _CSV_COLUMNS))
     write_text(path, ["\n".join(lines) + "\n"])
 
 
-def write_schedule_json(path, rows, meta=None):
-    """JSON: {"meta": ..., "panels": rows}."""
-    text = json.dumps(json_safe({"meta": meta or {}, "panels": rows}), allow_nan=False,
+def write_schedule_json(path, rows, meta=None, units="mm"):
+    """JSON: {"meta": ..., "panels": rows}; ``meta`` gains ``column_units``
+    (:func:`column_units` of the model's length unit ``units``)."""
+    meta = dict(meta or {}, column_units=column_units(units))
+    text = json.dumps(json_safe({"meta": meta, "panels": rows}), allow_nan=False,
                       indent=1) + "\n"
     write_text(path, [text])
 
