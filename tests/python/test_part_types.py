@@ -109,3 +109,40 @@ def test_a_bad_tolerance_is_refused_and_a_long_run_can_be_cancelled():
     with pytest.raises(Cancelled):
         part_types(grid, 0.5, progress=cancel)
     assert seen == [(256, 400)]
+
+
+def test_the_schedule_report_and_summary_give_the_part_types(tmp_path, capsys):
+    import csv
+    import json
+
+    from facet import cli
+    from facet.io import write_obj
+
+    mesh = tmp_path / "cylinder.obj"
+    write_obj(cylinder(), str(mesh))
+    status = cli.main(["panels", str(mesh), "--thickness", "20", "--edge", "bisector",
+                       "--schedule", str(tmp_path / "s.csv"), "--report", str(tmp_path / "r.json")])
+    out, err = capsys.readouterr()
+    assert status == 0, err
+    assert "  types         2 part types within 0.5 mm: T1 16 panels, T2 8\n" in out
+    rows = list(csv.DictReader(open(tmp_path / "s.csv", encoding="utf-8")))
+    assert list(rows[0])[:2] == ["id", "type"]
+    assert Counter(r["type"] for r in rows) == {"T1": 16, "T2": 8}
+    report = json.load(open(tmp_path / "r.json", encoding="utf-8"))
+    assert report["part_types"] == {"T1": 16, "T2": 8}
+    assert report["part_type_tolerance"] == 0.5
+    assert [r["type"] for r in report["panels"]] == [r["type"] for r in rows]
+    # in metres the default is still half a millimetre; a tolerance of 0 parts panels
+    # that differ by rounding
+    write_obj(facet.PolyMesh.from_faces(cylinder().vertices / 1000.0, cylinder().faces()),
+              str(mesh))
+    assert cli.main(["panels", str(mesh), "--thickness", "0.02", "--units", "m",
+                     "--report", str(tmp_path / "m.json")]) == 0
+    assert json.load(open(tmp_path / "m.json"))["part_type_tolerance"] == 0.0005
+    capsys.readouterr()
+    assert cli.main(["panels", str(mesh), "--thickness", "0.02", "--units", "m",
+                     "--type-tol", "0"]) == 0
+    assert "24 part types within 0 m: every panel its own" in capsys.readouterr().out
+    with pytest.raises(SystemExit):
+        cli.main(["panels", str(mesh), "--thickness", "0.02", "--type-tol", "-1"])
+    assert "--type-tol" in capsys.readouterr().err

@@ -61,6 +61,7 @@ def add_commands(commands):
     from facet.cli import _non_negative_float
     from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
     from facet.panels import DEFAULT_GAP_MM, DEFAULT_MIN_EDGE
+    from facet.part_types import DEFAULT_TOL_MM
 
     p = commands.add_parser(
         "panels",
@@ -124,6 +125,10 @@ def add_commands(commands):
                    help="the panels' material in kg/m³ (glass 2500, aluminium 2700, steel "
                    "7850): each panel's mass in the schedule (mass_kg), the total and the "
                    "heaviest in the summary")
+    p.add_argument("--type-tol", type=_non_negative_float, metavar="D",
+                   help="panels whose corners all lie within D of another's, turned and moved, "
+                   f"are one part type: T1 (the most panels), T2, ... in the schedule (default "
+                   f"{DEFAULT_TOL_MM:g} mm, in --units)")
     p.add_argument("--units", choices=("mm", "cm", "m", "in", "ft"), default="mm",
                    help="the mesh's length unit, and every length given here (default mm): "
                    "the DXF declares it ($INSUNITS), the STEP file is written in mm from it")
@@ -142,7 +147,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
                  step=None, schedule=None, svg=None, png=None, progress=None,
                  cancelled=None, panel_set=None, solids=None, allow_unplaced=False,
                  units="mm", text_outlines=False, density=None, nested=None,
-                 option_names=None):
+                 option_names=None, type_tol=None):
     """Everything ``facet panels`` does, as a function (also used by the
     benchmark). Returns (report dict, PanelSet, drawings, NestResult or None).
 
@@ -173,13 +178,17 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
     same order) unfold to the same cut outlines and footprints (other part IDs of the same
     panels: their texts change, not their outlines); else the parts are nested again. The
     report's ``nested`` says whether they were. ``tight``: the slower nesting that
-    regroups the least-filled sheets (:func:`facet.nest.nest`'s ``tight``).
+    regroups the least-filled sheets (:func:`facet.nest.nest`'s ``tight``). ``type_tol``
+    (model units; default :data:`facet.part_types.DEFAULT_TOL_MM` in ``units``): panels
+    whose corners all lie within it of another's are one part type
+    (:func:`facet.part_types.part_types`), in the schedule and the report.
     """
     from facet.cutsheets import length_unit
     from facet.errors import InputError
     from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
     from facet.panels import (DEFAULT_GAP_MM, DEFAULT_MIN_EDGE, PanelError, check_density,
                               panels)
+    from facet.part_types import DEFAULT_TOL_MM
 
     mm_per_unit = length_unit(units)[0]
     if density is not None:
@@ -191,6 +200,10 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
         margin = DEFAULT_MARGIN_MM / mm_per_unit
     if spacing is None:
         spacing = DEFAULT_SPACING_MM / mm_per_unit
+    if type_tol is None:
+        type_tol = DEFAULT_TOL_MM / mm_per_unit
+    elif not (math.isfinite(type_tol) and type_tol >= 0.0):
+        raise InputError(f"the part type tolerance must be a length >= 0, not {type_tol:g}")
     gap_said = gap is not None
     if gap is None:
         gap = DEFAULT_GAP_MM / mm_per_unit
@@ -235,6 +248,11 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
                 raise
             raise PanelError(f"{error}; {units_said[0]}", error.faces) from None
     times["panels"] = time.perf_counter() - t
+    t = time.perf_counter()
+    from facet.part_types import part_types
+
+    types = part_types(ps.panels, type_tol, progress=stage_progress("types"))
+    times["types"] = time.perf_counter() - t
     job = None
     if step and (solids is None or len(solids) != len(ps.panels)):
         from facet.step import start_step
@@ -254,7 +272,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
                 text_outlines=text_outlines, step=step,
                 schedule=schedule, svg=svg, png=png, allow_unplaced=allow_unplaced,
                 solids=solids, stage_progress=stage_progress, cancelled=cancelled, units=units,
-                density=density, nested=nested)
+                density=density, nested=nested, types=(types, type_tol))
     except BaseException:
         if job is not None:
             job.cancel()
@@ -284,10 +302,11 @@ def write_schedule(path, ps, rows, density=None, units="mm"):
 def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rotations, grain,
                       tight, dxf, per_sheet, text_outlines, step, schedule, svg, png,
                       allow_unplaced, solids, stage_progress, cancelled, units, density,
-                      nested):
+                      nested, types):
     from facet.cutsheets import length_unit, schedule_rows, write_dxf, write_png, write_svg
     from facet.errors import Cancelled, InputError
     from facet.nest import nest
+    from facet.part_types import type_counts
     from facet.unfold import small_text_warnings, unfold
 
     def check():
@@ -328,7 +347,8 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
     if schedule:
         check()
         t = time.perf_counter()
-        rows = schedule_rows(ps, result, drawings, density=density, units=units)
+        rows = schedule_rows(ps, result, drawings, density=density, units=units,
+                             types=types[0])
         write_schedule(schedule, ps, rows, density=density, units=units)
         files["schedule"] = [schedule]
         times["schedule"] = time.perf_counter() - t
@@ -372,7 +392,9 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
         "id_scheme": ps.id_scheme,
         "grid_shape": ps.grid_shape,
         "panels": rows if rows is not None else schedule_rows(
-            ps, result, drawings, density=density, units=units),
+            ps, result, drawings, density=density, units=units, types=types[0]),
+        "part_types": type_counts(types[0]),
+        "part_type_tolerance": types[1],
         "sheets": [] if result is None else [
             {"index": s.index + 1, "parts": s.parts, "utilisation": s.utilisation}
             for s in result.sheets],
@@ -436,7 +458,8 @@ def _kept_nesting(nested, ps, drawings, sheet, margin, spacing, rotations, tight
 
 
 #: What each stage of run_pipeline counts, on the progress line.
-_STAGE_WORDS = {"panels": "building the panels", "unfold": "unfolding the parts",
+_STAGE_WORDS = {"panels": "building the panels", "types": "comparing the parts",
+                "unfold": "unfolding the parts",
                 "nest": "nesting the parts",
                 "step": "making the STEP solids", "dxf": "drawing the DXF's parts",
                 "svg": "writing the SVG sheets", "png": "writing the PNG sheets"}
@@ -475,7 +498,8 @@ def run_panels(args):
             per_sheet=args.per_sheet, text_outlines=args.text_outlines, step=args.step,
             schedule=args.schedule, svg=args.svg, png=args.png,
             progress=panels_progress(line, interrupted), cancelled=interrupted,
-            units=args.units, density=args.density, option_names=OPTION_NAMES)
+            units=args.units, density=args.density, option_names=OPTION_NAMES,
+            type_tol=args.type_tol)
     finally:
         line.close()  # (before the summary, or an error's message)
     report["input"] = args.input
@@ -493,6 +517,7 @@ def run_panels(args):
               + (f"; {len(ps.short_edges_kept)} kept" if ps.short_edges_kept else "") + ")"
               + (f": {shown}" if shown else ""), file=out)
     length = length_text(args.units)
+    print(f"  types         {part_types_text(report, length)}", file=out)
     if ps.narrowest_joint is not None:
         a, b = ps.narrowest_joint_panels
         if ps.overlapping_joints:
@@ -533,6 +558,20 @@ def run_panels(args):
     for w in report["warnings"] + _units_warnings(mesh, args.units):
         print(f"facet: warning: {w}", file=sys.stderr)
     return EXIT_OK
+
+
+def part_types_text(report, length):
+    """How many part types run_pipeline's ``report`` found, and the largest:
+    "2 part types within 0.5 mm: T1 132 panels, T2 24". ``length``:
+    :func:`facet.panels.length_text`'s."""
+    counts = report["part_types"]
+    within = f"within {length(report['part_type_tolerance'], '.3g')}"
+    if len(counts) == report["n_panels"]:
+        return f"{count_noun(len(counts), 'part type')} {within}: every panel its own"
+    shown = [f"{t} {n}" for t, n in list(counts.items())[:4]]
+    shown[0] += " panels" if counts["T1"] > 1 else " panel"
+    return (f"{count_noun(len(counts), 'part type')} {within}: {', '.join(shown)}"
+            + (", ..." if len(counts) > 4 else ""))
 
 
 def _units_warnings(mesh, units):

@@ -488,9 +488,12 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
     return written
 
 
-def schedule_rows(panel_set, nest_result=None, drawings=None, density=None, units="mm"):
+def schedule_rows(panel_set, nest_result=None, drawings=None, density=None, units="mm",
+                  types=None):
     """The schedule: one dict per panel (see :meth:`facet.panels.Panel.schedule_row`)
-    with sheet (1-based, None when not nested or unplaced), x, y and
+    with its part type (``types``, :func:`facet.part_types.part_types` of the panels;
+    by default within :data:`facet.part_types.DEFAULT_TOL_MM` in ``units``), sheet
+    (1-based, None when not nested or unplaced), x, y and
     rotation_deg on the sheet: ``sheet_xy = rotate(rotation_deg) @ flat_xy + (x, y)``
     for the panel's flat outline (``Panel.flat_bottom``). ``drawings``
     (:func:`facet.unfold.unfold`'s) carry the turn that lays each part's grain along x,
@@ -498,12 +501,16 @@ def schedule_rows(panel_set, nest_result=None, drawings=None, density=None, unit
     panel's mass in kg from its volume (model units cubed, `units`) and ``density``
     (kg/m³), None without a density."""
     from facet.panels import mass_kg
+    from facet.part_types import DEFAULT_TOL_MM, part_types
 
     mm_per_unit = length_unit(units)[0]
+    if types is None:
+        types = part_types(panel_set.panels, DEFAULT_TOL_MM / mm_per_unit)
     turned = {d.id: d.rotation_deg for d in drawings or ()}
     rows = []
-    for p in panel_set.panels:
+    for p, part_type in zip(panel_set.panels, types):
         row = p.schedule_row()
+        row["type"] = part_type
         row["mass_kg"] = (None if density is None
                           else float(mass_kg(row["volume"], density, mm_per_unit)))
         pl = nest_result.placements.get(p.id) if nest_result is not None else None
@@ -516,7 +523,7 @@ def schedule_rows(panel_set, nest_result=None, drawings=None, density=None, unit
     return rows
 
 
-_CSV_COLUMNS = ["id", "face", "corners", "input_corners", "area", "area_top", "perimeter",
+_CSV_COLUMNS = ["id", "type", "face", "corners", "input_corners", "area", "area_top", "perimeter",
                 "width", "height", "thickness", "volume", "mass_kg",
                 "edge_lengths", "bevel_deg", "dihedral_deg", "dropped_edges",
                 "squared_edges", "butt_edges", "joint_widths", "narrowest_joint", "clash",

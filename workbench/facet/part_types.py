@@ -13,6 +13,7 @@ Corners on a straight edge (a T-junction) do not make a type of their own.
 """
 
 import bisect
+from collections import Counter
 
 import numpy as np
 
@@ -126,3 +127,9 @@ def part_types(panels, tol, progress=None):
     order = sorted(range(len(first)), key=lambda t: (-counts[t], first[t]))
     name = {t: f"T{n + 1}" for n, t in enumerate(order)}
     return [name[t] for t in found]
+
+
+def type_counts(types):
+    """{type: how many panels are of it}, from T1 (the most) on."""
+    counts = Counter(types)
+    return {t: counts[t] for t in sorted(counts, key=lambda t: int(t[1:]))}
