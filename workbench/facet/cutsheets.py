@@ -39,7 +39,8 @@ from facet.report import count_noun, json_safe
 
 __all__ = ["LAYERS", "LAYER_LINETYPES", "LAYER_MEANINGS", "write_dxf", "schedule_rows",
            "write_schedule_csv", "write_schedule_json", "csv_header", "column_units",
-           "write_svg", "write_png", "sheet_origins", "PREVIEW_COLOURS", "PLAUSIBLE_EDGE_MM", "implausible_edge_mm"]
+           "write_svg", "write_png", "sheet_origins", "PREVIEW_COLOURS", "PLAUSIBLE_EDGE_MM",
+           "implausible_edge_mm"]
 
 #: Layer name -> ACI colour.
 LAYERS = {"CUT": 1, "LABEL": 5, "BEVEL": 3, "TOP": 4, "SHEET": 8, "GRAIN": 6}
