@@ -107,7 +107,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="199"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="200"/>
         <source>Surface to control mesh</source>
         <translation type="unfinished"></translation>
     </message>
@@ -117,17 +117,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="274"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="275"/>
         <source>Panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="313"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="316"/>
         <source>Cut sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="367"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="370"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
@@ -402,12 +402,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="324"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="327"/>
         <source>Choose the output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="332"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="335"/>
         <source>Folder for the cut files</source>
         <translation type="unfinished"></translation>
     </message>
@@ -442,17 +442,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="349"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="362"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="355"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="368"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="342"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="355"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -547,17 +547,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="332"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="345"/>
         <source>a Gap of {0:.4g} mm or EdgeMode bisector clears them</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="332"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="345"/>
         <source>no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="337"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="350"/>
         <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; {5}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -572,32 +572,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="792"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="820"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="795"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="824"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="796"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="825"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="797"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="826"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="798"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="827"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="799"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="828"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -607,12 +607,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="81"/>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="89"/>
         <source>Import polygon mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="793"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="821"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,22 +622,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="784"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="812"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="758"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="786"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="764"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="792"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="213"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="224"/>
         <source>{0}; {1} stopped before its tolerance ({2}): raise its Max. iterations, or set it to 0 for the solver to decide</source>
         <translation type="unfinished"></translation>
     </message>
@@ -652,17 +652,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="389"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="392"/>
         <source>Points file (x, y, z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="403"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="406"/>
         <source>Choose the points file</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="430"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="433"/>
         <source>Target heights</source>
         <translation type="unfinished"></translation>
     </message>
@@ -672,7 +672,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="392"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="395"/>
         <source>Pinned heights (pick vertices)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -922,27 +922,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="81"/>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="89"/>
         <source>{0}: its edges are {1:.3g} of its units long on average; as millimetres, no facade&apos;s panel is that small or large. Which units are its numbers in?</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="794"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="823"/>
         <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="771"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="799"/>
         <source>the PanelSet&apos;s MinEdge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="772"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="800"/>
         <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="115"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="128"/>
         <source>{0} holds no plan to lift ({1}): correct the drawing or the plan&apos;s properties and recompute it first</source>
         <translation type="unfinished"></translation>
     </message>
@@ -957,7 +957,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="95"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="96"/>
         <source>In error: {0}. Correct it and recompute it first.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -994,6 +994,11 @@
     <message>
         <location filename="../../workbench/facetwb/objects/plangraph.py" line="125"/>
         <source>the PlanGraph&apos;s ArcTolerance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="822"/>
+        <source>Comparing the parts</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1052,12 +1057,12 @@
 <context>
     <name>Facet_Lift</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="81"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="94"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="82"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="95"/>
         <source>Select a plan (PlanGraph or Facet mesh), then a target surface (mesh or shape), or the plan alone to lift it to the heights of a points file: every plan vertex gets a height so that every face is exactly planar, as close as possible to the surface straight above it or to the points.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1065,12 +1070,12 @@
 <context>
     <name>Facet_LiftMix</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="140"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="153"/>
         <source>Shape lifting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="141"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="154"/>
         <source>Sliders for the selected Lifting: add the smoothest other planar-faced shapes over the same plan; the result follows live and every face stays exactly planar.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1078,12 +1083,12 @@
 <context>
     <name>Facet_LiftPins</name>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="162"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="175"/>
         <source>Pin heights</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/lift.py" line="163"/>
+        <location filename="../../workbench/facetwb/commands/lift.py" line="176"/>
         <source>Pin heights of the selected Lifting: click vertices of the roof or of its plan in the 3D view, type a height and pin them; the roof follows, every face planar, the other vertices free. Also by double-clicking a Lifting that has no other targets.</source>
         <translation type="unfinished"></translation>
     </message>

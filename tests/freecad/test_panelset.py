@@ -674,6 +674,36 @@ class TestPanelSet(DocumentTestCase):
         self.addCleanup(self.doc.removeObject, sheets.Name)
         return nests, ps_obj, sheets, out
 
+    def test_part_types_in_the_panelset_and_the_cut_sheets_schedule(self):
+        """The PanelSet gives each panel's part type (PartTypes, PartTypeCount) and the
+        cut sheets' schedule the same in its type column. PartTypeTolerance builds no
+        solid and nests nothing again: only the schedules are written again."""
+        import csv
+
+        nests, ps_obj, sheets, out = self.counted_cutsheets("Typed")
+
+        def schedule_types():
+            with open(os.path.join(out, "schedule.csv"), encoding="utf-8") as handle:
+                return [r["type"] for r in csv.DictReader(handle)]
+
+        self.doc.recompute()
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        # a half turn about the translational surface's centre maps face f onto face 19 - f
+        types = list(ps_obj.PartTypes)
+        self.assertEqual(ps_obj.PartTypeCount, 10)
+        self.assertEqual(types, [types[19 - f] for f in range(20)])
+        self.assertEqual(schedule_types(), types)
+        before, shape = written(out), ps_obj.Shape
+        del nests[:]
+        ps_obj.PartTypeTolerance = 5000.0  # every quad within 5 m of the first
+        self.doc.recompute()
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        self.assertTrue(ps_obj.Shape.isSame(shape))
+        self.assertEqual(nests, [])
+        self.assertEqual((list(ps_obj.PartTypes), ps_obj.PartTypeCount), (["T1"] * 20, 1))
+        self.assertEqual(changed_since(out, before), ["schedule.csv", "schedule.json"])
+        self.assertEqual(schedule_types(), ["T1"] * 20)
+
     def test_cutsheets_keep_their_nesting_when_only_the_masses_change(self):
         """A PanelSet's Density changes the schedules' masses, not the nesting (1,536
         panels: 75 s a Density change, which nested them again and wrote every file, 0.4 s

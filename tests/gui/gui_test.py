@@ -1178,6 +1178,10 @@ def check_panels(check, out_dir):
     check(len(ps.Shape.Solids) == 20 and all(s.isValid() for s in ps.Shape.Solids),
           "it holds 20 valid solids")
     check(ps.ViewObject.Proxy.getIcon().endswith("Facet_PanelSet.svg"), "it has its icon")
+    # a half turn maps the translational surface's panels onto each other in pairs
+    said = [line for line in report_view_text().splitlines() if "20 panels" in line]
+    check(ps.PartTypeCount == 10 and said and "20 panels, 10 part types within 0.5 mm" in said[-1],
+          f"the panel's OK says how many part types ({said[-1:]})")
     source.ViewObject.Visibility = False
     Gui.Selection.clearSelection()
     ps.ViewObject.DisplayMode = "Flat Lines"

@@ -32,6 +32,7 @@ import numpy as np
 import facet.errors
 from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
 from facet.panels import DEFAULT_GAP_MM
+from facet.part_types import DEFAULT_TOL_MM
 from facetwb import compat, progress
 from facetwb.recompute import guarded
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
@@ -45,7 +46,8 @@ ID_SCHEMES = ["auto", "grid", "index"]
 ROTATIONS = ["90", "none", "free"]
 #: The PanelSet's inputs that change no solid: a recompute after changes to these alone
 #: keeps its Shape (masses, part IDs and the per-panel objects only).
-NO_GEOMETRY = frozenset({"Density", "OnePerPanel", "IdScheme", "IdPrefix"})
+NO_GEOMETRY = frozenset({"Density", "OnePerPanel", "IdScheme", "IdPrefix",
+                         "PartTypeTolerance"})
 #: Properties that change nothing a recompute makes (hidden or shown in the tree, renamed):
 #: not counted as changes at all (after one, a Density change rebuilt every solid).
 NOT_INPUTS = frozenset({"Visibility", "Label", "Label2"})
@@ -141,12 +143,21 @@ class PanelSet(_Proxy):
             value="P-")
         add(obj, "App::PropertyBool", "OnePerPanel", "Part IDs",
             "Also one Part object per panel, labelled by its part ID (else one compound)")
+        add(obj, "App::PropertyLength", "PartTypeTolerance", "Part IDs",
+            "Panels whose corners all lie within this of another's, turned and moved, are "
+            "one part type (PartTypes)", value=DEFAULT_TOL_MM)
         add(obj, "App::PropertyFloat", "Density", "Panels",
             "The panels' material in kg/m³ (glass 2500, aluminium 2700, steel 7850): each "
             "panel's mass in Masses and the cut sheets' schedule (0: none)")
         _output(obj, "App::PropertyLinkList", "PanelObjects",
                 "The per-panel objects (with OnePerPanel), in the order of PartIds")
         _output(obj, "App::PropertyStringList", "PartIds", "Part ID of each solid, in order")
+        _output(obj, "App::PropertyStringList", "PartTypes",
+                "Part type of each panel, in the order of PartIds: T1 the type with the most "
+                "panels, then T2, ... (the cut sheets' schedule has them too)")
+        _output(obj, "App::PropertyInteger", "PartTypeCount",
+                "Number of different parts: panels within PartTypeTolerance of each other "
+                "are one")
         _output(obj, "App::PropertyInteger", "PanelCount", "Number of panels")
         _output(obj, "App::PropertyFloatList", "Volumes", "Volume of each solid")
         _output(obj, "App::PropertyFloatList", "Areas", "Bottom face area of each panel")
@@ -287,6 +298,7 @@ class PanelSet(_Proxy):
             solids = obj.Shape.Solids  # (placed as the object, as the panels' objects are)
             if cache[0] == self._key(obj):
                 obj.Masses, obj.TotalMass = _masses(obj.Volumes, density)
+                _set_part_types(obj, cache[1])
                 self._update_panel_objects(obj, cache[1], solids)
                 self._cache = (self._key(obj), cache[1], mesh)
                 self._changed = set()
@@ -309,6 +321,7 @@ class PanelSet(_Proxy):
             obj.Volumes = [s.Volume for s in solids]
         obj.PartIds = [p.id for p in ps.panels]
         obj.PanelCount = len(ps.panels)
+        _set_part_types(obj, ps)
         obj.Masses, obj.TotalMass = _masses(obj.Volumes, density)
         obj.Areas = [p.area for p in ps.panels]
         obj.MaxNodeDeviation = ps.max_node_deviation_deg
@@ -393,6 +406,17 @@ class PanelSet(_Proxy):
             obj.ViewObject.Visibility = not keep
             if hasattr(obj.ViewObject.Proxy, "show_clashes"):
                 obj.ViewObject.Proxy.show_clashes(obj)  # the new objects' colours
+
+
+def _set_part_types(obj, ps):
+    """The PanelSet's PartTypes and PartTypeCount, of the facet PanelSet ``ps``."""
+    from facet.part_types import part_types
+
+    stage = _stage_progress(progress.hook(), progress.say_hook())
+    types = part_types(ps.panels, obj.PartTypeTolerance.Value, progress=None if stage is None
+                       else lambda done, total: stage("types", done, total))
+    obj.PartTypes = types
+    obj.PartTypeCount = len(set(types))
 
 
 def _density(obj):
@@ -495,7 +519,8 @@ class CutSheets(_Proxy):
         kept, self._kept = getattr(self, "_kept", None), None
         if not self._nesting_kept(obj, ps_obj, kept):
             kept = None
-        write = self._to_write(obj, panel_set, density, kept)
+        write = self._to_write(obj, panel_set, density, kept,
+                               type_tol=ps_obj.PartTypeTolerance.Value)
 
         def path(kind, name):
             return os.path.join(out, name) if kind in write else None
@@ -517,6 +542,7 @@ class CutSheets(_Proxy):
                 schedule=path("schedule", "schedule.csv"), svg=path("svg", "svg"),
                 step=path("step", "panels.step"),
                 text_outlines=bool(obj.TextOutlines), density=density,
+                type_tol=ps_obj.PartTypeTolerance.Value,
                 progress=_stage_progress(progress.hook(), progress.say_hook()),
                 nested=None if kept is None else (kept["panels"], kept["drawings"],
                                                   kept["result"]))
@@ -550,7 +576,7 @@ class CutSheets(_Proxy):
         self._kept = dict(layout=self._layout_key(obj, ps_obj), panels=panel_set,
                           record=ps_obj.Proxy.record(), drawings=drawings, result=result,
                           density=density, out=out, text_outlines=bool(obj.TextOutlines),
-                          files=files)
+                          type_tol=ps_obj.PartTypeTolerance.Value, files=files)
         self._changed = set()
 
     @staticmethod
@@ -573,11 +599,12 @@ class CutSheets(_Proxy):
                      or bool(changed) and changed <= FILE_INPUTS))
 
     @staticmethod
-    def _to_write(obj, panel_set, density, kept):
+    def _to_write(obj, panel_set, density, kept, type_tol):
         """The kinds of files (:data:`FILE_KINDS`) the recompute writes: all of them without
         a nesting ``kept``, for new panels (other part IDs: in every file) or in another
-        OutputDir; else those whose inputs changed (the schedules: Density; the DXF:
-        TextOutlines; STEP: WriteStep turned on) and those no longer there."""
+        OutputDir; else those whose inputs changed (the schedules: Density, the PanelSet's
+        PartTypeTolerance; the DXF: TextOutlines; STEP: WriteStep turned on) and those no
+        longer there."""
         import os
 
         if not obj.OutputDir:
@@ -588,7 +615,7 @@ class CutSheets(_Proxy):
         write = {kind for kind in every
                  if not kept["files"].get(kind)
                  or not all(os.path.exists(p) for p in kept["files"][kind])}
-        if density != kept["density"]:
+        if density != kept["density"] or type_tol != kept["type_tol"]:
             write.add("schedule")
         if bool(obj.TextOutlines) != kept["text_outlines"]:
             write.add("dxf")
@@ -792,6 +819,7 @@ def _size_warning(mean_edge):
 _STAGE_TEXTS = {
     "panels": QT_TRANSLATE_NOOP("Facet", "Building the panels"),
     "solids": QT_TRANSLATE_NOOP("Facet", "Making the panel solids"),
+    "types": QT_TRANSLATE_NOOP("Facet", "Comparing the parts"),
     "unfold": QT_TRANSLATE_NOOP("Facet", "Unfolding the parts"),
     "nest": QT_TRANSLATE_NOOP("Facet", "Nesting the parts on the sheets"),
     "step": QT_TRANSLATE_NOOP("Facet", "Making the solids for STEP"),

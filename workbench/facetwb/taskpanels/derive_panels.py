@@ -12,6 +12,7 @@ error, or the panel's Cancel leave the document as it was. Wiring only.
 import FreeCAD as App
 import FreeCADGui as Gui
 
+from facet.report import count_noun
 from facetwb import preferences, progress
 from facetwb.recompute import failure
 from facetwb.commands.macro import object_expression
@@ -296,7 +297,9 @@ class PanelsPanel(DerivePanel):
     def summary(self, obj):
         if not obj.isValid():
             return failure(obj)
-        text = (f"{obj.Label}: {obj.PanelCount} panels, node deviation up to "
+        text = (f"{obj.Label}: {obj.PanelCount} panels, "
+                f"{count_noun(obj.PartTypeCount, 'part type')} within "
+                f"{obj.PartTypeTolerance.Value:g} mm, node deviation up to "
                 f"{obj.MaxNodeDeviation.Value:.3g} degrees")
         if obj.OverlappingJoints:
             text += (f"; joints that overlap: {obj.OverlappingJoints} (a Gap of "
