@@ -384,7 +384,6 @@ static facet_status square_joints(work *w, int32_t f, const int64_t around[2], d
     return FACET_OK;
 }
 
-
 /* The squared distance from x to the segment from a to b. */
 static double segment_distance2(const double x[3], const double a[3], const double b[3])
 {
@@ -1180,12 +1179,12 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             continue;
         }
         for (int64_t c = s; c < s + d; ++c) {
-            /* the edges before and after the corner that are kept */
-            const double *a = w.eplane + 4 * active_before(&w, f, c),
-                         *b = w.eplane + 4 * (w.drop[c] ? active_after(&w, f, c) : c);
-            /* the input's edges, or two that the gap brought together by
-             * consuming those between them (an L's arm) */
+            /* the edges before and after the corner that are kept: the input's
+             * edges, or two that the gap brought together by consuming those
+             * between them (an L's arm) */
             const int64_t before = active_before(&w, f, c);
+            const double *a = w.eplane + 4 * before,
+                         *b = w.eplane + 4 * (w.drop[c] ? active_after(&w, f, c) : c);
             const int dropped = w.drop[c] || before != prev_corner(m, f, c);
             const double *p = w.xyz + 3 * m->face_vertices[c];
             double xt[3], xb[3];
