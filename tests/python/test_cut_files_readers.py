@@ -135,7 +135,10 @@ def _cut_dxf(tmp_path, units):
     from facet.cli_panels import run_pipeline
 
     scale = {"mm": 1.0, "m": 1e-3}[units]
-    mesh = translational(nu=6, nv=5, step=400.0 * scale)
+    # (scaled after: translational's heights are a function of millimetres, so a mesh
+    # made with a 0.4 step is all but flat, its bevels all "+0.0°", which are not written)
+    mesh = translational(nu=6, nv=5, step=400.0)
+    mesh = mesh.with_vertices(mesh.vertices * scale)
     run_pipeline(mesh, 18.0 * scale, edge="bisector", gap=4 * scale,
                  sheet=(1300 * scale, 900 * scale), margin=15 * scale, spacing=8 * scale,
                  dxf=str(tmp_path / "cut.dxf"), units=units)

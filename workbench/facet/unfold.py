@@ -396,7 +396,8 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6,
         Largest ID text height; by default a tenth of the square root of the
         part's area. Smaller where the outline is too narrow for the text.
     bevel_tolerance_deg : float
-        Bevels smaller than this are not written.
+        Bevels smaller than this are not written, nor any whose text (one decimal)
+        reads 0.0.
     progress : callable, optional
         ``progress(done, total)`` in parts, every :data:`PROGRESS_EVERY` and at the end
         (5,041 parts took 2.4 s); True cancels (:class:`facet.errors.Cancelled`,
@@ -478,7 +479,9 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6,
         k = len(cut)
         for i in range(k):
             b = p.bevel_deg[i]
-            if abs(b) < bevel_tolerance_deg:
+            text = f"{b:+.1f}\u00b0"
+            # (a bevel that reads "+0.0°" or "-0.0°" is not worth engraving)
+            if abs(b) < bevel_tolerance_deg or text[1:] == "0.0\u00b0":
                 continue
             a, c = cut[i], cut[(i + 1) % k]
             d = c - a
@@ -486,7 +489,6 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6,
             if length == 0:
                 continue
             u = d / length
-            text = f"{b:+.1f}\u00b0"
             placed = _place_bevel(inside, outline, i, a, u, length, text, h, taken,
                                   float(insets[i]))
             if placed is None:
