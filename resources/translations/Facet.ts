@@ -572,32 +572,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="820"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="821"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="824"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="825"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="825"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="826"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="826"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="827"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="827"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="828"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="828"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="829"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -612,7 +612,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="821"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="822"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,7 +622,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="812"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="813"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
@@ -927,7 +927,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="823"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="824"/>
         <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
@@ -997,8 +997,13 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="822"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="823"/>
         <source>Comparing the parts</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="801"/>
+        <source>the PanelSet&apos;s IdScheme</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

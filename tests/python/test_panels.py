@@ -110,7 +110,7 @@ def test_grid_ids_and_index_ids():
     tri = facet.PolyMesh.from_faces(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.0]]),
                                     [[0, 1, 2], [1, 3, 2]])
     assert panels(tri, 0.01).id_scheme == "index"
-    with pytest.raises(PanelError, match="not a regular quad grid"):
+    with pytest.raises(PanelError, match="it has 2 triangles: choose auto or index"):
         panels(tri, 0.01, ids="grid")
     custom = panels(tri, 0.01, ids=["A", "B"])
     assert [p.id for p in custom] == ["A", "B"]
@@ -1489,6 +1489,33 @@ def test_cli_panels_bad_input_exit_2(facet_command, tmp_path, args, text):
     assert done.returncode == 2, (done.stdout, done.stderr)
     assert text in done.stderr
     assert "Traceback" not in done.stderr
+
+
+def test_grid_ids_on_a_mesh_that_is_no_grid_say_what_it_has(facet_command, tmp_path):
+    """`--ids grid` on a hexagonal or mixed mesh said "ids='grid' but the mesh is not a
+    regular quad grid": the Python keyword on the command line, and neither the file nor
+    what the mesh has. It names the file, the option as the user gives it, the faces by
+    kind (or, all quads, that they are no complete grid) and the choices that work."""
+    from facet import write_mesh
+
+    mixed = facet.PolyMesh.from_faces(
+        np.array([[0, 0, 0], [2, 0, 0], [3, 1, 0], [2, 2, 0], [0, 2, 0], [4, 2, 0.0]]),
+        [[0, 1, 2, 3, 4], [2, 5, 3]])
+    write_mesh(mixed, tmp_path / "mixed.obj")
+    done = facet_command("panels", tmp_path / "mixed.obj", "--thickness", "0.01", "--gap",
+                         "0", "--ids", "grid")
+    assert done.returncode == 2, (done.stdout, done.stderr)
+    assert ("mixed.obj: --ids grid (part IDs by row and column) needs a mesh of quads in "
+            "complete rows and columns, and it has 1 triangle, 1 pentagon: choose auto or "
+            "index") in done.stderr, done.stderr
+    # quads in an L: three of the 2 x 2 grid's four
+    ell = facet.PolyMesh.from_faces(
+        np.array([[x, y, 0.0] for y in range(3) for x in range(3)]),
+        [[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6]])
+    with pytest.raises(PanelError, match=r"^ids grid .*, and its 3 quads are not in complete "
+                                         r"rows and columns: choose auto or index$"):
+        panels(ell, 0.01, gap=0, ids="grid")
+    assert panels(ell, 0.01, gap=0).id_scheme == "index"
 
 
 def test_step_says_clearly_when_freecad_is_missing(monkeypatch):

@@ -27,7 +27,7 @@ import signal
 import sys
 import threading
 
-from facet.report import count_noun
+from facet.report import count_noun, degrees_text
 
 EXIT_OK = 0
 EXIT_NOT_CONVERGED = 1
@@ -241,13 +241,6 @@ def _g(value, digits=3):
     return f"{value:.{digits}g}"
 
 
-def _degrees_text(face_degrees):
-    names = {"3": "triangle", "4": "quad", "5": "pentagon", "6": "hexagon"}
-    ordered = sorted(face_degrees.items(), key=lambda item: int(item[0]))
-    return ", ".join(count_noun(count, names.get(degree, degree + "-gon"))
-                     for degree, count in ordered)
-
-
 def _line(out, label, text):
     print(f"  {label:<13} {text}", file=out)
 
@@ -341,7 +334,7 @@ def print_planarize_summary(report, out=None):
         out,
         "mesh",
         f"{count_noun(report['vertices'], 'vertex')}, {count_noun(report['faces'], 'face')} "
-        f"({_degrees_text(report['face_degrees'])}), mean edge {_g(report['mean_edge_length'])}",
+        f"({degrees_text(report['face_degrees'])}), mean edge {_g(report['mean_edge_length'])}",
     )
     _source_lines(out, report)
     _line(
@@ -428,7 +421,7 @@ def print_check_summary(report, out=None):
         out,
         "mesh",
         f"{count_noun(report['vertices'], 'vertex')}, {count_noun(report['faces'], 'face')} "
-        f"({_degrees_text(report['face_degrees'])}), {count_noun(report['edges'], 'edge')} "
+        f"({degrees_text(report['face_degrees'])}), {count_noun(report['edges'], 'edge')} "
         f"({report['boundary_edges']} on the boundary)",
     )
     _source_lines(out, report)

@@ -136,7 +136,7 @@ def add_commands(commands):
 
 
 #: How the panels' errors name the options they advise (facet.panels.OPTION_NAMES).
-OPTION_NAMES = {"min_edge": "--min-edge", "min_edge_abs": "--min-edge-abs"}
+OPTION_NAMES = {"min_edge": "--min-edge", "min_edge_abs": "--min-edge-abs", "ids": "--ids"}
 
 
 def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=False,

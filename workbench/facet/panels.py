@@ -29,7 +29,8 @@ from facet import _core
 from facet.errors import Cancelled, InputError, from_core
 from facet.mesh import PolyMesh, next_corners
 from facet.quality import DEFAULT_SHORT_EDGE
-from facet.report import count_noun, first_names, length_text, point_text
+from facet.report import (count_noun, degrees_text, face_degrees, first_names, length_text,
+                           point_text)
 
 __all__ = ["PanelError", "Panel", "PanelSet", "panels", "OFFSETS", "EDGES", "ID_SCHEMES",
            "grid_positions", "DEFAULT_GAP_MM", "DEFAULT_MIN_EDGE", "check_density",
@@ -384,12 +385,24 @@ def _corner_angles(mesh, f):
 #: How ``panels()``'s messages name the options a caller's user sets (the value follows):
 #: the Python keywords; the command line and the FreeCAD PanelSet give theirs
 #: (``panels(option_names=...)``).
-OPTION_NAMES = {"min_edge": "min_edge", "min_edge_abs": "min_edge_abs"}
+OPTION_NAMES = {"min_edge": "min_edge", "min_edge_abs": "min_edge_abs", "ids": "ids"}
 
 #: The largest min_edge tried for a failed joint: an edge half its face's mean edge long
 #: is no short edge to merge (and min_edge_abs is tried up to this times the largest
 #: face's mean edge).
 _MIN_EDGE_TRIED = 0.5
+
+
+def _not_a_grid(mesh, source, names):
+    """Why part IDs by row and column (ids "grid") do not fit ``mesh`` (read from the file
+    ``source``, if any): its faces by kind, or, all quads, that they are no complete grid;
+    and what to choose instead."""
+    degrees = face_degrees(mesh)
+    what = (f"its {count_noun(mesh.n_faces, 'quad')} are not in complete rows and columns"
+            if set(degrees) == {"4"} else f"it has {degrees_text(degrees)}")
+    return (f"{source + ': ' if source else ''}"
+            f"{names['ids']} grid (part IDs by row and column) needs a mesh of quads in "
+            f"complete rows and columns, and {what}: choose auto or index")
 
 
 def _failed_joint_message(exc, mesh, options, gap, length, progress, rebuild, min_edge,
@@ -1045,9 +1058,9 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         The model's length unit ("mm"), written after the lengths in errors and
         warnings; None writes them bare (model units).
     option_names : dict, optional
-        How the user sets the options an error advises (:data:`OPTION_NAMES`'s keys,
-        "min_edge" and "min_edge_abs"): the command line's "--min-edge", FreeCAD's
-        "the PanelSet's MinEdge"; the Python keywords by default.
+        How the user sets the options an error advises or names (:data:`OPTION_NAMES`'s
+        keys, "min_edge", "min_edge_abs" and "ids"): the command line's "--min-edge",
+        FreeCAD's "the PanelSet's MinEdge"; the Python keywords by default.
 
     Returns
     -------
@@ -1217,7 +1230,8 @@ def panels(mesh, thickness, offset="outer", gap=0.0, edge="square", flip=False, 
         if ids not in ID_SCHEMES:
             raise PanelError(f"ids must be one of {', '.join(ID_SCHEMES)} or a list, not {ids!r}")
         if ids == "grid" and grid is None:
-            raise PanelError("ids='grid' but the mesh is not a regular quad grid")
+            raise PanelError(_not_a_grid(input_mesh, source,
+                                         dict(OPTION_NAMES, **(option_names or {}))))
         scheme = "grid" if grid is not None else "index"
         names = _ids(nf, scheme, prefix, grid)
     else:

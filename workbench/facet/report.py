@@ -75,6 +75,15 @@ def face_degrees(mesh):
     return {str(int(d)): int(c) for d, c in zip(degrees, counts)}
 
 
+def degrees_text(face_degrees):
+    """The faces by kind for a message, from :func:`face_degrees`: "20 pentagons, 76
+    hexagons, 19 7-gons"."""
+    names = {"3": "triangle", "4": "quad", "5": "pentagon", "6": "hexagon"}
+    ordered = sorted(face_degrees.items(), key=lambda item: int(item[0]))
+    return ", ".join(count_noun(count, names.get(degree, degree + "-gon"))
+                     for degree, count in ordered)
+
+
 def _mean_edge_length(mesh):
     try:
         return mesh.mean_edge_length()

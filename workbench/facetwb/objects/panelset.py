@@ -797,7 +797,8 @@ def option_names():
     """How the panels' errors name the options they advise (facet.panels.OPTION_NAMES):
     the PanelSet's properties."""
     return {"min_edge": translate("Facet", "the PanelSet's MinEdge"),
-            "min_edge_abs": translate("Facet", "the PanelSet's MinEdgeAbs")}
+            "min_edge_abs": translate("Facet", "the PanelSet's MinEdgeAbs"),
+            "ids": translate("Facet", "the PanelSet's IdScheme")}
 
 
 def _size_warning(mean_edge):
