@@ -4,6 +4,8 @@
 import os
 import unittest
 
+import numpy as np
+
 import FreeCAD as App
 
 from facetwb import importer
@@ -125,6 +127,17 @@ class TestImporter(DocumentTestCase):
         self.assertTrue(importer.imported_summary(mesh, "mm").startswith(
             "1 face (1 triangle), 3 vertices, 600 x 450 x 0 mm"),
             importer.imported_summary(mesh, "mm"))
+
+    def test_an_import_names_every_kind_of_face(self):
+        """The summary counted pentagons and 7-gons as "other polygons", where `facet
+        check` names each kind."""
+        import facet
+
+        ring = [(np.cos(a), np.sin(a), 0.0) for a in np.linspace(0, 2 * np.pi, 8)[:-1]]
+        xyz = [(1000 * x, 1000 * y, z) for x, y, z in ring] + [(3000, 0, 0), (3500, 500, 0)]
+        mesh = facet.PolyMesh.from_faces(xyz, [list(range(7)), [0, 7, 8, 1, 6]])
+        self.assertIn("2 faces (1 pentagon, 1 7-gon), 9 vertices",
+                      importer.imported_summary(mesh, "mm"))
 
     def imported_saying(self, *texts, units="m"):
         """Import each OBJ text with importer.insert, its numbers in ``units`` (metres: the

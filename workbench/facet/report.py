@@ -45,11 +45,13 @@ def length_text(units=None):
     return text
 
 
-def count_noun(number, noun):
-    """'1 quad', '2 quads', '0 quads', '1 vertex', '2 vertices': a count in a message."""
+def count_noun(number, noun, grouped=False):
+    """'1 quad', '2 quads', '0 quads', '1 vertex', '2 vertices': a count in a message;
+    ``grouped``: with thousands separators ('1,536 quads')."""
+    shown = f"{number:,}" if grouped else f"{number}"
     if number == 1:
-        return f"{number} {noun}"
-    return f"{number} {'vertices' if noun == 'vertex' else noun + 's'}"
+        return f"{shown} {noun}"
+    return f"{shown} {'vertices' if noun == 'vertex' else noun + 's'}"
 
 
 def first_names(names, limit):
@@ -75,12 +77,13 @@ def face_degrees(mesh):
     return {str(int(d)): int(c) for d, c in zip(degrees, counts)}
 
 
-def degrees_text(face_degrees):
+def degrees_text(face_degrees, grouped=False):
     """The faces by kind for a message, from :func:`face_degrees`: "20 pentagons, 76
-    hexagons, 19 7-gons"."""
+    hexagons, 19 7-gons"; ``grouped``: the counts with thousands separators ("1,536
+    quads")."""
     names = {"3": "triangle", "4": "quad", "5": "pentagon", "6": "hexagon"}
     ordered = sorted(face_degrees.items(), key=lambda item: int(item[0]))
-    return ", ".join(count_noun(count, names.get(degree, degree + "-gon"))
+    return ", ".join(count_noun(count, names.get(degree, degree + "-gon"), grouped)
                      for degree, count in ordered)
 
 

@@ -165,22 +165,14 @@ def imported_summary(mesh, units="mm"):
     ``units``), for the report view: its faces by corner count, its vertices, its size
     and the units it was read in; a designer sees at once a mesh of the wrong size or
     kind (before, a successful import said nothing)."""
-    from facet.report import count_noun, face_degrees
+    from facet.report import count_noun, degrees_text, face_degrees
 
-    def counted(number, noun):  # "1,536 quads", "1 face"
-        return f"{number:,} {count_noun(number, noun).split(' ', 1)[1]}"
-
-    degrees = face_degrees(mesh)  # {"4": faces with 4 corners, ...}
-    kinds = [("3", "triangle"), ("4", "quad"), ("6", "hexagon")]
-    parts = [counted(degrees[k], name) for k, name in kinds if degrees.get(k)]
-    other = mesh.n_faces - sum(degrees.get(k, 0) for k, _ in kinds)
-    if other:
-        parts.append(counted(int(other), "other polygon"))
     lower, upper = mesh.bounds()
     size = " x ".join(_extent_text(float(v)) for v in upper - lower)
-    return (f"{counted(mesh.n_faces, 'face')} ({', '.join(parts)}), "
-            f"{counted(mesh.n_vertices, 'vertex')}, {size} mm, its numbers read as "
-            f"{UNIT_NAMES[units]}")
+    return (f"{count_noun(mesh.n_faces, 'face', grouped=True)} "
+            f"({degrees_text(face_degrees(mesh), grouped=True)}), "
+            f"{count_noun(mesh.n_vertices, 'vertex', grouped=True)}, {size} mm, its numbers "
+            f"read as {UNIT_NAMES[units]}")
 
 
 def _extent_text(length):
