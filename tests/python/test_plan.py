@@ -90,6 +90,13 @@ def test_openings_and_holes():
     # was joined by no edge, and to draw one)
     with pytest.raises(PlanError, match="draw two or more edges from the hole"):
         plan_from_segments(SQUARE + inner + [((0, 0), (0.5, 0.5))])
+    # an opening inside the loose hole (the atrium) leaves the face around it with its
+    # hole: the advice to mark "the face around the hole" as an opening says where that is
+    # (it read as if the opening given had been in the wrong face of two)
+    with pytest.raises(PlanError, match=r"or mark the face around the hole as an opening "
+                       r"\(a point such as \(.*\)\); the opening at \(1, 1\) is inside the "
+                       r"hole, which leaves that face as it is$"):
+        plan_from_segments(SQUARE + inner, openings=[(1, 1)])
     joins = [((0, 0), (0.5, 0.5)), ((2, 0), (1.5, 0.5)), ((2, 2), (1.5, 1.5)), ((0, 2), (0.5, 1.5))]
     plan = plan_from_segments(SQUARE + inner + joins, openings=[(1, 1)])
     assert plan.n_faces == 4 and plan.openings == 1

@@ -842,7 +842,7 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
         No bounded face, a face with a hole not joined to its outline, or
         non-finite coordinates.
     """
-    from shapely.geometry import LineString, MultiLineString, Point
+    from shapely.geometry import LineString, MultiLineString, Point, Polygon
     from shapely.ops import polygonize_full, unary_union
 
     where = _where(source)
@@ -933,13 +933,20 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
     n_openings = len(opened)
     for polygon in kept:
         if len(polygon.interiors):
-            x, y = polygon.interiors[0].coords[0]
+            hole = polygon.interiors[0]
+            x, y = hole.coords[0]
+            around = at(polygon.representative_point().coords[0])
+            # an opening given inside the hole (the atrium itself) leaves the face around it
+            # as it was: the advice to mark "the face around the hole" must say which
+            inside = [xy for xy in opening_xy if Polygon(hole).contains(Point(*xy))]
             raise PlanError(
-                f"{where}the face around {at(polygon.representative_point().coords[0])} "
-                f"has a hole at {at((x, y))}, "
+                f"{where}the face around {around} has a hole at {at((x, y))}, "
                 "and a face must be a simple polygon: draw two or more edges from the hole "
                 "to the outline, which split the ring into faces (one edge is not enough), or "
-                "mark the face around the hole as an opening"
+                + (f"mark the face around the hole as an opening (a point such as {around}); "
+                   f"the opening at {at(inside[0])} is inside the hole, which leaves that "
+                   "face as it is" if inside else
+                   "mark the face around the hole as an opening")
             )
     if not kept:
         # where: an outline left open ("4 dangling edges" named no place to close it)
