@@ -572,32 +572,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="821"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="848"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="825"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="852"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="826"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="853"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="827"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="854"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="828"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="855"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="829"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="856"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -612,7 +612,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="822"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="849"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,17 +622,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="813"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="840"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="786"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="813"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="792"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="819"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -927,17 +927,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="824"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="851"/>
         <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="799"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="826"/>
         <source>the PanelSet&apos;s MinEdge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="800"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="827"/>
         <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
@@ -997,12 +997,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="823"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="850"/>
         <source>Comparing the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="801"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="828"/>
         <source>the PanelSet&apos;s IdScheme</source>
         <translation type="unfinished"></translation>
     </message>

@@ -1207,6 +1207,32 @@ def check_panels(check, out_dir):
           f"({len(ps.ClashingPanels)} of 20; ClearingGap {ps.ClearingGap.Value:.3g} mm)")
     check(greyish + red > 0.15 * middle.size / 3,
           f"panels: the solids are drawn ({greyish} grey and {red} red pixels)")
+    # each part type a colour of its own: 10 types, panel f alike to panel 19 - f
+    ps.ViewObject.ShowClashes = False
+    ps.ViewObject.ShowPartTypes = True
+    Gui.updateGui()
+    faces = [len(s.Faces) for s in ps.Shape.Solids]
+    starts = np.cumsum([0] + faces[:-1])
+    per_panel = [tuple(round(c, 3) for c in ps.ViewObject.DiffuseColor[k][:3]) for k in starts]
+    check(len(ps.ViewObject.DiffuseColor) == sum(faces) and len(set(per_panel)) == 10
+          and all(per_panel[f] == per_panel[19 - f] for f in range(20)),
+          f"ShowPartTypes: one colour per part type ({len(set(per_panel))} colours)")
+    path = os.path.join(out_dir, "panel_types.png")
+    save_view(view, path)
+    rgb = image_pixels(path).reshape(-1, 3).astype(float)
+    hi, lo = rgb.max(axis=1), rgb.min(axis=1)
+    coloured = rgb[(hi - lo > 40) & (hi > 60)]
+    r, g, b = coloured.T
+    # hue in degrees of the coloured pixels; FreeCAD's background is blue-violet (210-270)
+    hue = np.degrees(np.arctan2(np.sqrt(3) * (g - b), 2 * r - g - b)) % 360
+    bins = np.bincount((hue[(hue < 210) | (hue > 270)] // 30).astype(int), minlength=12)
+    check(int((bins > 300).sum()) >= 4,
+          f"panel_types: the types' colours are drawn (pixels per 30-degree hue: {list(bins)})")
+    ps.ViewObject.ShowPartTypes = False
+    ps.ViewObject.ShowClashes = True
+    Gui.updateGui()
+    check(len(ps.ViewObject.DiffuseColor) == sum(faces),
+          "ShowPartTypes off: the clashes' red again, per face")
 
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(ps)

@@ -686,6 +686,19 @@ def is_cutsheets(obj):
 CLASH_COLOR = (0.9, 0.12, 0.1)
 
 
+def part_type_colour(part_type):
+    """The colour of part type ``part_type`` ("T1", "T2", ...) when the PanelSet's view
+    shows them (ShowPartTypes): hues a golden angle apart from T1's blue, muted, so that
+    the types of neighbouring panels tell apart and none is the clashes' red."""
+    import colorsys
+
+    k = int(part_type[1:]) - 1
+    hue = (0.58 + 0.6180339887498949 * k) % 1.0
+    if hue < 0.04 or hue > 0.94:  # (no red: the clashes')
+        hue = (hue + 0.1) % 1.0
+    return tuple(round(c, 4) for c in colorsys.hsv_to_rgb(hue, 0.45, 0.85))
+
+
 class ViewProviderPanels:
     """A Part view provider with Facet's icon (PanelSet and CutSheets). A PanelSet's
     view shows the panels that overlap another in red (ShowClashes)."""
@@ -705,36 +718,50 @@ class ViewProviderPanels:
             compat.add_property(vobj, "App::PropertyBool", "ShowClashes", "Display",
                                 "Show the panels that overlap another (ClashingPanels) in red",
                                 value=True)
+            compat.add_property(vobj, "App::PropertyBool", "ShowPartTypes", "Display",
+                                "Colour each panel by its part type (PartTypes): the panels of "
+                                "one type alike", value=False)
 
     def updateData(self, obj, prop):  # noqa: N802 - FreeCAD's name
-        if prop in ("Shape", "ClashingPanels"):
+        if prop in ("Shape", "ClashingPanels", "PartTypes"):
             self.show_clashes(obj)
 
     def onChanged(self, vobj, prop):  # noqa: N802
-        if prop in ("ShowClashes", "ShapeColor"):
+        if prop in ("ShowClashes", "ShowPartTypes", "ShapeColor"):
             self.show_clashes(vobj.Object)
 
     def show_clashes(self, obj):
-        """Per face: red for the solids of ClashingPanels (when ShowClashes), else the
-        shape's colour; with OnePerPanel the panels' own objects likewise."""
+        """Per face: red for the solids of ClashingPanels (when ShowClashes), else its part
+        type's colour (when ShowPartTypes: :func:`part_type_colour`) or the shape's colour;
+        with OnePerPanel the panels' own objects likewise."""
         vobj = getattr(obj, "ViewObject", None)
         if vobj is None or "ShowClashes" not in vobj.PropertiesList:
             return
         clashing = set(getattr(obj, "ClashingPanels", None) or ()) if vobj.ShowClashes else set()
         solids = obj.Shape.Solids if not obj.Shape.isNull() else []
         base = tuple(vobj.ShapeColor[:3])
-        for part_id, child in zip(obj.PartIds, getattr(obj, "PanelObjects", None) or []):
+        types = list(getattr(obj, "PartTypes", None) or [])
+        if not (getattr(vobj, "ShowPartTypes", False) and len(types) == len(obj.PartIds)):
+            types = [None] * len(obj.PartIds)
+
+        def colour(part_id, part_type):
+            if part_id in clashing:
+                return CLASH_COLOR
+            return base if part_type is None else part_type_colour(part_type)
+
+        for part_id, part_type, child in zip(obj.PartIds, types,
+                                             getattr(obj, "PanelObjects", None) or []):
             if child is not None and getattr(child, "ViewObject", None) is not None:
-                colour = CLASH_COLOR if part_id in clashing else base
-                if tuple(child.ViewObject.ShapeColor[:3]) != colour:
-                    child.ViewObject.ShapeColor = colour
-        if not (clashing and len(solids) == len(obj.PartIds)):
+                if tuple(child.ViewObject.ShapeColor[:3]) != colour(part_id, part_type):
+                    child.ViewObject.ShapeColor = colour(part_id, part_type)
+        panel_colours = [colour(i, t) for i, t in zip(obj.PartIds, types)]
+        if len(solids) != len(obj.PartIds) or all(c == base for c in panel_colours):
             if len(vobj.DiffuseColor) != 1 or tuple(vobj.DiffuseColor[0][:3]) != base:
                 vobj.DiffuseColor = [base]
             return
         colours = []
-        for part_id, solid in zip(obj.PartIds, solids):
-            colours += [CLASH_COLOR if part_id in clashing else base] * len(solid.Faces)
+        for c, solid in zip(panel_colours, solids):
+            colours += [c] * len(solid.Faces)
         vobj.DiffuseColor = colours
 
     def getIcon(self):
