@@ -775,7 +775,9 @@ const char *facet_lifter_message(const facet_lifter *lifter);
  * line nearest the vertex, in both outlines, where the two edges are cut
  * alike (square, or mitred at one angle, as a planar mesh makes them). A
  * mitre beside a cut of another angle there (a free edge, a butt joint)
- * becomes a butt joint as above; with repair_consumed 0 that is an error.
+ * becomes a butt joint as above (beside a butt joint whose plane its
+ * neighbour's square plane continues, the neighbour is cut square and this
+ * panel takes the whole fold); with repair_consumed 0 that is an error.
  *
  * Angles (radians), per face corner k, for the edge from corner k to k+1:
  *  dihedral  angle between the two panels on their bottom (-n) side: pi

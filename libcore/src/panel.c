@@ -384,6 +384,48 @@ static facet_status square_joints(work *w, int32_t f, const int64_t around[2], d
     return FACET_OK;
 }
 
+/* At the straight corner c of face f between the edges before and c, one a
+ * butt joint (its neighbour cut square by another repair) and the other a
+ * mitre: where the mitre, cut as a butt joint too (its neighbour square), would
+ * meet the butt joint's plane in one line on the top and bottom planes (the
+ * panels across coplanar, as a planar mesh makes them), it is: the panel takes
+ * the whole fold along the edge on both sides of the corner, and no joint is
+ * square on both panels (which, on a fold, makes them overlap). Returns 1
+ * then, *again the first face it touches; 0 with the cuts as they were. */
+static int butt_beside_mitre(work *w, int32_t f, int64_t before, int64_t c, double up,
+                             double down, double half_gap, facet_panel_output *out,
+                             facet_error *error, int32_t *again, facet_status *status)
+{
+    int64_t mitre = -1;
+    if (w->square[before] == CUT_BUTT && w->square[c] == CUT_MITRE)
+        mitre = c;
+    else if (w->square[c] == CUT_BUTT && w->square[before] == CUT_MITRE)
+        mitre = before;
+    const int64_t t = mitre >= 0 ? w->nbr_corner[mitre] : -1;
+    *status = FACET_OK;
+    if (t < 0 || w->square[t] != CUT_MITRE)
+        return 0;
+    const double *n = w->plane + 4 * f;
+    const double *p = w->xyz + 3 * w->mesh->face_vertices[c];
+    w->square[mitre] = CUT_BUTT;
+    *status = edge_plane(w, f, mitre, half_gap, out, error);
+    if (*status < 0)
+        return 0;
+    const double *a = w->eplane + 4 * before, *b = w->eplane + 4 * c;
+    double x[3];
+    if (!(corner_point(n, up - n[3], a, b, p, x) && corner_point(n, down - n[3], a, b, p, x))) {
+        w->square[mitre] = CUT_MITRE; /* not one plane (the panels across fold) */
+        *status = edge_plane(w, f, mitre, half_gap, out, error);
+        return 0;
+    }
+    w->square[t] = CUT_SQUARED;
+    *status = edge_plane(w, w->corner_face[t], t, half_gap, out, error);
+    if (*status < 0)
+        return 0;
+    *again = f < w->corner_face[t] ? f : w->corner_face[t];
+    return 1;
+}
+
 /* The squared distance from x to the segment from a to b. */
 static double segment_distance2(const double x[3], const double a[3], const double b[3])
 {
@@ -1195,11 +1237,15 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             if (!found) {
                 /* a straight corner between joints cut at different angles
                  * (a mitre beside a free edge, or beside a repaired joint):
-                 * square them, as a consumed mitre is */
+                 * beside a butt joint the mitre becomes one too where the two
+                 * meet; else square them, as a consumed mitre is */
                 const int64_t around[2] = {before, c};
                 if (!dropped && repair &&
                     !(is_square(w.square[before]) && is_square(w.square[c]))) {
-                    status = square_joints(&w, f, around, half_gap, out, error, &again);
+                    if (!butt_beside_mitre(&w, f, before, c, up, down, half_gap, out, error,
+                                           &again, &status) &&
+                        status == FACET_OK)
+                        status = square_joints(&w, f, around, half_gap, out, error, &again);
                     if (status < 0) {
                         work_free(&w);
                         return status;

@@ -695,6 +695,32 @@ def test_a_straight_corner_between_a_mitre_and_a_free_edge_squares_the_mitre():
         panels(mesh, 20.0, gap=10.0, edge="bisector", repair=False)
 
 
+def test_a_straight_corner_between_a_butt_joint_and_a_mitre_makes_both_butt_joints():
+    # B's short edge beside A (5 mm, a chamfer) consumes B's mitre to A, which another
+    # repair makes a butt joint: square on B, A cut on B's square plane with the whole
+    # fold. Right of A's straight corner A's mitre to C was then cut square on A too,
+    # and A's butt joint to B square on both: "cut square on both, the panels overlap by
+    # 0.67". C is coplanar with B, so their square planes are one: A takes the whole
+    # fold along both, B and C are square
+    t = math.tan(math.radians(30.0))
+    xyz = np.array([[0, 0, 0], [2000, 0, 0], [2000, 1000, 0], [1000, 1000, 0], [0, 1000, 0],
+                    [-5, 1005, 5 * t], [1000, 2000, 1000 * t], [2000, 2000, 1000 * t]])
+    mesh = facet.PolyMesh.from_faces(xyz, [[0, 1, 2, 3, 4], [3, 2, 7, 6], [4, 3, 6, 5]])
+    for thickness in (8.0, 20.0):
+        a, c, b = panels(mesh, thickness, gap=10.0, edge="bisector", min_edge=0.0)
+        assert (a.butt_edges, a.squared_edges) == (2, 0)
+        assert (b.squared_edges, c.squared_edges, b.butt_edges, c.butt_edges) == (1, 1, 0, 0)
+        np.testing.assert_allclose(a.bevel_deg[2:4], [-30.0, -30.0], atol=1e-9)
+        np.testing.assert_allclose(b.bevel_deg[0], 0.0, atol=1e-9)
+        np.testing.assert_allclose(c.bevel_deg[3], 0.0, atol=1e-9)
+        for outline in (a.top, a.bottom):  # A's top edge is one line through the corner
+            d = outline[4] - outline[2]
+            assert abs(np.cross(d, outline[3] - outline[2])).max() < 1e-6 * np.dot(d, d)
+        # butt joints keep the gap
+        np.testing.assert_allclose(a.joint_widths[2:4], [10.0, 10.0], rtol=1e-9)
+        assert max(p.clash for p in (a, b, c)) == 0.0
+
+
 @pytest.mark.parametrize("grain", [None, (0, 0, 1), (1, 0, 1)])
 def test_the_schedules_placement_rebuilds_the_cut_outline_on_the_sheet(grain):
     # with a grain every row said rotation 0 while each part lay turned by its grain angle
