@@ -721,6 +721,49 @@ def test_a_straight_corner_between_a_butt_joint_and_a_mitre_makes_both_butt_join
         assert max(p.clash for p in (a, b, c)) == 0.0
 
 
+def test_a_running_bond_roof_keeps_a_bevel_on_every_folded_joint():
+    # rows of panels in running bond on three roof planes (a plan lifted: every row one
+    # plane, its joints along two fold lines, each with T-junctions); the top row stops
+    # short, so one panel's edge along the upper fold is free beside a mitre, which must
+    # be square. Along that straight fold line every joint is then a butt joint (one
+    # panel square, the other the whole fold), cut alike at every straight corner; the
+    # squaring was passed on as square cuts on both panels: 3 joints of no bevel, open
+    # into a wedge across the fold instead of the gap
+    xs = {0: [0, 1000, 2000, 3000], 1: [0, 500, 1500, 2500, 3000], 2: [0, 1000, 2000]}
+    ys, zs = [0.0, 750.0, 1500.0, 2250.0], [0.0, 300.0, 500.0, 600.0]
+    index, xyz, faces = {}, [], []
+
+    def vertex(x, level):
+        if (x, level) not in index:
+            index[x, level] = len(xyz)
+            xyz.append([x, ys[level], zs[level]])
+        return index[x, level]
+
+    for row, bounds in xs.items():
+        for x0, x1 in zip(bounds[:-1], bounds[1:]):
+            below = sorted({x for r in (row - 1, row) if r in xs for x in xs[r]
+                            if x0 <= x <= x1 and (r == row or x <= xs[row][-1])})
+            above = sorted({x for r in (row, row + 1) if r in xs for x in xs[r]
+                            if x0 <= x <= x1 and (r == row or x <= xs[r][-1])}, reverse=True)
+            faces.append([vertex(x, row) for x in below] + [vertex(x, row + 1) for x in above])
+    mesh = facet.PolyMesh.from_faces(np.array(xyz), faces)
+    ps = panels(mesh, 20.0, gap=10.0, edge="bisector")
+    assert sum(len(f) > 4 for f in faces) == 7 and max(p.clash for p in ps) == 0.0
+    edges = {}
+    for p in ps:
+        for k, h in enumerate(p.neighbors):
+            if h is not None and abs(p.dihedral_deg[k] - 180.0) > 1e-6:
+                pair = frozenset((int(p.vertices[k]), int(p.vertices[(k + 1) % len(p.vertices)])))
+                edges.setdefault(pair, []).append((abs(p.bevel_deg[k]), 180.0 - p.dihedral_deg[k]))
+    assert len(edges) == 10
+    for sides in edges.values():  # mitred (half the fold each) or butt (0 and the fold)
+        assert sum(b for b, _ in sides) == pytest.approx(abs(sides[0][1]))
+    assert sum(p.squared_edges for p in ps) == sum(p.butt_edges for p in ps) == 4
+    for p in ps:
+        np.testing.assert_allclose([w for w in p.joint_widths if w is not None and w > 0],
+                                   10.0, rtol=1e-9)
+
+
 @pytest.mark.parametrize("grain", [None, (0, 0, 1), (1, 0, 1)])
 def test_the_schedules_placement_rebuilds_the_cut_outline_on_the_sheet(grain):
     # with a grain every row said rotation 0 while each part lay turned by its grain angle
