@@ -721,6 +721,21 @@ def test_a_straight_corner_between_a_butt_joint_and_a_mitre_makes_both_butt_join
         assert max(p.clash for p in (a, b, c)) == 0.0
 
 
+
+def test_a_joint_square_on_both_at_a_straight_corner_says_why():
+    # A's edge is free right of its straight corner; left of it B's mitre is consumed by
+    # B's chamfer, 7.6 mm long (a butt joint on A), which must then be square on A too, square on
+    # both; they overlap on the fold. The error said the mitre "meets the next edge's
+    # beyond the nearly straight corner at vertex 3 (180 degrees)": nothing is beyond
+    t = math.tan(math.radians(30.0))
+    xyz = np.array([[0, 0, 0], [2000, 0, 0], [2000, 1000, 0], [1000, 1000, 0], [0, 1000, 0],
+                    [-5, 1005, 5 * t], [1000, 2000, 1000 * t]])
+    mesh = facet.PolyMesh.from_faces(xyz, [[0, 1, 2, 3, 4], [4, 3, 6, 5]])
+    with pytest.raises(PanelError, match=r"on face 0 it meets a cut of another angle at the "
+                       r"straight corner at vertex 3 \(a vertex on a straight edge\), and on "
+                       r"face 1 the gap and the bevels consume"):
+        panels(mesh, 20.0, gap=10.0, edge="bisector", min_edge=0.0)
+
 def test_a_running_bond_roof_keeps_a_bevel_on_every_folded_joint():
     # rows of panels in running bond on three roof planes (a plan lifted: every row one
     # plane, its joints along two fold lines, each with T-junctions); the top row stops

@@ -438,6 +438,11 @@ def _failed_joint_message(exc, mesh, options, gap, length, progress, rebuild, mi
         parts.append(f"face {g} {at[vertex]:.3g} and {at[other]:.3g} degrees")
         straight = min((abs(180.0 - a), v, a) for v, a in at.items())
         why.append(None if straight[0] >= DEFAULT_STRAIGHT_CORNER else
+                   # a vertex on a straight edge (a T-junction): the edges there are cut
+                   # alike or not at all, and the edge beside it was cut at another angle
+                   f"on face {g} it meets a cut of another angle at the straight corner at "
+                   f"vertex {straight[1]} (a vertex on a straight edge)"
+                   if straight[0] < _STRAIGHT_DEG else
                    f"on face {g} it meets the next edge's beyond the nearly straight corner "
                    f"at vertex {straight[1]} ({straight[2]:.4g} degrees)")
     consumed = "the gap and the bevels consume the edge between those corners"
@@ -491,6 +496,12 @@ def _failed_joint_message(exc, mesh, options, gap, length, progress, rebuild, mi
                 + f"; or {mesh_change}")
     return (f"{text}: neither a larger gap, a larger {names['min_edge']} nor square edges "
             f"(tried) build them: change the mesh, {mesh_change}")
+
+
+# A corner this close to 180 degrees is straight for the error's explanation: the core
+# finds no corner beyond it (its edges' planes meet the top and bottom planes in one line
+# or in parallel ones, to 1e-9 of the mesh's size; 1e-9 rad is 5.7e-8 degrees).
+_STRAIGHT_DEG = 1e-6
 
 
 def _node_clashes(result, depth):
