@@ -453,6 +453,21 @@ static void straight_corner(void)
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
     CHECK(strstr(e.message, "face 0: the edges at vertex 3 are collinear and their joints are "
                             "cut at different angles") != NULL);
+    /* face 2 (B, left of the corner) with a chamfer 7.6 mm long at vertex 4 (vertex 5
+     * moved there): the gap consumes it and B's mitre to face 0 with it, a butt joint on
+     * face 0. Face 0's mitre to face 1 (C, coplanar with B) right of the straight corner
+     * becomes a butt joint too, C square: no joint square on both panels (which
+     * overlapped on the fold, an error) */
+    q[15] = ox - 0.005, q[16] = oy + 1.005, q[17] = 0.005 * tz;
+    qm.n_faces = 3;
+    o.repair_consumed = 1;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_squared_edges == 2 && r.n_butt_edges == 2 && r.n_overlapping_joints == 0);
+    CHECK(squared[2] == 2 && squared[3] == 2 && squared[5] == 1 && squared[9] == 1);
+    for (int side = 0; side < 2; ++side) {
+        const double *x = side ? top : bottom;
+        CHECK_NEAR(line_distance(x + 9, x + 6, x + 12), 0.0, 1e-9);
+    }
 }
 
 int main(void)
