@@ -607,7 +607,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="89"/>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="98"/>
         <source>Import polygon mesh</source>
         <translation type="unfinished"></translation>
     </message>
@@ -922,7 +922,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="89"/>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="98"/>
         <source>{0}: its edges are {1:.3g} of its units long on average; as millimetres, no facade&apos;s panel is that small or large. Which units are its numbers in?</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1004,6 +1004,21 @@
     <message>
         <location filename="../../workbench/facetwb/objects/panelset.py" line="828"/>
         <source>the PanelSet&apos;s IdScheme</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/importer.py" line="88"/>
+        <source>Checking the mesh</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/importer.py" line="180"/>
+        <source>Adding it to the document</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/importer.py" line="218"/>
+        <source>Importing {0} ...</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

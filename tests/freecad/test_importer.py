@@ -276,3 +276,101 @@ class TestImporter(DocumentTestCase):
             self.assertEqual(importer.read_polymesh(path, "m").n_faces, 2)
         finally:
             importer.forget_kept()
+
+
+class TestImportCancel(DocumentTestCase):
+    """An import's progress and Cancel (facetwb.progress): a 1M-face OBJ read for seconds
+    with no dialog and no way to stop it. Cancel at any of its progress calls leaves every
+    document as it was and says so in one line."""
+
+    def setUp(self):
+        self.said = []
+        self.keep = importer.report_message, importer.report_error
+        importer.report_message = self.said.append
+        importer.report_error = self.said.append
+
+    def tearDown(self):
+        importer.report_message, importer.report_error = self.keep
+        from facetwb import progress
+
+        progress.cancel_after(0)
+        importer.forget_kept()
+
+    def state(self):
+        return ([(obj.Name, obj.Label) for obj in self.doc.Objects], sorted(App.listDocuments()),
+                self.doc.isTouched(), list(self.doc.UndoNames))
+
+    def imported(self, function, *arguments, cancel_at=0):
+        """``function(*arguments)`` in a reporter that cancels at its ``cancel_at``-th call
+        (0: never); (its result, the reporter)."""
+        from facetwb import progress
+
+        progress.cancel_after(cancel_at)
+        try:
+            with progress.reporting("test") as reporter:
+                result = function(*arguments)
+        finally:
+            progress.cancel_after(0)
+        return result, reporter
+
+    def test_cancel_at_every_step_changes_nothing(self):
+        from facetwb import progress
+
+        self.doc.addObject("App::FeaturePython", "Existing")
+        self.doc.recompute()
+        for name in ("hypar.obj", "panels.off"):
+            path = data_path(name)
+            obj, reporter = self.imported(importer.insert, path, self.doc.Name)
+            calls = reporter.calls
+            self.assertIsNotNone(obj)
+            self.assertGreaterEqual(calls, 5, "the reading, the checks, the adding and "
+                                              "the recompute report progress")
+            self.assertEqual(reporter.texts[0], "test")
+            self.doc.removeObject(obj.Name)
+            self.doc.recompute()
+            for cancel_at in range(1, calls + 1):
+                for function, target in ((importer.insert, self.doc.Name),
+                                         (importer.insert, "NotYetThere"),
+                                         (importer.open, None)):
+                    with self.subTest(file=name, call=cancel_at, function=function.__name__,
+                                      document=target):
+                        del self.said[:]
+                        before = self.state()
+                        arguments = (path,) if target is None else (path, target)
+                        result, reporter = self.imported(function, *arguments,
+                                                         cancel_at=cancel_at)
+                        self.assertIsNone(result)
+                        self.assertTrue(reporter.cancelled)
+                        self.assertEqual(self.state(), before)
+                        self.assertEqual(self.said,
+                                         [f"Facet: {path}: import cancelled; nothing changed"])
+        self.assertIsNone(progress.hook())
+
+    def test_a_scripted_import_has_no_reporter_and_is_not_cancelled(self):
+        from facetwb import progress
+
+        progress.cancel_after(1)  # (a reporter would cancel; none is opened headless)
+        obj = importer.insert(data_path("panels.off"), self.doc.Name)
+        self.assertIsNotNone(obj)
+        self.assertEqual(obj.FaceCount, 7)
+        self.assertTrue(obj.isValid())
+
+    def test_the_command_reading_cancelled_keeps_nothing(self):
+        """Facet_ImportMesh reads the file (to ask for its units) in a progress dialog of its
+        own: Cancel there imports nothing and keeps no mesh for a later import."""
+        from facetwb import progress
+        from facetwb.commands import import_mesh
+
+        path = os.path.join(self.tmp.name, "panel.obj")  # a 1.5 m panel in millimetres
+        with open(path, "w", encoding="utf-8") as stream:
+            stream.write("v 0 0 0\nv 1500 0 0\nv 1500 1500 0\nv 0 1500 0\nf 1 2 3 4\n")
+        progress.cancel_after(1)
+        try:
+            units = import_mesh.file_units(path)
+        finally:
+            progress.cancel_after(0)
+        self.assertIsNone(units)
+        self.assertEqual(importer._KEPT, {})
+        self.assertEqual(self.said, [f"Facet: {path}: import cancelled; nothing changed"])
+        self.assertEqual(import_mesh.file_units(path), "mm")  # read whole this time
+        self.assertIn(path, importer._KEPT)

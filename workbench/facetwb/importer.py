@@ -7,11 +7,20 @@ read a file into a new document and ``insert()`` to add it to an existing one.
 A file Facet cannot read (missing, not a mesh, a face with an index out of range, ...) is
 reported as one clear line in the report view (and a message box in the GUI) naming the file,
 line and face; nothing is added to any document and no document is created.
+
+In the GUI an import shows its progress with Cancel (:mod:`facetwb.progress`: the reading,
+then a busy bar while the mesh is checked, added and recomputed). Cancel leaves the
+documents as they were (an object already added is removed again, a document the import
+created is closed) and says "import cancelled" in the report view; headless, or in a
+script, nothing is shown and nothing can cancel.
 """
 
 import os
 
 import FreeCAD as App
+
+from facetwb import progress
+from facetwb.translation import translate
 
 #: Show a message box for import errors when the GUI is up. Scripts and tests that drive the
 #: GUI set this to False so no modal dialog waits for a click.
@@ -62,7 +71,7 @@ def likely_units(mesh):
 def read_polymesh(filename, units="mm"):
     """``facet.read_mesh(filename)`` with its coordinates read in ``units`` (UNIT_NAMES)
     and turned into millimetres, FreeCAD's unit, raising MeshImportError with a one-line
-    message; what the reader changed in reading it (faces with a vertex twice in a row), an
+    message (facet.Cancelled when Cancel was pressed: :func:`progress_title`); what the reader changed in reading it (faces with a vertex twice in a row), an
     unwelded seam (vertices at one point, which the faces there do not share) and a size
     no facade has in those units (:func:`size_warning`) are warnings in the report view."""
     import facet
@@ -76,17 +85,21 @@ def read_polymesh(filename, units="mm"):
                               f"{', '.join(UNIT_NAMES)}")
     try:
         mesh = _kept_or_read(filename)
+        _step(translate("Facet", "Checking the mesh"))
         for warning in read_warnings(mesh):
             report_warning(f"Facet: {filename}: {warning}")
         seam = unwelded_warning(mesh, "the faces there are not joined")
         if seam:
             report_warning(f"Facet: {filename}: {seam}")
+        _step()
         size = size_warning(mesh, units)
         if size:
             report_warning(f"Facet: {filename}: {size}")
         if scale != 1.0:
             mesh = mesh.with_vertices(mesh.vertices * scale)
         return mesh
+    except facet.Cancelled:
+        raise
     except (facet.errors.FacetError, OSError, ValueError) as error:
         message = str(error)
         if isinstance(error, OSError) and error.strerror:
@@ -102,12 +115,18 @@ def read_kept(filename):
     next :func:`read_polymesh` of the file while it is unchanged (same size, time and
     inode): Facet_ImportMesh reads a file to ask for its units, then runs the macro line
     ``importer.insert(filename, ...)``, which read the whole file a second time (a
-    replayed macro, with nothing kept, reads it). :func:`forget_kept` drops it."""
+    replayed macro, with nothing kept, reads it). :func:`forget_kept` drops it.
+
+    Its progress goes to the open reporter (:func:`facetwb.progress.hook`); a read cancelled
+    there raises facet.Cancelled and keeps nothing."""
     import facet
 
     state = _file_state(filename)
+    _KEPT.pop(filename, None)
     try:
-        mesh = facet.read_mesh(filename)
+        mesh = facet.read_mesh(filename, progress=progress.hook())
+    except facet.Cancelled:
+        raise
     except (facet.errors.FacetError, OSError, ValueError) as error:
         _KEPT[filename] = (state, error)
         raise
@@ -138,24 +157,36 @@ def _kept_or_read(filename):
         if isinstance(kept, Exception):
             raise kept
         return kept
-    return facet.read_mesh(filename)
+    return facet.read_mesh(filename, progress=progress.hook())
 
 
 def import_mesh(filename, doc, units="mm"):
     """Read ``filename`` (its numbers in ``units``) into a new, recomputed PolyMesh in
     ``doc`` and return it.
 
-    Raises MeshImportError, with ``doc`` unchanged, if the file cannot be read.
+    Raises MeshImportError, with ``doc`` unchanged, if the file cannot be read, and
+    facet.Cancelled, with ``doc`` unchanged, if Cancel is pressed in an open reporter
+    (:mod:`facetwb.progress`).
     """
     return _add_polymesh(read_polymesh(filename, units), filename, doc, units)
 
 
 def _add_polymesh(mesh, filename, doc, units="mm"):
+    """A new PolyMesh of ``mesh`` in ``doc``, recomputed; on Cancel (seen after it was
+    made or recomputed) it is removed again and facet.Cancelled raised."""
+    import facet
     from facetwb.make.make_polymesh import make_polymesh
 
+    _step(translate("Facet", "Adding it to the document"))
     label = os.path.splitext(os.path.basename(filename))[0]
     obj = make_polymesh(mesh, label=label, doc=doc)
-    doc.recompute()
+    try:
+        _step()
+        doc.recompute()
+        _step()
+    except facet.Cancelled:
+        doc.removeObject(obj.Name)
+        raise
     report_message(f"Facet: {filename}: {imported_summary(mesh, units)}, as {obj.Label}")
     return obj
 
@@ -182,6 +213,30 @@ def _extent_text(length):
     return f"{length:,.0f}" if length >= 100.0 else f"{length:.3g}"
 
 
+def progress_title(filename):
+    """The title of the progress dialog of an import of ``filename``."""
+    return translate("Facet", "Importing {0} ...").format(os.path.basename(filename))
+
+
+def _step(text=None):
+    """Between two steps of an import: the open reporter's busy bar (``text``, when given,
+    under its title), and facet.Cancelled when its Cancel was pressed."""
+    import facet
+
+    report = progress.hook()
+    if report is None:
+        return
+    if text is not None:
+        report.say(text)
+    if report(0, 0):
+        raise facet.Cancelled("import cancelled")
+
+
+def report_cancelled(filename):
+    """The report view's line for an import of ``filename`` cancelled."""
+    report_message(f"Facet: {filename}: import cancelled; nothing changed")
+
+
 def report_message(message):
     """One line in the report view."""
     App.Console.PrintMessage(message + "\n")
@@ -205,27 +260,48 @@ def report_error(message):
 
 
 def open(filename):  # noqa: A001 - the name FreeCAD's import mechanism calls
-    """Read ``filename`` into a new document named after it; returns the document or None."""
-    try:
-        mesh = read_polymesh(filename)
-    except MeshImportError as error:
-        report_error(str(error))
-        return None
-    doc = App.newDocument(os.path.splitext(os.path.basename(filename))[0])
-    _add_polymesh(mesh, filename, doc)
-    return doc
+    """Read ``filename`` into a new document named after it; returns the document or None
+    (a file it cannot read, or Cancel pressed: no document is left)."""
+    obj = _imported(filename, None)
+    return obj.Document if obj is not None else None
 
 
 def insert(filename, docname, units="mm"):
     """Add ``filename`` (its numbers in ``units``) to the document ``docname`` (created if
-    missing); returns the object."""
-    try:
-        mesh = read_polymesh(filename, units)
-    except MeshImportError as error:
-        report_error(str(error))
-        return None
-    try:
-        doc = App.getDocument(docname)
-    except NameError:
-        doc = App.newDocument(docname)
-    return _add_polymesh(mesh, filename, doc, units)
+    missing); returns the object, or None (a file it cannot read, or Cancel pressed: the
+    document is as it was)."""
+    return _imported(filename, docname, units)
+
+
+def _imported(filename, docname, units="mm"):
+    """The new PolyMesh of ``filename`` in the document ``docname`` (None: a new document
+    named after the file), with progress and Cancel in the GUI; None when the file cannot
+    be read (said in the report view and a message box) or the import was cancelled (said
+    in the report view), every document then as it was."""
+    import facet
+
+    with progress.unless_reporting(progress_title(filename)):
+        try:
+            mesh = read_polymesh(filename, units)
+        except MeshImportError as error:
+            report_error(str(error))
+            return None
+        except facet.Cancelled:
+            report_cancelled(filename)
+            return None
+        doc = None
+        if docname is not None:
+            try:
+                doc = App.getDocument(docname)
+            except NameError:
+                pass
+        created = doc is None
+        if created:
+            doc = App.newDocument(docname or os.path.splitext(os.path.basename(filename))[0])
+        try:
+            return _add_polymesh(mesh, filename, doc, units)
+        except facet.Cancelled:
+            if created:
+                App.closeDocument(doc.Name)
+            report_cancelled(filename)
+            return None

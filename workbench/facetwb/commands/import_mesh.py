@@ -47,12 +47,15 @@ class CommandImportMesh:
             if units is None:
                 return
             doc = App.ActiveDocument or App.newDocument()
-            # importer.insert reports a file it cannot read and leaves the document
-            # unchanged; it takes the mesh file_units read instead of reading it again.
+            # importer.insert reports a file it cannot read, or Cancel pressed in its
+            # progress dialog, and leaves the document unchanged (nothing to undo then);
+            # it takes the mesh file_units read instead of reading it again.
             arguments = (f'{filename!r}, "{doc.Name}"'
                          + (f", units={units!r}" if units != "mm" else ""))
+            before = set(doc.Objects)
             run_as_macro(doc, "Import polygon mesh", [f"facetwb.importer.insert({arguments})"],
-                         modules=("facetwb.importer",))
+                         modules=("facetwb.importer",),
+                         keep=lambda: bool(set(doc.Objects) - before))
         finally:
             importer.forget_kept()
 
@@ -61,16 +64,22 @@ def file_units(filename):
     """The units of ``filename``'s numbers: "mm", FreeCAD's unit, unless its mean edge read
     so is no facade's (a mesh in metres has edges of a few millimetres then), when the
     designer is asked (:func:`ask_units`; not when importer.SHOW_DIALOGS is off: the
-    report view's warning then says it). None: the designer cancelled the import.
+    report view's warning then says it). None: the designer cancelled the import (here,
+    or in the progress dialog of the reading, said in the report view).
 
     The file is read once: importer.insert of it takes the mesh read here
     (importer.read_kept)."""
-    from facetwb import importer
+    import facet
+    from facetwb import importer, progress
 
     if not importer.SHOW_DIALOGS:
         return "mm"
     try:
-        mesh = importer.read_kept(filename)
+        with progress.reporting(importer.progress_title(filename)):
+            mesh = importer.read_kept(filename)
+    except facet.Cancelled:
+        importer.report_cancelled(filename)
+        return None
     except Exception:  # noqa: BLE001 - importer.insert reports what is wrong with the file
         return "mm"
     if importer.size_warning(mesh) is None:

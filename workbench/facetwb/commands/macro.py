@@ -5,9 +5,12 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 
-def run_as_macro(doc, title, lines, modules=("facetwb",)):
+def run_as_macro(doc, title, lines, modules=("facetwb",), keep=None):
     """Run ``lines`` through Gui.doCommand (so they are recorded in macros and shown in the
     Python console) inside the undo transaction ``title``.
+
+    ``keep()``, when given, is asked after the lines ran: False aborts the transaction (the
+    lines changed nothing to undo: an import cancelled), and True is still returned.
 
     On an exception the transaction is aborted (the document is left as it was), the error is
     printed as one line in the report view and False is returned.
@@ -22,6 +25,9 @@ def run_as_macro(doc, title, lines, modules=("facetwb",)):
         doc.abortTransaction()
         App.Console.PrintError(f"Facet: {title} failed: {error}\n")
         return False
+    if keep is not None and not keep():
+        doc.abortTransaction()
+        return True
     doc.commitTransaction()
     return True
 
