@@ -1725,6 +1725,67 @@ def check_import_command(check):
     check(meshes and meshes[0].FaceCount == 7, "the imported mesh has its 7 faces")
     App.closeDocument(doc.Name)
     check_import_units(check)
+    check_import_progress(check)
+
+
+def check_import_progress(check):
+    """An import shows a progress dialog with Cancel (a 1M-face OBJ read for 14 s with
+    none); Cancel in Facet_ImportMesh, while reading or after the mesh was added, leaves
+    the document as it was, nothing to undo, no dialog left open and no mesh kept."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    from PySide import QtGui
+
+    from facetwb import importer, progress
+    from facetwb.commands import import_mesh
+
+    path = os.path.join(ROOT, "tests", "data", "panels.off")
+    doc = App.newDocument("ImportProgress")
+    closed = []
+    close = progress._Reporter.close
+
+    def record(reporter):
+        closed.append((reporter.dialog is not None, reporter.texts[0], reporter.calls))
+        close(reporter)
+
+    dialogs = QtGui.QFileDialog.getOpenFileName, import_mesh.ask_units
+    progress._Reporter.close = record
+    try:
+        obj = importer.insert(path, doc.Name)
+        check(obj is not None and closed and closed[0][:2] == (True, "Importing panels.off ...")
+              and closed[0][2] >= 5,
+              f"File > Import shows a progress dialog, Importing panels.off ... ({closed})")
+        doc.removeObject(obj.Name)
+        doc.recompute()
+        with progress.reporting("reading") as reading:
+            importer.read_kept(path)
+        importer.forget_kept()
+        QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *args, **kw: (path, ""))
+        import_mesh.ask_units = lambda filename, edge, likely: "mm"  # (panels.off: in m)
+        importer.SHOW_DIALOGS = True
+        # Cancel at the first call (the command's reading) and at the last of its insert
+        # (the PolyMesh added and recomputed; the insert takes the mesh read)
+        for cancel_at in (1, closed[0][2] - reading.calls):
+            del closed[:]
+            undo = list(doc.UndoNames)
+            progress.cancel_after(cancel_at)
+            try:
+                Gui.runCommand("Facet_ImportMesh")
+            finally:
+                progress.cancel_after(0)
+            Gui.updateGui()
+            left = [w for w in QtGui.QApplication.topLevelWidgets()
+                    if isinstance(w, (QtGui.QProgressDialog, QtGui.QMessageBox))
+                    and w.isVisible()]
+            check(not doc.Objects and list(doc.UndoNames) == undo and not left
+                  and not importer._KEPT and closed and all(c[0] for c in closed),
+                  f"Cancel at progress call {cancel_at} of Facet_ImportMesh changes nothing "
+                  f"({[o.Name for o in doc.Objects]}, {doc.UndoNames}, {left}, {closed})")
+    finally:
+        progress._Reporter.close = close
+        QtGui.QFileDialog.getOpenFileName, import_mesh.ask_units = dialogs
+        importer.SHOW_DIALOGS = False
+    App.closeDocument(doc.Name)
 
 
 def check_import_units(check):
