@@ -1726,6 +1726,7 @@ def check_import_command(check):
     App.closeDocument(doc.Name)
     check_import_units(check)
     check_import_progress(check)
+    check_new_polymesh_drawn_once(check)
 
 
 def check_import_progress(check):
@@ -1785,6 +1786,31 @@ def check_import_progress(check):
         progress._Reporter.close = close
         QtGui.QFileDialog.getOpenFileName, import_mesh.ask_units = dialogs
         importer.SHOW_DIALOGS = False
+    App.closeDocument(doc.Name)
+
+
+def check_new_polymesh_drawn_once(check):
+    """A new PolyMesh is drawn once: FreeCAD's updateData of every property after attach
+    drew it three more times (a 1M-face import: 7.8 s, the dialog frozen)."""
+    import FreeCAD as App
+
+    import facet
+    import facetwb
+    from facetwb.viewproviders import view_polymesh
+
+    doc = App.newDocument("DrawnOnce")
+    path = os.path.join(ROOT, "tests", "data", "panels.off")
+    redraws = []
+    redraw = view_polymesh.ViewProviderPolyMesh.redraw_mesh
+    view_polymesh.ViewProviderPolyMesh.redraw_mesh = \
+        lambda self, obj: (redraws.append(obj.Name), redraw(self, obj))[1]
+    try:
+        obj = facetwb.make_polymesh(facet.read_mesh(path), doc=doc)
+    finally:
+        view_polymesh.ViewProviderPolyMesh.redraw_mesh = redraw
+    check(redraws == [obj.Name] and obj.ViewObject.Proxy.face_count == 7
+          and obj.ViewObject.Proxy.coords.point.getNum() == obj.VertexCount,
+          f"a new PolyMesh is drawn once, whole ({redraws})")
     App.closeDocument(doc.Name)
 
 

@@ -81,7 +81,14 @@ class ViewProviderPolyMesh:
     def __init__(self, vobj):
         self.Type = self.TYPE
         self.init_properties(vobj)
-        vobj.Proxy = self
+        # FreeCAD attaches the proxy (attach draws the mesh), then calls updateData with
+        # every property of the object: the mesh was drawn three more times, the same
+        # (an imported 1M-face mesh: 4 x 2.6 s, with no progress call in between)
+        self.attaching = True
+        try:
+            vobj.Proxy = self
+        finally:
+            del self.attaching
 
     def init_properties(self, vobj):
         """Add the view properties ``vobj`` lacks (idempotent; also run by attach)."""
@@ -191,7 +198,8 @@ class ViewProviderPolyMesh:
         if not hasattr(self, "coords"):
             return
         if prop in MESH_PROPERTIES:
-            self.redraw_mesh(obj)
+            if not getattr(self, "attaching", False):  # (drawn by attach)
+                self.redraw_mesh(obj)
         elif prop == "FacePlanarity":
             self.recolor(obj)
 
