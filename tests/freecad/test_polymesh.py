@@ -113,4 +113,4 @@ class TestFitView(DocumentTestCase):
         doc = App.newDocument("FitGone")
         obj = doc.addObject("App::FeaturePython", "Plan")
         App.closeDocument(doc.Name)
-        self.assertIsNone(_fit_view(obj))
+        self.assertIsNone(_fit_view(obj, None))
