@@ -71,9 +71,10 @@ def likely_units(mesh):
 def read_polymesh(filename, units="mm"):
     """``facet.read_mesh(filename)`` with its coordinates read in ``units`` (UNIT_NAMES)
     and turned into millimetres, FreeCAD's unit, raising MeshImportError with a one-line
-    message (facet.Cancelled when Cancel was pressed: :func:`progress_title`); what the reader changed in reading it (faces with a vertex twice in a row), an
-    unwelded seam (vertices at one point, which the faces there do not share) and a size
-    no facade has in those units (:func:`size_warning`) are warnings in the report view."""
+    message (facet.Cancelled when Cancel was pressed: :func:`progress_title`); what the
+    reader changed in reading it (faces with a vertex twice in a row), an unwelded seam
+    (vertices at one point, which the faces there do not share) and a size no facade has
+    in those units (:func:`size_warning`) are warnings in the report view."""
     import facet
     from facet.cutsheets import length_unit
     from facet.io import read_warnings
