@@ -262,6 +262,46 @@ static int corner_point(const double n[3], double h, const double a[4], const do
     return det != 0.0;
 }
 
+/* Whether the corner (xt on the top plane n.x = up - n[3], xb on the bottom
+ * one) of edge planes a and b at vertex p (between its neighbours o and q) is
+ * a nearly straight corner between cuts of different angles, far along the
+ * edges: two cuts whose offsets from the edge differ by e meet e / sin(turn)
+ * along it, 554 mm at a turn of 0.57 degrees for a 30-degree fold's mitre
+ * beside a free edge (20 mm thick), where the panel's top reached 5.4 mm into
+ * the mitred joint over that length (a reflex corner; a convex one bevelled
+ * the free edge's top as far). The caller asks it of a free edge beside a
+ * joint, where squaring the joint's cut on this panel leaves the joint a slot
+ * (a butt joint) and squares no joint on both panels. Nearly straight is a turn under
+ * FAR_CORNER_TURN, far beyond FAR_CORNER thicknesses from the vertex, and
+ * different bevels a degree apart or more (alike cuts at a nearly straight
+ * corner meet near it). */
+#define FAR_CORNER 4.0
+#define FAR_CORNER_TURN 0.17365 /* sin(10 degrees) */
+static int far_corner(const double n[4], double up, double down, const double a[4],
+                      const double b[4], const double o[3], const double p[3],
+                      const double q[3], const double xt[3], const double xb[3], double th)
+{
+    /* the sines of the two cuts' bevels from square */
+    if (!(fabs(dot3(a, n) - dot3(b, n)) > 0.01745))
+        return 0;
+    const double u[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
+    const double v[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    double uv[3];
+    cross3(u, v, uv);
+    if (!(dot3(u, v) > 0.0 && norm3(uv) < FAR_CORNER_TURN * norm3(u) * norm3(v)))
+        return 0;
+    const double pd = dot3(n, p) + n[3];
+    for (int side = 0; side < 2; ++side) {
+        const double *x = side ? xb : xt;
+        const double h = (side ? down : up) - pd; /* p's projection: p + h n */
+        const double d[3] = {x[0] - p[0] - h * n[0], x[1] - p[1] - h * n[1],
+                             x[2] - p[2] - h * n[2]};
+        if (norm3(d) > FAR_CORNER * th)
+            return 1;
+    }
+    return 0;
+}
+
 /* v projected onto the plane of unit normal n, then made a unit vector (when
  * not zero); returns its length before that. */
 static double in_plane_unit(double v[3], const double n[3])
@@ -1230,10 +1270,14 @@ facet_status facet_panels(const facet_mesh *mesh, const facet_panel_options *opt
             const int dropped = w.drop[c] || before != prev_corner(m, f, c);
             const double *p = w.xyz + 3 * m->face_vertices[c];
             double xt[3], xb[3];
-            const int found = dropped ? solve3(n, up - n[3], a, a[3], b, b[3], xt) != 0.0 &&
-                                            solve3(n, down - n[3], a, a[3], b, b[3], xb) != 0.0
-                                      : corner_point(n, up - n[3], a, b, p, xt) &&
-                                            corner_point(n, down - n[3], a, b, p, xb);
+            int found = dropped ? solve3(n, up - n[3], a, a[3], b, b[3], xt) != 0.0 &&
+                                      solve3(n, down - n[3], a, a[3], b, b[3], xb) != 0.0
+                                : corner_point(n, up - n[3], a, b, p, xt) &&
+                                      corner_point(n, down - n[3], a, b, p, xb);
+            if (found && !dropped && repair && (w.nbr[before] < 0) != (w.nbr[c] < 0) &&
+                far_corner(n, up, down, a, b, w.xyz + 3 * m->face_vertices[prev_corner(m, f, c)],
+                           p, w.xyz + 3 * m->face_vertices[next_corner(m, f, c)], xt, xb, th))
+                found = 0; /* a nearly straight corner between different cuts: as a straight one */
             if (!found) {
                 /* a straight corner between joints cut at different angles
                  * (a mitre beside a free edge, or beside a repaired joint):

@@ -449,6 +449,17 @@ static void straight_corner(void)
         CHECK_NEAR(line_distance(x + 9, x + 6, x + 12), 0.0, 1e-9);
         CHECK_NEAR(q[10] - x[10], 0.005, 1e-9);
     }
+    /* vertex 3 (and 6 with it) 5 mm out: a corner turned 0.57 degrees. The mitre's top
+     * line met the free edge's 0.55 along it (27 thicknesses); it is squared as at a
+     * straight corner, the corner half the gap in from the vertex */
+    q[10] += 0.005, q[19] += 0.005;
+    CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);
+    CHECK(r.n_squared_edges == 1 && r.n_butt_edges == 1 && squared[2] == 1);
+    for (int side = 0; side < 2; ++side) {
+        const double *x = side ? top : bottom;
+        CHECK(fabs(x[9] - q[9]) < 0.006 && fabs(x[10] - q[10]) < 0.006);
+    }
+    q[10] -= 0.005, q[19] -= 0.005;
     o.repair_consumed = 0;
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_ERROR_PANEL_GEOMETRY);
     CHECK(strstr(e.message, "face 0: the edges at vertex 3 are collinear and their joints are "

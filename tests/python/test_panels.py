@@ -643,13 +643,15 @@ def test_a_gap_that_eats_an_arm_says_so():
         np.testing.assert_allclose(p.bottom[1], [10, gap / 2, 0], atol=1e-9)
 
 
-def t_junction(fold_deg, left=True):
+def t_junction(fold_deg, left=True, bend=0.0):
     """A 2 x 1 m panel A under two 1 x 1 m panels B and C that meet at the middle of
-    A's top edge (A's vertex 3 is a straight corner), folded up by fold_deg along that
-    edge; left=False leaves B out, A's edge free there."""
+    A's top edge (A's vertex 3 is a straight corner, or moved out by ``bend`` mm: a nearly
+    straight one), folded up by fold_deg along that edge; left=False leaves B out, A's
+    edge free there."""
     t = math.tan(math.radians(fold_deg))
-    xyz = np.array([[0, 0, 0], [2000, 0, 0], [2000, 1000, 0], [1000, 1000, 0], [0, 1000, 0],
-                    [0, 2000, 1000 * t], [1000, 2000, 1000 * t], [2000, 2000, 1000 * t]])
+    xyz = np.array([[0, 0, 0], [2000, 0, 0], [2000, 1000, 0], [1000, 1000 + bend, 0],
+                    [0, 1000, 0], [0, 2000, 1000 * t], [1000, 2000 + bend, 1000 * t],
+                    [2000, 2000, 1000 * t]])
     faces = [[0, 1, 2, 3, 4], [3, 2, 7, 6]] + ([[4, 3, 6, 5]] if left else [])
     return facet.PolyMesh.from_faces(xyz, faces)
 
@@ -693,6 +695,21 @@ def test_a_straight_corner_between_a_mitre_and_a_free_edge_squares_the_mitre():
                        r"their joints are cut at different angles, .*cut them square or "
                        r"split the face"):
         panels(mesh, 20.0, gap=10.0, edge="bisector", repair=False)
+
+
+@pytest.mark.parametrize("bend", [2.0, 5.0, 20.0])
+def test_a_nearly_straight_corner_between_a_mitre_and_a_free_edge_squares_the_mitre(bend):
+    # turned 0.23, 0.57 and 2.3 degrees: the mitre's top line and the free edge's met far
+    # along the edge (554 mm at 0.57 degrees, 139 mm at 2.3: 28 and 7 thicknesses), the
+    # panel's top reaching 5.4 mm into the mitred joint over that length, no clash said.
+    # As at a straight corner the mitre becomes a butt joint: the corner stays at the
+    # vertex, half the gap in
+    ps = panels(t_junction(30.0, left=False, bend=bend), 20.0, gap=10.0, edge="bisector")
+    a, c = ps.panels
+    assert (a.squared_edges, c.butt_edges) == (1, 1)
+    vertex = np.array([1000.0, 1000.0 + bend])
+    for outline in (a.top, a.bottom):
+        assert np.linalg.norm(outline[3, :2] - vertex) < 6.0
 
 
 def test_a_straight_corner_between_a_butt_joint_and_a_mitre_makes_both_butt_joints():
