@@ -572,32 +572,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="848"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="872"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="852"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="876"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="853"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="877"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="854"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="878"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="855"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="879"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="856"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="880"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -612,7 +612,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="849"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="873"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,17 +622,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="840"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="864"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="813"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="837"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="819"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="843"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -927,17 +927,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="851"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="875"/>
         <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="826"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="850"/>
         <source>the PanelSet&apos;s MinEdge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="827"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="851"/>
         <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
@@ -997,28 +997,33 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="850"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="874"/>
         <source>Comparing the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="828"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="852"/>
         <source>the PanelSet&apos;s IdScheme</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/importer.py" line="88"/>
+        <location filename="../../workbench/facetwb/importer.py" line="89"/>
         <source>Checking the mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/importer.py" line="180"/>
+        <location filename="../../workbench/facetwb/importer.py" line="181"/>
         <source>Adding it to the document</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/importer.py" line="218"/>
+        <location filename="../../workbench/facetwb/importer.py" line="219"/>
         <source>Importing {0} ...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="515"/>
+        <source>{0}: {1} of the {2} files it wrote are no longer there ({3}): the next recompute writes them again in {4}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -499,6 +499,29 @@ class CutSheets(_Proxy):
 
         after_undo(mark_stale_after_undo)
 
+    def onDocumentRestored(self, obj):
+        """A document whose files are no longer where its CutSheets wrote them (the
+        OutputDir deleted or moved, the document opened on another machine): the CutSheets
+        must recompute (:meth:`mustExecute`), which writes them again, and the report view
+        says so. They were shown up to date, their Files naming files that were not there,
+        and a Recompute did nothing. (FreeCAD 0.20 clears a mark made while a document
+        loads.)"""
+        super().onDocumentRestored(obj)
+        import os
+
+        missing = [f for f in obj.Files if not os.path.isfile(f)] if obj.OutputDir else []
+        self._missing = bool(missing)
+        if missing:
+            App.Console.PrintWarning(translate(
+                "Facet", "{0}: {1} of the {2} files it wrote are no longer there ({3}): "
+                         "the next recompute writes them again in {4}").format(
+                obj.Label, len(missing), len(obj.Files), missing[0], obj.OutputDir) + "\n")
+
+    def mustExecute(self, obj):  # noqa: N802 - FreeCAD's name
+        """Whether the CutSheets must recompute although nothing of theirs changed: their
+        files went missing while the document was closed."""
+        return bool(getattr(self, "_missing", False))
+
     @guarded
     def execute(self, obj):
         import os
@@ -578,6 +601,7 @@ class CutSheets(_Proxy):
                           density=density, out=out, text_outlines=bool(obj.TextOutlines),
                           type_tol=ps_obj.PartTypeTolerance.Value, files=files)
         self._changed = set()
+        self._missing = False
 
     @staticmethod
     def _layout_key(obj, ps_obj):

@@ -1,0 +1,72 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""A designer's document life cycle around the files the CutSheets write: a document
+reopened after its output folder went, two CutSheets writing into one folder (a copy)."""
+
+import os
+import shutil
+import sys
+
+import FreeCAD as App
+
+import facetwb
+from facet_test_support import DocumentTestCase
+from test_bad_input_fc import captured, error_lines
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                                "python"))
+from panel_meshes import translational  # noqa: E402
+
+
+class TestCutSheetFiles(DocumentTestCase):
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.source = facetwb.make_polymesh(translational(nu=4, nv=3, step=1000.0),
+                                           label="facade", doc=cls.doc)
+        cls.panels = facetwb.make_panelset(cls.source, thickness=30.0)
+        cls.out = os.path.join(cls.tmp.name, "cut")
+        cls.sheets = facetwb.make_cutsheets(cls.panels, sheet=(2600.0, 1400.0),
+                                            output_dir=cls.out, write_step=False)
+        cls.doc.recompute()
+
+    def test_reopened_without_its_output_folder_writes_its_files_again(self):
+        """The output folder deleted (or the document opened elsewhere): the reopened
+        CutSheets were shown up to date, their Files naming files that were not there,
+        and a recompute wrote nothing. Now the report view says so and the next
+        recompute rebuilds them (them alone) and writes the files again."""
+        from facetwb.recompute import Recomputes
+
+        sheets = self.sheets
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        files = list(sheets.Files)
+        self.assertTrue(files and all(os.path.isfile(f) for f in files))
+        name, label = sheets.Name, sheets.Label
+        path = os.path.join(self.tmp.name, "moved.FCStd")
+        self.doc.saveAs(path)
+        App.closeDocument(self.doc.Name)
+        shutil.rmtree(self.out)
+        doc, text = captured(lambda: App.openDocument(path))
+        type(self).doc = doc
+        sheets = doc.getObject(name)
+        said = [line for line in error_lines(text) if line.startswith(label + ":")]
+        self.assertEqual(len(said), 1, text)
+        self.assertIn(f"{len(files)} of the {len(files)} files", said[0])
+        self.assertIn(self.out, said[0])
+        recorded = Recomputes(doc)
+        self.addCleanup(recorded.stop)
+        doc.recompute()
+        self.assertEqual(recorded.take(), {name})
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        self.assertEqual(sheets.State, ["Up-to-date"])
+        self.assertEqual(list(sheets.Files), files)
+        self.assertTrue(all(os.path.isfile(f) for f in files))
+        # files all there: reopened as saved, up to date
+        doc.save()
+        App.closeDocument(doc.Name)
+        doc, text = captured(lambda: App.openDocument(path))
+        type(self).doc = doc
+        self.assertNotIn(label, text)
+        recorded = Recomputes(doc)
+        self.addCleanup(recorded.stop)
+        doc.recompute()
+        self.assertEqual(recorded.take(), set())
