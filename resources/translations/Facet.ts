@@ -572,32 +572,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="872"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="894"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="876"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="898"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="877"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="899"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="878"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="900"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="879"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="901"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="880"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="902"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -612,7 +612,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="873"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="895"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,17 +622,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="864"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="886"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="837"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="859"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="843"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="865"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -927,17 +927,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="875"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="897"/>
         <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="850"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="872"/>
         <source>the PanelSet&apos;s MinEdge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="851"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="873"/>
         <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
@@ -997,12 +997,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="874"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="896"/>
         <source>Comparing the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="852"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="874"/>
         <source>the PanelSet&apos;s IdScheme</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1024,6 +1024,11 @@
     <message>
         <location filename="../../workbench/facetwb/objects/panelset.py" line="515"/>
         <source>{0}: {1} of the {2} files it wrote are no longer there ({3}): the next recompute writes them again in {4}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="543"/>
+        <source>{0}: its OutputDir {1} is also that of {2}, whose files it would replace: choose another folder</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

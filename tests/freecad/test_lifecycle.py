@@ -70,3 +70,33 @@ class TestCutSheetFiles(DocumentTestCase):
         self.addCleanup(recorded.stop)
         doc.recompute()
         self.assertEqual(recorded.take(), set())
+
+    def test_a_copy_writing_into_the_same_folder_is_refused(self):
+        """A copy of a CutSheets (Edit > Duplicate, copy and paste) keeps its OutputDir:
+        recomputed with another sheet, the copy replaced the original's files, which
+        still showed up to date. Now the copy's recompute writes nothing and says why;
+        given a folder of its own, it writes there."""
+        from test_panelset import changed_since, written
+
+        doc, sheets = self.doc, self.sheets
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        copy = doc.copyObject(sheets, False)
+        self.addCleanup(lambda: doc.getObject(copy.Name) and doc.removeObject(copy.Name))
+        self.assertEqual(copy.OutputDir, sheets.OutputDir)
+        before = written(self.out)
+        copy.SheetWidth = 3000.0
+        doc.recompute()
+        self.assertFalse(copy.isValid())
+        status = copy.getStatusString()
+        self.assertIn(copy.Label, status)
+        self.assertIn(self.out, status)
+        self.assertIn(sheets.Label, status)
+        self.assertEqual(changed_since(self.out, before), [])
+        self.assertTrue(sheets.isValid(), sheets.getStatusString())
+        other = os.path.join(self.tmp.name, "copy")
+        copy.OutputDir = other
+        doc.recompute()
+        self.assertTrue(copy.isValid(), copy.getStatusString())
+        self.assertTrue(all(f.startswith(other + os.sep) and os.path.isfile(f)
+                            for f in copy.Files))
+        self.assertEqual(changed_since(self.out, before), [])

@@ -536,6 +536,14 @@ class CutSheets(_Proxy):
         grain = None if g.Length == 0 else (g.x, g.y, g.z)
         out = obj.OutputDir
         if out:
+            sharing = _sharing_output(obj)
+            if sharing:
+                # (a copy of a CutSheets keeps its OutputDir: a recompute of the copy
+                # replaced the original's files, which still showed up to date)
+                raise ValueError(translate(
+                    "Facet", "{0}: its OutputDir {1} is also that of {2}, whose files it "
+                             "would replace: choose another folder").format(
+                    obj.Label, out, sharing[0].Label))
             os.makedirs(out, exist_ok=True)
         panel_set, solids = ps_obj.Proxy.computed(ps_obj)
         density = _density(ps_obj)
@@ -667,6 +675,20 @@ def _layout(result, drawings):
         ring = [V(float(x) + x0, float(y) + y0, 0) for x, y in pts]
         wires.append(Part.makePolygon(ring + [ring[0]]))
     return Part.makeCompound(wires)
+
+
+def _sharing_output(obj):
+    """The other CutSheets, in any open document, whose OutputDir is the folder of
+    ``obj``'s."""
+    import os
+
+    def folder(path):
+        return os.path.normcase(os.path.realpath(path))
+
+    mine = folder(obj.OutputDir)
+    return [o for doc in App.listDocuments().values() for o in doc.Objects
+            if o is not obj and is_cutsheets(o) and getattr(o, "OutputDir", "")
+            and folder(o.OutputDir) == mine]
 
 
 def mark_stale_after_undo(doc):
