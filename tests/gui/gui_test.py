@@ -256,6 +256,9 @@ def run(out_dir):
 
     preselect_checks.run(check, out_dir, sys.modules[__name__])
     check_recompute_in_edit_then_cancel(check, out_dir)
+    import lifecycle_checks
+
+    lifecycle_checks.run(check, out_dir, sys.modules[__name__])
     check_recompute_in_lifting_panels_then_cancel(check, out_dir)
     check_recompute_cancel_and_failed_create(check)
     check_planarize_progress(check, out_dir)

@@ -37,7 +37,12 @@ def parameter_changed(obj, prop):
     doc = getattr(obj, "Document", None)
     if doc is None or getattr(doc, "Restoring", False):
         return
-    _schedule((doc.Name, obj.Name))
+    key = (doc.Name, obj.Name)
+    if getattr(doc, "Recomputing", False):
+        # a change made while the document recomputes: solved after it, even though the
+        # recompute clears the object's Touched mark when it ends
+        _late.add(key)
+    _schedule(key)
 
 
 def resolve_if_touched(obj):
@@ -87,9 +92,7 @@ def _fire(key):
     if obj is None or getattr(doc, "Restoring", False):
         return
     if getattr(doc, "Recomputing", False):
-        # a change made while the document recomputes: solved after it, even though the
-        # recompute clears the object's Touched mark when it ends
-        _late.add(key)
+        # (after it: a change made before it is solved by it, one made during it is late)
         _schedule(key)
         return
     if key in _late:

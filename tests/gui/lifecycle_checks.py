@@ -1,0 +1,62 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""GUI checks of a document's life cycle (called by gui_test.py, ``g`` is the gui_test
+module for its helpers).
+
+A Planarized object made and recomputed at once, as the Planarize panel's OK and a macro
+do: the live re-solve its new view provider asked for (attaching it passes every property
+to ``updateData``) ran after that recompute, which had solved it already, and solved it a
+second time, leaving the PanelSet made from it marked for recompute although nothing had
+changed.
+"""
+
+import time
+
+from ui_checks import settle
+
+
+def check_made_and_recomputed_solves_once(check, g):
+    import FreeCAD as App
+    import FreeCADGui as Gui
+
+    import facet
+    import facetwb
+    from facetwb import live_parameters
+
+    doc = App.newDocument("MadeAndRecomputed")
+    control = facetwb.make_polymesh(facet.read_mesh(g.MESH), label="control")
+    result = facetwb.make_planarized(control, tolerance=1e-3)
+    panels = facetwb.make_panelset(result, thickness=0.5, gap=0.0)  # (a 1 mm mesh)
+    panels.Tolerance = 1e-2  # the result is planar to 1e-3 only
+    solves = []
+    original = facet.planarize
+
+    def slow(*args, **kwargs):
+        # a solve longer than the live delay, the event loop running meanwhile (as the
+        # progress dialog runs it)
+        solves.append(1)
+        end = time.monotonic() + 2 * live_parameters.DELAY_MS / 1000.0
+        while time.monotonic() < end:
+            Gui.updateGui()
+            time.sleep(0.01)
+        return original(*args, **kwargs)
+
+    facet.planarize = slow
+    try:
+        doc.recompute()
+        end = time.monotonic() + 30
+        while live_parameters.pending() and time.monotonic() < end:
+            Gui.updateGui()
+            time.sleep(0.02)
+        settle(10)
+    finally:
+        facet.planarize = original
+    check(len(solves) == 1, f"a Planarized made and recomputed at once is solved once "
+                            f"({len(solves)} solves)")
+    check([o.State for o in (result, panels)] == [["Up-to-date"]] * 2
+          and result.isValid() and panels.isValid(),
+          f"and it and its PanelSet are up to date ({result.State}, {panels.State})")
+    App.closeDocument(doc.Name)
+
+
+def run(check, out_dir, g):
+    check_made_and_recomputed_solves_once(check, g)
