@@ -6,7 +6,8 @@ A Planarized object made and recomputed at once, as the Planarize panel's OK and
 do: the live re-solve its new view provider asked for (attaching it passes every property
 to ``updateData``) ran after that recompute, which had solved it already, and solved it a
 second time, leaving the PanelSet made from it marked for recompute although nothing had
-changed.
+changed. A PanelSet the designer hid (to look at its mesh) was shown again by every
+recompute of it; Part objects stay as they were left.
 """
 
 import time
@@ -58,5 +59,38 @@ def check_made_and_recomputed_solves_once(check, g):
     App.closeDocument(doc.Name)
 
 
+def check_hidden_panels_stay_hidden(check, g):
+    import FreeCAD as App
+
+    import facet
+    import facetwb
+
+    doc = App.newDocument("HiddenPanels")
+    control = facetwb.make_polymesh(facet.read_mesh(g.MESH), label="control")
+    panels = facetwb.make_panelset(control, thickness=0.5, gap=0.0)  # (a 1 mm mesh)
+    panels.Tolerance = 1.0  # (the hypar as it is)
+    doc.recompute()
+    check(panels.isValid() and panels.ViewObject.Visibility,
+          f"a new PanelSet is shown ({panels.getStatusString()})")
+    panels.ViewObject.Visibility = False
+    panels.Thickness = 0.6
+    doc.recompute()
+    check(panels.isValid() and not panels.ViewObject.Visibility,
+          "a PanelSet hidden by the designer stays hidden when it recomputes")
+    panels.OnePerPanel = True
+    doc.recompute()
+    children = list(panels.PanelObjects)
+    check(children and all(c.ViewObject.Visibility for c in children)
+          and not panels.ViewObject.Visibility,
+          "OnePerPanel: the panels' objects shown, the compound hidden")
+    panels.OnePerPanel = False
+    doc.recompute()
+    settle(5)
+    check(not panels.PanelObjects and panels.ViewObject.Visibility,
+          "OnePerPanel off: the compound shown again")
+    App.closeDocument(doc.Name)
+
+
 def run(check, out_dir, g):
     check_made_and_recomputed_solves_once(check, g)
+    check_hidden_panels_stay_hidden(check, g)

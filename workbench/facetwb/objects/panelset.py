@@ -403,7 +403,11 @@ class PanelSet(_Proxy):
             child.purgeTouched()
         obj.PanelObjects = keep
         if App.GuiUp:
-            obj.ViewObject.Visibility = not keep
+            if keep or have:
+                # the compound shown instead of the panels' objects, or they instead of
+                # it; else as the designer left it (every recompute showed a PanelSet
+                # hidden to look at its mesh)
+                obj.ViewObject.Visibility = not keep
             if hasattr(obj.ViewObject.Proxy, "show_clashes"):
                 obj.ViewObject.Proxy.show_clashes(obj)  # the new objects' colours
 
