@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""A designer's document life cycle around the files the CutSheets write: a document
-reopened after its output folder went, two CutSheets writing into one folder (a copy)."""
+"""A designer's document life cycle: a document reopened after its CutSheets' output
+folder went, two CutSheets writing into one folder (a copy), a FreeCAD Mesh replaced under
+the Facet objects made from it."""
 
 import os
 import shutil
@@ -100,3 +101,38 @@ class TestCutSheetFiles(DocumentTestCase):
         self.assertTrue(all(f.startswith(other + os.sep) and os.path.isfile(f)
                             for f in copy.Files))
         self.assertEqual(changed_since(self.out, before), [])
+
+
+class TestReplacedMesh(DocumentTestCase):
+    def test_a_freecad_mesh_replaced_marks_what_is_made_from_it(self):
+        """A FreeCAD Mesh replaced by a script or a Mesh workbench tool: FreeCAD marks
+        neither it nor what is made from it (its Mesh is an output property), and the
+        Planarized and panels made from it stayed up to date with the old mesh's results
+        through any recompute. They are marked now, and undo marks them again."""
+        import Mesh
+
+        from facet_test_support import data_path
+
+        doc = self.doc
+        doc.UndoMode = 1
+        source = doc.addObject("Mesh::Feature", "Triangles")
+        source.Mesh = Mesh.Mesh(data_path("hypar.obj"))
+        result = facetwb.make_planarized(source, tolerance=1e-9)
+        panels = facetwb.make_panelset(result, thickness=0.05, gap=0.0)
+        doc.recompute()
+        self.assertTrue(panels.isValid(), panels.getStatusString())
+        old = (len(result.Points), panels.PanelCount)
+        replacement = Mesh.Mesh(data_path("quad_dome.obj"))
+        doc.openTransaction("Replace the mesh")
+        source.Mesh = replacement
+        doc.commitTransaction()
+        self.assertIn("Touched", result.State)
+        doc.recompute()
+        self.assertTrue(panels.isValid(), panels.getStatusString())
+        self.assertEqual((len(result.Points), panels.PanelCount),
+                         (replacement.CountPoints, replacement.CountFacets))
+        self.assertEqual((result.State, panels.State), (["Up-to-date"], ["Up-to-date"]))
+        doc.undo()
+        self.assertIn("Touched", result.State)
+        doc.recompute()
+        self.assertEqual((len(result.Points), panels.PanelCount), old)

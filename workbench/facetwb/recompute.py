@@ -29,7 +29,8 @@ from facetwb import progress
 from facetwb.translation import translate
 
 __all__ = ["RecomputeError", "Recomputes", "after_recompute", "after_undo", "cancel_live_edit",
-           "failure", "guarded", "keep_up_to_date", "one_line", "up_to_date"]
+           "failure", "guarded", "keep_up_to_date", "observe_documents", "one_line",
+           "up_to_date"]
 
 _saved_limit = []
 _observer = []
@@ -59,6 +60,10 @@ class _DocumentObserver:
     def slotRedoDocument(self, doc):  # noqa: N802
         _run_undo_actions(doc)
 
+    def slotChangedObject(self, obj, prop):  # noqa: N802
+        if prop == "Mesh":
+            _mesh_replaced(obj)
+
     def slotRecomputedObject(self, obj):  # noqa: N802
         doc = getattr(getattr(obj, "Document", None), "Name", None)
         for recorder in _recorders:
@@ -77,6 +82,27 @@ def _run_after(doc):
             import FreeCAD as App
 
             App.Console.PrintError(f"Facet: after recomputing {name}: {error}\n")
+
+
+def _mesh_replaced(obj):
+    """A FreeCAD Mesh whose mesh was replaced outside a recompute (a script, a Mesh
+    workbench repair, an undo): FreeCAD marks neither it (its Mesh is an output property)
+    nor what is made from it, and the Facet objects made from it stayed up to date with
+    the old mesh's results, a recompute changing nothing. They are marked now."""
+    doc = getattr(obj, "Document", None)
+    if (doc is None or getattr(doc, "Recomputing", False) or getattr(doc, "Restoring", False)
+            or not obj.isDerivedFrom("Mesh::Feature")):
+        return
+    for user in obj.InList:
+        if (str(getattr(getattr(user, "Proxy", None), "Type", "")).startswith("Facet::")
+                and "Touched" not in user.State):
+            user.touch()
+
+
+def observe_documents():
+    """Start the workbench's document observer (once): Facet objects call it when they
+    are made or restored, so that what it follows is followed from then on."""
+    _observe()
 
 
 def after_undo(action):

@@ -34,7 +34,7 @@ from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
 from facet.panels import DEFAULT_GAP_MM
 from facet.part_types import DEFAULT_TOL_MM
 from facetwb import compat, progress
-from facetwb.recompute import guarded
+from facetwb.recompute import guarded, observe_documents
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
 
 TYPE_PANELSET = "Facet::PanelSet"
@@ -65,9 +65,11 @@ class _Proxy:
         self.Type = self.TYPE
         obj.Proxy = self
         self.init_properties(obj)
+        observe_documents()  # (a FreeCAD Mesh in Source replaced: marked for recompute)
 
     def onDocumentRestored(self, obj):
         self.init_properties(obj)
+        observe_documents()
         from facetwb.viewproviders import attach
 
         attach.schedule(obj)  # a document saved without the GUI has no view provider

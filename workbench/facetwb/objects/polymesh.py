@@ -26,7 +26,7 @@ import numpy as np
 
 import facet
 from facetwb import compat
-from facetwb.recompute import guarded
+from facetwb.recompute import guarded, observe_documents
 from facetwb import conversion
 
 #: Proxy Type strings: saved in documents, never change them.
@@ -52,6 +52,7 @@ class PolyMesh:
         """Add the properties this version has and ``obj`` lacks (idempotent)."""
         self.init_source_properties(obj)
         init_mesh_properties(obj)
+        observe_documents()  # (a FreeCAD Mesh in Source replaced: marked for recompute)
 
     def init_source_properties(self, obj):
         compat.add_property(
