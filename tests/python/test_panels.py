@@ -552,6 +552,25 @@ def test_texts_too_small_to_engrave_are_warned_about(data_dir, tmp_path):
     assert report["text_warnings"] == []
 
 
+
+def test_small_text_warnings_of_a_model_in_inches_say_inches(tmp_path):
+    """A fabricator working in inches (--units in) read "under 3 mm high ... the smallest
+    2.87 mm" about parts whose every other length the command gave in inches. The heights
+    are in inches now, the least in mm too."""
+    from facet.cli_panels import run_pipeline
+    from facet.unfold import MIN_TEXT_MM
+
+    tiny = translational(nu=3, nv=2, step=0.8)  # 0.8 in panels: IDs 0.08 in high
+    report = run_pipeline(tiny, 0.0625, units="in", gap=0.02, sheet=(12, 24), margin=0.25,
+                          spacing=0.25, dxf=str(tmp_path / "tiny.dxf"))[0]
+    (warning,) = [w for w in report["warnings"] if "engrave" in w]
+    least = MIN_TEXT_MM / 25.4
+    assert warning.startswith(f"6 of 6 part IDs are under {least:.3g} in ({MIN_TEXT_MM:g} mm)"
+                              " high"), warning
+    smallest = float(re.search(r"the smallest ([0-9.]+) in,", warning).group(1))
+    assert 0.05 < smallest < least
+    assert " mm," not in warning and "mm high" not in warning
+
 def test_grain_turns_parts_and_is_checked():
     ps = panels(cylinder(), 10.0)
     drawings = unfold(ps, grain=(0, 0, 1))

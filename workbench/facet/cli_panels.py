@@ -317,7 +317,7 @@ def _rest_of_pipeline(mesh, ps, job, times, t_start, sheet, margin, spacing, rot
     drawings = (nested[1] if nested is not None and nested[0] is ps
                 else unfold(ps, grain=grain, progress=stage_progress("unfold")))
     # the texts are in the DXF and the previews only: no warning about a text not written
-    text_warnings = (small_text_warnings(drawings, length_unit(units)[0])
+    text_warnings = (small_text_warnings(drawings, length_unit(units)[0], units=units)
                      if dxf or svg or png else [])
     times["unfold"] = time.perf_counter() - t
     result, nested_now = None, False

@@ -506,7 +506,7 @@ def unfold(panel_set, grain=None, label_height=None, bevel_tolerance_deg=1e-6,
     return drawings
 
 
-def small_text_warnings(drawings, mm_per_unit=1.0, min_mm=MIN_TEXT_MM):
+def small_text_warnings(drawings, mm_per_unit=1.0, min_mm=MIN_TEXT_MM, units=None):
     """Warnings, one per kind of text (IDs, bevel angles), when some are under `min_mm`
     millimetres high: a text is made as large as its place on the part allows, and beside
     a short edge or on a narrow part that can be too small to engrave (heart_planar in
@@ -520,6 +520,10 @@ def small_text_warnings(drawings, mm_per_unit=1.0, min_mm=MIN_TEXT_MM):
     mm_per_unit : float
         Millimetres per model unit (:data:`facet.cutsheets.LENGTH_UNITS`).
     min_mm : float
+    units : str, optional
+        The model's unit ("in"): an imperial one's warnings give the heights in it, the
+        least in mm too ("under 0.118 in (3 mm) high"), as an inch user reads them (they
+        said "the smallest 2.87 mm" of a model in inches); else in mm.
 
     Returns
     -------
@@ -528,6 +532,16 @@ def small_text_warnings(drawings, mm_per_unit=1.0, min_mm=MIN_TEXT_MM):
     from facet.report import count_noun, first_names
 
     limit = min_mm / mm_per_unit
+    if units in ("in", "ft"):
+        least = f"{limit:.3g} {units} ({min_mm:g} mm)"
+
+        def smallest(h):
+            return f"{h:.3g} {units}"
+    else:
+        least = f"{min_mm:g} mm"
+
+        def smallest(h):
+            return f"{h * mm_per_unit:.3g} mm"
     found = {"ID": [], "bevel": []}
     for d in drawings:
         if d.label_height < limit:
@@ -546,9 +560,8 @@ def small_text_warnings(drawings, mm_per_unit=1.0, min_mm=MIN_TEXT_MM):
         shown = first_names(parts, 5)
         noun = "part ID" if kind == "ID" else "bevel angle text"
         out.append(f"{len(small)} of {count_noun(totals[kind], noun)} "
-                   f"{'is' if len(small) == 1 else 'are'} under "
-                   f"{min_mm:g} mm high, too small to engrave legibly (the smallest "
-                   f"{height * mm_per_unit:.3g} mm, on {pid}; on "
+                   f"{'is' if len(small) == 1 else 'are'} under {least} high, too small to "
+                   f"engrave legibly (the smallest {smallest(height)}, on {pid}; on "
                    f"{count_noun(len(parts), 'part')}: {shown}): {advice[kind]}")
     left_out = [d.id for d in drawings for _ in d.bevels_left_out]
     if left_out:
