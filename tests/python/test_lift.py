@@ -682,3 +682,31 @@ def test_free_vertices_follow_the_pins_plane_at_map_coordinates(offset):
     free = np.setdiff1d(np.arange(mesh.n_vertices), list(pins))
     assert np.ptp(local.heights[free]) > 100.0  # the free heights do depend on the fill
     assert np.max(np.abs((far.heights - 300_000.0) - local.heights)) < 1e-6 * 12000.0
+
+
+def test_lift_names_the_drawing_unit_in_its_summary(tmp_path, capsys):
+    """A roof plan drawn in feet ($INSUNITS 2): the summary read "RMS miss 0.641, max 1.27"
+    with no unit (every message about the plan itself named feet). It names the drawing's
+    unit now, and the report has it; a unitless drawing's lengths stay bare."""
+    import json
+
+    ezdxf = pytest.importorskip("ezdxf")
+    from facet.cli import main
+
+    for code, unit in ((2, "ft"), (0, None)):
+        document = ezdxf.new()
+        document.header["$INSUNITS"] = code
+        msp = document.modelspace()
+        for k in range(3):  # a 2 x 2 grid of 10 ft bays
+            msp.add_line((0, 10 * k), (20, 10 * k))
+            msp.add_line((10 * k, 0), (10 * k, 20))
+        document.saveas(tmp_path / "plan.dxf")
+        (tmp_path / "t.csv").write_text("x,y,z\n0,0,10\n20,0,11\n0,20,12\n20,20,14\n10,10,13\n")
+        capsys.readouterr()
+        assert main(["lift", str(tmp_path / "plan.dxf"), "--targets", str(tmp_path / "t.csv"),
+                     "-o", str(tmp_path / "roof.obj"), "--report", str(tmp_path / "r.json")]) == 0
+        (line,) = [t for t in capsys.readouterr().out.splitlines() if "RMS miss" in t]
+        miss = re.search(r"RMS miss (\S+)( ft)?, max (\S+)( ft)? at vertex", line)
+        assert miss and float(miss.group(1)) > 0, line
+        assert (miss.group(2), miss.group(4)) == ((" ft", " ft") if unit else (None, None)), line
+        assert json.loads((tmp_path / "r.json").read_text())["units"] == unit

@@ -144,8 +144,8 @@ def run_lift(args):
     from facet.errors import InputError
     from facet.io import write_mesh, writer_for
     from facet.lift import lift
-    from facet.plan import pinned_targets, read_targets
-    from facet.report import write_json
+    from facet.plan import DRAWING_UNITS, pinned_targets, read_targets
+    from facet.report import length_text, write_json
 
     writer_for(args.output)  # bad output suffix: fail before the work
     check_files(reads=[("PLAN", args.plan), ("--targets", args.targets),
@@ -192,6 +192,10 @@ def run_lift(args):
     report.update(nearly.report() if nearly is not None else result.report())
     report["warnings"] = notes + list(report.get("warnings", []))
     report["plan"] = plan.summary()
+    # the lengths below in the drawing's unit when it names one (a DXF's $INSUNITS: a
+    # roof drawn in feet read "RMS miss 0.641" with no unit)
+    report["units"] = plan.units if plan.units != DRAWING_UNITS else None
+    length = length_text(report["units"])
     report["dangling"] = [[list(a), list(b)] for a, b in plan.dangling]
     if args.report:
         write_json(report, args.report)
@@ -208,14 +212,16 @@ def run_lift(args):
                   "lifting closer")
         else:
             print(f"  plan moved    {len(nearly.moved_vertices)} vertices, at most "
-                  f"{nearly.max_move:.3g} ({'within' if nearly.within_tolerance else 'MORE THAN'}"
-                  f" the tolerance {args.move_tolerance:g}); every move is in the report")
+                  f"{length(nearly.max_move)} ("
+                  f"{'within' if nearly.within_tolerance else 'MORE THAN'} the tolerance "
+                  f"{length(args.move_tolerance, 'g')}); every move is in the report")
     if result.liftable_only_trivially:
         print("  note          the plan admits only the trivial (affine) liftings: "
               "the result is the best-fitting plane"
               + (" of each piece" if result.trivial_dimension > 3 else ""))
     print(f"  planarity     {result.planarity_max_rel:.3g} of the mean edge length (max)")
-    print(f"  targets       RMS miss {result.target_rms:.3g}, max {result.target_max:.3g} "
+    print(f"  targets       RMS miss {length(result.target_rms)}, max "
+          f"{length(result.target_max)} "
           f"at vertex {result.target_max_vertex} ({result.target_max / size:.3g} of the plan "
           "size)")
     print(f"  time          {result.factor_seconds + result.solve_seconds:.3g} s")
@@ -224,7 +230,7 @@ def run_lift(args):
     if args.pin and result.target_max > 1e-6 * size:
         # pins read as exact heights; the lifting meets them in least squares
         print(f"  warning       no planar lifting meets every pin: the closest misses vertex "
-              f"{result.target_max_vertex} by {result.target_max:.3g}")
+              f"{result.target_max_vertex} by {length(result.target_max)}")
     if nearly is not None and not nearly.within_tolerance:
         from facet.cli import EXIT_FAILED
 
