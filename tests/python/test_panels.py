@@ -571,6 +571,26 @@ def test_small_text_warnings_of_a_model_in_inches_say_inches(tmp_path):
     assert 0.05 < smallest < least
     assert " mm," not in warning and "mm high" not in warning
 
+
+def test_the_dashed_linetype_says_its_dash_in_the_files_unit(tmp_path):
+    """An inch DXF's FACET_DASHED (the TOP outlines) is a 0.5 in dash, but the
+    description AutoCAD's linetype manager shows said "Dashed, 12.7 mm" to a user in
+    inches. It gives the dash in the file's unit now."""
+    import ezdxf
+
+    from facet.cli_panels import run_pipeline
+    from facet.cutsheets import DASH_MM
+
+    tiny = translational(nu=3, nv=2, step=20.0)
+    for units, said in (("in", "0.5 in"), ("mm", "12.7 mm"), ("ft", "0.0417 ft")):
+        run_pipeline(tiny, 0.25, units=units, gap=0.1, sheet=(200, 100), margin=1, spacing=1,
+                     dxf=str(tmp_path / "tiny.dxf"))
+        dashed = ezdxf.readfile(tmp_path / "tiny.dxf").linetypes.get("FACET_DASHED")
+        assert dashed.dxf.description == f"Dashed, {said} __  __  __", units
+        lengths = [t.value for t in dashed.pattern_tags.tags if t.code == 49]  # (+dash, -gap)
+        scale = {"in": 25.4, "ft": 304.8, "mm": 1.0}[units]
+        assert [v * scale for v in lengths] == pytest.approx([DASH_MM[0], -DASH_MM[1]])
+
 def test_grain_turns_parts_and_is_checked():
     ps = panels(cylinder(), 10.0)
     drawings = unfold(ps, grain=(0, 0, 1))

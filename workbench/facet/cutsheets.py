@@ -410,7 +410,7 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
         doc.header["$MEASUREMENT"] = measurement
         dash, gap = (length / mm_per_unit for length in DASH_MM)
         doc.linetypes.add("FACET_DASHED", pattern=[dash + gap, dash, -gap],
-                          description=f"Dashed, {DASH_MM[0]:g} mm __  __  __")
+                          description=f"Dashed, {dash:.3g} {units} __  __  __")
         if TEXT_STYLE not in doc.styles:
             doc.styles.add(TEXT_STYLE, font=TEXT_FONT_FILE)
         doc.header["$TEXTSTYLE"] = TEXT_STYLE
