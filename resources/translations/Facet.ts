@@ -442,17 +442,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="362"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="364"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="368"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="370"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="355"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="357"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -472,7 +472,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/recompute.py" line="252"/>
+        <location filename="../../workbench/facetwb/recompute.py" line="278"/>
         <source>Recomputing {0} ...</source>
         <translation type="unfinished"></translation>
     </message>
@@ -547,17 +547,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="345"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="347"/>
         <source>a Gap of {0:.4g} mm or EdgeMode bisector clears them</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="345"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="347"/>
         <source>no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="350"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="352"/>
         <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; {5}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -572,32 +572,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="894"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="900"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="898"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="904"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="899"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="905"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="900"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="906"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="901"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="907"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="902"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="908"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -607,12 +607,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="98"/>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="114"/>
         <source>Import polygon mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="895"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="901"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,22 +622,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="886"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="892"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="859"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="865"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="865"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="871"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="224"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="226"/>
         <source>{0}; {1} stopped before its tolerance ({2}): raise its Max. iterations, or set it to 0 for the solver to decide</source>
         <translation type="unfinished"></translation>
     </message>
@@ -922,22 +922,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="98"/>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="107"/>
         <source>{0}: its edges are {1:.3g} of its units long on average; as millimetres, no facade&apos;s panel is that small or large. Which units are its numbers in?</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="897"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="903"/>
         <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="872"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="878"/>
         <source>the PanelSet&apos;s MinEdge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="873"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="879"/>
         <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
@@ -997,38 +997,43 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="896"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="902"/>
         <source>Comparing the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="874"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="880"/>
         <source>the PanelSet&apos;s IdScheme</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/importer.py" line="89"/>
+        <location filename="../../workbench/facetwb/importer.py" line="91"/>
         <source>Checking the mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/importer.py" line="181"/>
+        <location filename="../../workbench/facetwb/importer.py" line="183"/>
         <source>Adding it to the document</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/importer.py" line="219"/>
+        <location filename="../../workbench/facetwb/importer.py" line="228"/>
         <source>Importing {0} ...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="515"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="521"/>
         <source>{0}: {1} of the {2} files it wrote are no longer there ({3}): the next recompute writes them again in {4}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="543"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="549"/>
         <source>{0}: its OutputDir {1} is also that of {2}, whose files it would replace: choose another folder</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="107"/>
+        <source>{0}: its edges are {1:.3g} of its units long on average. FreeCAD shows lengths in inches or feet here (its unit schema) and the file does not say its units: which units are its numbers in?</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -243,6 +243,54 @@ class TestImporter(DocumentTestCase):
             importer.forget_kept()
         return obj, len(reads)
 
+    def test_an_imperial_designer_is_asked_the_units_of_a_mesh_in_inches(self):
+        """FreeCAD set to inches (Imperial decimal): Facet_ImportMesh of a 40 ft facade in
+        inches (40 x 30 in panels, a facade's size in millimetres too) read it as
+        millimetres, 25.4 times too small, and asked nothing; its summary gave the size in
+        mm. Now it asks, inches offered first, and says the size in inches. In the
+        Standard schema nothing changes: not asked, mm."""
+        import facet
+        from facetwb.commands import import_mesh
+
+        path = os.path.join(self.tmp.name, "facade_in.obj")
+        grid = [(40.0 * i, 30.0 * j, 0.0) for j in range(9) for i in range(13)]
+        faces = [[13 * j + i, 13 * j + i + 1, 13 * j + i + 14, 13 * j + i + 13]
+                 for j in range(8) for i in range(12)]
+        facet.write_mesh(facet.PolyMesh.from_faces(grid, faces), path)
+        asked = []
+
+        def ask(filename, edge, likely, imperial=False):
+            asked.append((round(edge, 1), likely, imperial))
+            return likely
+
+        schema = App.Units.getSchema()
+        keep = importer.SHOW_DIALOGS, import_mesh.ask_units, importer.report_message
+        said = []
+        importer.SHOW_DIALOGS, import_mesh.ask_units = True, ask
+        importer.report_message = said.append
+        try:
+            App.Units.setSchema(0)  # Standard (mm)
+            self.assertEqual(import_mesh.file_units(path), "mm")
+            self.assertEqual(asked, [])
+            importer.forget_kept()
+            for imperial_schema in (3, 5):  # Imperial decimal, Building US
+                App.Units.setSchema(imperial_schema)
+                del asked[:]
+                self.assertEqual(import_mesh.file_units(path), "in")
+                self.assertEqual(asked, [(35.1, "in", True)])
+                obj = importer.insert(path, self.doc.Name, "in")
+                importer.forget_kept()
+                self.assertAlmostEqual(max(p.x for p in obj.Points), 480.0 * 25.4, places=6)
+                self.assertIn("480 x 240 x 0 in, its numbers read as inches", said[-1])
+        finally:
+            App.Units.setSchema(schema)
+            importer.SHOW_DIALOGS, import_mesh.ask_units, importer.report_message = keep
+            importer.forget_kept()
+        # the Standard schema's summary is in mm, as it was
+        self.assertIn("12,192 x 6,096 x 0 mm, its numbers read as inches",
+                      importer.imported_summary(facet.read_mesh(path).with_vertices(
+                          facet.read_mesh(path).vertices * 25.4), "in"))
+
     def test_the_import_command_reads_the_file_once(self):
         """Facet_ImportMesh read the file to ask for its units, then its macro line
         importer.insert read the whole file again (a 100k-face OBJ: 0.4 s more). Now

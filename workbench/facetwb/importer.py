@@ -54,16 +54,18 @@ def size_warning(mesh, units="mm"):
             "out at the wrong size")
 
 
-def likely_units(mesh):
+def likely_units(mesh, among=None):
     """The unit that makes ``mesh``'s mean edge closest to a panel's (1.5 m), of those that
-    make it plausible; "mm" when none does."""
+    make it plausible; "mm" when none does, or when mm does unless ``among`` (units of
+    UNIT_NAMES) is given: then the closest of those it names that make it plausible
+    (an imperial designer's: mm, in, ft)."""
     import math
 
     from facet.cutsheets import implausible_edge_mm, length_unit
 
     edge = mesh.mean_edge_length()
-    plausible = [u for u in UNIT_NAMES if implausible_edge_mm(edge, u) is None]
-    if not plausible or "mm" in plausible:
+    plausible = [u for u in among or UNIT_NAMES if implausible_edge_mm(edge, u) is None]
+    if not plausible or ("mm" in plausible and among is None):
         return "mm"
     return min(plausible, key=lambda u: abs(math.log(edge * length_unit(u)[0] / 1500.0)))
 
@@ -199,16 +201,23 @@ def imported_summary(mesh, units="mm"):
     kind (before, a successful import said nothing)."""
     from facet.report import count_noun, degrees_text, face_degrees
 
+    from facetwb import units as user_units
+
     lower, upper = mesh.bounds()
-    size = " x ".join(_extent_text(float(v)) for v in upper - lower)
+    # in the unit FreeCAD shows it in when that is inches or feet (a mesh read in inches
+    # said its size in mm beside a property editor in inches); else mm, as it was
+    extents = upper - lower
+    mm, unit = (user_units.user_unit(float(extents.max())) if user_units.imperial()
+                else (1.0, "mm"))
+    size = " x ".join(_extent_text(float(v) / mm) for v in extents)
     return (f"{count_noun(mesh.n_faces, 'face', grouped=True)} "
             f"({degrees_text(face_degrees(mesh), grouped=True)}), "
-            f"{count_noun(mesh.n_vertices, 'vertex', grouped=True)}, {size} mm, its numbers "
-            f"read as {UNIT_NAMES[units]}")
+            f"{count_noun(mesh.n_vertices, 'vertex', grouped=True)}, {size} {unit}, its "
+            f"numbers read as {UNIT_NAMES[units]}")
 
 
 def _extent_text(length):
-    """A mesh's extent (mm) for :func:`imported_summary`: whole millimetres from 100 mm
+    """A mesh's extent (mm, or inches) for :func:`imported_summary`: whole units from 100
     ("12,000"), three significant digits below ("0.6": a mesh in metres read as
     millimetres was "1 x 0 x 0 mm", a size it does not have)."""
     return f"{length:,.0f}" if length >= 100.0 else f"{length:.3g}"

@@ -62,7 +62,9 @@ class CommandImportMesh:
 
 def file_units(filename):
     """The units of ``filename``'s numbers: "mm", FreeCAD's unit, unless its mean edge read
-    so is no facade's (a mesh in metres has edges of a few millimetres then), when the
+    so is no facade's (a mesh in metres has edges of a few millimetres then), or FreeCAD
+    shows lengths in inches or feet (its unit schema: an OBJ in inches has a facade's
+    edges read as millimetres too, and came in 25.4 times too small, unasked), when the
     designer is asked (:func:`ask_units`; not when importer.SHOW_DIALOGS is off: the
     report view's warning then says it). None: the designer cancelled the import (here,
     or in the progress dialog of the reading, said in the report view).
@@ -82,24 +84,35 @@ def file_units(filename):
         return None
     except Exception:  # noqa: BLE001 - importer.insert reports what is wrong with the file
         return "mm"
+    from facetwb import units
+
     if importer.size_warning(mesh) is None:
-        return "mm"
+        if not units.imperial():
+            return "mm"
+        return ask_units(filename, mesh.mean_edge_length(),
+                         importer.likely_units(mesh, among=("mm", "in", "ft")), imperial=True)
     return ask_units(filename, mesh.mean_edge_length(), importer.likely_units(mesh))
 
 
-def ask_units(filename, edge, likely):
+def ask_units(filename, edge, likely, imperial=False):
     """Ask which units ``filename``'s numbers are in (its mean edge is ``edge`` of them,
-    ``likely`` is offered first); a unit of importer.UNIT_NAMES, or None (Cancel)."""
+    ``likely`` is offered first; ``imperial``: asked because FreeCAD shows inches or
+    feet, the size being a facade's in millimetres too); a unit of importer.UNIT_NAMES,
+    or None (Cancel)."""
     from facetwb import importer
     from facetwb.translation import translate
 
     units = list(importer.UNIT_NAMES)
     names = [f"{importer.UNIT_NAMES[u]} ({u})" for u in units]
+    question = (translate("Facet", "{0}: its edges are {1:.3g} of its units long on "
+                                   "average. FreeCAD shows lengths in inches or feet here "
+                                   "(its unit schema) and the file does not say its units: "
+                                   "which units are its numbers in?") if imperial else
+                translate("Facet", "{0}: its edges are {1:.3g} of its units long on average; "
+                                   "as millimetres, no facade's panel is that small or large. "
+                                   "Which units are its numbers in?"))
     item, ok = qt_gui().QInputDialog.getItem(
         Gui.getMainWindow(), translate("Facet", "Import polygon mesh"),
-        translate("Facet", "{0}: its edges are {1:.3g} of its units long on average; as "
-                           "millimetres, no facade's panel is that small or large. Which "
-                           "units are its numbers in?").format(
-            os.path.basename(filename), edge),
+        question.format(os.path.basename(filename), edge),
         names, units.index(likely), False)
     return units[names.index(item)] if ok else None
