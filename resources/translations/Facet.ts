@@ -122,12 +122,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="316"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="320"/>
         <source>Cut sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="370"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="374"/>
         <source>Lift plan</source>
         <translation type="unfinished"></translation>
     </message>
@@ -402,12 +402,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="327"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="331"/>
         <source>Choose the output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="335"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="339"/>
         <source>Folder for the cut files</source>
         <translation type="unfinished"></translation>
     </message>
@@ -442,18 +442,13 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="364"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="368"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="370"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="374"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="357"/>
-        <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -547,18 +542,8 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="347"/>
-        <source>a Gap of {0:.4g} mm or EdgeMode bisector clears them</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="347"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="349"/>
         <source>no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="352"/>
-        <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4:.4g} mm; {5}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -572,32 +557,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="900"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="904"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="904"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="908"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="905"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="909"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="906"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="910"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="907"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="911"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="908"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="912"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -612,7 +597,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="901"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="905"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,22 +607,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="892"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="896"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="865"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="869"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="871"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="875"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="226"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="227"/>
         <source>{0}; {1} stopped before its tolerance ({2}): raise its Max. iterations, or set it to 0 for the solver to decide</source>
         <translation type="unfinished"></translation>
     </message>
@@ -652,17 +637,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="392"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="396"/>
         <source>Points file (x, y, z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="406"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="410"/>
         <source>Choose the points file</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="433"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="437"/>
         <source>Target heights</source>
         <translation type="unfinished"></translation>
     </message>
@@ -672,7 +657,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="395"/>
+        <location filename="../../workbench/facetwb/taskpanels/derive_panels.py" line="399"/>
         <source>Pinned heights (pick vertices)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -927,17 +912,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="903"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="907"/>
         <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="878"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="882"/>
         <source>the PanelSet&apos;s MinEdge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="879"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="883"/>
         <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
@@ -997,12 +982,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="902"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="906"/>
         <source>Comparing the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="880"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="884"/>
         <source>the PanelSet&apos;s IdScheme</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1022,18 +1007,33 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="521"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="525"/>
         <source>{0}: {1} of the {2} files it wrote are no longer there ({3}): the next recompute writes them again in {4}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="549"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="553"/>
         <source>{0}: its OutputDir {1} is also that of {2}, whose files it would replace: choose another folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../../workbench/facetwb/commands/import_mesh.py" line="107"/>
         <source>{0}: its edges are {1:.3g} of its units long on average. FreeCAD shows lengths in inches or feet here (its unit schema) and the file does not say its units: which units are its numbers in?</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="349"/>
+        <source>a Gap of {0} or EdgeMode bisector clears them</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="354"/>
+        <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4}; {5}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="360"/>
+        <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4}; a Gap of {5} clears every overlap (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

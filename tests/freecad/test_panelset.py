@@ -497,6 +497,41 @@ class TestPanelSet(DocumentTestCase):
                                   r"no facade's are: a mesh drawn in metres .* asks for its units$")
         self.assertFalse([w for w in self.square.Warnings if "long on average" in w])
 
+    def test_panel_messages_give_lengths_in_the_users_unit(self):
+        """FreeCAD set to inches (Imperial decimal): the PanelSet's report-view lines said
+        "within 0.5 mm", "by 20.01 mm", "a Gap of 23.78 mm clears them" beside a property
+        editor in inches. They give lengths in the unit FreeCAD shows them in now; in the
+        Standard schema still in mm."""
+        from facetwb.taskpanels.derive_panels import PanelsPanel
+
+        source = facetwb.make_polymesh(folded_grid(), label="folded")
+        ps = facetwb.make_panelset(source, thickness=40.0, gap=2.0)
+        schema, warn = App.Units.getSchema(), App.Console.PrintWarning
+        said = []
+        App.Console.PrintWarning = said.append
+        try:
+            for number, unit in ((3, "in"), (0, "mm")):
+                del said[:]
+                App.Units.setSchema(number)
+                ps.touch()
+                ps.Document.recompute()
+                self.assertTrue(ps.isValid(), ps.getStatusString())
+                summary = PanelsPanel.summary(None, ps)
+                lines = [line for line in said if ps.Label in line] + [summary]
+                self.assertEqual(len(lines), 3, lines)
+                self.assertIn(" within 0.0197 in," if unit == "in" else " within 0.5 mm,",
+                              summary)
+                clearing = ps.ClearingGap.Value / (25.4 if unit == "in" else 1.0)
+                for line in lines:
+                    self.assertIn(f"a Gap of {clearing:.4g} {unit} ", line)
+                    if unit == "in":
+                        self.assertNotIn(" mm", line)
+        finally:
+            App.Units.setSchema(schema)
+            App.Console.PrintWarning = warn
+            ps.Document.removeObject(ps.Name)
+            source.Document.removeObject(source.Name)
+
     def test_cutsheets_summary_says_where_the_files_are(self):
         """The report view's line after Cut sheets' OK named the sheets and the use but no
         file: with no Output folder nothing was written and nothing said so."""

@@ -36,6 +36,7 @@ from facet.part_types import DEFAULT_TOL_MM
 from facetwb import compat, progress
 from facetwb.recompute import guarded, observe_documents
 from facetwb.translation import QT_TRANSLATE_NOOP, translate
+from facetwb.units import length_text
 
 TYPE_PANELSET = "Facet::PanelSet"
 TYPE_CUTSHEETS = "Facet::CutSheets"
@@ -342,24 +343,27 @@ class PanelSet(_Proxy):
         obj.Warnings = list(ps.warnings) + ([size] if size else [])
         if size:
             App.Console.PrintWarning(f"{obj.Label}: {size}\n")
+        # (lengths in the unit FreeCAD shows them in: these said mm to a designer in inches)
         if ps.overlapping_joints:
             a, b = ps.narrowest_joint_panels
-            clears = (translate("Facet", "a Gap of {0:.4g} mm or EdgeMode bisector clears "
-                                "them").format(ps.clearing_gap)
+            clears = (translate("Facet", "a Gap of {0} or EdgeMode bisector clears "
+                                "them").format(length_text(ps.clearing_gap, 4))
                       if ps.clearing_gap is not None else  # (no gap clears the node clashes)
                       translate("Facet", "no Gap found clears every overlap: EdgeMode "
                                 "bisector or thinner panels"))
             App.Console.PrintWarning(translate(
                 "Facet", "{0}: joints that overlap (cut square on the inner side of a fold): "
-                "{1}; the deepest {2} and {3} by {4:.4g} mm; {5}").format(
-                    obj.Label, ps.overlapping_joints, a, b, -ps.narrowest_joint, clears) + "\n")
+                "{1}; the deepest {2} and {3} by {4}; {5}").format(
+                    obj.Label, ps.overlapping_joints, a, b,
+                    length_text(-ps.narrowest_joint, 4), clears) + "\n")
         if ps.node_clashes:
             App.Console.PrintWarning(translate(
                 "Facet", "{0}: pairs of panels that overlap at nodes they share without a "
-                "joint: {1}; the deepest {2} and {3} by {4:.4g} mm; a Gap of {5:.4g} mm clears "
+                "joint: {1}; the deepest {2} and {3} by {4}; a Gap of {5} clears "
                 "every overlap (see its Warnings)").format(
                     obj.Label, ps.node_clash_pairs, *ps.deepest_node_clash_panels,
-                    ps.node_clashes[0]["depth"], ps.clearing_gap or 0.0) + "\n")
+                    length_text(ps.node_clashes[0]["depth"], 4),
+                    length_text(ps.clearing_gap or 0.0, 4)) + "\n")
         if vanished:
             App.Console.PrintMessage(translate(
                 "Facet", "{0}: panels built with fewer corners than their faces, because "

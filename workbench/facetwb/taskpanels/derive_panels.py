@@ -297,15 +297,19 @@ class PanelsPanel(DerivePanel):
     def summary(self, obj):
         if not obj.isValid():
             return failure(obj)
+        from facetwb.units import length_text
+
+        # lengths in the unit FreeCAD shows them in (it said "within 0.5 mm" and
+        # "narrowest joint 1.178 mm" beside a property editor in inches)
         text = (f"{obj.Label}: {obj.PanelCount} panels, "
                 f"{count_noun(obj.PartTypeCount, 'part type')} within "
-                f"{obj.PartTypeTolerance.Value:g} mm, node deviation up to "
+                f"{length_text(obj.PartTypeTolerance.Value)}, node deviation up to "
                 f"{obj.MaxNodeDeviation.Value:.3g} degrees")
         if obj.OverlappingJoints:
             text += (f"; joints that overlap: {obj.OverlappingJoints} (a Gap of "
-                     f"{obj.ClearingGap.Value:.4g} mm clears them)")
+                     f"{length_text(obj.ClearingGap.Value, 4)} clears them)")
         elif obj.NarrowestJointPanels:
-            text += f"; narrowest joint {obj.NarrowestJoint.Value:.4g} mm"
+            text += f"; narrowest joint {length_text(obj.NarrowestJoint.Value, 4)}"
         if obj.NodeClashes:
             text += f"; pairs of panels that overlap at nodes: {obj.NodeClashes}"
         return text
