@@ -21,5 +21,30 @@ class TestTickLabels(unittest.TestCase):
         self.assertEqual(tick_labels(7.35e-10, 2), ["0.00e+00 mm", "7.35e-10 mm"])
 
 
+    def test_an_imperial_schema_stays_in_inches(self):
+        """FreeCAD set to inches: a source's planarity of 0.05 in was labelled "1270 µm",
+        its lengths below a tenth of an inch in metric units. Inches down to a thou now,
+        then microinches; '"' (US customary's inch) written "in"."""
+        import FreeCAD as App
+
+        schema = App.Units.getSchema()
+        try:
+            for number in (3, 5, 7):  # Imperial decimal, Building US, Civil Eng
+                App.Units.setSchema(number)
+                with self.subTest(schema=number):
+                    self.assertEqual(tick_labels(0.05 * 25.4, 2), ["0.0000 in", "0.0500 in"])
+                    self.assertEqual(tick_labels(0.002 * 25.4, 2)[-1], "0.00200 in")
+                    self.assertEqual(tick_labels(250e-6 * 25.4, 2)[-1], "250 \u00b5in")
+            App.Units.setSchema(3)
+            self.assertEqual(tick_labels(6.35, 2)[-1], "0.250 in")
+            App.Units.setSchema(2)  # US customary: its thou, and its '"' written "in"
+            self.assertEqual(tick_labels(1.27, 2)[-1], "50.0 thou")
+            self.assertEqual(tick_labels(6.35, 2)[-1], "0.250 in")
+            App.Units.setSchema(0)  # Standard: as it was
+            self.assertEqual(tick_labels(1.27, 2)[-1], "1.27 mm")
+            self.assertEqual(tick_labels(0.0635, 2)[-1], "63.5 \u00b5m")
+        finally:
+            App.Units.setSchema(schema)
+
 if __name__ == "__main__":
     unittest.main()

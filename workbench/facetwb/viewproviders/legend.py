@@ -33,7 +33,8 @@ FONT_SIZE = 15
 def tick_labels(vmax, count=TICKS, kind="length"):
     """Labels for ``count`` evenly spaced ticks from 0 to ``vmax``, in one unit.
 
-    kind "length": ``vmax`` in mm, shown in the unit FreeCAD's unit schema picks for it;
+    kind "length": ``vmax`` in mm, shown in the unit FreeCAD's unit schema picks for it
+    (an imperial schema's in inches down to a thou, then microinches);
     "angle": degrees; "ratio": plain numbers. Decimals give three significant digits at the
     top, the same for all ticks so they line up.
     """
@@ -45,11 +46,18 @@ def tick_labels(vmax, count=TICKS, kind="length"):
         return [f"{vmax * i / (count - 1):.{decimals}f}{unit}" for i in range(count)]
     if not vmax > 0.0:
         return ["0 mm"]
-    _, factor, unit = App.Units.Quantity(vmax, App.Units.Length).getUserPreferred()
+    from facetwb.units import imperial, user_unit
+
+    factor, unit = user_unit(vmax)
     top = vmax / factor
-    if top < 0.1:
-        # below the schema's smallest unit (nm): a planar mesh is often at picometres
-        for name, size in (("\u00b5m", 1e-3), ("nm", 1e-6), ("pm", 1e-9)):
+    if top < 0.1 and imperial() and vmax / 25.4 >= 1e-3:
+        # an imperial schema's: inches down to a thou (0.05 in was "1270 µm")
+        unit, factor, top = "in", 25.4, vmax / 25.4
+    elif top < 0.1:
+        # below the schema's smallest unit (nm): a planar mesh is often at picometres;
+        # an imperial schema's in microinches first
+        smaller = (("\u00b5in", 25.4e-6),) if imperial() else ()
+        for name, size in smaller + (("\u00b5m", 1e-3), ("nm", 1e-6), ("pm", 1e-9)):
             if vmax / size >= 1.0:
                 unit, factor, top = name, size, vmax / size
                 break
