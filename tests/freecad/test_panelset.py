@@ -464,6 +464,32 @@ class TestPanelSet(DocumentTestCase):
         self.assertTrue(large.isValid(), large.getStatusString())
         self.assertEqual(list(large.Warnings), [])
 
+    def test_cutsheets_text_warnings_in_inches_when_freecad_shows_inches(self):
+        """FreeCAD set to inches: the CutSheets' Warnings said "under 3 mm high ... the
+        smallest 2 mm" beside a property editor in inches. They give the heights in inches
+        now (the least in mm too); in the Standard schema as they were."""
+        small = facetwb.make_polymesh(translational(nu=3, nv=2, step=20.0), label="small in",
+                                      doc=self.doc)
+        small_panels = facetwb.make_panelset(small, thickness=2.0, name="SmallPanelsIn")
+        sheets = facetwb.make_cutsheets(small_panels, sheet=(200.0, 100.0), margin=1.0,
+                                        spacing=1.0, name="InchSheets", write_step=False,
+                                        output_dir=os.path.join(self.tmp.name, "inch"))
+        schema = App.Units.getSchema()
+        try:
+            App.Units.setSchema(3)  # Imperial decimal
+            self.doc.recompute()
+            self.assertTrue(sheets.isValid(), sheets.getStatusString())
+            self.assertEqual(len(sheets.Warnings), 1, list(sheets.Warnings))
+            said = sheets.Warnings[0]
+            self.assertTrue(said.startswith("6 of 6 part IDs are under 0.118 in (3 mm) high"),
+                            said)
+            smallest = float(re.search(r"the smallest ([0-9.]+) in,", said).group(1))
+            self.assertTrue(0.06 < smallest < 0.118, said)
+        finally:
+            App.Units.setSchema(schema)
+            for obj in (sheets, small_panels, small):
+                self.doc.removeObject(obj.Name)
+
     def test_cutsheets_progress_names_each_stage(self):
         """The progress bar starts again from 0 at each stage (unfolding, nesting, the DXF,
         the previews): the dialog's text now names the stage, which nothing said."""

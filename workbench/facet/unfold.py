@@ -521,9 +521,11 @@ def small_text_warnings(drawings, mm_per_unit=1.0, min_mm=MIN_TEXT_MM, units=Non
         Millimetres per model unit (:data:`facet.cutsheets.LENGTH_UNITS`).
     min_mm : float
     units : str, optional
-        The model's unit ("in"): an imperial one's warnings give the heights in it, the
-        least in mm too ("under 0.118 in (3 mm) high"), as an inch user reads them (they
-        said "the smallest 2.87 mm" of a model in inches); else in mm.
+        The unit the warnings give the heights in when it is an imperial one ("in",
+        "ft"; the least in mm too: "under 0.118 in (3 mm) high"), as a user in inches
+        reads them (they said "the smallest 2.87 mm" of a model in inches); else mm.
+        ``facet panels`` passes the model's unit, FreeCAD's CutSheets (its model in mm)
+        "in" when FreeCAD shows inches.
 
     Returns
     -------
@@ -531,17 +533,15 @@ def small_text_warnings(drawings, mm_per_unit=1.0, min_mm=MIN_TEXT_MM, units=Non
     """
     from facet.report import count_noun, first_names
 
+    from facet.cutsheets import length_unit
+
     limit = min_mm / mm_per_unit
-    if units in ("in", "ft"):
-        least = f"{limit:.3g} {units} ({min_mm:g} mm)"
+    said, said_mm = (units, length_unit(units)[0]) if units in ("in", "ft") else ("mm", 1.0)
+    least = (f"{min_mm:g} mm" if said == "mm"
+             else f"{min_mm / said_mm:.3g} {said} ({min_mm:g} mm)")
 
-        def smallest(h):
-            return f"{h:.3g} {units}"
-    else:
-        least = f"{min_mm:g} mm"
-
-        def smallest(h):
-            return f"{h * mm_per_unit:.3g} mm"
+    def smallest(h):
+        return f"{h * mm_per_unit / said_mm:.3g} {said}"
     found = {"ID": [], "bevel": []}
     for d in drawings:
         if d.label_height < limit:

@@ -611,7 +611,7 @@ class CutSheets(_Proxy):
         obj.Files = [f for kind in FILE_KINDS for f in files.get(kind, [])]
         if not out or report["files"].get("dxf") or report["files"].get("svg"):
             # (else the texts of the files kept are those warned about at the time)
-            obj.Warnings = list(report["text_warnings"])
+            obj.Warnings = _text_warnings(report["text_warnings"], drawings)
             for warning in obj.Warnings:
                 App.Console.PrintWarning(f"{obj.Label}: {warning}\n")
         self._kept = dict(layout=self._layout_key(obj, ps_obj), panels=panel_set,
@@ -874,6 +874,18 @@ def cutsheets_summary(obj):
                                                    if svg else [])
     return text + translate("Facet", "; written to {0}: {1}").format(obj.OutputDir,
                                                                      ", ".join(shown))
+
+
+def _text_warnings(warnings, drawings):
+    """The CutSheets' `warnings` about texts too small to engrave (facet's, in mm), with
+    the heights in inches when FreeCAD shows inches or feet (they said "under 3 mm high
+    ... the smallest 2.84 mm" beside a property editor in inches)."""
+    from facet.unfold import small_text_warnings
+    from facetwb.units import imperial
+
+    if warnings and imperial():
+        return small_text_warnings(drawings, 1.0, units="in")
+    return list(warnings)
 
 
 def option_names():
