@@ -61,6 +61,28 @@ class TestPlanarized(DocumentTestCase):
         self.assertIn("64 panels", text)
         self.assertIn("tolerance reached", text)
 
+    def test_summary_lengths_keep_their_digits_in_the_users_unit(self):
+        """Building US (eighths of an inch) summed a planarized facade up as "planarity max
+        0", "source 1/4\"" and "rms 1/8\"", Imperial decimal as "planarity max 0.00 in":
+        three significant digits in the user's unit now."""
+        import re
+
+        import FreeCAD as App
+
+        schema = App.Units.getSchema()
+        try:
+            for number in (5, 3):
+                App.Units.setSchema(number)
+                text = facetwb.planarize_summary(self.result)
+                found = re.search(r"planarity max (\S+) in \(", text)
+                self.assertTrue(found, text)
+                self.assertAlmostEqual(float(found.group(1)),
+                                       self.result.PlanarityMaxAbs.Value / 25.4,
+                                       delta=0.005 * self.result.PlanarityMaxAbs.Value / 25.4)
+                self.assertNotIn('"', text)
+        finally:
+            App.Units.setSchema(schema)
+
     def test_summary_counts_straight_corners(self):
         # the hypar's skew quads planarize to triangles with a kink (a corner turning
         # under 5 degrees): `facet planarize` said so, the report view did not

@@ -350,8 +350,12 @@ def is_planarized(obj):
 
 
 def format_length(value):
-    """A length in mm as FreeCAD shows lengths (the user's unit schema), e.g. '2.31 mm'."""
-    return App.Units.Quantity(float(value), App.Units.Length).UserString
+    """A length in mm in the unit FreeCAD shows it in, three significant digits: '2.31 mm',
+    '1.69e-07 in' (the schema's own text had "planarity max 0.00 in", and Building US's
+    eighths of an inch "planarity max 0" and "source 1/4\"" of 0.20 in)."""
+    from facetwb.units import length_text
+
+    return length_text(value)
 
 
 def method_text(obj):
