@@ -82,6 +82,33 @@ class TestPlanGraphAndLifting(DocumentTestCase):
         np.testing.assert_array_equal(xyz[:, :2], points_array(self.plan)[:, :2])
         self.assertIn("dimension 4", facetwb.lifting_summary(lifting))
 
+    def test_summary_gives_the_misses_in_the_users_unit(self):
+        """FreeCAD set to inches: the summary said "targets missed by 0.00 in RMS" (Imperial
+        decimal's two decimals) or "0" (Building US's eighths) of a lifting that missed its
+        targets by a few thousandths of an inch: three significant digits now."""
+        import re
+
+        xy = points_array(self.plan)[:, :2]
+        heights = [0.0, 40.0, 0.0, 25.0, 0.0, 10.0, 5.0][:len(xy)]  # (no lifting meets them)
+        lifting = facetwb.make_lifting(self.plan, pins=[(float(x), float(y), h)
+                                                        for (x, y), h in zip(xy, heights)])
+        self.doc.recompute()
+        schema = App.Units.getSchema()
+        try:
+            self.assertTrue(lifting.isValid(), lifting.getStatusString())
+            self.assertGreater(lifting.TargetMax.Value, 0.01)
+            for number in (3, 5):
+                App.Units.setSchema(number)
+                text = facetwb.lifting_summary(lifting)
+                found = re.search(r"missed by (\S+) in RMS, (\S+) in max", text)
+                self.assertTrue(found, text)
+                for said, value in zip(found.groups(), (lifting.TargetRms, lifting.TargetMax)):
+                    self.assertAlmostEqual(float(said), value.Value / 25.4,
+                                           delta=0.005 * value.Value / 25.4)
+        finally:
+            App.Units.setSchema(schema)
+            self.doc.removeObject(lifting.Name)
+
     def test_mix_keeps_faces_planar(self):
         lifting = self.lifting
         before = points_array(lifting)

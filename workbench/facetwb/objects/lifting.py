@@ -262,8 +262,12 @@ def lifting_summary(obj):
              f"of dimension {obj.Dimension}"]
     if obj.OnlyTrivial:
         lines.append("  the plan admits only planes: the result is the best-fitting plane")
+    from facetwb.units import length_text
+
+    # (three significant digits in the user's unit: the schema's own text said "missed by
+    # 0.00 in RMS", and Building US's eighths of an inch "0")
     lines.append(f"  planarity max {obj.PlanarityMaxRel:.2g} of the edge length; targets missed "
-                 f"by {obj.TargetRms.UserString} RMS, {obj.TargetMax.UserString} max at vertex "
-                 f"{obj.TargetMaxVertex}")
+                 f"by {length_text(obj.TargetRms.Value)} RMS, {length_text(obj.TargetMax.Value)} "
+                 f"max at vertex {obj.TargetMaxVertex}")
     lines.extend(f"  warning: {text}" for text in getattr(obj, "Warnings", ()))
     return "\n".join(lines)
