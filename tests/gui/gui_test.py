@@ -1728,6 +1728,7 @@ def check_import_command(check):
     check(meshes and meshes[0].FaceCount == 7, "the imported mesh has its 7 faces")
     App.closeDocument(doc.Name)
     check_import_units(check)
+    check_import_units_imperial(check)
     check_import_progress(check)
     check_new_polymesh_drawn_once(check)
 
@@ -1863,6 +1864,57 @@ def check_import_units(check):
     width = max(p.x for p in meshes[0].Points) if meshes else 0
     check(len(meshes) == 1 and abs(width - 12000.0) < 1e-6,
           f"Cancel imports nothing; metres chosen, the facade is 12 m wide ({width} mm)")
+    App.closeDocument(doc.Name)
+
+
+def check_import_units_imperial(check):
+    """FreeCAD set to inches (Imperial decimal): Facet_ImportMesh of a 40 ft facade in
+    inches (edges of 35 units, a facade's in millimetres too) read it as millimetres,
+    25.4 times too small, and asked nothing. It asks now, inches offered first; the report
+    view gives the size in inches. The schema is put back."""
+    import tempfile
+
+    import FreeCAD as App
+    import FreeCADGui as Gui
+    from PySide import QtGui
+
+    import facet
+    import facetwb
+    from facetwb import importer
+
+    doc = App.newDocument("ImportInches")
+    path = os.path.join(tempfile.mkdtemp(prefix="facet-gui-inches-"), "facade_in.obj")
+    grid = [(40.0 * i, 30.0 * j, 0.0) for j in range(9) for i in range(13)]
+    faces = [[13 * j + i, 13 * j + i + 1, 13 * j + i + 14, 13 * j + i + 13]
+             for j in range(8) for i in range(12)]
+    facet.write_mesh(facet.PolyMesh.from_faces(grid, faces), path)
+    asked = []
+
+    def get_item(parent, title, text, items, current, editable):
+        asked.append((text, items[current]))
+        return items[current], True
+
+    dialogs = QtGui.QFileDialog.getOpenFileName, QtGui.QInputDialog.getItem
+    schema = App.Units.getSchema()
+    importer.SHOW_DIALOGS = True
+    try:
+        App.Units.setSchema(3)
+        QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *args, **kw: (path, ""))
+        QtGui.QInputDialog.getItem = staticmethod(get_item)
+        Gui.runCommand("Facet_ImportMesh")
+        Gui.updateGui()
+        said = report_view_text()
+    finally:
+        QtGui.QFileDialog.getOpenFileName, QtGui.QInputDialog.getItem = dialogs
+        importer.SHOW_DIALOGS = False
+        App.Units.setSchema(schema)
+    meshes = [obj for obj in doc.Objects if facetwb.is_polymesh(obj)]
+    check(len(asked) == 1 and asked[0][1] == "inches (in)" and "inches or feet" in asked[0][0],
+          f"Facet_ImportMesh under an imperial schema asks the units, inches first ({asked})")
+    width = max(p.x for p in meshes[0].Points) if meshes else 0
+    check(len(meshes) == 1 and abs(width - 480.0 * 25.4) < 1e-6
+          and "480 x 240 x 0 in, its numbers read as inches" in said,
+          f"the facade is 480 in wide ({width} mm), said in inches")
     App.closeDocument(doc.Name)
 
 
