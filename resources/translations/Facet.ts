@@ -557,32 +557,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="904"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="916"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="908"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="920"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="909"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="921"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="910"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="922"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="911"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="923"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="912"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="924"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -597,7 +597,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="905"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="917"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -607,7 +607,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="896"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="908"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
@@ -912,17 +912,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="907"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="919"/>
         <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="882"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="894"/>
         <source>the PanelSet&apos;s MinEdge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="883"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="895"/>
         <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
@@ -982,12 +982,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="906"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="918"/>
         <source>Comparing the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="884"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="896"/>
         <source>the PanelSet&apos;s IdScheme</source>
         <translation type="unfinished"></translation>
     </message>
