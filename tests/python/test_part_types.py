@@ -146,3 +146,22 @@ def test_the_schedule_report_and_summary_give_the_part_types(tmp_path, capsys):
     with pytest.raises(SystemExit):
         cli.main(["panels", str(mesh), "--thickness", "0.02", "--type-tol", "-1"])
     assert "--type-tol" in capsys.readouterr().err
+
+
+def test_a_bad_tolerance_names_the_unit_and_refuses_infinity_as_not_finite():
+    """run_pipeline said "must be a length >= 0, not inf" of an infinite tolerance (which is
+    >= 0), named no unit, and a tolerance that was no number raised a TypeError from its
+    format; part_types refused the same values with another message."""
+    from facet.cli_panels import run_pipeline
+    from facet.errors import InputError
+
+    mesh = apart(TRAPEZOID)
+    for bad, said in ((float("inf"), "not inf mm"), (float("nan"), "not nan mm"),
+                      (-1.0, "not -1 mm"), ("half", "not 'half'")):
+        with pytest.raises(InputError, match=r"^the part type tolerance must be a finite "
+                           rf"length >= 0, {said}$"):
+            run_pipeline(mesh, 30.0, type_tol=bad)
+    with pytest.raises(InputError, match=r"finite length >= 0, not -0\.5 in$"):
+        run_pipeline(mesh, 1.0, units="in", type_tol=-0.5)
+    with pytest.raises(InputError, match=r"finite length >= 0, not -1$"):
+        part_types(panels(mesh, 30.0), -1.0)

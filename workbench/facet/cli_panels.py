@@ -188,7 +188,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
     from facet.nest import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
     from facet.panels import (DEFAULT_GAP_MM, DEFAULT_MIN_EDGE, PanelError, check_density,
                               panels)
-    from facet.part_types import DEFAULT_TOL_MM
+    from facet.part_types import DEFAULT_TOL_MM, check_tolerance
 
     mm_per_unit = length_unit(units)[0]
     if density is not None:
@@ -200,10 +200,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
         margin = DEFAULT_MARGIN_MM / mm_per_unit
     if spacing is None:
         spacing = DEFAULT_SPACING_MM / mm_per_unit
-    if type_tol is None:
-        type_tol = DEFAULT_TOL_MM / mm_per_unit
-    elif not (math.isfinite(type_tol) and type_tol >= 0.0):
-        raise InputError(f"the part type tolerance must be a length >= 0, not {type_tol:g}")
+    type_tol = (DEFAULT_TOL_MM / mm_per_unit if type_tol is None
+                else check_tolerance(type_tol, units))
     gap_said = gap is not None
     if gap is None:
         gap = DEFAULT_GAP_MM / mm_per_unit

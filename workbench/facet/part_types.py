@@ -22,6 +22,24 @@ import numpy as np
 DEFAULT_TOL_MM = 0.5
 
 
+def check_tolerance(tol, units=None):
+    """``tol`` as a float when it is a part type tolerance (a finite length >= 0, model
+    units); else an :class:`facet.errors.InputError` (a ValueError) that names it and,
+    when given, the model's length unit ``units``: "the part type tolerance must be a
+    finite length >= 0, not -1 mm"."""
+    from .errors import InputError
+
+    try:
+        value = float(tol)
+    except (TypeError, ValueError):
+        raise InputError(f"the part type tolerance must be a finite length >= 0, not "
+                         f"{tol!r}") from None
+    if not (value >= 0.0 and np.isfinite(value)):
+        raise InputError(f"the part type tolerance must be a finite length >= 0, not "
+                         f"{value:g}{' ' + units if units else ''}")
+    return value
+
+
 def _shape(panel, tol):
     """(k, 4) the panel's bottom and top corners side by side, its corners on
     a straight edge (within tol / 2 of its neighbours' line, in both
@@ -84,6 +102,11 @@ def part_types(panels, tol, progress=None):
         ``progress(done, total)``; returning True cancels (raises
         :class:`facet.Cancelled`).
 
+    Raises
+    ------
+    facet.errors.InputError
+        A ``tol`` NaN, infinite, negative or no number (:func:`check_tolerance`).
+
     Returns
     -------
     list of str
@@ -92,8 +115,7 @@ def part_types(panels, tol, progress=None):
     """
     from .errors import Cancelled
 
-    if not (tol >= 0.0 and np.isfinite(tol)):
-        raise ValueError(f"part type tolerance must be a finite length >= 0, not {tol!r}")
+    tol = check_tolerance(tol)
     panels = list(panels)
     first = []  # per type, its first panel's index
     shapes = []  # per type, its first panel's shape and edge lengths
