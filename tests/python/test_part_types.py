@@ -165,3 +165,14 @@ def test_a_bad_tolerance_names_the_unit_and_refuses_infinity_as_not_finite():
         run_pipeline(mesh, 1.0, units="in", type_tol=-0.5)
     with pytest.raises(InputError, match=r"finite length >= 0, not -1$"):
         part_types(panels(mesh, 30.0), -1.0)
+
+
+def test_the_schedule_refuses_part_types_of_another_panel_set():
+    """schedule_rows zipped the panels with ``types``: a list of types for fewer panels (an
+    earlier PanelSet's) left the last panels out of the schedule without a word."""
+    from facet.cutsheets import schedule_rows
+
+    ps = panels(cylinder(), 20.0, gap=6.0)
+    assert len(schedule_rows(ps, types=part_types(ps, 0.5))) == 24
+    with pytest.raises(ValueError, match=r"^23 part types for 24 panels: one per panel$"):
+        schedule_rows(ps, types=["T1"] * 23)

@@ -492,8 +492,8 @@ def write_dxf(path, nest_result, drawings, per_sheet=False, sheet_gap=None, unit
 def schedule_rows(panel_set, nest_result=None, drawings=None, density=None, units="mm",
                   types=None):
     """The schedule: one dict per panel (see :meth:`facet.panels.Panel.schedule_row`)
-    with its part type (``types``, :func:`facet.part_types.part_types` of the panels;
-    by default within :data:`facet.part_types.DEFAULT_TOL_MM` in ``units``), sheet
+    with its part type (``types``, :func:`facet.part_types.part_types` of the panels,
+    one per panel, else a ValueError; by default within :data:`facet.part_types.DEFAULT_TOL_MM` in ``units``), sheet
     (1-based, None when not nested or unplaced), x, y and
     rotation_deg on the sheet: ``sheet_xy = rotate(rotation_deg) @ flat_xy + (x, y)``
     for the panel's flat outline (``Panel.flat_bottom``). ``drawings``
@@ -507,6 +507,10 @@ def schedule_rows(panel_set, nest_result=None, drawings=None, density=None, unit
     mm_per_unit = length_unit(units)[0]
     if types is None:
         types = part_types(panel_set.panels, DEFAULT_TOL_MM / mm_per_unit)
+    elif len(types) != len(panel_set.panels):
+        # (zip would leave the last panels out of the schedule without a word)
+        raise ValueError(f"{count_noun(len(types), 'part type')} for "
+                         f"{count_noun(len(panel_set.panels), 'panel')}: one per panel")
     turned = {d.id: d.rotation_deg for d in drawings or ()}
     rows = []
     for p, part_type in zip(panel_set.panels, types):
