@@ -442,12 +442,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="368"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="387"/>
         <source>{0}: panels built with fewer corners than their faces, because edges shorter than MinEdge vanished (panels: {1}, edges: {2}): {3}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="374"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="393"/>
         <source>{0}: edges shorter than MinEdge kept as they are: {1} (see its Warnings)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -542,7 +542,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="349"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="368"/>
         <source>no Gap found clears every overlap: EdgeMode bisector or thinner panels</source>
         <translation type="unfinished"></translation>
     </message>
@@ -557,32 +557,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="916"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="936"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="920"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="940"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="921"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="941"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="922"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="942"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="923"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="943"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="924"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="944"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -597,7 +597,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="917"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="937"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -607,22 +607,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="908"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="928"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="869"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="889"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="875"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="895"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="227"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="245"/>
         <source>{0}; {1} stopped before its tolerance ({2}): raise its Max. iterations, or set it to 0 for the solver to decide</source>
         <translation type="unfinished"></translation>
     </message>
@@ -912,17 +912,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="919"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="939"/>
         <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="894"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="914"/>
         <source>the PanelSet&apos;s MinEdge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="895"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="915"/>
         <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
@@ -982,12 +982,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="918"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="938"/>
         <source>Comparing the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="896"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="916"/>
         <source>the PanelSet&apos;s IdScheme</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1007,12 +1007,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="525"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="545"/>
         <source>{0}: {1} of the {2} files it wrote are no longer there ({3}): the next recompute writes them again in {4}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="553"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="573"/>
         <source>{0}: its OutputDir {1} is also that of {2}, whose files it would replace: choose another folder</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1022,18 +1022,23 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="349"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="368"/>
         <source>a Gap of {0} or EdgeMode bisector clears them</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="354"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="373"/>
         <source>{0}: joints that overlap (cut square on the inner side of a fold): {1}; the deepest {2} and {3} by {4}; {5}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="360"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="379"/>
         <source>{0}: pairs of panels that overlap at nodes they share without a joint: {1}; the deepest {2} and {3} by {4}; a Gap of {5} clears every overlap (see its Warnings)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="127"/>
+        <source>{0}: saved by an earlier Facet, without the part types of its {1} panels: the next recompute finds them</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -136,3 +136,51 @@ class TestReplacedMesh(DocumentTestCase):
         self.assertIn("Touched", result.State)
         doc.recompute()
         self.assertEqual((len(result.Points), panels.PanelCount), old)
+
+
+class TestSavedWithoutPartTypes(DocumentTestCase):
+    def test_a_panelset_saved_before_part_types_finds_them_at_the_next_recompute(self):
+        """A PanelSet saved by a Facet without part types (examples/facade.FCStd of
+        ed6ee55) reopened with PartTypes empty and PartTypeCount 0 beside its 12 panels,
+        up to date: a Recompute did nothing, ShowPartTypes showed nothing. Now the report
+        view says so and the next recompute finds them; saved with them, it reopens up to
+        date."""
+        from facetwb.recompute import Recomputes
+
+        doc = self.doc
+        source = facetwb.make_polymesh(translational(nu=4, nv=3, step=1000.0),
+                                       label="facade", doc=doc)
+        panels = facetwb.make_panelset(source, thickness=30.0)
+        doc.recompute()
+        self.assertTrue(panels.isValid(), panels.getStatusString())
+        count, types = panels.PartTypeCount, list(panels.PartTypes)
+        self.assertTrue(count > 0 and len(types) == panels.PanelCount == 12)
+        for prop in ("PartTypes", "PartTypeCount", "PartTypeTolerance"):  # as saved then
+            panels.removeProperty(prop)
+        name, label = panels.Name, panels.Label
+        path = os.path.join(self.tmp.name, "older.FCStd")
+        doc.saveAs(path)
+        App.closeDocument(doc.Name)
+        doc, text = captured(lambda: App.openDocument(path))
+        type(self).doc = doc
+        panels = doc.getObject(name)
+        said = [line for line in error_lines(text) if line.startswith(label + ":")]
+        self.assertEqual(len(said), 1, text)
+        self.assertIn("12 panels", said[0])
+        self.assertEqual((panels.PartTypeCount, list(panels.PartTypes)), (0, []))
+        recorded = Recomputes(doc)
+        self.addCleanup(recorded.stop)
+        doc.recompute()
+        self.assertIn(name, recorded.take())
+        self.assertTrue(panels.isValid(), panels.getStatusString())
+        self.assertEqual((panels.PartTypeCount, list(panels.PartTypes)), (count, types))
+        doc.save()
+        App.closeDocument(doc.Name)
+        doc, text = captured(lambda: App.openDocument(path))
+        type(self).doc = doc
+        self.assertNotIn(label + ":", text)
+        recorded = Recomputes(doc)
+        self.addCleanup(recorded.stop)
+        doc.recompute()
+        self.assertEqual(recorded.take(), set())
+        self.assertEqual(doc.getObject(name).PartTypeCount, count)

@@ -116,6 +116,24 @@ class PanelSet(_Proxy):
 
     TYPE = TYPE_PANELSET
 
+    def onDocumentRestored(self, obj):
+        """A PanelSet saved by a Facet without part types (before PartTypes): it must
+        recompute (:meth:`mustExecute`), which finds them, and the report view says so.
+        It read 0 part types of its panels, up to date, and a Recompute did nothing."""
+        older = "PartTypes" not in obj.PropertiesList
+        super().onDocumentRestored(obj)
+        self._no_part_types = older and obj.PanelCount > 0
+        if self._no_part_types:
+            App.Console.PrintWarning(translate(
+                "Facet", "{0}: saved by an earlier Facet, without the part types of its "
+                         "{1} panels: the next recompute finds them").format(
+                obj.Label, obj.PanelCount) + "\n")
+
+    def mustExecute(self, obj):  # noqa: N802 - FreeCAD's name
+        """Whether the PanelSet must recompute although none of its inputs changed: saved
+        without part types (:meth:`onDocumentRestored`)."""
+        return bool(getattr(self, "_no_part_types", False))
+
     def init_properties(self, obj):
         add = compat.add_property
         add(obj, "App::PropertyLink", "Source", "Base",
@@ -305,6 +323,7 @@ class PanelSet(_Proxy):
                 self._update_panel_objects(obj, cache[1], solids)
                 self._cache = (self._key(obj), cache[1], mesh)
                 self._changed = set()
+                self._no_part_types = False
                 return
             ps = self.panel_set(obj, mesh)  # (new part IDs)
         else:
@@ -378,6 +397,7 @@ class PanelSet(_Proxy):
         self._update_panel_objects(obj, ps, solids)
         self._cache = (self._key(obj), ps, mesh)
         self._changed = set()
+        self._no_part_types = False
 
     def _update_panel_objects(self, obj, ps, solids):
         """Keep one plain Part::Feature per panel (OnePerPanel), reusing the existing ones
