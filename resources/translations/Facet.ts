@@ -557,32 +557,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="936"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="940"/>
         <source>Building the panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="940"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="944"/>
         <source>Nesting the parts on the sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="941"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="945"/>
         <source>Making the solids for STEP</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="942"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="946"/>
         <source>Drawing the parts in the DXF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="943"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="947"/>
         <source>Writing the SVG sheets</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="944"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="948"/>
         <source>Writing the PNG sheets</source>
         <translation type="unfinished"></translation>
     </message>
@@ -592,12 +592,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="114"/>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="118"/>
         <source>Import polygon mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="937"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="941"/>
         <source>Making the panel solids</source>
         <translation type="unfinished"></translation>
     </message>
@@ -607,17 +607,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="928"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="932"/>
         <source>the panels&apos; edges are {0:.3g} mm long on average, which no facade&apos;s are: a mesh drawn in metres and read as millimetres is a thousand times too small; import it again with Facet &gt; Import polygon mesh, which asks for its units</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="889"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="893"/>
         <source>; no files written: choose an Output folder (the object&apos;s OutputDir) and recompute</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="895"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="899"/>
         <source>; written to {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -907,22 +907,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="107"/>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="111"/>
         <source>{0}: its edges are {1:.3g} of its units long on average; as millimetres, no facade&apos;s panel is that small or large. Which units are its numbers in?</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="939"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="943"/>
         <source>Unfolding the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="914"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="918"/>
         <source>the PanelSet&apos;s MinEdge</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="915"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="919"/>
         <source>the PanelSet&apos;s MinEdgeAbs</source>
         <translation type="unfinished"></translation>
     </message>
@@ -982,12 +982,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="938"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="942"/>
         <source>Comparing the parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="916"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="920"/>
         <source>the PanelSet&apos;s IdScheme</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1012,12 +1012,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/objects/panelset.py" line="573"/>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="577"/>
         <source>{0}: its OutputDir {1} is also that of {2}, whose files it would replace: choose another folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="107"/>
+        <location filename="../../workbench/facetwb/commands/import_mesh.py" line="111"/>
         <source>{0}: its edges are {1:.3g} of its units long on average. FreeCAD shows lengths in inches or feet here (its unit schema) and the file does not say its units: which units are its numbers in?</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1039,6 +1039,11 @@
     <message>
         <location filename="../../workbench/facetwb/objects/panelset.py" line="127"/>
         <source>{0}: saved by an earlier Facet, without the part types of its {1} panels: the next recompute finds them</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../workbench/facetwb/objects/panelset.py" line="574"/>
+        <source>{0} of the document {1}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

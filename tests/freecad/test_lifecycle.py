@@ -102,6 +102,24 @@ class TestCutSheetFiles(DocumentTestCase):
                             for f in copy.Files))
         self.assertEqual(changed_since(self.out, before), [])
 
+    def test_a_cutsheets_of_another_document_in_the_same_folder_is_named_with_it(self):
+        """Two versions of a design open at once (the second saved as another file): the
+        refusal of the second's CutSheets said its OutputDir "is also that of CutSheets",
+        its own label, as if it were itself. Now it names the other document too."""
+        other = App.newDocument("Version2")
+        self.addCleanup(App.closeDocument, other.Name)
+        source = facetwb.make_polymesh(translational(nu=4, nv=3, step=1000.0),
+                                       label="facade", doc=other)
+        panels = facetwb.make_panelset(source, thickness=30.0)
+        sheets = facetwb.make_cutsheets(panels, sheet=(2600.0, 1400.0),
+                                        output_dir=self.out, write_step=False)
+        other.recompute()
+        self.assertFalse(sheets.isValid())
+        self.assertEqual(sheets.Label, self.sheets.Label)
+        status = sheets.getStatusString()
+        self.assertIn(f"that of {self.sheets.Label} of the document {self.doc.Label},",
+                      status)
+
 
 class TestReplacedMesh(DocumentTestCase):
     def test_a_freecad_mesh_replaced_marks_what_is_made_from_it(self):

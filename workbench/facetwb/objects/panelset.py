@@ -570,10 +570,14 @@ class CutSheets(_Proxy):
             if sharing:
                 # (a copy of a CutSheets keeps its OutputDir: a recompute of the copy
                 # replaced the original's files, which still showed up to date)
+                other = sharing[0]
+                name = (other.Label if other.Document == obj.Document else translate(
+                    "Facet", "{0} of the document {1}").format(other.Label,
+                                                              other.Document.Label))
                 raise ValueError(translate(
                     "Facet", "{0}: its OutputDir {1} is also that of {2}, whose files it "
                              "would replace: choose another folder").format(
-                    obj.Label, out, sharing[0].Label))
+                    obj.Label, out, name))
             os.makedirs(out, exist_ok=True)
         panel_set, solids = ps_obj.Proxy.computed(ps_obj)
         density = _density(ps_obj)
