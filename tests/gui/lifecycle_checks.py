@@ -59,6 +59,56 @@ def check_made_and_recomputed_solves_once(check, g):
     App.closeDocument(doc.Name)
 
 
+def check_expression_change_solves_once(check, g):
+    """A Planarized whose Tolerance is a spreadsheet cell's: a new value in the cell and a
+    Recompute solve it once. The expression set the Tolerance during the recompute, just
+    before the solve that used it, and that change was taken for one made during the
+    recompute: solved a second time after it."""
+    import FreeCAD as App
+    import FreeCADGui as Gui
+
+    import facet
+    import facetwb
+    from facetwb import live_parameters
+
+    doc = App.newDocument("ExpressionTolerance")
+    control = facetwb.make_polymesh(facet.read_mesh(g.MESH), label="control")
+    result = facetwb.make_planarized(control, tolerance=1e-3)
+    sheet = doc.addObject("Spreadsheet::Sheet", "Spreadsheet")
+    sheet.set("A1", "0.001")
+    sheet.setAlias("A1", "tolerance")
+    result.setExpression("Tolerance", "Spreadsheet.tolerance")
+    solves = []
+    original = facet.planarize
+
+    def counted(*args, **kwargs):
+        solves.append(1)
+        return original(*args, **kwargs)
+
+    def recompute():
+        del solves[:]
+        doc.recompute()
+        end = time.monotonic() + 30
+        while live_parameters.pending() and time.monotonic() < end:
+            Gui.updateGui()
+            time.sleep(0.02)
+        settle(10)
+        return len(solves)
+
+    facet.planarize = counted
+    try:
+        recompute()
+        sheet.set("A1", "0.002")
+        count = recompute()
+    finally:
+        facet.planarize = original
+    check(count == 1 and abs(result.Tolerance - 0.002) < 1e-12
+          and result.State == ["Up-to-date"] and result.isValid(),
+          f"a Tolerance bound to a spreadsheet cell, the cell changed: solved once "
+          f"({count} solves, Tolerance {result.Tolerance}, {result.State})")
+    App.closeDocument(doc.Name)
+
+
 def check_hidden_panels_stay_hidden(check, g):
     import FreeCAD as App
 
@@ -93,4 +143,5 @@ def check_hidden_panels_stay_hidden(check, g):
 
 def run(check, out_dir, g):
     check_made_and_recomputed_solves_once(check, g)
+    check_expression_change_solves_once(check, g)
     check_hidden_panels_stay_hidden(check, g)

@@ -38,11 +38,19 @@ def parameter_changed(obj, prop):
     if doc is None or getattr(doc, "Restoring", False):
         return
     key = (doc.Name, obj.Name)
-    if getattr(doc, "Recomputing", False):
+    if getattr(doc, "Recomputing", False) and not _bound(obj, prop):
         # a change made while the document recomputes: solved after it, even though the
-        # recompute clears the object's Touched mark when it ends
+        # recompute clears the object's Touched mark when it ends. (Not an expression's
+        # value: the object's recompute sets it just before it solves, and a Tolerance
+        # bound to a spreadsheet cell was solved a second time after each change.)
         _late.add(key)
     _schedule(key)
+
+
+def _bound(obj, prop):
+    """Whether ``obj``'s property ``prop`` is set by an expression."""
+    return any(path.lstrip(".").split(".")[0] == prop
+               for path, _expression in getattr(obj, "ExpressionEngine", None) or ())
 
 
 def resolve_if_touched(obj):
