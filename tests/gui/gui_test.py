@@ -1770,7 +1770,8 @@ def check_import_progress(check):
         importer.SHOW_DIALOGS = True
         # Cancel at the first call (the command's reading) and at the last of its insert
         # (the PolyMesh added and recomputed; the insert takes the mesh read)
-        for cancel_at in (1, closed[0][2] - reading.calls):
+        added = closed[0][2] - reading.calls
+        for cancel_at in (1, added):
             del closed[:]
             undo = list(doc.UndoNames)
             progress.cancel_after(cancel_at)
@@ -1786,6 +1787,26 @@ def check_import_progress(check):
                   and not importer._KEPT and closed and all(c[0] for c in closed),
                   f"Cancel at progress call {cancel_at} of Facet_ImportMesh changes nothing "
                   f"({[o.Name for o in doc.Objects]}, {doc.UndoNames}, {left}, {closed})")
+        # no document open: the one the command made for the mesh is closed again (an
+        # empty "Unnamed" was left)
+        class NoDocumentOpen:  # (the command's App, the test's documents left open)
+            ActiveDocument = None
+
+            def __getattr__(self, name):
+                return getattr(App, name)
+
+        documents = set(App.listDocuments())
+        progress.cancel_after(added)
+        import_mesh.App = NoDocumentOpen()
+        try:
+            Gui.runCommand("Facet_ImportMesh")
+        finally:
+            import_mesh.App = App
+            progress.cancel_after(0)
+        Gui.updateGui()
+        check(set(App.listDocuments()) == documents,
+              f"Cancel in Facet_ImportMesh with no document open leaves none open "
+              f"({sorted(set(App.listDocuments()) - documents)})")
     finally:
         progress._Reporter.close = close
         QtGui.QFileDialog.getOpenFileName, import_mesh.ask_units = dialogs

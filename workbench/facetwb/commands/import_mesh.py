@@ -46,9 +46,11 @@ class CommandImportMesh:
             units = file_units(filename)
             if units is None:
                 return
+            created = App.ActiveDocument is None
             doc = App.ActiveDocument or App.newDocument()
             # importer.insert reports a file it cannot read, or Cancel pressed in its
-            # progress dialog, and leaves the document unchanged (nothing to undo then);
+            # progress dialog, and leaves the document unchanged (nothing to undo then;
+            # the document made for it closed again: an empty "Unnamed" was left);
             # it takes the mesh file_units read instead of reading it again.
             arguments = (f'{filename!r}, "{doc.Name}"'
                          + (f", units={units!r}" if units != "mm" else ""))
@@ -56,6 +58,8 @@ class CommandImportMesh:
             run_as_macro(doc, "Import polygon mesh", [f"facetwb.importer.insert({arguments})"],
                          modules=("facetwb.importer",),
                          keep=lambda: bool(set(doc.Objects) - before))
+            if created and not doc.Objects:
+                App.closeDocument(doc.Name)
         finally:
             importer.forget_kept()
 
