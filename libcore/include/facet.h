@@ -781,7 +781,7 @@ const char *facet_lifter_message(const facet_lifter *lifter);
  * does a mitre beside a free edge at a nearly straight corner (a turn under
  * 10 degrees, bevels a degree apart or more) whose outline corner would lie
  * more than 4 thicknesses from the vertex (the two cuts' lines meet far along
- * the edge: 27 thicknesses at a turn of 0.57 degrees).
+ * the edge: 28 thicknesses at a turn of 0.57 degrees).
  *
  * Angles (radians), per face corner k, for the edge from corner k to k+1:
  *  dihedral  angle between the two panels on their bottom (-n) side: pi

@@ -450,7 +450,7 @@ static void straight_corner(void)
         CHECK_NEAR(q[10] - x[10], 0.005, 1e-9);
     }
     /* vertex 3 (and 6 with it) 5 mm out: a corner turned 0.57 degrees. The mitre's top
-     * line met the free edge's 0.55 along it (27 thicknesses); it is squared as at a
+     * line met the free edge's 0.55 along it (28 thicknesses); it is squared as at a
      * straight corner, the corner half the gap in from the vertex */
     q[10] += 0.005, q[19] += 0.005;
     CHECK_STATUS(facet_panels(&qm, &o, &out, &r, &e), FACET_OK);

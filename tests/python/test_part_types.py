@@ -109,6 +109,10 @@ def test_a_bad_tolerance_is_refused_and_a_long_run_can_be_cancelled():
     with pytest.raises(Cancelled):
         part_types(grid, 0.5, progress=cancel)
     assert seen == [(256, 400)]
+    # not cancelled, the count reaches the end (it stopped at 256 of 400)
+    del seen[:]
+    part_types(grid, 0.5, progress=lambda done, total: seen.append((done, total)))
+    assert seen == [(256, 400), (400, 400)]
 
 
 def test_the_schedule_report_and_summary_give_the_part_types(tmp_path, capsys):
@@ -143,6 +147,10 @@ def test_the_schedule_report_and_summary_give_the_part_types(tmp_path, capsys):
     assert cli.main(["panels", str(mesh), "--thickness", "0.02", "--units", "m",
                      "--type-tol", "0"]) == 0
     assert "24 part types within 0 m: every panel its own" in capsys.readouterr().out
+    # one panel is no "every panel its own"
+    write_obj(apart(TRAPEZOID), str(mesh))
+    assert cli.main(["panels", str(mesh), "--thickness", "20"]) == 0
+    assert "  types         1 part type within 0.5 mm: T1 1 panel\n" in capsys.readouterr().out
     with pytest.raises(SystemExit):
         cli.main(["panels", str(mesh), "--thickness", "0.02", "--type-tol", "-1"])
     assert "--type-tol" in capsys.readouterr().err

@@ -564,7 +564,7 @@ def part_types_text(report, length):
     :func:`facet.panels.length_text`'s."""
     counts = report["part_types"]
     within = f"within {length(report['part_type_tolerance'], '.3g')}"
-    if len(counts) == report["n_panels"]:
+    if len(counts) == report["n_panels"] > 1:
         return f"{count_noun(len(counts), 'part type')} {within}: every panel its own"
     shown = [f"{t} {n}" for t, n in list(counts.items())[:4]]
     shown[0] += " panels" if counts["T1"] > 1 else " panel"

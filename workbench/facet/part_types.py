@@ -99,7 +99,8 @@ def part_types(panels, tol, progress=None):
         Largest distance between matching corners of two panels of one type,
         model units, >= 0.
     progress : callable, optional
-        ``progress(done, total)``; returning True cancels (raises
+        ``progress(done, total)`` every 256 panels and at the end; returning
+        True cancels (raises
         :class:`facet.Cancelled`).
 
     Raises
@@ -143,7 +144,8 @@ def part_types(panels, tol, progress=None):
             shapes.append((shape, lengths))
             bisect.insort(window, (per, hit))
         found.append(hit)
-        if progress is not None and (i & 255) == 255 and progress(i + 1, len(panels)):
+        if (progress is not None and ((i & 255) == 255 or i + 1 == len(panels))
+                and progress(i + 1, len(panels))):
             raise Cancelled("part types cancelled")
     counts = np.bincount(np.asarray(found, dtype=np.int64), minlength=len(first))
     order = sorted(range(len(first)), key=lambda t: (-counts[t], first[t]))
