@@ -1046,6 +1046,11 @@
         <source>{0} of the document {1}</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../../workbench/facetwb/importer.py" line="247"/>
+        <source>import cancelled; nothing changed</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>Facet_Cleanup</name>

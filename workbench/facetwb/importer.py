@@ -244,7 +244,8 @@ def _step(text=None):
 
 def report_cancelled(filename):
     """The report view's line for an import of ``filename`` cancelled."""
-    report_message(f"Facet: {filename}: import cancelled; nothing changed")
+    report_message(f"Facet: {filename}: "
+                   + translate("Facet", "import cancelled; nothing changed"))
 
 
 def report_message(message):
