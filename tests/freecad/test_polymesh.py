@@ -81,6 +81,123 @@ class TestPolyMeshSavedBitExact(DocumentTestCase):
         self.assertNotIn("Touched", obj.State)
 
 
+def awkward_coordinates(count, seed):
+    """Coordinates that use all 53 bits, of the sizes of a facade in mm, and values float32
+    or a text of 6-17 digits would change: subnormal, -0.0, tiny, large."""
+    rng = np.random.default_rng(seed)
+    xyz = rng.uniform(-5e4, 5e4, size=(count, 3)) + rng.uniform(-1e-9, 1e-9, size=(count, 3))
+    xyz[0] = (np.pi * 1e4, -np.e, 1e-300)
+    xyz[1] = (np.nextafter(1.0, 2.0), 0.1, -0.0)
+    xyz[2] = (5e-324, -1.2345678901234567e12, np.nextafter(0.0, -1.0))
+    return xyz
+
+
+class TestStoredArrays(DocumentTestCase):
+    """The arrays a PolyMesh gives back (stored_arrays: get_mesh, the drawing) are those
+    stored, bit for bit: as kept by its proxy after set_mesh, read again from its properties,
+    after every change of a property (a script, undo, redo) and after save and reopen. The
+    properties hold the same values as App.Vector objects give (what the .FCStd saves)."""
+
+    def make(self, seed=37):
+        from facetwb.objects.polymesh import stored_arrays
+
+        topology = facet.read_mesh(data_path("hypar.obj"))
+        xyz = awkward_coordinates(topology.n_vertices, seed)
+        mesh = facet.PolyMesh(xyz, topology.face_start, topology.face_vertices)
+        obj = facetwb.make_polymesh(mesh, doc=self.doc)
+        return obj, mesh, stored_arrays
+
+    def assert_holds(self, obj, mesh, stored_arrays):
+        kept = stored_arrays(obj)
+        obj.Proxy.stored_arrays = None  # what the properties give, read again
+        read = stored_arrays(obj)
+        for xyz, face_start, face_vertices in (kept, read):
+            np.testing.assert_array_equal(bits(xyz), bits(mesh.vertices))
+            self.assertEqual((face_start.dtype, face_vertices.dtype), (np.int32, np.int32))
+            np.testing.assert_array_equal(face_start, mesh.face_start)
+            np.testing.assert_array_equal(face_vertices, mesh.face_vertices)
+            self.assertFalse(xyz.flags.writeable or face_start.flags.writeable
+                             or face_vertices.flags.writeable)
+        np.testing.assert_array_equal(bits(points_array(obj)), bits(mesh.vertices))
+        self.assertEqual(list(obj.FaceStart), mesh.face_start.tolist())
+        self.assertEqual(list(obj.FaceVertices), mesh.face_vertices.tolist())
+        np.testing.assert_array_equal(bits(facetwb.get_mesh(obj).vertices), bits(mesh.vertices))
+
+    def test_set_mesh_round_trip_bit_for_bit(self):
+        obj, mesh, stored_arrays = self.make()
+        self.assert_holds(obj, mesh, stored_arrays)
+
+    def test_set_points_round_trip_bit_for_bit(self):
+        from facetwb.objects.polymesh import set_points
+
+        obj, mesh, stored_arrays = self.make()
+        moved = mesh.with_vertices(awkward_coordinates(mesh.n_vertices, 38))
+        set_points(obj, moved.vertices)
+        self.assert_holds(obj, moved, stored_arrays)
+
+    def test_kept_arrays_follow_every_change(self):
+        obj, mesh, stored_arrays = self.make()
+        self.doc.recompute()
+        stored_arrays(obj)  # kept
+        moved = mesh.with_vertices(awkward_coordinates(mesh.n_vertices, 39))
+        self.doc.UndoMode = 1
+        self.doc.openTransaction("move by script")
+        obj.Points = [App.Vector(*row) for row in moved.vertices.tolist()]
+        self.doc.commitTransaction()
+        self.assert_holds(obj, moved, stored_arrays)
+        self.doc.undo()
+        self.assert_holds(obj, mesh, stored_arrays)
+        self.doc.redo()
+        self.assert_holds(obj, moved, stored_arrays)
+        # set_mesh in a transaction (a recompute's write-back), undone and redone
+        from facetwb.objects.polymesh import set_mesh
+
+        other = facet.read_mesh(data_path("panels.off"))
+        self.doc.openTransaction("store another mesh")
+        set_mesh(obj, other)
+        self.doc.commitTransaction()
+        self.assert_holds(obj, other, stored_arrays)
+        self.doc.undo()
+        self.assert_holds(obj, moved, stored_arrays)
+        self.doc.redo()
+        self.assert_holds(obj, other, stored_arrays)
+        self.doc.undo()
+        self.assert_holds(obj, moved, stored_arrays)
+        # a re-solve: the same topology, only the coordinates stored (and undone)
+        resolved = moved.with_vertices(awkward_coordinates(mesh.n_vertices, 42))
+        self.doc.openTransaction("re-solve")
+        set_mesh(obj, resolved)
+        self.doc.commitTransaction()
+        self.assert_holds(obj, resolved, stored_arrays)
+        self.doc.undo()
+        # a face's corners in the other order, by script: the topology given back follows
+        face_vertices = moved.face_vertices.copy()
+        face_vertices[:4] = face_vertices[:4][::-1]
+        obj.FaceVertices = face_vertices.tolist()
+        turned = facet.PolyMesh(moved.vertices, moved.face_start, face_vertices)
+        self.assert_holds(obj, turned, stored_arrays)
+
+    def test_index_beyond_32_bits_is_an_error_not_wrapped(self):
+        """A script's index beyond 32 bits was read as int32, wrapped around: 2**32 + 1
+        became vertex 1, a mesh silently different from the properties."""
+        from facetwb.objects.polymesh import mesh_arrays
+
+        obj, mesh, _ = self.make()
+        face_vertices = mesh.face_vertices.tolist()
+        face_vertices[0] = 2**32 + 1
+        obj.FaceVertices = face_vertices
+        with self.assertRaisesRegex(ValueError, "FaceVertices holds values beyond the 32-bit"):
+            facetwb.get_mesh(obj)
+        self.assertIsNone(mesh_arrays(obj))
+
+    def test_save_reopen_bit_for_bit(self):
+        obj, mesh, stored_arrays = self.make(40)
+        self.doc.recompute()
+        name = obj.Name
+        doc = self.save_and_reopen("stored_arrays.FCStd")
+        self.assert_holds(doc.getObject(name), mesh, stored_arrays)
+
+
 class TestOlderDocumentsGainProperties(DocumentTestCase):
     """init_properties() runs again on restore: a document saved before a property existed
     gains it, with its default, and keeps its mesh."""
@@ -114,3 +231,4 @@ class TestFitView(DocumentTestCase):
         obj = doc.addObject("App::FeaturePython", "Plan")
         App.closeDocument(doc.Name)
         self.assertIsNone(_fit_view(obj, None))
+

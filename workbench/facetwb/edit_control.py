@@ -753,7 +753,9 @@ class EditSession:
                 self.planarized.Source = edited
                 edited.ViewObject.Visibility = False
             else:
-                self.control_obj.Points = [tuple(p) for p in self.live.control.tolist()]
+                from facetwb.objects.polymesh import set_points
+
+                set_points(self.control_obj, self.live.control)
             doc.recompute()
         except Exception:
             doc.abortTransaction()

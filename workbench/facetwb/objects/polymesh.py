@@ -83,7 +83,10 @@ class PolyMesh:
         set_planarity(obj, facet.planarity(mesh))
 
     def onChanged(self, obj, prop):
-        pass
+        if prop in MESH_PROPERTIES:
+            # any change of the mesh (set_mesh, a script, undo, redo, a restore): the arrays
+            # kept for it are those set_mesh is storing, or none
+            self.stored_arrays = getattr(self, "storing_arrays", None)
 
     # --- saving: FreeCAD 0.21.2+ calls dumps/loads, older versions __getstate__/__setstate__
 
@@ -144,10 +147,7 @@ def is_polymesh(obj):
 
 def get_mesh(obj):
     """The ``facet.PolyMesh`` stored in a Facet polygon mesh object (a new copy)."""
-    points = obj.Points
-    xyz = np.array([(p.x, p.y, p.z) for p in points], dtype=np.float64).reshape(-1, 3)
-    face_start = np.array(obj.FaceStart, dtype=np.int32)
-    face_vertices = np.array(obj.FaceVertices, dtype=np.int32)
+    xyz, face_start, face_vertices = stored_arrays(obj)
     if face_start.size == 0:
         raise ValueError(f"{obj.Label} holds no mesh")
     return facet.PolyMesh(xyz, face_start, face_vertices)
@@ -156,13 +156,176 @@ def get_mesh(obj):
 def set_mesh(obj, mesh):
     """Store ``mesh`` (a facet.PolyMesh) in ``obj``, bit for bit.
 
-    Topology first, coordinates last: the view provider redraws once all three agree.
+    Topology first, coordinates last: the view provider redraws once, when the coordinates
+    are stored (:func:`mesh_update_pending`). The object's proxy keeps the arrays stored
+    (:func:`stored_arrays`), so that reading them back (its recompute, its drawing) does not
+    convert the properties again.
     """
-    obj.FaceVertices = np.asarray(mesh.face_vertices).tolist()
-    obj.FaceStart = np.asarray(mesh.face_start).tolist()
-    obj.Points = [tuple(row) for row in np.asarray(mesh.vertices, dtype=np.float64).tolist()]
+    arrays = (_frozen(mesh.vertices, np.float64).reshape(-1, 3),
+              _frozen(mesh.face_start, np.int32), _frozen(mesh.face_vertices, np.int32))
+    xyz, face_start, face_vertices = arrays
+    proxy = _keeper(obj)
+    kept = getattr(proxy, "stored_arrays", None)
+    # a re-solve moves the vertices only: the 4M indices of a 1M-quad mesh, unchanged, are
+    # not stored again (0.2 s); the kept arrays are those of the properties (onChanged)
+    same_topology = kept is not None and np.array_equal(kept[1], face_start) \
+        and np.array_equal(kept[2], face_vertices)
+    previous = getattr(proxy, "storing_arrays", None)  # (None unless set_mesh nests)
+    if proxy is not None:
+        proxy.storing_arrays = arrays
+    stored = False
+    try:
+        if not same_topology:
+            obj.FaceVertices = face_vertices.tolist()
+            obj.FaceStart = face_start.tolist()
+        set_points(obj, xyz)
+        stored = True
+    finally:
+        if proxy is not None:
+            proxy.storing_arrays = previous
+            if not stored:  # the properties may be part old, part new: read them again
+                proxy.stored_arrays = None
     obj.VertexCount = int(mesh.n_vertices)
     obj.FaceCount = int(mesh.n_faces)
+
+
+def mesh_update_pending(obj, prop):
+    """True while :func:`set_mesh` stores ``obj``'s mesh and ``prop`` is not the last of
+    its properties it stores (a view provider redraws once, then)."""
+    proxy = _keeper(obj)
+    return (proxy is not None and getattr(proxy, "storing_arrays", None) is not None
+            and prop != "Points")
+
+
+def stored_arrays(obj):
+    """``(xyz, face_start, face_vertices)``: read-only float64 (n, 3), int32 and int32
+    arrays of the mesh properties of ``obj``, bit for bit.
+
+    Kept by the object's proxy until one of the properties changes (its ``onChanged``: set
+    by anything, undo and redo included); a PolyMesh recompute and the view provider's
+    drawing read them from there instead of converting a million App.Vector again.
+    """
+    proxy = _keeper(obj)
+    if proxy is not None:
+        kept = getattr(proxy, "storing_arrays", None) or getattr(proxy, "stored_arrays", None)
+        if kept is not None:
+            return kept
+    arrays = (points_array(obj), _indices(obj, "FaceStart"), _indices(obj, "FaceVertices"))
+    if proxy is not None:
+        proxy.stored_arrays = arrays
+    return arrays
+
+
+def _keeper(obj):
+    """The proxy of ``obj`` that keeps its arrays (a PolyMesh), or None."""
+    proxy = getattr(obj, "Proxy", None)
+    return proxy if isinstance(proxy, PolyMesh) else None
+
+
+def _indices(obj, name):
+    """The integer list property ``name`` as a read-only int32 array; a ValueError naming it
+    when a value is beyond 32 bits (set by a script: it would wrap around)."""
+    values = np.asarray(getattr(obj, name), dtype=np.int64)
+    if values.size and (values.min() < np.iinfo(np.int32).min
+                        or values.max() > np.iinfo(np.int32).max):
+        raise ValueError(f"{obj.Label}: {name} holds values beyond the 32-bit range "
+                         f"({int(values.min())} .. {int(values.max())})")
+    return _frozen(values, np.int32)
+
+
+def _frozen(values, dtype):
+    """``values`` as a read-only C-contiguous array of ``dtype`` (no copy if it is one)."""
+    array = np.asarray(values, dtype=dtype)
+    if array.flags.writeable or not array.flags.c_contiguous:
+        array = np.array(array, dtype=dtype, order="C", copy=True)
+        array.flags.writeable = False
+    return array
+
+
+# --- Points in bulk ----------------------------------------------------------------------------
+#
+# App::PropertyVectorList takes and gives App.Vector objects one by one: 1M vertices took
+# 1 s to store and 0.7 s to read back. Its content (``dumpPropertyContent``,
+# ``restorePropertyContent``) is what FreeCAD saves in a .FCStd: a zip of an XML element
+# naming a file, and that file: the count (uint32) then x, y, z of every vector (float64, in
+# the machine's byte order; older formats: float32). Read and written that way it takes a few
+# hundredths of a second. Each bulk write is read back and compared bit for bit; should a
+# FreeCAD version write or read anything else, the Vector path is used from then on.
+
+_bulk_points = {"write": True}
+
+
+def points_array(obj):
+    """``obj.Points`` as a read-only (n, 3) float64 array, bit for bit."""
+    xyz = _dumped_points(obj)
+    if xyz is None:
+        xyz = np.array([(p.x, p.y, p.z) for p in obj.Points], dtype=np.float64).reshape(-1, 3)
+        xyz.flags.writeable = False
+    return xyz
+
+
+def set_points(obj, xyz):
+    """Store ``xyz`` ((n, 3) float64) in ``obj.Points``, bit for bit."""
+    xyz = np.ascontiguousarray(xyz, dtype=np.float64).reshape(-1, 3)
+    if _bulk_points["write"]:
+        import FreeCAD as App
+
+        # FreeCAD's reader shows its progress ("Importing project files"): in the GUI its
+        # progress bar ran the event loop, and a pending live re-solve of this very object
+        # ran inside this store. A progress already running (this one, or a recompute's)
+        # makes the reader's a silent no-op.
+        indicator = App.Base.ProgressIndicator()
+        try:
+            indicator.start("", 0)
+            try:
+                obj.restorePropertyContent("Points", _points_content(xyz))
+            finally:
+                indicator.stop()
+            back = _dumped_points(obj)
+            if back is not None and back.shape == xyz.shape and np.array_equal(
+                    back.view(np.uint64), xyz.view(np.uint64)):
+                return
+        except Exception:  # noqa: BLE001 - any failure: the Vector path below, from now on
+            pass
+        _bulk_points["write"] = False
+    obj.Points = list(zip(*(xyz[:, k].tolist() for k in range(3))))
+
+
+def _points_content(xyz):
+    import io
+    import zipfile
+
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w", zipfile.ZIP_STORED) as archive:
+        archive.writestr("Persistence.xml", '<Content>\n<VectorList file="Points"/>\n</Content>')
+        archive.writestr("Points", np.array([xyz.shape[0]], dtype=np.uint32).tobytes()
+                         + xyz.astype(np.float64).tobytes())
+    return buffer.getvalue()
+
+
+def _dumped_points(obj):
+    """``obj.Points`` read from the property's content, or None when it is not the format
+    above."""
+    import io
+    import re
+    import zipfile
+
+    try:
+        content = bytes(obj.dumpPropertyContent("Points", Compression=0))
+        archive = zipfile.ZipFile(io.BytesIO(content))
+        names = re.findall(r'<VectorList\s+file="([^"]+)"',
+                           archive.read("Persistence.xml").decode("utf-8", "replace"))
+        if len(names) != 1:
+            return None
+        raw = archive.read(names[0])
+    except Exception:  # noqa: BLE001 - no such method, another format: the Vector path
+        return None
+    if len(raw) < 4:
+        return None
+    count = int(np.frombuffer(raw, dtype=np.uint32, count=1)[0])
+    if len(raw) != 4 + 24 * count:
+        return None
+    return np.frombuffer(raw, dtype=np.float64, offset=4).reshape(count, 3)
 
 
 def set_planarity(obj, report):
@@ -173,15 +336,14 @@ def set_planarity(obj, report):
 
 
 def mesh_arrays(obj):
-    """``(xyz, face_start, face_vertices)`` numpy arrays of ``obj``'s mesh, or None.
+    """``(xyz, face_start, face_vertices)`` arrays of ``obj``'s mesh (:func:`stored_arrays`,
+    read-only), or None.
 
     None unless the three mesh properties agree (sizes and index ranges); they are set one
     after the other, so a view provider sees inconsistent states in between.
     """
     try:
-        xyz = np.array([(p.x, p.y, p.z) for p in obj.Points], dtype=np.float64).reshape(-1, 3)
-        face_start = np.array(obj.FaceStart, dtype=np.int64)
-        face_vertices = np.array(obj.FaceVertices, dtype=np.int64)
+        xyz, face_start, face_vertices = stored_arrays(obj)
     except (AttributeError, ValueError):
         return None
     if face_start.size < 2 or xyz.shape[0] == 0:
@@ -193,4 +355,3 @@ def mesh_arrays(obj):
     if face_vertices.size and (face_vertices.min() < 0 or face_vertices.max() >= xyz.shape[0]):
         return None
     return xyz, face_start, face_vertices
-
