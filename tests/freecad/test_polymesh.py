@@ -232,3 +232,34 @@ class TestFitView(DocumentTestCase):
         App.closeDocument(doc.Name)
         self.assertIsNone(_fit_view(obj, None))
 
+
+class TestCoinFieldsFromArrays(DocumentTestCase):
+    """The view provider hands numpy arrays to Coin (pivy reads them without a Python object
+    per value): the fields hold what the lists gave, float32 and int32 as Coin keeps them."""
+
+    def test_set_mfield_takes_arrays(self):
+        from pivy import coin
+
+        from facetwb.viewproviders.view_polymesh import _set_mfield
+
+        xyz = awkward_coordinates(50, 41)
+        from_array, from_list = coin.SoCoordinate3(), coin.SoCoordinate3()
+        _set_mfield(from_array.point, xyz)
+        _set_mfield(from_list.point, xyz.tolist())
+        values = [[from_array.point[i].getValue(), from_list.point[i].getValue()]
+                  for i in range(from_array.point.getNum())]
+        self.assertEqual(len(values), 50)
+        drawn = np.array(values, dtype=np.float32)  # (exact: Coin's floats)
+        np.testing.assert_array_equal(drawn[:, 0].view(np.uint32),
+                                      xyz.astype(np.float32).view(np.uint32))
+        np.testing.assert_array_equal(drawn[:, 0].view(np.uint32), drawn[:, 1].view(np.uint32))
+
+        index = np.array([0, 1, 2, 3, -1, 4, 5, 6, -1], dtype=np.int32)
+        faces = coin.SoIndexedFaceSet()
+        _set_mfield(faces.coordIndex, index)
+        self.assertEqual([faces.coordIndex[i] for i in range(faces.coordIndex.getNum())],
+                         index.tolist())
+        _set_mfield(faces.coordIndex, index[:4])  # shrinks
+        self.assertEqual(faces.coordIndex.getNum(), 4)
+        _set_mfield(from_array.point, np.zeros((0, 3)))
+        self.assertEqual(from_array.point.getNum(), 0)

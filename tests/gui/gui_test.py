@@ -1731,6 +1731,7 @@ def check_import_command(check):
     check_import_units_imperial(check)
     check_import_progress(check)
     check_new_polymesh_drawn_once(check)
+    check_stored_mesh_drawn_once(check)
 
 
 def check_import_progress(check):
@@ -1836,6 +1837,48 @@ def check_new_polymesh_drawn_once(check):
     check(redraws == [obj.Name] and obj.ViewObject.Proxy.face_count == 7
           and obj.ViewObject.Proxy.coords.point.getNum() == obj.VertexCount,
           f"a new PolyMesh is drawn once, whole ({redraws})")
+    App.closeDocument(doc.Name)
+
+
+def check_stored_mesh_drawn_once(check):
+    """set_mesh into a drawn PolyMesh (what a Planarized recompute does with its result) draws
+    it once, whole: FreeCAD's updateData of each of its three mesh properties drew it three
+    times (a 1M-face write-back: 3 x 1 s). The drawing holds the stored arrays (Coin's
+    float32 of the coordinates, the faces' corners)."""
+    import FreeCAD as App
+    import numpy as np
+
+    import facet
+    import facetwb
+    from facetwb.objects.polymesh import set_mesh
+    from facetwb.viewproviders import view_polymesh
+
+    doc = App.newDocument("StoredOnce")
+    mesh = facet.read_mesh(os.path.join(ROOT, "tests", "data", "panels.off"))
+    other = facet.read_mesh(os.path.join(ROOT, "tests", "data", "hypar.obj"))
+    obj = facetwb.make_polymesh(mesh, doc=doc)
+    proxy = obj.ViewObject.Proxy
+    redraws = []
+    redraw = view_polymesh.ViewProviderPolyMesh.redraw_mesh
+    view_polymesh.ViewProviderPolyMesh.redraw_mesh = \
+        lambda self, obj: (redraws.append(obj.Name), redraw(self, obj))[1]
+    drawn = []
+    try:
+        for stored in (mesh.with_vertices(mesh.vertices + 0.1), other):  # a re-solve; new
+            set_mesh(obj, stored)
+            point = proxy.coords.point
+            xyz = np.array([point[i].getValue() for i in range(point.getNum())],
+                           dtype=np.float32)
+            index = [proxy.faces.coordIndex[i] for i in range(proxy.faces.coordIndex.getNum())]
+            corners = [v for face in stored.faces() for v in list(face) + [-1]]
+            drawn.append(len(redraws) == 1 and proxy.face_count == stored.n_faces
+                         and np.array_equal(xyz.view(np.uint32),
+                                            stored.vertices.astype(np.float32).view(np.uint32))
+                         and index == corners)
+            del redraws[:]
+    finally:
+        view_polymesh.ViewProviderPolyMesh.redraw_mesh = redraw
+    check(drawn == [True, True], f"set_mesh draws a PolyMesh once, what it stored ({drawn})")
     App.closeDocument(doc.Name)
 
 
