@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """PolyMesh objects: import, planarity, and bit-exact storage in .FCStd files."""
 
+import os
+
 import FreeCAD as App
 import numpy as np
 
@@ -232,6 +234,38 @@ class TestFitView(DocumentTestCase):
         App.closeDocument(doc.Name)
         self.assertIsNone(_fit_view(obj, None))
 
+
+class TestSavedDocumentsRead(DocumentTestCase):
+    """Documents saved before the bulk storage (examples/*.FCStd) give the arrays their
+    properties hold, bit for bit: the coordinates the App.Vector path gives."""
+
+    def test_examples_read_bit_for_bit(self):
+        import importlib
+        import shutil
+
+        from facet_test_support import ROOT
+        from facetwb.objects.polymesh import stored_arrays
+
+        for module in ("polymesh", "planarized", "cleanup", "plangraph", "lifting",
+                       "panelset"):  # (as test_examples: FreeCAD 0.20.2 imports no proxy
+            importlib.import_module(f"facetwb.objects.{module}")  # from outside Mod)
+        checked = 0
+        for name in ("facade.FCStd", "roof.FCStd"):
+            path = os.path.join(self.tmp.name, name)
+            shutil.copy(os.path.join(ROOT, "examples", name), path)
+            doc = App.openDocument(path)
+            try:
+                for obj in doc.Objects:
+                    if not facetwb.is_polymesh(obj):
+                        continue
+                    xyz, face_start, face_vertices = stored_arrays(obj)
+                    np.testing.assert_array_equal(bits(xyz), bits(points_array(obj)))
+                    self.assertEqual(face_start.tolist(), list(obj.FaceStart))
+                    self.assertEqual(face_vertices.tolist(), list(obj.FaceVertices))
+                    checked += 1
+            finally:
+                App.closeDocument(doc.Name)
+        self.assertGreaterEqual(checked, 2)
 
 class TestCoinFieldsFromArrays(DocumentTestCase):
     """The view provider hands numpy arrays to Coin (pivy reads them without a Python object
