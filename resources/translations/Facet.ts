@@ -477,42 +477,42 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="825"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="827"/>
         <source>Edit control mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="827"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="829"/>
         <source>Drag a control vertex (dot) with the left mouse button; the planar result follows. OK (or Esc) keeps the edit, Cancel drops it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="844"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="846"/>
         <source>Vertices closer than this to the dragged one move with it (0: the dragged vertex alone)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="848"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="850"/>
         <source>Radius</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="851"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="853"/>
         <source>How much the neighbours move: smooth, linear with the distance, or all of them as much as the dragged vertex</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="855"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="857"/>
         <source>Falloff</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="858"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="860"/>
         <source>Colour the result by the planarity of each panel or by how far its corners are from the control mesh</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../workbench/facetwb/edit_control.py" line="862"/>
+        <location filename="../../workbench/facetwb/edit_control.py" line="864"/>
         <source>Colour by</source>
         <translation type="unfinished"></translation>
     </message>
