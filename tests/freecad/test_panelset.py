@@ -505,7 +505,8 @@ class TestPanelSet(DocumentTestCase):
             self.doc.recompute()
         self.assertTrue(sheets.isValid(), sheets.getStatusString())
         said = [t.split("\n", 1)[1] for t in reporter.texts if "\n" in t]
-        self.assertEqual(said, ["Unfolding the parts", "Nesting the parts on the sheets",
+        self.assertEqual(said, ["Comparing the parts", "Unfolding the parts",
+                                "Nesting the parts on the sheets",
                                 "Drawing the parts in the DXF", "Writing the SVG sheets"])
 
     def test_panels_of_no_facades_size_are_warned_about(self):
@@ -604,11 +605,11 @@ class TestPanelSet(DocumentTestCase):
             self.doc.recompute([self.square])
         self.assertTrue(self.square.isValid(), self.square.getStatusString())
         said = [t.split("\n", 1)[1] for t in reporter.texts if "\n" in t]
-        self.assertEqual(said, ["Making the panel solids"])
+        self.assertEqual(said, ["Making the panel solids", "Comparing the parts"])
         self.assertEqual((reporter.done, reporter.total), (20, 20))
         calls = reporter.calls
         self.square.touch()
-        progress.cancel_after(calls)  # the last call: the solids'
+        progress.cancel_after(calls - 1)  # the last call of the solids (then the part types')
         try:
             with progress.reporting("Panels ...") as reporter:
                 self.doc.recompute([self.square])
