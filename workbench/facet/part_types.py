@@ -100,8 +100,7 @@ def part_types(panels, tol, progress=None):
         model units, >= 0.
     progress : callable, optional
         ``progress(done, total)`` every 256 panels and at the end; returning
-        True cancels (raises
-        :class:`facet.Cancelled`).
+        True cancels (raises :class:`facet.Cancelled`).
 
     Raises
     ------
