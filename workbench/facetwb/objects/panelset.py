@@ -824,17 +824,13 @@ class ViewProviderPanels:
         if not (getattr(vobj, "ShowPartTypes", False) and len(types) == len(obj.PartIds)):
             types = [None] * len(obj.PartIds)
 
-        def colour(part_id, part_type):
-            if part_id in clashing:
-                return CLASH_COLOR
-            return base if part_type is None else part_type_colour(part_type)
-
-        for part_id, part_type, child in zip(obj.PartIds, types,
-                                             getattr(obj, "PanelObjects", None) or []):
+        panel_colours = [CLASH_COLOR if part_id in clashing else
+                         base if part_type is None else part_type_colour(part_type)
+                         for part_id, part_type in zip(obj.PartIds, types)]
+        for colour, child in zip(panel_colours, getattr(obj, "PanelObjects", None) or []):
             if child is not None and getattr(child, "ViewObject", None) is not None:
-                if tuple(child.ViewObject.ShapeColor[:3]) != colour(part_id, part_type):
-                    child.ViewObject.ShapeColor = colour(part_id, part_type)
-        panel_colours = [colour(i, t) for i, t in zip(obj.PartIds, types)]
+                if tuple(child.ViewObject.ShapeColor[:3]) != colour:
+                    child.ViewObject.ShapeColor = colour
         if len(solids) != len(obj.PartIds) or all(c == base for c in panel_colours):
             if len(vobj.DiffuseColor) != 1 or tuple(vobj.DiffuseColor[0][:3]) != base:
                 vobj.DiffuseColor = [base]
