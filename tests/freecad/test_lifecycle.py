@@ -18,6 +18,32 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(
 from panel_meshes import translational  # noqa: E402
 
 
+def reopened(case, doc, path=None, meanwhile=None):
+    """``doc`` saved (as ``path`` when given), closed, ``meanwhile()`` run, and opened again
+    as ``case``'s document: (the document, what opening it printed)."""
+    if path:
+        doc.saveAs(path)
+    else:
+        doc.save()
+        path = doc.FileName
+    App.closeDocument(doc.Name)
+    if meanwhile is not None:
+        meanwhile()
+    doc, text = captured(lambda: App.openDocument(path))
+    type(case).doc = doc
+    return doc, text
+
+
+def recomputed(case, doc):
+    """The names of the objects a recompute of ``doc`` recomputed."""
+    from facetwb.recompute import Recomputes
+
+    recorded = Recomputes(doc)
+    case.addCleanup(recorded.stop)
+    doc.recompute()
+    return recorded.take()
+
+
 class TestCutSheetFiles(DocumentTestCase):
     @classmethod
     def setUpClass(cls):
@@ -35,42 +61,27 @@ class TestCutSheetFiles(DocumentTestCase):
         CutSheets were shown up to date, their Files naming files that were not there,
         and a recompute wrote nothing. Now the report view says so and the next
         recompute rebuilds them (them alone) and writes the files again."""
-        from facetwb.recompute import Recomputes
-
         sheets = self.sheets
         self.assertTrue(sheets.isValid(), sheets.getStatusString())
         files = list(sheets.Files)
         self.assertTrue(files and all(os.path.isfile(f) for f in files))
         name, label = sheets.Name, sheets.Label
-        path = os.path.join(self.tmp.name, "moved.FCStd")
-        self.doc.saveAs(path)
-        App.closeDocument(self.doc.Name)
-        shutil.rmtree(self.out)
-        doc, text = captured(lambda: App.openDocument(path))
-        type(self).doc = doc
+        doc, text = reopened(self, self.doc, os.path.join(self.tmp.name, "moved.FCStd"),
+                             meanwhile=lambda: shutil.rmtree(self.out))
         sheets = doc.getObject(name)
         said = [line for line in error_lines(text) if line.startswith(label + ":")]
         self.assertEqual(len(said), 1, text)
         self.assertIn(f"{len(files)} of the {len(files)} files", said[0])
         self.assertIn(self.out, said[0])
-        recorded = Recomputes(doc)
-        self.addCleanup(recorded.stop)
-        doc.recompute()
-        self.assertEqual(recorded.take(), {name})
+        self.assertEqual(recomputed(self, doc), {name})
         self.assertTrue(sheets.isValid(), sheets.getStatusString())
         self.assertEqual(sheets.State, ["Up-to-date"])
         self.assertEqual(list(sheets.Files), files)
         self.assertTrue(all(os.path.isfile(f) for f in files))
         # files all there: reopened as saved, up to date
-        doc.save()
-        App.closeDocument(doc.Name)
-        doc, text = captured(lambda: App.openDocument(path))
-        type(self).doc = doc
+        doc, text = reopened(self, doc)
         self.assertNotIn(label, text)
-        recorded = Recomputes(doc)
-        self.addCleanup(recorded.stop)
-        doc.recompute()
-        self.assertEqual(recorded.take(), set())
+        self.assertEqual(recomputed(self, doc), set())
 
     def test_a_copy_writing_into_the_same_folder_is_refused(self):
         """A copy of a CutSheets (Edit > Duplicate, copy and paste) keeps its OutputDir:
@@ -163,8 +174,6 @@ class TestSavedWithoutPartTypes(DocumentTestCase):
         up to date: a Recompute did nothing, ShowPartTypes showed nothing. Now the report
         view says so and the next recompute finds them; saved with them, it reopens up to
         date."""
-        from facetwb.recompute import Recomputes
-
         doc = self.doc
         source = facetwb.make_polymesh(translational(nu=4, nv=3, step=1000.0),
                                        label="facade", doc=doc)
@@ -176,29 +185,16 @@ class TestSavedWithoutPartTypes(DocumentTestCase):
         for prop in ("PartTypes", "PartTypeCount", "PartTypeTolerance"):  # as saved then
             panels.removeProperty(prop)
         name, label = panels.Name, panels.Label
-        path = os.path.join(self.tmp.name, "older.FCStd")
-        doc.saveAs(path)
-        App.closeDocument(doc.Name)
-        doc, text = captured(lambda: App.openDocument(path))
-        type(self).doc = doc
+        doc, text = reopened(self, doc, os.path.join(self.tmp.name, "older.FCStd"))
         panels = doc.getObject(name)
         said = [line for line in error_lines(text) if line.startswith(label + ":")]
         self.assertEqual(len(said), 1, text)
         self.assertIn("12 panels", said[0])
         self.assertEqual((panels.PartTypeCount, list(panels.PartTypes)), (0, []))
-        recorded = Recomputes(doc)
-        self.addCleanup(recorded.stop)
-        doc.recompute()
-        self.assertIn(name, recorded.take())
+        self.assertIn(name, recomputed(self, doc))
         self.assertTrue(panels.isValid(), panels.getStatusString())
         self.assertEqual((panels.PartTypeCount, list(panels.PartTypes)), (count, types))
-        doc.save()
-        App.closeDocument(doc.Name)
-        doc, text = captured(lambda: App.openDocument(path))
-        type(self).doc = doc
+        doc, text = reopened(self, doc)
         self.assertNotIn(label + ":", text)
-        recorded = Recomputes(doc)
-        self.addCleanup(recorded.stop)
-        doc.recompute()
-        self.assertEqual(recorded.take(), set())
+        self.assertEqual(recomputed(self, doc), set())
         self.assertEqual(doc.getObject(name).PartTypeCount, count)

@@ -15,6 +15,20 @@ import time
 from ui_checks import settle
 
 
+def recompute_and_settle(doc):
+    """Recompute ``doc``, then let the live re-solves it left pending run (30 s at most)."""
+    import FreeCADGui as Gui
+
+    from facetwb import live_parameters
+
+    doc.recompute()
+    end = time.monotonic() + 30
+    while live_parameters.pending() and time.monotonic() < end:
+        Gui.updateGui()
+        time.sleep(0.02)
+    settle(10)
+
+
 def check_made_and_recomputed_solves_once(check, g):
     import FreeCAD as App
     import FreeCADGui as Gui
@@ -43,12 +57,7 @@ def check_made_and_recomputed_solves_once(check, g):
 
     facet.planarize = slow
     try:
-        doc.recompute()
-        end = time.monotonic() + 30
-        while live_parameters.pending() and time.monotonic() < end:
-            Gui.updateGui()
-            time.sleep(0.02)
-        settle(10)
+        recompute_and_settle(doc)
     finally:
         facet.planarize = original
     check(len(solves) == 1, f"a Planarized made and recomputed at once is solved once "
@@ -65,11 +74,9 @@ def check_expression_change_solves_once(check, g):
     before the solve that used it, and that change was taken for one made during the
     recompute: solved a second time after it."""
     import FreeCAD as App
-    import FreeCADGui as Gui
 
     import facet
     import facetwb
-    from facetwb import live_parameters
 
     doc = App.newDocument("ExpressionTolerance")
     control = facetwb.make_polymesh(facet.read_mesh(g.MESH), label="control")
@@ -87,12 +94,7 @@ def check_expression_change_solves_once(check, g):
 
     def recompute():
         del solves[:]
-        doc.recompute()
-        end = time.monotonic() + 30
-        while live_parameters.pending() and time.monotonic() < end:
-            Gui.updateGui()
-            time.sleep(0.02)
-        settle(10)
+        recompute_and_settle(doc)
         return len(solves)
 
     facet.planarize = counted
