@@ -439,17 +439,23 @@ class TestPanelSet(DocumentTestCase):
         for name in names:
             self.doc.removeObject(name)
 
+    def small_cutsheets(self, label, panels_name, sheets_name, folder):
+        """Panels 20 mm wide, 2 mm thick (a mesh labelled ``label``) and their CutSheets on
+        200 x 100 mm sheets, writing into ``folder`` (no STEP): (PanelSet, CutSheets)."""
+        small = facetwb.make_polymesh(translational(nu=3, nv=2, step=20.0), label=label,
+                                      doc=self.doc)
+        panels = facetwb.make_panelset(small, thickness=2.0, name=panels_name)
+        sheets = facetwb.make_cutsheets(panels, sheet=(200.0, 100.0), margin=1.0, spacing=1.0,
+                                        name=sheets_name, write_step=False,
+                                        output_dir=os.path.join(self.tmp.name, folder))
+        return panels, sheets
+
     def test_cutsheets_warn_of_texts_too_small_to_engrave(self):
         """Parts 20 mm wide get IDs of 2 mm (a tenth of the part): the CutSheets' Warnings
         say so when they write the DXF, as facet panels does; only the command line said
         it. Parts a metre wide get none, and nor do sheets with no output folder (no text
         is written anywhere)."""
-        small = facetwb.make_polymesh(translational(nu=3, nv=2, step=20.0), label="small",
-                                      doc=self.doc)
-        small_panels = facetwb.make_panelset(small, thickness=2.0, name="SmallPanels")
-        tiny = facetwb.make_cutsheets(small_panels, sheet=(200.0, 100.0), margin=1.0,
-                                      spacing=1.0, name="TinySheets", write_step=False,
-                                      output_dir=os.path.join(self.tmp.name, "tiny"))
+        small_panels, tiny = self.small_cutsheets("small", "SmallPanels", "TinySheets", "tiny")
         unwritten = facetwb.make_cutsheets(small_panels, sheet=(200.0, 100.0), margin=1.0,
                                            spacing=1.0, name="UnwrittenSheets")
         large = facetwb.make_cutsheets(self.square, sheet=(2600.0, 1400.0), margin=10.0,
@@ -468,12 +474,8 @@ class TestPanelSet(DocumentTestCase):
         """FreeCAD set to inches: the CutSheets' Warnings said "under 3 mm high ... the
         smallest 2 mm" beside a property editor in inches. They give the heights in inches
         now (the least in mm too); in the Standard schema as they were."""
-        small = facetwb.make_polymesh(translational(nu=3, nv=2, step=20.0), label="small in",
-                                      doc=self.doc)
-        small_panels = facetwb.make_panelset(small, thickness=2.0, name="SmallPanelsIn")
-        sheets = facetwb.make_cutsheets(small_panels, sheet=(200.0, 100.0), margin=1.0,
-                                        spacing=1.0, name="InchSheets", write_step=False,
-                                        output_dir=os.path.join(self.tmp.name, "inch"))
+        small_panels, sheets = self.small_cutsheets("small in", "SmallPanelsIn", "InchSheets",
+                                                    "inch")
         schema = App.Units.getSchema()
         try:
             App.Units.setSchema(3)  # Imperial decimal
@@ -487,7 +489,7 @@ class TestPanelSet(DocumentTestCase):
             self.assertTrue(0.06 < smallest < 0.118, said)
         finally:
             App.Units.setSchema(schema)
-            for obj in (sheets, small_panels, small):
+            for obj in (sheets, small_panels, small_panels.Source):
                 self.doc.removeObject(obj.Name)
 
     def test_cutsheets_progress_names_each_stage(self):
