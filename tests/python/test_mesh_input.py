@@ -276,3 +276,21 @@ def test_a_face_twice_is_named_as_a_copy(write_file, tmp_path, facet_command):
         in check.stdout
     report = json.loads((tmp_path / "c.json").read_text())
     assert (report["duplicate_faces"], report["first_duplicate_faces"]) == (2, [1, 2])
+
+
+def test_faces_wound_opposite_ways_are_named_by_check(write_file, tmp_path, facet_command):
+    """Two faces wound opposite ways across their edge (normals to opposite sides, shaded
+    dark in FreeCAD) passed `facet check` without a word: only `facet panels` said it
+    reversed them. Now check names the edges and the first pair of faces."""
+    from facet.mesh import opposite_windings
+
+    assert opposite_windings(read_mesh(write_file("once.obj", _welded()))) == (0, None)
+    turned = read_mesh(write_file("turned.obj", _obj(_POINTS, [[0, 1, 4, 3], [4, 5, 2, 1]])))
+    assert opposite_windings(turned) == (1, (0, 1))
+    check = facet_command("check", tmp_path / "turned.obj", "--report", tmp_path / "t.json")
+    assert ("faces wound opposite ways across 1 edge (first: faces 0 and 1): their normals "
+            "point to opposite sides") in check.stdout
+    report = json.loads((tmp_path / "t.json").read_text())
+    assert (report["opposite_windings"], report["first_opposite_windings"]) == (1, [0, 1])
+    once = facet_command("check", tmp_path / "once.obj")
+    assert "wound opposite" not in once.stdout

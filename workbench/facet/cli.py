@@ -439,6 +439,13 @@ def print_check_summary(report, out=None):
         count = report["duplicate_faces"]
         _line(out, "warning", f"{count_noun(count, 'face')} with the same vertices as another "
               f"(first: face {copy} repeats face {earlier}): two panels at one place")
+    if report.get("opposite_windings"):
+        f, g = report.get("first_opposite_windings")
+        count = report["opposite_windings"]
+        _line(out, "warning", f"faces wound opposite ways across {count_noun(count, 'edge')} "
+              f"(first: faces {f} and {g}): their normals point to opposite sides, so "
+              "FreeCAD shades the turned ones dark; facet panels turns them to their "
+              "neighbours' side")
     if report.get("coincident_vertex_pairs"):
         from facet.mesh import WELD_ADVICE
 

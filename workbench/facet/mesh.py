@@ -17,7 +17,7 @@ from facet.errors import MeshError, from_core
 
 __all__ = ["PolyMesh", "cluster_points", "coincident_vertices", "coincident_text",
            "unwelded_warning", "WELD_ADVICE",
-           "duplicate_faces", "weld"]
+           "duplicate_faces", "opposite_windings", "weld"]
 
 _INT32_MAX = np.iinfo(np.int32).max
 
@@ -603,6 +603,46 @@ def duplicate_faces(mesh):
             pair = (int(faces[index[inverse[copies[0]]]]), int(faces[copies[0]]))
             first = pair if first is None or pair[1] < first[1] else first
     return count, first
+
+
+def opposite_windings(mesh):
+    """Edges between two faces wound opposite ways: both go along the edge in the same
+    direction, so their normals (counter-clockwise, by the right hand) point to opposite
+    sides of the surface. A mesh joined from pieces drawn apart often has them; FreeCAD
+    shades the turned faces dark, and a panel's outer side follows its normal
+    (``facet.panels`` turns such faces to their neighbours' side, with a warning).
+
+    Parameters
+    ----------
+    mesh : PolyMesh
+
+    Returns
+    -------
+    (int, tuple or None)
+        The number of such edges (of those shared by exactly two faces), and the faces
+        of the first one (lower face first), or ``(0, None)``.
+    """
+    start = np.asarray(mesh.face_start)
+    a = np.asarray(mesh.face_vertices, dtype=np.int64)
+    if a.size == 0:
+        return 0, None
+    b = a[next_corners(start)]
+    face = np.repeat(np.arange(mesh.n_faces), np.diff(start))
+    low, high = np.minimum(a, b), np.maximum(a, b)
+    keys = low * (int(high.max()) + 1) + high  # one number per undirected edge
+    order = np.argsort(keys, kind="stable")
+    k = keys[order]
+    n = k.size
+    # the corners of edges used exactly twice: k[i] == k[i + 1], unlike k[i - 1], k[i + 2]
+    i = np.flatnonzero(k[:-1] == k[1:])
+    i = i[((i == 0) | (k[i - 1] != k[i])) & ((i + 2 >= n) | (k[np.minimum(i + 2, n - 1)] != k[i]))]
+    first, second = order[i], order[i + 1]  # the two corners of each such edge
+    same = (a[first] == a[second]) & (a[first] != b[first])
+    if not same.any():
+        return 0, None
+    pairs = np.sort(np.column_stack([face[first[same]], face[second[same]]]), axis=1)
+    pair = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))[0]]
+    return int(same.sum()), (int(pair[0]), int(pair[1]))
 
 
 def boundary_corners(face_start, face_vertices):

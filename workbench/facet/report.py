@@ -241,6 +241,9 @@ def check_report(mesh, planarity_report, validation_report, path=None):
         another: :func:`facet.mesh.duplicate_faces`), ``coincident_vertex_pairs`` and
         ``first_coincident_vertices`` (vertices at one
         point that are not one vertex: :func:`facet.mesh.coincident_vertices`),
+        ``opposite_windings`` and ``first_opposite_windings`` (edges between faces
+        wound opposite ways, and the first such pair of faces:
+        :func:`facet.mesh.opposite_windings`),
         ``max_degree``, ``face_degrees``, ``mean_edge_length``, ``bounds``),
         planarity (``planarity_max_rel``, ``planarity_max_abs``,
         ``planarity_rms_rel``, ``planarity_diagonal_max``, ``worst_face``),
@@ -248,11 +251,12 @@ def check_report(mesh, planarity_report, validation_report, path=None):
         :func:`facet.quality`) and what the reader noted (``source_*``).
         Already JSON-safe.
     """
-    from facet.mesh import coincident_vertices, duplicate_faces
+    from facet.mesh import coincident_vertices, duplicate_faces, opposite_windings
 
     validation = dict(validation_report)
     coincident = coincident_vertices(mesh)
     duplicates = duplicate_faces(mesh)
+    windings = opposite_windings(mesh)
     lower, upper = mesh.bounds()
     report = {
         "command": "check",
@@ -271,6 +275,8 @@ def check_report(mesh, planarity_report, validation_report, path=None):
         "first_duplicate_faces": duplicates[1],
         "coincident_vertex_pairs": coincident[0],
         "first_coincident_vertices": coincident[1],
+        "opposite_windings": windings[0],
+        "first_opposite_windings": windings[1],
         "max_degree": validation.get("max_degree"),
         "mean_edge_length": _mean_edge_length(mesh),
         "bounds": {"min": lower, "max": upper},
