@@ -622,21 +622,14 @@ def opposite_windings(mesh):
         The number of such edges (of those shared by exactly two faces), and the faces
         of the first one (lower face first), or ``(0, None)``.
     """
-    start = np.asarray(mesh.face_start)
-    a = np.asarray(mesh.face_vertices, dtype=np.int64)
-    if a.size == 0:
+    if mesh.n_faces == 0:
         return 0, None
-    b = a[next_corners(start)]
-    face = np.repeat(np.arange(mesh.n_faces), np.diff(start))
-    low, high = np.minimum(a, b), np.maximum(a, b)
-    keys = low * (int(high.max()) + 1) + high  # one number per undirected edge
-    order = np.argsort(keys, kind="stable")
-    k = keys[order]
-    n = k.size
-    # the corners of edges used exactly twice: k[i] == k[i + 1], unlike k[i - 1], k[i + 2]
-    i = np.flatnonzero(k[:-1] == k[1:])
-    i = i[((i == 0) | (k[i - 1] != k[i])) & ((i + 2 >= n) | (k[np.minimum(i + 2, n - 1)] != k[i]))]
-    first, second = order[i], order[i + 1]  # the two corners of each such edge
+    a, b, keys, _ = _edge_keys(mesh.face_start, mesh.face_vertices)
+    face = np.repeat(np.arange(mesh.n_faces), np.diff(np.asarray(mesh.face_start)))
+    _, inverse, counts = np.unique(keys, return_inverse=True, return_counts=True)
+    shared = np.flatnonzero(counts[inverse] == 2)
+    order = shared[np.argsort(inverse[shared], kind="stable")]
+    first, second = order[0::2], order[1::2]  # the two corners of each edge used twice
     same = (a[first] == a[second]) & (a[first] != b[first])
     if not same.any():
         return 0, None
@@ -649,13 +642,22 @@ def boundary_corners(face_start, face_vertices):
     """For each face corner k, whether the edge from it to the next corner of its face
     belongs to that face alone (a boundary edge, or an edge the faces beside it do not
     share): bool, size face_start[-1]."""
-    starts = np.asarray(face_vertices)
-    if starts.size == 0:
+    if np.asarray(face_vertices).size == 0:
         return np.zeros(0, dtype=bool)
-    ends = starts[next_corners(np.asarray(face_start))]
-    keys = np.sort(np.column_stack([starts, ends]), axis=1)
-    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
-    return counts[inverse.reshape(-1)] == 1
+    _, inverse, counts = np.unique(_edge_keys(face_start, face_vertices)[2],
+                                   return_inverse=True, return_counts=True)
+    return counts[inverse] == 1
+
+
+def _edge_keys(face_start, face_vertices):
+    """For each face corner k, the edge from it to the next corner of its face: its two
+    vertices (int64 arrays a and b) and one number for the undirected edge, the same
+    for (a, b) and (b, a): ``min * base + max`` with ``base`` (returned last) above every
+    vertex index. Indices must not be negative."""
+    a = np.asarray(face_vertices, dtype=np.int64)
+    b = a[next_corners(np.asarray(face_start))]
+    base = int(a.max()) + 1 if a.size else 1
+    return a, b, np.minimum(a, b) * base + np.maximum(a, b), base
 
 
 def next_corners(face_start):
@@ -673,14 +675,8 @@ def _unique_edges(face_start, face_vertices):
     """Distinct undirected edges of a CSR face list, as a sorted (E, 2) int32 array."""
     if face_vertices.size == 0:
         return np.zeros((0, 2), dtype=np.int32)
-    following = next_corners(face_start)
-    a = face_vertices.astype(np.int64)
-    if a.min() < 0:
+    if face_vertices.min() < 0:
         raise MeshError("face_vertices holds a negative index (call validate() first)")
-    b = a[following]
-    low, high = np.minimum(a, b), np.maximum(a, b)
-    keep = low != high
-    low, high = low[keep], high[keep]
-    base = int(high.max()) + 1 if high.size else 1
-    keys = np.unique(low * base + high)
+    a, b, keys, base = _edge_keys(face_start, face_vertices)
+    keys = np.unique(keys[a != b])
     return np.stack([keys // base, keys % base], axis=1).astype(np.int32)
