@@ -493,8 +493,9 @@ def schedule_rows(panel_set, nest_result=None, drawings=None, density=None, unit
                   types=None):
     """The schedule: one dict per panel (see :meth:`facet.panels.Panel.schedule_row`)
     with its part type (``types``, :func:`facet.part_types.part_types` of the panels,
-    one per panel, else a ValueError; by default within :data:`facet.part_types.DEFAULT_TOL_MM` in ``units``), sheet
-    (1-based, None when not nested or unplaced), x, y and
+    one per panel, else a ValueError; by default within
+    :data:`facet.part_types.DEFAULT_TOL_MM` in ``units``), sheet (1-based, None when not
+    nested or unplaced), x, y and
     rotation_deg on the sheet: ``sheet_xy = rotate(rotation_deg) @ flat_xy + (x, y)``
     for the panel's flat outline (``Panel.flat_bottom``). ``drawings``
     (:func:`facet.unfold.unfold`'s) carry the turn that lays each part's grain along x,

@@ -943,10 +943,9 @@ def plan_from_segments(segments, *, snap=None, openings=(), source=None, progres
                 f"{where}the face around {around} has a hole at {at((x, y))}, "
                 "and a face must be a simple polygon: draw two or more edges from the hole "
                 "to the outline, which split the ring into faces (one edge is not enough), or "
-                + (f"mark the face around the hole as an opening (a point such as {around}); "
-                   f"the opening at {at(inside[0])} is inside the hole, which leaves that "
-                   "face as it is" if inside else
-                   "mark the face around the hole as an opening")
+                "mark the face around the hole as an opening"
+                + (f" (a point such as {around}); the opening at {at(inside[0])} is inside "
+                   "the hole, which leaves that face as it is" if inside else "")
             )
     if not kept:
         # where: an outline left open ("4 dangling edges" named no place to close it)
