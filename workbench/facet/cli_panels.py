@@ -147,7 +147,7 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
                  step=None, schedule=None, svg=None, png=None, progress=None,
                  cancelled=None, panel_set=None, solids=None, allow_unplaced=False,
                  units="mm", text_outlines=False, density=None, nested=None,
-                 option_names=None, type_tol=None):
+                 option_names=None, type_tol=None, types=None):
     """Everything ``facet panels`` does, as a function (also used by the
     benchmark). Returns (report dict, PanelSet, drawings, NestResult or None).
 
@@ -181,7 +181,8 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
     regroups the least-filled sheets (:func:`facet.nest.nest`'s ``tight``). ``type_tol``
     (model units; default :data:`facet.part_types.DEFAULT_TOL_MM` in ``units``): panels
     whose corners all lie within it of another's are one part type
-    (:func:`facet.part_types.part_types`), in the schedule and the report.
+    (:func:`facet.part_types.part_types`), in the schedule and the report; ``types`` (one
+    per panel of ``panel_set``, found within ``type_tol``) are reused when given.
     """
     from facet.cutsheets import length_unit
     from facet.errors import InputError
@@ -247,9 +248,10 @@ def run_pipeline(mesh, thickness, offset="outer", gap=None, edge="square", flip=
             raise PanelError(f"{error}; {units_said[0]}", error.faces) from None
     times["panels"] = time.perf_counter() - t
     t = time.perf_counter()
-    from facet.part_types import part_types
+    if types is None:
+        from facet.part_types import part_types
 
-    types = part_types(ps.panels, type_tol, progress=stage_progress("types"))
+        types = part_types(ps.panels, type_tol, progress=stage_progress("types"))
     times["types"] = time.perf_counter() - t
     job = None
     if step and (solids is None or len(solids) != len(ps.panels)):

@@ -319,7 +319,9 @@ class PanelSet(_Proxy):
             solids = obj.Shape.Solids  # (placed as the object, as the panels' objects are)
             if cache[0] == self._key(obj):
                 obj.Masses, obj.TotalMass = _masses(obj.Volumes, density)
-                _set_part_types(obj, cache[1])
+                if ("PartTypeTolerance" in self._changed
+                        or len(obj.PartTypes) != len(cache[1].panels)):
+                    _set_part_types(obj, cache[1])  # (the panels' types: their tolerance's)
                 self._update_panel_objects(obj, cache[1], solids)
                 self._cache = (self._key(obj), cache[1], mesh)
                 self._changed = set()
@@ -580,6 +582,11 @@ class CutSheets(_Proxy):
                     obj.Label, out, name))
             os.makedirs(out, exist_ok=True)
         panel_set, solids = ps_obj.Proxy.computed(ps_obj)
+        # the PanelSet's part types when they are those of these panels (its last
+        # recompute's, still current), else run_pipeline finds them
+        record = ps_obj.Proxy.record()
+        types = (list(ps_obj.PartTypes) if record is not None and record[1] is panel_set
+                 and len(ps_obj.PartTypes) == len(panel_set.panels) else None)
         density = _density(ps_obj)
         kept, self._kept = getattr(self, "_kept", None), None
         if not self._nesting_kept(obj, ps_obj, kept):
@@ -607,7 +614,7 @@ class CutSheets(_Proxy):
                 schedule=path("schedule", "schedule.csv"), svg=path("svg", "svg"),
                 step=path("step", "panels.step"),
                 text_outlines=bool(obj.TextOutlines), density=density,
-                type_tol=ps_obj.PartTypeTolerance.Value,
+                type_tol=ps_obj.PartTypeTolerance.Value, types=types,
                 progress=_stage_progress(progress.hook(), progress.say_hook()),
                 nested=None if kept is None else (kept["panels"], kept["drawings"],
                                                   kept["result"]))
