@@ -8,7 +8,7 @@ import numpy as np
 import facet
 import facetwb
 from facetwb import importer
-from facetwb.objects.planarized import format_length
+from facetwb.units import length_text
 from facet_test_support import DocumentTestCase, bits, data_path, points_array
 
 TOLERANCE = 1e-6
@@ -336,8 +336,8 @@ class TestPlanarizedTerms(DocumentTestCase):
         summary = facetwb.planarize_summary(result)
         self.assertIn("4 exempt faces (FaceWeights 0) not counted", summary)
         # and so does the source's beside it (it had been the source's own: the exempt faces')
-        self.assertIn(f", source {format_length(before[~exempt].max())};", summary)
-        self.assertNotIn(f", source {format_length(before.max())};", summary)
+        self.assertIn(f", source {length_text(before[~exempt].max())};", summary)
+        self.assertNotIn(f", source {length_text(before.max())};", summary)
         result.FaceWeights = [1.0] * 3
         self.doc.recompute()
         self.assertFalse(result.isValid())

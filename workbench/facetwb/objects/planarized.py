@@ -19,6 +19,7 @@ from facetwb import compat, progress
 from facetwb.translation import translate
 from facetwb.recompute import failure, guarded
 from facetwb import conversion
+from facetwb.units import length_text
 from facetwb.objects.polymesh import PolyMesh, set_mesh, set_planarity
 
 TYPE_PLANARIZED = "Facet::Planarized"
@@ -349,15 +350,6 @@ def is_planarized(obj):
     return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE_PLANARIZED
 
 
-def format_length(value):
-    """A length in mm in the unit FreeCAD shows it in, three significant digits: '2.31 mm',
-    '1.69e-07 in' (the schema's own text had "planarity max 0.00 in", and Building US's
-    eighths of an inch "planarity max 0" and "source 1/4\"" of 0.20 in)."""
-    from facetwb.units import length_text
-
-    return length_text(value)
-
-
 def method_text(obj):
     """The Method as the designer reads it; for auto, with what it chose (e.g. 'automatic:
     local/global') once the object was solved in this session."""
@@ -375,10 +367,10 @@ def _compared_text(compared, kept):
     other = "ll" if kept == "lg" else "lg"
     a, b = compared[kept], compared[other]
     text = (f"  local/global and local/local compared: {METHOD_NAMES[kept]} kept, "
-            f"distance from the source surface rms {format_length(a['distance_rms'])}, "
-            f"vertices moved rms {format_length(a['displacement_rms'])}, smallest corner "
+            f"distance from the source surface rms {length_text(a['distance_rms'])}, "
+            f"vertices moved rms {length_text(a['displacement_rms'])}, smallest corner "
             f"{a['min_angle']:.1f} deg; {METHOD_NAMES[other]}: "
-            f"{format_length(b['distance_rms'])}, {format_length(b['displacement_rms'])}, "
+            f"{length_text(b['distance_rms'])}, {length_text(b['displacement_rms'])}, "
             f"{b['min_angle']:.1f} deg")
     finer = compared.get("finer")
     if finer:
@@ -401,13 +393,13 @@ def planarize_summary(obj):
         f"{obj.Label}: {obj.FaceCount} panels, {obj.VertexCount} vertices, "
         f"{method_text(obj)}, {obj.Iterations} iterations, "
         f"stopped: {STOP_REASONS.get(obj.StopReason, obj.StopReason)}",
-        f"  planarity max {format_length(obj.PlanarityMaxAbs.Value)} "
+        f"  planarity max {length_text(obj.PlanarityMaxAbs.Value)} "
         f"({obj.PlanarityMaxRel:.2g} of the edge length)"
-        + (f", source {format_length(source_max_abs)}" if source_max_abs is not None else "")
+        + (f", source {length_text(source_max_abs)}" if source_max_abs is not None else "")
         + (f"; {exempt} exempt face{'s' if exempt != 1 else ''} (FaceWeights 0) not counted"
            if exempt else ""),
-        f"  vertices moved: max {format_length(obj.DisplacementMax.Value)}, "
-        f"rms {format_length(obj.DisplacementRms.Value)}",
+        f"  vertices moved: max {length_text(obj.DisplacementMax.Value)}, "
+        f"rms {length_text(obj.DisplacementRms.Value)}",
     ]
     proxy = getattr(obj, "Proxy", None)
     if getattr(proxy, "stopped", False):
